@@ -1,0 +1,94 @@
+"""Luminance, WCAG contrast ratio and CIEDE2000 on linear sRGB.
+
+Channels are on the last axis; the leading shape is kept.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+with warnings.catch_warnings():
+    # colour-science announces its optional SciPy/Matplotlib features at import.
+    warnings.simplefilter("ignore")
+    from colour import XYZ_to_Lab
+    from colour.difference import delta_E_CIE2000
+
+__all__ = [
+    "CONTRAST_TOLERANCE",
+    "DELTA_E_TOLERANCE",
+    "LUMINANCE_WEIGHTS",
+    "NON_TEXT_THRESHOLD",
+    "contrast_from_luminance",
+    "contrast_ratio",
+    "delta_e_2000",
+    "linear_to_lab",
+    "relative_luminance",
+]
+
+# WCAG 2.2, "relative luminance" (the Rec. 709 / sRGB Y row, rounded to 4 places).
+LUMINANCE_WEIGHTS = (0.2126, 0.7152, 0.0722)
+# WCAG 2.2 SC 1.4.11 Non-text Contrast.
+NON_TEXT_THRESHOLD = 3.0
+# Paper, Appendix A.1: contrast changes within 1e-10 are "unchanged",
+# CIEDE2000 decreases within 1e-9 are not decreases.
+CONTRAST_TOLERANCE = 1e-10
+DELTA_E_TOLERANCE = 1e-9
+
+# CSS Color 4, 10.2: linear sRGB -> CIE XYZ (D65), exact rational entries.
+# colour-science's rounded sRGB matrix moves CIEDE2000 by > 0.1 on some
+# near-opposite-hue pairs, so the exact one is used.
+LINEAR_SRGB_TO_XYZ = np.array(
+    [
+        [506752 / 1228815, 87881 / 245763, 12673 / 70218],
+        [87098 / 409605, 175762 / 245763, 12673 / 175545],
+        [7918 / 409605, 87881 / 737289, 1001167 / 1053542],
+    ]
+)
+# CSS Color 4 D65 white, as chromaticity (x, y) = (0.3127, 0.3290).
+D65_XY = np.array([0.3127, 0.3290])
+
+
+def relative_luminance(linear: ArrayLike) -> NDArray[np.float64]:
+    """WCAG relative luminance ``0.2126 R + 0.7152 G + 0.0722 B`` of linear sRGB.
+
+    Summed left to right so that table-driven fast paths reproduce it bit for bit.
+
+    >>> float(relative_luminance([1.0, 1.0, 1.0]))
+    1.0
+    """
+    c = np.asarray(linear, dtype=np.float64)
+    wr, wg, wb = LUMINANCE_WEIGHTS
+    return wr * c[..., 0] + wg * c[..., 1] + wb * c[..., 2]
+
+
+def contrast_from_luminance(y1: ArrayLike, y2: ArrayLike) -> NDArray[np.float64]:
+    """WCAG contrast ratio ``(max + 0.05) / (min + 0.05)`` of two luminances.
+
+    >>> float(contrast_from_luminance(1.0, 0.0))
+    21.0
+    """
+    a = np.asarray(y1, dtype=np.float64)
+    b = np.asarray(y2, dtype=np.float64)
+    return (np.maximum(a, b) + 0.05) / (np.minimum(a, b) + 0.05)
+
+
+def contrast_ratio(linear1: ArrayLike, linear2: ArrayLike) -> NDArray[np.float64]:
+    """WCAG contrast ratio of two linear sRGB colours (symmetric, >= 1)."""
+    return contrast_from_luminance(relative_luminance(linear1), relative_luminance(linear2))
+
+
+def linear_to_lab(linear: ArrayLike) -> NDArray[np.float64]:
+    """CIELAB (D65) of linear sRGB via the CSS Color 4 XYZ matrix."""
+    c = np.asarray(linear, dtype=np.float64)
+    xyz = c @ LINEAR_SRGB_TO_XYZ.T
+    return np.asarray(XYZ_to_Lab(xyz, D65_XY), dtype=np.float64)
+
+
+def delta_e_2000(linear1: ArrayLike, linear2: ArrayLike) -> NDArray[np.float64]:
+    """CIEDE2000 colour difference of two linear sRGB colours (colour-science)."""
+    return np.asarray(
+        delta_E_CIE2000(linear_to_lab(linear1), linear_to_lab(linear2)), dtype=np.float64
+    )

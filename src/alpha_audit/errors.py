@@ -1,0 +1,69 @@
+"""One exception family for the whole library.
+
+Every error says *where* (file and line or key), *what* (the bad value) and
+*what is allowed*, so the CLI can print it on one line and exit 2.  Only
+``cli.py`` turns these into exit codes.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+__all__ = [
+    "AlphaAuditError",
+    "ColorSyntaxError",
+    "InputError",
+    "SvgError",
+    "UsageError",
+]
+
+
+class AlphaAuditError(Exception):
+    """Base of every error alpha-audit raises on purpose.
+
+    ``path`` is the file at fault (if any), ``location`` a line number or a key
+    path such as ``canvases[2].color``.
+    """
+
+    def __init__(
+        self,
+        message: str,
+        *,
+        path: str | Path | None = None,
+        line: int | None = None,
+        key: str | None = None,
+    ) -> None:
+        super().__init__(message)
+        self.message = message
+        self.path = None if path is None else Path(path)
+        self.line = line
+        self.key = key
+
+    def where(self) -> str:
+        """``file:line: key`` prefix, omitting what is unknown."""
+        parts = []
+        if self.path is not None:
+            parts.append(f"{self.path}:{self.line}" if self.line else str(self.path))
+        if self.key:
+            parts.append(self.key)
+        return ": ".join(parts)
+
+    def __str__(self) -> str:
+        where = self.where()
+        return f"{where}: {self.message}" if where else self.message
+
+
+class InputError(AlphaAuditError):
+    """A theme, manifest, config or colour the user supplied is invalid."""
+
+
+class UsageError(AlphaAuditError):
+    """Options that cannot be combined or a file that cannot be found."""
+
+
+class ColorSyntaxError(InputError, ValueError):
+    """A colour string that is not one of the accepted sRGB notations."""
+
+
+class SvgError(InputError):
+    """An SVG that cannot be rasterised; reported per file, not fatal by default."""
