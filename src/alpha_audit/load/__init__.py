@@ -1,0 +1,1 @@
+"""Loaders: YAML themes, icon-set manifests, project config and SVG rasterisation."""

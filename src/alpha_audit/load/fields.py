@@ -1,0 +1,101 @@
+"""Typed field readers for YAML documents: each failure names file, line, key and value."""
+
+from __future__ import annotations
+
+import difflib
+import math
+from collections.abc import Iterable
+from typing import Any
+
+from alpha_audit.color import parse_color
+from alpha_audit.errors import ColorSyntaxError
+from alpha_audit.load.yamldoc import KeyPath, YamlDoc
+
+__all__ = ["check_keys", "read_color", "read_mapping", "read_name", "read_number"]
+
+_TYPE_NAMES = {
+    bool: "a boolean",
+    int: "a number",
+    float: "a number",
+    str: "a string",
+    list: "a list",
+    dict: "a mapping",
+    type(None): "empty",
+}
+
+
+def describe(value: Any) -> str:
+    """``'abc' (a string)`` style description of a YAML value."""
+    kind = _TYPE_NAMES.get(type(value), type(value).__name__)
+    if value is None:
+        return "empty"
+    text = repr(value)
+    if len(text) > 40:
+        text = text[:37] + "..."
+    return f"{text} ({kind})"
+
+
+def check_keys(
+    doc: YamlDoc, keys: KeyPath, mapping: dict[str, Any], allowed: Iterable[str]
+) -> None:
+    """Reject unknown keys, suggesting the closest allowed one."""
+    allowed = sorted(allowed)
+    for key in mapping:
+        if key not in allowed:
+            close = difflib.get_close_matches(key, allowed, n=1)
+            hint = f"did you mean {close[0]!r}? " if close else ""
+            raise doc.error(
+                (*keys, key), f"unknown key {key!r}; {hint}allowed: {', '.join(allowed)}"
+            )
+
+
+def read_mapping(doc: YamlDoc, keys: KeyPath, value: Any, what: str) -> dict[str, Any]:
+    """``value`` must be a mapping."""
+    if not isinstance(value, dict):
+        raise doc.error(keys, f"expected {what} (a mapping of keys), got {describe(value)}")
+    return value
+
+
+def read_name(doc: YamlDoc, keys: KeyPath, value: Any) -> str:
+    """A non-empty one-line name (numbers are accepted and turned into text)."""
+    if isinstance(value, bool) or not isinstance(value, str | int | float):
+        raise doc.error(keys, f"expected a name (text), got {describe(value)}")
+    text = str(value).strip()
+    if not text or any(ch in text for ch in "\r\n\t\x00") or len(text) > 200:
+        raise doc.error(keys, f"{text[:40]!r} is not a usable name: one line, 1-200 characters")
+    return text
+
+
+def read_number(
+    doc: YamlDoc,
+    keys: KeyPath,
+    value: Any,
+    *,
+    low: float = -math.inf,
+    high: float = math.inf,
+    what: str = "a finite number",
+) -> float:
+    """A finite real in ``[low, high]``; booleans, strings and NaN are refused."""
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        hint = " (quote-free, e.g. 1.1)" if isinstance(value, str) else ""
+        raise doc.error(keys, f"expected {what}{hint}, got {describe(value)}")
+    number = float(value)
+    if not math.isfinite(number) or not low <= number <= high:
+        raise doc.error(keys, f"{value!r} is out of range; expected {what}")
+    return number
+
+
+def read_color(doc: YamlDoc, keys: KeyPath, value: Any) -> str:
+    """A colour string accepted by :func:`alpha_audit.color.parse_color`."""
+    if value is None:
+        raise doc.error(
+            keys,
+            'colour is empty; an unquoted #hex starts a YAML comment: quote it, e.g. "#0d1117"',
+        )
+    if not isinstance(value, str):
+        raise doc.error(keys, f"expected a colour string, got {describe(value)}")
+    try:
+        parse_color(value)
+    except ColorSyntaxError as exc:
+        raise doc.error(keys, exc.message) from exc
+    return value

@@ -1,0 +1,78 @@
+"""Theme files: named canvases (light and dark) and a contrast threshold."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from alpha_audit.color import NON_TEXT_THRESHOLD
+from alpha_audit.load.fields import (
+    check_keys,
+    read_color,
+    read_mapping,
+    read_name,
+    read_number,
+)
+from alpha_audit.load.yamldoc import YamlDoc, load_yaml
+from alpha_audit.model import Canvas, Theme
+
+__all__ = ["MAX_CANVASES", "load_theme", "theme_from_doc"]
+
+MAX_CANVASES = 4096
+_THEME_KEYS = ("name", "threshold", "canvases", "description", "source")
+_CANVAS_KEYS = ("name", "color", "mode")
+
+
+def load_theme(path: str | Path) -> Theme:
+    """Load and validate a theme YAML file.
+
+    >>> theme = load_theme("themes/paper16.yaml")  # doctest: +SKIP
+    """
+    return theme_from_doc(load_yaml(path))
+
+
+def theme_from_doc(doc: YamlDoc) -> Theme:
+    """Validate a parsed theme document."""
+    data = read_mapping(doc, (), doc.data, "a theme")
+    check_keys(doc, (), data, _THEME_KEYS)
+    name = read_name(doc, ("name",), data.get("name", doc.path.stem))
+    threshold = NON_TEXT_THRESHOLD
+    if "threshold" in data:
+        threshold = read_number(
+            doc,
+            ("threshold",),
+            data["threshold"],
+            low=1.0,
+            high=21.0,
+            what="a contrast ratio between 1 and 21",
+        )
+    raw = data.get("canvases")
+    if not isinstance(raw, list) or not raw:
+        raise doc.error(
+            ("canvases",),
+            "expected a non-empty list of canvases "
+            '({name: ..., color: "#rrggbb", mode: light|dark})',
+        )
+    if len(raw) > MAX_CANVASES:
+        raise doc.error(("canvases",), f"{len(raw)} canvases; at most {MAX_CANVASES} are allowed")
+    canvases: list[Canvas] = []
+    seen: dict[str, int] = {}
+    for i, item in enumerate(raw):
+        keys = ("canvases", i)
+        item = read_mapping(doc, keys, item, "a canvas")
+        check_keys(doc, keys, item, _CANVAS_KEYS)
+        if "color" not in item:
+            raise doc.error(keys, 'canvas has no color; add color: "#rrggbb"')
+        color = read_color(doc, (*keys, "color"), item["color"])
+        cname = read_name(doc, (*keys, "name"), item.get("name", color))
+        if cname in seen:
+            raise doc.error(
+                (*keys, "name"),
+                f"duplicate canvas name {cname!r} "
+                f"(also canvases[{seen[cname]}]); names must be unique",
+            )
+        seen[cname] = i
+        mode = item.get("mode")
+        if mode is not None and mode not in ("light", "dark"):
+            raise doc.error((*keys, "mode"), f"{mode!r} is not a mode; use light or dark (or omit)")
+        canvases.append(Canvas(cname, color, mode, line=doc.line(keys)))
+    return Theme(name, tuple(canvases), threshold, path=doc.path)

@@ -1,0 +1,165 @@
+"""Safe, bounded YAML loading that remembers where every value came from.
+
+PyYAML's safe loader alone lets duplicate keys win silently, expands alias
+bombs, reads ``1e3`` as a string and loses line numbers.  Here the document is
+composed into nodes (never constructed with arbitrary tags), walked with a node
+budget, and converted to plain Python while recording each key path's line.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import yaml
+from yaml.constructor import SafeConstructor
+
+from alpha_audit.errors import InputError
+
+__all__ = ["MAX_YAML_BYTES", "MAX_YAML_NODES", "KeyPath", "YamlDoc", "load_yaml", "parse_yaml"]
+
+MAX_YAML_BYTES = 1 << 20  # 1 MiB: a theme or manifest is a few KiB
+MAX_YAML_NODES = 100_000  # after alias expansion; bounds "billion laughs"
+
+KeyPath = tuple[str | int, ...]
+
+# YAML 1.2 core-schema floats that YAML 1.1 (PyYAML) leaves as strings: 1e3, -1e308.
+_YAML12_FLOAT = re.compile(r"[-+]?(\.[0-9]+|[0-9]+(\.[0-9]*)?)([eE][-+]?[0-9]+)?")
+
+
+def format_key(keys: KeyPath) -> str:
+    """``("canvases", 2, "color")`` -> ``canvases[2].color``."""
+    out = ""
+    for k in keys:
+        out += f"[{k}]" if isinstance(k, int) else (f".{k}" if out else str(k))
+    return out
+
+
+@dataclass(frozen=True)
+class YamlDoc:
+    """Plain data from a YAML file plus the line of every key path."""
+
+    path: Path
+    data: Any
+    lines: dict[KeyPath, int]
+
+    def line(self, keys: KeyPath) -> int | None:
+        """Line of ``keys`` or of its nearest recorded parent."""
+        for n in range(len(keys), -1, -1):
+            if keys[:n] in self.lines:
+                return self.lines[keys[:n]]
+        return None
+
+    def error(self, keys: KeyPath, message: str) -> InputError:
+        """An :class:`InputError` located at ``keys`` in this file."""
+        return InputError(message, path=self.path, line=self.line(keys), key=format_key(keys))
+
+
+class _Converter:
+    def __init__(self, path: Path) -> None:
+        self.path = path
+        self.lines: dict[KeyPath, int] = {}
+        self.budget = MAX_YAML_NODES
+        self.constructor = SafeConstructor()
+        self.active: set[int] = set()
+
+    def fail(self, node: yaml.Node, message: str) -> InputError:
+        return InputError(message, path=self.path, line=node.start_mark.line + 1)
+
+    def convert(self, node: yaml.Node, keys: KeyPath) -> Any:
+        self.budget -= 1
+        if self.budget < 0:
+            raise self.fail(node, f"expands to more than {MAX_YAML_NODES} values (alias bomb?)")
+        self.lines.setdefault(keys, node.start_mark.line + 1)
+        if id(node) in self.active:
+            raise self.fail(node, "an alias refers to itself; recursive YAML is not allowed")
+        if isinstance(node, yaml.ScalarNode):
+            return self.scalar(node)
+        self.active.add(id(node))
+        try:
+            if isinstance(node, yaml.SequenceNode):
+                return [self.convert(item, (*keys, i)) for i, item in enumerate(node.value)]
+            if isinstance(node, yaml.MappingNode):
+                return self.mapping(node, keys)
+        finally:
+            self.active.discard(id(node))
+        raise self.fail(node, f"unsupported YAML node {node.tag}")  # pragma: no cover
+
+    def mapping(self, node: yaml.MappingNode, keys: KeyPath) -> dict[str, Any]:
+        out: dict[str, Any] = {}
+        for key_node, value_node in node.value:
+            if key_node.tag == "tag:yaml.org,2002:merge":
+                raise self.fail(key_node, "merge keys (<<) are not supported; write keys out")
+            if not isinstance(key_node, yaml.ScalarNode):
+                raise self.fail(key_node, "mapping keys must be plain strings")
+            key = str(self.scalar(key_node))
+            if key in out:
+                first = self.lines.get((*keys, key))
+                raise InputError(
+                    f"duplicate key {key!r} (first set on line {first}); each key may appear once",
+                    path=self.path,
+                    line=key_node.start_mark.line + 1,
+                    key=format_key((*keys, key)),
+                )
+            self.lines[(*keys, key)] = key_node.start_mark.line + 1
+            out[key] = self.convert(value_node, (*keys, key))
+        return out
+
+    def scalar(self, node: yaml.ScalarNode) -> Any:
+        if node.tag == "tag:yaml.org,2002:str" and node.style is None:
+            if _YAML12_FLOAT.fullmatch(node.value) and any(ch in node.value for ch in "eE."):
+                return float(node.value)
+        try:
+            return self.constructor.construct_object(node, deep=True)
+        except (yaml.YAMLError, ValueError, OverflowError) as exc:
+            raise self.fail(node, f"cannot read value {node.value!r}: {exc}") from exc
+
+
+def parse_yaml(text: str, path: Path) -> YamlDoc:
+    """Parse YAML text safely; errors name ``path`` and the line."""
+    try:
+        root = yaml.compose(text, Loader=yaml.SafeLoader)
+    except yaml.MarkedYAMLError as exc:
+        mark = exc.problem_mark or exc.context_mark
+        line = mark.line + 1 if mark else None
+        problem = exc.problem or exc.context or "invalid YAML"
+        raise InputError(f"invalid YAML: {problem}", path=path, line=line) from exc
+    except yaml.YAMLError as exc:
+        raise InputError(f"invalid YAML: {exc}", path=path) from exc
+    except RecursionError as exc:
+        raise InputError("YAML is nested too deeply", path=path) from exc
+    if root is None:
+        return YamlDoc(path, None, {})
+    converter = _Converter(path)
+    try:
+        data = converter.convert(root, ())
+    except RecursionError as exc:
+        raise InputError("YAML is nested too deeply", path=path) from exc
+    return YamlDoc(path, data, converter.lines)
+
+
+def load_yaml(path: str | Path) -> YamlDoc:
+    """Read and parse a YAML file of at most :data:`MAX_YAML_BYTES`."""
+    p = Path(path)
+    try:
+        with p.open("rb") as fh:
+            raw = fh.read(MAX_YAML_BYTES + 1)
+    except FileNotFoundError as exc:
+        raise InputError("file not found", path=p) from exc
+    except IsADirectoryError as exc:
+        raise InputError("is a directory, expected a YAML file", path=p) from exc
+    except OSError as exc:
+        raise InputError(f"cannot read: {exc.strerror}", path=p) from exc
+    if len(raw) > MAX_YAML_BYTES:
+        raise InputError(
+            f"larger than {MAX_YAML_BYTES // 1024} KiB; not a theme or manifest", path=p
+        )
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not UTF-8 text (byte {exc.start})", path=p) from exc
+    if "\x00" in text:
+        raise InputError("contains NUL bytes; not a YAML text file", path=p)
+    return parse_yaml(text, p)

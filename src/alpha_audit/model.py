@@ -1,0 +1,110 @@
+"""Validated, immutable inputs: canvases, themes, icons and icon sets.
+
+Loaders in :mod:`alpha_audit.load` build these from files; they can also be
+built directly from Python.  Colours are stored as encoded sRGB hex (what the
+user wrote, normalised) plus linear-light float64 triples for the maths.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Literal
+
+import numpy as np
+from numpy.typing import NDArray
+
+from alpha_audit.color import NON_TEXT_THRESHOLD, parse_color, relative_luminance, srgb_decode
+
+__all__ = ["Canvas", "Icon", "IconSet", "Mode", "Theme", "infer_mode"]
+
+Mode = Literal["light", "dark"]
+
+# Luminance at which a colour has equal WCAG contrast against black and white:
+# (Y + 0.05) / 0.05 == 1.05 / (Y + 0.05)  =>  Y = sqrt(0.0525) - 0.05.
+_LIGHT_DARK_SPLIT = 0.0525**0.5 - 0.05
+
+
+def infer_mode(linear: NDArray[np.float64]) -> Mode:
+    """``light`` when the canvas contrasts more with black than with white."""
+    return "light" if float(relative_luminance(linear)) >= _LIGHT_DARK_SPLIT else "dark"
+
+
+def _normalise(obj: object, color: str) -> None:
+    """Store ``color`` as ``#rrggbb`` and its linear-light triple on a frozen dataclass."""
+    encoded = parse_color(color)
+    r, g, b = (int(v) for v in np.rint(encoded * 255))
+    object.__setattr__(obj, "color", f"#{r:02x}{g:02x}{b:02x}")
+    object.__setattr__(obj, "linear", tuple(float(c) for c in srgb_decode(encoded)))
+
+
+@dataclass(frozen=True)
+class Canvas:
+    """An opaque background colour of a theme."""
+
+    name: str
+    color: str
+    mode: Mode | None = None
+    line: int | None = field(default=None, compare=False)
+    linear: tuple[float, float, float] = field(init=False, compare=False)
+
+    def __post_init__(self) -> None:
+        _normalise(self, self.color)
+        if self.mode is None:
+            object.__setattr__(self, "mode", infer_mode(np.array(self.linear)))
+
+
+@dataclass(frozen=True)
+class Theme:
+    """A named set of canvases with a contrast threshold."""
+
+    name: str
+    canvases: tuple[Canvas, ...]
+    threshold: float = NON_TEXT_THRESHOLD
+    path: Path | None = field(default=None, compare=False)
+
+    @property
+    def backgrounds(self) -> NDArray[np.float64]:
+        """Linear canvas colours, shape ``(n_canvases, 3)``."""
+        return np.array([c.linear for c in self.canvases], dtype=np.float64).reshape(-1, 3)
+
+
+@dataclass(frozen=True)
+class Icon:
+    """One icon: an SVG file with a fixed source colour and coefficient."""
+
+    name: str
+    file: Path
+    color: str
+    alpha: float
+    color_name: str | None = None
+    line: int | None = field(default=None, compare=False)
+    linear: tuple[float, float, float] = field(init=False, compare=False)
+
+    def __post_init__(self) -> None:
+        _normalise(self, self.color)
+
+
+@dataclass(frozen=True)
+class IconSet:
+    """Icons with their palette and raster sizes, as named by a manifest."""
+
+    name: str
+    icons: tuple[Icon, ...]
+    palette: dict[str, str] = field(default_factory=dict)
+    sizes: tuple[int, ...] = (24,)
+    path: Path | None = field(default=None, compare=False)
+
+    @property
+    def sources(self) -> NDArray[np.float64]:
+        """Linear source colours, shape ``(n_icons, 3)``."""
+        return np.array([i.linear for i in self.icons], dtype=np.float64).reshape(-1, 3)
+
+    @property
+    def alphas(self) -> NDArray[np.float64]:
+        """Coefficients, shape ``(n_icons,)``."""
+        return np.array([i.alpha for i in self.icons], dtype=np.float64)
+
+    def with_alpha(self, alpha: float) -> IconSet:
+        """The same set with every icon's coefficient replaced (``--alpha``)."""
+        return replace(self, icons=tuple(replace(i, alpha=float(alpha)) for i in self.icons))
