@@ -78,7 +78,8 @@ class Icon:
     color: str
     alpha: float
     color_name: str | None = None
-    line: int | None = field(default=None, compare=False)
+    color_line: int | None = field(default=None, compare=False)
+    alpha_line: int | None = field(default=None, compare=False)
     linear: tuple[float, float, float] = field(init=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -94,6 +95,7 @@ class IconSet:
     palette: dict[str, str] = field(default_factory=dict)
     sizes: tuple[int, ...] = (24,)
     path: Path | None = field(default=None, compare=False)
+    root: Path | None = field(default=None, compare=False)
 
     @property
     def sources(self) -> NDArray[np.float64]:

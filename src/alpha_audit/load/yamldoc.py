@@ -108,9 +108,13 @@ class _Converter:
         return out
 
     def scalar(self, node: yaml.ScalarNode) -> Any:
-        if node.tag == "tag:yaml.org,2002:str" and node.style is None:
-            if _YAML12_FLOAT.fullmatch(node.value) and any(ch in node.value for ch in "eE."):
-                return float(node.value)
+        if (
+            node.tag == "tag:yaml.org,2002:str"
+            and node.style is None
+            and _YAML12_FLOAT.fullmatch(node.value)
+            and any(ch in node.value for ch in "eE.")
+        ):
+            return float(node.value)
         try:
             return self.constructor.construct_object(node, deep=True)
         except (yaml.YAMLError, ValueError, OverflowError) as exc:

@@ -1,0 +1,209 @@
+"""The ``alpha-audit`` command line: a thin typer layer over the library.
+
+Exit codes: 0 the audit ran (and the gate passed), 1 the gate failed,
+2 bad input or usage.  Only this module turns exceptions into exit codes.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from enum import IntEnum
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+from rich.console import Console
+from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+from rich.table import Table
+from rich.text import Text
+from typer.core import TyperGroup
+
+from alpha_audit import __version__
+from alpha_audit.errors import AlphaAuditError, UsageError
+from alpha_audit.render import RenderOptions
+
+__all__ = ["ExitStatus", "app", "main"]
+
+
+class ExitStatus(IntEnum):
+    """Process exit codes, documented in ``--help`` and the README."""
+
+    OK = 0
+    GATE_FAILED = 1
+    INPUT_ERROR = 2
+
+
+class _Group(TyperGroup):
+    """The single boundary where library errors become one line and exit 2."""
+
+    def invoke(self, ctx: Any) -> Any:
+        try:
+            return super().invoke(ctx)
+        except AlphaAuditError as exc:
+            _stderr().print(Text(f"alpha-audit: error: {exc}"), soft_wrap=True)
+            raise typer.Exit(code=ExitStatus.INPUT_ERROR) from None
+        except RecursionError:
+            _stderr().print("alpha-audit: error: input nested too deeply", soft_wrap=True)
+            raise typer.Exit(code=ExitStatus.INPUT_ERROR) from None
+
+
+def _stderr() -> Console:
+    return Console(stderr=True, highlight=False, emoji=False)
+
+
+def _stdout() -> Console:
+    return Console(highlight=False, emoji=False)
+
+
+def stdout_options() -> RenderOptions:
+    """Width and colour for a report on stdout (colour only on a terminal, never with NO_COLOR)."""
+    console = _stdout()
+    return RenderOptions(
+        width=max(60, min(console.width, 120)),
+        color=console.is_terminal and not console.no_color,
+    )
+
+
+@contextmanager
+def progress_bar(label: str) -> Iterator[tuple[Callable[[int], None], Callable[[], None]]]:
+    """A transient stderr progress bar, shown only on a terminal; yields (start, advance)."""
+    console = _stderr()
+    if not console.is_terminal:
+        yield (lambda total: None), (lambda: None)
+        return
+    with Progress(
+        TextColumn(label),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+        console=console,
+        transient=True,
+    ) as progress:
+        task = progress.add_task(label, total=None)
+        yield (lambda total: progress.update(task, total=total)), (lambda: progress.advance(task))
+
+
+app = typer.Typer(
+    cls=_Group,
+    name="alpha-audit",
+    help=(
+        "Audit icon sets across light and dark themes with extended-alpha compositing.\n\n"
+        "Each icon keeps a fixed source colour Cs and coefficient a; on a canvas Cb it shows "
+        "as clip(Cb + a(Cs - Cb)) in linear sRGB. With a > 1 the icon moves away from whatever "
+        "canvas it lands on. alpha-audit measures what that does to WCAG contrast, 8-bit "
+        "collisions and CIEDE2000 separation on your icons and themes.\n\n"
+        "Exit codes: 0 ran (gate passed), 1 gate failed, 2 bad input or usage."
+    ),
+    no_args_is_help=True,
+    rich_markup_mode="rich",
+    add_completion=False,
+    pretty_exceptions_enable=False,
+    context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100},
+)
+
+
+def _version(value: bool) -> None:
+    if value:
+        typer.echo(f"alpha-audit {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(
+    version: Annotated[
+        bool,
+        typer.Option("--version", callback=_version, is_eager=True, help="Show the version."),
+    ] = False,
+) -> None:
+    """Audit icon sets across light and dark themes with extended-alpha compositing."""
+
+
+def require_finite(value: float | None, option: str) -> float | None:
+    if value is not None and not math.isfinite(value):
+        raise UsageError(f"{option} must be a finite number, got {value}")
+    return value
+
+
+def emit(text: str, output: Path | None, force: bool) -> None:
+    """Report to stdout, or atomically to ``output``."""
+    from alpha_audit.output import write_text
+
+    if output is None:
+        sys.stdout.write(text)
+        sys.stdout.flush()
+    else:
+        write_text(output, text, overwrite=force)
+        _stderr().print(f"wrote {output}", soft_wrap=True)
+
+
+from alpha_audit.cli_check import check_command  # noqa: E402  (commands register below)
+
+app.command("check")(check_command)
+
+
+@app.command("pair")
+def pair_command(
+    color: Annotated[
+        str, typer.Argument(help="Source colour: #rgb, #rrggbb, rgb(r g b) or a CSS name.")
+    ],
+    on: Annotated[
+        list[str],
+        typer.Option("--on", help="Background colour (repeatable).", show_default=False),
+    ],
+    alpha: Annotated[
+        list[float] | None,
+        typer.Option("--alpha", "-a", help="Coefficient (repeatable). [default: 1, 1.1, 1.4]"),
+    ] = None,
+    fmt: Annotated[
+        str, typer.Option("--format", "-f", help="table or json.", case_sensitive=False)
+    ] = "table",
+) -> None:
+    """Show one colour on a few backgrounds at a few coefficients.
+
+    Example: [bold]alpha-audit pair "#ee7733" --on white --on "#0d1117" -a 1 -a 1.2[/]
+    """
+    from alpha_audit.pair import pair_table
+
+    alphas = alpha or [1.0, 1.1, 1.4]
+    for a in alphas:
+        require_finite(a, "--alpha")
+    if fmt not in ("table", "json"):
+        raise UsageError(f"--format {fmt!r} is not supported; use table or json")
+    rows = pair_table(color, on, alphas)
+    if fmt == "json":
+        from dataclasses import asdict
+
+        doc = {"schema": "alpha-audit.pair/1", "color": color, "rows": [asdict(r) for r in rows]}
+        emit(json.dumps(doc, indent=2, allow_nan=False) + "\n", None, False)
+        return
+    table = Table(title=f"{color} on {len(on)} background(s)", title_justify="left")
+    for name, justify in [
+        ("background", "left"),
+        ("α", "right"),
+        ("output", "left"),
+        ("contrast", "right"),
+        ("gain", "right"),
+        ("ΔE00 vs Cs", "right"),
+        ("clipped", "left"),
+    ]:
+        table.add_column(name, justify=justify, no_wrap=True)
+    for r in rows:
+        table.add_row(
+            Text(r.background, style=f"on {r.background}"),
+            f"{r.alpha:g}",
+            Text(r.output, style=f"on {r.output}"),
+            f"{r.contrast_ref:.3f} → {r.contrast:.3f}",
+            Text(f"{r.gain:+.3f}", style="green" if r.gain >= 0 else "red"),
+            f"{r.delta_e_from_source:.2f}",
+            "yes" if r.clipped else "",
+        )
+    _stdout().print(table)
+
+
+def main() -> None:
+    """Console-script entry point."""
+    app()

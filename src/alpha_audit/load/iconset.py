@@ -1,0 +1,251 @@
+"""Icon-set manifests: which SVG files, which source colour and coefficient each."""
+
+from __future__ import annotations
+
+import difflib
+import itertools
+from pathlib import Path, PurePosixPath
+from typing import Any
+
+from alpha_audit.errors import InputError
+from alpha_audit.load.fields import (
+    check_keys,
+    describe,
+    read_color,
+    read_mapping,
+    read_name,
+    read_number,
+)
+from alpha_audit.load.yamldoc import KeyPath, YamlDoc, load_yaml
+from alpha_audit.model import Icon, IconSet
+
+__all__ = [
+    "ALPHA_LIMIT",
+    "MAX_ICONS",
+    "MAX_SIZE",
+    "find_project_root",
+    "iconset_from_doc",
+    "load_iconset",
+]
+
+MAX_ICONS = 10_000
+MAX_SIZE = 1024  # px; rasters are size x size float64
+ALPHA_LIMIT = 100.0  # any finite real is valid maths; beyond this it is a typo
+_ROOT_MARKERS = (".git", "pyproject.toml", "alpha-audit.yaml", ".alpha-audit.yaml")
+_MANIFEST_KEYS = ("name", "icons", "palette", "color", "alpha", "sizes", "overrides", "description")
+_ICON_KEYS = ("file", "name", "color", "alpha")
+_OVERRIDE_KEYS = ("color", "alpha")
+
+
+def find_project_root(start: Path) -> Path:
+    """Nearest ancestor of ``start`` holding a repository or project marker.
+
+    Icon files must resolve inside it; without a marker the manifest's own
+    folder is the root.
+    """
+    start = start.resolve()
+    for folder in (start, *start.parents):
+        if any((folder / marker).exists() for marker in _ROOT_MARKERS):
+            return folder
+    return start
+
+
+def load_iconset(path: str | Path, *, root: str | Path | None = None) -> IconSet:
+    """Load and validate an icon-set manifest.
+
+    ``root`` bounds where icon files may live (default: :func:`find_project_root`).
+    """
+    doc = load_yaml(path)
+    base = Path(path).resolve().parent
+    return iconset_from_doc(doc, root=Path(root).resolve() if root else find_project_root(base))
+
+
+class _Manifest:
+    """Validation state for one manifest document."""
+
+    def __init__(self, doc: YamlDoc, root: Path) -> None:
+        self.doc = doc
+        self.root = root
+        self.base = doc.path.resolve().parent
+        self.data = read_mapping(doc, (), doc.data, "an icon-set manifest")
+        check_keys(doc, (), self.data, _MANIFEST_KEYS)
+        self.palette = self.read_palette()
+
+    def read_palette(self) -> dict[str, str]:
+        raw = self.data.get("palette", {})
+        raw = read_mapping(self.doc, ("palette",), raw, "a palette {name: colour}")
+        return {
+            read_name(self.doc, ("palette", k), k): read_color(self.doc, ("palette", k), v)
+            for k, v in raw.items()
+        }
+
+    def color(self, keys: KeyPath, value: Any) -> tuple[str, str | None]:
+        """A palette name or a colour string -> (colour, palette name or None)."""
+        if isinstance(value, str) and value in self.palette:
+            return self.palette[value], value
+        if isinstance(value, str) and value.strip() == "cycle":
+            raise self.doc.error(keys, "'cycle' is only allowed as the manifest-wide color")
+        if isinstance(value, str) and value.isidentifier() and self.palette:
+            names = ", ".join(self.palette)
+            try:
+                return read_color(self.doc, keys, value), None
+            except InputError as exc:
+                raise self.doc.error(
+                    keys, f"{value!r} is neither a palette name ({names}) nor a colour"
+                ) from exc
+        return read_color(self.doc, keys, value), None
+
+    def alpha(self, keys: KeyPath, value: Any) -> float:
+        return read_number(
+            self.doc,
+            keys,
+            value,
+            low=-ALPHA_LIMIT,
+            high=ALPHA_LIMIT,
+            what=f"a finite coefficient between -{ALPHA_LIMIT:g} and {ALPHA_LIMIT:g}",
+        )
+
+    def sizes(self) -> tuple[int, ...]:
+        raw = self.data.get("sizes", [24])
+        if isinstance(raw, int) and not isinstance(raw, bool):
+            raw = [raw]
+        if not isinstance(raw, list) or not raw:
+            raise self.doc.error(("sizes",), f"expected a list of pixel sizes, got {describe(raw)}")
+        sizes = []
+        for i, value in enumerate(raw):
+            if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= MAX_SIZE:
+                raise self.doc.error(
+                    ("sizes", i), f"{describe(value)} is not a size; use whole pixels 1-{MAX_SIZE}"
+                )
+            sizes.append(value)
+        return tuple(sorted(set(sizes)))
+
+    def resolve_file(self, keys: KeyPath, relative: str) -> Path:
+        """A path relative to the manifest that must stay inside the project root."""
+        pure = PurePosixPath(relative.replace("\\", "/"))
+        if pure.is_absolute() or (relative[1:3] == ":/" or relative[1:3] == ":\\"):
+            raise self.doc.error(
+                keys, f"{relative!r} is absolute; give a path relative to the manifest"
+            )
+        candidate = (self.base / pure).resolve()
+        if not candidate.is_relative_to(self.root):
+            raise self.doc.error(
+                keys, f"{relative!r} resolves outside the project root {self.root}; not allowed"
+            )
+        return candidate
+
+    def glob(self, pattern: str) -> list[Path]:
+        keys: KeyPath = ("icons",)
+        pure = PurePosixPath(pattern.replace("\\", "/"))
+        if pure.is_absolute() or ".." in pure.parts:
+            raise self.doc.error(
+                keys, f"{pattern!r} leaves the manifest's folder; use a pattern like svg/*.svg"
+            )
+        found = []
+        for match in sorted(self.base.glob(str(pure))):
+            if match.is_file():
+                found.append(self.resolve_file(keys, str(match.relative_to(self.base))))
+                if len(found) > MAX_ICONS:
+                    raise self.doc.error(keys, f"matches more than {MAX_ICONS} files")
+        if not found:
+            raise self.doc.error(keys, f"{pattern!r} matches no files under {self.base}")
+        return sorted(found, key=lambda p: (p.name, str(p)))
+
+    def entries(self) -> list[tuple[KeyPath, Path, dict[str, Any]]]:
+        """(key path, file, explicit fields) for every icon, in manifest order."""
+        raw = self.data.get("icons")
+        if isinstance(raw, str):
+            return [(("icons",), path, {}) for path in self.glob(raw)]
+        if not isinstance(raw, list) or not raw:
+            raise self.doc.error(
+                ("icons",), "expected a glob like svg/*.svg or a list of files / {file: ...}"
+            )
+        if len(raw) > MAX_ICONS:
+            raise self.doc.error(("icons",), f"{len(raw)} icons; at most {MAX_ICONS} are allowed")
+        out = []
+        for i, item in enumerate(raw):
+            keys = ("icons", i)
+            if isinstance(item, str):
+                out.append((keys, self.resolve_file(keys, item), {}))
+                continue
+            item = read_mapping(self.doc, keys, item, "an icon (a path or {file: ...})")
+            check_keys(self.doc, keys, item, _ICON_KEYS)
+            if not isinstance(item.get("file"), str):
+                raise self.doc.error((*keys, "file"), "each icon needs file: <path to .svg>")
+            out.append((keys, self.resolve_file((*keys, "file"), item["file"]), item))
+        return out
+
+
+def iconset_from_doc(doc: YamlDoc, *, root: Path) -> IconSet:
+    """Validate a parsed manifest; icon files must resolve inside ``root``."""
+    m = _Manifest(doc, root)
+    data = m.data
+    name = read_name(doc, ("name",), data.get("name", doc.path.parent.name or doc.path.stem))
+    default_alpha = m.alpha(("alpha",), data["alpha"]) if "alpha" in data else 1.0
+    color_spec = data.get("color", "cycle" if m.palette else None)
+    if color_spec is None:
+        raise doc.error(("color",), "no colour given; set color: or a palette to cycle")
+    cycle = isinstance(color_spec, str) and color_spec.strip() == "cycle"
+    if cycle and not m.palette:
+        raise doc.error(("color",), "color: cycle needs a non-empty palette:")
+    default = None if cycle else m.color(("color",), color_spec)
+    palette_cycle = itertools.cycle(m.palette.items())
+
+    overrides = read_mapping(doc, ("overrides",), data.get("overrides", {}), "overrides by icon")
+    icons: list[Icon] = []
+    seen: dict[str, str] = {}
+    for keys, file, explicit in m.entries():
+        icon_name = read_name(doc, (*keys, "name"), explicit.get("name", file.stem))
+        where = str(file.relative_to(m.root)) if file.is_relative_to(m.root) else str(file)
+        if icon_name in seen:
+            raise doc.error(
+                keys,
+                f"duplicate icon name {icon_name!r} ({seen[icon_name]} and {where}); "
+                "give one a name:",
+            )
+        seen[icon_name] = where
+        if cycle:
+            pname, pcolor = next(palette_cycle)
+            color, color_name = pcolor, pname
+        else:
+            color, color_name = default
+        alpha = default_alpha
+        color_keys: KeyPath = ("color",)
+        alpha_keys: KeyPath = ("alpha",)
+        if "color" in explicit:
+            color, color_name = m.color((*keys, "color"), explicit["color"])
+            color_keys = (*keys, "color")
+        if "alpha" in explicit:
+            alpha, alpha_keys = m.alpha((*keys, "alpha"), explicit["alpha"]), (*keys, "alpha")
+        if icon_name in overrides:
+            okeys = ("overrides", icon_name)
+            override = read_mapping(doc, okeys, overrides[icon_name], "{color: ..., alpha: ...}")
+            check_keys(doc, okeys, override, _OVERRIDE_KEYS)
+            if "color" in override:
+                color, color_name = m.color((*okeys, "color"), override["color"])
+                color_keys = (*okeys, "color")
+            if "alpha" in override:
+                alpha = m.alpha((*okeys, "alpha"), override["alpha"])
+                alpha_keys = (*okeys, "alpha")
+        icons.append(
+            Icon(
+                icon_name,
+                file,
+                color,
+                alpha,
+                color_name,
+                color_line=_line_if_set(doc, color_keys),
+                alpha_line=_line_if_set(doc, alpha_keys),
+            )
+        )
+    unknown = sorted(set(overrides) - set(seen))
+    if unknown:
+        close = difflib.get_close_matches(unknown[0], list(seen), n=1)
+        hint = f"; did you mean {close[0]!r}?" if close else ""
+        raise doc.error(("overrides", unknown[0]), f"no icon named {unknown[0]!r}{hint}")
+    return IconSet(name, tuple(icons), m.palette, m.sizes(), path=doc.path, root=m.root)
+
+
+def _line_if_set(doc: YamlDoc, keys: KeyPath) -> int | None:
+    """Line of ``keys`` only if the manifest really contains it (not a default)."""
+    return doc.lines.get(keys)

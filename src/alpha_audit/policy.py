@@ -1,0 +1,79 @@
+"""Gate policy: which findings fail a build, shared by ``check`` and ``suggest``.
+
+The rules are the CI-gate issue's; the default policy is no contrast loss, no
+icon newly failing the threshold, no collision that did not already exist at
+alpha = 1.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from enum import StrEnum
+
+from alpha_audit.errors import UsageError
+
+__all__ = ["DEFAULT_RULES", "Exemption", "Policy", "Rule"]
+
+
+class Rule(StrEnum):
+    """A kind of finding that can fail the gate."""
+
+    LOSS = "loss"  # contrast decrease beyond max_loss
+    BELOW_THRESHOLD = "below-threshold"  # under the threshold at the icon's alpha
+    NEWLY_FAILING = "newly-failing"  # passed at alpha = 1, fails at alpha
+    COLLISION = "collision"  # distinct sources, same 8-bit output
+    NEW_COLLISION = "new-collision"  # ... and not already colliding at alpha = 1
+    SEPARATION = "separation"  # smallest CIEDE2000 between outputs below min_delta_e
+
+    @classmethod
+    def parse(cls, text: str) -> Rule:
+        """A rule by name; unknown names raise :class:`UsageError` listing the valid ones."""
+        try:
+            return cls(text.strip().lower())
+        except ValueError:
+            names = ", ".join(r.value for r in cls)
+            raise UsageError(f"unknown rule {text!r}; use one of: {names}") from None
+
+
+DEFAULT_RULES = frozenset({Rule.LOSS, Rule.NEWLY_FAILING, Rule.NEW_COLLISION})
+
+
+@dataclass(frozen=True)
+class Exemption:
+    """A finding not to fail on: by canvas and/or icon (and optionally rule), with a reason."""
+
+    reason: str
+    canvas: str | None = None
+    icon: str | None = None
+    rule: Rule | None = None
+
+    def covers(self, rule: Rule, canvas: str | None, icons: tuple[str, ...]) -> bool:
+        """Whether this exemption applies to a finding of ``rule`` on ``canvas`` for ``icons``."""
+        if self.rule is not None and self.rule != rule:
+            return False
+        if self.canvas is not None and self.canvas != canvas:
+            return False
+        return self.icon is None or self.icon in icons
+
+
+@dataclass(frozen=True)
+class Policy:
+    """Which rules fail the gate, with their limits and exemptions."""
+
+    rules: frozenset[Rule] = DEFAULT_RULES
+    max_loss: float = 0.0  # contrast-ratio units; losses up to this are tolerated
+    min_delta_e: float = 10.0  # CIEDE2000; only used by Rule.SEPARATION
+    exemptions: tuple[Exemption, ...] = ()
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.max_loss) and self.max_loss >= 0):
+            raise UsageError(f"max_loss must be a finite number >= 0, got {self.max_loss}")
+        if not (math.isfinite(self.min_delta_e) and self.min_delta_e >= 0):
+            raise UsageError(f"min_delta_e must be a finite number >= 0, got {self.min_delta_e}")
+        if any(not e.reason.strip() for e in self.exemptions):
+            raise UsageError("every exemption needs a reason")
+
+    def exempt(self, rule: Rule, canvas: str | None, icons: tuple[str, ...]) -> Exemption | None:
+        """The first exemption covering this finding, if any."""
+        return next((e for e in self.exemptions if e.covers(rule, canvas, icons)), None)
