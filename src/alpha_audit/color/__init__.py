@@ -15,6 +15,7 @@ from alpha_audit.color.metrics import (
     contrast_from_luminance,
     contrast_ratio,
     delta_e_2000,
+    delta_e_2000_lab,
     linear_to_lab,
     relative_luminance,
 )
@@ -39,6 +40,7 @@ __all__ = [
     "contrast_from_luminance",
     "contrast_ratio",
     "delta_e_2000",
+    "delta_e_2000_lab",
     "difference_blend",
     "exclusion_blend",
     "from_8bit",

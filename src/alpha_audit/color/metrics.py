@@ -24,6 +24,7 @@ __all__ = [
     "contrast_from_luminance",
     "contrast_ratio",
     "delta_e_2000",
+    "delta_e_2000_lab",
     "linear_to_lab",
     "relative_luminance",
 ]
@@ -44,7 +45,7 @@ LINEAR_SRGB_TO_XYZ = np.array(
     [
         [506752 / 1228815, 87881 / 245763, 12673 / 70218],
         [87098 / 409605, 175762 / 245763, 12673 / 175545],
-        [7918 / 409605, 87881 / 737289, 1001167 / 1053542],
+        [7918 / 409605, 87881 / 737289, 1001167 / 1053270],
     ]
 )
 # CSS Color 4 D65 white, as chromaticity (x, y) = (0.3127, 0.3290).
@@ -87,8 +88,15 @@ def linear_to_lab(linear: ArrayLike) -> NDArray[np.float64]:
     return np.asarray(XYZ_to_Lab(xyz, D65_XY), dtype=np.float64)
 
 
+def delta_e_2000_lab(lab1: ArrayLike, lab2: ArrayLike) -> NDArray[np.float64]:
+    """CIEDE2000 of two CIELAB colours (colour-science's implementation)."""
+    return np.asarray(delta_E_CIE2000(lab1, lab2), dtype=np.float64)
+
+
 def delta_e_2000(linear1: ArrayLike, linear2: ArrayLike) -> NDArray[np.float64]:
-    """CIEDE2000 colour difference of two linear sRGB colours (colour-science)."""
-    return np.asarray(
-        delta_E_CIE2000(linear_to_lab(linear1), linear_to_lab(linear2)), dtype=np.float64
-    )
+    """CIEDE2000 colour difference of two linear sRGB colours.
+
+    >>> round(float(delta_e_2000([1.0, 1.0, 1.0], [0.0, 0.0, 0.0])), 6)
+    100.0
+    """
+    return delta_e_2000_lab(linear_to_lab(linear1), linear_to_lab(linear2))
