@@ -85,11 +85,11 @@ class _Manifest:
             return self.palette[value], value
         if isinstance(value, str) and value.strip() == "cycle":
             raise self.doc.error(keys, "'cycle' is only allowed as the manifest-wide color")
-        if isinstance(value, str) and value.isidentifier() and self.palette:
-            names = ", ".join(self.palette)
+        if isinstance(value, str) and self.palette:
             try:
                 return read_color(self.doc, keys, value), None
             except InputError as exc:
+                names = ", ".join(self.palette)
                 raise self.doc.error(
                     keys, f"{value!r} is neither a palette name ({names}) nor a colour"
                 ) from exc
@@ -182,6 +182,8 @@ def iconset_from_doc(doc: YamlDoc, *, root: Path) -> IconSet:
     data = m.data
     name = read_name(doc, ("name",), data.get("name", doc.path.parent.name or doc.path.stem))
     default_alpha = m.alpha(("alpha",), data["alpha"]) if "alpha" in data else 1.0
+    if "color" in data and data["color"] is None:
+        read_color(doc, ("color",), None)  # raises the "quote it" hint
     color_spec = data.get("color", "cycle" if m.palette else None)
     if color_spec is None:
         raise doc.error(("color",), "no colour given; set color: or a palette to cycle")

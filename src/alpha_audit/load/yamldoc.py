@@ -26,6 +26,7 @@ MAX_YAML_NODES = 100_000  # after alias expansion; bounds "billion laughs"
 KeyPath = tuple[str | int, ...]
 
 # YAML 1.2 core-schema floats that YAML 1.1 (PyYAML) leaves as strings: 1e3, -1e308.
+_UNQUOTED_HEX = re.compile(r":[ \t]+#[0-9a-fA-F]{3,8}\b")
 _YAML12_FLOAT = re.compile(r"[-+]?(\.[0-9]+|[0-9]+(\.[0-9]*)?)([eE][-+]?[0-9]+)?")
 
 
@@ -129,6 +130,8 @@ def parse_yaml(text: str, path: Path) -> YamlDoc:
         mark = exc.problem_mark or exc.context_mark
         line = mark.line + 1 if mark else None
         problem = exc.problem or exc.context or "invalid YAML"
+        if _UNQUOTED_HEX.search(text):
+            problem += '; an unquoted #hex starts a YAML comment: quote colours, e.g. "#0d1117"'
         raise InputError(f"invalid YAML: {problem}", path=path, line=line) from exc
     except yaml.YAMLError as exc:
         raise InputError(f"invalid YAML: {exc}", path=path) from exc
