@@ -43,7 +43,10 @@ def test_css_color_4_breakpoints() -> None:
 
 @given(st.floats(0, 1))
 def test_encode_inverts_decode(v: float) -> None:
-    assert float(srgb_encode(srgb_decode(v))) == pytest.approx(v, abs=1e-12)
+    # CSS Color 4's two breakpoints (0.04045 encoded, 0.0031308 linear) do not
+    # meet exactly: just above 0.04045/12.92 the round trip is off by ~3e-8.
+    seam = abs(v - 0.04045) < 1e-6
+    assert float(srgb_encode(srgb_decode(v))) == pytest.approx(v, abs=1e-7 if seam else 1e-12)
 
 
 def test_every_8bit_code_round_trips() -> None:
