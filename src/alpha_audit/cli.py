@@ -96,7 +96,7 @@ app = typer.Typer(
         "as clip(Cb + a(Cs - Cb)) in linear sRGB. With a > 1 the icon moves away from whatever "
         "canvas it lands on. alpha-audit measures what that does to WCAG contrast, 8-bit "
         "collisions and CIEDE2000 separation on your icons and themes.\n\n"
-        "Exit codes: 0 ran (gate passed), 1 gate failed, 2 bad input or usage."
+        "Exit codes: 0 ran (gate passed), 1 gate failed (check), 2 bad input or usage."
     ),
     no_args_is_help=True,
     rich_markup_mode="rich",
@@ -126,6 +126,11 @@ def require_finite(value: float | None, option: str) -> float | None:
     if value is not None and not math.isfinite(value):
         raise UsageError(f"{option} must be a finite number, got {value}")
     return value
+
+
+def stderr_note(message: str) -> None:
+    """One status line on stderr (never mixed into a report on stdout)."""
+    _stderr().print(Text(f"alpha-audit: {message}"), soft_wrap=True)
 
 
 def emit(text: str, output: Path | None, force: bool) -> None:

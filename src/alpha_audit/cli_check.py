@@ -1,20 +1,68 @@
-"""``alpha-audit check``: audit an icon set on a theme."""
+"""``alpha-audit check``: audit icon sets on themes and apply the CI gate."""
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
-from alpha_audit.render import CheckFormat, RenderOptions, render_check
+from alpha_audit.render import CheckFormat, RenderOptions
 
-__all__ = ["check_command"]
+__all__ = ["check_command", "pair_outputs"]
+
+
+def pair_outputs(
+    formats: list[CheckFormat], outputs: list[Path]
+) -> list[tuple[CheckFormat, Path | None]]:
+    """Pair each ``--format`` with the ``--output`` in the same position.
+
+    Formats without an output (or with ``-``) go to stdout; only one may.
+    """
+    from alpha_audit.errors import UsageError
+
+    formats = formats or [CheckFormat.TABLE]
+    if len(outputs) > len(formats):
+        raise UsageError(
+            f"{len(outputs)} --output for {len(formats)} --format; give one format per output"
+        )
+    pairs = [
+        (fmt, None if i >= len(outputs) or str(outputs[i]) == "-" else outputs[i])
+        for i, fmt in enumerate(formats)
+    ]
+    to_stdout = [fmt.value for fmt, out in pairs if out is None]
+    if len(to_stdout) > 1:
+        raise UsageError(
+            f"formats {', '.join(to_stdout)} would all go to stdout; give each but one an --output"
+        )
+    return pairs
 
 
 def check_command(
-    theme: Annotated[Path, typer.Argument(help="Theme YAML: canvases (light and dark).")],
-    iconset: Annotated[Path, typer.Argument(help="Icon-set manifest YAML.")],
+    theme: Annotated[
+        Path | None,
+        typer.Argument(help="Theme YAML (default: the themes the project config names)."),
+    ] = None,
+    iconset: Annotated[
+        Path | None, typer.Argument(help="Icon-set manifest YAML (default: from the config).")
+    ] = None,
+    themes: Annotated[
+        list[Path] | None,
+        typer.Option("--theme", help="Another theme to audit (repeatable).", show_default=False),
+    ] = None,
+    iconsets: Annotated[
+        list[Path] | None,
+        typer.Option("--iconset", help="Another icon set (repeatable).", show_default=False),
+    ] = None,
+    config: Annotated[
+        Path | None,
+        typer.Option(
+            "--config",
+            help="Project config (default: alpha-audit.yaml, .alpha-audit.yaml or "
+            "[tool.alpha-audit] in pyproject.toml, found from here upwards).",
+        ),
+    ] = None,
     alpha: Annotated[
         float | None,
         typer.Option("--alpha", "-a", help="Coefficient for every icon (overrides the manifest)."),
@@ -23,14 +71,56 @@ def check_command(
         float | None,
         typer.Option(help="Contrast threshold (default: the theme's, else 3.0 = WCAG 1.4.11)."),
     ] = None,
+    fail_on: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--fail-on",
+            help="Rule that fails the gate (repeatable; replaces the policy): loss, "
+            "below-threshold, newly-failing, collision, new-collision, separation, unrenderable. "
+            "[default: loss, newly-failing, new-collision]",
+            show_default=False,
+        ),
+    ] = None,
+    max_loss: Annotated[
+        float | None,
+        typer.Option("--max-loss", help="Contrast loss tolerated by the loss rule. [default: 0]"),
+    ] = None,
+    min_delta_e: Annotated[
+        float | None,
+        typer.Option("--min-delta-e", help="Smallest CIEDE2000 for separation. [default: 10]"),
+    ] = None,
+    exit_zero: Annotated[
+        bool, typer.Option("--exit-zero", help="Report findings but exit 0 even if the gate fails.")
+    ] = False,
     fmt: Annotated[
-        CheckFormat, typer.Option("--format", "-f", help="Report format.", case_sensitive=False)
-    ] = CheckFormat.TABLE,
+        list[CheckFormat] | None,
+        typer.Option(
+            "--format",
+            "-f",
+            help="Report format (repeatable): table, json, junit, sarif, markdown, github.",
+            case_sensitive=False,
+            show_default=False,
+        ),
+    ] = None,
     output: Annotated[
-        Path | None, typer.Option("--output", "-o", help="Write the report here instead of stdout.")
+        list[Path] | None,
+        typer.Option(
+            "--output",
+            "-o",
+            help="File for the --format in the same position ('-' = stdout; repeatable).",
+            show_default=False,
+        ),
+    ] = None,
+    baseline: Annotated[
+        Path | None,
+        typer.Option("--baseline", help="Fail only on findings not in this baseline file."),
+    ] = None,
+    write_baseline: Annotated[
+        Path | None,
+        typer.Option("--write-baseline", help="Record today's findings as a baseline file."),
     ] = None,
     force: Annotated[
-        bool, typer.Option("--force", help="Replace an existing --output file.")
+        bool, typer.Option("--force", help="Replace existing --output / baseline files.")
     ] = False,
     strict_svg: Annotated[
         bool,
@@ -39,29 +129,79 @@ def check_command(
         ),
     ] = False,
 ) -> None:
-    """Composite every icon on every canvas and report what the coefficient changes.
+    """Audit icon sets on themes and fail the build on the findings the policy names.
 
     Per canvas: mean contrast gain against a = 1, icons at or above the threshold
     (at a = 1 -> at a), icons that newly pass, contrast losses, 8-bit collisions
     between distinct colours, and the smallest CIEDE2000 between the set's colours.
+    With no THEME ICONSET, audits what the project config names.
+
+    Exit codes: 0 the gate passed, 1 the gate failed, 2 bad input or usage.
 
     Example:
     [bold]alpha-audit check themes/github-primer.yaml examples/vibrant/iconset.yaml -a 1.2[/]
     """
-    from alpha_audit.cli import emit, progress_bar, require_finite, stdout_options
-    from alpha_audit.pipeline import check_files
+    from alpha_audit.cli import (
+        ExitStatus,
+        emit,
+        progress_bar,
+        require_finite,
+        stderr_note,
+        stdout_options,
+    )
+    from alpha_audit.errors import UsageError
+    from alpha_audit.gate import baseline_document, read_baseline
+    from alpha_audit.load.config import ProjectConfig, find_config, load_config
+    from alpha_audit.output import write_text
+    from alpha_audit.pipeline import check_project
+    from alpha_audit.policy import Rule
+    from alpha_audit.render.json import dumps
 
     require_finite(alpha, "--alpha")
     require_finite(threshold, "--threshold")
+    pairs = pair_outputs(list(fmt or []), list(output or []))
+    if (theme is None) != (iconset is None):
+        raise UsageError("give both THEME and ICONSET, or neither (to use the project config)")
+
+    config_path = config if config is not None else find_config(Path.cwd())
+    project = load_config(config_path) if config_path is not None else ProjectConfig()
+    cli_themes = ([theme] if theme else []) + list(themes or [])
+    cli_sets = ([iconset] if iconset else []) + list(iconsets or [])
+    policy = project.policy
+    if fail_on:
+        policy = replace(policy, rules=frozenset(Rule.parse(r) for r in fail_on))
+    if max_loss is not None:
+        policy = replace(policy, max_loss=max_loss)
+    if min_delta_e is not None:
+        policy = replace(policy, min_delta_e=min_delta_e)
+    baseline_path = baseline if baseline is not None else project.baseline
+    known = read_baseline(baseline_path) if baseline_path is not None else None
+
     with progress_bar("Rendering icons") as (on_start, on_icon):
-        result = check_files(
-            theme,
-            iconset,
-            alpha=alpha,
-            threshold=threshold,
-            strict_svg=strict_svg,
+        report = check_project(
+            cli_themes or project.themes,
+            cli_sets or project.iconsets,
+            policy=policy,
+            alpha=alpha if alpha is not None else project.alpha,
+            threshold=threshold if threshold is not None else project.threshold,
+            baseline=known,
+            strict_svg=strict_svg or project.strict_svg,
             on_start=on_start,
             on_icon=on_icon,
         )
-    options = stdout_options() if output is None else RenderOptions()
-    emit(render_check(result, fmt, options), output, force)
+    base = Path.cwd().resolve()
+    for kind, out in pairs:
+        options = replace(stdout_options(), base=base) if out is None else RenderOptions(base=base)
+        emit(kind.renderer()(report, options), out, force)
+    if write_baseline is not None:
+        write_text(write_baseline, dumps(baseline_document(report.gate)), overwrite=force)
+        stderr_note(f"wrote baseline {write_baseline}")
+        return
+    gate = report.gate
+    if gate.passed:
+        stderr_note("gate passed")
+        return
+    counts = ", ".join(f"{n} {rule}" for rule, n in gate.counts().items())
+    stderr_note(f"gate failed: {counts}" + (" (--exit-zero)" if exit_zero else ""))
+    if not exit_zero:
+        raise typer.Exit(code=ExitStatus.GATE_FAILED)

@@ -1,17 +1,35 @@
-"""Files in, audit out: load a theme and an icon set, rasterise, audit."""
+"""Files in, audit out: load themes and icon sets, rasterise, audit, apply the gate."""
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 
 from alpha_audit.audit import AuditResult, audit
-from alpha_audit.errors import SvgError
+from alpha_audit.errors import SvgError, UsageError
+from alpha_audit.gate import CheckReport, FindingKey, evaluate
 from alpha_audit.load.iconset import load_iconset
-from alpha_audit.load.svg import rasterize_icons
+from alpha_audit.load.svg import MaskSet, rasterize_icons
 from alpha_audit.load.theme import load_theme
+from alpha_audit.model import IconSet
+from alpha_audit.policy import Policy
 
-__all__ = ["check_files"]
+__all__ = ["check_files", "check_project"]
+
+
+def _render(
+    iconset: IconSet,
+    *,
+    strict_svg: bool,
+    on_icon: Callable[[], None] | None,
+) -> MaskSet:
+    masks = rasterize_icons(
+        [(i.name, i.file) for i in iconset.icons], iconset.sizes, progress=on_icon
+    )
+    if strict_svg and masks.problems:
+        first = masks.problems[0]
+        raise SvgError(first.message, path=first.file)
+    return masks
 
 
 def check_files(
@@ -35,10 +53,51 @@ def check_files(
     iconset = load_iconset(iconset_path)
     if on_start is not None:
         on_start(len(iconset.icons))
-    masks = rasterize_icons(
-        [(i.name, i.file) for i in iconset.icons], iconset.sizes, progress=on_icon
-    )
-    if strict_svg and masks.problems:
-        first = masks.problems[0]
-        raise SvgError(first.message, path=first.file)
+    masks = _render(iconset, strict_svg=strict_svg, on_icon=on_icon)
     return audit(theme, iconset, alpha=alpha, threshold=threshold, problems=masks.problems)
+
+
+def check_project(
+    themes: Sequence[str | Path],
+    iconsets: Sequence[str | Path],
+    *,
+    policy: Policy | None = None,
+    alpha: float | None = None,
+    threshold: float | None = None,
+    baseline: Iterable[FindingKey] | None = None,
+    strict_svg: bool = False,
+    on_start: Callable[[int], None] | None = None,
+    on_icon: Callable[[], None] | None = None,
+) -> CheckReport:
+    """Audit every icon set on every theme and apply the gate ``policy``.
+
+    Every file is loaded (and every input error raised) before any icon is
+    rendered; each icon set is rendered once whatever the number of themes.
+    Audits come in icon-set order, then theme order.
+    """
+    if not themes or not iconsets:
+        raise UsageError(
+            "nothing to audit: give THEME ICONSET, or name themes and iconsets in "
+            "alpha-audit.yaml or [tool.alpha-audit] in pyproject.toml"
+        )
+    loaded_themes = [load_theme(t) for t in _unique(themes)]
+    loaded_sets = [load_iconset(s) for s in _unique(iconsets)]
+    if on_start is not None:
+        on_start(sum(len(s.icons) for s in loaded_sets))
+    audits = []
+    for iconset in loaded_sets:
+        problems = _render(iconset, strict_svg=strict_svg, on_icon=on_icon).problems
+        for theme in loaded_themes:
+            audits.append(
+                audit(theme, iconset, alpha=alpha, threshold=threshold, problems=problems)
+            )
+    gate = evaluate(audits, policy or Policy(), baseline=baseline)
+    return CheckReport(audits=tuple(audits), gate=gate)
+
+
+def _unique(paths: Sequence[str | Path]) -> list[Path]:
+    """Paths in order, each file once."""
+    seen: dict[Path, Path] = {}
+    for p in paths:
+        seen.setdefault(Path(p).resolve(), Path(p))
+    return list(seen.values())

@@ -25,6 +25,7 @@ class Rule(StrEnum):
     COLLISION = "collision"  # distinct sources, same 8-bit output
     NEW_COLLISION = "new-collision"  # ... and not already colliding at alpha = 1
     SEPARATION = "separation"  # smallest CIEDE2000 between outputs below min_delta_e
+    UNRENDERABLE = "unrenderable"  # an icon's SVG could not be rendered (opt-in)
 
     @classmethod
     def parse(cls, text: str) -> Rule:

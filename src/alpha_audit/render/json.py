@@ -1,14 +1,30 @@
-"""``alpha-audit.check/1`` JSON: every number at full float precision."""
+"""``alpha-audit.check/1`` JSON: every number at full float precision.
+
+One audit: the audit's fields at the top level plus ``gate``.  Several
+audits (themes x icon sets): ``audits`` lists each audit's fields, and
+``gate`` covers them all.  Documented field by field in ``docs/json.md``.
+"""
 
 from __future__ import annotations
 
 import json
 from dataclasses import asdict
+from pathlib import Path
 from typing import Any
 
 from alpha_audit.audit import AuditResult
+from alpha_audit.gate import CheckReport, Finding, GateResult
+from alpha_audit.render import RenderOptions, as_report, display_path
 
-__all__ = ["CHECK_SCHEMA", "check_to_dict", "dumps", "render_check"]
+__all__ = [
+    "CHECK_SCHEMA",
+    "check_to_dict",
+    "dumps",
+    "gate_to_dict",
+    "render_check",
+    "render_report",
+    "report_to_dict",
+]
 
 CHECK_SCHEMA = "alpha-audit.check/1"
 
@@ -67,6 +83,74 @@ def dumps(document: dict[str, Any]) -> str:
     return json.dumps(document, indent=2, allow_nan=False, ensure_ascii=False) + "\n"
 
 
-def render_check(result: AuditResult, options: object = None) -> str:
-    """Render ``result`` as ``alpha-audit.check/1`` JSON."""
-    return dumps(check_to_dict(result))
+def finding_to_dict(finding: Finding, base: Path | None = None) -> dict[str, Any]:
+    """One gate finding: rule, where, what, and the numbers behind it."""
+    return {
+        "rule": finding.rule.value,
+        "theme": finding.theme,
+        "iconset": finding.iconset,
+        "canvas": finding.canvas,
+        "icons": list(finding.icons),
+        "message": finding.message,
+        "numbers": dict(finding.numbers),
+        "files": [display_path(f, base) for f in finding.files],
+        "manifest": display_path(finding.manifest, base),
+        "lines": list(finding.lines),
+        "exemption": None if finding.exemption is None else finding.exemption.reason,
+        "baselined": finding.baselined,
+    }
+
+
+def gate_to_dict(gate: GateResult, base: Path | None = None) -> dict[str, Any]:
+    """The ``gate`` section: policy, verdict and every finding by status."""
+    policy = gate.policy
+    return {
+        "passed": gate.passed,
+        "policy": {
+            "rules": sorted(r.value for r in policy.rules),
+            "max_loss": policy.max_loss,
+            "min_delta_e": policy.min_delta_e,
+            "exemptions": [
+                {
+                    "canvas": e.canvas,
+                    "icon": e.icon,
+                    "rule": None if e.rule is None else e.rule.value,
+                    "reason": e.reason,
+                }
+                for e in policy.exemptions
+            ],
+        },
+        "counts": gate.counts(),
+        "failures": [finding_to_dict(f, base) for f in gate.findings if f.fails],
+        "exempted": [finding_to_dict(f, base) for f in gate.findings if f.exemption],
+        "baselined": [
+            finding_to_dict(f, base) for f in gate.findings if f.baselined and not f.exemption
+        ],
+        "stale_baseline": [
+            {"theme": t, "iconset": s, "rule": r, "canvas": c, "icons": list(i)}
+            for t, s, r, c, i in gate.stale
+        ],
+    }
+
+
+def report_to_dict(report: CheckReport, base: Path | None = None) -> dict[str, Any]:
+    """The whole document: one audit flat at the top level, several under ``audits``."""
+    gate = gate_to_dict(report.gate, base)
+    if len(report.audits) == 1:
+        return {**check_to_dict(report.audits[0]), "gate": gate}
+    audits = []
+    for result in report.audits:
+        doc = check_to_dict(result)
+        del doc["schema"]
+        audits.append(doc)
+    return {"schema": CHECK_SCHEMA, "audits": audits, "gate": gate}
+
+
+def render_report(report: CheckReport, options: RenderOptions) -> str:
+    """Render a report as ``alpha-audit.check/1`` JSON."""
+    return dumps(report_to_dict(report, options.base))
+
+
+def render_check(result: AuditResult | CheckReport, options: RenderOptions | None = None) -> str:
+    """Render one audit (gated by the default policy) or a report as JSON."""
+    return render_report(as_report(result), options or RenderOptions())

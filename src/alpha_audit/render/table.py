@@ -14,9 +14,10 @@ from rich.table import Table
 from rich.text import Text
 
 from alpha_audit.audit import AuditResult
-from alpha_audit.render import RenderOptions
+from alpha_audit.gate import CheckReport, GateResult
+from alpha_audit.render import RenderOptions, as_report
 
-__all__ = ["MAX_FINDINGS", "check_renderable", "render_check"]
+__all__ = ["MAX_FINDINGS", "check_renderable", "gate_renderable", "render_check", "render_report"]
 
 MAX_FINDINGS = 12  # per section; the JSON has everything
 
@@ -140,8 +141,54 @@ def check_renderable(result: AuditResult) -> RenderableType:
     return Group(head, _summary_table(result), *_findings(result), Text(""), foot)
 
 
-def render_check(result: AuditResult, options: RenderOptions) -> str:
-    """Render the report at ``options.width`` columns, with or without ANSI colour."""
+def gate_renderable(gate: GateResult) -> RenderableType:
+    """The gate verdict: failures with rule, icon, canvas and numbers; exemptions; baseline."""
+    out: list[RenderableType] = []
+    rules = ", ".join(sorted(r.value for r in gate.policy.rules))
+    failures = gate.failures
+    if failures:
+        out.append(Text(f"Gate failed: {len(failures)} finding(s) [{rules}]", style="bold red"))
+        for f in failures[:MAX_FINDINGS]:
+            where = f"{', '.join(f.icons)} on {f.canvas}" if f.canvas else ", ".join(f.icons)
+            out.append(Text(f"  {f.rule.value}: {where} ({f.theme}): {f.message}"))
+        if len(failures) > MAX_FINDINGS:
+            more = len(failures) - MAX_FINDINGS
+            out.append(Text(f"  … and {more} more (see --format json or markdown)"))
+    else:
+        out.append(Text(f"Gate passed [{rules}]", style="bold green"))
+    exempt = [f for f in gate.findings if f.exemption is not None]
+    baselined = [f for f in gate.findings if f.baselined and f.exemption is None]
+    if exempt:
+        out.append(Text(f"  {len(exempt)} exempted finding(s), e.g. {exempt[0].exemption.reason}"))
+    if baselined:
+        out.append(Text(f"  {len(baselined)} finding(s) already in the baseline"))
+    if gate.stale:
+        out.append(
+            Text(
+                f"  {len(gate.stale)} baseline entr{'y' if len(gate.stale) == 1 else 'ies'} "
+                "no longer occur; rewrite the baseline with --write-baseline",
+                style="yellow",
+            )
+        )
+    return Group(*out)
+
+
+def render_report(report: CheckReport, options: RenderOptions) -> str:
+    """Every audit of the report, then the gate, at ``options.width`` columns."""
+    parts: list[RenderableType] = []
+    for result in report.audits:
+        parts += [check_renderable(result), Text("")]
+    parts.append(gate_renderable(report.gate))
+    return _to_text(Group(*parts), options)
+
+
+def render_check(result: AuditResult | CheckReport, options: RenderOptions) -> str:
+    """Render one audit (gated by the default policy) or a whole report."""
+    return render_report(as_report(result), options)
+
+
+def _to_text(renderable: RenderableType, options: RenderOptions) -> str:
+    """Render at ``options.width`` columns, with or without ANSI colour."""
     buffer = StringIO()
     console = Console(
         file=buffer,
@@ -152,5 +199,5 @@ def render_check(result: AuditResult, options: RenderOptions) -> str:
         highlight=False,
         emoji=False,
     )
-    console.print(check_renderable(result))
+    console.print(renderable)
     return buffer.getvalue()

@@ -1,0 +1,361 @@
+"""The CI gate: which findings of an audit fail the build, and why.
+
+:func:`evaluate` turns audit results and a :class:`~alpha_audit.policy.Policy`
+into :class:`Finding` objects, each naming its rule, theme, icon set, canvas,
+icon(s) and numbers.  A finding fails the gate unless an exemption (with its
+reason) or a baseline entry covers it.  Pure computation: nothing is printed.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+import numpy as np
+
+from alpha_audit.audit import AuditResult
+from alpha_audit.errors import InputError, UsageError
+from alpha_audit.policy import Exemption, Policy, Rule
+
+__all__ = [
+    "BASELINE_SCHEMA",
+    "CheckReport",
+    "Finding",
+    "FindingKey",
+    "GateResult",
+    "baseline_document",
+    "evaluate",
+    "findings_for",
+    "parse_baseline",
+    "read_baseline",
+]
+
+# (theme, icon set, rule, canvas, icons): what a baseline matches on.  Never a
+# line number or a value, so editing a manifest does not invalidate a baseline.
+FindingKey = tuple[str, str, str, str | None, tuple[str, ...]]
+
+
+@dataclass(frozen=True)
+class Finding:
+    """One thing a gate rule objects to.
+
+    ``numbers`` holds the figures a reviewer needs (contrast before and after,
+    threshold, CIEDE2000, 8-bit output ...), ``files`` the icons' SVG files
+    and ``lines`` the manifest lines that set each icon's colour or alpha.
+    """
+
+    rule: Rule
+    theme: str
+    iconset: str
+    canvas: str | None
+    icons: tuple[str, ...]
+    message: str
+    numbers: Mapping[str, float | str] = field(default_factory=dict)
+    files: tuple[Path, ...] = ()
+    manifest: Path | None = None
+    lines: tuple[int, ...] = ()
+    exemption: Exemption | None = None
+    baselined: bool = False
+
+    @property
+    def key(self) -> FindingKey:
+        """Identity for baselines: theme, icon set, rule, canvas and icons."""
+        return (self.theme, self.iconset, self.rule.value, self.canvas, self.icons)
+
+    @property
+    def fails(self) -> bool:
+        """Whether this finding fails the gate (not exempt, not in the baseline)."""
+        return self.exemption is None and not self.baselined
+
+
+@dataclass(frozen=True)
+class GateResult:
+    """Every finding of the enabled rules, in stable order, plus stale baseline entries."""
+
+    policy: Policy
+    findings: tuple[Finding, ...]
+    stale: tuple[FindingKey, ...] = ()
+    problems: int = 0  # icons that could not be rendered (reported, fail only with a rule)
+
+    @property
+    def failures(self) -> tuple[Finding, ...]:
+        """Findings that fail the gate."""
+        return tuple(f for f in self.findings if f.fails)
+
+    @property
+    def passed(self) -> bool:
+        """True when no finding fails the gate."""
+        return not self.failures
+
+    def counts(self) -> dict[str, int]:
+        """Failures per rule name, rules in policy order (stable)."""
+        out: dict[str, int] = {}
+        for f in self.failures:
+            out[f.rule.value] = out.get(f.rule.value, 0) + 1
+        return dict(sorted(out.items()))
+
+
+@dataclass(frozen=True)
+class CheckReport:
+    """What ``check`` produces: one audit per theme x icon set, and the gate over all."""
+
+    audits: tuple[AuditResult, ...]
+    gate: GateResult
+
+
+def _icon_refs(
+    result: AuditResult, names: Sequence[str]
+) -> tuple[tuple[Path, ...], tuple[int, ...]]:
+    by_name = {i.name: i for i in result.iconset.icons}
+    files, lines = [], []
+    for name in names:
+        icon = by_name.get(name)
+        if icon is None:
+            continue
+        files.append(Path(icon.file))
+        lines.extend(n for n in (icon.color_line, icon.alpha_line) if n is not None)
+    return tuple(files), tuple(sorted(set(lines)))
+
+
+def _cell_findings(result: AuditResult, policy: Policy) -> Iterable[tuple[Rule, int, int, str]]:
+    """(rule, icon index, canvas index, message) for the per icon x canvas rules."""
+    t = result.threshold
+    # A loss counts beyond both the policy's allowance and the float tolerance.
+    loss = result.gain < -max(policy.max_loss, result.tolerance)
+    masks: list[tuple[Rule, np.ndarray, str]] = [
+        (Rule.LOSS, loss, "contrast drops {ref:.3f} -> {now:.3f} ({gain:+.4f}) at alpha {a:g}"),
+        (
+            Rule.NEWLY_FAILING,
+            result.newly_fails,
+            f"passes {t:g}:1 at alpha 1 ({{ref:.3f}}) but not at alpha {{a:g}} ({{now:.3f}})",
+        ),
+        (
+            Rule.BELOW_THRESHOLD,
+            ~result.passes,
+            f"contrast {{now:.3f}} is below {t:g}:1 at alpha {{a:g}}",
+        ),
+    ]
+    for rule, mask, template in masks:
+        if rule not in policy.rules:
+            continue
+        # Canvas order, then icon order: the same order as AuditResult.rows().
+        for j, i in zip(*np.nonzero(mask.T), strict=True):
+            i, j = int(i), int(j)
+            yield (
+                rule,
+                i,
+                j,
+                template.format(
+                    ref=float(result.contrast_ref[i, j]),
+                    now=float(result.contrast[i, j]),
+                    gain=float(result.gain[i, j]),
+                    a=float(result.alpha[i]),
+                ),
+            )
+
+
+def findings_for(result: AuditResult, policy: Policy) -> list[Finding]:
+    """Every finding of ``policy``'s rules in one audit, exemptions applied.
+
+    Order is stable: per-cell rules (loss, newly-failing, below-threshold) in
+    canvas then icon order, then collisions, separations and render problems.
+    """
+    theme, iconset = result.theme.name, result.iconset.name
+    manifest = result.iconset.path
+    out: list[Finding] = []
+
+    def add(
+        rule: Rule,
+        canvas: str | None,
+        icons: tuple[str, ...],
+        message: str,
+        numbers: dict[str, float | str],
+    ) -> None:
+        files, lines = _icon_refs(result, icons)
+        out.append(
+            Finding(
+                rule=rule,
+                theme=theme,
+                iconset=iconset,
+                canvas=canvas,
+                icons=icons,
+                message=message,
+                numbers=numbers,
+                files=files,
+                manifest=manifest,
+                lines=lines,
+                exemption=policy.exempt(rule, canvas, icons),
+            )
+        )
+
+    canvases, icons = result.theme.canvases, result.iconset.icons
+    for rule, i, j, message in _cell_findings(result, policy):
+        numbers = {
+            "alpha": float(result.alpha[i]),
+            "contrast_ref": float(result.contrast_ref[i, j]),
+            "contrast": float(result.contrast[i, j]),
+            "gain": float(result.gain[i, j]),
+            "threshold": float(result.threshold),
+            "source": icons[i].color,
+            "background": canvases[j].color,
+        }
+        add(rule, canvases[j].name, (icons[i].name,), message, numbers)
+
+    # `collision` already covers every new collision; report each once.
+    collision_rule = (
+        Rule.COLLISION
+        if Rule.COLLISION in policy.rules
+        else Rule.NEW_COLLISION
+        if Rule.NEW_COLLISION in policy.rules
+        else None
+    )
+    for c in result.collisions:
+        if collision_rule is None or (collision_rule is Rule.NEW_COLLISION and not c.new):
+            continue
+        message = f"distinct colours {', '.join(c.sources)} all give {c.output}" + (
+            "" if c.new else " (already at alpha 1)"
+        )
+        numbers = {"output": c.output, "sources": ", ".join(c.sources), "new": str(c.new).lower()}
+        add(collision_rule, c.canvas, tuple(sorted(c.icons)), message, numbers)
+
+    if Rule.SEPARATION in policy.rules:
+        for s in result.separations:
+            if s.delta_e < policy.min_delta_e:
+                message = (
+                    f"closest colours are CIEDE2000 {s.delta_e:.2f} apart "
+                    f"(at alpha 1: {s.delta_e_ref:.2f}); minimum {policy.min_delta_e:g}"
+                )
+                numbers = {
+                    "delta_e": s.delta_e,
+                    "delta_e_ref": s.delta_e_ref,
+                    "min_delta_e": policy.min_delta_e,
+                    "sources": ", ".join(s.sources),
+                }
+                add(Rule.SEPARATION, s.canvas, tuple(sorted(s.icons)), message, numbers)
+
+    if Rule.UNRENDERABLE in policy.rules:
+        # Broken icons are not in result.iconset any more; name their file directly.
+        for p in result.problems:
+            out.append(
+                Finding(
+                    rule=Rule.UNRENDERABLE,
+                    theme=theme,
+                    iconset=iconset,
+                    canvas=None,
+                    icons=(p.icon,),
+                    message=p.message,
+                    files=(Path(p.file),),
+                    manifest=manifest,
+                    exemption=policy.exempt(Rule.UNRENDERABLE, None, (p.icon,)),
+                )
+            )
+    return out
+
+
+def evaluate(
+    audits: Sequence[AuditResult],
+    policy: Policy,
+    *,
+    baseline: Iterable[FindingKey] | None = None,
+) -> GateResult:
+    """Apply ``policy`` to every audit; findings in ``baseline`` do not fail.
+
+    Baseline entries that match no finding any more are returned as ``stale``
+    so the baseline can be tightened.
+
+    >>> from alpha_audit.audit import audit
+    >>> from alpha_audit.model import Canvas, Icon, IconSet, Theme
+    >>> theme = Theme("t", (Canvas("yellow", "#ffff00"),))
+    >>> icons = IconSet("s", (Icon("dot", "dot.svg", "#0000d0", 1.4),))
+    >>> gate = evaluate([audit(theme, icons)], Policy())
+    >>> [(f.rule.value, f.canvas, f.icons) for f in gate.failures]
+    [('loss', 'yellow', ('dot',))]
+    """
+    findings = [f for result in audits for f in findings_for(result, policy)]
+    stale: tuple[FindingKey, ...] = ()
+    if baseline is not None:
+        known = set(baseline)
+        seen = {f.key for f in findings}
+        findings = [replace(f, baselined=True) if f.key in known else f for f in findings]
+        stale = tuple(sorted(known - seen, key=_sort_key))
+    problems = sum(len(r.problems) for r in audits)
+    return GateResult(policy=policy, findings=tuple(findings), stale=stale, problems=problems)
+
+
+def _sort_key(key: FindingKey) -> tuple[str, str, str, str, tuple[str, ...]]:
+    theme, iconset, rule, canvas, icons = key
+    return (theme, iconset, rule, canvas or "", icons)
+
+
+BASELINE_SCHEMA = "alpha-audit.baseline/1"
+MAX_BASELINE_BYTES = 16 << 20  # 16 MiB: a few hundred bytes per entry
+
+
+def baseline_document(gate: GateResult) -> dict[str, object]:
+    """Today's findings as a baseline: every finding not covered by an exemption.
+
+    Entries carry no numbers or line numbers, only what they are matched on,
+    sorted so that the file diffs cleanly.
+    """
+    keys = sorted({f.key for f in gate.findings if f.exemption is None}, key=_sort_key)
+    return {
+        "schema": BASELINE_SCHEMA,
+        "entries": [
+            {"theme": t, "iconset": s, "rule": r, "canvas": c, "icons": list(i)}
+            for t, s, r, c, i in keys
+        ],
+    }
+
+
+def parse_baseline(text: str, path: Path) -> frozenset[FindingKey]:
+    """Finding keys from a baseline file written by :func:`baseline_document`."""
+
+    def bad(message: str) -> InputError:
+        return InputError(f"not an alpha-audit baseline: {message}", path=path)
+
+    try:
+        doc = json.loads(text)
+    except (json.JSONDecodeError, RecursionError) as exc:
+        raise bad(f"invalid JSON ({exc})") from exc
+    if not isinstance(doc, dict) or doc.get("schema") != BASELINE_SCHEMA:
+        raise bad(f'expected {{"schema": "{BASELINE_SCHEMA}", "entries": [...]}}')
+    entries = doc.get("entries")
+    if not isinstance(entries, list):
+        raise bad("entries must be a list")
+    keys = set()
+    for n, e in enumerate(entries):
+        ok = (
+            isinstance(e, dict)
+            and all(isinstance(e.get(k), str) for k in ("theme", "iconset", "rule"))
+            and (e.get("canvas") is None or isinstance(e.get("canvas"), str))
+            and isinstance(e.get("icons"), list)
+            and all(isinstance(i, str) for i in e["icons"])
+        )
+        if not ok:
+            raise bad(f"entries[{n}] needs theme, iconset, rule, canvas and icons")
+        rule = Rule.parse(e["rule"]).value
+        keys.add((e["theme"], e["iconset"], rule, e["canvas"], tuple(e["icons"])))
+    return frozenset(keys)
+
+
+def read_baseline(path: str | Path) -> frozenset[FindingKey]:
+    """Read a baseline file (at most :data:`MAX_BASELINE_BYTES`)."""
+    p = Path(path)
+    try:
+        with p.open("rb") as fh:
+            raw = fh.read(MAX_BASELINE_BYTES + 1)
+    except FileNotFoundError as exc:
+        raise UsageError(
+            "baseline file not found (create it with --write-baseline)", path=p
+        ) from exc
+    except OSError as exc:
+        raise InputError(f"cannot read: {exc.strerror}", path=p) from exc
+    if len(raw) > MAX_BASELINE_BYTES:
+        raise InputError(f"larger than {MAX_BASELINE_BYTES >> 20} MiB", path=p)
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not UTF-8 text (byte {exc.start})", path=p) from exc
+    return parse_baseline(text, p)

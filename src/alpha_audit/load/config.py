@@ -1,0 +1,255 @@
+"""Project configuration: what ``alpha-audit check`` audits when given no files.
+
+Discovered from the working directory upwards (stopping at the repository
+root, the first folder holding ``.git``): ``alpha-audit.yaml`` or
+``.alpha-audit.yaml``, or a ``[tool.alpha-audit]`` table in ``pyproject.toml``.
+Keys are kebab-case (``max-loss``); snake_case spellings are accepted too.
+Every path in the config is relative to the config file and must stay inside
+its folder, because a pull request can change the config as well.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path, PurePosixPath
+from typing import Any
+
+from alpha_audit.errors import InputError, UsageError
+from alpha_audit.load.fields import check_keys, describe, read_mapping, read_name, read_number
+from alpha_audit.load.yamldoc import MAX_YAML_BYTES, KeyPath, YamlDoc, load_yaml
+from alpha_audit.policy import DEFAULT_RULES, Exemption, Policy, Rule
+
+__all__ = [
+    "CONFIG_KEYS",
+    "CONFIG_NAMES",
+    "ProjectConfig",
+    "config_from_doc",
+    "find_config",
+    "load_config",
+]
+
+CONFIG_NAMES = ("alpha-audit.yaml", ".alpha-audit.yaml")
+CONFIG_KEYS = (
+    "alpha",
+    "baseline",
+    "exempt",
+    "fail-on",
+    "iconset",
+    "iconsets",
+    "max-loss",
+    "min-delta-e",
+    "strict-svg",
+    "theme",
+    "themes",
+    "threshold",
+)
+_EXEMPT_KEYS = ("canvas", "icon", "reason", "rule")
+_TOOL_TABLE = ("tool", "alpha-audit")
+
+
+@dataclass(frozen=True)
+class ProjectConfig:
+    """A validated project configuration; paths are absolute."""
+
+    path: Path | None = None
+    themes: tuple[Path, ...] = ()
+    iconsets: tuple[Path, ...] = ()
+    alpha: float | None = None
+    threshold: float | None = None
+    policy: Policy = field(default_factory=Policy)
+    baseline: Path | None = None
+    strict_svg: bool = False
+
+
+def _has_tool_table(pyproject: Path) -> bool:
+    """Whether ``pyproject`` mentions ``[tool.alpha-audit]`` (cheap text check, parsed later)."""
+    try:
+        with pyproject.open("rb") as fh:
+            head = fh.read(MAX_YAML_BYTES + 1)
+    except OSError:
+        return False
+    return b"alpha-audit" in head and b"tool" in head
+
+
+def find_config(start: str | Path) -> Path | None:
+    """The nearest config file at or above ``start``, or None.
+
+    The search stops at the first folder holding ``.git``.  Two configs in one
+    folder are ambiguous and refused.
+    """
+    start = Path(start).resolve()
+    for folder in (start, *start.parents):
+        found = [folder / n for n in CONFIG_NAMES if (folder / n).is_file()]
+        pyproject = folder / "pyproject.toml"
+        if pyproject.is_file() and _has_tool_table(pyproject) and _load_toml_table(pyproject):
+            found.append(pyproject)
+        if len(found) > 1:
+            names = " and ".join(p.name for p in found)
+            raise UsageError(f"two configurations ({names}); keep one", path=folder)
+        if found:
+            return found[0]
+        if (folder / ".git").exists():
+            return None
+    return None
+
+
+def _load_toml_table(path: Path) -> dict[str, Any] | None:
+    """The ``[tool.alpha-audit]`` table of a pyproject file, or None if absent."""
+    try:
+        with path.open("rb") as fh:
+            raw = fh.read(MAX_YAML_BYTES + 1)
+    except OSError as exc:
+        raise InputError(f"cannot read: {exc.strerror}", path=path) from exc
+    if len(raw) > MAX_YAML_BYTES:
+        raise InputError(f"larger than {MAX_YAML_BYTES // 1024} KiB", path=path)
+    try:
+        data = tomllib.loads(raw.decode("utf-8"))
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not UTF-8 text (byte {exc.start})", path=path) from exc
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"invalid TOML: {exc}", path=path) from exc
+    except RecursionError as exc:
+        raise InputError("TOML is nested too deeply", path=path) from exc
+    tool = data.get("tool")
+    if not isinstance(tool, dict) or "alpha-audit" not in tool:
+        return None
+    return {"tool": {"alpha-audit": tool["alpha-audit"]}}
+
+
+def load_config(path: str | Path) -> ProjectConfig:
+    """Load a YAML config or the ``[tool.alpha-audit]`` table of ``pyproject.toml``."""
+    p = Path(path)
+    if p.name == "pyproject.toml" or p.suffix == ".toml":
+        if not p.is_file():
+            raise UsageError("config file not found", path=p)
+        table = _load_toml_table(p)
+        if table is None:
+            raise InputError("has no [tool.alpha-audit] table", path=p)
+        return config_from_doc(YamlDoc(p, table, {}), prefix=_TOOL_TABLE)
+    return config_from_doc(load_yaml(p))
+
+
+def _normalise_keys(doc: YamlDoc, keys: KeyPath, data: dict[str, Any]) -> dict[str, Any]:
+    """snake_case -> kebab-case; the same key spelt both ways is a duplicate."""
+    out: dict[str, Any] = {}
+    for key, value in data.items():
+        norm = str(key).replace("_", "-")
+        if norm in out:
+            raise doc.error((*keys, key), f"{key!r} repeats {norm!r}; give it once")
+        out[norm] = value
+    return out
+
+
+def _paths(doc: YamlDoc, keys: KeyPath, value: Any, base: Path) -> list[Path]:
+    items = [value] if isinstance(value, str) else value
+    if not isinstance(items, list) or not items:
+        raise doc.error(keys, f"expected a path or a list of paths, got {describe(value)}")
+    return [
+        _path(doc, (*keys, i) if len(items) > 1 else keys, v, base) for i, v in enumerate(items)
+    ]
+
+
+def _path(doc: YamlDoc, keys: KeyPath, value: Any, base: Path) -> Path:
+    """A path relative to the config's folder that must stay inside it."""
+    if not isinstance(value, str) or not value.strip() or "\x00" in value:
+        raise doc.error(keys, f"expected a relative path, got {describe(value)}")
+    pure = PurePosixPath(value.replace("\\", "/"))
+    if pure.is_absolute() or value[1:3] in (":/", ":\\"):
+        raise doc.error(keys, f"{value!r} is absolute; give a path relative to the config")
+    resolved = (base / pure).resolve()
+    if not resolved.is_relative_to(base):
+        raise doc.error(keys, f"{value!r} resolves outside {base}; not allowed")
+    return resolved
+
+
+def _rules(doc: YamlDoc, keys: KeyPath, value: Any) -> frozenset[Rule]:
+    items = [value] if isinstance(value, str) else value
+    if not isinstance(items, list):
+        raise doc.error(keys, f"expected a list of rules, got {describe(value)}")
+    rules = set()
+    for i, item in enumerate(items):
+        if not isinstance(item, str):
+            raise doc.error((*keys, i), f"expected a rule name, got {describe(item)}")
+        try:
+            rules.add(Rule.parse(item))
+        except UsageError as exc:
+            raise doc.error((*keys, i), exc.message) from exc
+    return frozenset(rules)
+
+
+def _exemptions(doc: YamlDoc, keys: KeyPath, value: Any) -> tuple[Exemption, ...]:
+    if not isinstance(value, list):
+        raise doc.error(keys, f"expected a list of {{canvas/icon, reason}}, got {describe(value)}")
+    out = []
+    for i, item in enumerate(value):
+        ikeys = (*keys, i)
+        item = read_mapping(doc, ikeys, item, "an exemption {canvas/icon, rule, reason}")
+        check_keys(doc, ikeys, item, _EXEMPT_KEYS)
+        reason = item.get("reason")
+        if not isinstance(reason, str) or not reason.strip():
+            raise doc.error((*ikeys, "reason"), "every exemption needs a reason: (why it is fine)")
+        canvas = read_name(doc, (*ikeys, "canvas"), item["canvas"]) if "canvas" in item else None
+        icon = read_name(doc, (*ikeys, "icon"), item["icon"]) if "icon" in item else None
+        if canvas is None and icon is None:
+            raise doc.error(ikeys, "an exemption names a canvas, an icon or both")
+        rule = None
+        if "rule" in item:
+            rule = next(iter(_rules(doc, (*ikeys, "rule"), [item["rule"]])))
+        out.append(Exemption(reason=reason.strip(), canvas=canvas, icon=icon, rule=rule))
+    return tuple(out)
+
+
+def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
+    """Validate a parsed config; ``prefix`` locates the table (``tool.alpha-audit``)."""
+    raw: Any = doc.data
+    for k in prefix:
+        raw = raw[k]
+    data = read_mapping(doc, prefix, raw, "an alpha-audit configuration")
+    data = _normalise_keys(doc, prefix, data)
+    check_keys(doc, prefix, data, CONFIG_KEYS)
+    base = doc.path.resolve().parent
+
+    def at(key: str) -> KeyPath:
+        return (*prefix, key)
+
+    found: dict[str, list[Path]] = {}
+    for single, plural in (("theme", "themes"), ("iconset", "iconsets")):
+        if single in data and plural in data:
+            raise doc.error(at(plural), f"give {single} or {plural}, not both")
+        key = plural if plural in data else single
+        found[plural] = _paths(doc, at(key), data[key], base) if key in data else []
+    alpha = threshold = None
+    if "alpha" in data:
+        alpha = read_number(doc, at("alpha"), data["alpha"], low=-100, high=100)
+    if "threshold" in data:
+        threshold = read_number(
+            doc,
+            at("threshold"),
+            data["threshold"],
+            low=1.0,
+            high=21.0,
+            what="a contrast ratio between 1 and 21",
+        )
+    rules = _rules(doc, at("fail-on"), data["fail-on"]) if "fail-on" in data else DEFAULT_RULES
+    max_loss = 0.0
+    if "max-loss" in data:
+        max_loss = read_number(doc, at("max-loss"), data["max-loss"], low=0.0, high=21.0)
+    min_delta_e = 10.0
+    if "min-delta-e" in data:
+        min_delta_e = read_number(doc, at("min-delta-e"), data["min-delta-e"], low=0.0, high=200.0)
+    exemptions = _exemptions(doc, at("exempt"), data["exempt"]) if "exempt" in data else ()
+    baseline = _path(doc, at("baseline"), data["baseline"], base) if "baseline" in data else None
+    strict_svg = data.get("strict-svg", False)
+    if not isinstance(strict_svg, bool):
+        raise doc.error(at("strict-svg"), f"expected true or false, got {describe(strict_svg)}")
+    return ProjectConfig(
+        path=doc.path,
+        themes=tuple(found["themes"]),
+        iconsets=tuple(found["iconsets"]),
+        alpha=alpha,
+        threshold=threshold,
+        policy=Policy(rules, max_loss, min_delta_e, exemptions),
+        baseline=baseline,
+        strict_svg=strict_svg,
+    )

@@ -1,0 +1,113 @@
+"""JUnit XML: one test case per icon x canvas, failures carry the gate's reason.
+
+Suites are audits (``theme / icon set``); a case is named after the icon, its
+class after the icon set and canvas, which is how CI test viewers (GitLab,
+Jenkins, Azure, dorny/test-reporter) group them.  Exempted or baselined
+findings make a case ``skipped`` with the reason; an icon that could not be
+rendered is an ``error`` when the ``unrenderable`` rule is on, else skipped.
+Control characters that XML 1.0 forbids are removed from every string.
+"""
+
+from __future__ import annotations
+
+import re
+import xml.etree.ElementTree as ET
+from collections import defaultdict
+
+from alpha_audit.gate import CheckReport, Finding
+from alpha_audit.policy import Rule
+from alpha_audit.render import RenderOptions, display_path
+
+__all__ = ["render_report", "xml_safe"]
+
+# Characters outside XML 1.0's Char production (https://www.w3.org/TR/xml/#charsets).
+_XML_INVALID = re.compile("[^\t\n\r\x20-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]")
+
+
+def xml_safe(text: object) -> str:
+    """``text`` as a string XML 1.0 can carry (forbidden control characters removed).
+
+    >>> xml_safe("bell\\x07 and\\x1b[31m escape")
+    'bell and[31m escape'
+    """
+    return _XML_INVALID.sub("", str(text))
+
+
+def _element(parent: ET.Element, tag: str, text: str | None = None, **attrs: object) -> ET.Element:
+    el = ET.SubElement(parent, tag, {k: xml_safe(v) for k, v in attrs.items()})
+    if text is not None:
+        el.text = xml_safe(text)
+    return el
+
+
+def _details(f: Finding) -> str:
+    numbers = ", ".join(
+        f"{k}={v:.6g}" if isinstance(v, float) else f"{k}={v}" for k, v in f.numbers.items()
+    )
+    return f"{f.rule.value}: {f.message}\n{numbers}" if numbers else f"{f.rule.value}: {f.message}"
+
+
+def render_report(report: CheckReport, options: RenderOptions) -> str:
+    """The report as a JUnit XML document (``<testsuites>``)."""
+    by_cell: dict[tuple[str, str, str | None, str], list[Finding]] = defaultdict(list)
+    for f in report.gate.findings:
+        for icon in f.icons:
+            by_cell[(f.theme, f.iconset, f.canvas, icon)].append(f)
+    unrenderable_fails = Rule.UNRENDERABLE in report.gate.policy.rules
+
+    root = ET.Element("testsuites", {"name": "alpha-audit"})
+    totals = {"tests": 0, "failures": 0, "errors": 0, "skipped": 0}
+    for result in report.audits:
+        theme, iconset = result.theme.name, result.iconset.name
+        suite = _element(root, "testsuite", name=f"{theme} / {iconset}")
+        counts = dict.fromkeys(totals, 0)
+        for canvas in result.theme.canvases:
+            for icon in result.iconset.icons:
+                case = _element(
+                    suite,
+                    "testcase",
+                    name=icon.name,
+                    classname=f"{iconset}.{canvas.name}",
+                    file=display_path(icon.file, options.base),
+                    time="0",
+                )
+                counts["tests"] += 1
+                found = by_cell.get((theme, iconset, canvas.name, icon.name), [])
+                failing = [f for f in found if f.fails]
+                if failing:
+                    counts["failures"] += 1
+                    _element(
+                        case,
+                        "failure",
+                        "\n".join(_details(f) for f in failing),
+                        message="; ".join(f"{f.rule.value}: {f.message}" for f in failing),
+                        type=",".join(sorted({f.rule.value for f in failing})),
+                    )
+                elif found:
+                    counts["skipped"] += 1
+                    f = found[0]
+                    why = f"exempt: {f.exemption.reason}" if f.exemption else "in the baseline"
+                    _element(case, "skipped", message=f"{f.rule.value} {why}")
+        for problem in result.problems:
+            case = _element(
+                suite,
+                "testcase",
+                name=problem.icon,
+                classname=f"{iconset}.render",
+                file=display_path(problem.file, options.base),
+                time="0",
+            )
+            counts["tests"] += 1
+            if unrenderable_fails:
+                counts["errors"] += 1
+                _element(case, "error", problem.message, message=problem.message, type="render")
+            else:
+                counts["skipped"] += 1
+                _element(case, "skipped", message=f"could not be rendered: {problem.message}")
+        for k, v in counts.items():
+            suite.set(k, str(v))
+            totals[k] += v
+    for k, v in totals.items():
+        root.set(k, str(v))
+    ET.indent(root)
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, "unicode") + "\n"
