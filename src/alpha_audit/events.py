@@ -1,0 +1,286 @@
+"""Where, exactly, a coefficient sweep changes something: the event maths behind ``suggest``.
+
+For a source ``s`` and canvas ``b`` in linear sRGB, each channel of the output
+``clip(b + a (s - b), 0, 1)`` is linear in ``a`` until it reaches 0 or 1 and
+constant after (paper, Section 3; for ``a >= 1`` each channel clips at most
+once).  So, on ``[a_lo, a_hi]``:
+
+* relative luminance is piecewise linear with at most three breakpoints, and a
+  contrast condition "``C(Y, Yb) < L``" is an open band ``y_lo < Y < y_hi``
+  whose crossings are closed-form on each piece (:func:`first_in_luminance_band`);
+* an 8-bit code changes exactly where the linear channel crosses
+  ``decode((n + 0.5) / 255)``, i.e. at ``a = (decode((n + 0.5)/255) - b) / (s - b)``;
+  between consecutive events every code is constant and *at* an event the code
+  is the even neighbour (``np.rint`` rounds half to even), see :func:`code_timeline`;
+* CIEDE2000 has no closed form: :func:`first_below` brackets a crossing on a
+  sampling grid and bisects it.
+
+Everything is float64 and vectorised over leading axes; nothing here knows
+about icons, themes or policies.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from alpha_audit.color import LUMINANCE_WEIGHTS, srgb_decode, to_8bit
+
+__all__ = [
+    "BISECTION_TOLERANCE",
+    "CODE_THRESHOLDS",
+    "CodeTimeline",
+    "clip_breakpoints",
+    "code_crossings",
+    "code_timeline",
+    "first_below",
+    "first_in_luminance_band",
+    "luminance_band",
+]
+
+# Linear value at which the 8-bit code steps from n to n + 1 (n = 0..254): the
+# encoded value is then exactly (n + 0.5) / 255 (CSS Color 4 transfer, x255).
+CODE_THRESHOLDS: NDArray[np.float64] = srgb_decode((np.arange(255, dtype=np.float64) + 0.5) / 255)
+# The issue's bar for crossings without a closed form (CIEDE2000).
+BISECTION_TOLERANCE = 1e-9
+
+
+def clip_breakpoints(source: ArrayLike, background: ArrayLike) -> NDArray[np.float64]:
+    """Coefficient at which each channel of ``b + a (s - b)`` reaches 0 or 1.
+
+    Channels are on the last axis; a channel with ``s == b`` never clips (``inf``).
+    For ``s`` in [0, 1] the breakpoint is ``>= 1``.
+
+    >>> clip_breakpoints([0.5, 0.25, 0.5], [0.0, 0.5, 0.5]).tolist()
+    [2.0, 2.0, inf]
+    """
+    s = np.asarray(source, dtype=np.float64)
+    b = np.asarray(background, dtype=np.float64)
+    d = s - b
+    with np.errstate(divide="ignore", invalid="ignore"):
+        up = (1.0 - b) / d
+        down = -b / d
+    return np.where(d > 0, up, np.where(d < 0, down, np.inf))
+
+
+def luminance_band(
+    limit: ArrayLike, y_background: ArrayLike
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The open band ``(y_lo, y_hi)`` of luminances whose contrast with ``Yb`` is below ``limit``.
+
+    ``(max(Y, Yb) + 0.05) / (min(Y, Yb) + 0.05) < L`` holds exactly for
+    ``(Yb + 0.05) / L - 0.05 < Y < L (Yb + 0.05) - 0.05`` (WCAG 2.2 contrast
+    ratio); for ``L <= 1`` the band is empty (returned as ``(inf, -inf)``).
+
+    >>> lo, hi = luminance_band(3.0, 1.0)
+    >>> round(float(lo), 12), round(float(hi), 12)
+    (0.3, 3.1)
+    """
+    limit = np.asarray(limit, dtype=np.float64)
+    yb = np.asarray(y_background, dtype=np.float64)
+    empty = limit <= 1.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        lo = (yb + 0.05) / limit - 0.05
+    hi = limit * (yb + 0.05) - 0.05
+    return np.where(empty, np.inf, lo), np.where(empty, -np.inf, hi)
+
+
+def _luminance(channels: NDArray[np.float64]) -> NDArray[np.float64]:
+    # Summed left to right, exactly as relative_luminance does.
+    wr, wg, wb = LUMINANCE_WEIGHTS
+    return wr * channels[..., 0] + wg * channels[..., 1] + wb * channels[..., 2]
+
+
+def first_in_luminance_band(
+    source: ArrayLike,
+    background: ArrayLike,
+    y_lo: ArrayLike,
+    y_hi: ArrayLike,
+    a_lo: float,
+    a_hi: float,
+) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    """Infimum of ``{a in [a_lo, a_hi] : y_lo < Y(a) < y_hi}`` and whether it is attained.
+
+    ``Y(a)`` is the relative luminance of ``clip(b + a (s - b))``; ``source`` and
+    ``background`` broadcast with channels last, the bands over the leading
+    shape.  The infimum is ``nan`` when the set is empty.  Because the band is
+    open and ``Y`` continuous, the set is open in ``[a_lo, a_hi]`` and its
+    infimum is attained only at ``a_lo`` itself.
+
+    >>> # Paper, Section 4: sRGB (0, 0, 0.8125) on yellow loses contrast as soon as a > 1.
+    >>> from alpha_audit.color import contrast_ratio, relative_luminance, srgb_decode
+    >>> s, b = srgb_decode([0, 0, 0.8125]), np.array([1.0, 1.0, 0.0])
+    >>> lo, hi = luminance_band(contrast_ratio(s, b) - 1e-10, relative_luminance(b))
+    >>> start, attained = first_in_luminance_band(s, b, lo, hi, 1.0, 2.0)
+    >>> round(float(start), 6), bool(attained)
+    (1.0, False)
+    """
+    s = np.asarray(source, dtype=np.float64)
+    b = np.asarray(background, dtype=np.float64)
+    s, b = np.broadcast_arrays(s, b)
+    lo = np.asarray(y_lo, dtype=np.float64)
+    hi = np.asarray(y_hi, dtype=np.float64)
+    shape = np.broadcast_shapes(s.shape[:-1], lo.shape, hi.shape)
+    s = np.broadcast_to(s, (*shape, 3))
+    b = np.broadcast_to(b, (*shape, 3))
+    lo, hi = np.broadcast_to(lo, shape), np.broadcast_to(hi, shape)
+    d = s - b
+
+    # Piece boundaries: a_lo, the (up to three) clip points inside, a_hi.
+    inner = np.clip(clip_breakpoints(s, b), a_lo, a_hi)
+    ends = np.concatenate(
+        [np.full((*shape, 1), a_lo), np.sort(inner, axis=-1), np.full((*shape, 1), a_hi)],
+        axis=-1,
+    )
+    start = np.full(shape, np.inf)
+    for k in range(ends.shape[-1] - 1):  # four pieces, whatever the leading shape
+        p, q = ends[..., k], ends[..., k + 1]
+        mid = 0.5 * (p + q)
+        raw = b + mid[..., np.newaxis] * d
+        free = (raw > 0.0) & (raw < 1.0)
+        # On this piece Y(a) = c0 + c1 a: free channels move, clipped ones are 0 or 1.
+        c0 = _luminance(np.where(free, b, np.where(raw >= 1.0, 1.0, 0.0)))
+        c1 = _luminance(np.where(free, d, 0.0))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t_lo, t_hi = (lo - c0) / c1, (hi - c0) / c1
+        flat_in = (lo < c0) & (c0 < hi)
+        lower = np.where(c1 > 0, t_lo, np.where(c1 < 0, t_hi, np.where(flat_in, -np.inf, np.inf)))
+        upper = np.where(c1 > 0, t_hi, np.where(c1 < 0, t_lo, np.where(flat_in, np.inf, -np.inf)))
+        hit = (q > p) & (lower < q) & (upper > p) & (lower < upper)
+        start = np.where(hit, np.minimum(start, np.maximum(lower, p)), start)
+
+    y0 = _luminance(np.clip(b + a_lo * d, 0.0, 1.0))
+    at_lo = (lo < y0) & (y0 < hi)
+    start = np.where(at_lo, a_lo, start)
+    return np.where(np.isinf(start), np.nan, start), at_lo
+
+
+def code_crossings(source: ArrayLike, background: ArrayLike) -> NDArray[np.float64]:
+    """Coefficients at which a channel's linear value crosses each code threshold.
+
+    Returns shape ``(..., 255)`` for scalar channels ``source``/``background``
+    (any matching shape): entry ``n`` is ``(decode((n + 0.5)/255) - b) / (s - b)``,
+    ``nan`` where ``s == b`` (the channel never moves).
+
+    >>> a = code_crossings(0.5, 0.0)
+    >>> bool(np.all(np.diff(a) > 0))
+    True
+    """
+    s = np.asarray(source, dtype=np.float64)[..., np.newaxis]
+    b = np.asarray(background, dtype=np.float64)[..., np.newaxis]
+    d = s - b
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(d != 0, (CODE_THRESHOLDS - b) / d, np.nan)
+
+
+@dataclass(frozen=True)
+class CodeTimeline:
+    """8-bit codes of several channels along ``[a_lo, a_hi]``, exactly.
+
+    ``points`` are the sorted event coefficients (with ``a_lo`` and ``a_hi``);
+    ``at_points[r, i]`` is channel ``r``'s code at ``points[i]`` and
+    ``between[r, i]`` its code on the open gap ``(points[i], points[i + 1])``.
+    """
+
+    points: NDArray[np.float64]  # (K + 1,)
+    at_points: NDArray[np.int64]  # (R, K + 1)
+    between: NDArray[np.int64]  # (R, K)
+
+    def elements(self) -> tuple[NDArray[np.float64], NDArray[np.bool_], NDArray[np.int64]]:
+        """Points and gaps interleaved in order: (start, is_point, codes (R, 2K + 1)).
+
+        A point's unsafe set starts at (and includes) its coefficient; a gap's
+        starts at its left end, which it does not include.
+        """
+        k = self.between.shape[1]
+        codes = np.empty((self.at_points.shape[0], 2 * k + 1), dtype=np.int64)
+        codes[:, 0::2] = self.at_points
+        codes[:, 1::2] = self.between
+        start = np.repeat(self.points, 2)[: 2 * k + 1]
+        is_point = np.zeros(2 * k + 1, dtype=bool)
+        is_point[0::2] = True
+        return start, is_point, codes
+
+
+def code_timeline(
+    source: ArrayLike, background: ArrayLike, a_lo: float, a_hi: float
+) -> CodeTimeline:
+    """Exact 8-bit codes of channels ``clip(b + a (s - b))`` for ``a`` in ``[a_lo, a_hi]``.
+
+    ``source`` and ``background`` are flat arrays of single channels ``(R,)``.
+    Channel codes are monotone step functions of ``a``; they change only at
+    :func:`code_crossings`, so between consecutive events (of all ``R``
+    channels together) every code is constant.  At an event the encoded value
+    is exactly half-way, and the code is the even neighbour, as ``np.rint``.
+
+    >>> t = code_timeline([0.5], [0.0], 1.0, 1.02)  # one step, 188 -> 189, at a = 1.0118
+    >>> t.at_points[0].tolist(), t.between[0].tolist()
+    ([188, 188, 189], [188, 189])
+    """
+    s = np.asarray(source, dtype=np.float64).reshape(-1)
+    b = np.asarray(background, dtype=np.float64).reshape(-1)
+    crossings = code_crossings(s, b)  # (R, 255)
+    d = (s - b)[:, np.newaxis]
+    inside = (crossings >= a_lo) & (crossings <= a_hi)
+    points = np.unique(np.concatenate([crossings[inside], [a_lo, a_hi]]))
+    rows, cols = np.nonzero(inside)
+    events = np.zeros((s.size, points.size), dtype=np.int64)
+    np.add.at(events, (rows, np.searchsorted(points, crossings[rows, cols])), 1)
+    upto = np.cumsum(events, axis=1)  # events at or before point i
+    total = upto[:, -1:]
+    rising, falling = d > 0, d < 0
+    with np.errstate(invalid="ignore"):
+        below = np.sum(crossings < a_lo, axis=1, keepdims=True)  # thresholds passed before a_lo
+        above = np.sum(crossings > a_hi, axis=1, keepdims=True)  # ... not yet passed at a_hi
+    # Rising: code(a) = #{crossings < a}.  Falling: code(a) = #{crossings > a}.
+    strictly_before = np.where(rising, below + upto - events, above + total - upto)
+    between = np.where(rising, below + upto[:, :-1], above + total - upto[:, :-1])
+    at_points = np.where(events > 0, strictly_before + strictly_before % 2, strictly_before)
+    still = to_8bit(b).astype(np.int64)[:, np.newaxis]  # s == b: the code never changes
+    at_points = np.where(rising | falling, at_points, still)
+    between = np.where(rising | falling, between, still)
+    return CodeTimeline(points=points, at_points=at_points, between=between)
+
+
+def first_below(
+    func: Callable[[NDArray[np.float64]], NDArray[np.float64]],
+    grid: ArrayLike,
+    level: ArrayLike,
+    *,
+    tolerance: float = BISECTION_TOLERANCE,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """First ``a`` on ``grid`` where ``func(a) < level``, refined by bisection.
+
+    ``func`` maps coefficients of shape ``(N,)`` -- or ``(..., 1)``, one per
+    item -- to values of shape ``(..., N)`` (resp. ``(..., 1)``).  Returns
+    ``(safe, unsafe)`` of shape ``(...)``: the last coefficient known not to be
+    below ``level`` and the first known to be, at most ``tolerance`` apart;
+    both ``nan`` where nothing on the grid is below, and both ``grid[0]`` when
+    the first grid point already is.  A dip narrower than the grid spacing can
+    be missed: CIEDE2000 has no closed form, so this brackets, it is not exact.
+
+    >>> f = lambda a: 2.0 - np.broadcast_to(a, (1, np.shape(a)[-1]))
+    >>> safe, unsafe = first_below(f, np.linspace(0, 2, 21), 0.5)
+    >>> abs(float(unsafe[0]) - 1.5) < 1e-9 and float(safe[0]) <= 1.5
+    True
+    """
+    a = np.asarray(grid, dtype=np.float64)
+    values = np.asarray(func(a), dtype=np.float64)
+    level = np.broadcast_to(np.asarray(level, dtype=np.float64), values.shape[:-1])
+    below = values < level[..., np.newaxis]
+    found = below.any(axis=-1)
+    first = np.argmax(below, axis=-1)
+    hi = np.where(found, a[first], np.nan)
+    lo = np.where(found, a[np.maximum(first - 1, 0)], np.nan)
+    todo = np.isfinite(lo) & (lo < hi)
+    # Bisect every bracket at once, one evaluation per item and step.
+    while np.any(todo & (hi - lo > tolerance)):
+        mid = np.where(todo, 0.5 * (lo + hi), a[0])
+        is_below = np.asarray(func(mid[..., np.newaxis]), dtype=np.float64)[..., 0] < level
+        hi = np.where(todo & is_below, mid, hi)
+        lo = np.where(todo & ~is_below, mid, lo)
+        todo = todo & (hi - lo > tolerance)
+    return lo, hi
