@@ -273,7 +273,15 @@ def evaluate(
     >>> [(f.rule.value, f.canvas, f.icons) for f in gate.failures]
     [('loss', 'yellow', ('dot',))]
     """
-    findings = [f for result in audits for f in findings_for(result, policy)]
+    findings: list[Finding] = []
+    unrenderable: set[tuple[str, tuple[str, ...]]] = set()
+    for result in audits:
+        for f in findings_for(result, policy):
+            if f.rule is Rule.UNRENDERABLE:  # one per icon, not one per theme
+                if (f.iconset, f.icons) in unrenderable:
+                    continue
+                unrenderable.add((f.iconset, f.icons))
+            findings.append(f)
     stale: tuple[FindingKey, ...] = ()
     if baseline is not None:
         known = set(baseline)

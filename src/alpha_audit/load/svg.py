@@ -8,7 +8,8 @@ the rest of the audit goes on.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+import os
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -21,6 +22,7 @@ __all__ = [
     "MAX_SVG_BYTES",
     "IconProblem",
     "MaskSet",
+    "RenderLimits",
     "rasterize",
     "rasterize_icons",
     "read_svg",
@@ -37,6 +39,21 @@ _NOT_SVG = {
     b"%PDF": "a PDF document",
     b"RIFF": "a RIFF (WebP/WAV) file",
 }
+
+
+@dataclass(frozen=True)
+class RenderLimits:
+    """Bounds on rendering one untrusted SVG (documented in docs/ci.md).
+
+    ``timeout`` is wall-clock seconds per icon for all its sizes; ``memory``
+    the worker's address-space limit in bytes; ``cpu`` the worker's CPU-time
+    backstop in seconds; ``workers`` how many render processes run at once.
+    """
+
+    timeout: float = 5.0
+    memory: int = 1 << 30  # 1 GiB address space: Python + cairo need ~300 MiB
+    cpu: int = 600
+    workers: int = max(1, min(4, os.cpu_count() or 1))
 
 
 @dataclass(frozen=True)
@@ -75,30 +92,17 @@ def read_svg(path: str | Path) -> bytes:
 
 
 def rasterize(svg: bytes, size: int) -> NDArray[np.float64]:
-    """Render SVG bytes to a ``size x size`` coverage mask (alpha / 255).
+    """Render SVG bytes to a ``size x size`` coverage mask (alpha / 255), in this process.
 
-    External resources are never fetched (cairosvg's safe mode, bytes only).
+    No URL is ever fetched (external images, stylesheets, ``<use>`` targets and
+    ``data:`` URLs all render as nothing) and entities are refused, but time
+    and memory are not bounded here: for files from strangers use
+    :func:`rasterize_icons`, which renders in sandboxed worker processes.
     """
-    import cairocffi
-    import cairosvg.parser
-    import cairosvg.surface
+    from alpha_audit.load._svg_worker import render_alpha
 
-    tree = cairosvg.parser.Tree(bytestring=svg, unsafe=False)
-    surface = cairosvg.surface.PNGSurface(tree, None, 96, output_width=size, output_height=size)
-    image: cairocffi.ImageSurface = surface.cairo
-    image.flush()
-    stride = image.get_stride()
-    height, width = image.get_height(), image.get_width()
-    argb = np.frombuffer(image.get_data(), dtype=np.uint32).reshape(height, stride // 4)[:, :width]
-    alpha = (argb >> 24).astype(np.float64) / 255.0  # ARGB32 is native-endian, alpha on top
-    surface.finish()
-    if alpha.shape != (size, size):  # non-square viewBox: centre on a square canvas
-        square = np.zeros((size, size))
-        h, w = min(size, height), min(size, width)
-        top, left = (size - h) // 2, (size - w) // 2
-        square[top : top + h, left : left + w] = alpha[:h, :w]
-        alpha = square
-    return alpha
+    alpha = np.frombuffer(render_alpha(svg, size), dtype=np.uint8).reshape(size, size)
+    return alpha.astype(np.float64) / 255.0
 
 
 @dataclass(frozen=True)
@@ -114,28 +118,57 @@ class MaskSet:
 
 
 def rasterize_icons(
-    icons: Iterable[tuple[str, Path]], sizes: Sequence[int], *, progress=None
+    icons: Iterable[tuple[str, Path]],
+    sizes: Sequence[int],
+    *,
+    progress: Callable[[], None] | None = None,
+    limits: RenderLimits | None = None,
 ) -> MaskSet:
     """Rasterise every (name, file) at every size; failures become problems.
 
-    ``progress`` is an optional callable invoked once per icon.
+    Files are read here (capped at :data:`MAX_SVG_BYTES`, refused when not SVG
+    text) and rendered in sandboxed worker processes bounded by ``limits``: a
+    file that takes too long, needs too much memory or crashes the renderer is
+    one problem, and the rest of the set goes on.  ``progress`` is called once
+    per icon.
     """
+    from alpha_audit.load.sandbox import RenderPool
+
+    limits = limits or RenderLimits()
+    sizes = tuple(int(s) for s in sizes)
     masks: dict[tuple[str, int], NDArray[np.float64]] = {}
     problems: list[IconProblem] = []
+    jobs: list[tuple[str, Path, bytes]] = []
     for name, file in icons:
         try:
-            data = read_svg(file)
-            for size in sizes:
-                mask = rasterize(data, size)
-                if not mask.any():
-                    raise SvgError(f"renders nothing at {size}px (empty icon)", path=file)
-                masks[(name, size)] = mask
+            jobs.append((name, Path(file), read_svg(file)))
         except SvgError as exc:
-            problems.append(IconProblem(name, file, exc.message))
-        except Exception as exc:
-            problems.append(
-                IconProblem(name, file, f"cannot render SVG: {type(exc).__name__}: {exc}")
-            )
-        if progress is not None:
-            progress()
+            problems.append(IconProblem(name, Path(file), exc.message))
+            if progress is not None:
+                progress()
+    failed: dict[str, IconProblem] = {}
+    with RenderPool(limits, workers=min(limits.workers, len(jobs))) as pool:
+        for (name, file, _), outcome in zip(
+            jobs, pool.map([(data, sizes) for _, _, data in jobs]), strict=True
+        ):
+            if isinstance(outcome, str):
+                failed[name] = IconProblem(name, file, outcome)
+            else:
+                for size, mask in zip(sizes, outcome, strict=True):
+                    if isinstance(mask, str):
+                        failed.setdefault(name, IconProblem(name, file, mask))
+                    elif not mask.any():
+                        failed.setdefault(
+                            name,
+                            IconProblem(name, file, f"renders nothing at {size}px (empty icon)"),
+                        )
+                    else:
+                        masks[(name, size)] = mask
+            if progress is not None:
+                progress()
+    for name in failed:
+        for size in sizes:
+            masks.pop((name, size), None)
+    order = {name: i for i, (name, _, _) in enumerate(jobs)}
+    problems += sorted(failed.values(), key=lambda p: order[p.icon])
     return MaskSet(masks, tuple(problems))

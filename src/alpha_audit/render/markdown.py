@@ -10,6 +10,7 @@ from __future__ import annotations
 import re
 
 from alpha_audit.gate import CheckReport, Finding
+from alpha_audit.policy import Rule
 from alpha_audit.render import RenderOptions
 
 __all__ = ["MAX_ROWS", "escape_cell", "render_report"]
@@ -115,7 +116,7 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
             f"{len(gate.stale)} baseline entries no longer occur.",
         ]
     problems = [(r, p) for r in report.audits for p in r.problems]
-    if problems:
+    if problems and Rule.UNRENDERABLE not in gate.policy.rules:
         seen = set()
         lines += ["", "### Icons that could not be rendered", ""]
         for _, p in problems:

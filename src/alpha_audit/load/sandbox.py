@@ -1,0 +1,222 @@
+"""A pool of sandboxed render processes with a wall-clock limit per icon.
+
+cairosvg runs untrusted SVG from pull requests.  Some inputs take tens of
+seconds (a ``<use>`` fan-out under cairosvg's 100k cap), some exhaust memory
+or crash the C library, and exceptions escape as many types.  So rendering
+happens in worker processes (:mod:`alpha_audit.load._svg_worker`) with
+resource limits and an audit hook; this module hands them jobs, enforces
+:attr:`RenderLimits.timeout` per icon by killing the worker, and turns every
+failure into a one-line reason.  Replies are parsed with fixed-size headers,
+never unpickled, so even a compromised worker can only send wrong pixels.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import selectors
+import signal
+import struct
+import subprocess
+import sys
+import time
+from collections import deque
+from collections.abc import Sequence
+from pathlib import Path
+from types import TracebackType
+
+import numpy as np
+from numpy.typing import NDArray
+
+from alpha_audit.load.svg import RenderLimits
+
+__all__ = ["Outcome", "RenderPool"]
+
+_WORKER = Path(__file__).with_name("_svg_worker.py")
+_HEADER = struct.Struct(">BI")
+_MAX_MESSAGE_BYTES = 4096
+
+# Per job: a reason string when the whole icon failed, else one mask or reason per size.
+Outcome = str | list[NDArray[np.float64] | str]
+
+
+class _Worker:
+    """One render process and the job it is working on."""
+
+    def __init__(self, limits: RenderLimits) -> None:
+        env = {"PATH": os.environ.get("PATH", ""), "OPENBLAS_NUM_THREADS": "1", "LC_ALL": "C"}
+        self.proc = subprocess.Popen(
+            [sys.executable, "-I", str(_WORKER), str(limits.memory), str(limits.cpu)],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.DEVNULL,
+            env=env,
+            cwd=_WORKER.parent,
+        )
+        assert self.proc.stdin is not None and self.proc.stdout is not None
+        self.stdin, self.stdout = self.proc.stdin, self.proc.stdout
+        os.set_blocking(self.stdout.fileno(), False)
+        self.job: int | None = None
+        self.sizes: tuple[int, ...] = ()
+        self.deadline = 0.0
+        self.buffer = bytearray()
+
+    def send(self, job: int, svg: bytes, sizes: tuple[int, ...], timeout: float) -> None:
+        self.job, self.sizes, self.buffer = job, sizes, bytearray()
+        request = struct.pack(f">I{len(sizes)}II", len(sizes), *sizes, len(svg)) + svg
+        self.stdin.write(request)
+        self.stdin.flush()
+        self.deadline = time.monotonic() + timeout
+
+    def parse(self) -> list[NDArray[np.float64] | str] | None:
+        """The complete reply in the buffer, None if incomplete; ValueError if malformed."""
+        out: list[NDArray[np.float64] | str] = []
+        pos = 0
+        for size in self.sizes:
+            if len(self.buffer) < pos + _HEADER.size:
+                return None
+            status, n = _HEADER.unpack_from(self.buffer, pos)
+            pos += _HEADER.size
+            if (status == 0 and n != size * size) or (status == 1 and n > _MAX_MESSAGE_BYTES):
+                raise ValueError("malformed reply")
+            if status not in (0, 1):
+                raise ValueError("malformed reply")
+            if len(self.buffer) < pos + n:
+                return None
+            chunk = bytes(self.buffer[pos : pos + n])
+            pos += n
+            if status == 0:
+                mask = np.frombuffer(chunk, dtype=np.uint8).reshape(size, size)
+                out.append(mask.astype(np.float64) / 255.0)
+            else:
+                text = chunk.decode("utf-8", "replace")
+                out.append("".join(ch if ch.isprintable() else " " for ch in text))
+        if pos != len(self.buffer):
+            raise ValueError("malformed reply")
+        return out
+
+    def kill(self) -> None:
+        if self.proc.poll() is None:
+            self.proc.kill()
+        self.proc.wait()
+        for stream in (self.stdin, self.stdout):
+            with contextlib.suppress(OSError):
+                stream.close()
+
+    def close(self) -> None:
+        """Ask the worker to stop; kill it if it does not within a second."""
+        try:
+            self.stdin.write(struct.pack(">I", 0))
+            self.stdin.close()
+            self.proc.wait(timeout=1.0)
+        except (OSError, subprocess.TimeoutExpired, ValueError):
+            pass
+        self.kill()
+
+    def death_reason(self) -> str:
+        """Why the worker ended mid-job, as a problem message."""
+        code = self.proc.wait()
+        if code < 0:
+            try:
+                name = signal.Signals(-code).name
+            except ValueError:
+                name = f"signal {-code}"
+            if name == "SIGXCPU":
+                return "renderer ran out of CPU time; refused"
+            return f"renderer crashed ({name}); the file may need too much memory"
+        return f"renderer stopped unexpectedly (exit code {code})"
+
+
+class RenderPool:
+    """Up to ``workers`` render processes; use as a context manager."""
+
+    def __init__(self, limits: RenderLimits, *, workers: int = 1) -> None:
+        self.limits = limits
+        self.size = max(1, workers)
+        self.workers: list[_Worker] = []
+
+    def __enter__(self) -> RenderPool:
+        return self
+
+    def __exit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> None:
+        for w in self.workers:
+            if exc_type is None:
+                w.close()
+            else:
+                w.kill()
+        self.workers.clear()
+
+    def _replace(self, worker: _Worker) -> None:
+        worker.kill()
+        self.workers.remove(worker)
+
+    def map(self, jobs: Sequence[tuple[bytes, tuple[int, ...]]]) -> list[Outcome]:
+        """Render every ``(svg bytes, sizes)`` job; outcomes in job order."""
+        results: list[Outcome | None] = [None] * len(jobs)
+        pending = deque(range(len(jobs)))
+        selector = selectors.DefaultSelector()
+        try:
+            while pending or any(w.job is not None for w in self.workers):
+                while pending and (
+                    len(self.workers) < self.size or any(w.job is None for w in self.workers)
+                ):
+                    idle = next((w for w in self.workers if w.job is None), None)
+                    if idle is None:
+                        idle = _Worker(self.limits)
+                        self.workers.append(idle)
+                        selector.register(idle.stdout, selectors.EVENT_READ, idle)
+                    job = pending.popleft()
+                    svg, sizes = jobs[job]
+                    try:
+                        idle.send(job, svg, sizes, self.limits.timeout)
+                    except (BrokenPipeError, OSError):
+                        results[job] = idle.death_reason()
+                        selector.unregister(idle.stdout)
+                        self._replace(idle)
+                busy = [w for w in self.workers if w.job is not None]
+                if not busy:
+                    continue
+                wait = max(0.0, min(w.deadline for w in busy) - time.monotonic())
+                for key, _ in selector.select(timeout=wait):
+                    worker: _Worker = key.data
+                    try:
+                        chunk = os.read(worker.stdout.fileno(), 1 << 20)
+                    except BlockingIOError:
+                        continue
+                    if worker.job is None:  # an idle worker only speaks to say it died
+                        selector.unregister(worker.stdout)
+                        self._replace(worker)
+                        continue
+                    job = worker.job
+                    outcome: Outcome | None
+                    if not chunk:
+                        outcome = worker.death_reason()
+                    else:
+                        worker.buffer += chunk
+                        try:
+                            outcome = worker.parse()
+                        except ValueError:
+                            outcome = "renderer sent a malformed reply; refused"
+                    if outcome is None:
+                        continue
+                    results[job] = outcome
+                    worker.job = None
+                    if isinstance(outcome, str):
+                        selector.unregister(worker.stdout)
+                        self._replace(worker)
+                now = time.monotonic()
+                for worker in [w for w in self.workers if w.job is not None and w.deadline <= now]:
+                    results[worker.job] = (
+                        f"took longer than {self.limits.timeout:g} s to render; refused"
+                    )
+                    worker.job = None
+                    selector.unregister(worker.stdout)
+                    self._replace(worker)
+        finally:
+            selector.close()
+        return [r if r is not None else "not rendered" for r in results]
