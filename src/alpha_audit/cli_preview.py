@@ -1,0 +1,106 @@
+"""``alpha-audit preview``: PNG sheets and an interactive WebGL2 page."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from alpha_audit.preview.sheets import Layout
+
+__all__ = ["preview_command"]
+
+
+def preview_command(
+    theme: Annotated[Path, typer.Argument(help="Theme YAML: canvases (light and dark).")],
+    iconset: Annotated[Path, typer.Argument(help="Icon-set manifest YAML.")],
+    output: Annotated[
+        Path | None,
+        typer.Option("--output", "-o", help="Folder for the PNG sheets (created if missing)."),
+    ] = None,
+    html: Annotated[
+        Path | None,
+        typer.Option("--html", help="Write one self-contained interactive WebGL2 page here."),
+    ] = None,
+    alpha: Annotated[
+        list[float] | None,
+        typer.Option(
+            "--alpha",
+            "-a",
+            help="Coefficient row, any real value (repeatable). "
+            "[default: 1 and the set's own; swatches: 0.6 1 1.1 1.2 1.4 2]",
+        ),
+    ] = None,
+    size: Annotated[
+        list[int] | None,
+        typer.Option(
+            "--size", "-s", help="Icon size in px (repeatable). [default: 48; page: set's + 48]"
+        ),
+    ] = None,
+    layout: Annotated[
+        Layout,
+        typer.Option(
+            "--layout",
+            "-l",
+            help="grid: a sheet per canvas and size; swatches: palette x alpha per canvas; "
+            "compare: alpha 1 beside alpha X, a row per canvas.",
+            case_sensitive=False,
+        ),
+    ] = Layout.GRID,
+    near_source: Annotated[
+        bool,
+        typer.Option(
+            "--near-source",
+            help="Use the paper's gallery canvases instead of the theme's: each palette colour "
+            "mixed with 10% white (encoded sRGB), plus a dark grey.",
+        ),
+    ] = False,
+    threshold: Annotated[
+        float | None,
+        typer.Option(help="Contrast threshold (default: the theme's, else 3.0 = WCAG 1.4.11)."),
+    ] = None,
+    force: Annotated[bool, typer.Option("--force", help="Replace existing output files.")] = False,
+    strict_svg: Annotated[
+        bool,
+        typer.Option(
+            "--strict-svg", help="Treat an SVG that cannot be rendered as an input error."
+        ),
+    ] = False,
+) -> None:
+    """Draw the icons on the theme's canvases: PNG sheets (-o DIR) and/or a WebGL2 page (--html).
+
+    Every icon pixel is encode(q * clip(Cb + a(Cs - Cb)) + (1 - q) * Cb) in linear
+    sRGB, rounded half to even to 8 bits; labels never cover an icon.
+
+    Example:
+    [bold]alpha-audit preview themes/paper16.yaml examples/vibrant/iconset.yaml -o previews
+    --html previews/vibrant.html[/]
+    """
+    from alpha_audit.cli import _stderr, progress_bar, require_finite
+    from alpha_audit.preview.files import preview_files
+
+    for a in alpha or ():
+        require_finite(a, "--alpha")
+    require_finite(threshold, "--threshold")
+    with progress_bar("Rendering previews") as (on_start, on_step):
+        result = preview_files(
+            theme,
+            iconset,
+            out_dir=output,
+            html_path=html,
+            layout=layout,
+            alphas=alpha or (),
+            sizes=size or (),
+            near_source=near_source,
+            threshold=threshold,
+            overwrite=force,
+            strict_svg=strict_svg,
+            on_start=on_start,
+            on_step=on_step,
+        )
+    err = _stderr()
+    for problem in result.problems:
+        err.print(f"skipped {problem.icon}: {problem.file}: {problem.message}", soft_wrap=True)
+    for path in result.written:
+        err.print(f"wrote {path}", soft_wrap=True)

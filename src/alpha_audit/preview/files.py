@@ -1,0 +1,142 @@
+"""Files in, previews out: what ``alpha-audit preview`` does, callable from Python."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+from alpha_audit.errors import SvgError, UsageError
+from alpha_audit.load.iconset import MAX_SIZE, load_iconset
+from alpha_audit.load.svg import IconProblem, rasterize_icons
+from alpha_audit.load.theme import load_theme
+from alpha_audit.model import Canvas, IconSet, Theme
+from alpha_audit.output import write_text
+from alpha_audit.preview.compose import near_source_canvases
+from alpha_audit.preview.html import preview_html
+from alpha_audit.preview.sheets import (
+    Alpha,
+    Layout,
+    check_writable,
+    default_alphas,
+    plan_sheets,
+    render_all,
+    write_sheet,
+)
+
+__all__ = ["DEFAULT_SIZE", "PreviewResult", "preview_canvases", "preview_files"]
+
+DEFAULT_SIZE = 48  # px, the paper's gallery and timing size (Appendix A.2)
+
+
+@dataclass(frozen=True)
+class PreviewResult:
+    """Files written, in order, and the icons that could not be rendered."""
+
+    written: tuple[Path, ...]
+    problems: tuple[IconProblem, ...]
+
+
+def preview_canvases(theme: Theme, iconset: IconSet, near_source: bool) -> tuple[Canvas, ...]:
+    """The theme's canvases, or the paper's near-source canvases for the set's palette."""
+    if not near_source:
+        return theme.canvases
+    palette = iconset.palette or {i.color_name or i.color: i.color for i in iconset.icons}
+    return near_source_canvases(palette)
+
+
+def _check_options(alphas: Sequence[float], sizes: Sequence[int]) -> None:
+    for a in alphas:
+        if not math.isfinite(a):
+            raise UsageError(f"--alpha must be a finite number, got {a}")
+    for s in sizes:
+        if not 1 <= s <= MAX_SIZE:
+            raise UsageError(f"--size must be between 1 and {MAX_SIZE} px, got {s}")
+
+
+def preview_files(
+    theme_path: str | Path,
+    iconset_path: str | Path,
+    *,
+    out_dir: str | Path | None = None,
+    html_path: str | Path | None = None,
+    layout: Layout = Layout.GRID,
+    alphas: Sequence[float] = (),
+    sizes: Sequence[int] = (),
+    near_source: bool = False,
+    threshold: float | None = None,
+    overwrite: bool = False,
+    strict_svg: bool = False,
+    on_start: Callable[[int], None] | None = None,
+    on_step: Callable[[], None] | None = None,
+) -> PreviewResult:
+    """Load, rasterise once, then write PNG sheets to ``out_dir`` and/or a page to ``html_path``.
+
+    Every target is checked before any work: an existing file is an error
+    unless ``overwrite``.  ``on_start(n)`` and ``on_step()`` report progress
+    over icons rasterised plus files written.
+    """
+    if out_dir is None and html_path is None:
+        raise UsageError("nothing to write: give -o DIR for PNG sheets and/or --html FILE")
+    _check_options(alphas, sizes)
+    theme = load_theme(theme_path)
+    iconset = load_iconset(iconset_path)
+    if threshold is not None:
+        theme = replace(theme, threshold=float(threshold))
+    canvases = preview_canvases(theme, iconset, near_source)
+    sheet_sizes = sorted(set(sizes)) if sizes else [DEFAULT_SIZE]
+    page_sizes = sorted(set(sizes)) if sizes else sorted({*iconset.sizes, DEFAULT_SIZE})
+    prefix = "near-source" if near_source else theme.name
+
+    specs = []
+    targets: list[Path] = []
+    if out_dir is not None:
+        folder = Path(out_dir)
+        if folder.exists() and not folder.is_dir():
+            raise UsageError("is not a folder", path=folder)
+        specs = plan_sheets(layout, canvases, sheet_sizes, prefix)
+        targets += [folder / s.name for s in specs]
+    if html_path is not None:
+        targets.append(Path(html_path))
+    if out_dir is not None:
+        Path(out_dir).mkdir(parents=True, exist_ok=True)
+    check_writable(targets, overwrite=overwrite)
+
+    raster_sizes = sorted({*(sheet_sizes if specs else ()), *(page_sizes if html_path else ())})
+    if on_start is not None:
+        on_start(len(iconset.icons) + len(targets))
+    masks = rasterize_icons(
+        [(i.name, i.file) for i in iconset.icons], raster_sizes, progress=on_step
+    )
+    if strict_svg and masks.problems:
+        first = masks.problems[0]
+        raise SvgError(first.message, path=first.file)
+    broken = {p.icon for p in masks.problems}
+    usable = replace(iconset, icons=tuple(i for i in iconset.icons if i.name not in broken))
+    rows: list[Alpha] = list(alphas) if alphas else default_alphas(usable)
+
+    written: list[Path] = []
+    for sheet in render_all(
+        specs,
+        usable,
+        masks.masks,
+        alphas=rows if (alphas or layout is not Layout.SWATCHES) else None,
+        threshold=theme.threshold,
+        title=f"{usable.name} on {'near-source canvases' if near_source else theme.name}",
+    ):
+        written.append(write_sheet(sheet, out_dir or ".", overwrite=overwrite))
+        if on_step is not None:
+            on_step()
+    if html_path is not None:
+        page = preview_html(
+            replace(theme, canvases=canvases),
+            usable,
+            masks.masks,
+            sizes=page_sizes,
+            alpha=alphas[0] if alphas else None,
+        )
+        written.append(write_text(html_path, page, overwrite=overwrite))
+        if on_step is not None:
+            on_step()
+    return PreviewResult(tuple(written), masks.problems)

@@ -1,0 +1,125 @@
+"""The interactive preview page: one self-contained HTML file drawing with WebGL2.
+
+The page evaluates the paper's expression in a fragment shader (Appendix A.2):
+the coefficient is a uniform, coverage comes from a mask texture, the canvas
+colour is supplied by the page, and the result is sRGB-encoded onto an opaque
+canvas.  Everything is inlined (script, style, masks as base64), and a
+Content-Security-Policy forbids any network access, so the file works from
+disk, from an e-mail attachment or from a CI artefact.
+
+``window.alphaAuditPreview.renderBatch`` is the hook the browser validation
+test drives: it renders through the same shader and returns the pixels.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import json
+import math
+from collections.abc import Mapping, Sequence
+from importlib import resources
+
+import numpy as np
+from numpy.typing import NDArray
+
+from alpha_audit.errors import UsageError
+from alpha_audit.model import IconSet, Theme
+
+__all__ = ["ATLAS_MAX_WIDTH", "mask_atlas", "preview_data", "preview_html"]
+
+# WebGL2 guarantees MAX_TEXTURE_SIZE >= 2048 (OpenGL ES 3.0, table 6.28);
+# keeping atlases this narrow leaves height for thousands of icons.
+ATLAS_MAX_WIDTH = 2048
+_PLACEHOLDERS = ("__ALPHA_AUDIT_TITLE__", "__ALPHA_AUDIT_DATA__", "__ALPHA_AUDIT_SCRIPT__")
+
+
+def mask_atlas(masks: Sequence[NDArray[np.float64]], size: int) -> tuple[int, NDArray[np.uint8]]:
+    """Pack ``size x size`` coverage masks row-major into one 8-bit atlas.
+
+    Returns ``(columns, atlas)``; icon ``k`` sits at row ``k // columns``,
+    column ``k % columns``, top-down.  Cairo masks are ``k / 255`` exactly, so
+    the codes round-trip without loss.
+    """
+    n = len(masks)
+    cols = max(1, min(math.ceil(math.sqrt(n)), ATLAS_MAX_WIDTH // size))
+    rows = max(1, math.ceil(n / cols))
+    if rows * size > ATLAS_MAX_WIDTH * 8:
+        raise UsageError(f"too many icons for one {size} px texture atlas ({n})")
+    atlas = np.zeros((rows * size, cols * size), dtype=np.uint8)
+    for k, mask in enumerate(masks):  # one block copy per icon
+        r, c = divmod(k, cols)
+        codes = np.rint(np.clip(np.asarray(mask, dtype=np.float64), 0.0, 1.0) * 255.0)
+        atlas[r * size : (r + 1) * size, c * size : (c + 1) * size] = codes
+    return cols, atlas
+
+
+def preview_data(
+    theme: Theme,
+    iconset: IconSet,
+    masks: Mapping[tuple[str, int], NDArray[np.float64]],
+    *,
+    sizes: Sequence[int],
+    alpha: float | None = None,
+) -> dict[str, object]:
+    """Everything the page needs, as JSON-ready data (icons lacking a mask are left out)."""
+    sizes = sorted({int(s) for s in sizes})
+    icons = [i for i in iconset.icons if all((i.name, s) in masks for s in sizes)]
+    atlases = {}
+    for size in sizes:
+        cols, atlas = mask_atlas([masks[(i.name, size)] for i in icons], size)
+        atlases[str(size)] = {
+            "columns": cols,
+            "width": int(atlas.shape[1]),
+            "height": int(atlas.shape[0]),
+            "data": base64.b64encode(atlas.tobytes()).decode("ascii"),
+        }
+    alphas = [i.alpha for i in icons]
+    usual = max(sorted(set(alphas)), key=alphas.count) if alphas else 1.0  # the set's usual one
+    return {
+        "schema": "alpha-audit.preview/1",
+        "title": f"{iconset.name} on {theme.name}",
+        "theme": theme.name,
+        "threshold": theme.threshold,
+        "alpha": float(alpha if alpha is not None else usual),
+        "canvases": [
+            {"name": c.name, "hex": c.color, "mode": c.mode, "linear": list(c.linear)}
+            for c in theme.canvases
+        ],
+        "icons": [
+            {"name": i.name, "hex": i.color, "alpha": i.alpha, "linear": list(i.linear)}
+            for i in icons
+        ],
+        "sizes": sizes,
+        "atlases": atlases,
+    }
+
+
+def _asset(name: str) -> str:
+    return resources.files("alpha_audit.preview").joinpath(name).read_text(encoding="utf-8")
+
+
+def preview_html(
+    theme: Theme,
+    iconset: IconSet,
+    masks: Mapping[tuple[str, int], NDArray[np.float64]],
+    *,
+    sizes: Sequence[int],
+    alpha: float | None = None,
+) -> str:
+    """The complete page as text; ``alpha`` is the slider's starting value."""
+    data = preview_data(theme, iconset, masks, sizes=sizes, alpha=alpha)
+    # Inside <script> only "</" could end the element early; \u003c is the same JSON string.
+    payload = json.dumps(data, separators=(",", ":"), allow_nan=False).replace("<", "\\u003c")
+    script = _asset("page.js")
+    if "</script" in script.lower():
+        raise AssertionError("page.js must not contain a closing script tag")
+    page = _asset("page.html")
+    for marker in _PLACEHOLDERS:
+        if marker not in page:
+            raise AssertionError(f"page.html must contain {marker}")
+    return (
+        page.replace("__ALPHA_AUDIT_TITLE__", html.escape(str(data["title"])))
+        .replace("__ALPHA_AUDIT_SCRIPT__", script)
+        .replace("__ALPHA_AUDIT_DATA__", payload)
+    )

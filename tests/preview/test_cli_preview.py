@@ -1,0 +1,94 @@
+"""``alpha-audit preview`` through typer's runner: files, refusals, exit codes."""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from alpha_audit.cli import app
+
+ROOT = Path(__file__).resolve().parents[2]
+THEME = str(ROOT / "themes" / "paper16.yaml")
+ICONSET = str(ROOT / "examples" / "vibrant" / "iconset.yaml")
+
+
+def run(*args: str):
+    return CliRunner().invoke(app, ["preview", THEME, ICONSET, *args])
+
+
+def test_grid_sheets_and_page_are_written_and_listed(tmp_path):
+    out, page = tmp_path / "sheets", tmp_path / "page.html"
+    result = run("-o", str(out), "--html", str(page), "-s", "24")
+    assert result.exit_code == 0, result.output
+    names = sorted(p.name for p in out.iterdir())
+    assert len(names) == 16
+    assert "paper16-grid-white-24px.png" in names
+    listed = re.findall(r"wrote (\S+)", result.output)
+    assert sorted(Path(p).name for p in listed) == sorted([*names, "page.html"])
+    assert page.read_text().startswith("<!doctype html>")
+
+
+@pytest.mark.parametrize(
+    ("layout", "extra", "expected"),
+    [
+        ("swatches", [], 16),
+        ("compare", ["-a", "2"], 1),
+        ("compare", ["--near-source", "-a", "2", "-s", "16", "-s", "48"], 2),
+    ],
+)
+def test_layouts(tmp_path, layout, extra, expected):
+    result = run("-o", str(tmp_path), "-l", layout, *extra)
+    assert result.exit_code == 0, result.output
+    assert len(list(tmp_path.glob("*.png"))) == expected
+
+
+def test_existing_files_are_not_replaced_without_force(tmp_path):
+    assert run("-o", str(tmp_path), "-l", "compare").exit_code == 0
+    target = tmp_path / "paper16-compare-48px.png"
+    before = target.read_bytes()
+    result = run("-o", str(tmp_path), "-l", "compare", "-a", "1.4")
+    assert result.exit_code == 2
+    assert "already exists; pass --force" in result.output
+    assert target.read_bytes() == before
+    assert run("-o", str(tmp_path), "-l", "compare", "-a", "1.4", "--force").exit_code == 0
+    assert target.read_bytes() != before
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        ([], "nothing to write"),
+        (["-o", "OUT", "-a", "nan"], "--alpha must be a finite number"),
+        (["-o", "OUT", "-s", "0"], "--size must be between 1 and"),
+        (["-o", "OUT", "-l", "mosaic"], "mosaic"),
+        (["--html", "missing/page.html"], "does not exist"),
+    ],
+)
+def test_bad_options_exit_2(tmp_path, args, message):
+    args = [a.replace("OUT", str(tmp_path)) for a in args]
+    args = [str(tmp_path / a) if a.startswith("missing/") else a for a in args]
+    result = run(*args)
+    assert result.exit_code == 2
+    assert message in result.output
+
+
+def test_bad_theme_is_an_input_error(tmp_path):
+    theme = tmp_path / "t.yaml"
+    theme.write_text("name: x\ncanvases: []\n")
+    result = CliRunner().invoke(app, ["preview", str(theme), ICONSET, "-o", str(tmp_path)])
+    assert result.exit_code == 2
+    assert str(theme) in result.output
+
+
+def test_page_data_carries_the_theme_and_sizes(tmp_path):
+    page = tmp_path / "p.html"
+    assert run("--html", str(page), "-a", "1.3").exit_code == 0
+    text = page.read_text()
+    data = json.loads(re.search(r'id="alpha-audit-data">(.*?)</script>', text, re.S).group(1))
+    assert data["alpha"] == 1.3
+    assert data["sizes"] == [16, 24, 48]
+    assert len(data["canvases"]) == 16
