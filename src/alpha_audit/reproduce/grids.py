@@ -1,0 +1,79 @@
+"""Grids, palettes and random pairs the experiments enumerate.
+
+Paper, Appendix A.1: "Grids are uniform in encoded sRGB with both endpoints
+included, then decoded"; collisions use 8-bit outputs rounded half to even;
+random pairs use NumPy's default generator with seed 20260913.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from alpha_audit.color import srgb_decode
+
+__all__ = [
+    "PAPER_SEED",
+    "VIBRANT",
+    "byte_levels",
+    "encoded_levels",
+    "random_source_pairs",
+]
+
+# Paper, Appendix A.1.
+PAPER_SEED = 20260913
+# Paul Tol's Vibrant palette (Tol 2021), in the paper's order (Section 4.1).
+VIBRANT = ("#ee7733", "#0077bb", "#33bbee", "#ee3377", "#cc3311", "#009988", "#bbbbbb")
+
+
+def encoded_levels(n: int) -> NDArray[np.float64]:
+    """``n`` per-channel levels uniform in encoded sRGB, endpoints included.
+
+    >>> encoded_levels(17)[13]
+    np.float64(0.8125)
+    """
+    if n < 2:
+        raise ValueError(f"a grid needs at least 2 levels per channel, got {n}")
+    return np.arange(n) / (n - 1)
+
+
+def byte_levels() -> NDArray[np.float64]:
+    """The 256 8-bit levels as encoded values ``v / 255``."""
+    return np.arange(256) / 255
+
+
+def linear_levels(encoded: NDArray) -> NDArray[np.float64]:
+    """Decoded (linear) levels of encoded per-channel levels."""
+    return srgb_decode(encoded)
+
+
+def random_source_pairs(n: int, seed: int = PAPER_SEED) -> NDArray[np.int64]:
+    """``n`` distinct unordered pairs of distinct 8-bit sRGB colours, as 24-bit codes.
+
+    The paper does not say how it builds its pairs, so this is our
+    construction: draw ``(n, 2)`` codes uniform on ``[0, 2**24)`` from
+    ``np.random.default_rng(seed)``, drop pairs of equal colours, order each
+    pair (smaller code first), keep the first occurrence of each pair and
+    draw again until ``n`` remain.  Returns shape ``(n, 2)``, first column the
+    smaller code; a code ``0xRRGGBB`` holds the channels' bytes.
+
+    >>> random_source_pairs(3).shape
+    (3, 2)
+    """
+    rng = np.random.default_rng(seed)
+    kept = np.empty((0, 2), dtype=np.int64)
+    while kept.shape[0] < n:
+        draw = rng.integers(0, 1 << 24, size=(n, 2), dtype=np.int64)
+        draw = np.sort(draw[draw[:, 0] != draw[:, 1]], axis=1)
+        kept = np.concatenate([kept, draw])
+        _, first = np.unique(kept[:, 0] << 24 | kept[:, 1], return_index=True)
+        kept = kept[np.sort(first)]
+    return kept[:n]
+
+
+def code_channels(codes: NDArray) -> NDArray[np.intp]:
+    """24-bit ``0xRRGGBB`` codes -> (..., 3) channel bytes."""
+    codes = np.asarray(codes, dtype=np.int64)
+    return np.stack([(codes >> 16) & 0xFF, (codes >> 8) & 0xFF, codes & 0xFF], axis=-1).astype(
+        np.intp
+    )

@@ -1,0 +1,442 @@
+"""Fast exact kernels for the paper's source-grid experiments.
+
+Every experiment enumerates a *product* source grid: the same ``C`` encoded
+levels on each channel, so ``C**3`` sources.  With a background and a
+coefficient fixed, a clipped output channel depends only on the source level
+of that channel, so three ``C``-entry tables replace the per-combination power
+function, and relative luminance is
+
+    Y = (0.2126 T_R[r] + 0.7152 T_G[g]) + 0.0722 T_B[b] = P[r, g] + Q[b]
+
+summed in the same order as :func:`alpha_audit.color.relative_luminance`, so
+it is bit-identical to the straightforward computation.  A *problem* below is
+one (canvas, coefficient) pair; a *row* is one ``(r, g)``; a *column* one ``b``.
+
+For ``alpha >= 0`` the tables rise with the level, so along a row ``Y`` is
+monotone in ``b`` and every contrast predicate of the form "on the far side of
+a threshold" holds on an interval of ``b``.  Its end points come from a
+vectorised bisection that evaluates the *exact* float expression of the
+straightforward implementation, so counts are identical to it, not merely
+close.  Sums of contrast ratios split at the background's luminance: above
+it the ratio is linear in ``Y`` (suffix sums), below it ``(Yb + .05)/(Y + .05)``
+is summed with a convergent series in precomputed power moments of ``Q``.
+
+Increase and decrease need the sign of ``CR(Yo) - CR(Ys)``.  Where source and
+output lie on the same side of ``Yb`` the sign is that of ``Yo - Ys``
+(reversed below ``Yb``), i.e. of ``(Po - Ps) + (Qo[b] - Qs[b])``: one threshold
+per row against one sorted array per problem, counted with a 2-D rank table.
+Combinations on opposite sides, and the rare ones within ``_BAND`` of a tie,
+are evaluated one by one with the straightforward float expression.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from alpha_audit.color import LUMINANCE_WEIGHTS, contrast_from_luminance
+
+__all__ = [
+    "ChangeCounts",
+    "change_counts",
+    "channel_tables",
+    "contrast_sums",
+    "first_true",
+    "luminance_parts",
+    "reach_intervals",
+]
+
+_WR, _WG, _WB = LUMINANCE_WEIGHTS
+# Luminance gap outside which the float sign of CR(Yo) - CR(Ys) is certain and
+# its magnitude exceeds CONTRAST_TOLERANCE: |dCR| >= |Yo - Ys| / 1.05 for both
+# sides of Yb, and float rounding of Y is below 1e-15.
+_BAND = 1e-7
+# Terms of the reciprocal series: |Q - q0| / (P + .05 + q0) <= 0.0361 / 0.0861
+# = 0.42 (the blue weight bounds the spread of Q), and 0.42**48 < 1e-17.
+_SERIES_TERMS = 48
+# Rows per block: larger temporaries fall out of cache, which costs more than
+# the per-call overhead saved (measured on the 2-core reference machine).
+_BLOCK = 32768
+
+
+def channel_tables(levels: NDArray, backgrounds: NDArray, alphas: NDArray) -> NDArray:
+    """Clipped output per (problem, channel, level): shape ``(m, 3, C)``.
+
+    ``levels`` are the linear source levels (C,), ``backgrounds`` (m, 3) and
+    ``alphas`` (m,) one per problem.  Same expression as ``composite_extended``.
+    """
+    b = backgrounds[:, :, np.newaxis]
+    a = alphas[:, np.newaxis, np.newaxis]
+    return np.clip(b + a * (levels[np.newaxis, np.newaxis, :] - b), 0.0, 1.0)
+
+
+def luminance_parts(tables: NDArray) -> tuple[NDArray, NDArray]:
+    """``(P, Q)``: ``P[m, r*C + g] = wr T_R[r] + wg T_G[g]`` and ``Q[m, b] = wb T_B[b]``."""
+    red = _WR * tables[:, 0, :]
+    green = _WG * tables[:, 1, :]
+    p = (red[:, :, np.newaxis] + green[:, np.newaxis, :]).reshape(tables.shape[0], -1)
+    return p, _WB * tables[:, 2, :]
+
+
+def first_true(predicate: Callable[[NDArray], NDArray], n_cols: int, shape: tuple) -> NDArray:
+    """Per row, the first column in ``[0, n_cols]`` where a monotone predicate holds.
+
+    ``predicate(cols)`` takes an integer array of ``shape`` (valid columns) and
+    returns a boolean array of the same shape; it must be False then True along
+    the columns of each row.  Returns ``n_cols`` where it never holds.  A
+    branchless binary search: ``found`` counts the leading False columns.
+    """
+    found = np.zeros(shape, dtype=np.intp)
+    step = 1 << (int(n_cols).bit_length() - 1)
+    while step:
+        candidate = np.minimum(found + step, n_cols)
+        found += (candidate - found) * ~predicate(candidate - 1)
+        step >>= 1
+    return found
+
+
+def _take(table: NDArray, cols: NDArray) -> NDArray:
+    """``table[i, cols[i, r]]`` for a (m, n) table and (m, R) column indices."""
+    offsets = (np.arange(table.shape[0]) * table.shape[1])[:, np.newaxis]
+    # np.take: n-d fancy indexing is several times slower for the same gather.
+    return np.take(table.ravel(), cols + offsets)
+
+
+def _bsearch(table: NDArray, p: NDArray | None, theta: NDArray, *, strict: bool) -> NDArray:
+    """Per row, the first column ``c`` with ``fl(p + table[c]) >= theta`` (``>`` if strict).
+
+    ``table`` (m, C) is non-decreasing per problem, ``p`` and ``theta`` are
+    (m, R) or broadcast to it (``p=None`` searches ``table`` itself, i.e.
+    ``np.searchsorted``).  The specialised hot path of :func:`first_true`: the
+    table is padded with ``inf`` to a power of two so no step needs clamping,
+    and the search runs on flat indices.
+    """
+    m, n_cols = table.shape
+    width = 1 << n_cols.bit_length()
+    padded = np.full((m, width), np.inf)
+    padded[:, :n_cols] = table
+    flat = padded.ravel()
+    shape = np.broadcast_shapes(theta.shape, (m, 1) if p is None else p.shape)
+    start = (np.arange(m) * width)[:, np.newaxis]
+    found = np.broadcast_to(start, shape).copy()
+    fails = np.less_equal if strict else np.less
+    step = width >> 1
+    while step:
+        value = np.take(flat, found + (step - 1))
+        if p is not None:
+            value += p
+        found += fails(value, theta) * step
+        step >>= 1
+    found -= start
+    return found
+
+
+def first_at_or_above(p: NDArray, q: NDArray, theta: NDArray) -> NDArray:
+    """Per row, the first column where ``fl(P + Q[b]) >= theta`` (Q ascending per problem)."""
+    return _bsearch(q, p, theta[:, np.newaxis], strict=False)
+
+
+@dataclass(frozen=True)
+class _SumTables:
+    """Per-problem column data for :func:`contrast_sums` (see the module docstring)."""
+
+    q: NDArray  # (m, C) ascending
+    suffix: NDArray  # (m, C + 1): sum of q[b] for b >= k
+    moments: NDArray  # (N, m, C + 1): sum over b < k of (q0 - q[b])**n
+    q0: NDArray  # (m, 1)
+    yb: NDArray  # (m,)
+
+
+def _sum_tables(q: NDArray, yb: NDArray) -> _SumTables:
+    q = np.sort(q, axis=1)
+    m, n_cols = q.shape
+    suffix = np.zeros((m, n_cols + 1))
+    suffix[:, :-1] = np.cumsum(q[:, ::-1], axis=1)[:, ::-1]
+    q0 = 0.5 * (q[:, :1] + q[:, -1:])
+    minus_d = q0 - q
+    moments = np.zeros((_SERIES_TERMS, m, n_cols + 1))
+    power = np.ones_like(q)
+    for n in range(_SERIES_TERMS):
+        np.cumsum(power, axis=1, out=moments[n, :, 1:])
+        power = power * minus_d
+    return _SumTables(q, suffix, moments, q0, yb)
+
+
+def _sum_rows(t: _SumTables, problems: slice, p: NDArray) -> NDArray:
+    """Per problem of ``problems``, the sum of CR over the rows ``p`` and all columns."""
+    q, yb = t.q[problems], t.yb[problems]
+    n_cols = q.shape[1]
+    k = first_at_or_above(p, q, yb)
+    cb = yb + 0.05
+    linear = ((n_cols - k) * (p + 0.05) + _take(t.suffix[problems], k)) / cb[:, np.newaxis]
+    # Below Yb: cb * sum_{b<k} 1 / (u + d_b) with u = P + .05 + q0, d = Q - q0,
+    # expanded as sum_n (-d)^n / u^(n+1) with prefix moments of (-d)^n (Horner
+    # in 1/u), over the rows that have columns below Yb at all.
+    u = p + 0.05 + t.q0[problems]
+    flat_k = k + (np.arange(q.shape[0]) * (n_cols + 1))[:, np.newaxis]
+    weight = np.broadcast_to(cb[:, np.newaxis], k.shape)
+    below = k > 0
+    if not below.any():
+        return linear.sum(axis=1)
+    u, flat_k, weight = u[below], flat_k[below], weight[below]
+    spread = float(np.max(np.abs(t.q0[problems] - q)))
+    ratio = spread / float(u.min())
+    terms = (
+        _SERIES_TERMS
+        if ratio >= 0.42
+        else int(np.clip(np.ceil(-39.2 / np.log(max(ratio, 1e-300))), 1, _SERIES_TERMS))
+    )
+    v = 1.0 / u
+    moments = t.moments[:, problems]
+    series = np.take(moments[terms - 1].ravel(), flat_k)
+    for n in range(terms - 2, -1, -1):
+        series *= v
+        series += np.take(moments[n].ravel(), flat_k)
+    series *= v * weight
+    reciprocal = np.zeros(k.shape)
+    reciprocal[below] = series  # summed pairwise per problem, like the straightforward sum
+    return linear.sum(axis=1) + reciprocal.sum(axis=1)
+
+
+def contrast_sums(p: NDArray, q: NDArray, yb: NDArray) -> NDArray:
+    """Per problem, the sum over rows and columns of ``CR(P + Q[b], Yb)``.
+
+    ``p`` (m, R), ``q`` (m, C) in any order (the sum does not depend on it),
+    ``yb`` (m,).  Agrees with the straightforward float sum to about 1e-15
+    relative.
+    """
+    tables = _sum_tables(q, yb)
+    return _over_blocks(p.shape, lambda pr, rows: _sum_rows(tables, pr, p[pr, rows]))
+
+
+def _float_bits(x: NDArray) -> NDArray:
+    return np.asarray(x, dtype=np.float64).view(np.int64)
+
+
+def _smallest_float(predicate: Callable[[NDArray], NDArray], lo: NDArray, hi: NDArray) -> NDArray:
+    """Per problem, the smallest float in ``[lo, hi]`` (>= 0) where a monotone predicate holds.
+
+    Bisects on the bit patterns, which order non-negative floats; ``inf`` where
+    the predicate fails even at ``hi``.
+    """
+    lo_bits = _float_bits(lo).copy()
+    hi_bits = _float_bits(hi).copy()
+    holds_hi = predicate(hi)
+    while np.any(lo_bits < hi_bits):
+        mid = lo_bits + (hi_bits - lo_bits) // 2
+        holds = predicate(mid.view(np.float64))
+        hi_bits = np.where(holds, mid, hi_bits)
+        lo_bits = np.where(holds, lo_bits, mid + 1)
+    return np.where(holds_hi, hi_bits.view(np.float64), np.inf)
+
+
+def reach_thresholds(yb: NDArray, threshold: float) -> tuple[NDArray, NDArray]:
+    """Luminances ``(low, high)``: ``CR(Y, Yb) < threshold`` exactly when ``low <= Y < high``.
+
+    Found on the float expression itself, so a luminance comparison decides
+    the threshold test exactly as computing the contrast ratio would.
+    """
+    yb = np.asarray(yb, dtype=np.float64)
+
+    def below_reaches(y: NDArray) -> NDArray:
+        return (y >= yb) | (contrast_from_luminance(y, yb) < threshold)
+
+    def above_fails(y: NDArray) -> NDArray:
+        return (y >= yb) & (contrast_from_luminance(y, yb) >= threshold)
+
+    low = _smallest_float(below_reaches, np.zeros_like(yb), yb)
+    high = _smallest_float(above_fails, yb, np.full_like(yb, 4.0))
+    return low, high
+
+
+def reach_intervals(p: NDArray, q: NDArray, yb: NDArray, threshold: float) -> tuple:
+    """Per row, ``[lo, hi)`` = the columns with ``CR(P + Q[b], Yb) < threshold``.
+
+    Q must be ascending per problem.  CR is decreasing below Yb and increasing
+    above it, so the set is one interval of columns.
+    """
+    low, high = reach_thresholds(yb, threshold)
+    return first_at_or_above(p, q, low), first_at_or_above(p, q, high)
+
+
+@dataclass(frozen=True)
+class ChangeCounts:
+    """Per-problem counts of contrast increases, decreases and newly reaching a threshold."""
+
+    increase: NDArray
+    decrease: NDArray
+    newly_reach: NDArray
+    exact_evaluations: int
+
+
+def _rank_table(dq: NDArray) -> tuple[NDArray, NDArray]:
+    """Sorted ``dq`` and ``G[m, k, j] = #{b >= k : rank(b) >= j}``."""
+    m, n_cols = dq.shape
+    order = np.argsort(dq, axis=1, kind="stable")
+    rank = np.empty_like(order)
+    np.put_along_axis(rank, order, np.arange(n_cols)[np.newaxis, :], axis=1)
+    marks = np.zeros((m, n_cols + 1, n_cols + 1), dtype=np.int32)
+    problem = np.repeat(np.arange(m), n_cols)
+    marks[problem, np.tile(np.arange(n_cols), m), rank.ravel()] = 1
+    counts = np.cumsum(marks[:, ::-1, :], axis=1)[:, ::-1, :]
+    counts = np.cumsum(counts[:, :, ::-1], axis=2)[:, :, ::-1]
+    return np.take_along_axis(dq, order, axis=1), counts
+
+
+def _searchsorted(sorted_rows: NDArray, values: NDArray, side: str) -> NDArray:
+    """``np.searchsorted`` per problem: (m, C) ascending rows, (m, R) values."""
+    return _bsearch(sorted_rows, None, values, strict=side == "right")
+
+
+def _exact_changes(
+    ps: NDArray,
+    qs: NDArray,
+    po: NDArray,
+    qo: NDArray,
+    yb: NDArray,
+    tol: float,
+    problem: NDArray,
+    row: NDArray,
+    col: NDArray,
+) -> tuple[NDArray, NDArray]:
+    """Per-problem (increase, decrease) counts of listed combinations, straightforward floats."""
+    y_b = yb[problem]
+    cr_s = contrast_from_luminance(ps[problem, row] + qs[problem, col], y_b)
+    cr_o = contrast_from_luminance(po[problem, row] + qo[problem, col], y_b)
+    change = cr_o - cr_s
+    m = ps.shape[0]
+    inc = np.bincount(problem[change > tol], minlength=m)
+    dec = np.bincount(problem[change < -tol], minlength=m)
+    return inc, dec
+
+
+def _count_rows(
+    ps: NDArray,
+    qs: NDArray,
+    po: NDArray,
+    qo: NDArray,
+    yb: NDArray,
+    rank_tables: list[tuple[NDArray, NDArray]],
+    thresholds: tuple[NDArray, NDArray],
+    tol: float,
+) -> NDArray:
+    """(4, A, m) counts for a block of rows: increase, decrease, newly reach, exact evaluations.
+
+    ``ps`` (m, R) and ``qs`` (m, C) are the source parts of m canvases, ``po``
+    (A, m, R) and ``qo`` (A, m, C) the outputs at A coefficients.
+    """
+    m, n_cols = qs.shape
+    low, high = thresholds
+    ks = first_at_or_above(ps, qs, yb)
+    s1, s2 = first_at_or_above(ps, qs, low), first_at_or_above(ps, qs, high)
+    side = n_cols + 1
+    base = (np.arange(m) * side * side)[:, np.newaxis]
+    n_rows = ps.shape[1]
+    all_problems = np.repeat(np.arange(m), n_rows)
+    all_rows = np.tile(np.arange(n_rows), m)
+    result = np.zeros((4, po.shape[0], m), dtype=np.int64)
+    for i, (po_a, qo_a, (sorted_dq, ranks)) in enumerate(zip(po, qo, rank_tables, strict=True)):
+        ko = first_at_or_above(po_a, qo_a, yb)
+        lo = np.minimum(ks, ko)
+        hi = np.maximum(ks, ko)
+        dp = po_a - ps
+        j_hi = _searchsorted(sorted_dq, -dp + _BAND, "right")  # rank >= j_hi: dq > t
+        j_lo = _searchsorted(sorted_dq, -dp - _BAND, "left")  # rank < j_lo: dq < t
+        flat = ranks.ravel()
+        lo_row, hi_row = base + lo * side, base + hi * side
+        # Both below Yb: a lower output luminance raises the contrast.
+        inc_below = lo - (np.take(flat, base + j_lo) - np.take(flat, lo_row + j_lo))
+        dec_below = np.take(flat, base + j_hi) - np.take(flat, lo_row + j_hi)
+        # Both at or above Yb: a higher output luminance raises it.
+        inc_above = np.take(flat, hi_row + j_hi)
+        dec_above = (n_cols - hi) - np.take(flat, hi_row + j_lo)
+        uncertain = (lo - inc_below - dec_below) + (n_cols - hi - inc_above - dec_above)
+        tied = uncertain > 0
+        inc = np.where(tied, 0, inc_below + inc_above).sum(axis=1)
+        dec = np.where(tied, 0, dec_below + dec_above).sum(axis=1)
+
+        # Opposite sides of Yb, combination by combination; rows with a near-tie in full.
+        start = np.where(tied, 0, lo).ravel()
+        width = np.where(tied, n_cols, hi).ravel() - start
+        some = width > 0
+        problem, row = all_problems[some], all_rows[some]
+        start, width = start[some], width[some]
+        offsets = np.repeat(np.cumsum(width) - width, width)
+        col = np.repeat(start, width) + (np.arange(width.sum()) - offsets)
+        problem, row = np.repeat(problem, width), np.repeat(row, width)
+        exact_inc, exact_dec = _exact_changes(ps, qs, po_a, qo_a, yb, tol, problem, row, col)
+
+        o1, o2 = first_at_or_above(po_a, qo_a, low), first_at_or_above(po_a, qo_a, high)
+        overlap = np.maximum(0, np.minimum(s2, o2) - np.maximum(s1, o1))
+        result[0, i] = inc + exact_inc
+        result[1, i] = dec + exact_dec
+        result[2, i] = ((s2 - s1) - overlap).sum(axis=1)
+        result[3, i] = np.bincount(problem, minlength=m)
+    return result
+
+
+def change_counts(
+    ps: NDArray,
+    qs: NDArray,
+    po: NDArray,
+    qo: NDArray,
+    yb: NDArray,
+    *,
+    tol: float,
+    threshold: float,
+) -> ChangeCounts:
+    """Exact counts of contrast changes between source and output, per (alpha, canvas).
+
+    ``ps`` (m, R) and ``qs`` (m, C) are the source luminance parts on m
+    canvases with luminances ``yb`` (m,); ``po`` (A, m, R) and ``qo`` (A, m, C)
+    the output parts at A coefficients.  ``qs`` and ``qo`` must be
+    non-decreasing in the column (true for ``alpha >= 0``).  A change
+    ``CR(Yo) - CR(Ys)`` above ``tol`` is an increase, below ``-tol`` a
+    decrease; ``newly_reach`` counts ``CR(Ys) < threshold <= CR(Yo)``.
+    Arrays in the result have shape (A, m).
+    """
+    if tol > 1e-8:
+        raise ValueError("the tie band assumes a contrast tolerance of at most 1e-8")
+    rank_tables = [_rank_table(qo_a - qs) for qo_a in qo]
+    low, high = reach_thresholds(yb, threshold)
+
+    def block(pr: slice, rows: slice) -> NDArray:
+        ranks = [(sorted_dq[pr], table[pr]) for sorted_dq, table in rank_tables]
+        return _count_rows(
+            ps[pr, rows],
+            qs[pr],
+            po[:, pr, rows],
+            qo[:, pr],
+            yb[pr],
+            ranks,
+            (low[pr], high[pr]),
+            tol,
+        )
+
+    totals = _over_blocks(ps.shape, block, lead=(4, po.shape[0]))
+    return ChangeCounts(
+        increase=totals[0],
+        decrease=totals[1],
+        newly_reach=totals[2],
+        exact_evaluations=int(totals[3].sum()),
+    )
+
+
+def _over_blocks(shape: tuple[int, int], block: Callable, lead: tuple[int, ...] = ()) -> NDArray:
+    """Sum ``block(problem_slice, row_slice)`` over cache-sized blocks.
+
+    Per-problem results of shape ``lead + (n,)`` are added into the totals.
+    Blocks of about ``_BLOCK`` rows keep temporaries in cache.
+    """
+    m, n_rows = shape
+    rows_per = min(n_rows, _BLOCK)
+    problems_per = max(1, _BLOCK // n_rows)
+    totals = np.zeros((*lead, m))
+    for p in range(0, m, problems_per):
+        pr = slice(p, min(p + problems_per, m))
+        for r in range(0, n_rows, rows_per):
+            totals[..., pr] += block(pr, slice(r, min(r + rows_per, n_rows)))
+    return totals.astype(np.int64) if lead else totals
