@@ -1,0 +1,80 @@
+"""Baselines: record today's findings, fail only on new ones, report the ones that went away."""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from alpha_audit.audit import audit
+from alpha_audit.cli import app
+from alpha_audit.errors import InputError
+from alpha_audit.gate import baseline_document, evaluate, parse_baseline
+from alpha_audit.model import Canvas, Icon, IconSet, Theme
+from alpha_audit.policy import Policy
+
+SVG = (
+    '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 24 24"><rect width="9" height="9"/></svg>'
+)
+
+
+def _audit(*icons: tuple[str, str]):
+    theme = Theme("t", (Canvas("sun", "#ffff00"), Canvas("paper", "#ffffff")))
+    return audit(theme, IconSet("s", tuple(Icon(n, f"{n}.svg", c, 1.4) for n, c in icons)))
+
+
+def test_round_trip_matches_by_icon_canvas_and_rule() -> None:
+    before = evaluate([_audit(("deep", "#0000cf"))], Policy())
+    assert not before.passed
+    keys = parse_baseline(json.dumps(baseline_document(before)), Path("b.json"))
+    # Same finding with other numbers (a different blue) is still the baselined one.
+    after = evaluate([_audit(("deep", "#0000c0"), ("ok", "#ee7733"))], Policy(), baseline=keys)
+    assert after.passed and [f.baselined for f in after.findings] == [True]
+    # A new icon with a loss fails; the old entry is not stale.
+    worse = evaluate([_audit(("deep", "#0000cf"), ("navy", "#000080"))], Policy(), baseline=keys)
+    assert [f.icons for f in worse.failures] == [("navy",)] and not worse.stale
+    fixed = evaluate([_audit(("deep", "#ee7733"))], Policy(), baseline=keys)
+    assert fixed.passed and fixed.stale == (("t", "s", "loss", "sun", ("deep",)),)
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "",
+        "[]",
+        '{"schema": "other"}',
+        '{"schema": "alpha-audit.baseline/1", "entries": [1]}',
+        '{"schema": "alpha-audit.baseline/1", "entries": [{"theme": "t"}]}',
+    ],
+)
+def test_bad_baseline(text: str) -> None:
+    with pytest.raises(InputError, match="not an alpha-audit baseline"):
+        parse_baseline(text, Path("b.json"))
+
+
+def test_cli_write_then_use_baseline(tmp_path: Path) -> None:
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "a.svg").write_text(SVG)
+    (tmp_path / "set.yaml").write_text('icons: "*.svg"\ncolor: "#0000cf"\nalpha: 1.4\n')
+    (tmp_path / "theme.yaml").write_text('canvases: [{name: sun, color: "#ffff00"}]\n')
+    old = Path.cwd()
+    os.chdir(tmp_path)
+    try:
+        runner = CliRunner()
+        args = ["check", "theme.yaml", "set.yaml"]
+        assert runner.invoke(app, args).exit_code == 1
+        wrote = runner.invoke(app, [*args, "--write-baseline", "baseline.json"])
+        assert wrote.exit_code == 0 and "wrote baseline" in wrote.output
+        assert runner.invoke(app, [*args, "--baseline", "baseline.json"]).exit_code == 0
+        (tmp_path / "b.svg").write_text(SVG)  # a new icon, a new loss
+        new = runner.invoke(app, [*args, "--baseline", "baseline.json", "-f", "json"])
+        assert new.exit_code == 1
+        failures = json.loads(new.stdout)["gate"]["failures"]
+        assert [f["icons"] for f in failures] == [["b"]]
+        missing = runner.invoke(app, [*args, "--baseline", "nope.json"])
+        assert missing.exit_code == 2 and "--write-baseline" in missing.output
+    finally:
+        os.chdir(old)
