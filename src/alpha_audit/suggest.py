@@ -1,0 +1,624 @@
+"""The largest safe coefficient, exactly: set-wide, per palette colour and per icon.
+
+For a gate :class:`~alpha_audit.policy.Policy` ``P`` the largest safe alpha is
+
+    a* = sup { a <= a_max : every a' in [1, a] satisfies P }
+
+(issue 4).  It is computed from *events*, not a sweep (see
+:mod:`alpha_audit.events`): contrast rules cross their thresholds at
+closed-form points of a piecewise-linear luminance, 8-bit collisions live on
+intervals between code changes known exactly, and only CIEDE2000 separation
+is bracketed and bisected to 1e-9.  The reported value is ``a*`` rounded
+*down* to ``precision`` decimals and re-checked at that point by direct
+compositing.
+
+Rules mean what :mod:`alpha_audit.gate` means by them on an
+:func:`~alpha_audit.audit.audit` result.  Per colour and per icon, the chosen
+icons move together while every other icon keeps its configured alpha, and
+only findings involving a moved icon count (the others do not depend on the
+coefficient being chosen).  Pure computation: nothing is printed.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from decimal import ROUND_FLOOR, Decimal
+
+import numpy as np
+from numpy.typing import NDArray
+
+from alpha_audit.color import (
+    CONTRAST_TOLERANCE,
+    composite_extended,
+    contrast_from_luminance,
+    delta_e_2000,
+    relative_luminance,
+    to_8bit,
+)
+from alpha_audit.errors import UsageError
+from alpha_audit.events import (
+    clip_breakpoints,
+    code_timeline,
+    first_below,
+    first_in_luminance_band,
+    luminance_band,
+)
+from alpha_audit.model import IconSet, Theme
+from alpha_audit.policy import Policy, Rule
+
+__all__ = [
+    "SEPARATION_GRID_STEP",
+    "CanvasLimit",
+    "ColorSuggestion",
+    "IconSuggestion",
+    "Limit",
+    "SafeAlpha",
+    "SuggestResult",
+    "largest_safe_alpha",
+    "suggest",
+]
+
+# CIEDE2000 has no closed form in a: its crossings are bracketed on this grid
+# (plus every clip breakpoint) and bisected to events.BISECTION_TOLERANCE.
+SEPARATION_GRID_STEP = 1e-3
+ALPHA_LO = 1.0  # the reference coefficient; the safe interval starts here
+MAX_PRECISION = 9
+_RULE_ORDER = {rule: k for k, rule in enumerate(Rule)}
+
+
+@dataclass(frozen=True)
+class Limit:
+    """What stops a coefficient: a rule broken on a canvas by some icons.
+
+    ``at`` is the first unsafe alpha, the infimum of the unsafe coefficients.
+    When ``attained`` it is itself unsafe; otherwise it is the last safe one
+    and every coefficient just above it is unsafe.
+    """
+
+    rule: Rule
+    canvas: str
+    icons: tuple[str, ...]
+    at: float
+    attained: bool
+
+
+@dataclass(frozen=True)
+class CanvasLimit:
+    """The largest safe alpha if this canvas were the only one."""
+
+    canvas: str
+    alpha: float | None
+    limit: Limit | None
+
+
+@dataclass(frozen=True)
+class SafeAlpha:
+    """A largest safe alpha with what limits it.
+
+    ``alpha`` is rounded down to the precision and re-checked (``None``: not
+    even alpha = 1 is safe); ``exact`` is the unrounded supremum; ``limit``
+    is ``None`` when nothing breaks up to ``alpha_max``.
+    """
+
+    alpha: float | None
+    exact: float | None
+    limit: Limit | None
+    per_canvas: tuple[CanvasLimit, ...]
+
+
+@dataclass(frozen=True)
+class ColorSuggestion:
+    """Every icon of one palette colour moving together."""
+
+    color: str  # palette name (or the colour itself when it has none)
+    source: str
+    icons: tuple[str, ...]
+    safe: SafeAlpha
+
+
+@dataclass(frozen=True)
+class IconSuggestion:
+    """One icon moving alone."""
+
+    icon: str
+    color: str
+    configured: float
+    safe: SafeAlpha
+
+
+@dataclass(frozen=True)
+class SuggestResult:
+    """Set-wide, per-colour and per-icon largest safe alphas; see :func:`suggest`."""
+
+    theme: Theme
+    iconset: IconSet
+    policy: Policy
+    threshold: float
+    alpha_max: float
+    precision: int
+    overall: SafeAlpha
+    per_color: tuple[ColorSuggestion, ...]
+    per_icon: tuple[IconSuggestion, ...]
+
+    @property
+    def alpha(self) -> float | None:
+        """The set-wide suggestion (one coefficient for every icon)."""
+        return self.overall.alpha
+
+
+@dataclass(frozen=True)
+class _Tracks:
+    """Icons grouped by what they show: moving ones by source, fixed ones by (source, alpha)."""
+
+    source: NDArray[np.float64]  # (T, 3) linear
+    alpha: NDArray[np.float64]  # (T,) nan when moving
+    moving: NDArray[np.bool_]  # (T,), moving tracks first
+    key: NDArray[np.intp]  # (T,) distinct source at full precision
+    ref: NDArray[np.intp]  # (T,) 8-bit class of the source (alpha = 1)
+    color: tuple[str, ...]  # (T,) hex, as audit's separation compares colours
+    icons: tuple[tuple[int, ...], ...]
+
+
+def _pack(codes: NDArray[np.integer]) -> NDArray[np.int64]:
+    c = codes.astype(np.int64)
+    return (c[..., 0] << 16) | (c[..., 1] << 8) | c[..., 2]
+
+
+def _round_down(value: float, precision: int) -> float:
+    """``value`` rounded towards minus infinity to ``precision`` decimals, exactly."""
+    step = Decimal(1).scaleb(-precision)
+    return float(Decimal(repr(value)).quantize(step, rounding=ROUND_FLOOR))
+
+
+class _Suggester:
+    """Everything shared by the set-wide, per-colour and per-icon questions."""
+
+    def __init__(
+        self, theme: Theme, iconset: IconSet, policy: Policy, threshold: float, alpha_max: float
+    ) -> None:
+        self.policy = policy
+        self.threshold = threshold
+        self.a_hi = alpha_max
+        self.names = tuple(i.name for i in iconset.icons)
+        self.canvases = tuple(c.name for c in theme.canvases)
+        self.colors = tuple(i.color for i in iconset.icons)
+        self.sources = iconset.sources
+        self.alphas = iconset.alphas
+        self.backgrounds = theme.backgrounds
+        self.y_bg = relative_luminance(self.backgrounds)
+        n = len(self.names)
+        self.keys = np.unique(self.sources, axis=0, return_inverse=True)[1].reshape(n)
+        ref_codes = _pack(to_8bit(self.sources))
+        self.refs = np.unique(ref_codes, return_inverse=True)[1].reshape(n)
+        # audit.py: collisions already present at alpha = 1 (source keys sharing a code).
+        groups: dict[int, set[int]] = {}
+        for k, r in zip(self.keys.tolist(), self.refs.tolist(), strict=True):
+            groups.setdefault(r, set()).add(k)
+        self.ref_groups = {frozenset(g) for g in groups.values() if len(g) > 1}
+        rules = policy.rules
+        self.contrast_rules = [
+            r for r in (Rule.LOSS, Rule.BELOW_THRESHOLD, Rule.NEWLY_FAILING) if r in rules
+        ]
+        # gate.py: `collision` already covers every new collision.
+        self.collision_rule = (
+            Rule.COLLISION
+            if Rule.COLLISION in rules
+            else Rule.NEW_COLLISION
+            if Rule.NEW_COLLISION in rules
+            else None
+        )
+        self.separation = Rule.SEPARATION in rules
+        # Exemptions or multi-source 8-bit classes need the group-by-group verdict.
+        self.slow_collisions = bool(policy.exemptions) or (
+            self.collision_rule is Rule.NEW_COLLISION and bool(self.ref_groups)
+        )
+
+    # -- scenario set-up --------------------------------------------------
+
+    def tracks(self, moving: NDArray[np.bool_]) -> _Tracks:
+        """Group icons: moving ones by source key, fixed ones by (source key, alpha)."""
+        groups: dict[tuple[int, float], list[int]] = {}
+        for i in range(len(self.names)):
+            # Moving icons all take the same alpha, so the source alone decides.
+            alpha = -math.inf if moving[i] else float(self.alphas[i])
+            groups.setdefault((int(self.keys[i]), alpha), []).append(i)
+        labels = sorted(groups, key=lambda lab: (lab[1] != -math.inf, groups[lab][0]))
+        first = [groups[lab][0] for lab in labels]
+        is_moving = np.array([lab[1] == -math.inf for lab in labels], dtype=bool)
+        return _Tracks(
+            source=self.sources[first],
+            alpha=np.where(is_moving, math.nan, [lab[1] for lab in labels]),
+            moving=is_moving,
+            key=self.keys[first],
+            ref=self.refs[first],
+            color=tuple(self.colors[i] for i in first),
+            icons=tuple(tuple(groups[lab]) for lab in labels),
+        )
+
+    def icon_names(self, tracks: _Tracks, members: list[int] | NDArray[np.intp]) -> tuple[str, ...]:
+        return tuple(sorted(self.names[i] for t in members for i in tracks.icons[int(t)]))
+
+    def exempt(self, rule: Rule, canvas: str, icons: tuple[str, ...]) -> bool:
+        return self.policy.exempt(rule, canvas, icons) is not None
+
+    def unexempt_icons(self, rule: Rule, canvas: str, icons: tuple[str, ...]) -> tuple[str, ...]:
+        """Icons of a per-icon finding that no exemption covers."""
+        if not self.policy.exemptions:
+            return icons
+        return tuple(name for name in icons if not self.exempt(rule, canvas, (name,)))
+
+    # -- the three kinds of event ------------------------------------------
+
+    def contrast_limits(self, tracks: _Tracks) -> list[list[Limit]]:
+        """Per canvas, the first unsafe alpha of each contrast rule and moving track."""
+        out: list[list[Limit]] = [[] for _ in self.canvases]
+        mv = np.flatnonzero(tracks.moving)
+        if not self.contrast_rules or mv.size == 0:
+            return out
+        s = tracks.source[mv]
+        y_src = relative_luminance(s)
+        c_ref = contrast_from_luminance(y_src[:, np.newaxis], self.y_bg[np.newaxis, :])
+        t = self.threshold
+        for rule in self.contrast_rules:
+            if rule is Rule.LOSS:
+                # gate.py: a loss counts beyond both max_loss and the float tolerance.
+                limit = c_ref - max(self.policy.max_loss, CONTRAST_TOLERANCE)
+            elif rule is Rule.BELOW_THRESHOLD:
+                limit = np.full_like(c_ref, t)
+            else:  # newly failing: only icons that pass at alpha = 1
+                limit = np.where(c_ref >= t, t, 1.0)
+            lo, hi = luminance_band(limit, self.y_bg[np.newaxis, :])
+            start, attained = first_in_luminance_band(
+                s[:, np.newaxis, :], self.backgrounds[np.newaxis, :, :], lo, hi, ALPHA_LO, self.a_hi
+            )
+            for r, j in zip(*np.nonzero(np.isfinite(start)), strict=True):
+                canvas = self.canvases[j]
+                icons = self.unexempt_icons(rule, canvas, self.icon_names(tracks, [mv[r]]))
+                if icons:
+                    out[j].append(
+                        Limit(rule, canvas, icons, float(start[r, j]), bool(attained[r, j]))
+                    )
+        return out
+
+    def collision_group(
+        self, tracks: _Tracks, codes: NDArray[np.int64], j: int
+    ) -> tuple[str, ...] | None:
+        """Icons of the first unsafe collision group (holding a moving track), if any.
+
+        ``codes`` are every track's packed 8-bit outputs on canvas ``j`` at one
+        coefficient; the verdict is audit.py's and gate.py's, group by group.
+        """
+        rule = self.collision_rule
+        assert rule is not None
+        for t in np.flatnonzero(tracks.moving):
+            members = np.flatnonzero(codes == codes[t])
+            keys = frozenset(tracks.key[members].tolist())
+            if len(keys) < 2 or (rule is Rule.NEW_COLLISION and keys in self.ref_groups):
+                continue
+            icons = self.icon_names(tracks, members)
+            if not self.exempt(rule, self.canvases[j], icons):
+                return icons
+        return None
+
+    def collision_limits(self, tracks: _Tracks) -> list[list[Limit]]:
+        """Per canvas, where the first unsafe 8-bit collision starts (exact)."""
+        out: list[list[Limit]] = [[] for _ in self.canvases]
+        rule = self.collision_rule
+        mv = np.flatnonzero(tracks.moving)
+        if rule is None or mv.size == 0 or len(tracks.key) < 2:
+            return out
+        fixed = np.flatnonzero(~tracks.moving)
+        fixed_codes = _pack(
+            to_8bit(
+                composite_extended(
+                    tracks.source[fixed, np.newaxis, :],
+                    self.backgrounds[np.newaxis, :, :],
+                    tracks.alpha[fixed, np.newaxis],
+                )
+            )
+        )  # (F, m)
+        distinct = tracks.key[mv, np.newaxis] != tracks.key[np.newaxis, :]  # (M, T)
+        new = tracks.ref[mv, np.newaxis] != tracks.ref[np.newaxis, :]
+        pairs = distinct if rule is Rule.COLLISION or self.slow_collisions else new
+        for j, background in enumerate(self.backgrounds):
+            timeline = code_timeline(
+                tracks.source[mv].reshape(-1), np.tile(background, mv.size), ALPHA_LO, self.a_hi
+            )
+            start, is_point, codes = timeline.elements()
+            moving_codes = _pack(codes.reshape(mv.size, 3, -1).transpose(0, 2, 1))  # (M, E)
+            all_codes = np.concatenate(
+                [moving_codes, np.repeat(fixed_codes[:, j : j + 1], start.size, axis=1)]
+            )  # (T, E): moving tracks come first
+            same = moving_codes[:, np.newaxis, :] == all_codes[np.newaxis, :, :]
+            candidates = np.flatnonzero(np.any(same & pairs[:, :, np.newaxis], axis=(0, 1)))
+            for e in candidates:
+                icons = self.collision_group(tracks, all_codes[:, e], j)
+                if icons is not None:
+                    out[j].append(
+                        Limit(rule, self.canvases[j], icons, float(start[e]), bool(is_point[e]))
+                    )
+                    break
+                if not self.slow_collisions:  # pragma: no cover - fast path is exact
+                    raise AssertionError("collision candidate without an unsafe group")
+        return out
+
+    def separation_limits(self, tracks: _Tracks) -> list[list[Limit]]:
+        """Per canvas, where CIEDE2000 between two colours first drops below the minimum."""
+        out: list[list[Limit]] = [[] for _ in self.canvases]
+        if not self.separation:
+            return out
+        n = len(tracks.key)
+        first, second = np.triu_indices(n, k=1)
+        keep = np.array(
+            [
+                (tracks.moving[a] or tracks.moving[b]) and tracks.color[a] != tracks.color[b]
+                for a, b in zip(first, second, strict=True)
+            ],
+            dtype=bool,
+        )
+        first, second = first[keep], second[keep]
+        if first.size == 0:
+            return out
+        bg = self.backgrounds[np.newaxis, :, np.newaxis, :]  # (1, m, 1, 3)
+
+        def output(t: NDArray[np.intp], a: NDArray[np.float64]) -> NDArray[np.float64]:
+            src = tracks.source[t][:, np.newaxis, np.newaxis, :]
+            fixed = tracks.alpha[t][:, np.newaxis, np.newaxis]
+            coef = np.where(tracks.moving[t][:, np.newaxis, np.newaxis], a, fixed)
+            return np.clip(bg + coef[..., np.newaxis] * (src - bg), 0.0, 1.0)
+
+        def delta_e(a: NDArray[np.float64]) -> NDArray[np.float64]:
+            return delta_e_2000(output(first, a), output(second, a))  # (P, m, N)
+
+        steps = max(1, math.ceil((self.a_hi - ALPHA_LO) / SEPARATION_GRID_STEP))
+        breaks = clip_breakpoints(
+            tracks.source[tracks.moving][:, np.newaxis, :], self.backgrounds[np.newaxis]
+        ).reshape(-1)
+        breaks = breaks[(breaks > ALPHA_LO) & (breaks < self.a_hi)]
+        grid = np.unique(np.concatenate([np.linspace(ALPHA_LO, self.a_hi, steps + 1), breaks]))
+        _, unsafe = first_below(delta_e, grid, self.policy.min_delta_e)
+        for p, j in zip(*np.nonzero(np.isfinite(unsafe)), strict=True):
+            icons = self.icon_names(tracks, [first[p], second[p]])
+            if not self.exempt(Rule.SEPARATION, self.canvases[j], icons):
+                out[j].append(
+                    Limit(Rule.SEPARATION, self.canvases[j], icons, float(unsafe[p, j]), True)
+                )
+        return out
+
+    # -- one question ----------------------------------------------------------
+
+    def unsafe_at(self, tracks: _Tracks, a: float) -> bool:
+        """Direct check of one coefficient: composite, quantise, apply the rules."""
+        coef = np.where(tracks.moving, a, tracks.alpha)
+        out = composite_extended(
+            tracks.source[:, np.newaxis, :], self.backgrounds[np.newaxis], coef[:, np.newaxis]
+        )  # (T, m, 3)
+        mv = np.flatnonzero(tracks.moving)
+        y_bg = self.y_bg[np.newaxis, :]
+        c_ref = contrast_from_luminance(relative_luminance(tracks.source[mv])[:, np.newaxis], y_bg)
+        contrast = contrast_from_luminance(relative_luminance(out[mv]), y_bg)
+        t = self.threshold
+        broken = {
+            Rule.LOSS: contrast - c_ref < -max(self.policy.max_loss, CONTRAST_TOLERANCE),
+            Rule.BELOW_THRESHOLD: contrast < t,
+            Rule.NEWLY_FAILING: (c_ref >= t) & (contrast < t),
+        }
+        for rule in self.contrast_rules:
+            for r, j in zip(*np.nonzero(broken[rule]), strict=True):
+                names = self.icon_names(tracks, [mv[r]])
+                if self.unexempt_icons(rule, self.canvases[j], names):
+                    return True
+        if self.collision_rule is not None:
+            codes = _pack(to_8bit(out))
+            for j in range(len(self.canvases)):
+                if self.collision_group(tracks, codes[:, j], j) is not None:
+                    return True
+        if self.separation:
+            for a_i, b_i in zip(*np.triu_indices(len(tracks.key), 1), strict=True):
+                if not (tracks.moving[a_i] or tracks.moving[b_i]):
+                    continue
+                if tracks.color[a_i] == tracks.color[b_i]:
+                    continue
+                de = delta_e_2000(out[a_i], out[b_i])
+                for j in np.flatnonzero(de < self.policy.min_delta_e):
+                    names = self.icon_names(tracks, [a_i, b_i])
+                    if not self.exempt(Rule.SEPARATION, self.canvases[j], names):
+                        return True
+        return False
+
+    def answer(self, moving: NDArray[np.bool_], precision: int) -> SafeAlpha:
+        """Largest safe alpha when the icons in ``moving`` share one coefficient."""
+        tracks = self.tracks(moving)
+        found = [
+            c + k + s
+            for c, k, s in zip(
+                self.contrast_limits(tracks),
+                self.collision_limits(tracks),
+                self.separation_limits(tracks),
+                strict=True,
+            )
+        ]
+        per_canvas_limit = [min(ls, key=_limit_order) if ls else None for ls in found]
+        per_canvas = tuple(
+            CanvasLimit(name, self.rounded(limit, precision), limit)
+            for name, limit in zip(self.canvases, per_canvas_limit, strict=True)
+        )
+        limits = [lim for lim in per_canvas_limit if lim is not None]
+        limit = min(limits, key=_limit_order) if limits else None
+        alpha = self.rounded(limit, precision)
+        unit = 10.0**-precision
+        while alpha is not None and self.unsafe_at(tracks, alpha):
+            # Only a float disagreement exactly at the rounded point gets here.
+            stepped = _round_down(alpha - unit + unit / 2, precision)
+            alpha = stepped if stepped >= ALPHA_LO else None
+        if limit is None:
+            exact: float | None = self.a_hi
+        elif limit.attained and limit.at <= ALPHA_LO:
+            exact = None
+        else:
+            exact = limit.at
+        return SafeAlpha(alpha=alpha, exact=exact, limit=limit, per_canvas=per_canvas)
+
+    def rounded(self, limit: Limit | None, precision: int) -> float | None:
+        """``limit.at`` (or alpha_max) rounded down, stepping off an unsafe point."""
+        if limit is None:
+            return _round_down(self.a_hi, precision)
+        if limit.attained and limit.at <= ALPHA_LO:
+            return None
+        alpha = _round_down(limit.at, precision)
+        if limit.attained and alpha >= limit.at:
+            alpha = _round_down(limit.at - 10.0**-precision, precision)
+        return alpha if alpha >= ALPHA_LO else None
+
+
+def _limit_order(limit: Limit) -> tuple[float, bool, int, str, tuple[str, ...]]:
+    """Earliest first; at a tie an unsafe point before an open interval; then rule, canvas."""
+    return (limit.at, not limit.attained, _RULE_ORDER[limit.rule], limit.canvas, limit.icons)
+
+
+def _swap_names(safe: SafeAlpha, old: str, new: str) -> SafeAlpha:
+    """The same answer for another icon of the same style: swap the two names."""
+    if old == new:
+        return safe
+
+    def swap(limit: Limit | None) -> Limit | None:
+        if limit is None:
+            return None
+        names = {old: new, new: old}
+        return replace(limit, icons=tuple(sorted(names.get(i, i) for i in limit.icons)))
+
+    return replace(
+        safe,
+        limit=swap(safe.limit),
+        per_canvas=tuple(replace(c, limit=swap(c.limit)) for c in safe.per_canvas),
+    )
+
+
+def largest_safe_alpha(
+    theme: Theme,
+    iconset: IconSet,
+    policy: Policy | None = None,
+    *,
+    icons: list[str] | None = None,
+    alpha_max: float = 2.0,
+    precision: int = 3,
+    threshold: float | None = None,
+) -> SafeAlpha:
+    """The largest safe alpha when ``icons`` (default: all) share one coefficient.
+
+    The other icons keep their configured alpha.
+
+    >>> from alpha_audit.model import Canvas, Icon, IconSet, Theme
+    >>> theme = Theme("t", (Canvas("yellow", "#ffff00"),))
+    >>> dots = IconSet("s", (Icon("dot", "dot.svg", "#0000d0", 1.0),))
+    >>> largest_safe_alpha(theme, dots).limit.rule.value  # the paper's dark blue on yellow
+    'loss'
+    """
+    engine = _engine(theme, iconset, policy, alpha_max, precision, threshold)
+    moving = np.ones(len(iconset.icons), dtype=bool)
+    if icons is not None:
+        unknown = sorted(set(icons) - set(engine.names))
+        if unknown:
+            raise UsageError(f"no icon named {unknown[0]!r} in {iconset.name}")
+        moving = np.isin(np.array(engine.names), icons)
+    return engine.answer(moving, precision)
+
+
+def _engine(
+    theme: Theme,
+    iconset: IconSet,
+    policy: Policy | None,
+    alpha_max: float,
+    precision: int,
+    threshold: float | None,
+) -> _Suggester:
+    if not (math.isfinite(alpha_max) and alpha_max >= ALPHA_LO):
+        raise UsageError(f"alpha_max must be a finite number >= 1, got {alpha_max}")
+    if isinstance(precision, bool) or not (0 <= precision <= MAX_PRECISION):
+        raise UsageError(f"precision must be a whole number of decimals 0-{MAX_PRECISION}")
+    if not iconset.icons:
+        raise UsageError(f"icon set {iconset.name!r} has no icons")
+    if not theme.canvases:
+        raise UsageError(f"theme {theme.name!r} has no canvases")
+    t = theme.threshold if threshold is None else float(threshold)
+    if not math.isfinite(t):
+        raise UsageError(f"threshold must be a finite number, got {t}")
+    return _Suggester(theme, iconset, policy or Policy(), t, float(alpha_max))
+
+
+def suggest(
+    theme: Theme,
+    iconset: IconSet,
+    policy: Policy | None = None,
+    *,
+    alpha_max: float = 2.0,
+    precision: int = 3,
+    threshold: float | None = None,
+) -> SuggestResult:
+    """The largest safe alpha for the whole set, per palette colour and per icon.
+
+    Set-wide, every icon takes the same coefficient; per colour, the icons of
+    that palette colour move together; per icon, one icon moves.  Others keep
+    their configured alpha.  ``policy`` defaults to the gate's default
+    (no loss, no newly failing icon, no new collision).
+
+    >>> from alpha_audit.model import Canvas, Icon, IconSet, Theme
+    >>> theme = Theme("t", (Canvas("ink", "#0d1117"),))
+    >>> orange, other = Icon("o", "o.svg", "#ee7733", 1.0), Icon("x", "x.svg", "#ff7f36", 1.0)
+    >>> result = suggest(theme, IconSet("s", (orange, other)))
+    >>> result.alpha  # together, the two never share an 8-bit output up to 2
+    2.0
+    >>> alone = result.per_icon[0].safe  # orange alone passes through #ff7f36
+    >>> alone.alpha, alone.limit.rule.value, alone.limit.icons, round(alone.limit.at, 6)
+    (1.165, 'new-collision', ('o', 'x'), 1.165168)
+    """
+    engine = _engine(theme, iconset, policy, alpha_max, precision, threshold)
+    n = len(iconset.icons)
+    overall = engine.answer(np.ones(n, dtype=bool), precision)
+
+    groups: dict[str, list[int]] = {name: [] for name in iconset.palette}
+    for i, icon in enumerate(iconset.icons):
+        groups.setdefault(icon.color_name or icon.color, []).append(i)
+    per_color = []
+    for name, members in groups.items():
+        if not members:
+            continue
+        moving = np.zeros(n, dtype=bool)
+        moving[members] = True
+        per_color.append(
+            ColorSuggestion(
+                color=name,
+                source=iconset.icons[members[0]].color,
+                icons=tuple(engine.names[i] for i in members),
+                safe=engine.answer(moving, precision),
+            )
+        )
+
+    # Icons of one style (source, configured alpha) get the same answer, unless
+    # an exemption names an icon; then every icon is asked on its own.
+    share = not any(e.icon is not None for e in engine.policy.exemptions)
+    cache: dict[tuple[int, float], tuple[str, SafeAlpha]] = {}
+    per_icon = []
+    for i, icon in enumerate(iconset.icons):
+        style = (int(engine.keys[i]), float(engine.alphas[i]))
+        if share and style in cache:
+            rep, safe = cache[style]
+            safe = _swap_names(safe, rep, icon.name)
+        else:
+            moving = np.zeros(n, dtype=bool)
+            moving[i] = True
+            safe = engine.answer(moving, precision)
+            cache[style] = (icon.name, safe)
+        per_icon.append(IconSuggestion(icon.name, icon.color, icon.alpha, safe))
+    return SuggestResult(
+        theme=theme,
+        iconset=iconset,
+        policy=engine.policy,
+        threshold=engine.threshold,
+        alpha_max=engine.a_hi,
+        precision=precision,
+        overall=overall,
+        per_color=tuple(per_color),
+        per_icon=tuple(per_icon),
+    )
