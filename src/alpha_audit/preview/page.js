@@ -504,7 +504,10 @@ void main() {
       icons: DATA.icons.length,
       canvases: DATA.canvases.length,
       sizes,
-      renderer: gl.getParameter(gl.RENDERER),
+      renderer: (() => {
+        const debug = gl.getExtension("WEBGL_debug_renderer_info");
+        return gl.getParameter(debug ? debug.UNMASKED_RENDERER_WEBGL : gl.RENDERER);
+      })(),
       version: gl.getParameter(gl.VERSION),
       renderBatch,
     };
