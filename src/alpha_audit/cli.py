@@ -148,6 +148,9 @@ def emit(text: str, output: Path | None, force: bool) -> None:
 from alpha_audit.cli_check import check_command  # noqa: E402  (commands register below)
 
 app.command("check")(check_command)
+from alpha_audit.cli_suggest import suggest_command  # noqa: E402
+
+app.command("suggest")(suggest_command)
 from alpha_audit.cli_preview import preview_command  # noqa: E402
 
 app.command("preview")(preview_command)
