@@ -1,0 +1,131 @@
+"""``alpha-audit suggest``: the largest safe coefficient, and ``--apply`` to write it."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from alpha_audit.suggest_report import SuggestFormat
+
+__all__ = ["suggest_command"]
+
+
+def suggest_command(
+    theme: Annotated[
+        Path | None, typer.Argument(help="Theme YAML (default: the one the project config names).")
+    ] = None,
+    iconset: Annotated[
+        Path | None, typer.Argument(help="Icon-set manifest YAML (default: from the config).")
+    ] = None,
+    config: Annotated[
+        Path | None,
+        typer.Option("--config", help="Project config (default: discovered from here upwards)."),
+    ] = None,
+    alpha_max: Annotated[
+        float, typer.Option("--alpha-max", help="Largest coefficient considered.")
+    ] = 2.0,
+    precision: Annotated[
+        int, typer.Option("--precision", help="Decimals; the answer is rounded down.")
+    ] = 3,
+    threshold: Annotated[
+        float | None,
+        typer.Option(help="Contrast threshold (default: the theme's, else 3.0 = WCAG 1.4.11)."),
+    ] = None,
+    fail_on: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--fail-on",
+            help="Rule that must hold (repeatable; replaces the policy): loss, below-threshold, "
+            "newly-failing, collision, new-collision, separation. "
+            "[default: the config's, else loss, newly-failing, new-collision]",
+            show_default=False,
+        ),
+    ] = None,
+    max_loss: Annotated[
+        float | None,
+        typer.Option("--max-loss", help="Contrast loss tolerated by the loss rule. [default: 0]"),
+    ] = None,
+    min_delta_e: Annotated[
+        float | None,
+        typer.Option("--min-delta-e", help="Smallest CIEDE2000 for separation. [default: 10]"),
+    ] = None,
+    fmt: Annotated[
+        SuggestFormat,
+        typer.Option("--format", "-f", help="table, json or markdown.", case_sensitive=False),
+    ] = SuggestFormat.TABLE,
+    output: Annotated[
+        Path | None, typer.Option("--output", "-o", help="Write the report here instead of stdout.")
+    ] = None,
+    force: Annotated[
+        bool, typer.Option("--force", help="Replace an existing --output file.")
+    ] = False,
+    apply: Annotated[
+        bool,
+        typer.Option(
+            "--apply",
+            help="Write the set-wide alpha into the manifest (only the alpha values change).",
+        ),
+    ] = False,
+) -> None:
+    """The largest alpha every coefficient in [1, alpha] keeps the gate policy for.
+
+    Computed exactly from where contrast, 8-bit codes and separation change, not
+    by a sweep: set-wide (one coefficient for every icon), per palette colour
+    and per icon (the others keep their configured alpha), with the canvas,
+    rule and icons that stop each and the first unsafe alpha.  Nothing is
+    written unless --apply is given.
+
+    Example:
+    [bold]alpha-audit suggest themes/paper16.yaml examples/vibrant/iconset.yaml --apply[/]
+    """
+    from alpha_audit.cli import emit, require_finite, stdout_options
+    from alpha_audit.errors import UsageError
+    from alpha_audit.load.config import ProjectConfig, find_config, load_config
+    from alpha_audit.load.iconset import load_iconset
+    from alpha_audit.load.theme import load_theme
+    from alpha_audit.manifest_edit import apply_alpha, format_alpha
+    from alpha_audit.policy import Rule
+    from alpha_audit.suggest import suggest
+    from alpha_audit.suggest_report import render_suggest
+
+    require_finite(alpha_max, "--alpha-max")
+    require_finite(threshold, "--threshold")
+    if (theme is None) != (iconset is None):
+        raise UsageError("give both THEME and ICONSET, or neither (to use the project config)")
+    config_path = config if config is not None else find_config(Path.cwd())
+    project = load_config(config_path) if config_path is not None else ProjectConfig()
+    if theme is None or iconset is None:
+        if len(project.themes) != 1 or len(project.iconsets) != 1:
+            raise UsageError(
+                "suggest needs one theme and one icon set: give THEME ICONSET, or a project "
+                f"config naming exactly one of each (found {len(project.themes)} theme(s), "
+                f"{len(project.iconsets)} icon set(s))"
+            )
+        theme, iconset = project.themes[0], project.iconsets[0]
+    policy = project.policy
+    if fail_on:
+        policy = replace(policy, rules=frozenset(Rule.parse(r) for r in fail_on))
+    if max_loss is not None:
+        policy = replace(policy, max_loss=max_loss)
+    if min_delta_e is not None:
+        policy = replace(policy, min_delta_e=min_delta_e)
+
+    result = suggest(
+        load_theme(theme),
+        load_iconset(iconset),
+        policy,
+        alpha_max=alpha_max,
+        precision=precision,
+        threshold=threshold if threshold is not None else project.threshold,
+    )
+    width = stdout_options().width if output is None else 100
+    emit(render_suggest(result, fmt, width=width), output, force)
+    if apply:
+        if result.alpha is None:
+            raise UsageError("no safe alpha to apply: the policy already fails at alpha = 1")
+        changed = apply_alpha(iconset, result.alpha, precision)
+        note = "wrote" if changed else "already has"
+        typer.echo(f"{note} alpha {format_alpha(result.alpha, precision)} in {iconset}", err=True)

@@ -1,0 +1,172 @@
+"""Reports for ``alpha-audit suggest``: pure functions of a :class:`SuggestResult`.
+
+``table`` (rich, fixed width), ``json`` (schema ``alpha-audit.suggest/1``,
+documented in ``docs/suggest.md``) and ``markdown`` (a pull-request comment).
+Output order is stable: canvases in theme order, colours in palette order,
+icons in manifest order.
+"""
+
+from __future__ import annotations
+
+import json
+from enum import StrEnum
+from io import StringIO
+from typing import Any, assert_never
+
+from rich import box
+from rich.console import Console
+from rich.table import Table
+
+from alpha_audit.suggest import Limit, SafeAlpha, SuggestResult
+
+__all__ = ["SCHEMA", "SuggestFormat", "render_suggest", "suggest_document"]
+
+SCHEMA = "alpha-audit.suggest/1"
+_MAX_NAMES = 3  # icon names shown per cell in table and markdown; JSON has all
+
+
+class SuggestFormat(StrEnum):
+    """Output formats of ``alpha-audit suggest``."""
+
+    TABLE = "table"
+    JSON = "json"
+    MARKDOWN = "markdown"
+
+
+def _limit(limit: Limit | None) -> dict[str, Any] | None:
+    if limit is None:
+        return None
+    return {
+        "rule": limit.rule.value,
+        "icons": list(limit.icons),
+        "canvas": limit.canvas,
+        "at": limit.at,
+        "attained": limit.attained,
+    }
+
+
+def _safe(safe: SafeAlpha) -> dict[str, Any]:
+    return {"alpha": safe.alpha, "exact": safe.exact, "limited_by": _limit(safe.limit)}
+
+
+def suggest_document(result: SuggestResult) -> dict[str, Any]:
+    """The JSON document (``alpha-audit.suggest/1``) as plain data."""
+    policy = result.policy
+    return {
+        "schema": SCHEMA,
+        "theme": result.theme.name,
+        "iconset": result.iconset.name,
+        "policy": {
+            "rules": sorted(r.value for r in policy.rules),
+            "max_loss": policy.max_loss,
+            "min_delta_e": policy.min_delta_e,
+        },
+        "threshold": result.threshold,
+        "alpha_max": result.alpha_max,
+        "precision": result.precision,
+        **_safe(result.overall),
+        "per_canvas": [
+            {"canvas": c.canvas, "alpha": c.alpha, "limited_by": _limit(c.limit)}
+            for c in result.overall.per_canvas
+        ],
+        "per_color": [
+            {"color": c.color, "source": c.source, "icons": list(c.icons), **_safe(c.safe)}
+            for c in result.per_color
+        ],
+        "per_icon": [
+            {"icon": i.icon, "color": i.color, "configured": i.configured, **_safe(i.safe)}
+            for i in result.per_icon
+        ],
+    }
+
+
+def _alpha(value: float | None, precision: int) -> str:
+    return "none" if value is None else f"{value:.{precision}f}"
+
+
+def _names(icons: tuple[str, ...]) -> str:
+    shown = ", ".join(icons[:_MAX_NAMES])
+    return shown + (f" +{len(icons) - _MAX_NAMES}" if len(icons) > _MAX_NAMES else "")
+
+
+def _why(limit: Limit | None, alpha_max: float) -> str:
+    if limit is None:
+        return f"nothing breaks up to {alpha_max:g}"
+    where = "at" if limit.attained else "just above"
+    return f"{limit.rule.value} on {limit.canvas} {where} {limit.at:.6f} ({_names(limit.icons)})"
+
+
+def _headline(result: SuggestResult) -> str:
+    p = result.precision
+    rules = ", ".join(sorted(r.value for r in result.policy.rules))
+    alpha = result.overall.alpha
+    if alpha is None:
+        return f"No safe alpha for {result.iconset.name} on {result.theme.name}: " + _why(
+            result.overall.limit, result.alpha_max
+        )
+    return (
+        f"Largest safe alpha for {result.iconset.name} on {result.theme.name}: "
+        f"{_alpha(alpha, p)} (policy: {rules}; "
+        f"{_why(result.overall.limit, result.alpha_max)})"
+    )
+
+
+def _render_table(result: SuggestResult, width: int) -> str:
+    p, a_max = result.precision, result.alpha_max
+    console = Console(file=StringIO(), width=width, color_system=None, highlight=False)
+    console.print(_headline(result), soft_wrap=False)
+
+    def table(title: str, first: str) -> Table:
+        t = Table(title=title, title_justify="left", box=box.SIMPLE_HEAD, pad_edge=False)
+        t.add_column(first, no_wrap=True, max_width=24, overflow="ellipsis")
+        t.add_column("alpha", justify="right", no_wrap=True)
+        t.add_column("limited by", overflow="fold")
+        return t
+
+    canvases = table("Per canvas (everything moves together)", "canvas")
+    for c in result.overall.per_canvas:
+        canvases.add_row(c.canvas, _alpha(c.alpha, p), _why(c.limit, a_max))
+    colors = table("Per colour (the others keep their alpha)", "colour")
+    for c in result.per_color:
+        colors.add_row(f"{c.color} {c.source}", _alpha(c.safe.alpha, p), _why(c.safe.limit, a_max))
+    icons = table("Per icon (the others keep their alpha)", "icon")
+    for i in result.per_icon:
+        icons.add_row(i.icon, _alpha(i.safe.alpha, p), _why(i.safe.limit, a_max))
+    for t in (canvases, colors, icons):
+        console.print(t)
+    return console.file.getvalue()  # type: ignore[attr-defined]
+
+
+def _cell(text: str) -> str:
+    return text.replace("\\", "\\\\").replace("|", "\\|").replace("\n", " ")
+
+
+def _render_markdown(result: SuggestResult) -> str:
+    p, a_max = result.precision, result.alpha_max
+    lines = [f"### alpha-audit suggest: {_cell(result.iconset.name)}", "", _cell(_headline(result))]
+
+    def section(title: str, first: str, rows: list[tuple[str, float | None, Limit | None]]) -> None:
+        lines.extend(["", f"**{title}**", "", f"| {first} | alpha | limited by |", "|---|--:|---|"])
+        for name, alpha, limit in rows:
+            lines.append(f"| {_cell(name)} | {_alpha(alpha, p)} | {_cell(_why(limit, a_max))} |")
+
+    section(
+        "Per canvas", "canvas", [(c.canvas, c.alpha, c.limit) for c in result.overall.per_canvas]
+    )
+    section(
+        "Per colour", "colour", [(c.color, c.safe.alpha, c.safe.limit) for c in result.per_color]
+    )
+    section("Per icon", "icon", [(i.icon, i.safe.alpha, i.safe.limit) for i in result.per_icon])
+    return "\n".join(lines) + "\n"
+
+
+def render_suggest(result: SuggestResult, fmt: SuggestFormat | str, *, width: int = 100) -> str:
+    """``result`` as text in ``fmt``."""
+    fmt = SuggestFormat(fmt)
+    if fmt is SuggestFormat.TABLE:
+        return _render_table(result, width)
+    if fmt is SuggestFormat.JSON:
+        return json.dumps(suggest_document(result), indent=2, allow_nan=False) + "\n"
+    if fmt is SuggestFormat.MARKDOWN:
+        return _render_markdown(result)
+    assert_never(fmt)
