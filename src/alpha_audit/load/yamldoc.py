@@ -25,6 +25,11 @@ MAX_YAML_NODES = 100_000  # after alias expansion; bounds "billion laughs"
 
 KeyPath = tuple[str | int, ...]
 
+_PLAIN_TAGS = frozenset(
+    f"tag:yaml.org,2002:{t}"
+    for t in ("str", "int", "float", "bool", "null", "seq", "map", "timestamp", "merge")
+)
+
 # YAML 1.2 core-schema floats that YAML 1.1 (PyYAML) leaves as strings: 1e3, -1e308.
 _UNQUOTED_HEX = re.compile(r":[ \t]+#[0-9a-fA-F]{3,8}\b")
 _YAML12_FLOAT = re.compile(r"[-+]?(\.[0-9]+|[0-9]+(\.[0-9]*)?)([eE][-+]?[0-9]+)?")
@@ -74,6 +79,9 @@ class _Converter:
         if self.budget < 0:
             raise self.fail(node, f"expands to more than {MAX_YAML_NODES} values (alias bomb?)")
         self.lines.setdefault(keys, node.start_mark.line + 1)
+        if node.tag not in _PLAIN_TAGS:
+            # Explicit tags (!!python/object, !custom) would construct objects; refuse them.
+            raise self.fail(node, f"YAML tag {node.tag!r} is not allowed; write plain values")
         if id(node) in self.active:
             raise self.fail(node, "an alias refers to itself; recursive YAML is not allowed")
         if isinstance(node, yaml.ScalarNode):
