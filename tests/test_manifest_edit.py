@@ -1,0 +1,98 @@
+"""``suggest --apply``: only the alpha values change, everything else byte for byte."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from alpha_audit.cli import app
+from alpha_audit.errors import InputError
+from alpha_audit.load.iconset import load_iconset
+from alpha_audit.manifest_edit import apply_alpha, format_alpha, set_alpha
+
+MANIFEST = """\
+# Demo icons -- keep this comment
+name: Demo
+icons:
+  - a.svg
+  - {file: b.svg, alpha: 1.05}   # explicit
+  - file: c.svg
+    alpha: "1.3"
+palette: {orange: "#ee7733", blue: "#0077bb"}
+color: cycle
+alpha:   1.1    # default
+overrides:
+  a: {color: blue, alpha: 1.2}
+"""
+
+
+def test_only_alpha_values_change() -> None:
+    edited = set_alpha(MANIFEST, "1.226")
+    expected = (
+        MANIFEST.replace("alpha: 1.05}", "alpha: 1.226}")
+        .replace('alpha: "1.3"', "alpha: 1.226")
+        .replace("alpha:   1.1 ", "alpha:   1.226 ")
+        .replace("alpha: 1.2}", "alpha: 1.226}")
+    )
+    assert edited == expected
+
+
+def test_missing_top_level_alpha_is_added_at_the_end() -> None:
+    text = "name: x\nicons: svg/*.svg\ncolor: '#000000'  # no newline at end"
+    assert set_alpha(text, "1.5") == text + "\nalpha: 1.5\n"
+
+
+@pytest.mark.parametrize(("alpha", "precision", "text"), [(1.226, 3, "1.226"), (2.0, 3, "2.0")])
+def test_format_alpha(alpha: float, precision: int, text: str) -> None:
+    assert format_alpha(alpha, precision) == text
+
+
+def test_apply_writes_and_reloads(tmp_path: Path) -> None:
+    (tmp_path / "svg").mkdir()
+    for name in "abc":
+        (tmp_path / "svg" / f"{name}.svg").write_text("<svg/>")
+    path = tmp_path / "iconset.yaml"
+    path.write_bytes(b"# crlf\r\nname: x\r\nicons: svg/*.svg\r\ncolor: '#ee7733'\r\nalpha: 1.1\r\n")
+    assert apply_alpha(path, 1.25, 3)
+    assert path.read_bytes() == (
+        b"# crlf\r\nname: x\r\nicons: svg/*.svg\r\ncolor: '#ee7733'\r\nalpha: 1.25\r\n"
+    )
+    assert {i.alpha for i in load_iconset(path, root=tmp_path).icons} == {1.25}
+    assert not apply_alpha(path, 1.25, 3)
+
+
+def test_unparseable_manifest_is_an_input_error() -> None:
+    with pytest.raises(InputError, match="cannot edit"):
+        set_alpha("- just\n- a list\n", "1.2")
+
+
+def test_cli_apply_and_no_write_without_it(tmp_path: Path, repo: Path) -> None:
+    example = repo / "examples" / "vibrant"
+    target = tmp_path / "vibrant"
+    target.mkdir()
+    shutil.copytree(example / "svg", target / "svg")
+    original = (example / "iconset.yaml").read_text()
+    (target / "iconset.yaml").write_text(original)
+    (tmp_path / ".git").mkdir()
+    theme = str(repo / "themes" / "paper16.yaml")
+    runner = CliRunner()
+    res = runner.invoke(app, ["suggest", theme, str(target / "iconset.yaml"), "-f", "json"])
+    assert res.exit_code == 0, res.output
+    assert (target / "iconset.yaml").read_text() == original
+    doc = json.loads(res.stdout)
+    assert doc["schema"] == "alpha-audit.suggest/1" and doc["alpha"] == 1.226
+    assert doc["limited_by"]["rule"] == "new-collision" and doc["limited_by"]["canvas"] == "white"
+    assert len(doc["per_color"]) == 7 and len(doc["per_icon"]) == 12
+    for fmt in ("table", "markdown"):
+        res = runner.invoke(app, ["suggest", theme, str(target / "iconset.yaml"), "-f", fmt])
+        assert res.exit_code == 0 and "1.226" in res.stdout
+    res = runner.invoke(app, ["suggest", theme, str(target / "iconset.yaml"), "--apply"])
+    assert res.exit_code == 0, res.output
+    edited = (target / "iconset.yaml").read_text()
+    assert edited == original.replace("alpha: 1.1 ", "alpha: 1.226 ").replace(
+        "alpha: 1.2}", "alpha: 1.226}"
+    )
