@@ -112,7 +112,12 @@ def composite_masks(
         return to_8bit(qq * out[:, np.newaxis, np.newaxis, :] + (1.0 - qq) * b)
     level = _LEVELS[np.newaxis, :, np.newaxis]  # (1, 256, 1)
     table = to_8bit(level * out[:, np.newaxis, :] + (1.0 - level) * b)  # (n, 256, 3)
-    return table[np.arange(n)[:, np.newaxis, np.newaxis], codes]
+    # Gather whole pixels, not channels: pack RGB(+pad) into one uint32 per entry.
+    packed = np.zeros((n * 256, 4), dtype=np.uint8)
+    packed[:, :3] = table.reshape(-1, 3)
+    index = codes.astype(np.intp) + 256 * np.arange(n, dtype=np.intp)[:, np.newaxis, np.newaxis]
+    pixels = np.take(packed.view(np.uint32).reshape(-1), index)
+    return pixels[..., np.newaxis].view(np.uint8)[..., :3]
 
 
 # Paper, Appendix A.3: "Vibrant colors mixed with 10% white in encoded sRGB".

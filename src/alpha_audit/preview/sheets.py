@@ -66,7 +66,7 @@ ICON_ALPHA: Alpha = None
 # gallery value of 2 (Appendix A.3).
 SWATCH_ALPHAS: tuple[float, ...] = (0.6, 1.0, 1.1, 1.2, 1.4, 2.0)
 
-_PNG_LEVEL = 3  # zlib level: flat canvases compress well already; level 6+ triples the time
+_PNG_LEVEL = 1  # zlib level: flat canvases compress well even at 1; level 6 is ~3x slower
 
 
 class Layout(StrEnum):
@@ -233,6 +233,9 @@ class _Canvas2D:
         self.image = Image.new("RGB", (width, height), fill)
         self.draw = ImageDraw.Draw(self.image)
         self.blocks: list[tuple[Placement, NDArray[np.uint8]]] = []
+        self.patches: dict[
+            tuple[str, int, tuple[int, int, int], tuple[int, int, int]], Image.Image
+        ] = {}
 
     def rect(self, box: tuple[int, int, int, int], fill: tuple[int, int, int]) -> None:
         self.draw.rectangle((box[0], box[1], box[2] - 1, box[3] - 1), fill=fill)
@@ -241,6 +244,30 @@ class _Canvas2D:
         """Draw ``text`` with its top-left at ``xy``; return its width."""
         self.draw.text(xy, text, font=font, fill=fill, anchor="la")
         return _Fonts.width(font, text)  # type: ignore[arg-type]
+
+    def label(
+        self,
+        xy: tuple[int, int],
+        text: str,
+        font: ImageFont.FreeTypeFont,
+        fill: tuple[int, int, int],
+        ground: tuple[int, int, int],
+    ) -> int:
+        """Like :meth:`text` on a flat ``ground``, rendering each distinct label only once.
+
+        Sheets repeat a few hundred distinct numbers thousands of times; a
+        cached patch drawn on the same ground colour is the same pixels.
+        """
+        key = (text, font.size, fill, ground)
+        patch = self.patches.get(key)
+        if patch is None:
+            width = _Fonts.width(font, text)
+            ascent, descent = font.getmetrics()
+            patch = Image.new("RGB", (width + 2, ascent + descent + 2), ground)
+            ImageDraw.Draw(patch).text((0, 0), text, font=font, fill=fill, anchor="la")
+            self.patches[key] = patch
+        self.image.paste(patch, xy)
+        return patch.size[0] - 2
 
     def block(self, placement: Placement, pixels: NDArray[np.uint8]) -> None:
         self.blocks.append((placement, pixels))
@@ -339,7 +366,7 @@ def _grid(
             tw = _Fonts.width(fonts.small, text)
             tx = cx + (cell_w - gap - tw) // 2
             ty = cy + size + 4
-            out.text((tx, ty), text, fonts.small, color)
+            out.label((tx, ty), text, fonts.small, color, fill)  # type: ignore[arg-type]
             if value < threshold:
                 underline = ty + fonts.small.size + 1
                 out.rect((tx, underline, tx + tw, underline + 1), color)
