@@ -1,0 +1,55 @@
+"""Event maths against direct evaluation (compositing + to_8bit + luminance)."""
+
+from __future__ import annotations
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from alpha_audit.color import composite_extended, relative_luminance, to_8bit
+from alpha_audit.events import (
+    CODE_THRESHOLDS,
+    code_timeline,
+    first_in_luminance_band,
+    luminance_band,
+)
+
+unit = st.floats(0.0, 1.0, allow_nan=False)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.tuples(unit, unit), min_size=1, max_size=6))
+def test_code_timeline_matches_to_8bit_between_events(channels: list) -> None:
+    s, b = np.array(channels).T
+    t = code_timeline(s, b, 1.0, 2.0)
+    mids = 0.5 * (t.points[:-1] + t.points[1:])
+    direct = to_8bit(np.clip(b[:, None] + mids[None, :] * (s - b)[:, None], 0, 1))
+    assert np.array_equal(direct, t.between)
+
+
+def test_half_way_rounds_to_even() -> None:
+    # Channel from 0 on black: at the event for threshold n the code is the even one.
+    t = code_timeline([CODE_THRESHOLDS[100] / 1.5], [0.0], 1.0, 2.0)
+    k = int(np.flatnonzero(np.isclose(t.points, 1.5))[0])
+    assert t.at_points[0, k] == 100 and t.between[0, k - 1] == 100 and t.between[0, k] == 101
+    t = code_timeline([CODE_THRESHOLDS[101] / 1.5], [0.0], 1.0, 2.0)
+    k = int(np.flatnonzero(np.isclose(t.points, 1.5))[0])
+    assert t.at_points[0, k] == 102 and t.between[0, k - 1] == 101
+
+
+@settings(max_examples=60, deadline=None)
+@given(unit, unit, unit, unit, unit, unit, st.floats(1.05, 10.0))
+def test_luminance_band_start_matches_a_dense_scan(r, g, bl, br, bg, bb, limit) -> None:
+    s, b = np.array([r, g, bl]), np.array([br, bg, bb])
+    lo, hi = luminance_band(limit, relative_luminance(b))
+    start, attained = first_in_luminance_band(s, b, lo, hi, 1.0, 2.0)
+    grid = np.linspace(1.0, 2.0, 20001)
+    y = relative_luminance(composite_extended(s, b, grid))
+    inside = (lo < y) & (y < hi)
+    if np.isnan(start):
+        assert not inside.any()
+    else:
+        assert not inside[grid < start - 1e-12].any()
+        if inside.any():
+            assert grid[np.argmax(inside)] - start < 1e-4 + 1e-12
+        assert bool(attained) == bool(start == 1.0 and inside[0])
