@@ -544,6 +544,7 @@ class PaletteResult:
     smaller_per_canvas: dict[float, tuple[int, ...]]
     collisions_per_canvas: dict[float, tuple[int, ...]]
     random_pairs: int
+    seed: int
     random_combinations: int
     random_alphas: tuple[float, ...]
     random_collisions: dict[float, int]
@@ -586,6 +587,7 @@ def palette_separation(
         smaller_per_canvas={a: tuple(int(x) for x in v) for a, v in smaller.items()},
         collisions_per_canvas={a: tuple(int(x) for x in v) for a, v in collide.items()},
         random_pairs=pairs,
+        seed=seed,
         random_combinations=pairs * backgrounds.shape[0],
         random_alphas=random_alphas,
         random_collisions={a: int(random[i].sum()) for i, a in enumerate(random_alphas)},

@@ -1,0 +1,218 @@
+"""``alpha-audit reproduce``: the paper's numerical evaluation (registered by ``cli.py``).
+
+Runs the library (:mod:`alpha_audit.reproduce`), shows progress on stderr
+(only on a terminal), prints rich tables, JSON or Markdown on stdout and,
+with ``--out``, writes ``results.json``, ``report.md`` and the sweep figures
+once everything has been computed, so a failed run leaves no partial files.
+"""
+
+from __future__ import annotations
+
+import enum
+from pathlib import Path
+from typing import Annotated, assert_never
+
+import typer
+from rich.console import Console
+from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+from rich.table import Table
+
+from alpha_audit.errors import UsageError
+from alpha_audit.load.theme import load_theme
+from alpha_audit.reproduce.figures import write_figures
+from alpha_audit.reproduce.paper import PAPER, matches_printed
+from alpha_audit.reproduce.report import alpha_key, render_json, render_markdown
+from alpha_audit.reproduce.run import Experiment, Reproduction, reproduce
+
+__all__ = ["ReproduceFormat", "default_theme_path", "reproduce_command"]
+
+
+class ReproduceFormat(enum.StrEnum):
+    """What ``reproduce`` prints on stdout."""
+
+    TABLE = "table"
+    JSON = "json"
+    MARKDOWN = "markdown"
+
+
+def default_theme_path() -> Path:
+    """``themes/paper16.yaml`` of the source tree, else of the working directory."""
+    for candidate in (
+        Path(__file__).resolve().parents[2] / "themes" / "paper16.yaml",
+        Path("themes") / "paper16.yaml",
+    ):
+        if candidate.is_file():
+            return candidate
+    raise UsageError("themes/paper16.yaml not found; pass --theme")
+
+
+def _tables(run: Reproduction) -> list[Table]:
+    """Rich tables of a run, one per experiment."""
+    tables = []
+    if run.broad_grid is not None:
+        t = Table(title="Broad grid (paper Table 1): paper / ours, exact match?")
+        for col in ("alpha", "increase %", "decrease %", "max loss", "loss<=.25 %"):
+            t.add_column(col, justify="right")
+        captions: list[str] = []
+        paper_grid = run.settings.source_levels == 17 and run.settings.background_levels == 33
+        for r in run.broad_grid:
+            printed = PAPER["broad_grid"].get(alpha_key(r.alpha), {}) if paper_grid else {}
+
+            def cell(name: str, ours: float, printed: dict = printed) -> str:
+                p = printed.get(name)
+                if p is None:
+                    return f"{ours:.4f}"
+                mark = "ok" if matches_printed(ours, p) else "MISMATCH"
+                return f"{p.value:.{p.decimals}f} / {ours:.{p.decimals}f} {mark}"
+
+            worst = " > ".join(f"{cr:.4f}" for cr in r.worst_contrast.values())
+            src, bg = (",".join(f"{v:g}" for v in c) for c in (r.worst_source, r.worst_background))
+            t.add_row(
+                alpha_key(r.alpha),
+                cell("increase_pct", r.increase_pct),
+                cell("decrease_pct", r.decrease_pct),
+                cell("max_loss", r.max_loss),
+                cell("loss_le_0_25_pct", r.loss_le_0_25_pct),
+            )
+            captions.append(
+                f"alpha {alpha_key(r.alpha)}: largest loss ({src}) on ({bg}), CR {worst}"
+            )
+        t.caption = "\n".join(captions)
+        tables.append(t)
+    if run.full_gamut is not None:
+        t = Table(title=f"Full gamut on {run.theme.name} (comparable to the paper in method only)")
+        for col in ("alpha", "group", "inc %", "dec %", "same %", "mean", "3:1 %", "Diff", "Excl"):
+            t.add_column(col, justify="right")
+        for r in run.full_gamut:
+            rows = [("all", r.total)] + [(m, r.group(m)) for m in ("light", "dark")]
+            for name, c in rows:
+                if c is None:
+                    continue
+                t.add_row(
+                    alpha_key(r.alpha), name, f"{c.increase_pct:.4f}", f"{c.decrease_pct:.4f}",
+                    f"{c.unchanged_pct:.4f}", f"{c.mean_change:.4f}", f"{c.newly_reach_pct:.4f}",
+                    f"{c.mean_difference_change:.4f}", f"{c.mean_exclusion_change:.4f}",
+                )  # fmt: skip
+        tables.append(t)
+    if run.sweep is not None:
+        s = run.sweep
+        t = Table(title=f"Sweep on {s.levels}^3 sources, {s.pairs:,} random pairs (every 0.25)")
+        for col in ("alpha", "mean change L/D", "decreases L/D", "collisions L/D"):
+            t.add_column(col, justify="right")
+        for i, a in enumerate(s.alphas):
+            if abs(a * 4 - round(a * 4)) > 1e-9:
+                continue
+
+            def pair(series: dict[str, tuple[float, ...]], i: int = i) -> str:
+                return " / ".join(f"{series[g][i]:.4f}" for g in ("light", "dark") if g in series)
+
+            t.add_row(f"{a:g}", pair(s.mean_change), pair(s.decrease_share),
+                      pair(s.collision_rate))  # fmt: skip
+        tables.append(t)
+    if run.palette is not None:
+        p = run.palette
+        t = Table(title=f"Palette separation: {p.combinations} pair x canvas combinations")
+        for col in ("alpha", "smaller CIEDE2000", "collisions", "random-pair collisions"):
+            t.add_column(col, justify="right")
+        for a in sorted(set(p.alphas) | set(p.random_alphas)):
+            t.add_row(
+                alpha_key(a),
+                str(p.smaller.get(a, "—")),
+                str(p.collisions.get(a, "—")),
+                f"{p.random_collisions[a]:,} of {p.random_combinations:,}"
+                if a in p.random_collisions
+                else "—",
+            )
+        tables.append(t)
+    return tables
+
+
+def _run_with_progress(run_kwargs: dict, console: Console) -> Reproduction:
+    """``reproduce(**run_kwargs)`` with one progress bar per experiment on stderr."""
+    with Progress(
+        TextColumn("{task.description:<12}"),
+        BarColumn(),
+        TimeElapsedColumn(),
+        console=console,
+        transient=True,
+        disable=not console.is_terminal,
+    ) as bars:
+        tasks: dict[Experiment, int] = {}
+
+        def advance(experiment: Experiment, fraction: float) -> None:
+            if experiment not in tasks:
+                tasks[experiment] = bars.add_task(experiment.value, total=1.0)
+            bars.advance(tasks[experiment], fraction)
+
+        return reproduce(**run_kwargs, progress=advance)
+
+
+def reproduce_command(
+    theme: Annotated[
+        Path | None,
+        typer.Option(
+            "--theme", help="Theme YAML with the canvases (default: themes/paper16.yaml)."
+        ),
+    ] = None,
+    only: Annotated[
+        list[Experiment] | None,
+        typer.Option("--only", help="Run only this experiment (repeatable).", show_default=False),
+    ] = None,
+    alphas: Annotated[
+        list[float] | None,
+        typer.Option(
+            "--alpha",
+            help="Coefficient for full gamut, broad grid and palette (repeatable; default 1.1 "
+            "and 1.4).",
+            show_default=False,
+        ),
+    ] = None,
+    out: Annotated[
+        Path | None,
+        typer.Option(
+            "--out",
+            help="Directory for results.json, report.md and the sweep figures.",
+            file_okay=False,
+        ),
+    ] = None,
+    quick: Annotated[
+        bool, typer.Option("--quick", help="Small grids (seconds, not the paper's sizes).")
+    ] = False,
+    output_format: Annotated[
+        ReproduceFormat,
+        typer.Option("--format", help="What to print on stdout."),
+    ] = ReproduceFormat.TABLE,
+) -> None:
+    """Reproduce the paper's numerical evaluation (Section 4) exactly and fast."""
+    if out is not None and out.exists() and not out.is_dir():
+        raise UsageError(f"--out {out} exists and is not a directory")
+    theme_path = default_theme_path() if theme is None else theme
+    if not theme_path.is_file():
+        raise UsageError(f"theme file {theme_path} not found")
+    loaded = load_theme(theme_path)
+    run = _run_with_progress(
+        {
+            "theme": loaded,
+            "only": only or (),
+            "alphas": alphas or (1.1, 1.4),
+            "quick": quick,
+        },
+        Console(stderr=True),
+    )
+    stdout = Console(highlight=False, emoji=False)
+    match output_format:
+        case ReproduceFormat.TABLE:
+            for table in _tables(run):
+                stdout.print(table)
+        case ReproduceFormat.JSON:
+            stdout.out(render_json(run), end="")
+        case ReproduceFormat.MARKDOWN:
+            stdout.out(render_markdown(run), end="")
+        case _:
+            assert_never(output_format)
+    if out is not None:
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "results.json").write_text(render_json(run), encoding="utf-8")
+        (out / "report.md").write_text(render_markdown(run), encoding="utf-8")
+        if run.sweep is not None:
+            write_figures(run.sweep, out)

@@ -1,0 +1,384 @@
+"""Renderers of a :class:`~alpha_audit.reproduce.run.Reproduction`: JSON and Markdown.
+
+Pure functions of the result: no printing, no clock, stable order.  The JSON
+schema ``alpha-audit.reproduce/1`` is documented in ``docs/reproduce.md``;
+numbers are unrounded.  The Markdown report puts the paper's printed values
+beside ours and says, per value, whether it is comparable in digits and
+whether ours matches to every printed digit.
+"""
+
+from __future__ import annotations
+
+import json
+from importlib.metadata import PackageNotFoundError, version
+from typing import Any
+
+from alpha_audit.reproduce.experiments import ContrastChange
+from alpha_audit.reproduce.paper import (
+    PAPER,
+    WORST_BACKGROUND,
+    WORST_SOURCE,
+    PaperValue,
+    matches_printed,
+)
+from alpha_audit.reproduce.run import Reproduction
+
+__all__ = ["SCHEMA", "alpha_key", "render_json", "render_markdown", "to_json_dict"]
+
+SCHEMA = "alpha-audit.reproduce/1"
+
+
+def alpha_key(alpha: float) -> str:
+    """JSON key of a coefficient: ``str(float)``, e.g. ``"1.1"``, ``"1.0"``.
+
+    >>> alpha_key(1.1), alpha_key(1)
+    ('1.1', '1.0')
+    """
+    return str(float(alpha))
+
+
+def _tool_version() -> str:
+    try:
+        return version("alpha-audit")
+    except PackageNotFoundError:  # running from a source tree without metadata
+        return "unknown"
+
+
+def _change(change: ContrastChange | None) -> dict[str, Any] | None:
+    return None if change is None else change.as_dict()
+
+
+def to_json_dict(run: Reproduction) -> dict[str, Any]:
+    """The ``alpha-audit.reproduce/1`` document as plain Python data."""
+    theme = run.theme
+    doc: dict[str, Any] = {
+        "schema": SCHEMA,
+        "tool": {"name": "alpha-audit", "version": _tool_version()},
+        "quick": run.quick,
+        "alphas": list(run.alphas),
+        "theme": {
+            "name": theme.name,
+            "path": None if theme.path is None else str(theme.path),
+            "threshold": theme.threshold,
+            "canvases": [
+                {"name": c.name, "color": c.color, "mode": c.mode} for c in theme.canvases
+            ],
+        },
+    }
+    if run.broad_grid is not None:
+        first = run.broad_grid[0]
+        section: dict[str, Any] = {
+            "source_levels": first.source_levels,
+            "background_levels": first.background_levels,
+            "combinations": first.combinations,
+        }
+        for r in run.broad_grid:
+            section[alpha_key(r.alpha)] = {
+                "increase": r.increase,
+                "decrease": r.decrease,
+                "unchanged": r.unchanged,
+                "loss_le_0_25": r.loss_le_0_25,
+                "increase_pct": r.increase_pct,
+                "decrease_pct": r.decrease_pct,
+                "max_loss": r.max_loss,
+                "loss_le_0_25_pct": r.loss_le_0_25_pct,
+                "worst": {
+                    "source": list(r.worst_source),
+                    "background": list(r.worst_background),
+                    "contrast": {alpha_key(a): cr for a, cr in r.worst_contrast.items()},
+                },
+            }
+        doc["broad_grid"] = section
+    if run.full_gamut is not None:
+        first_fg = run.full_gamut[0]
+        fg: dict[str, Any] = {"levels": first_fg.levels, "threshold": first_fg.threshold}
+        for r in run.full_gamut:
+            fg[alpha_key(r.alpha)] = {
+                "all": _change(r.total),
+                "light": _change(r.group("light")),
+                "dark": _change(r.group("dark")),
+                "canvases": [
+                    {"name": c.name, "color": c.color, "mode": c.mode} | c.change.as_dict()
+                    for c in r.canvases
+                ],
+            }
+        doc["full_gamut"] = fg
+    if run.sweep is not None:
+        s = run.sweep
+        doc["sweep"] = {
+            "levels": s.levels,
+            "pairs": s.pairs,
+            "seed": s.seed,
+            "alphas": list(s.alphas),
+            "mean_change": {k: list(v) for k, v in s.mean_change.items()},
+            "decrease_share": {k: list(v) for k, v in s.decrease_share.items()},
+            "collision_rate": {k: list(v) for k, v in s.collision_rate.items()},
+        }
+    if run.palette is not None:
+        p = run.palette
+        pal: dict[str, Any] = {"palette": list(p.palette), "combinations": p.combinations}
+        for a in p.alphas:
+            pal[alpha_key(a)] = {
+                "smaller": p.smaller[a],
+                "collisions": p.collisions[a],
+                "smaller_per_canvas": list(p.smaller_per_canvas[a]),
+                "collisions_per_canvas": list(p.collisions_per_canvas[a]),
+            }
+        pal["random"] = {
+            "pairs": p.random_pairs,
+            "seed": p.seed,
+            "combinations": p.random_combinations,
+            "collisions": {alpha_key(a): n for a, n in p.random_collisions.items()},
+        }
+        doc["palette"] = pal
+    doc["paper"] = {
+        experiment: {
+            group: {
+                name: {
+                    "value": v.value,
+                    "decimals": v.decimals,
+                    "comparable": v.comparable,
+                    "where": v.where,
+                }
+                for name, v in values.items()
+            }
+            for group, values in groups.items()
+        }
+        for experiment, groups in PAPER.items()
+    }
+    return doc
+
+
+def render_json(run: Reproduction) -> str:
+    """``to_json_dict`` as indented JSON text (trailing newline)."""
+    return json.dumps(to_json_dict(run), indent=2, allow_nan=False) + "\n"
+
+
+# --------------------------------------------------------------------------- Markdown
+
+
+def _fmt(value: float, decimals: int) -> str:
+    return f"{value:,.{decimals}f}"
+
+
+def _row(label: str, ours: float | None, printed: PaperValue | None, decimals: int = 4) -> str:
+    if printed is None:
+        shown = "—" if ours is None else _fmt(ours, decimals)
+        return f"| {label} | — | {shown} | no printed value | — |"
+    d = printed.decimals
+    if ours is None:
+        return f"| {label} | {_fmt(printed.value, d)} | — | — | — |"
+    if printed.comparable:
+        verdict = "**yes**" if matches_printed(ours, printed) else "**NO**"
+        comparable = f"yes ({printed.where})"
+    else:
+        verdict = "n/a"
+        comparable = f"method only ({printed.where})"
+    shown = _fmt(ours, max(d, 4))
+    return f"| {label} | {_fmt(printed.value, d)} | {shown} | {comparable} | {verdict} |"
+
+
+_HEADER = [
+    "| Quantity | Paper | Ours | Comparable in digits? | Matches every printed digit? |",
+    "|---|---:|---:|---|---|",
+]
+
+
+def _broad_section(run: Reproduction) -> list[str]:
+    assert run.broad_grid is not None
+    first = run.broad_grid[0]
+    lines = [
+        "## Broad grid (Table 1, Section 4.2)",
+        "",
+        f"{first.source_levels}^3 sources x {first.background_levels}^3 backgrounds, uniform in "
+        f"encoded sRGB with endpoints; {first.combinations:,} combinations per alpha.  Depends on "
+        "nothing the paper leaves out: comparable to every printed digit at the paper's grid "
+        "sizes.",
+        "",
+        *_HEADER,
+    ]
+    paper_grid = first.source_levels == 17 and first.background_levels == 33
+    for r in run.broad_grid:
+        key = alpha_key(r.alpha)
+        printed = PAPER["broad_grid"].get(key, {}) if paper_grid else {}
+        lines += [
+            _row(f"alpha {key}: increase %", r.increase_pct, printed.get("increase_pct")),
+            _row(f"alpha {key}: decrease %", r.decrease_pct, printed.get("decrease_pct")),
+            _row(f"alpha {key}: maximum loss", r.max_loss, printed.get("max_loss")),
+            _row(
+                f"alpha {key}: decreases with loss <= 0.25, %",
+                r.loss_le_0_25_pct,
+                printed.get("loss_le_0_25_pct"),
+            ),
+            _row(
+                f"alpha {key}: worst case, contrast at 1",
+                r.worst_contrast[1.0],
+                printed.get("worst_contrast_1.0"),
+            ),
+            _row(
+                f"alpha {key}: worst case, contrast at {key}",
+                r.worst_contrast[r.alpha],
+                printed.get(f"worst_contrast_{key}"),
+            ),
+        ]
+    lines.append("")
+    for r in run.broad_grid:
+        same = r.worst_source == WORST_SOURCE and r.worst_background == WORST_BACKGROUND
+        verdict = (
+            ("the same as" if same else "NOT the same as") if paper_grid else "on a grid unlike"
+        )
+        contrasts = " -> ".join(
+            f"{cr:.4f} (alpha {alpha_key(a)})" for a, cr in r.worst_contrast.items()
+        )
+        lines.append(
+            f"- alpha {alpha_key(r.alpha)}: largest loss for source sRGB {r.worst_source} on "
+            f"{r.worst_background}, {verdict} the paper's (0, 0, 0.8125) on (1, 1, 0); "
+            f"contrast {contrasts}."
+        )
+    return [*lines, ""]
+
+
+def _full_gamut_section(run: Reproduction) -> list[str]:
+    assert run.full_gamut is not None
+    first = run.full_gamut[0]
+    lines = [
+        "## Full gamut (Section 4.2, Table 1)",
+        "",
+        f"All {first.levels}^3 sources on the {len(first.canvases)} canvases of theme "
+        f"`{first.theme}`.  The paper does not publish its sixteen canvases, so these figures are "
+        "comparable in method only.",
+        "",
+        *_HEADER,
+    ]
+    for r in run.full_gamut:
+        key = alpha_key(r.alpha)
+        printed = PAPER["full_gamut"].get(key, {})
+        t = r.total
+        for label, name in (
+            ("increase %", "increase_pct"),
+            ("decrease %", "decrease_pct"),
+            ("unchanged %", "unchanged_pct"),
+            ("mean change", "mean_change"),
+            (f"newly reach {r.threshold:g}:1, % of all", "newly_reach_pct"),
+            ("Difference mean change", "mean_difference_change"),
+            ("Exclusion mean change", "mean_exclusion_change"),
+        ):
+            lines.append(_row(f"alpha {key}: {label}", getattr(t, name), printed.get(name)))
+    lines += ["", "Per canvas:", ""]
+    lines += [
+        "| alpha | canvas | mode | increase % | decrease % | unchanged % | mean change "
+        "| newly reach % |",
+        "|---|---|---|---:|---:|---:|---:|---:|",
+    ]
+    for r in run.full_gamut:
+        rows = [(c.name, c.mode, c.change) for c in r.canvases]
+        rows += [(f"*{m} group*", m, r.group(m)) for m in ("light", "dark") if r.group(m)]
+        for name, mode, c in rows:
+            assert c is not None
+            lines.append(
+                f"| {alpha_key(r.alpha)} | {name} | {mode} | {c.increase_pct:.4f} | "
+                f"{c.decrease_pct:.4f} | {c.unchanged_pct:.4f} | {c.mean_change:.4f} | "
+                f"{c.newly_reach_pct:.4f} |"
+            )
+    return [*lines, ""]
+
+
+def _sweep_section(run: Reproduction) -> list[str]:
+    assert run.sweep is not None
+    s = run.sweep
+    lines = [
+        "## Coefficient sweep (Figures 3 and 6)",
+        "",
+        f"alpha in [{s.alphas[0]:g}, {s.alphas[-1]:g}] ({len(s.alphas)} values) on a {s.levels}^3 "
+        f"source grid; collision rate over {s.pairs:,} distinct random 8-bit source pairs (seed "
+        f"{s.seed}).  Light and dark groups each weight their canvases equally.  The paper prints "
+        "no sweep values and does not publish its canvases or pair construction: figures only, "
+        "comparable in shape, not in digits.  See `sweep-1-2.png` and `sweep-0-2.png`.",
+        "",
+        "| alpha | mean change light | mean change dark | decreases light | decreases dark | "
+        "collisions light | collisions dark |",
+        "|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+    for i, a in enumerate(s.alphas):
+        if abs(a * 10 - round(a * 10)) > 1e-9:  # tabulate every 0.1, plot every point
+            continue
+        cells = [
+            s.mean_change.get("light"),
+            s.mean_change.get("dark"),
+            s.decrease_share.get("light"),
+            s.decrease_share.get("dark"),
+            s.collision_rate.get("light"),
+            s.collision_rate.get("dark"),
+        ]
+        shown = " | ".join("—" if c is None else f"{c[i]:.4f}" for c in cells)
+        lines.append(f"| {a:g} | {shown} |")
+    return [*lines, ""]
+
+
+def _palette_section(run: Reproduction) -> list[str]:
+    assert run.palette is not None
+    p = run.palette
+    counts = PAPER["palette"]["counts"]
+    lines = [
+        "## Palette separation (Section 4.3)",
+        "",
+        f"All {len(p.palette) * (len(p.palette) - 1) // 2} pairs of {', '.join(p.palette)} on each "
+        f"canvas ({p.combinations} combinations); {p.random_pairs:,} random pairs on each canvas "
+        f"({p.random_combinations:,} combinations).  Counts of combinations are comparable; "
+        "smaller-CIEDE2000 and collision counts depend on the unpublished canvases and pair "
+        "construction and are comparable in method only.  The paper's random collisions "
+        "(617 -> 15,098) are read as alpha 1.1 -> 1.4; at alpha 1.0 distinct 8-bit sources "
+        "cannot collide.",
+        "",
+        *_HEADER,
+        _row("palette combinations", p.combinations, counts["combinations"], 0),
+        _row("random combinations", p.random_combinations, counts["random_combinations"], 0),
+    ]
+    for a in p.alphas:
+        key = alpha_key(a)
+        printed = PAPER["palette"].get(key, {})
+        lines += [
+            _row(f"alpha {key}: smaller CIEDE2000", p.smaller[a], printed.get("smaller"), 0),
+            _row(f"alpha {key}: collisions", p.collisions[a], printed.get("collisions"), 0),
+        ]
+    for a in p.random_alphas:
+        key = alpha_key(a)
+        printed = PAPER["palette"].get(key, {})
+        lines.append(
+            _row(
+                f"alpha {key}: random-pair collisions",
+                p.random_collisions[a],
+                printed.get("random_collisions"),
+                0,
+            )
+        )
+    return [*lines, ""]
+
+
+def render_markdown(run: Reproduction) -> str:
+    """The report: per experiment, the paper's printed values beside ours."""
+    lines = [
+        "# alpha-audit reproduce: Opacity Is Not Just Opacity, Section 4",
+        "",
+        f"Theme `{run.theme.name}` ({len(run.theme.canvases)} canvases); "
+        f"alphas {', '.join(alpha_key(a) for a in run.alphas)}"
+        + (
+            "; **quick grids** (not the paper's sizes)."
+            if run.quick
+            else "; the paper's grid sizes."
+        ),
+        "",
+        "'Comparable in digits' marks values that depend only on what the paper specifies; "
+        "for those, 'Matches' says whether ours rounds to the printed value.  Other values are "
+        "shown for comparison of method and magnitude, never as a match.",
+        "",
+    ]
+    if run.broad_grid is not None:
+        lines += _broad_section(run)
+    if run.full_gamut is not None:
+        lines += _full_gamut_section(run)
+    if run.sweep is not None:
+        lines += _sweep_section(run)
+    if run.palette is not None:
+        lines += _palette_section(run)
+    return "\n".join(lines).rstrip() + "\n"

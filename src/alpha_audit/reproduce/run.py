@@ -1,0 +1,126 @@
+"""Run a selection of the experiments with the paper's (or quick) settings."""
+
+from __future__ import annotations
+
+import enum
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass
+from typing import assert_never
+
+from alpha_audit.errors import UsageError
+from alpha_audit.model import Theme
+from alpha_audit.reproduce.experiments import (
+    BroadGridResult,
+    FullGamutResult,
+    PaletteResult,
+    SweepResult,
+    broad_grid,
+    full_gamut,
+    palette_separation,
+    sweep,
+    sweep_alphas,
+)
+
+__all__ = ["Experiment", "Reproduction", "Settings", "reproduce"]
+
+
+class Experiment(enum.StrEnum):
+    """The four numerical experiments, in the paper's order."""
+
+    FULL_GAMUT = "full-gamut"
+    BROAD_GRID = "broad-grid"
+    SWEEP = "sweep"
+    PALETTE = "palette"
+
+
+@dataclass(frozen=True)
+class Settings:
+    """Grid sizes; :meth:`paper` are the paper's, :meth:`quick` small ones for tests."""
+
+    full_gamut_levels: int
+    source_levels: int
+    background_levels: int
+    sweep_levels: int
+    sweep_step: float
+    pairs: int
+
+    @classmethod
+    def paper(cls) -> Settings:
+        """256**3 sources, 17**3 x 33**3 broad grid, 65**3 sweep step 0.025, 65,536 pairs."""
+        return cls(256, 17, 33, 65, 0.025, 65536)
+
+    @classmethod
+    def quick(cls) -> Settings:
+        """Small grids: 33**3 sources, 5**3 x 9**3 broad grid, 17**3 sweep step 0.1, 4,096 pairs."""
+        return cls(33, 5, 9, 17, 0.1, 4096)
+
+
+@dataclass(frozen=True)
+class Reproduction:
+    """Results of one run; experiments not selected are ``None``."""
+
+    theme: Theme
+    settings: Settings
+    quick: bool
+    alphas: tuple[float, ...]
+    full_gamut: tuple[FullGamutResult, ...] | None = None
+    broad_grid: tuple[BroadGridResult, ...] | None = None
+    sweep: SweepResult | None = None
+    palette: PaletteResult | None = None
+
+
+def reproduce(
+    theme: Theme,
+    only: Iterable[Experiment] = (),
+    *,
+    alphas: Iterable[float] = (1.1, 1.4),
+    quick: bool = False,
+    progress: Callable[[Experiment, float], None] | None = None,
+) -> Reproduction:
+    """Run the selected experiments (all when ``only`` is empty) on ``theme``.
+
+    ``alphas`` apply to the full gamut, broad grid and palette experiments;
+    the sweep always covers [0, 2].  ``progress(experiment, fraction)``
+    reports completed fractions.
+    """
+    selected = set(only) or set(Experiment)
+    alphas = tuple(float(a) for a in alphas)
+    if not alphas:
+        raise UsageError("give at least one --alpha")
+    settings = Settings.quick() if quick else Settings.paper()
+    results: dict[str, object] = {}
+    for experiment in Experiment:
+        if experiment not in selected:
+            continue
+
+        def step(fraction: float, experiment: Experiment = experiment) -> None:
+            if progress is not None:
+                progress(experiment, fraction)
+
+        match experiment:
+            case Experiment.FULL_GAMUT:
+                results["full_gamut"] = full_gamut(
+                    theme, alphas, levels=settings.full_gamut_levels, progress=step
+                )
+            case Experiment.BROAD_GRID:
+                results["broad_grid"] = broad_grid(
+                    alphas,
+                    source_levels=settings.source_levels,
+                    background_levels=settings.background_levels,
+                    progress=step,
+                )
+            case Experiment.SWEEP:
+                results["sweep"] = sweep(
+                    theme,
+                    sweep_alphas(0.0, 2.0, settings.sweep_step),
+                    levels=settings.sweep_levels,
+                    pairs=settings.pairs,
+                    progress=step,
+                )
+            case Experiment.PALETTE:
+                results["palette"] = palette_separation(
+                    theme, alphas, pairs=settings.pairs, progress=step
+                )
+            case _:
+                assert_never(experiment)
+    return Reproduction(theme, settings, quick, alphas, **results)  # type: ignore[arg-type]
