@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import numpy as np
@@ -170,6 +171,9 @@ def test_write_refuses_to_overwrite(tmp_path, example):
         write_sheet(sheet, tmp_path)
     write_sheet(sheet, tmp_path, overwrite=True)
     assert [p.name for p in tmp_path.iterdir()] == [spec.name]  # no temporary files left
+    umask = os.umask(0o022)
+    os.umask(umask)
+    assert path.stat().st_mode & 0o777 == 0o666 & ~umask  # an ordinary file, not mkstemp's 0600
 
 
 def test_near_source_canvases_follow_the_paper():

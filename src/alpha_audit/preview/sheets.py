@@ -574,11 +574,18 @@ def write_sheet(sheet: Sheet, folder: str | Path, *, overwrite: bool = False) ->
     try:
         with os.fdopen(fd, "wb") as fh:
             sheet.image.save(fh, format="PNG", compress_level=_PNG_LEVEL)
+        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600; a sheet is an ordinary file
         os.replace(tmp, target)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
     return target
+
+
+def _umask() -> int:
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
 
 
 def check_writable(targets: Sequence[Path], *, overwrite: bool) -> None:
