@@ -29,8 +29,8 @@ VIBRANT = ("#ee7733", "#0077bb", "#33bbee", "#ee3377", "#cc3311", "#009988", "#b
 def encoded_levels(n: int) -> NDArray[np.float64]:
     """``n`` per-channel levels uniform in encoded sRGB, endpoints included.
 
-    >>> encoded_levels(17)[13]
-    np.float64(0.8125)
+    >>> float(encoded_levels(17)[13])
+    0.8125
     """
     if n < 2:
         raise ValueError(f"a grid needs at least 2 levels per channel, got {n}")
