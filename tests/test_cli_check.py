@@ -130,3 +130,15 @@ def test_help_teaches() -> None:
     assert "Exit codes" in top.stdout and "check" in top.stdout and "pair" in top.stdout
     sub = runner.invoke(app, ["check", "--help"])
     assert "Example" in sub.stdout and "--alpha" in sub.stdout
+
+
+def test_reports_get_ordinary_permissions(tmp_path: Path, paths: tuple[str, str]) -> None:
+    import os
+
+    target = tmp_path / "report.json"
+    old = os.umask(0o022)
+    try:
+        assert runner.invoke(app, ["check", *paths, "-f", "json", "-o", str(target)]).exit_code == 0
+    finally:
+        os.umask(old)
+    assert target.stat().st_mode & 0o777 == 0o644

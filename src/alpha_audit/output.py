@@ -26,6 +26,9 @@ def write_text(path: str | Path, text: str, *, overwrite: bool = False) -> Path:
     if not folder.is_dir():
         raise UsageError(f"folder {folder} does not exist", path=target)
     fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", dir=folder)
+    umask = os.umask(0)
+    os.umask(umask)
+    os.chmod(tmp, 0o666 & ~umask)  # mkstemp creates 0600; a report is an ordinary file
     try:
         with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
             fh.write(text)
