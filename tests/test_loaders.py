@@ -161,6 +161,7 @@ MANIFEST_ERRORS = [
         r"duplicate icon name 'alert'",
     ),
     ("icons: svg/*.svg\ncolor:\n", r"quote it"),
+    ("icons: svg/*.svg\n", r"icon 'alert' has no colour"),
 ]
 
 
@@ -170,6 +171,15 @@ def test_manifest_errors(project: Path, text: str, message: str) -> None:
     with pytest.raises(InputError, match=message) as info:
         load_iconset(path)
     assert "\n" not in str(info.value) and "iconset.yaml" in str(info.value)
+
+
+def test_no_manifest_colour_when_every_icon_has_one(project: Path) -> None:
+    path = write(
+        project,
+        "icons/iconset.yaml",
+        "icons:\n  - {file: svg/alert.svg, color: '#ee7733'}\n  - {file: svg/bell.svg, color: red}\n",
+    )
+    assert [i.color for i in load_iconset(path).icons] == ["#ee7733", "#ff0000"]
 
 
 def test_symlink_escaping_the_root_is_refused(

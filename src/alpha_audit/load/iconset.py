@@ -185,12 +185,11 @@ def iconset_from_doc(doc: YamlDoc, *, root: Path) -> IconSet:
     if "color" in data and data["color"] is None:
         read_color(doc, ("color",), None)  # raises the "quote it" hint
     color_spec = data.get("color", "cycle" if m.palette else None)
-    if color_spec is None:
-        raise doc.error(("color",), "no colour given; set color: or a palette to cycle")
     cycle = isinstance(color_spec, str) and color_spec.strip() == "cycle"
     if cycle and not m.palette:
         raise doc.error(("color",), "color: cycle needs a non-empty palette:")
-    default = None if cycle else m.color(("color",), color_spec)
+    # No manifest-wide colour is fine as long as every icon brings its own.
+    default = None if cycle or color_spec is None else m.color(("color",), color_spec)
     palette_cycle = itertools.cycle(m.palette.items())
 
     overrides = read_mapping(doc, ("overrides",), data.get("overrides", {}), "overrides by icon")
@@ -206,11 +205,12 @@ def iconset_from_doc(doc: YamlDoc, *, root: Path) -> IconSet:
                 "give one a name:",
             )
         seen[icon_name] = where
+        color: str | None
         if cycle:
             pname, pcolor = next(palette_cycle)
             color, color_name = pcolor, pname
         else:
-            color, color_name = default
+            color, color_name = default if default else (None, None)
         alpha = default_alpha
         color_keys: KeyPath = ("color",)
         alpha_keys: KeyPath = ("alpha",)
@@ -229,6 +229,12 @@ def iconset_from_doc(doc: YamlDoc, *, root: Path) -> IconSet:
             if "alpha" in override:
                 alpha = m.alpha((*okeys, "alpha"), override["alpha"])
                 alpha_keys = (*okeys, "alpha")
+        if color is None:
+            raise doc.error(
+                keys,
+                f"icon {icon_name!r} has no colour; set a manifest-wide color:, a palette: "
+                "to cycle, or color: on the icon",
+            )
         icons.append(
             Icon(
                 icon_name,
