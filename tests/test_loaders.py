@@ -177,7 +177,9 @@ def test_no_manifest_colour_when_every_icon_has_one(project: Path) -> None:
     path = write(
         project,
         "icons/iconset.yaml",
-        "icons:\n  - {file: svg/alert.svg, color: '#ee7733'}\n  - {file: svg/bell.svg, color: red}\n",
+        "icons:\n"
+        "  - {file: svg/alert.svg, color: '#ee7733'}\n"
+        "  - {file: svg/bell.svg, color: red}\n",
     )
     assert [i.color for i in load_iconset(path).icons] == ["#ee7733", "#ff0000"]
 
