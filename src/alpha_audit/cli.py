@@ -6,7 +6,6 @@ Exit codes: 0 the audit ran (and the gate passed), 1 the gate failed,
 
 from __future__ import annotations
 
-import json
 import math
 import sys
 from collections.abc import Callable, Iterator
@@ -18,7 +17,6 @@ from typing import Annotated, Any
 import typer
 from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-from rich.table import Table
 from rich.text import Text
 from typer.core import TyperGroup
 
@@ -154,65 +152,9 @@ app.command("suggest")(suggest_command)
 from alpha_audit.cli_preview import preview_command  # noqa: E402
 
 app.command("preview")(preview_command)
+from alpha_audit.cli_pair import pair_command  # noqa: E402
 
-
-@app.command("pair")
-def pair_command(
-    color: Annotated[
-        str, typer.Argument(help="Source colour: #rgb, #rrggbb, rgb(r g b) or a CSS name.")
-    ],
-    on: Annotated[
-        list[str],
-        typer.Option("--on", help="Background colour (repeatable).", show_default=False),
-    ],
-    alpha: Annotated[
-        list[float] | None,
-        typer.Option("--alpha", "-a", help="Coefficient (repeatable). [default: 1, 1.1, 1.4]"),
-    ] = None,
-    fmt: Annotated[
-        str, typer.Option("--format", "-f", help="table or json.", case_sensitive=False)
-    ] = "table",
-) -> None:
-    """Show one colour on a few backgrounds at a few coefficients.
-
-    Example: [bold]alpha-audit pair "#ee7733" --on white --on "#0d1117" -a 1 -a 1.2[/]
-    """
-    from alpha_audit.pair import pair_table
-
-    alphas = alpha or [1.0, 1.1, 1.4]
-    for a in alphas:
-        require_finite(a, "--alpha")
-    if fmt not in ("table", "json"):
-        raise UsageError(f"--format {fmt!r} is not supported; use table or json")
-    rows = pair_table(color, on, alphas)
-    if fmt == "json":
-        from dataclasses import asdict
-
-        doc = {"schema": "alpha-audit.pair/1", "color": color, "rows": [asdict(r) for r in rows]}
-        emit(json.dumps(doc, indent=2, allow_nan=False) + "\n", None, False)
-        return
-    table = Table(title=f"{color} on {len(on)} background(s)", title_justify="left")
-    for name, justify in [
-        ("background", "left"),
-        ("α", "right"),
-        ("output", "left"),
-        ("contrast", "right"),
-        ("gain", "right"),
-        ("ΔE00 vs Cs", "right"),
-        ("clipped", "left"),
-    ]:
-        table.add_column(name, justify=justify, no_wrap=True)
-    for r in rows:
-        table.add_row(
-            Text(r.background, style=f"on {r.background}"),
-            f"{r.alpha:g}",
-            Text(r.output, style=f"on {r.output}"),
-            f"{r.contrast_ref:.3f} → {r.contrast:.3f}",
-            Text(f"{r.gain:+.3f}", style="green" if r.gain >= 0 else "red"),
-            f"{r.delta_e_from_source:.2f}",
-            "yes" if r.clipped else "",
-        )
-    _stdout().print(table)
+app.command("pair")(pair_command)
 
 
 def main() -> None:

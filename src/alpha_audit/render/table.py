@@ -179,7 +179,7 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     for result in report.audits:
         parts += [check_renderable(result), Text("")]
     parts.append(gate_renderable(report.gate))
-    return _to_text(Group(*parts), options)
+    return to_text(Group(*parts), options)
 
 
 def render_check(result: AuditResult | CheckReport, options: RenderOptions) -> str:
@@ -187,7 +187,7 @@ def render_check(result: AuditResult | CheckReport, options: RenderOptions) -> s
     return render_report(as_report(result), options)
 
 
-def _to_text(renderable: RenderableType, options: RenderOptions) -> str:
+def to_text(renderable: RenderableType, options: RenderOptions) -> str:
     """Render at ``options.width`` columns, with or without ANSI colour."""
     buffer = StringIO()
     console = Console(

@@ -1,0 +1,51 @@
+"""``alpha-audit pair``: one colour on a few backgrounds at a few coefficients."""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+import typer
+
+__all__ = ["pair_command"]
+
+
+def pair_command(
+    color: Annotated[
+        str, typer.Argument(help="Source colour: #rgb, #rrggbb, rgb(r g b) or a CSS name.")
+    ],
+    on: Annotated[
+        list[str],
+        typer.Option("--on", help="Background colour (repeatable).", show_default=False),
+    ],
+    alpha: Annotated[
+        list[float] | None,
+        typer.Option("--alpha", "-a", help="Coefficient (repeatable). [default: 1, 1.1, 1.4]"),
+    ] = None,
+    fmt: Annotated[
+        str, typer.Option("--format", "-f", help="table or json.", case_sensitive=False)
+    ] = "table",
+) -> None:
+    """Show one colour on a few backgrounds at a few coefficients.
+
+    Output colour (8-bit hex), contrast at a = 1 -> at a, the gain, CIEDE2000 from the
+    source colour, and whether any channel clipped.
+
+    Example: [bold]alpha-audit pair "#ee7733" --on white --on "#0d1117" -a 1 -a 1.2[/]
+    """
+    from alpha_audit.cli import emit, require_finite, stdout_options
+    from alpha_audit.errors import UsageError
+    from alpha_audit.pair import pair_table
+    from alpha_audit.render.pair import pair_json, pair_table_text
+
+    alphas = alpha or [1.0, 1.1, 1.4]
+    for a in alphas:
+        require_finite(a, "--alpha")
+    if fmt.lower() not in ("table", "json"):
+        raise UsageError(f"--format {fmt!r} is not supported; use table or json")
+    rows = pair_table(color, on, alphas)
+    text = (
+        pair_json(color, rows)
+        if fmt.lower() == "json"
+        else pair_table_text(color, rows, stdout_options())
+    )
+    emit(text, None, False)
