@@ -6,15 +6,11 @@ Channels are on the last axis; the leading shape is kept.
 from __future__ import annotations
 
 import warnings
+from functools import cache
+from types import ModuleType
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-
-with warnings.catch_warnings():
-    # colour-science announces its optional SciPy/Matplotlib features at import.
-    warnings.simplefilter("ignore")
-    from colour import XYZ_to_Lab
-    from colour.difference import delta_E_CIE2000
 
 __all__ = [
     "CONTRAST_TOLERANCE",
@@ -52,6 +48,17 @@ LINEAR_SRGB_TO_XYZ = np.array(
 D65_XY = np.array([0.3127, 0.3290])
 
 
+@cache
+def _colour() -> ModuleType:
+    """colour-science, imported on first use: its package import costs ~0.35 s."""
+    with warnings.catch_warnings():
+        # colour-science announces its optional SciPy/Matplotlib features at import.
+        warnings.simplefilter("ignore")
+        import colour
+
+    return colour
+
+
 def relative_luminance(linear: ArrayLike) -> NDArray[np.float64]:
     """WCAG relative luminance ``0.2126 R + 0.7152 G + 0.0722 B`` of linear sRGB.
 
@@ -85,12 +92,12 @@ def linear_to_lab(linear: ArrayLike) -> NDArray[np.float64]:
     """CIELAB (D65) of linear sRGB via the CSS Color 4 XYZ matrix."""
     c = np.asarray(linear, dtype=np.float64)
     xyz = c @ LINEAR_SRGB_TO_XYZ.T
-    return np.asarray(XYZ_to_Lab(xyz, D65_XY), dtype=np.float64)
+    return np.asarray(_colour().XYZ_to_Lab(xyz, D65_XY), dtype=np.float64)
 
 
 def delta_e_2000_lab(lab1: ArrayLike, lab2: ArrayLike) -> NDArray[np.float64]:
     """CIEDE2000 of two CIELAB colours (colour-science's implementation)."""
-    return np.asarray(delta_E_CIE2000(lab1, lab2), dtype=np.float64)
+    return np.asarray(_colour().difference.delta_E_CIE2000(lab1, lab2), dtype=np.float64)
 
 
 def delta_e_2000(linear1: ArrayLike, linear2: ArrayLike) -> NDArray[np.float64]:
