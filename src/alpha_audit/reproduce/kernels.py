@@ -320,18 +320,28 @@ def _count_rows(
     qo: NDArray,
     yb: NDArray,
     rank_tables: list[tuple[NDArray, NDArray]],
-    thresholds: tuple[NDArray, NDArray],
+    thresholds: tuple[NDArray, ...],
+    quiet: NDArray,
     tol: float,
 ) -> NDArray:
     """(4, A, m) counts for a block of rows: increase, decrease, newly reach, exact evaluations.
 
     ``ps`` (m, R) and ``qs`` (m, C) are the source parts of m canvases, ``po``
-    (A, m, R) and ``qo`` (A, m, C) the outputs at A coefficients.
+    (A, m, R) and ``qo`` (A, m, C) the outputs at A coefficients; ``quiet``
+    (A, m) marks problems proven to have no change beyond ``tol``.
+
+    Along a row the columns split into: both below Yb ``[0, lo)``; output
+    exactly at Yb ``[ko, ko_eq)`` (contrast 1, so a decrease exactly when
+    the source's contrast exceeds a threshold: luminance thresholds ``keep``);
+    both above ``[hi, C)``; and at most one run on opposite sides, evaluated
+    one by one.  Rows with a near-tie in a same-side part are evaluated whole.
     """
     m, n_cols = qs.shape
-    low, high = thresholds
+    low, high, keep_low, keep_high = thresholds
     ks = first_at_or_above(ps, qs, yb)
     s1, s2 = first_at_or_above(ps, qs, low), first_at_or_above(ps, qs, high)
+    sk1, sk2 = first_at_or_above(ps, qs, keep_low), first_at_or_above(ps, qs, keep_high)
+    above_yb = np.nextafter(yb, np.inf)
     side = n_cols + 1
     base = (np.arange(m) * side * side)[:, np.newaxis]
     n_rows = ps.shape[1]
@@ -339,9 +349,15 @@ def _count_rows(
     all_rows = np.tile(np.arange(n_rows), m)
     result = np.zeros((4, po.shape[0], m), dtype=np.int64)
     for i, (po_a, qo_a, (sorted_dq, ranks)) in enumerate(zip(po, qo, rank_tables, strict=True)):
+        o1, o2 = first_at_or_above(po_a, qo_a, low), first_at_or_above(po_a, qo_a, high)
+        overlap = np.maximum(0, np.minimum(s2, o2) - np.maximum(s1, o1))
+        result[2, i] = ((s2 - s1) - overlap).sum(axis=1)
+        if quiet[i].all():
+            continue
         ko = first_at_or_above(po_a, qo_a, yb)
+        ko_eq = first_at_or_above(po_a, qo_a, above_yb)
         lo = np.minimum(ks, ko)
-        hi = np.maximum(ks, ko)
+        hi = np.maximum(ks, ko_eq)
         dp = po_a - ps
         j_hi = _searchsorted(sorted_dq, -dp + _BAND, "right")  # rank >= j_hi: dq > t
         j_lo = _searchsorted(sorted_dq, -dp - _BAND, "left")  # rank < j_lo: dq < t
@@ -350,17 +366,25 @@ def _count_rows(
         # Both below Yb: a lower output luminance raises the contrast.
         inc_below = lo - (np.take(flat, base + j_lo) - np.take(flat, lo_row + j_lo))
         dec_below = np.take(flat, base + j_hi) - np.take(flat, lo_row + j_hi)
-        # Both at or above Yb: a higher output luminance raises it.
+        # Both above Yb: a higher output luminance raises it.
         inc_above = np.take(flat, hi_row + j_hi)
         dec_above = (n_cols - hi) - np.take(flat, hi_row + j_lo)
+        # Output exactly at Yb: contrast 1, never an increase.
+        dec_equal = np.maximum(0, np.minimum(ko_eq, sk1) - ko) + np.maximum(
+            0, ko_eq - np.maximum(ko, sk2)
+        )
         uncertain = (lo - inc_below - dec_below) + (n_cols - hi - inc_above - dec_above)
-        tied = uncertain > 0
-        inc = np.where(tied, 0, inc_below + inc_above).sum(axis=1)
-        dec = np.where(tied, 0, dec_below + dec_above).sum(axis=1)
+        tied = (uncertain > 0) & ~quiet[i][:, np.newaxis]
+        fast = ~tied & ~quiet[i][:, np.newaxis]
+        inc = np.where(fast, inc_below + inc_above, 0).sum(axis=1)
+        dec = np.where(fast, dec_below + dec_above + dec_equal, 0).sum(axis=1)
 
-        # Opposite sides of Yb, combination by combination; rows with a near-tie in full.
-        start = np.where(tied, 0, lo).ravel()
-        width = np.where(tied, n_cols, hi).ravel() - start
+        # Opposite sides of Yb, combination by combination; tied rows in full.
+        opposite = ks < ko
+        start = np.where(opposite, ks, ko_eq)
+        stop = np.where(opposite, ko, ks)
+        start = np.where(tied, 0, start).ravel()
+        width = np.where(tied, n_cols, np.where(fast, stop, 0)).ravel() - start
         some = width > 0
         problem, row = all_problems[some], all_rows[some]
         start, width = start[some], width[some]
@@ -368,14 +392,34 @@ def _count_rows(
         col = np.repeat(start, width) + (np.arange(width.sum()) - offsets)
         problem, row = np.repeat(problem, width), np.repeat(row, width)
         exact_inc, exact_dec = _exact_changes(ps, qs, po_a, qo_a, yb, tol, problem, row, col)
-
-        o1, o2 = first_at_or_above(po_a, qo_a, low), first_at_or_above(po_a, qo_a, high)
-        overlap = np.maximum(0, np.minimum(s2, o2) - np.maximum(s1, o1))
         result[0, i] = inc + exact_inc
         result[1, i] = dec + exact_dec
-        result[2, i] = ((s2 - s1) - overlap).sum(axis=1)
         result[3, i] = np.bincount(problem, minlength=m)
     return result
+
+
+def _keep_thresholds(yb: NDArray, tol: float) -> tuple[NDArray, NDArray]:
+    """Luminances ``(low, high)``: ``1 - CR(Y, Yb) < -tol`` iff ``Y < low`` or ``Y >= high``.
+
+    The decision for an output exactly at ``Yb`` (contrast 1), on the float
+    expression of the straightforward implementation.
+    """
+
+    def below_keeps(y: NDArray) -> NDArray:
+        return (y >= yb) | (1.0 - contrast_from_luminance(y, yb) >= -tol)
+
+    def above_drops(y: NDArray) -> NDArray:
+        return (y >= yb) & (1.0 - contrast_from_luminance(y, yb) < -tol)
+
+    return (
+        _smallest_float(below_keeps, np.zeros_like(yb), yb),
+        _smallest_float(above_drops, yb, np.full_like(yb, 4.0)),
+    )
+
+
+# |dCR/dY| <= (Yb + .05) / .05**2 <= 420 for luminances in [0, 1]: a change in
+# luminance below tol / 420 cannot move the contrast ratio by tol.
+_CR_LIPSCHITZ = 420.0
 
 
 def change_counts(
@@ -401,7 +445,11 @@ def change_counts(
     if tol > 1e-8:
         raise ValueError("the tie band assumes a contrast tolerance of at most 1e-8")
     rank_tables = [_rank_table(qo_a - qs) for qo_a in qo]
-    low, high = reach_thresholds(yb, threshold)
+    thresholds = (*reach_thresholds(yb, threshold), *_keep_thresholds(yb, tol))
+    # Problems whose outputs are within rounding of their sources (alpha = 1):
+    # every change is provably within tol, so none is counted.
+    spread = np.abs(po - ps).max(axis=2) + np.abs(qo - qs).max(axis=2) + 1e-15
+    quiet = _CR_LIPSCHITZ * spread + 1e-13 < tol
 
     def block(pr: slice, rows: slice) -> NDArray:
         ranks = [(sorted_dq[pr], table[pr]) for sorted_dq, table in rank_tables]
@@ -412,7 +460,8 @@ def change_counts(
             qo[:, pr],
             yb[pr],
             ranks,
-            (low[pr], high[pr]),
+            tuple(t[pr] for t in thresholds),
+            quiet[:, pr],
             tol,
         )
 
