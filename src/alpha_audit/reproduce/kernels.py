@@ -44,9 +44,9 @@ __all__ = [
     "change_counts",
     "channel_tables",
     "contrast_sums",
-    "first_true",
+    "first_at_or_above",
     "luminance_parts",
-    "reach_intervals",
+    "reach_thresholds",
 ]
 
 _WR, _WG, _WB = LUMINANCE_WEIGHTS
@@ -81,23 +81,6 @@ def luminance_parts(tables: NDArray) -> tuple[NDArray, NDArray]:
     return p, _WB * tables[:, 2, :]
 
 
-def first_true(predicate: Callable[[NDArray], NDArray], n_cols: int, shape: tuple) -> NDArray:
-    """Per row, the first column in ``[0, n_cols]`` where a monotone predicate holds.
-
-    ``predicate(cols)`` takes an integer array of ``shape`` (valid columns) and
-    returns a boolean array of the same shape; it must be False then True along
-    the columns of each row.  Returns ``n_cols`` where it never holds.  A
-    branchless binary search: ``found`` counts the leading False columns.
-    """
-    found = np.zeros(shape, dtype=np.intp)
-    step = 1 << (int(n_cols).bit_length() - 1)
-    while step:
-        candidate = np.minimum(found + step, n_cols)
-        found += (candidate - found) * ~predicate(candidate - 1)
-        step >>= 1
-    return found
-
-
 def _take(table: NDArray, cols: NDArray) -> NDArray:
     """``table[i, cols[i, r]]`` for a (m, n) table and (m, R) column indices."""
     offsets = (np.arange(table.shape[0]) * table.shape[1])[:, np.newaxis]
@@ -110,9 +93,9 @@ def _bsearch(table: NDArray, p: NDArray | None, theta: NDArray, *, strict: bool)
 
     ``table`` (m, C) is non-decreasing per problem, ``p`` and ``theta`` are
     (m, R) or broadcast to it (``p=None`` searches ``table`` itself, i.e.
-    ``np.searchsorted``).  The specialised hot path of :func:`first_true`: the
-    table is padded with ``inf`` to a power of two so no step needs clamping,
-    and the search runs on flat indices.
+    ``np.searchsorted``).  A branchless binary search: the table is padded
+    with ``inf`` to a power of two so no step needs clamping, ``found`` counts
+    the leading columns that fail, and the search runs on flat indices.
     """
     m, n_cols = table.shape
     width = 1 << n_cols.bit_length()
@@ -250,16 +233,6 @@ def reach_thresholds(yb: NDArray, threshold: float) -> tuple[NDArray, NDArray]:
     low = _smallest_float(below_reaches, np.zeros_like(yb), yb)
     high = _smallest_float(above_fails, yb, np.full_like(yb, 4.0))
     return low, high
-
-
-def reach_intervals(p: NDArray, q: NDArray, yb: NDArray, threshold: float) -> tuple:
-    """Per row, ``[lo, hi)`` = the columns with ``CR(P + Q[b], Yb) < threshold``.
-
-    Q must be ascending per problem.  CR is decreasing below Yb and increasing
-    above it, so the set is one interval of columns.
-    """
-    low, high = reach_thresholds(yb, threshold)
-    return first_at_or_above(p, q, low), first_at_or_above(p, q, high)
 
 
 @dataclass(frozen=True)

@@ -174,7 +174,7 @@ def _row(label: str, ours: float | None, printed: PaperValue | None, decimals: i
     else:
         verdict = "n/a"
         comparable = f"method only ({printed.where})"
-    shown = _fmt(ours, max(d, 4))
+    shown = _fmt(ours, max(d, 4) if d else 0)  # counts stay integers
     return f"| {label} | {_fmt(printed.value, d)} | {shown} | {comparable} | {verdict} |"
 
 
