@@ -6,14 +6,16 @@ function of the result; the CLI decides width and colour.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable, Sequence
 from io import StringIO
 
 from rich import box
 from rich.console import Console, Group, RenderableType
+from rich.padding import Padding
 from rich.table import Table
 from rich.text import Text
 
-from alpha_audit.audit import AuditResult
+from alpha_audit.audit import AuditResult, Row
 from alpha_audit.gate import CheckReport, GateResult
 from alpha_audit.render import RenderOptions, as_report
 
@@ -54,70 +56,141 @@ def _summary_table(result: AuditResult) -> Table:
     return table
 
 
+def icons_label(names: Sequence[str], limit: int = 3) -> str:
+    """``a, b, c`` or ``a, b, c +4 more``: long icon lists stay on one line."""
+    head = ", ".join(names[:limit])
+    return head if len(names) <= limit else f"{head} +{len(names) - limit} more"
+
+
+def _grouped(result: AuditResult, rows: Iterable[Row]) -> list[tuple[Row, list[str]]]:
+    """Rows that differ only by icon (same canvas, source and alpha) merged, first-seen order.
+
+    Icons sharing a colour and coefficient get identical numbers on a canvas, so a
+    set of 300 icons in 7 colours reports 7 lines per canvas, not 300.
+    """
+    groups: dict[tuple[str, str, float], tuple[Row, list[str]]] = {}
+    for row in rows:
+        key = (row.canvas, row.source, row.alpha)
+        if key in groups:
+            groups[key][1].append(row.icon)
+        else:
+            groups[key] = (row, [row.icon])
+    return list(groups.values())
+
+
 def _findings(result: AuditResult) -> list[RenderableType]:
     out: list[RenderableType] = []
     rows = list(result.rows())
+    palette_names = {i.name: i.color_name for i in result.iconset.icons}
 
-    def section(title: str, items: list[str], style: str) -> None:
+    # (header, min width, max width); the last column takes what is left and is cut.
+    widths = {
+        "colour": (16, 18),
+        "α": (4, 6),
+        "canvas": (16, 24),
+        "contrast": (15, 15),
+        "contrast at α": (13, 13),
+        "sources": (16, 24),
+        "output": (7, 26),
+    }
+
+    def section(title: str, style: str, header: tuple[str, ...], items: list[tuple]) -> None:
+        """A titled one-line-per-finding table; long names are cut, never wrapped."""
         if not items:
             return
         out.append(Text(f"{title} ({len(items)})", style=f"bold {style}"))
-        for line in items[:MAX_FINDINGS]:
-            out.append(Text(f"  {line}"))
+        table = Table(box=None, pad_edge=False, show_header=True, header_style="dim")
+        for name in header:
+            low, high = widths.get(name, (8, None))
+            table.add_column(
+                name,
+                no_wrap=True,
+                overflow="ellipsis",
+                justify="right" if name.startswith("contrast") else "left",
+                min_width=low,
+                max_width=high,
+                ratio=1 if high is None else None,
+            )
+        for item in items[:MAX_FINDINGS]:
+            table.add_row(*item)
+        out.append(Padding(table, (0, 0, 0, 2)))
         if len(items) > MAX_FINDINGS:
             out.append(Text(f"  … and {len(items) - MAX_FINDINGS} more (see --format json)"))
 
+    def colour(row: Row) -> Text:
+        name = palette_names.get(row.icon)
+        swatch = Text("■ ", style=row.source)
+        return swatch + Text(f"{name} {row.source}" if name else row.source)
+
+    def change(row: Row) -> str:
+        return f"{row.contrast_ref:.3f} → {row.contrast:.3f}"
+
+    one_alpha = len({float(a) for a in result.alpha}) <= 1  # then α is in the heading
+
+    def grouped(selected: Iterable[Row], numbers: Callable[[Row], str]) -> list[tuple]:
+        return [
+            (
+                colour(r),
+                *(() if one_alpha else (f"{r.alpha:g}",)),
+                r.canvas,
+                numbers(r),
+                icons_label(icons),
+            )
+            for r, icons in _grouped(result, selected)
+        ]
+
+    alpha_col: tuple[str, ...] = () if one_alpha else ("α",)
+    head = ("colour", *alpha_col, "canvas", "contrast", "icons")
     losses = sorted((r for r in rows if r.loss), key=lambda r: r.gain)
     section(
         "Contrast losses",
-        [
-            f"{r.icon} on {r.canvas}: {r.contrast_ref:.3f} → {r.contrast:.3f} "
-            f"({r.gain:+.4f}) at α={r.alpha:g}"
-            for r in losses
-        ],
         "red",
+        head,
+        grouped(losses, lambda r: f"{change(r)} ({r.gain:+.4f})"),
     )
     section(
         f"Newly below {result.threshold:g}:1",
-        [
-            f"{r.icon} on {r.canvas}: {r.contrast_ref:.3f} → {r.contrast:.3f}"
-            for r in rows
-            if r.newly_fails
-        ],
         "red",
+        head,
+        grouped((r for r in rows if r.newly_fails), change),
     )
     section(
         "Collisions (distinct colours, same 8-bit output)",
+        "red",
+        ("canvas", "sources", "output", "icons"),
         [
-            f"{c.canvas}: {', '.join(c.sources)} → {c.output} "
-            f"({', '.join(c.icons)}){'' if c.new else ' [already at α=1]'}"
+            (
+                c.canvas,
+                ", ".join(c.sources),
+                c.output + ("" if c.new else " (already at α=1)"),
+                icons_label(c.icons),
+            )
             for c in result.collisions
         ],
-        "red",
     )
     section(
         f"Newly reach {result.threshold:g}:1",
-        [
-            f"{r.icon} on {r.canvas}: {r.contrast_ref:.3f} → {r.contrast:.3f}"
-            for r in rows
-            if r.newly_passes
-        ],
         "green",
+        head,
+        grouped((r for r in rows if r.newly_passes), change),
     )
-    still = [r for r in rows if not r.passes]
+    still = sorted((r for r in rows if not r.passes), key=lambda r: r.contrast)
     section(
         f"Still below {result.threshold:g}:1 at α",
-        [
-            f"{r.icon} on {r.canvas}: {r.contrast:.3f}"
-            for r in sorted(still, key=lambda r: r.contrast)
-        ],
         "yellow",
+        ("colour", *alpha_col, "canvas", "contrast at α", "icons"),
+        grouped(still, lambda r: f"{r.contrast:.3f}"),
     )
-    section(
-        "Icons that could not be rendered",
-        [f"{p.icon} ({p.file}): {p.message}" for p in result.problems],
-        "yellow",
-    )
+    if result.problems:
+        out.append(
+            Text(f"Icons that could not be rendered ({len(result.problems)})", style="bold yellow")
+        )
+        for p in result.problems[:MAX_FINDINGS]:
+            out.append(Text(f"  {p.icon} ({p.file}): {p.message}"))
+        if len(result.problems) > MAX_FINDINGS:
+            out.append(
+                Text(f"  … and {len(result.problems) - MAX_FINDINGS} more (see --format json)")
+            )
     return out
 
 
@@ -149,7 +222,7 @@ def gate_renderable(gate: GateResult) -> RenderableType:
     if failures:
         out.append(Text(f"Gate failed: {len(failures)} finding(s) [{rules}]", style="bold red"))
         for f in failures[:MAX_FINDINGS]:
-            where = f"{', '.join(f.icons)} on {f.canvas}" if f.canvas else ", ".join(f.icons)
+            where = f"{icons_label(f.icons)} on {f.canvas}" if f.canvas else icons_label(f.icons)
             out.append(Text(f"  {f.rule.value}: {where} ({f.theme}): {f.message}"))
         if len(failures) > MAX_FINDINGS:
             more = len(failures) - MAX_FINDINGS
