@@ -142,3 +142,11 @@ def test_reports_get_ordinary_permissions(tmp_path: Path, paths: tuple[str, str]
     finally:
         os.umask(old)
     assert target.stat().st_mode & 0o777 == 0o644
+
+
+def test_table_merges_icons_that_share_colour_and_alpha(paths: tuple[str, str]) -> None:
+    # bell and plus are both cyan at 1.1 in the example: one line per canvas, both named.
+    out = runner.invoke(app, ["check", *paths, "--alpha", "1.1"]).stdout
+    cyan = [line for line in out.splitlines() if "cyan #33bbee" in line]
+    assert cyan and all("bell, plus" in line for line in cyan)
+    assert not any(line.rstrip().endswith(("bell", "plus")) for line in out.splitlines())
