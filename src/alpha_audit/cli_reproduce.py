@@ -9,6 +9,7 @@ once everything has been computed, so a failed run leaves no partial files.
 from __future__ import annotations
 
 import enum
+import sys
 from pathlib import Path
 from typing import Annotated, assert_never
 
@@ -205,9 +206,9 @@ def reproduce_command(
             for table in _tables(run):
                 stdout.print(table)
         case ReproduceFormat.JSON:
-            stdout.out(render_json(run), end="")
+            sys.stdout.write(render_json(run))  # verbatim: no wrapping or markup
         case ReproduceFormat.MARKDOWN:
-            stdout.out(render_markdown(run), end="")
+            sys.stdout.write(render_markdown(run))
         case _:
             assert_never(output_format)
     if out is not None:
