@@ -315,7 +315,7 @@ def _count_rows(
     ks = first_at_or_above(ps, qs, yb)
     if reach:
         s1, s2 = first_at_or_above(ps, qs, low), first_at_or_above(ps, qs, high)
-    sk1, sk2 = first_at_or_above(ps, qs, keep_low), first_at_or_above(ps, qs, keep_high)
+    keep: tuple[NDArray, NDArray] | None = None  # searched once some output sits at Yb
     above_yb = np.nextafter(yb, np.inf)
     side = n_cols + 1
     base = (np.arange(m) * side * side)[:, np.newaxis]
@@ -338,6 +338,8 @@ def _count_rows(
         ko_eq = ko.copy()
         if at_yb.any():
             ko_eq[at_yb] = first_at_or_above(po_a, qo_a, above_yb)[at_yb]
+            if keep is None:
+                keep = first_at_or_above(ps, qs, keep_low), first_at_or_above(ps, qs, keep_high)
         lo = np.minimum(ks, ko)
         hi = np.maximum(ks, ko_eq)
         dp = po_a - ps
@@ -352,9 +354,12 @@ def _count_rows(
         inc_above = np.take(flat, hi_row + j_hi)
         dec_above = (n_cols - hi) - np.take(flat, hi_row + j_lo)
         # Output exactly at Yb: contrast 1, never an increase.
-        dec_equal = np.maximum(0, np.minimum(ko_eq, sk1) - ko) + np.maximum(
-            0, ko_eq - np.maximum(ko, sk2)
-        )
+        dec_equal = 0
+        if keep is not None:
+            sk1, sk2 = keep
+            dec_equal = np.maximum(0, np.minimum(ko_eq, sk1) - ko) + np.maximum(
+                0, ko_eq - np.maximum(ko, sk2)
+            )
         uncertain = (lo - inc_below - dec_below) + (n_cols - hi - inc_above - dec_above)
         tied = (uncertain > 0) & ~quiet[i][:, np.newaxis]
         fast = ~tied & ~quiet[i][:, np.newaxis]
