@@ -178,3 +178,15 @@ def test_unknown_inputs_raise() -> None:
         full_gamut(BLACK_WHITE, [])
     with pytest.raises(ValueError, match="at least 2 levels"):
         encoded_levels(1)
+
+
+def test_progress_adds_up_to_one(paper16) -> None:
+    for run in (
+        lambda step: full_gamut(paper16, [1.1, -0.2], levels=5, progress=step),
+        lambda step: broad_grid([1.1], source_levels=3, background_levels=3, progress=step),
+        lambda step: sweep(paper16, [0.0, 1.5], levels=5, pairs=64, progress=step),
+        lambda step: palette_separation(paper16, [1.1], pairs=64, progress=step),
+    ):
+        steps: list[float] = []
+        run(steps.append)
+        assert sum(steps) == pytest.approx(1.0)

@@ -261,13 +261,14 @@ def full_gamut(
                 "newly_reach": counts.newly_reach[i],
                 "sum_change": sums[i] - sum_source,
             }
-    progress(0.5 if len(fast) < len(alphas) else 0.9)
+    progress(0.8 * len(fast) / len(alphas))
     for a in alphas:
         if a < 0:  # reverse scaling: tables fall with the level; no fast path
             ref = reference_full_gamut(
                 encoded, backgrounds, a, tol=tol, threshold=threshold, controls=False
             )
             stats[a] = {k: ref[k] for k in ("increase", "decrease", "newly_reach", "sum_change")}
+            progress(0.8 / len(alphas))
     results = []
     for a in alphas:
         s = stats[a]
@@ -289,7 +290,7 @@ def full_gamut(
             for i, c in enumerate(theme.canvases)
         )
         results.append(FullGamutResult(theme.name, a, levels, threshold, canvases))
-    progress(1.0 - (0.5 if len(fast) < len(alphas) else 0.9))
+    progress(0.1)
     return tuple(results)
 
 
