@@ -28,10 +28,12 @@ __all__ = ["reference_broad_grid", "reference_full_gamut", "source_grid"]
 _CHUNK = 1 << 18
 
 
-def source_grid(encoded_levels: NDArray) -> NDArray:
-    """Encoded per-channel levels -> all ``C**3`` encoded sources, R slowest, B fastest."""
-    r, g, b = np.meshgrid(encoded_levels, encoded_levels, encoded_levels, indexing="ij")
-    return np.stack([r.ravel(), g.ravel(), b.ravel()], axis=-1)
+def source_grid(encoded_levels: NDArray, start: int = 0, stop: int | None = None) -> NDArray:
+    """Encoded sources ``start:stop`` of the ``C**3`` grid of per-channel levels, B fastest."""
+    levels = np.asarray(encoded_levels, dtype=np.float64)
+    n = levels.size
+    index = np.arange(start, n**3 if stop is None else min(stop, n**3))
+    return np.stack([levels[index // (n * n)], levels[index // n % n], levels[index % n]], axis=-1)
 
 
 def reference_full_gamut(
@@ -49,14 +51,14 @@ def reference_full_gamut(
     (counts) and ``sum_change``, ``sum_difference``, ``sum_exclusion`` (sums of
     contrast change against the source's contrast).
     """
-    encoded = source_grid(np.asarray(encoded_levels, dtype=np.float64))
+    n_sources = np.asarray(encoded_levels).size ** 3
     n = backgrounds.shape[0]
     out = {key: np.zeros(n, dtype=np.int64) for key in ("increase", "decrease", "newly_reach")}
     out |= {key: np.zeros(n) for key in ("sum_change", "sum_difference", "sum_exclusion")}
     for i, background in enumerate(backgrounds):
         yb = relative_luminance(background)
-        for start in range(0, encoded.shape[0], _CHUNK):
-            source = srgb_decode(encoded[start : start + _CHUNK])
+        for start in range(0, n_sources, _CHUNK):
+            source = srgb_decode(source_grid(encoded_levels, start, start + _CHUNK))
             cr_source = contrast_from_luminance(relative_luminance(source), yb)
             output = composite_extended(source, background, alpha)
             change = contrast_from_luminance(relative_luminance(output), yb) - cr_source
