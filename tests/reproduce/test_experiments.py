@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from alpha_audit.color import composite_extended, from_8bit, to_8bit
 from alpha_audit.errors import UsageError
@@ -190,3 +192,24 @@ def test_progress_adds_up_to_one(paper16) -> None:
         steps: list[float] = []
         run(steps.append)
         assert sum(steps) == pytest.approx(1.0)
+
+
+@settings(max_examples=25, deadline=None)
+@given(
+    alpha=st.floats(-1.0, 3.0, allow_nan=False),
+    source_levels=st.integers(2, 6),
+    background_levels=st.integers(2, 6),
+)
+def test_broad_grid_matches_reference_for_any_alpha(
+    alpha: float, source_levels: int, background_levels: int
+) -> None:
+    (r,) = broad_grid([alpha], source_levels=source_levels, background_levels=background_levels)
+    want = reference_broad_grid(
+        encoded_levels(source_levels), encoded_levels(background_levels), alpha
+    )
+    assert (r.increase, r.decrease, r.loss_le_0_25) == (
+        want["increase"],
+        want["decrease"],
+        want["loss_le_0_25"],
+    )
+    assert r.max_loss == (want["max_loss"] if r.decrease else 0.0)

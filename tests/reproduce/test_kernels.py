@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from alpha_audit.color import CONTRAST_TOLERANCE, relative_luminance, srgb_decode
 from alpha_audit.model import Canvas, Theme
@@ -124,3 +126,15 @@ def test_reach_thresholds_decide_like_the_contrast_ratio() -> None:
             cb = y_b + 0.05
             cr = np.maximum(ys + 0.05, cb) / np.minimum(ys + 0.05, cb)
             np.testing.assert_array_equal(cr < 3.0, (ys >= low[i]) & (ys < high[i]))
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    canvas=st.tuples(*[st.integers(0, 255)] * 3),
+    alpha=st.floats(0.0, 3.0, allow_nan=False),
+    levels=st.integers(2, 11),
+)
+def test_any_canvas_and_alpha_match_reference(canvas, alpha: float, levels: int) -> None:
+    """Property: for every canvas, alpha >= 0 and grid, counts equal the reference's."""
+    color = "#" + "".join(f"{v:02x}" for v in canvas)
+    check_against_reference(Theme("h", (Canvas("h", color),)), encoded_levels(levels), alpha)
