@@ -107,7 +107,7 @@ def broad_counts(
     tasks = [(jr, jg, rows) for jr in range(n_b) for jg in range(n_b) for rows in splits]
     with ThreadPoolExecutor(max_workers=_WORKERS) as pool:
         results = list(pool.map(lambda task: block(*task), tasks))
-    totals = np.stack(results)  # (tasks, n_alpha, 5)
+    totals = np.stack(results)  # (tasks, n_alpha, 4)
     inc, dec, big = (totals[:, :, i].sum(axis=0).astype(np.int64) for i in range(3))
     summaries = []
     for a in range(n_alpha):
