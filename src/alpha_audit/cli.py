@@ -155,6 +155,9 @@ app.command("preview")(preview_command)
 from alpha_audit.cli_pair import pair_command  # noqa: E402
 
 app.command("pair")(pair_command)
+from alpha_audit.cli_reproduce import reproduce_command  # noqa: E402
+
+app.command("reproduce")(reproduce_command)
 
 
 def main() -> None:
