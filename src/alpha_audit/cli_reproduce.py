@@ -14,9 +14,11 @@ from pathlib import Path
 from typing import Annotated, assert_never
 
 import typer
+from rich import box
 from rich.console import Console
 from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
+from rich.text import Text
 
 from alpha_audit.errors import UsageError
 from alpha_audit.load.theme import load_theme
@@ -47,43 +49,56 @@ def default_theme_path() -> Path:
     raise UsageError("themes/paper16.yaml not found; pass --theme")
 
 
+def _table(title: str) -> Table:
+    """A compact table that fits 80 columns: numbers are never cut or wrapped."""
+    return Table(
+        title=title, title_justify="left", box=box.SIMPLE_HEAD, collapse_padding=True,
+        pad_edge=False, caption_justify="left",
+    )  # fmt: skip
+
+
 def _tables(run: Reproduction) -> list[Table]:
     """Rich tables of a run, one per experiment."""
     tables = []
     if run.broad_grid is not None:
-        t = Table(title="Broad grid (paper Table 1): paper / ours, exact match?")
-        for col in ("alpha", "increase %", "decrease %", "max loss", "loss<=.25 %"):
-            t.add_column(col, justify="right")
+        t = _table("Broad grid (paper Table 1 and Section 4.2): paper vs ours")
+        for col in ("alpha", "quantity", "paper", "ours", "every digit?"):
+            t.add_column(col, justify="left" if col == "quantity" else "right", no_wrap=True)
         captions: list[str] = []
         paper_grid = run.settings.source_levels == 17 and run.settings.background_levels == 33
+        quantities = (
+            ("increase_pct", "increase %"),
+            ("decrease_pct", "decrease %"),
+            ("max_loss", "maximum loss"),
+            ("loss_le_0_25_pct", "losses <= 0.25, %"),
+        )
         for r in run.broad_grid:
             printed = PAPER["broad_grid"].get(alpha_key(r.alpha), {}) if paper_grid else {}
-
-            def cell(name: str, ours: float, printed: dict = printed) -> str:
+            for name, label in quantities:
+                ours = getattr(r, name)
                 p = printed.get(name)
                 if p is None:
-                    return f"{ours:.4f}"
-                mark = "ok" if matches_printed(ours, p) else "MISMATCH"
-                return f"{p.value:.{p.decimals}f} / {ours:.{p.decimals}f} {mark}"
-
+                    t.add_row(alpha_key(r.alpha), label, "—", f"{ours:.4f}", "—")
+                    continue
+                ok = matches_printed(ours, p)
+                t.add_row(
+                    alpha_key(r.alpha),
+                    label,
+                    f"{p.value:.{p.decimals}f}",
+                    f"{ours:.{p.decimals}f}",
+                    Text("yes", style="green") if ok else Text("NO", style="bold red"),
+                )
             worst = " > ".join(f"{cr:.4f}" for cr in r.worst_contrast.values())
             src, bg = (",".join(f"{v:g}" for v in c) for c in (r.worst_source, r.worst_background))
-            t.add_row(
-                alpha_key(r.alpha),
-                cell("increase_pct", r.increase_pct),
-                cell("decrease_pct", r.decrease_pct),
-                cell("max_loss", r.max_loss),
-                cell("loss_le_0_25_pct", r.loss_le_0_25_pct),
-            )
             captions.append(
                 f"alpha {alpha_key(r.alpha)}: largest loss ({src}) on ({bg}), CR {worst}"
             )
         t.caption = "\n".join(captions)
         tables.append(t)
     if run.full_gamut is not None:
-        t = Table(title=f"Full gamut on {run.theme.name} (comparable to the paper in method only)")
+        t = _table(f"Full gamut on {run.theme.name} (comparable to the paper in method only)")
         for col in ("alpha", "group", "inc %", "dec %", "same %", "mean", "3:1 %", "Diff", "Excl"):
-            t.add_column(col, justify="right")
+            t.add_column(col, justify="right", no_wrap=True)
         for r in run.full_gamut:
             rows = [("all", r.total)] + [(m, r.group(m)) for m in ("light", "dark")]
             for name, c in rows:
@@ -97,9 +112,9 @@ def _tables(run: Reproduction) -> list[Table]:
         tables.append(t)
     if run.sweep is not None:
         s = run.sweep
-        t = Table(title=f"Sweep on {s.levels}^3 sources, {s.pairs:,} random pairs (every 0.25)")
+        t = _table(f"Sweep on {s.levels}^3 sources, {s.pairs:,} random pairs (every 0.25)")
         for col in ("alpha", "mean change L/D", "decreases L/D", "collisions L/D"):
-            t.add_column(col, justify="right")
+            t.add_column(col, justify="right", no_wrap=True)
         for i, a in enumerate(s.alphas):
             if abs(a * 4 - round(a * 4)) > 1e-9:
                 continue
@@ -112,9 +127,9 @@ def _tables(run: Reproduction) -> list[Table]:
         tables.append(t)
     if run.palette is not None:
         p = run.palette
-        t = Table(title=f"Palette separation: {p.combinations} pair x canvas combinations")
+        t = _table(f"Palette separation: {p.combinations} pair x canvas combinations")
         for col in ("alpha", "smaller CIEDE2000", "collisions", "random-pair collisions"):
-            t.add_column(col, justify="right")
+            t.add_column(col, justify="right", no_wrap=True)
         for a in sorted(set(p.alphas) | set(p.random_alphas)):
             t.add_row(
                 alpha_key(a),
