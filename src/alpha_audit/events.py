@@ -60,7 +60,7 @@ def clip_breakpoints(source: ArrayLike, background: ArrayLike) -> NDArray[np.flo
     s = np.asarray(source, dtype=np.float64)
     b = np.asarray(background, dtype=np.float64)
     d = s - b
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # tiny d -> inf
         up = (1.0 - b) / d
         down = -b / d
     return np.where(d > 0, up, np.where(d < 0, down, np.inf))
@@ -144,7 +144,7 @@ def first_in_luminance_band(
         # On this piece Y(a) = c0 + c1 a: free channels move, clipped ones are 0 or 1.
         c0 = _luminance(np.where(free, b, np.where(raw >= 1.0, 1.0, 0.0)))
         c1 = _luminance(np.where(free, d, 0.0))
-        with np.errstate(divide="ignore", invalid="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             t_lo, t_hi = (lo - c0) / c1, (hi - c0) / c1
         flat_in = (lo < c0) & (c0 < hi)
         lower = np.where(c1 > 0, t_lo, np.where(c1 < 0, t_hi, np.where(flat_in, -np.inf, np.inf)))
