@@ -49,18 +49,25 @@ def check_command(
     ] = None,
     themes: Annotated[
         list[Path] | None,
-        typer.Option("--theme", help="Another theme to audit (repeatable).", show_default=False),
+        typer.Option(
+            "--theme",
+            metavar="PATH",
+            help="Another theme to audit (repeatable).",
+            show_default=False,
+        ),
     ] = None,
     iconsets: Annotated[
         list[Path] | None,
-        typer.Option("--iconset", help="Another icon set (repeatable).", show_default=False),
+        typer.Option(
+            "--iconset", metavar="PATH", help="Another icon set (repeatable).", show_default=False
+        ),
     ] = None,
     config: Annotated[
         Path | None,
         typer.Option(
             "--config",
             help="Project config (default: alpha-audit.yaml, .alpha-audit.yaml or "
-            "[tool.alpha-audit] in pyproject.toml, found from here upwards).",
+            "\\[tool.alpha-audit] in pyproject.toml, found from here upwards).",
         ),
     ] = None,
     alpha: Annotated[
@@ -75,6 +82,7 @@ def check_command(
         list[str] | None,
         typer.Option(
             "--fail-on",
+            metavar="RULE",
             help="Rule that fails the gate (repeatable; replaces the policy): loss, "
             "below-threshold, newly-failing, collision, new-collision, separation, unrenderable. "
             "[default: loss, newly-failing, new-collision]",
@@ -97,6 +105,7 @@ def check_command(
         typer.Option(
             "--format",
             "-f",
+            metavar="FORMAT",
             help="Report format (repeatable): table, json, junit, sarif, markdown, github.",
             case_sensitive=False,
             show_default=False,
@@ -107,6 +116,7 @@ def check_command(
         typer.Option(
             "--output",
             "-o",
+            metavar="PATH",
             help="File for the --format in the same position ('-' = stdout; repeatable).",
             show_default=False,
         ),

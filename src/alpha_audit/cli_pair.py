@@ -15,11 +15,15 @@ def pair_command(
     ],
     on: Annotated[
         list[str],
-        typer.Option("--on", help="Background colour (repeatable).", show_default=False),
+        typer.Option(
+            "--on", metavar="COLOR", help="Background colour (repeatable).", show_default=False
+        ),
     ],
     alpha: Annotated[
         list[float] | None,
-        typer.Option("--alpha", "-a", help="Coefficient (repeatable). [default: 1, 1.1, 1.4]"),
+        typer.Option(
+            "--alpha", "-a", metavar="A", help="Coefficient (repeatable). [default: 1, 1.1, 1.4]"
+        ),
     ] = None,
     fmt: Annotated[
         str, typer.Option("--format", "-f", help="table or json.", case_sensitive=False)

@@ -28,6 +28,7 @@ def preview_command(
         typer.Option(
             "--alpha",
             "-a",
+            metavar="A",
             help="Coefficient row, any real value (repeatable). "
             "[default: 1 and the set's own; swatches: 0.6 1 1.1 1.2 1.4 2]",
         ),
@@ -35,7 +36,10 @@ def preview_command(
     size: Annotated[
         list[int] | None,
         typer.Option(
-            "--size", "-s", help="Icon size in px (repeatable). [default: 48; page: set's + 48]"
+            "--size",
+            "-s",
+            metavar="PX",
+            help="Icon size in px (repeatable). [default: 48; page: set's + 48]",
         ),
     ] = None,
     layout: Annotated[

@@ -172,12 +172,18 @@ def reproduce_command(
     ] = None,
     only: Annotated[
         list[Experiment] | None,
-        typer.Option("--only", help="Run only this experiment (repeatable).", show_default=False),
+        typer.Option(
+            "--only",
+            metavar="EXPERIMENT",
+            help="Run only this experiment (repeatable): full-gamut, broad-grid, sweep, palette.",
+            show_default=False,
+        ),
     ] = None,
     alphas: Annotated[
         list[float] | None,
         typer.Option(
             "--alpha",
+            metavar="A",
             help="Coefficient for full gamut, broad grid and palette (repeatable; default 1.1 "
             "and 1.4).",
             show_default=False,

@@ -38,6 +38,7 @@ def suggest_command(
         list[str] | None,
         typer.Option(
             "--fail-on",
+            metavar="RULE",
             help="Rule that must hold (repeatable; replaces the policy): loss, below-threshold, "
             "newly-failing, collision, new-collision, separation. "
             "[default: the config's, else loss, newly-failing, new-collision]",
