@@ -8,6 +8,15 @@ from typing import Annotated
 
 import typer
 
+from alpha_audit.cli_options import (
+    ConfigOption,
+    ForceOption,
+    IconsetArgument,
+    MaxLossOption,
+    MinDeltaEOption,
+    ThemeArgument,
+    ThresholdOption,
+)
 from alpha_audit.render import CheckFormat, RenderOptions
 
 __all__ = ["check_command", "pair_outputs"]
@@ -40,13 +49,8 @@ def pair_outputs(
 
 
 def check_command(
-    theme: Annotated[
-        Path | None,
-        typer.Argument(help="Theme YAML (default: the themes the project config names)."),
-    ] = None,
-    iconset: Annotated[
-        Path | None, typer.Argument(help="Icon-set manifest YAML (default: from the config).")
-    ] = None,
+    theme: ThemeArgument = None,
+    iconset: IconsetArgument = None,
     themes: Annotated[
         list[Path] | None,
         typer.Option(
@@ -62,22 +66,12 @@ def check_command(
             "--iconset", metavar="PATH", help="Another icon set (repeatable).", show_default=False
         ),
     ] = None,
-    config: Annotated[
-        Path | None,
-        typer.Option(
-            "--config",
-            help="Project config (default: alpha-audit.yaml, .alpha-audit.yaml or "
-            "\\[tool.alpha-audit] in pyproject.toml, found from here upwards).",
-        ),
-    ] = None,
+    config: ConfigOption = None,
     alpha: Annotated[
         float | None,
         typer.Option("--alpha", "-a", help="Coefficient for every icon (overrides the manifest)."),
     ] = None,
-    threshold: Annotated[
-        float | None,
-        typer.Option(help="Contrast threshold (default: the theme's, else 3.0 = WCAG 1.4.11)."),
-    ] = None,
+    threshold: ThresholdOption = None,
     fail_on: Annotated[
         list[str] | None,
         typer.Option(
@@ -89,14 +83,8 @@ def check_command(
             show_default=False,
         ),
     ] = None,
-    max_loss: Annotated[
-        float | None,
-        typer.Option("--max-loss", help="Contrast loss tolerated by the loss rule. [default: 0]"),
-    ] = None,
-    min_delta_e: Annotated[
-        float | None,
-        typer.Option("--min-delta-e", help="Smallest CIEDE2000 for separation. [default: 10]"),
-    ] = None,
+    max_loss: MaxLossOption = None,
+    min_delta_e: MinDeltaEOption = None,
     exit_zero: Annotated[
         bool, typer.Option("--exit-zero", help="Report findings but exit 0 even if the gate fails.")
     ] = False,
@@ -129,9 +117,7 @@ def check_command(
         Path | None,
         typer.Option("--write-baseline", help="Record today's findings as a baseline file."),
     ] = None,
-    force: Annotated[
-        bool, typer.Option("--force", help="Replace existing --output / baseline files.")
-    ] = False,
+    force: ForceOption = False,
     strict_svg: Annotated[
         bool,
         typer.Option(
@@ -161,10 +147,9 @@ def check_command(
     )
     from alpha_audit.errors import UsageError
     from alpha_audit.gate import baseline_document, read_baseline
-    from alpha_audit.load.config import ProjectConfig, find_config, load_config
+    from alpha_audit.load.config import project_config
     from alpha_audit.output import write_text
     from alpha_audit.pipeline import check_project
-    from alpha_audit.policy import Rule
     from alpha_audit.render.json import dumps
 
     require_finite(alpha, "--alpha")
@@ -173,17 +158,12 @@ def check_command(
     if (theme is None) != (iconset is None):
         raise UsageError("give both THEME and ICONSET, or neither (to use the project config)")
 
-    config_path = config if config is not None else find_config(Path.cwd())
-    project = load_config(config_path) if config_path is not None else ProjectConfig()
+    project = project_config(config, Path.cwd())
     cli_themes = ([theme] if theme else []) + list(themes or [])
     cli_sets = ([iconset] if iconset else []) + list(iconsets or [])
-    policy = project.policy
-    if fail_on:
-        policy = replace(policy, rules=frozenset(Rule.parse(r) for r in fail_on))
-    if max_loss is not None:
-        policy = replace(policy, max_loss=max_loss)
-    if min_delta_e is not None:
-        policy = replace(policy, min_delta_e=min_delta_e)
+    policy = project.policy.with_overrides(
+        rules=fail_on, max_loss=max_loss, min_delta_e=min_delta_e
+    )
     baseline_path = baseline if baseline is not None else project.baseline
     known = read_baseline(baseline_path) if baseline_path is not None else None
 

@@ -2,38 +2,36 @@
 
 from __future__ import annotations
 
-from dataclasses import replace
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
+from alpha_audit.cli_options import (
+    ConfigOption,
+    ForceOption,
+    IconsetArgument,
+    MaxLossOption,
+    MinDeltaEOption,
+    ThemeArgument,
+    ThresholdOption,
+)
 from alpha_audit.suggest_report import SuggestFormat
 
 __all__ = ["suggest_command"]
 
 
 def suggest_command(
-    theme: Annotated[
-        Path | None, typer.Argument(help="Theme YAML (default: the one the project config names).")
-    ] = None,
-    iconset: Annotated[
-        Path | None, typer.Argument(help="Icon-set manifest YAML (default: from the config).")
-    ] = None,
-    config: Annotated[
-        Path | None,
-        typer.Option("--config", help="Project config (default: discovered from here upwards)."),
-    ] = None,
+    theme: ThemeArgument = None,
+    iconset: IconsetArgument = None,
+    config: ConfigOption = None,
     alpha_max: Annotated[
         float, typer.Option("--alpha-max", help="Largest coefficient considered.")
     ] = 2.0,
     precision: Annotated[
         int, typer.Option("--precision", help="Decimals; the answer is rounded down.")
     ] = 3,
-    threshold: Annotated[
-        float | None,
-        typer.Option(help="Contrast threshold (default: the theme's, else 3.0 = WCAG 1.4.11)."),
-    ] = None,
+    threshold: ThresholdOption = None,
     fail_on: Annotated[
         list[str] | None,
         typer.Option(
@@ -45,14 +43,8 @@ def suggest_command(
             show_default=False,
         ),
     ] = None,
-    max_loss: Annotated[
-        float | None,
-        typer.Option("--max-loss", help="Contrast loss tolerated by the loss rule. [default: 0]"),
-    ] = None,
-    min_delta_e: Annotated[
-        float | None,
-        typer.Option("--min-delta-e", help="Smallest CIEDE2000 for separation. [default: 10]"),
-    ] = None,
+    max_loss: MaxLossOption = None,
+    min_delta_e: MinDeltaEOption = None,
     fmt: Annotated[
         SuggestFormat,
         typer.Option("--format", "-f", help="table, json or markdown.", case_sensitive=False),
@@ -60,9 +52,7 @@ def suggest_command(
     output: Annotated[
         Path | None, typer.Option("--output", "-o", help="Write the report here instead of stdout.")
     ] = None,
-    force: Annotated[
-        bool, typer.Option("--force", help="Replace an existing --output file.")
-    ] = False,
+    force: ForceOption = False,
     apply: Annotated[
         bool,
         typer.Option(
@@ -84,11 +74,10 @@ def suggest_command(
     """
     from alpha_audit.cli import emit, require_finite, stdout_options
     from alpha_audit.errors import UsageError
-    from alpha_audit.load.config import ProjectConfig, find_config, load_config
+    from alpha_audit.load.config import project_config
     from alpha_audit.load.iconset import load_iconset
     from alpha_audit.load.theme import load_theme
     from alpha_audit.manifest_edit import apply_alpha, format_alpha
-    from alpha_audit.policy import Rule
     from alpha_audit.suggest import suggest
     from alpha_audit.suggest_report import render_suggest
 
@@ -96,8 +85,7 @@ def suggest_command(
     require_finite(threshold, "--threshold")
     if (theme is None) != (iconset is None):
         raise UsageError("give both THEME and ICONSET, or neither (to use the project config)")
-    config_path = config if config is not None else find_config(Path.cwd())
-    project = load_config(config_path) if config_path is not None else ProjectConfig()
+    project = project_config(config, Path.cwd())
     if theme is None or iconset is None:
         if len(project.themes) != 1 or len(project.iconsets) != 1:
             raise UsageError(
@@ -106,13 +94,9 @@ def suggest_command(
                 f"{len(project.iconsets)} icon set(s))"
             )
         theme, iconset = project.themes[0], project.iconsets[0]
-    policy = project.policy
-    if fail_on:
-        policy = replace(policy, rules=frozenset(Rule.parse(r) for r in fail_on))
-    if max_loss is not None:
-        policy = replace(policy, max_loss=max_loss)
-    if min_delta_e is not None:
-        policy = replace(policy, min_delta_e=min_delta_e)
+    policy = project.policy.with_overrides(
+        rules=fail_on, max_loss=max_loss, min_delta_e=min_delta_e
+    )
 
     result = suggest(
         load_theme(theme),

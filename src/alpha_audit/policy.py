@@ -8,7 +8,8 @@ alpha = 1.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Iterable
+from dataclasses import dataclass, replace
 from enum import StrEnum
 
 from alpha_audit.errors import UsageError
@@ -74,6 +75,23 @@ class Policy:
             raise UsageError(f"min_delta_e must be a finite number >= 0, got {self.min_delta_e}")
         if any(not e.reason.strip() for e in self.exemptions):
             raise UsageError("every exemption needs a reason")
+
+    def with_overrides(
+        self,
+        *,
+        rules: Iterable[str] | None = None,
+        max_loss: float | None = None,
+        min_delta_e: float | None = None,
+    ) -> Policy:
+        """This policy with command-line overrides applied (``None`` keeps a field)."""
+        changes: dict[str, object] = {}
+        if rules:
+            changes["rules"] = frozenset(Rule.parse(r) for r in rules)
+        if max_loss is not None:
+            changes["max_loss"] = max_loss
+        if min_delta_e is not None:
+            changes["min_delta_e"] = min_delta_e
+        return replace(self, **changes)
 
     def exempt(self, rule: Rule, canvas: str | None, icons: tuple[str, ...]) -> Exemption | None:
         """The first exemption covering this finding, if any."""

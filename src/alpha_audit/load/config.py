@@ -27,6 +27,7 @@ __all__ = [
     "config_from_doc",
     "find_config",
     "load_config",
+    "project_config",
 ]
 
 CONFIG_NAMES = ("alpha-audit.yaml", ".alpha-audit.yaml")
@@ -115,6 +116,12 @@ def _load_toml_table(path: Path) -> dict[str, Any] | None:
     if not isinstance(tool, dict) or "alpha-audit" not in tool:
         return None
     return {"tool": {"alpha-audit": tool["alpha-audit"]}}
+
+
+def project_config(explicit: str | Path | None, start: str | Path) -> ProjectConfig:
+    """``explicit`` if given, else the config found from ``start`` upwards, else defaults."""
+    path = explicit if explicit is not None else find_config(start)
+    return load_config(path) if path is not None else ProjectConfig()
 
 
 def load_config(path: str | Path) -> ProjectConfig:

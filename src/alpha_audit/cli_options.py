@@ -1,0 +1,48 @@
+"""Options shared by several commands, declared once (typer ``Annotated`` aliases)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+__all__ = [
+    "ConfigOption",
+    "ForceOption",
+    "IconsetArgument",
+    "MaxLossOption",
+    "MinDeltaEOption",
+    "ThemeArgument",
+    "ThresholdOption",
+]
+
+ThemeArgument = Annotated[
+    Path | None,
+    typer.Argument(help="Theme YAML (default: what the project config names)."),
+]
+IconsetArgument = Annotated[
+    Path | None,
+    typer.Argument(help="Icon-set manifest YAML (default: what the project config names)."),
+]
+ConfigOption = Annotated[
+    Path | None,
+    typer.Option(
+        "--config",
+        help="Project config (default: alpha-audit.yaml, .alpha-audit.yaml or "
+        "\\[tool.alpha-audit] in pyproject.toml, found from here upwards).",
+    ),
+]
+ThresholdOption = Annotated[
+    float | None,
+    typer.Option(help="Contrast threshold (default: the theme's, else 3.0 = WCAG 1.4.11)."),
+]
+MaxLossOption = Annotated[
+    float | None,
+    typer.Option("--max-loss", help="Contrast loss tolerated by the loss rule. [default: 0]"),
+]
+MinDeltaEOption = Annotated[
+    float | None,
+    typer.Option("--min-delta-e", help="Smallest CIEDE2000 for separation. [default: 10]"),
+]
+ForceOption = Annotated[bool, typer.Option("--force", help="Replace existing output files.")]
