@@ -14,6 +14,7 @@ from alpha_audit.cli_options import (
     IconsetArgument,
     MaxLossOption,
     MinDeltaEOption,
+    StrictSvgOption,
     ThemeArgument,
     ThresholdOption,
 )
@@ -118,12 +119,7 @@ def check_command(
         typer.Option("--write-baseline", help="Record today's findings as a baseline file."),
     ] = None,
     force: ForceOption = False,
-    strict_svg: Annotated[
-        bool,
-        typer.Option(
-            "--strict-svg", help="Treat an SVG that cannot be rendered as an input error."
-        ),
-    ] = False,
+    strict_svg: StrictSvgOption = False,
 ) -> None:
     """Audit icon sets on themes and fail the build on the findings the policy names.
 

@@ -13,6 +13,7 @@ __all__ = [
     "IconsetArgument",
     "MaxLossOption",
     "MinDeltaEOption",
+    "StrictSvgOption",
     "ThemeArgument",
     "ThresholdOption",
 ]
@@ -44,5 +45,9 @@ MaxLossOption = Annotated[
 MinDeltaEOption = Annotated[
     float | None,
     typer.Option("--min-delta-e", help="Smallest CIEDE2000 for separation. [default: 10]"),
+]
+StrictSvgOption = Annotated[
+    bool,
+    typer.Option("--strict-svg", help="Treat an SVG that cannot be rendered as an input error."),
 ]
 ForceOption = Annotated[bool, typer.Option("--force", help="Replace existing output files.")]

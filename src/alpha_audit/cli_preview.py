@@ -7,6 +7,7 @@ from typing import Annotated
 
 import typer
 
+from alpha_audit.cli_options import ForceOption, StrictSvgOption, ThresholdOption
 from alpha_audit.preview.sheets import Layout
 
 __all__ = ["preview_command"]
@@ -60,17 +61,9 @@ def preview_command(
             "mixed with 10% white (encoded sRGB), plus a dark grey.",
         ),
     ] = False,
-    threshold: Annotated[
-        float | None,
-        typer.Option(help="Contrast threshold (default: the theme's, else 3.0 = WCAG 1.4.11)."),
-    ] = None,
-    force: Annotated[bool, typer.Option("--force", help="Replace existing output files.")] = False,
-    strict_svg: Annotated[
-        bool,
-        typer.Option(
-            "--strict-svg", help="Treat an SVG that cannot be rendered as an input error."
-        ),
-    ] = False,
+    threshold: ThresholdOption = None,
+    force: ForceOption = False,
+    strict_svg: StrictSvgOption = False,
 ) -> None:
     """Draw the icons on the theme's canvases: PNG sheets (-o DIR) and/or a WebGL2 page (--html).
 
