@@ -17,6 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from alpha_audit.errors import SvgError
+from alpha_audit.load.files import read_capped
 
 __all__ = [
     "MAX_SVG_BYTES",
@@ -68,15 +69,7 @@ class IconProblem:
 def read_svg(path: str | Path) -> bytes:
     """Read an SVG file's bytes, refusing what is not small UTF-8 SVG text."""
     p = Path(path)
-    try:
-        with p.open("rb") as fh:
-            data = fh.read(MAX_SVG_BYTES + 1)
-    except FileNotFoundError as exc:
-        raise SvgError("file not found", path=p) from exc
-    except OSError as exc:
-        raise SvgError(f"cannot read: {exc.strerror}", path=p) from exc
-    if len(data) > MAX_SVG_BYTES:
-        raise SvgError(f"larger than {MAX_SVG_BYTES // 1024} KiB; not an icon", path=p)
+    data = read_capped(p, MAX_SVG_BYTES, SvgError, "an icon")
     for magic, kind in _NOT_SVG.items():
         if data.startswith(magic):
             raise SvgError(f"is {kind}, not SVG text", path=p)

@@ -17,6 +17,7 @@ import yaml
 from yaml.constructor import SafeConstructor
 
 from alpha_audit.errors import InputError
+from alpha_audit.load.files import read_capped
 
 __all__ = ["MAX_YAML_BYTES", "MAX_YAML_NODES", "KeyPath", "YamlDoc", "load_yaml", "parse_yaml"]
 
@@ -158,19 +159,7 @@ def parse_yaml(text: str, path: Path) -> YamlDoc:
 def load_yaml(path: str | Path) -> YamlDoc:
     """Read and parse a YAML file of at most :data:`MAX_YAML_BYTES`."""
     p = Path(path)
-    try:
-        with p.open("rb") as fh:
-            raw = fh.read(MAX_YAML_BYTES + 1)
-    except FileNotFoundError as exc:
-        raise InputError("file not found", path=p) from exc
-    except IsADirectoryError as exc:
-        raise InputError("is a directory, expected a YAML file", path=p) from exc
-    except OSError as exc:
-        raise InputError(f"cannot read: {exc.strerror}", path=p) from exc
-    if len(raw) > MAX_YAML_BYTES:
-        raise InputError(
-            f"larger than {MAX_YAML_BYTES // 1024} KiB; not a theme or manifest", path=p
-        )
+    raw = read_capped(p, MAX_YAML_BYTES, InputError, "a YAML theme, manifest or config")
     try:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError as exc:

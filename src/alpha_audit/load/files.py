@@ -1,0 +1,29 @@
+"""Bounded reads of untrusted files: one place for the size cap and the error wording."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from alpha_audit.errors import InputError
+
+__all__ = ["read_capped"]
+
+
+def read_capped(path: str | Path, limit: int, error: type[InputError], kind: str) -> bytes:
+    """At most ``limit`` bytes of ``path``; larger, missing or unreadable files raise ``error``.
+
+    ``kind`` completes the messages: "larger than 1024 KiB; not <kind>".
+    """
+    p = Path(path)
+    try:
+        with p.open("rb") as fh:
+            data = fh.read(limit + 1)
+    except FileNotFoundError as exc:
+        raise error("file not found", path=p) from exc
+    except IsADirectoryError as exc:
+        raise error(f"is a directory, expected {kind}", path=p) from exc
+    except OSError as exc:
+        raise error(f"cannot read: {exc.strerror}", path=p) from exc
+    if len(data) > limit:
+        raise error(f"larger than {limit // 1024} KiB; not {kind}", path=p)
+    return data
