@@ -172,7 +172,7 @@ def code_crossings(source: ArrayLike, background: ArrayLike) -> NDArray[np.float
     s = np.asarray(source, dtype=np.float64)[..., np.newaxis]
     b = np.asarray(background, dtype=np.float64)[..., np.newaxis]
     d = s - b
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # subnormal d -> inf
         return np.where(d != 0, (CODE_THRESHOLDS - b) / d, np.nan)
 
 
