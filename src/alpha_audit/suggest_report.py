@@ -116,22 +116,37 @@ def _render_table(result: SuggestResult, width: int) -> str:
     console = Console(file=StringIO(), width=width, color_system=None, highlight=False)
     console.print(_headline(result), soft_wrap=False)
 
-    def table(title: str, first: str) -> Table:
-        t = Table(title=title, title_justify="left", box=box.SIMPLE_HEAD, pad_edge=False)
-        t.add_column(first, no_wrap=True, max_width=24, overflow="ellipsis")
+    def table(title: str, first: str, *, with_canvas: bool = True) -> Table:
+        t = Table(
+            title=title, title_justify="left", box=box.SIMPLE_HEAD, pad_edge=False,
+            collapse_padding=True,
+        )  # fmt: skip
+        t.add_column(first, no_wrap=True, min_width=12, max_width=24, overflow="ellipsis")
         t.add_column("alpha", justify="right", no_wrap=True)
-        t.add_column("limited by", overflow="fold")
+        t.add_column("limited by", no_wrap=True)
+        t.add_column("first unsafe", justify="right", no_wrap=True)
+        if with_canvas:
+            t.add_column("on canvas", no_wrap=True, max_width=20, overflow="ellipsis")
+        t.add_column("icons", no_wrap=True, overflow="ellipsis", ratio=1)
         return t
 
-    canvases = table("Per canvas (everything moves together)", "canvas")
+    def cells(limit: Limit | None, *, with_canvas: bool = True) -> list[str]:
+        """Rule, where it first breaks, canvas and icons; blank when nothing breaks."""
+        if limit is None:
+            return [f"nothing up to {a_max:g}", "", *([""] if with_canvas else []), ""]
+        at = f"{limit.at:.6f}" if limit.attained else f">{limit.at:.6f}"
+        return [limit.rule.value, at, *([limit.canvas] if with_canvas else []),
+                _names(limit.icons)]  # fmt: skip
+
+    canvases = table("Per canvas (every icon moves together)", "canvas", with_canvas=False)
     for c in result.overall.per_canvas:
-        canvases.add_row(c.canvas, _alpha(c.alpha, p), _why(c.limit, a_max))
+        canvases.add_row(c.canvas, _alpha(c.alpha, p), *cells(c.limit, with_canvas=False))
     colors = table("Per colour (the others keep their alpha)", "colour")
     for c in result.per_color:
-        colors.add_row(f"{c.color} {c.source}", _alpha(c.safe.alpha, p), _why(c.safe.limit, a_max))
+        colors.add_row(f"{c.color} {c.source}", _alpha(c.safe.alpha, p), *cells(c.safe.limit))
     icons = table("Per icon (the others keep their alpha)", "icon")
     for i in result.per_icon:
-        icons.add_row(i.icon, _alpha(i.safe.alpha, p), _why(i.safe.limit, a_max))
+        icons.add_row(i.icon, _alpha(i.safe.alpha, p), *cells(i.safe.limit))
     for t in (canvases, colors, icons):
         console.print(t)
     return console.file.getvalue()  # type: ignore[attr-defined]
