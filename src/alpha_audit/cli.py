@@ -140,7 +140,7 @@ def emit(text: str, output: Path | None, force: bool) -> None:
         sys.stdout.flush()
     else:
         write_text(output, text, overwrite=force)
-        _stderr().print(f"wrote {output}", soft_wrap=True)
+        _stderr().print(f"wrote {output}", soft_wrap=True, markup=False)
 
 
 from alpha_audit.cli_check import check_command  # noqa: E402  (commands register below)

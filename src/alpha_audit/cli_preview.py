@@ -98,6 +98,10 @@ def preview_command(
         )
     err = _stderr()
     for problem in result.problems:
-        err.print(f"skipped {problem.icon}: {problem.file}: {problem.message}", soft_wrap=True)
+        err.print(
+            f"skipped {problem.icon}: {problem.file}: {problem.message}",
+            soft_wrap=True,
+            markup=False,
+        )
     for path in result.written:
-        err.print(f"wrote {path}", soft_wrap=True)
+        err.print(f"wrote {path}", soft_wrap=True, markup=False)
