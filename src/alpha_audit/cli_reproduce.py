@@ -52,9 +52,13 @@ def default_theme_path() -> Path:
 def _table(title: str) -> Table:
     """A compact table that fits 80 columns: numbers are never cut or wrapped."""
     return Table(
-        title=title, title_justify="left", box=box.SIMPLE_HEAD, collapse_padding=True,
-        pad_edge=False, caption_justify="left",
-    )  # fmt: skip
+        title=Text(title),  # theme names come from input files: never rich markup
+        title_justify="left",
+        box=box.SIMPLE_HEAD,
+        collapse_padding=True,
+        pad_edge=False,
+        caption_justify="left",
+    )
 
 
 def _tables(run: Reproduction) -> list[Table]:

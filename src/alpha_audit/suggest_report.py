@@ -16,6 +16,7 @@ from typing import Any, assert_never
 from rich import box
 from rich.console import Console
 from rich.table import Table
+from rich.text import Text
 
 from alpha_audit.suggest import Limit, SafeAlpha, SuggestResult
 
@@ -111,10 +112,15 @@ def _headline(result: SuggestResult) -> str:
     )
 
 
+def literal(*cells: str) -> list[Text]:
+    """Table cells shown as written: names from input files are never rich markup."""
+    return [Text(c) for c in cells]
+
+
 def _render_table(result: SuggestResult, width: int) -> str:
     p, a_max = result.precision, result.alpha_max
     console = Console(file=StringIO(), width=width, color_system=None, highlight=False)
-    console.print(_headline(result), soft_wrap=False)
+    console.print(Text(_headline(result)), soft_wrap=False)
 
     def table(title: str, first: str, *, with_canvas: bool = True) -> Table:
         t = Table(
@@ -140,13 +146,15 @@ def _render_table(result: SuggestResult, width: int) -> str:
 
     canvases = table("Per canvas (every icon moves together)", "canvas", with_canvas=False)
     for c in result.overall.per_canvas:
-        canvases.add_row(c.canvas, _alpha(c.alpha, p), *cells(c.limit, with_canvas=False))
+        canvases.add_row(*literal(c.canvas, _alpha(c.alpha, p), *cells(c.limit, with_canvas=False)))
     colors = table("Per colour (the others keep their alpha)", "colour")
     for c in result.per_color:
-        colors.add_row(f"{c.color} {c.source}", _alpha(c.safe.alpha, p), *cells(c.safe.limit))
+        colors.add_row(
+            *literal(f"{c.color} {c.source}", _alpha(c.safe.alpha, p), *cells(c.safe.limit))
+        )
     icons = table("Per icon (the others keep their alpha)", "icon")
     for i in result.per_icon:
-        icons.add_row(i.icon, _alpha(i.safe.alpha, p), *cells(i.safe.limit))
+        icons.add_row(*literal(i.icon, _alpha(i.safe.alpha, p), *cells(i.safe.limit)))
     for t in (canvases, colors, icons):
         console.print(t)
     return console.file.getvalue()  # type: ignore[attr-defined]

@@ -44,7 +44,7 @@ def _summary_table(result: AuditResult) -> Table:
         sep = cs.separation
         de = "-" if sep is None else f"{sep.delta_e_ref:.1f}→{sep.delta_e:.1f}"
         table.add_row(
-            cs.canvas,
+            Text(cs.canvas),
             Text(cs.background, style=f"on {cs.background}"),
             Text(f"{cs.mean_gain:+.2f}", style="green" if cs.mean_gain > 0 else "red"),
             passing,
@@ -112,7 +112,7 @@ def _findings(result: AuditResult) -> list[RenderableType]:
                 ratio=1 if high is None else None,
             )
         for item in items[:MAX_FINDINGS]:
-            table.add_row(*item)
+            table.add_row(*(c if isinstance(c, Text) else Text(c) for c in item))  # literal
         out.append(Padding(table, (0, 0, 0, 2)))
         if len(items) > MAX_FINDINGS:
             out.append(Text(f"  … and {len(items) - MAX_FINDINGS} more (see --format json)"))
