@@ -173,6 +173,13 @@ def test_manifest_errors(project: Path, text: str, message: str) -> None:
     assert "\n" not in str(info.value) and "iconset.yaml" in str(info.value)
 
 
+def test_file_names_with_terminal_escapes_are_refused(project: Path) -> None:
+    write(project, "icons/svg/\x1b[2Jwipe.svg", SVG)
+    path = write(project, "icons/iconset.yaml", "icons: svg/*.svg\ncolor: red\n")
+    with pytest.raises(InputError, match="no control characters"):
+        load_iconset(path)
+
+
 def test_no_manifest_colour_when_every_icon_has_one(project: Path) -> None:
     path = write(
         project,

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import unicodedata
 from collections.abc import Iterable
 from typing import Any
 
@@ -61,8 +62,14 @@ def read_name(doc: YamlDoc, keys: KeyPath, value: Any) -> str:
     if isinstance(value, bool) or not isinstance(value, str | int | float):
         raise doc.error(keys, f"expected a name (text), got {describe(value)}")
     text = str(value).strip()
-    if not text or any(ch in text for ch in "\r\n\t\x00") or len(text) > 200:
-        raise doc.error(keys, f"{text[:40]!r} is not a usable name: one line, 1-200 characters")
+    # Control characters (newlines, ESC sequences) would forge report lines or
+    # drive the reviewer's terminal; names reach every report format.
+    control = any(unicodedata.category(ch) == "Cc" for ch in text)
+    if not text or control or len(text) > 200:
+        raise doc.error(
+            keys,
+            f"{text[:40]!r} is not a usable name: 1-200 characters, no control characters",
+        )
     return text
 
 
