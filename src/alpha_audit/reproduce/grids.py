@@ -10,8 +10,6 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from alpha_audit.color import srgb_decode
-
 __all__ = [
     "PAPER_SEED",
     "VIBRANT",
@@ -40,11 +38,6 @@ def encoded_levels(n: int) -> NDArray[np.float64]:
 def byte_levels() -> NDArray[np.float64]:
     """The 256 8-bit levels as encoded values ``v / 255``."""
     return np.arange(256) / 255
-
-
-def linear_levels(encoded: NDArray) -> NDArray[np.float64]:
-    """Decoded (linear) levels of encoded per-channel levels."""
-    return srgb_decode(encoded)
 
 
 def random_source_pairs(n: int, seed: int = PAPER_SEED) -> NDArray[np.int64]:
