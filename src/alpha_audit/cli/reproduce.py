@@ -41,7 +41,7 @@ class ReproduceFormat(enum.StrEnum):
 def default_theme_path() -> Path:
     """``themes/paper16.yaml`` of the source tree, else of the working directory."""
     for candidate in (
-        Path(__file__).resolve().parents[2] / "themes" / "paper16.yaml",
+        Path(__file__).resolve().parents[3] / "themes" / "paper16.yaml",
         Path("themes") / "paper16.yaml",
     ):
         if candidate.is_file():

@@ -36,7 +36,7 @@ def pair_command(
 
     Example: [bold]alpha-audit pair "#ee7733" --on white --on "#0d1117" -a 1 -a 1.2[/]
     """
-    from alpha_audit.cli import emit, require_finite, stdout_options
+    from alpha_audit.cli.app import emit, require_finite, stdout_options
     from alpha_audit.errors import UsageError
     from alpha_audit.pair import pair_table
     from alpha_audit.render.pair import pair_json, pair_table_text

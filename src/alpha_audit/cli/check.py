@@ -8,7 +8,7 @@ from typing import Annotated
 
 import typer
 
-from alpha_audit.cli_options import (
+from alpha_audit.cli.options import (
     ConfigOption,
     ForceOption,
     IconsetArgument,
@@ -133,7 +133,7 @@ def check_command(
     Example:
     [bold]alpha-audit check themes/github-primer.yaml examples/vibrant/iconset.yaml -a 1.2[/]
     """
-    from alpha_audit.cli import (
+    from alpha_audit.cli.app import (
         ExitStatus,
         emit,
         progress_bar,

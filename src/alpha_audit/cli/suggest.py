@@ -7,7 +7,7 @@ from typing import Annotated
 
 import typer
 
-from alpha_audit.cli_options import (
+from alpha_audit.cli.options import (
     ConfigOption,
     ForceOption,
     IconsetArgument,
@@ -72,7 +72,7 @@ def suggest_command(
     Example:
     [bold]alpha-audit suggest themes/paper16.yaml examples/vibrant/iconset.yaml --apply[/]
     """
-    from alpha_audit.cli import emit, require_finite, stdout_options
+    from alpha_audit.cli.app import emit, require_finite, stdout_options
     from alpha_audit.errors import UsageError
     from alpha_audit.load.config import project_config
     from alpha_audit.load.iconset import load_iconset

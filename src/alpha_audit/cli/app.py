@@ -143,19 +143,19 @@ def emit(text: str, output: Path | None, force: bool) -> None:
         _stderr().print(f"wrote {output}", soft_wrap=True, markup=False)
 
 
-from alpha_audit.cli_check import check_command  # noqa: E402  (commands register below)
+from alpha_audit.cli.check import check_command  # noqa: E402  (commands register below)
 
 app.command("check")(check_command)
-from alpha_audit.cli_suggest import suggest_command  # noqa: E402
+from alpha_audit.cli.suggest import suggest_command  # noqa: E402
 
 app.command("suggest")(suggest_command)
-from alpha_audit.cli_preview import preview_command  # noqa: E402
+from alpha_audit.cli.preview import preview_command  # noqa: E402
 
 app.command("preview")(preview_command)
-from alpha_audit.cli_pair import pair_command  # noqa: E402
+from alpha_audit.cli.pair import pair_command  # noqa: E402
 
 app.command("pair")(pair_command)
-from alpha_audit.cli_reproduce import reproduce_command  # noqa: E402
+from alpha_audit.cli.reproduce import reproduce_command  # noqa: E402
 
 app.command("reproduce")(reproduce_command)
 

@@ -7,7 +7,7 @@ from typing import Annotated
 
 import typer
 
-from alpha_audit.cli_options import ForceOption, StrictSvgOption, ThresholdOption
+from alpha_audit.cli.options import ForceOption, StrictSvgOption, ThresholdOption
 from alpha_audit.preview.sheets import Layout
 
 __all__ = ["preview_command"]
@@ -74,7 +74,7 @@ def preview_command(
     [bold]alpha-audit preview themes/paper16.yaml examples/vibrant/iconset.yaml -o previews
     --html previews/vibrant.html[/]
     """
-    from alpha_audit.cli import _stderr, progress_bar, require_finite
+    from alpha_audit.cli.app import _stderr, progress_bar, require_finite
     from alpha_audit.preview.files import preview_files
 
     for a in alpha or ():
