@@ -1,88 +1,121 @@
-"""The ``alpha-audit`` command line: a thin typer layer over the library.
+"""The ``alpha-audit`` application: its commands, ``main`` and the one exit boundary.
 
-Exit codes: 0 the audit ran (and the gate passed), 1 the gate failed,
-2 bad input or usage.  Only this module turns exceptions into exit codes.
+Each command function returns an :class:`~alpha_audit.cli.status.ExitStatus`;
+only :class:`_Group` here turns results and exceptions into exit codes:
+
+* the command's status (0 passed, 1 gate failed);
+* 2 for :class:`~alpha_audit.errors.AlphaAuditError` (bad input or usage),
+  a usage error typer found, an OS error on a file, input nested too deeply
+  and running out of memory, each as one line on stderr;
+* 3 for any other exception: a bug, reported in one line with the exception's
+  type and text; the traceback only with ``--debug`` or ``ALPHA_AUDIT_DEBUG=1``.
+
+Command modules never import this module (they import :mod:`.console`,
+:mod:`.options` and :mod:`.status`), so the package has no import cycle.
 """
 
 from __future__ import annotations
 
-import math
-import sys
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
-from enum import IntEnum
-from pathlib import Path
-from typing import Annotated, Any
+import traceback
+from collections.abc import Sequence
+from typing import Annotated, Any, NoReturn
 
 import typer
-from rich.console import Console
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.text import Text
 from typer.core import TyperGroup
 
 from alpha_audit import __version__
-from alpha_audit.errors import AlphaAuditError, UsageError
-from alpha_audit.render import RenderOptions
+from alpha_audit.cli.check import check_command
+from alpha_audit.cli.console import stderr_console
+from alpha_audit.cli.flags import cli_message
+from alpha_audit.cli.pair import pair_command
+from alpha_audit.cli.preview import preview_command
+from alpha_audit.cli.reproduce import reproduce_command
+from alpha_audit.cli.status import ExitStatus
+from alpha_audit.cli.suggest import suggest_command
+from alpha_audit.cli.themes import themes_command
+from alpha_audit.errors import AlphaAuditError
 
 __all__ = ["ExitStatus", "app", "main"]
 
+DEBUG_ENV = "ALPHA_AUDIT_DEBUG"
 
-class ExitStatus(IntEnum):
-    """Process exit codes, documented in ``--help`` and the README."""
 
-    OK = 0
-    GATE_FAILED = 1
-    INPUT_ERROR = 2
+def _error_line(message: str) -> None:
+    """``alpha-audit: error: ...`` on stderr, printed literally (messages quote input)."""
+    stderr_console().print(Text(f"alpha-audit: error: {message}"), soft_wrap=True)
+
+
+def _usage_error(exc: typer.TyperException) -> NoReturn:
+    """A usage error typer found, as one line naming the command and where help is."""
+    ctx = getattr(exc, "ctx", None)
+    path = ctx.command_path if ctx is not None else "alpha-audit"
+    _error_line(f"{exc.format_message().rstrip('.')} (see '{path} --help')")
+    raise typer.Exit(ExitStatus.INPUT_ERROR)
+
+
+def _memory_limit() -> str:
+    """The address-space limit this process runs under, in words."""
+    try:
+        import resource
+    except ImportError:  # pragma: no cover - not POSIX
+        return "the memory available"
+    soft, _ = resource.getrlimit(resource.RLIMIT_AS)
+    if soft == resource.RLIM_INFINITY:
+        return "the memory available (no address-space limit is set)"
+    return f"the address-space limit of {soft / (1 << 20):.0f} MiB"
+
+
+def _exit_code(exc: Exception, *, debug: bool) -> ExitStatus:
+    """Report ``exc`` on stderr in one line and say which exit code it means."""
+    if isinstance(exc, AlphaAuditError):
+        _error_line(cli_message(exc))
+        return ExitStatus.INPUT_ERROR
+    if isinstance(exc, MemoryError):
+        _error_line(
+            f"out of memory: the inputs need more than {_memory_limit()}; "
+            "audit fewer icons, canvases or colours at once"
+        )
+        return ExitStatus.INPUT_ERROR
+    if isinstance(exc, RecursionError):
+        _error_line("input nested too deeply (Python's recursion limit)")
+        return ExitStatus.INPUT_ERROR
+    if isinstance(exc, OSError) and exc.filename is not None:
+        # The environment refused (permissions, a full disk): not a bug, and the file says where.
+        _error_line(f"{exc.filename}: {exc.strerror or exc}")
+        return ExitStatus.INPUT_ERROR
+    text = str(exc).splitlines()[0] if str(exc) else ""
+    _error_line(
+        f"internal error (a bug in alpha-audit, please report it): "
+        f"{type(exc).__name__}: {text}"
+        + ("" if debug else f" (--debug or {DEBUG_ENV}=1 for details)")
+    )
+    if debug:
+        traceback.print_exception(exc)
+    return ExitStatus.INTERNAL_ERROR
 
 
 class _Group(TyperGroup):
-    """The single boundary where library errors become one line and exit 2."""
+    """The single boundary where results and exceptions become exit codes."""
+
+    def parse_args(self, ctx: Any, args: list[str]) -> list[str]:
+        try:
+            return super().parse_args(ctx, args)
+        except typer.TyperException as exc:
+            _usage_error(exc)
 
     def invoke(self, ctx: Any) -> Any:
         try:
-            return super().invoke(ctx)
-        except AlphaAuditError as exc:
-            _stderr().print(Text(f"alpha-audit: error: {exc}"), soft_wrap=True)
-            raise typer.Exit(code=ExitStatus.INPUT_ERROR) from None
-        except RecursionError:
-            _stderr().print("alpha-audit: error: input nested too deeply", soft_wrap=True)
-            raise typer.Exit(code=ExitStatus.INPUT_ERROR) from None
-
-
-def _stderr() -> Console:
-    return Console(stderr=True, highlight=False, emoji=False)
-
-
-def _stdout() -> Console:
-    return Console(highlight=False, emoji=False)
-
-
-def stdout_options() -> RenderOptions:
-    """Width and colour for a report on stdout (colour only on a terminal, never with NO_COLOR)."""
-    console = _stdout()
-    return RenderOptions(
-        width=max(60, min(console.width, 120)),
-        color=console.is_terminal and not console.no_color,
-    )
-
-
-@contextmanager
-def progress_bar(label: str) -> Iterator[tuple[Callable[[int], None], Callable[[], None]]]:
-    """A transient stderr progress bar, shown only on a terminal; yields (start, advance)."""
-    console = _stderr()
-    if not console.is_terminal:
-        yield (lambda total: None), (lambda: None)
-        return
-    with Progress(
-        TextColumn(label),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        console=console,
-        transient=True,
-    ) as progress:
-        task = progress.add_task(label, total=None)
-        yield (lambda total: progress.update(task, total=total)), (lambda: progress.advance(task))
+            status = super().invoke(ctx)
+            if not isinstance(status, ExitStatus):
+                raise TypeError(f"command returned {status!r}, not an ExitStatus")
+        except (typer.Exit, typer.Abort, BrokenPipeError):
+            raise  # typer's own ways out (--help, Ctrl-C, a closed pipe) keep their meaning
+        except typer.TyperException as exc:
+            _usage_error(exc)
+        except Exception as exc:  # the boundary: nothing else turns exceptions into exit codes
+            status = _exit_code(exc, debug=bool(ctx.params.get("debug")))
+        raise typer.Exit(status)
 
 
 app = typer.Typer(
@@ -94,7 +127,8 @@ app = typer.Typer(
         "as clip(Cb + a(Cs - Cb)) in linear sRGB. With a > 1 the icon moves away from whatever "
         "canvas it lands on. alpha-audit measures what that does to WCAG contrast, 8-bit "
         "collisions and CIEDE2000 separation on your icons and themes.\n\n"
-        "Exit codes: 0 ran (gate passed), 1 gate failed (check), 2 bad input or usage."
+        "Exit codes: 0 ran (gate passed), 1 gate failed (check), 2 bad input or usage "
+        "(or a resource limit), 3 internal error (a bug)."
     ),
     no_args_is_help=True,
     rich_markup_mode="rich",
@@ -116,50 +150,27 @@ def _root(
         bool,
         typer.Option("--version", callback=_version, is_eager=True, help="Show the version."),
     ] = False,
+    debug: Annotated[
+        bool,
+        typer.Option(
+            "--debug",
+            envvar=DEBUG_ENV,
+            help="On an internal error, print the traceback too.",
+            show_envvar=True,
+        ),
+    ] = False,
 ) -> None:
     """Audit icon sets across light and dark themes with extended-alpha compositing."""
 
 
-def require_finite(value: float | None, option: str) -> float | None:
-    if value is not None and not math.isfinite(value):
-        raise UsageError(f"{option} must be a finite number, got {value}")
-    return value
-
-
-def stderr_note(message: str) -> None:
-    """One status line on stderr (never mixed into a report on stdout)."""
-    _stderr().print(Text(f"alpha-audit: {message}"), soft_wrap=True)
-
-
-def emit(text: str, output: Path | None, force: bool) -> None:
-    """Report to stdout, or atomically to ``output``."""
-    from alpha_audit.output import write_text
-
-    if output is None:
-        sys.stdout.write(text)
-        sys.stdout.flush()
-    else:
-        write_text(output, text, overwrite=force)
-        _stderr().print(f"wrote {output}", soft_wrap=True, markup=False)
-
-
-from alpha_audit.cli.check import check_command  # noqa: E402  (commands register below)
-
 app.command("check")(check_command)
-from alpha_audit.cli.suggest import suggest_command  # noqa: E402
-
 app.command("suggest")(suggest_command)
-from alpha_audit.cli.preview import preview_command  # noqa: E402
-
 app.command("preview")(preview_command)
-from alpha_audit.cli.pair import pair_command  # noqa: E402
-
 app.command("pair")(pair_command)
-from alpha_audit.cli.reproduce import reproduce_command  # noqa: E402
-
 app.command("reproduce")(reproduce_command)
+app.command("themes")(themes_command)
 
 
-def main() -> None:
-    """Console-script entry point."""
-    app()
+def main(argv: Sequence[str] | None = None) -> None:
+    """Console-script entry point: run one command and exit with its status."""
+    app(args=None if argv is None else list(argv), prog_name="alpha-audit")
