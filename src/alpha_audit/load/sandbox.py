@@ -24,11 +24,13 @@ from collections import deque
 from collections.abc import Sequence
 from pathlib import Path
 from types import TracebackType
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
 
-from alpha_audit.load.svg import RenderLimits
+if TYPE_CHECKING:  # svg imports this module to render: a run-time import back would be a cycle
+    from alpha_audit.load.svg import RenderLimits
 
 __all__ = ["Outcome", "RenderPool"]
 
