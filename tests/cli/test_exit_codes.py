@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+import typer
 from typer.testing import CliRunner
 
 from alpha_audit.cli import ExitStatus, app
@@ -161,3 +162,23 @@ def test_help_and_version_exit_0() -> None:
     assert runner.invoke(app, ["--help"]).exit_code == 0
     version = runner.invoke(app, ["--version"])
     assert version.exit_code == 0 and version.output.startswith("alpha-audit ")
+
+
+def test_no_arguments_shows_the_help_not_an_error() -> None:
+    result = runner.invoke(app, [], prog_name="alpha-audit")
+    assert result.exit_code == ExitStatus.INPUT_ERROR  # typer's convention, as before
+    assert "Usage: alpha-audit" in result.output and "error:" not in result.output
+
+
+def test_a_command_must_return_an_exit_status() -> None:
+    # The boundary enforces the contract: a command returning None is a bug (exit 3), so every
+    # command's own tests (exit 0 or 1 expected) also check that it returns its status.
+    from alpha_audit.cli.app import _Group
+
+    probe = typer.Typer(cls=_Group)
+    probe.command("ok")(lambda: ExitStatus.GATE_FAILED)
+    probe.command("none")(lambda: None)
+    assert runner.invoke(probe, ["ok"]).exit_code == ExitStatus.GATE_FAILED
+    result = runner.invoke(probe, ["none"])
+    assert result.exit_code == ExitStatus.INTERNAL_ERROR
+    assert "command returned None, not an ExitStatus" in result.output

@@ -47,7 +47,13 @@ def _error_line(message: str) -> None:
 
 
 def _usage_error(exc: typer.TyperException) -> NoReturn:
-    """A usage error typer found, as one line naming the command and where help is."""
+    """A usage error typer found, as one line naming the command and where help is.
+
+    ``alpha-audit`` alone is not an error to reword: typer shows the help
+    (matched by name, as typer itself does, since the class is private).
+    """
+    if type(exc).__name__ == "NoArgsIsHelpError":
+        raise exc
     ctx = getattr(exc, "ctx", None)
     path = ctx.command_path if ctx is not None else "alpha-audit"
     _error_line(f"{exc.format_message().rstrip('.')} (see '{path} --help')")
