@@ -46,6 +46,7 @@ class _Worker:
     """One render process and the job it is working on."""
 
     def __init__(self, limits: RenderLimits) -> None:
+        self.limits = limits
         env = {"PATH": os.environ.get("PATH", ""), "OPENBLAS_NUM_THREADS": "1", "LC_ALL": "C"}
         self.proc = subprocess.Popen(
             [sys.executable, "-I", str(_WORKER), str(limits.memory), str(limits.cpu)],
@@ -124,8 +125,11 @@ class _Worker:
             except ValueError:
                 name = f"signal {-code}"
             if name == "SIGXCPU":
-                return "renderer ran out of CPU time; refused"
-            return f"renderer crashed ({name}); the file may need too much memory"
+                return f"renderer ran out of CPU time (limit {self.limits.cpu} s); refused"
+            return (
+                f"renderer crashed ({name}); the file may need more than the "
+                f"{self.limits.memory >> 20} MiB render memory limit"
+            )
         return f"renderer stopped unexpectedly (exit code {code})"
 
 
