@@ -187,3 +187,16 @@ def test_one_version_source() -> None:
     assert version("alpha-audit") == alpha_audit.__version__
     pyproject = (SRC.parents[1] / "pyproject.toml").read_text()
     assert 'dynamic = ["version"]' in pyproject and "\nversion =" not in pyproject.split("[tool")[0]
+
+
+def test_public_functions_win_over_submodules_of_the_same_name() -> None:
+    code = (
+        "import alpha_audit.audit, alpha_audit.suggest, alpha_audit.reproduce.run, sys, types\n"
+        "from alpha_audit import audit, reproduce, suggest\n"
+        "from alpha_audit.audit import audit as same\n"
+        "assert sys.modules['alpha_audit.audit'].audit is audit is same\n"
+        "for f in (audit, reproduce, suggest):\n"
+        "    assert callable(f) and not isinstance(f, types.ModuleType), f\n"
+        "assert alpha_audit.audit is audit\n"
+    )
+    subprocess.run([sys.executable, "-c", code], check=True)

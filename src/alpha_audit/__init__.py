@@ -16,6 +16,8 @@ the loaders nor the command line.
 from __future__ import annotations
 
 import importlib
+import sys
+import types
 from typing import TYPE_CHECKING, Any
 
 __version__ = "0.1.0"
@@ -276,3 +278,27 @@ def __getattr__(name: str) -> Any:
 
 def __dir__() -> list[str]:
     return sorted({*globals(), *_EXPORTS})
+
+
+class _PublicNamesFirst(types.ModuleType):
+    """This package's module type: ``audit``, ``suggest`` and ``reproduce`` stay functions.
+
+    Importing a submodule binds it on its parent (``alpha_audit.audit = <module>``),
+    which would hide the public function of the same name from ``__getattr__``.
+    The binding is skipped for those names, as the eager ``from alpha_audit.audit
+    import audit`` used to overwrite it; the submodule stays in ``sys.modules``,
+    so ``from alpha_audit.audit import ...`` works as usual (but, as before,
+    ``import alpha_audit.audit as m`` gives the function).
+    """
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        if (
+            name in _EXPORTS
+            and isinstance(value, types.ModuleType)
+            and value.__name__ == f"{__name__}.{name}"
+        ):
+            return
+        super().__setattr__(name, value)
+
+
+sys.modules[__name__].__class__ = _PublicNamesFirst

@@ -182,3 +182,14 @@ def test_a_command_must_return_an_exit_status() -> None:
     result = runner.invoke(probe, ["none"])
     assert result.exit_code == ExitStatus.INTERNAL_ERROR
     assert "command returned None, not an ExitStatus" in result.output
+
+
+def test_an_internal_error_line_stays_short(monkeypatch: pytest.MonkeyPatch) -> None:
+    def verbose(*args: object, **kwargs: object) -> None:
+        raise ValueError("x" * 5000)
+
+    monkeypatch.setattr("alpha_audit.pair.pair_table", verbose)
+    result = runner.invoke(app, PAIR)
+    assert result.exit_code == ExitStatus.INTERNAL_ERROR
+    (line,) = _lines(result.output)
+    assert "ValueError: " in line and len(line) < 400

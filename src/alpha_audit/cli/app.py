@@ -72,33 +72,40 @@ def _memory_limit() -> str:
     return f"the address-space limit of {soft / (1 << 20):.0f} MiB"
 
 
-def _exit_code(exc: Exception, *, debug: bool) -> ExitStatus:
-    """Report ``exc`` on stderr in one line and say which exit code it means."""
+MAX_REASON = 200
+"""Characters of an unexpected exception's text kept in its one-line report."""
+
+
+def _classify(exc: Exception) -> tuple[ExitStatus, str]:
+    """The exit code ``exc`` means and the one line that says why."""
     if isinstance(exc, AlphaAuditError):
-        _error_line(cli_message(exc))
-        return ExitStatus.INPUT_ERROR
+        return ExitStatus.INPUT_ERROR, cli_message(exc)
     if isinstance(exc, MemoryError):
-        _error_line(
+        return ExitStatus.INPUT_ERROR, (
             f"out of memory: the inputs need more than {_memory_limit()}; "
             "audit fewer icons, canvases or colours at once"
         )
-        return ExitStatus.INPUT_ERROR
     if isinstance(exc, RecursionError):
-        _error_line("input nested too deeply (Python's recursion limit)")
-        return ExitStatus.INPUT_ERROR
+        return ExitStatus.INPUT_ERROR, "input nested too deeply (Python's recursion limit)"
     if isinstance(exc, OSError) and exc.filename is not None:
         # The environment refused (permissions, a full disk): not a bug, and the file says where.
-        _error_line(f"{exc.filename}: {exc.strerror or exc}")
-        return ExitStatus.INPUT_ERROR
-    text = str(exc).splitlines()[0] if str(exc) else ""
-    _error_line(
-        f"internal error (a bug in alpha-audit, please report it): "
-        f"{type(exc).__name__}: {text}"
-        + ("" if debug else f" (--debug or {DEBUG_ENV}=1 for details)")
+        return ExitStatus.INPUT_ERROR, f"{exc.filename}: {exc.strerror or exc}"
+    reason = " ".join(str(exc).split("\n", 1)[0].split())[:MAX_REASON]
+    return ExitStatus.INTERNAL_ERROR, (
+        "internal error (a bug in alpha-audit, please report it): "
+        + (f"{type(exc).__name__}: {reason}" if reason else type(exc).__name__)
     )
+
+
+def _exit_code(exc: Exception, *, debug: bool) -> ExitStatus:
+    """Report ``exc`` on stderr in one line (plus the traceback with ``debug``)."""
+    status, line = _classify(exc)
+    if status is ExitStatus.INTERNAL_ERROR and not debug:
+        line += f" (--debug or {DEBUG_ENV}=1 for details)"
+    _error_line(line)
     if debug:
         traceback.print_exception(exc)
-    return ExitStatus.INTERNAL_ERROR
+    return status
 
 
 class _Group(TyperGroup):
