@@ -106,3 +106,24 @@ def test_reproduce_finds_paper16_from_an_empty_folder(tmp_path: Path) -> None:
     assert run.returncode == 0, run.stderr
     doc = json.loads(run.stdout)
     assert doc["theme"]["name"] == load_theme(bundled_theme("paper16")).name
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["suggest", "paper16", "vibrant", "-f", "json"],
+        ["reproduce", "--theme", "material3", "--quick", "--only", "palette", "--format", "json"],
+        ["check", "paper16", "vibrant", "--theme", "material3", "-f", "json"],
+    ],
+)
+def test_every_command_taking_a_theme_accepts_bundled_names(args: list[str]) -> None:
+    result = runner.invoke(app, args)
+    assert result.exit_code == ExitStatus.OK, result.output
+    assert json.loads(result.stdout)
+
+
+def test_preview_accepts_bundled_names(tmp_path: Path) -> None:
+    result = runner.invoke(app, ["preview", "github-primer", "vibrant", "-o", str(tmp_path)])
+    assert result.exit_code == ExitStatus.OK, result.output
+    assert sorted(p.suffix for p in tmp_path.iterdir()) == [".png"] * len(list(tmp_path.iterdir()))
+    assert any(tmp_path.iterdir())
