@@ -16,7 +16,7 @@ from alpha_audit.cli_options import (
     ThemeArgument,
     ThresholdOption,
 )
-from alpha_audit.suggest_report import SuggestFormat
+from alpha_audit.suggest.report import SuggestFormat
 
 __all__ = ["suggest_command"]
 
@@ -77,9 +77,9 @@ def suggest_command(
     from alpha_audit.load.config import project_config
     from alpha_audit.load.iconset import load_iconset
     from alpha_audit.load.theme import load_theme
-    from alpha_audit.manifest_edit import apply_alpha, format_alpha
+    from alpha_audit.suggest.apply import apply_alpha, format_alpha
     from alpha_audit.suggest import suggest
-    from alpha_audit.suggest_report import render_suggest
+    from alpha_audit.suggest.report import render_suggest
 
     require_finite(alpha_max, "--alpha-max")
     require_finite(threshold, "--threshold")

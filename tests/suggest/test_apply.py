@@ -12,7 +12,7 @@ from typer.testing import CliRunner
 from alpha_audit.cli import app
 from alpha_audit.errors import InputError
 from alpha_audit.load.iconset import load_iconset
-from alpha_audit.manifest_edit import apply_alpha, format_alpha, set_alpha
+from alpha_audit.suggest.apply import apply_alpha, format_alpha, set_alpha
 
 MANIFEST = """\
 # Demo icons -- keep this comment

@@ -5,7 +5,7 @@ For a gate :class:`~alpha_audit.policy.Policy` ``P`` the largest safe alpha is
     a* = sup { a <= a_max : every a' in [1, a] satisfies P }
 
 (issue 4).  It is computed from *events*, not a sweep (see
-:mod:`alpha_audit.events`): contrast rules cross their thresholds at
+:mod:`alpha_audit.suggest.events`): contrast rules cross their thresholds at
 closed-form points of a piecewise-linear luminance, 8-bit collisions live on
 intervals between code changes known exactly, and only CIEDE2000 separation
 is bracketed and bisected to 1e-9.  The reported value is ``a*`` rounded
@@ -37,15 +37,15 @@ from alpha_audit.color import (
     to_8bit,
 )
 from alpha_audit.errors import UsageError
-from alpha_audit.events import (
+from alpha_audit.model import IconSet, Theme
+from alpha_audit.policy import Policy, Rule
+from alpha_audit.suggest.events import (
     clip_breakpoints,
     code_timeline,
     first_below,
     first_in_luminance_band,
     luminance_band,
 )
-from alpha_audit.model import IconSet, Theme
-from alpha_audit.policy import Policy, Rule
 
 __all__ = [
     "SEPARATION_GRID_STEP",

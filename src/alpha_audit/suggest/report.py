@@ -18,7 +18,7 @@ from rich.console import Console
 from rich.table import Table
 from rich.text import Text
 
-from alpha_audit.suggest import Limit, SafeAlpha, SuggestResult
+from alpha_audit.suggest.engine import Limit, SafeAlpha, SuggestResult
 
 __all__ = ["SCHEMA", "SuggestFormat", "render_suggest", "suggest_document"]
 
