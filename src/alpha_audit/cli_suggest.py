@@ -77,8 +77,8 @@ def suggest_command(
     from alpha_audit.load.config import project_config
     from alpha_audit.load.iconset import load_iconset
     from alpha_audit.load.theme import load_theme
-    from alpha_audit.suggest.apply import apply_alpha, format_alpha
     from alpha_audit.suggest import suggest
+    from alpha_audit.suggest.apply import apply_alpha, format_alpha
     from alpha_audit.suggest.report import render_suggest
 
     require_finite(alpha_max, "--alpha-max")

@@ -17,7 +17,7 @@ import numpy as np
 
 from alpha_audit.audit import AuditResult
 from alpha_audit.errors import InputError, UsageError
-from alpha_audit.policy import Exemption, Policy, Rule
+from alpha_audit.policy import Exemption, Policy, Rule, contrast_breaks
 
 __all__ = [
     "BASELINE_SCHEMA",
@@ -122,24 +122,18 @@ def _icon_refs(
 def _cell_findings(result: AuditResult, policy: Policy) -> Iterable[tuple[Rule, int, int, str]]:
     """(rule, icon index, canvas index, message) for the per icon x canvas rules."""
     t = result.threshold
-    # A loss counts beyond both the policy's allowance and the float tolerance.
-    loss = result.gain < -max(policy.max_loss, result.tolerance)
-    masks: list[tuple[Rule, np.ndarray, str]] = [
-        (Rule.LOSS, loss, "contrast drops {ref:.3f} -> {now:.3f} ({gain:+.4f}) at alpha {a:g}"),
-        (
-            Rule.NEWLY_FAILING,
-            result.newly_fails,
-            f"passes {t:g}:1 at alpha 1 ({{ref:.3f}}) but not at alpha {{a:g}} ({{now:.3f}})",
+    templates = {
+        Rule.LOSS: "contrast drops {ref:.3f} -> {now:.3f} ({gain:+.4f}) at alpha {a:g}",
+        Rule.NEWLY_FAILING: (
+            f"passes {t:g}:1 at alpha 1 ({{ref:.3f}}) but not at alpha {{a:g}} ({{now:.3f}})"
         ),
-        (
-            Rule.BELOW_THRESHOLD,
-            ~result.passes,
-            f"contrast {{now:.3f}} is below {t:g}:1 at alpha {{a:g}}",
-        ),
-    ]
-    for rule, mask, template in masks:
-        if rule not in policy.rules:
-            continue
+        Rule.BELOW_THRESHOLD: f"contrast {{now:.3f}} is below {t:g}:1 at alpha {{a:g}}",
+    }
+    for rule in policy.contrast_rules:
+        template = templates[rule]
+        mask = contrast_breaks(
+            rule, policy, result.contrast_ref, result.contrast, t, result.tolerance
+        )
         # Canvas order, then icon order: the same order as AuditResult.rows().
         for j, i in zip(*np.nonzero(mask.T), strict=True):
             i, j = int(i), int(j)
@@ -203,14 +197,7 @@ def findings_for(result: AuditResult, policy: Policy) -> list[Finding]:
         }
         add(rule, canvases[j].name, (icons[i].name,), message, numbers)
 
-    # `collision` already covers every new collision; report each once.
-    collision_rule = (
-        Rule.COLLISION
-        if Rule.COLLISION in policy.rules
-        else Rule.NEW_COLLISION
-        if Rule.NEW_COLLISION in policy.rules
-        else None
-    )
+    collision_rule = policy.collision_rule
     for c in result.collisions:
         if collision_rule is None or (collision_rule is Rule.NEW_COLLISION and not c.new):
             continue
