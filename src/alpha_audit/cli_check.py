@@ -146,7 +146,7 @@ def check_command(
     from alpha_audit.load.config import project_config
     from alpha_audit.output import write_text
     from alpha_audit.pipeline import check_project
-    from alpha_audit.render.json import dumps
+    from alpha_audit.render.common import dumps
 
     require_finite(alpha, "--alpha")
     require_finite(threshold, "--threshold")

@@ -77,9 +77,9 @@ def suggest_command(
     from alpha_audit.load.config import project_config
     from alpha_audit.load.iconset import load_iconset
     from alpha_audit.load.theme import load_theme
+    from alpha_audit.render.common import RenderOptions
     from alpha_audit.suggest import suggest
     from alpha_audit.suggest.apply import apply_alpha, format_alpha
-    from alpha_audit.suggest.report import render_suggest
 
     require_finite(alpha_max, "--alpha-max")
     require_finite(threshold, "--threshold")
@@ -106,8 +106,8 @@ def suggest_command(
         precision=precision,
         threshold=threshold if threshold is not None else project.threshold,
     )
-    width = stdout_options().width if output is None else 100
-    emit(render_suggest(result, fmt, width=width), output, force)
+    options = stdout_options() if output is None else RenderOptions()
+    emit(fmt.renderer()(result, options), output, force)
     if apply:
         if result.alpha is None:
             raise UsageError("no safe alpha to apply: the policy already fails at alpha = 1")

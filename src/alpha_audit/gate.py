@@ -72,17 +72,39 @@ class Finding:
 
 @dataclass(frozen=True)
 class GateResult:
-    """Every finding of the enabled rules, in stable order, plus stale baseline entries."""
+    """Every finding of the enabled rules, in stable order, plus stale baseline entries.
+
+    The verdict is decided here once: ``findings`` splits into :attr:`failures`,
+    :attr:`exempted` and :attr:`baselined`; ``warnings`` are icons that could
+    not be rendered while ``unrenderable`` is not a rule (reported, never
+    failing, never baselined).  Renderers show these; they do not re-decide them.
+    """
 
     policy: Policy
     findings: tuple[Finding, ...]
     stale: tuple[FindingKey, ...] = ()
     problems: int = 0  # icons that could not be rendered (reported, fail only with a rule)
+    warnings: tuple[Finding, ...] = ()
 
     @property
     def failures(self) -> tuple[Finding, ...]:
         """Findings that fail the gate."""
         return tuple(f for f in self.findings if f.fails)
+
+    @property
+    def exempted(self) -> tuple[Finding, ...]:
+        """Findings an exemption covers (with its reason)."""
+        return tuple(f for f in self.findings if f.exemption is not None)
+
+    @property
+    def baselined(self) -> tuple[Finding, ...]:
+        """Findings the baseline covers and no exemption does."""
+        return tuple(f for f in self.findings if f.baselined and f.exemption is None)
+
+    @property
+    def unrenderable_fails(self) -> bool:
+        """Whether an icon that could not be rendered fails the gate (else it is a warning)."""
+        return Rule.UNRENDERABLE in self.policy.rules
 
     @property
     def passed(self) -> bool:
@@ -223,22 +245,27 @@ def findings_for(result: AuditResult, policy: Policy) -> list[Finding]:
                 add(Rule.SEPARATION, s.canvas, tuple(sorted(s.icons)), message, numbers)
 
     if Rule.UNRENDERABLE in policy.rules:
-        # Broken icons are not in result.iconset any more; name their file directly.
-        for p in result.problems:
-            out.append(
-                Finding(
-                    rule=Rule.UNRENDERABLE,
-                    theme=theme,
-                    iconset=iconset,
-                    canvas=None,
-                    icons=(p.icon,),
-                    message=p.message,
-                    files=(Path(p.file),),
-                    manifest=manifest,
-                    exemption=policy.exempt(Rule.UNRENDERABLE, None, (p.icon,)),
-                )
-            )
+        out.extend(_problem_findings(result, policy))
     return out
+
+
+def _problem_findings(result: AuditResult, policy: Policy) -> list[Finding]:
+    """One ``unrenderable`` finding per icon that could not be rendered."""
+    # Broken icons are not in result.iconset any more; name their file directly.
+    return [
+        Finding(
+            rule=Rule.UNRENDERABLE,
+            theme=result.theme.name,
+            iconset=result.iconset.name,
+            canvas=None,
+            icons=(p.icon,),
+            message=p.message,
+            files=(Path(p.file),),
+            manifest=result.iconset.path,
+            exemption=policy.exempt(Rule.UNRENDERABLE, None, (p.icon,)),
+        )
+        for p in result.problems
+    ]
 
 
 def evaluate(
@@ -261,14 +288,19 @@ def evaluate(
     [('loss', 'yellow', ('dot',))]
     """
     findings: list[Finding] = []
+    warnings: list[Finding] = []
     unrenderable: set[tuple[str, tuple[str, ...]]] = set()
+    gated = Rule.UNRENDERABLE in policy.rules
     for result in audits:
-        for f in findings_for(result, policy):
+        found = findings_for(result, policy)
+        if not gated:  # reported, never failing: the gate's warnings
+            found += [replace(f, exemption=None) for f in _problem_findings(result, policy)]
+        for f in found:
             if f.rule is Rule.UNRENDERABLE:  # one per icon, not one per theme
                 if (f.iconset, f.icons) in unrenderable:
                     continue
                 unrenderable.add((f.iconset, f.icons))
-            findings.append(f)
+            (findings if gated or f.rule is not Rule.UNRENDERABLE else warnings).append(f)
     stale: tuple[FindingKey, ...] = ()
     if baseline is not None:
         known = set(baseline)
@@ -276,7 +308,13 @@ def evaluate(
         findings = [replace(f, baselined=True) if f.key in known else f for f in findings]
         stale = tuple(sorted(known - seen, key=_sort_key))
     problems = sum(len(r.problems) for r in audits)
-    return GateResult(policy=policy, findings=tuple(findings), stale=stale, problems=problems)
+    return GateResult(
+        policy=policy,
+        findings=tuple(findings),
+        stale=stale,
+        problems=problems,
+        warnings=tuple(warnings),
+    )
 
 
 def _sort_key(key: FindingKey) -> tuple[str, str, str, str, tuple[str, ...]]:
