@@ -144,8 +144,9 @@ def emit(text: str, output: Path | None, force: bool) -> None:
 
 
 from alpha_audit.cli_check import check_command  # noqa: E402  (commands register below)
+from alpha_audit.cli_options import OrderedOptionsCommand  # noqa: E402
 
-app.command("check")(check_command)
+app.command("check", cls=OrderedOptionsCommand)(check_command)
 from alpha_audit.cli_suggest import suggest_command  # noqa: E402
 
 app.command("suggest")(suggest_command)

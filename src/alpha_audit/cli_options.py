@@ -6,13 +6,16 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
+from typer.core import TyperCommand
 
 __all__ = [
+    "OPTION_ORDER",
     "ConfigOption",
     "ForceOption",
     "IconsetArgument",
     "MaxLossOption",
     "MinDeltaEOption",
+    "OrderedOptionsCommand",
     "StrictSvgOption",
     "ThemeArgument",
     "ThresholdOption",
@@ -51,3 +54,20 @@ StrictSvgOption = Annotated[
     typer.Option("--strict-svg", help="Treat an SVG that cannot be rendered as an input error."),
 ]
 ForceOption = Annotated[bool, typer.Option("--force", help="Replace existing output files.")]
+
+
+OPTION_ORDER = "alpha_audit.option_order"
+
+
+class OrderedOptionsCommand(TyperCommand):
+    """A command that records the order its options were given in (``ctx.meta``).
+
+    Click hands each repeatable option over as one list, which loses which
+    ``--output`` followed which ``--format``; the parser knows, so ask it once.
+    """
+
+    def parse_args(self, ctx: typer.Context, args: list[str]) -> list[str]:  # type: ignore[override]
+        """Record ``[param name, ...]`` per option occurrence, then parse as usual."""
+        _, _, order = self.make_parser(ctx).parse_args(args=list(args))
+        ctx.meta[OPTION_ORDER] = [p.name for p in order]
+        return super().parse_args(ctx, args)
