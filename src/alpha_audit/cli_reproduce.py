@@ -17,8 +17,8 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
 from alpha_audit.errors import UsageError
 from alpha_audit.load.theme import load_theme
-from alpha_audit.reproduce.figures import write_figures
-from alpha_audit.reproduce.report import ReproduceFormat, render_json, render_markdown
+from alpha_audit.reproduce.files import check_results_folder, write_results
+from alpha_audit.reproduce.report import ReproduceFormat
 from alpha_audit.reproduce.run import Experiment, Reproduction, reproduce
 
 __all__ = ["ReproduceFormat", "default_theme_path", "reproduce_command"]
@@ -96,10 +96,15 @@ def reproduce_command(
         ReproduceFormat,
         typer.Option("--format", help="What to print on stdout."),
     ] = ReproduceFormat.TABLE,
+    force: Annotated[
+        bool, typer.Option("--force", help="Replace existing files in the --out folder.")
+    ] = False,
 ) -> None:
     """Reproduce the paper's numerical evaluation (Section 4) exactly and fast."""
     if out is not None and out.exists() and not out.is_dir():
         raise UsageError(f"--out {out} exists and is not a directory")
+    if out is not None:
+        check_results_folder(out, only or (), overwrite=force)  # before minutes of work
     theme_path = default_theme_path() if theme is None else theme
     if not theme_path.is_file():
         raise UsageError(f"theme file {theme_path} not found")
@@ -117,8 +122,5 @@ def reproduce_command(
 
     emit(output_format.renderer()(run, stdout_options()), None, False)
     if out is not None:
-        out.mkdir(parents=True, exist_ok=True)
-        (out / "results.json").write_text(render_json(run), encoding="utf-8")
-        (out / "report.md").write_text(render_markdown(run), encoding="utf-8")
-        if run.sweep is not None:
-            write_figures(run.sweep, out)
+        for path in write_results(run, out, overwrite=force):
+            typer.echo(f"wrote {path}", err=True)
