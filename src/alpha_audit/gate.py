@@ -17,6 +17,7 @@ import numpy as np
 
 from alpha_audit.audit import AuditResult
 from alpha_audit.errors import InputError, UsageError
+from alpha_audit.load.files import read_text_capped
 from alpha_audit.policy import Exemption, Policy, Rule, contrast_breaks
 
 __all__ = [
@@ -376,19 +377,7 @@ def parse_baseline(text: str, path: Path) -> frozenset[FindingKey]:
 def read_baseline(path: str | Path) -> frozenset[FindingKey]:
     """Read a baseline file (at most :data:`MAX_BASELINE_BYTES`)."""
     p = Path(path)
-    try:
-        with p.open("rb") as fh:
-            raw = fh.read(MAX_BASELINE_BYTES + 1)
-    except FileNotFoundError as exc:
-        raise UsageError(
-            "baseline file not found (create it with --write-baseline)", path=p
-        ) from exc
-    except OSError as exc:
-        raise InputError(f"cannot read: {exc.strerror}", path=p) from exc
-    if len(raw) > MAX_BASELINE_BYTES:
-        raise InputError(f"larger than {MAX_BASELINE_BYTES >> 20} MiB", path=p)
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise InputError(f"not UTF-8 text (byte {exc.start})", path=p) from exc
+    if not p.exists() and not p.is_symlink():
+        raise UsageError("baseline file not found (create it with --write-baseline)", path=p)
+    text = read_text_capped(p, MAX_BASELINE_BYTES, InputError, "an alpha-audit baseline")
     return parse_baseline(text, p)
