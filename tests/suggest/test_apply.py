@@ -148,7 +148,7 @@ def test_a_link_leaving_the_project_is_refused(tmp_path: Path) -> None:
     ("text", "words"),
     [
         ("name: x\nicons: [a.svg]\nalpha: &a 1.1\nother: *a\n", "anchor"),
-        ("{name: x, icons: [a.svg]}\n", "not be valid YAML"),  # appended line would break flow style
+        ("{name: x, icons: [a.svg]}\n", "not be valid YAML"),  # appended line breaks flow style
         ("name: x\nicons: [a.svg]\n...\n", "valid YAML"),  # after the end marker
         ("name: x\nicons: [a.svg]\nalpha: 1.1\nalpha: 1.3\n", "more than the alpha"),
         ("  name: x\n  icons: [a.svg]\n", "valid YAML"),  # indented top level
