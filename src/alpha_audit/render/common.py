@@ -147,13 +147,18 @@ _ENCODER = json.JSONEncoder(ensure_ascii=True, allow_nan=False, separators=(", "
 _INDENT = "  "
 
 
+_SCALARS = frozenset({str, int, float, bool, type(None)})
+
+
 def _flat(value: object) -> bool:
     """A dict or list holding only scalars (and lists of scalars): written on one line."""
-    items = value.values() if isinstance(value, dict) else value
+    items = list(value.values() if isinstance(value, dict) else value)  # type: ignore[union-attr]
+    if all(map(_SCALARS.__contains__, map(type, items))):  # the common case, at C speed
+        return True
     return all(
         not isinstance(v, dict)
         and (not isinstance(v, list) or all(not isinstance(x, dict | list) for x in v))
-        for v in items  # type: ignore[union-attr]
+        for v in items
     )
 
 
