@@ -91,7 +91,12 @@ def test_pairing(formats, outputs, order, expected) -> None:
 @pytest.mark.parametrize(
     ("formats", "outputs", "order", "words"),
     [
-        (["junit"], ["a.sarif"], [FMT, OUT], ["a.sarif", "junit", ".xml"]),  # extension of sarif
+        (
+            ["junit"],
+            ["a.sarif"],
+            [FMT, OUT],
+            ["a.sarif", "junit", ".xml", "another format"],
+        ),  # extension of sarif
         (["github", "table"], ["-"], [FMT, OUT, FMT], ["github and table"]),
         (["json", "table"], [], [FMT, FMT], ["json and table", "stdout"]),
         (["json", "sarif"], ["a.json", "b.sarif"], [OUT, FMT, FMT, OUT], ["a.json", "before any"]),

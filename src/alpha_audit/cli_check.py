@@ -20,7 +20,8 @@ from alpha_audit.cli_options import (
     ThemeArgument,
     ThresholdOption,
 )
-from alpha_audit.render import SUFFIXES, CheckFormat, RenderOptions
+from alpha_audit.render import CheckFormat, RenderOptions
+from alpha_audit.render.common import check_suffix
 
 __all__ = ["check_command", "pair_outputs"]
 
@@ -65,14 +66,9 @@ def pair_outputs(
         (fmt, None if out is None or str(out) == "-" else out)
         for fmt, out in zip(formats, targets, strict=True)
     ]
-    known = {suffix for suffixes in SUFFIXES.values() for suffix in suffixes}
     for fmt, out in pairs:
-        suffix = "" if out is None else out.suffix.lower()
-        if suffix in known and suffix not in SUFFIXES[fmt.value]:
-            raise UsageError(
-                f"--output {out} has the extension of another format; --format {fmt.value} "
-                f"writes {' or '.join(SUFFIXES[fmt.value])} (or give a name without one)"
-            )
+        if out is not None:
+            check_suffix(fmt.value, out)
     to_stdout = [fmt.value for fmt, out in pairs if out is None]
     if len(to_stdout) > 1:
         raise UsageError(

@@ -78,11 +78,12 @@ def suggest_command(
     from alpha_audit.load.iconset import load_iconset
     from alpha_audit.load.theme import load_theme
     from alpha_audit.output import check_targets
-    from alpha_audit.render.common import RenderOptions
+    from alpha_audit.render.common import RenderOptions, check_suffix
     from alpha_audit.suggest import suggest
     from alpha_audit.suggest.apply import apply_alpha, format_alpha
 
     if output is not None:
+        check_suffix(fmt.value, output)
         check_targets([output], overwrite=force)  # before the work, not after
     require_finite(alpha_max, "--alpha-max")
     require_finite(threshold, "--threshold")

@@ -33,6 +33,7 @@ __all__ = [
     "SUFFIXES",
     "RenderOptions",
     "Renderer",
+    "check_suffix",
     "display_path",
     "dumps",
     "escape_html",
@@ -78,6 +79,28 @@ SUFFIXES: Mapping[str, tuple[str, ...]] = {
     "markdown": (".md", ".markdown"),
     "github": (".txt", ".log"),
 }
+
+
+def check_suffix(fmt: str, path: Path) -> None:
+    """Refuse ``path`` for format ``fmt`` when its extension belongs to another format.
+
+    An extension no format claims (or none) is the user's choice.
+
+    >>> check_suffix("sarif", Path("a.sarif.json"))  # SARIF also goes by .json
+    >>> check_suffix("junit", Path("a.sarif"))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    alpha_audit.errors.UsageError: a.sarif: has the extension of another format; junit ...
+    """
+    from alpha_audit.errors import UsageError
+
+    known = {suffix for suffixes in SUFFIXES.values() for suffix in suffixes}
+    suffix = path.suffix.lower()
+    if suffix in known and suffix not in SUFFIXES[fmt]:
+        raise UsageError(
+            f"has the extension of another format; {fmt} reports are "
+            f"{' or '.join(SUFFIXES[fmt])} (or give a name without one)",
+            path=path,
+        )
 
 
 def display_path(path: Path | str | None, base: Path | None) -> str | None:

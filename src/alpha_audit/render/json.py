@@ -116,6 +116,7 @@ def gate_to_dict(gate: GateResult, base: Path | None = None) -> dict[str, Any]:
         "failures": [finding_to_dict(f, base) for f in gate.failures],
         "exempted": [finding_to_dict(f, base) for f in gate.exempted],
         "baselined": [finding_to_dict(f, base) for f in gate.baselined],
+        "warnings": [finding_to_dict(f, base) for f in gate.warnings],
         "stale_baseline": [
             {"theme": t, "iconset": s, "rule": r, "canvas": c, "icons": list(i)}
             for t, s, r, c, i in gate.stale
