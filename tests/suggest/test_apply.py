@@ -158,3 +158,11 @@ def test_edits_that_would_change_meaning_are_refused(text: str, words: str) -> N
     with pytest.raises(InputError, match=words) as err:
         set_alpha(text, "1.2")
     assert "\n" not in str(err.value)  # one line
+
+
+@pytest.mark.parametrize("kind", ["loop", "dangling"])
+def test_a_broken_link_is_an_input_error(tmp_path: Path, kind: str) -> None:
+    link = tmp_path / "iconset.yaml"
+    link.symlink_to(link if kind == "loop" else tmp_path / "nowhere.yaml")
+    with pytest.raises(InputError, match="leads to no file"):
+        apply_alpha(link, 1.3, 3, root=tmp_path)

@@ -183,8 +183,12 @@ def apply_alpha(
     directory); otherwise the edit is refused.
     """
     given = Path(path)
-    target = given.resolve() if given.is_symlink() else given
+    target = given
     if given.is_symlink():
+        try:
+            target = given.resolve(strict=True)
+        except (OSError, RuntimeError) as exc:  # dangling, or a loop of links
+            raise InputError("is a link that leads to no file; not editing it", path=given) from exc
         base = Path(root if root is not None else Path.cwd()).resolve()
         if not target.is_relative_to(base):
             raise InputError(
