@@ -173,9 +173,9 @@ _INDENT = "  "
 _SCALARS = frozenset({str, int, float, bool, type(None)})
 
 
-def _flat(value: object) -> bool:
+def _flat(value: dict[Any, Any] | list[Any]) -> bool:
     """A dict or list holding only scalars (and lists of scalars): written on one line."""
-    items = list(value.values() if isinstance(value, dict) else value)  # type: ignore[union-attr]
+    items = list(value.values() if isinstance(value, dict) else value)
     if all(map(_SCALARS.__contains__, map(type, items))):  # the common case, at C speed
         return True
     return all(

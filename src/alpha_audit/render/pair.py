@@ -48,8 +48,8 @@ def render_table(report: PairReport, options: RenderOptions) -> str:
     title = Text(f"{report.color} on {backgrounds} background(s)")  # never rich markup
     table = Table(title=title, title_justify="left")
     for name in ("background", "α", "output", "contrast", "gain", "ΔE00 vs Cs", "clipped"):
-        justify = "left" if name in ("background", "output", "clipped") else "right"
-        table.add_column(name, justify=justify, no_wrap=True)
+        left = name in ("background", "output", "clipped")
+        table.add_column(name, justify="left" if left else "right", no_wrap=True)
     for r in rows:
         table.add_row(
             Text(r.background, style=f"on {r.background}"),

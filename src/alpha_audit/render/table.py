@@ -224,8 +224,9 @@ def gate_renderable(gate: GateResult) -> RenderableType:
     else:
         out.append(Text(f"Gate passed [{rules}]", style="bold green"))
     exempt, baselined = gate.exempted, gate.baselined
-    if exempt:
-        out.append(Text(f"  {len(exempt)} exempted finding(s), e.g. {exempt[0].exemption.reason}"))
+    if exempt and exempt[0].exemption is not None:
+        reason = exempt[0].exemption.reason
+        out.append(Text(f"  {len(exempt)} exempted finding(s), e.g. {reason}"))
     if baselined:
         out.append(Text(f"  {len(baselined)} finding(s) already in the baseline"))
     if gate.stale:

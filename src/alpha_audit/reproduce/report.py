@@ -457,16 +457,16 @@ def tables(run: Reproduction) -> list[Table]:
             printed = PAPER["broad_grid"].get(alpha_key(r.alpha), {}) if paper_grid else {}
             for name, label in quantities:
                 ours = getattr(r, name)
-                p = printed.get(name)
-                if p is None:
+                paper = printed.get(name)
+                if paper is None:
                     t.add_row(alpha_key(r.alpha), label, "—", f"{ours:.4f}", "—")
                     continue
-                ok = matches_printed(ours, p)
+                ok = matches_printed(ours, paper)
                 t.add_row(
                     alpha_key(r.alpha),
                     label,
-                    f"{p.value:.{p.decimals}f}",
-                    f"{ours:.{p.decimals}f}",
+                    f"{paper.value:.{paper.decimals}f}",
+                    f"{ours:.{paper.decimals}f}",
                     Text("yes", style="green") if ok else Text("NO", style="bold red"),
                 )
             worst = " > ".join(f"{cr:.4f}" for cr in r.worst_contrast.values())
@@ -480,13 +480,13 @@ def tables(run: Reproduction) -> list[Table]:
         t = _table(f"Full gamut on {run.theme.name} (comparable to the paper in method only)")
         for col in ("alpha", "group", "inc %", "dec %", "same %", "mean", "3:1 %", "Diff", "Excl"):
             t.add_column(col, justify="right", no_wrap=True)
-        for r in run.full_gamut:
-            rows = [("all", r.total)] + [(m, r.group(m)) for m in ("light", "dark")]
+        for fg in run.full_gamut:
+            rows = [("all", fg.total)] + [(m, fg.group(m)) for m in ("light", "dark")]
             for name, c in rows:
                 if c is None:
                     continue
                 t.add_row(
-                    alpha_key(r.alpha), name, f"{c.increase_pct:.4f}", f"{c.decrease_pct:.4f}",
+                    alpha_key(fg.alpha), name, f"{c.increase_pct:.4f}", f"{c.decrease_pct:.4f}",
                     f"{c.unchanged_pct:.4f}", f"{c.mean_change:.4f}", f"{c.newly_reach_pct:.4f}",
                     f"{c.mean_difference_change:.4f}", f"{c.mean_exclusion_change:.4f}",
                 )  # fmt: skip
@@ -507,17 +507,17 @@ def tables(run: Reproduction) -> list[Table]:
                       pair(s.collision_rate))  # fmt: skip
         tables.append(t)
     if run.palette is not None:
-        p = run.palette
-        t = _table(f"Palette separation: {p.combinations} pair x canvas combinations")
+        pal = run.palette
+        t = _table(f"Palette separation: {pal.combinations} pair x canvas combinations")
         for col in ("alpha", "smaller CIEDE2000", "collisions", "random-pair collisions"):
             t.add_column(col, justify="right", no_wrap=True)
-        for a in sorted(set(p.alphas) | set(p.random_alphas)):
+        for a in sorted(set(pal.alphas) | set(pal.random_alphas)):
             t.add_row(
                 alpha_key(a),
-                str(p.smaller.get(a, "—")),
-                str(p.collisions.get(a, "—")),
-                f"{p.random_collisions[a]:,} of {p.random_combinations:,}"
-                if a in p.random_collisions
+                str(pal.smaller.get(a, "—")),
+                str(pal.collisions.get(a, "—")),
+                f"{pal.random_collisions[a]:,} of {pal.random_combinations:,}"
+                if a in pal.random_collisions
                 else "—",
             )
         tables.append(t)
