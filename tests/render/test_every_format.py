@@ -21,6 +21,7 @@ from markdown_it import MarkdownIt
 
 from alpha_audit.audit import audit
 from alpha_audit.gate import CheckReport, evaluate
+from alpha_audit.load.svg import IconProblem
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
 from alpha_audit.pair import pair_report
 from alpha_audit.policy import Policy, Rule
@@ -126,6 +127,15 @@ def test_every_result_type_renders_every_format(fmt: StrEnum, make: Callable[[],
     assert text.strip() and text.endswith("\n")
     _check(fmt.value, text)
     assert renderer(make(), OPTIONS) == text  # pure: same result, same text
+
+
+@pytest.mark.parametrize("fmt", list(CheckFormat))
+def test_a_report_where_no_icon_rendered_is_still_a_report(fmt: CheckFormat) -> None:
+    iconset = _iconset()
+    broken = tuple(IconProblem(i.name, Path(i.file), "not an SVG") for i in iconset.icons)
+    result = audit(_theme(), iconset, problems=broken)
+    report = CheckReport(audits=(result,), gate=evaluate([result], Policy()))
+    _check(fmt.value, fmt.renderer()(report, OPTIONS))
 
 
 def test_json_documents_are_ascii_and_keep_every_float() -> None:

@@ -26,6 +26,8 @@ MAX_FINDINGS = 12  # per section; the JSON has everything
 
 def _fmt_alpha(result: AuditResult) -> str:
     alphas = sorted({float(a) for a in result.alpha})
+    if not alphas:  # every icon failed to render: nothing was composited
+        return "-"
     if len(alphas) == 1:
         return f"{alphas[0]:g}"
     return f"{alphas[0]:g}..{alphas[-1]:g}"
