@@ -84,3 +84,9 @@ def test_bare_urls_are_not_left_for_github_to_autolink(url: str) -> None:
 def test_shorten_names() -> None:
     assert shorten_names(["a", "b", "c"]) == "a, b, c"
     assert shorten_names(["a", "b", "c", "d", "e"]) == "a, b, c +2 more"
+
+
+def test_bidi_overrides_cannot_reorder_a_cell() -> None:
+    cell = escape_markdown("icon\u202eevil\u2066x\u2069")
+    assert not any(c in cell for c in "\u202e\u2066\u2069")
+    assert escape_markdown("a\u200dxb") == "a\u200dxb"  # a zero-width joiner (emoji) stays

@@ -125,7 +125,9 @@ def display_path(path: Path | str | None, base: Path | None) -> str | None:
 # What changes meaning inside a GFM table cell: emphasis, code, links, pipes,
 # strikethrough (GFM spec 0.29, sections 4.10, 6.1-6.7).
 _MARKDOWN_SPECIAL = re.compile(r"([\\`*_\[\]|~])")
-_CONTROL = re.compile(r"[\x00-\x1f\x7f-\x9f]+")
+# C0/C1 controls, and the bidirectional overrides and isolates (Unicode UAX #9)
+# that reorder how a line reads (Trojan Source, CVE-2021-42574).
+_CONTROL = re.compile(r"[\x00-\x1f\x7f-\x9f\u061c\u200e\u200f\u202a-\u202e\u2066-\u2069]+")
 # GFM autolinks (extension, section 6.9) start at "www." or a scheme's "://";
 # an entity there leaves a text GitHub no longer turns into a link.
 _AUTOLINK = re.compile(r"(?i)(?<=www)\.|:(?=//)")
@@ -136,8 +138,8 @@ def escape_markdown(text: object) -> str:
 
     HTML is escaped (no ``<img>``, ``<details>``), ``@`` cannot mention anyone,
     punctuation that starts emphasis, code, links or cells is backslash-escaped,
-    line breaks and control characters become one space, and bare URLs are
-    broken so GitHub does not autolink them.
+    line breaks, control characters and bidirectional overrides become one
+    space, and bare URLs are broken so GitHub does not autolink them.
 
     >>> escape_markdown("a|b <script> @team\\n*x*")
     'a\\\\|b &lt;script&gt; &#64;team \\\\*x\\\\*'
