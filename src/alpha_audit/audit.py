@@ -18,10 +18,12 @@ from alpha_audit.color import (
     DELTA_E_TOLERANCE,
     composite_extended,
     contrast_from_luminance,
-    delta_e_2000,
+    delta_e_2000_lab,
+    linear_to_lab,
     relative_luminance,
     to_8bit,
 )
+from alpha_audit.color.nearest import PAIR_CHUNK, closest_pair_delta_e_2000, iter_pairs
 from alpha_audit.load.svg import IconProblem
 from alpha_audit.model import IconSet, Theme
 
@@ -77,7 +79,8 @@ class Separation:
     delta_e_ref: float
     icons: tuple[str, str]
     sources: tuple[str, str]
-    decreases: int  # pairs whose CIEDE2000 is smaller than at alpha = 1
+    # Pairs whose CIEDE2000 is smaller than at alpha = 1; None above DECREASES_BUDGET.
+    decreases: int | None
     pairs: int
 
 
@@ -138,18 +141,28 @@ def find_collisions(
     ``output_codes`` is ``(n, m, 3)``, ``source_keys`` identifies each icon's
     source colour ``(n,)``.  Returns ``(canvas index, packed output, icon indices)``.
     """
-    m = output_codes.shape[1]
+    n, m = output_codes.shape[:2]
+    if n == 0 or m == 0:
+        return []
     packed = _pack(output_codes)  # (n, m)
-    found = []
-    for j in range(m):
-        outputs = packed[:, j]
-        order = np.lexsort((source_keys, outputs))
-        sorted_out = outputs[order]
-        starts = np.flatnonzero(np.r_[True, sorted_out[1:] != sorted_out[:-1]])
-        for group in np.split(order, starts[1:]):
-            if len(np.unique(source_keys[group])) > 1:
-                found.append((j, int(outputs[group[0]]), np.sort(group)))
-    return found
+    # One sort of every (canvas, output, source) triple: O(nm log nm), no loop
+    # over canvases or output groups; only real collisions reach Python.
+    canvas = np.repeat(np.arange(m), n)
+    icon = np.tile(np.arange(n), m)
+    out = packed.T.reshape(-1)
+    keys = np.asarray(source_keys).reshape(-1)[icon]
+    order = np.lexsort((icon, keys, out, canvas))
+    c, o, s = canvas[order], out[order], keys[order]
+    new_group = np.r_[True, (c[1:] != c[:-1]) | (o[1:] != o[:-1])]
+    starts = np.flatnonzero(new_group)
+    ends = np.r_[starts[1:], order.size]
+    # Sources are sorted within a group: distinct ones exist iff first != last.
+    colliding = s[starts] != s[ends - 1]
+    members = icon[order]
+    return [
+        (int(c[a]), int(o[a]), np.sort(members[a:b]))
+        for a, b in zip(starts[colliding].tolist(), ends[colliding].tolist(), strict=True)
+    ]
 
 
 @dataclass(frozen=True)
@@ -165,9 +178,13 @@ class AuditResult:
     contrast_ref: NDArray[np.float64]  # (n, m), alpha = 1
     contrast: NDArray[np.float64]  # (n, m)
     collisions: tuple[Collision, ...]
-    separations: tuple[Separation, ...]
     problems: tuple[IconProblem, ...] = ()
     tolerance: float = CONTRAST_TOLERANCE
+
+    @cached_property
+    def separations(self) -> tuple[Separation, ...]:
+        """Closest pair of distinct colours per canvas, computed on first use only."""
+        return tuple(_separations(self.theme, self.iconset, self.output))
 
     @property
     def gain(self) -> NDArray[np.float64]:
@@ -284,12 +301,22 @@ class AuditResult:
         return out
 
 
+# Counting the pairs that got closer needs every pair (no bound prunes it):
+# above this many pair x canvas evaluations ``Separation.decreases`` is None.
+# 10^6 CIEDE2000 evaluations take about a second (colour-science, one core).
+DECREASES_BUDGET = 1_000_000
+
+
 def _separations(
     theme: Theme,
     iconset: IconSet,
     output: NDArray[np.float64],
 ) -> list[Separation]:
-    """Closest pair of distinct source colours per canvas, at alpha and at 1."""
+    """Closest pair of distinct source colours per canvas, at alpha and at 1.
+
+    Exact and in bounded memory: :func:`~alpha_audit.color.nearest.closest_pair`
+    prunes by lightness instead of holding every pair.
+    """
     icons = iconset.icons
     # One representative icon per distinct (source colour, alpha) style.
     styles: dict[tuple[str, float], int] = {}
@@ -297,28 +324,37 @@ def _separations(
         styles.setdefault((icon.color, icon.alpha), i)
     reps = np.array(sorted(styles.values()), dtype=np.intp)
     colors = [icons[i].color for i in reps]
-    first, second = np.triu_indices(len(reps), k=1)
-    distinct = np.array([colors[a] != colors[b] for a, b in zip(first, second, strict=True)], bool)
-    first, second = first[distinct], second[distinct]
-    if first.size == 0:
+    labels = np.unique(np.array(colors, dtype=object), return_inverse=True)[1].reshape(-1)
+    k, m = reps.size, len(theme.canvases)
+    group_sizes = np.bincount(labels) if k else np.zeros(0, dtype=np.intp)
+    pairs = k * (k - 1) // 2 - int(np.sum(group_sizes * (group_sizes - 1) // 2))
+    if pairs == 0:
         return []
-    sources = iconset.sources[reps]
-    de_ref = delta_e_2000(sources[first], sources[second])  # (p,)
-    out_reps = output[reps]  # (k, m, 3)
-    de = delta_e_2000(out_reps[first], out_reps[second])  # (p, m)
+    lab_ref = linear_to_lab(iconset.sources[reps])  # (k, 3)
+    lab_out = linear_to_lab(output[reps])  # (k, m, 3)
+    decreases: list[int | None] = [None] * m
+    if pairs * m <= DECREASES_BUDGET:
+        counts = np.zeros(m, dtype=np.int64)
+        for first, second in iter_pairs(k, labels, chunk=max(1, PAIR_CHUNK // max(1, m))):
+            de_ref = delta_e_2000_lab(lab_ref[first], lab_ref[second])  # (p,)
+            de = delta_e_2000_lab(lab_out[first], lab_out[second])  # (p, m)
+            counts += np.sum(de < (de_ref - DELTA_E_TOLERANCE)[:, np.newaxis], axis=0)
+        decreases = [int(c) for c in counts]
     result = []
     for j, canvas in enumerate(theme.canvases):
-        k = int(np.argmin(de[:, j]))
-        a, b = int(reps[first[k]]), int(reps[second[k]])
+        closest = closest_pair_delta_e_2000(lab_out[:, j], labels)
+        assert closest is not None  # pairs > 0
+        a, b = int(reps[closest.first]), int(reps[closest.second])
+        de_ref = delta_e_2000_lab(lab_ref[closest.first], lab_ref[closest.second])
         result.append(
             Separation(
                 canvas=canvas.name,
-                delta_e=float(de[k, j]),
-                delta_e_ref=float(de_ref[k]),
+                delta_e=closest.distance,
+                delta_e_ref=float(de_ref),
                 icons=(icons[a].name, icons[b].name),
                 sources=(icons[a].color, icons[b].color),
-                decreases=int((de[:, j] < de_ref - DELTA_E_TOLERANCE).sum()),
-                pairs=int(first.size),
+                decreases=decreases[j],
+                pairs=pairs,
             )
         )
     return result
@@ -387,6 +423,5 @@ def audit(
         contrast_ref=contrast_ref,
         contrast=contrast,
         collisions=tuple(collisions),
-        separations=tuple(_separations(theme, iconset, output)),
         problems=tuple(problems),
     )
