@@ -111,3 +111,34 @@ def write_theme(path: Path, colors: list[str]) -> Path:
     lines += [f"  - {{name: c{k}, color: '{c}'}}" for k, c in enumerate(colors)]
     path.write_text("\n".join(lines) + "\n")
     return path
+
+
+def make_brand_project(
+    root: Path, logos: list[tuple[Path, str]], *, palette: list[str] | None = None
+) -> Path:
+    """A throwaway project of logos, each in its own brand colour (or ``palette`` in turn)."""
+    (root / ".git").mkdir(parents=True, exist_ok=True)
+    svg = root / "svg"
+    svg.mkdir(exist_ok=True)
+    lines = ["name: brands", "alpha: 1.1", "sizes: [24]", "icons:"]
+    for k, (icon, color) in enumerate(logos):
+        shutil.copy(icon, svg / icon.name)
+        chosen = palette[k % len(palette)] if palette else color
+        lines.append(f"  - {{file: svg/{icon.name}, color: '{chosen}'}}")
+    manifest = root / "iconset.yaml"
+    manifest.write_text("\n".join(lines) + "\n")
+    return manifest
+
+
+def run_measured(args: list[str]) -> tuple[float, int, int]:
+    """Run a command under ``/usr/bin/time -v``: (seconds, peak RSS in MB, exit code)."""
+    import re
+    import time
+
+    start = time.perf_counter()
+    done = subprocess.run(
+        ["/usr/bin/time", "-v", *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True
+    )
+    seconds = time.perf_counter() - start
+    found = re.search(r"Maximum resident set size \(kbytes\): (\d+)", done.stderr)
+    return seconds, int(found.group(1)) // 1024 if found else -1, done.returncode

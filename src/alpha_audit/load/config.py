@@ -19,6 +19,7 @@ from alpha_audit.errors import InputError, UsageError
 from alpha_audit.load.fields import check_keys, describe, read_mapping, read_name, read_number
 from alpha_audit.load.yamldoc import MAX_YAML_BYTES, KeyPath, YamlDoc, load_yaml
 from alpha_audit.policy import DEFAULT_RULES, Exemption, Policy, Rule
+from alpha_audit.safe_text import is_safe, safe_text
 
 __all__ = [
     "CONFIG_KEYS",
@@ -196,6 +197,13 @@ def _exemptions(doc: YamlDoc, keys: KeyPath, value: Any) -> tuple[Exemption, ...
         reason = item.get("reason")
         if not isinstance(reason, str) or not reason.strip():
             raise doc.error((*ikeys, "reason"), "every exemption needs a reason: (why it is fine)")
+        if not is_safe(reason) or len(reason) > 500:
+            # Reasons are printed with findings: the same rule as names.
+            raise doc.error(
+                (*ikeys, "reason"),
+                f"{safe_text(reason[:40])!r} is not a usable reason: at most 500 characters, "
+                "no control, format (bidi) or surrogate characters",
+            )
         canvas = read_name(doc, (*ikeys, "canvas"), item["canvas"]) if "canvas" in item else None
         icon = read_name(doc, (*ikeys, "icon"), item["icon"]) if "icon" in item else None
         if canvas is None and icon is None:

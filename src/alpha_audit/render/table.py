@@ -18,6 +18,7 @@ from rich.text import Text
 from alpha_audit.audit import AuditResult, Row
 from alpha_audit.gate import CheckReport, GateResult
 from alpha_audit.render import RenderOptions, as_report
+from alpha_audit.safe_text import safe_text
 
 __all__ = ["MAX_FINDINGS", "check_renderable", "gate_renderable", "render_check", "render_report"]
 
@@ -186,7 +187,7 @@ def _findings(result: AuditResult) -> list[RenderableType]:
             Text(f"Icons that could not be rendered ({len(result.problems)})", style="bold yellow")
         )
         for p in result.problems[:MAX_FINDINGS]:
-            out.append(Text(f"  {p.icon} ({p.file}): {p.message}"))
+            out.append(Text(safe_text(f"  {p.icon} ({p.file}): {p.message}")))
         if len(result.problems) > MAX_FINDINGS:
             out.append(
                 Text(f"  … and {len(result.problems) - MAX_FINDINGS} more (see --format json)")
