@@ -44,7 +44,16 @@ class _Worker:
     """One render process and the job it is working on."""
 
     def __init__(self, limits: RenderLimits) -> None:
-        env = {"PATH": os.environ.get("PATH", ""), "OPENBLAS_NUM_THREADS": "1", "LC_ALL": "C"}
+        # HOME (and USER) set: without them the interpreter asks the account
+        # database (NSS, /etc/passwd) at start-up, before the guard is installed.
+        env = {
+            "PATH": os.environ.get("PATH", ""),
+            "OPENBLAS_NUM_THREADS": "1",
+            "LC_ALL": "C",
+            "HOME": "/nonexistent",
+            "USER": "alpha-audit",
+            "LOGNAME": "alpha-audit",
+        }
         self.proc = subprocess.Popen(
             [sys.executable, "-I", str(_WORKER), str(limits.memory), str(limits.cpu)],
             stdin=subprocess.PIPE,
