@@ -313,3 +313,37 @@ def test_yaml_reader_raises_only_clean_errors_on_garbage_bytes(tmp_path: Path, r
         theme_from_doc(doc)
     except AlphaAuditError:
         pass
+
+
+@pytest.mark.parametrize("value", ['!!float ""', '!!bool ""', '!!timestamp "x"', '!!int "z"'])
+def test_explicit_tags_on_bad_scalars_are_clean_input_errors(tmp_path: Path, value: str) -> None:
+    path = tmp_path / "theme.yaml"
+    path.write_text(f"name: {value}\ncanvases: []\n")
+    with pytest.raises(AlphaAuditError, match=r"theme\.yaml:1") as info:
+        theme_from_doc(load_yaml(path))
+    assert "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize(
+    ("entries", "message"),
+    [
+        ('[{"theme": "t", "iconset": "s", "rule": "loss", "canvas": 1' + "0" * 5000 + "}]", "JSON"),
+        ('[{"theme": "t", "iconset": "s", "rule": "loss", "icons": []}]', "entries\\[0\\]"),
+        ('[{"theme": "t", "iconset": "s", "rule": "nope", "canvas": null, "icons": []}]', "rule"),
+    ],
+)
+def test_bad_baselines_name_the_file(tmp_path: Path, entries: str, message: str) -> None:
+    from alpha_audit.gate import BASELINE_SCHEMA, read_baseline
+
+    path = tmp_path / "base.json"
+    path.write_text(f'{{"schema": "{BASELINE_SCHEMA}", "entries": {entries}}}')
+    with pytest.raises(AlphaAuditError, match=message) as info:
+        read_baseline(path)
+    assert "base.json" in str(info.value) and "\n" not in str(info.value)
+
+
+def test_empty_fail_on_is_an_error(tmp_path: Path) -> None:
+    path = tmp_path / "alpha-audit.yaml"
+    path.write_text("fail-on: []\n")
+    with pytest.raises(AlphaAuditError, match=r"fail-on.*empty list"):
+        config_from_doc(load_yaml(path))

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from alpha_audit.audit import AuditResult
-from alpha_audit.errors import InputError, UsageError
+from alpha_audit.errors import AlphaAuditError, InputError, UsageError
 from alpha_audit.policy import Exemption, Policy, Rule
 
 __all__ = [
@@ -325,8 +325,8 @@ def parse_baseline(text: str, path: Path) -> frozenset[FindingKey]:
 
     try:
         doc = json.loads(text)
-    except (json.JSONDecodeError, RecursionError) as exc:
-        raise bad(f"invalid JSON ({exc})") from exc
+    except (ValueError, RecursionError) as exc:  # ValueError: also the int-digits limit
+        raise bad(f"invalid JSON ({str(exc)[:100]})") from exc
     if not isinstance(doc, dict) or doc.get("schema") != BASELINE_SCHEMA:
         raise bad(f'expected {{"schema": "{BASELINE_SCHEMA}", "entries": [...]}}')
     entries = doc.get("entries")
@@ -337,13 +337,17 @@ def parse_baseline(text: str, path: Path) -> frozenset[FindingKey]:
         ok = (
             isinstance(e, dict)
             and all(isinstance(e.get(k), str) for k in ("theme", "iconset", "rule"))
-            and (e.get("canvas") is None or isinstance(e.get("canvas"), str))
+            and "canvas" in e
+            and (e["canvas"] is None or isinstance(e["canvas"], str))
             and isinstance(e.get("icons"), list)
             and all(isinstance(i, str) for i in e["icons"])
         )
         if not ok:
             raise bad(f"entries[{n}] needs theme, iconset, rule, canvas and icons")
-        rule = Rule.parse(e["rule"]).value
+        try:
+            rule = Rule.parse(e["rule"]).value
+        except (AlphaAuditError, ValueError) as exc:
+            raise bad(f"entries[{n}].rule: {getattr(exc, 'message', exc)}") from exc
         keys.add((e["theme"], e["iconset"], rule, e["canvas"], tuple(e["icons"])))
     return frozenset(keys)
 

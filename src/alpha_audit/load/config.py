@@ -175,6 +175,9 @@ def _rules(doc: YamlDoc, keys: KeyPath, value: Any) -> frozenset[Rule]:
     items = [value] if isinstance(value, str) else value
     if not isinstance(items, list):
         raise doc.error(keys, f"expected a list of rules, got {describe(value)}")
+    if not items:
+        # An empty list would pass every gate silently; --exit-zero says so explicitly.
+        raise doc.error(keys, "an empty list of rules disables the gate; name at least one rule")
     rules = set()
     for i, item in enumerate(items):
         if not isinstance(item, str):
