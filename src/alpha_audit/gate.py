@@ -78,6 +78,12 @@ class GateResult:
     findings: tuple[Finding, ...]
     stale: tuple[FindingKey, ...] = ()
     problems: int = 0  # icons that could not be rendered (reported, fail only with a rule)
+    audited: int | None = None  # icon x canvas combinations audited; None: not counted
+
+    @property
+    def vacuous(self) -> bool:
+        """True when nothing was audited (every icon unrenderable): the gate cannot pass."""
+        return self.audited == 0
 
     @property
     def failures(self) -> tuple[Finding, ...]:
@@ -86,12 +92,14 @@ class GateResult:
 
     @property
     def passed(self) -> bool:
-        """True when no finding fails the gate."""
-        return not self.failures
+        """True when no finding fails the gate and something was audited."""
+        return not self.failures and not self.vacuous
 
     def counts(self) -> dict[str, int]:
         """Failures per rule name, rules in policy order (stable)."""
         out: dict[str, int] = {}
+        if self.vacuous:  # every report then says why the gate failed without findings
+            out[VACUOUS] = self.problems
         for f in self.failures:
             out[f.rule.value] = out.get(f.rule.value, 0) + 1
         return dict(sorted(out.items()))
@@ -289,7 +297,14 @@ def evaluate(
         findings = [replace(f, baselined=True) if f.key in known else f for f in findings]
         stale = tuple(sorted(known - seen, key=_sort_key))
     problems = sum(len(r.problems) for r in audits)
-    return GateResult(policy=policy, findings=tuple(findings), stale=stale, problems=problems)
+    audited = sum(int(r.contrast.size) for r in audits)
+    return GateResult(
+        policy=policy,
+        findings=tuple(findings),
+        stale=stale,
+        problems=problems,
+        audited=audited,
+    )
 
 
 def _sort_key(key: FindingKey) -> tuple[str, str, str, str, tuple[str, ...]]:
@@ -298,6 +313,8 @@ def _sort_key(key: FindingKey) -> tuple[str, str, str, str, tuple[str, ...]]:
 
 
 BASELINE_SCHEMA = "alpha-audit.baseline/1"
+# The counts() entry of a gate that audited nothing (like pytest's "no tests ran").
+VACUOUS = "unrenderable, nothing audited"
 MAX_BASELINE_BYTES = 16 << 20  # 16 MiB: a few hundred bytes per entry
 
 

@@ -27,6 +27,8 @@ MAX_FINDINGS = 12  # per section; the JSON has everything
 
 def _fmt_alpha(result: AuditResult) -> str:
     alphas = sorted({float(a) for a in result.alpha})
+    if not alphas:  # every icon unrenderable
+        return "-"
     if len(alphas) == 1:
         return f"{alphas[0]:g}"
     return f"{alphas[0]:g}..{alphas[-1]:g}"
@@ -220,7 +222,9 @@ def gate_renderable(gate: GateResult) -> RenderableType:
     out: list[RenderableType] = []
     rules = ", ".join(sorted(r.value for r in gate.policy.rules))
     failures = gate.failures
-    if failures:
+    if gate.vacuous:
+        out.append(Text(f"Gate failed: no icon could be audited [{rules}]", style="bold red"))
+    elif failures:
         out.append(Text(f"Gate failed: {len(failures)} finding(s) [{rules}]", style="bold red"))
         for f in failures[:MAX_FINDINGS]:
             where = f"{icons_label(f.icons)} on {f.canvas}" if f.canvas else icons_label(f.icons)
