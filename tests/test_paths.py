@@ -87,3 +87,49 @@ def test_manifest_errors_name_the_file(root: Path) -> None:
     manifest.write_text("icons: ''\ncolor: red\n")
     with pytest.raises(InputError, match=r"iconset\.yaml.*empty"):
         load_iconset(manifest)
+
+
+def test_theme_and_manifest_symlinks_leaving_the_root_are_refused_before_reading(
+    root: Path,
+) -> None:
+    from alpha_audit.load.theme import load_theme
+
+    secret = root.parent / "outside/theme.yaml"
+    secret.write_text("name: secret\ncanvases:\n  - {name: a, color: '#ffffff'}\n")
+    os.symlink(secret, root / "theme.yaml")
+    with pytest.raises(InputError, match="symlink to a file outside the project root") as info:
+        load_theme(root / "theme.yaml")
+    assert "secret" not in str(info.value).replace("outside/theme.yaml", "")
+    os.symlink(secret, root / "iconset.yaml")
+    with pytest.raises(InputError, match="outside the project root"):
+        load_iconset(root / "iconset.yaml")
+
+
+def test_config_symlink_to_a_system_file_is_refused(root: Path) -> None:
+    from alpha_audit.load.config import load_config
+
+    os.symlink("/etc/passwd", root / "alpha-audit.yaml")
+    with pytest.raises(InputError, match="outside the project root") as info:
+        load_config(root / "alpha-audit.yaml")
+    assert "root:" not in str(info.value)  # not a line of /etc/passwd
+
+
+def test_config_discovery_does_not_climb_above_a_folder_without_git(tmp_path: Path) -> None:
+    from alpha_audit.load.config import find_config
+
+    (tmp_path / "alpha-audit.yaml").write_text("fail-on: [loss]\n")  # e.g. in /tmp or $HOME
+    project = tmp_path / "tarball"
+    project.mkdir()
+    assert find_config(project) is None
+    (tmp_path / ".git").mkdir()  # inside a repository the root's config is found
+    assert find_config(project) == tmp_path / "alpha-audit.yaml"
+
+
+def test_a_symlinked_manifest_keeps_its_own_folder_as_base(root: Path) -> None:
+    (root / "sets").mkdir()
+    (root / "sets/svg").mkdir()
+    (root / "sets/svg/b.svg").write_text(SVG)
+    (root / "real.yaml").write_text("icons: svg/*.svg\ncolor: red\n")
+    os.symlink(root / "real.yaml", root / "sets/iconset.yaml")
+    icons = load_iconset(root / "sets/iconset.yaml")
+    assert [i.file for i in icons.icons] == [root / "sets/svg/b.svg"]

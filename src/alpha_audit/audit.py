@@ -6,7 +6,7 @@ and findings; it never prints.  Shapes: ``n`` icons x ``m`` canvases.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, replace
 from functools import cached_property
 
@@ -23,7 +23,13 @@ from alpha_audit.color import (
     relative_luminance,
     to_8bit,
 )
-from alpha_audit.color.nearest import PAIR_CHUNK, closest_pair_delta_e_2000, iter_pairs
+from alpha_audit.color.nearest import (
+    PAIR_CHUNK,
+    ClosestPair,
+    closest_pair_delta_e_2000,
+    iter_pairs,
+)
+from alpha_audit.errors import InputError
 from alpha_audit.load.svg import IconProblem
 from alpha_audit.model import IconSet, Theme
 
@@ -186,37 +192,38 @@ class AuditResult:
         """Closest pair of distinct colours per canvas, computed on first use only."""
         return tuple(_separations(self.theme, self.iconset, self.output))
 
-    @property
+    # Derived arrays are cached: per-canvas summaries read them once per canvas.
+    @cached_property
     def gain(self) -> NDArray[np.float64]:
         """``contrast - contrast_ref``."""
         return self.contrast - self.contrast_ref
 
-    @property
+    @cached_property
     def loss(self) -> NDArray[np.bool_]:
         """Contrast decreased by more than the tolerance."""
         return self.gain < -self.tolerance
 
-    @property
+    @cached_property
     def increase(self) -> NDArray[np.bool_]:
         """Contrast increased by more than the tolerance."""
         return self.gain > self.tolerance
 
-    @property
+    @cached_property
     def passes_ref(self) -> NDArray[np.bool_]:
         """At or above the threshold at alpha = 1."""
         return self.contrast_ref >= self.threshold
 
-    @property
+    @cached_property
     def passes(self) -> NDArray[np.bool_]:
         """At or above the threshold at the icon's alpha."""
         return self.contrast >= self.threshold
 
-    @property
+    @cached_property
     def newly_passes(self) -> NDArray[np.bool_]:
         """Below the threshold at alpha = 1, at or above it at the icon's alpha."""
         return self.passes & ~self.passes_ref
 
-    @property
+    @cached_property
     def newly_fails(self) -> NDArray[np.bool_]:
         """At or above the threshold at alpha = 1, below it at the icon's alpha."""
         return self.passes_ref & ~self.passes
@@ -301,6 +308,26 @@ class AuditResult:
         return out
 
 
+# Icon x canvas combinations in one check (all audits together): each is a
+# JSON row of about 450 bytes and a few microseconds of work, so this bounds
+# time (seconds) and report size (~110 MB) whatever a pull request puts in a
+# theme (up to 4,096 canvases) or a manifest (up to 10,000 icons).
+MAX_COMBINATIONS = 250_000
+
+
+def check_combinations(themes: Sequence[Theme], iconsets: Sequence[IconSet]) -> None:
+    """Refuse a check larger than :data:`MAX_COMBINATIONS` before any work is done."""
+    total = sum(len(t.canvases) for t in themes) * sum(len(s.icons) for s in iconsets)
+    if total > MAX_COMBINATIONS:
+        icons = sum(len(s.icons) for s in iconsets)
+        canvases = sum(len(t.canvases) for t in themes)
+        raise InputError(
+            f"{icons} icons x {canvases} canvases = {total:,} combinations; at most "
+            f"{MAX_COMBINATIONS:,} per check (split the theme or the icon set)",
+            path=themes[0].path if len(themes) == 1 else None,
+        )
+
+
 # Counting the pairs that got closer needs every pair (no bound prunes it):
 # above this many pair x canvas evaluations ``Separation.decreases`` is None.
 # 10^6 CIEDE2000 evaluations take about a second (colour-science, one core).
@@ -333,23 +360,38 @@ def _separations(
     lab_ref = linear_to_lab(iconset.sources[reps])  # (k, 3)
     lab_out = linear_to_lab(output[reps])  # (k, m, 3)
     decreases: list[int | None] = [None] * m
+    closest: list[ClosestPair | None] = [None] * m
     if pairs * m <= DECREASES_BUDGET:
+        # Few pairs: every pair on every canvas at once, in triu order (argmin
+        # ties go to the first pair, as in the pruned search).
         counts = np.zeros(m, dtype=np.int64)
+        best = np.full(m, np.inf)
+        best_pair = np.zeros((m, 2), dtype=np.intp)
         for first, second in iter_pairs(k, labels, chunk=max(1, PAIR_CHUNK // max(1, m))):
             de_ref = delta_e_2000_lab(lab_ref[first], lab_ref[second])  # (p,)
-            de = delta_e_2000_lab(lab_out[first], lab_out[second])  # (p, m)
+            de = delta_e_2000_lab(lab_out[first], lab_out[second]).reshape(first.size, m)
             counts += np.sum(de < (de_ref - DELTA_E_TOLERANCE)[:, np.newaxis], axis=0)
+            t = np.argmin(de, axis=0)
+            value = de[t, np.arange(m)]
+            better = value < best
+            best = np.where(better, value, best)
+            best_pair[better] = np.stack([first[t], second[t]], axis=1)[better]
         decreases = [int(c) for c in counts]
+        closest = [
+            ClosestPair(int(a), int(b), float(v)) for (a, b), v in zip(best_pair, best, strict=True)
+        ]
+    else:
+        closest = [closest_pair_delta_e_2000(lab_out[:, j], labels) for j in range(m)]
     result = []
     for j, canvas in enumerate(theme.canvases):
-        closest = closest_pair_delta_e_2000(lab_out[:, j], labels)
-        assert closest is not None  # pairs > 0
-        a, b = int(reps[closest.first]), int(reps[closest.second])
-        de_ref = delta_e_2000_lab(lab_ref[closest.first], lab_ref[closest.second])
+        pair = closest[j]
+        assert pair is not None  # pairs > 0
+        a, b = int(reps[pair.first]), int(reps[pair.second])
+        de_ref = delta_e_2000_lab(lab_ref[pair.first], lab_ref[pair.second])
         result.append(
             Separation(
                 canvas=canvas.name,
-                delta_e=closest.distance,
+                delta_e=pair.distance,
                 delta_e_ref=float(de_ref),
                 icons=(icons[a].name, icons[b].name),
                 sources=(icons[a].color, icons[b].color),
@@ -379,6 +421,7 @@ def audit(
     >>> next(audit(theme, icons).rows()).output
     '#ec5a00'
     """
+    check_combinations([theme], [iconset])
     if alpha is not None:
         iconset = iconset.with_alpha(alpha)
     broken = {p.icon for p in problems}

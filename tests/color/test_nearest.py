@@ -96,3 +96,24 @@ def test_iter_pairs_covers_triu_once_in_order() -> None:
     second = np.concatenate([b for _, b in chunks])
     expected = np.triu_indices(7, k=1)
     assert first.tolist() == expected[0].tolist() and second.tolist() == expected[1].tolist()
+
+
+def test_audit_separation_is_the_same_pruned_or_brute_force(monkeypatch) -> None:
+    import importlib
+
+    audit_module = importlib.import_module("alpha_audit.audit")
+    from alpha_audit.model import Canvas, Icon, IconSet, Theme
+
+    rng = np.random.default_rng(3)
+    colors = [f"#{c:06x}" for c in rng.integers(0, 1 << 24, 60)] + ["#ee7733", "#ee7734"]
+    icons = IconSet("s", tuple(Icon(f"i{k}", f"i{k}.svg", c, 1.1) for k, c in enumerate(colors)))
+    theme = Theme("t", tuple(Canvas(f"c{k}", c) for k, c in enumerate(["#ffffff", "#0d1117"])))
+    brute = audit_module.audit(theme, icons).separations
+    monkeypatch.setattr(audit_module, "DECREASES_BUDGET", 0)
+    pruned = audit_module.audit(theme, icons).separations
+    assert [s.decreases for s in pruned] == [None, None]
+    strip = [(s.canvas, s.delta_e, s.delta_e_ref, s.icons, s.sources, s.pairs) for s in brute]
+    assert [
+        (s.canvas, s.delta_e, s.delta_e_ref, s.icons, s.sources, s.pairs) for s in pruned
+    ] == strip
+    assert all(isinstance(s.decreases, int) for s in brute)

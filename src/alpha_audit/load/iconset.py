@@ -16,7 +16,7 @@ from alpha_audit.load.fields import (
     read_name,
     read_number,
 )
-from alpha_audit.load.paths import PathRefused, contain, glob_contained
+from alpha_audit.load.paths import PathRefused, contain, contain_argument, glob_contained
 from alpha_audit.load.yamldoc import KeyPath, YamlDoc, load_yaml
 from alpha_audit.model import Icon, IconSet
 from alpha_audit.safe_text import safe_text
@@ -57,9 +57,14 @@ def load_iconset(path: str | Path, *, root: str | Path | None = None) -> IconSet
 
     ``root`` bounds where icon files may live (default: :func:`find_project_root`).
     """
-    doc = load_yaml(path)
-    base = Path(path).resolve().parent
-    return iconset_from_doc(doc, root=Path(root).resolve() if root else find_project_root(base))
+    # The root is found from where the manifest's name is, not where a link points.
+    folder = Path(path).absolute().parent
+    chosen = Path(root).resolve() if root else find_project_root(folder)
+    try:
+        contain_argument(path, chosen)  # before a byte is read
+    except PathRefused as err:
+        raise InputError(str(err), path=path) from err
+    return iconset_from_doc(load_yaml(path), root=chosen)
 
 
 class _Manifest:
@@ -68,7 +73,8 @@ class _Manifest:
     def __init__(self, doc: YamlDoc, root: Path) -> None:
         self.doc = doc
         self.root = root
-        self.base = doc.path.resolve().parent
+        # The manifest's own folder: a symlinked manifest never picks its target's.
+        self.base = doc.path.absolute().parent.resolve()
         self.data = read_mapping(doc, (), doc.data, "an icon-set manifest")
         check_keys(doc, (), self.data, _MANIFEST_KEYS)
         self.palette = self.read_palette()

@@ -24,7 +24,9 @@ __all__ = [
     "MAX_GLOB_ENTRIES",
     "PathRefused",
     "contain",
+    "contain_argument",
     "glob_contained",
+    "project_root",
     "resolve",
 ]
 
@@ -69,6 +71,40 @@ def resolve(path: Path) -> Path:
         raise PathRefused(f"{_shown(str(path))} is a symlink loop") from err
     except OSError as err:
         raise PathRefused(f"{_shown(str(path))} cannot be resolved: {err.strerror}") from err
+
+
+def project_root(start: Path, markers: tuple[str, ...] = (".git",)) -> Path:
+    """The nearest folder at or above ``start`` holding one of ``markers``, else ``start``.
+
+    Never above: without a marker the search does not climb to ``/tmp`` or
+    ``$HOME``, whose files a pull request does not control but an attacker
+    on a shared runner might.
+    """
+    start = resolve(start)
+    for folder in (start, *start.parents):
+        if any((folder / marker).exists() for marker in markers):
+            return folder
+    return start
+
+
+def contain_argument(path: str | Path, root: Path | None = None) -> Path:
+    """A file named by the user or found by discovery, resolved and inside its project root.
+
+    The root comes from where the *name* is (its folder, resolved), never
+    from where a symlink points, so a link cannot pick its own base:
+    ``theme.yaml -> /etc/passwd`` is refused before a byte is read.
+    """
+    p = Path(path)
+    if first_unsafe(str(p)) is not None:
+        raise PathRefused(f"{_shown(str(p))} has a control or format character; not allowed")
+    folder = resolve(p.absolute().parent)
+    root = resolve(root) if root is not None else project_root(folder)
+    target = resolve(folder / p.name)
+    if not target.is_relative_to(root):
+        raise PathRefused(
+            f"{_shown(str(p))} is a symlink to a file outside the project root {root}; not allowed"
+        )
+    return target
 
 
 def contain(root: Path, base: Path, relative: str) -> Path:
