@@ -231,27 +231,34 @@ class AuditResult:
     def rows(self) -> Iterator[Row]:
         """Icon x canvas rows in stable order (canvas order, then icon order)."""
         icons, canvases = self.iconset.icons, self.theme.canvases
-        packed = _pack(self.output_codes)
-        gain = self.gain
-        flags = (self.passes_ref, self.passes, self.newly_passes, self.loss, self.newly_fails)
+        # Python lists per column once: indexing numpy scalars per cell costs
+        # ~50x more than the row itself (5,100 rows: 0.25 s).
+        output = [[_hex(v) for v in col] for col in _pack(self.output_codes).T.tolist()]
+        contrast_ref, contrast = self.contrast_ref.T.tolist(), self.contrast.T.tolist()
+        gain = self.gain.T.tolist()
+        flags = [
+            f.T.tolist()
+            for f in (self.passes_ref, self.passes, self.newly_passes, self.loss, self.newly_fails)
+        ]
+        alphas = self.alpha.tolist()
         for j, canvas in enumerate(canvases):
+            pr, p, npass, loss, nfail = (f[j] for f in flags)
             for i, icon in enumerate(icons):
-                pr, p, npass, loss, nfail = (bool(f[i, j]) for f in flags)
                 yield Row(
                     icon=icon.name,
                     canvas=canvas.name,
                     source=icon.color,
                     background=canvas.color,
-                    alpha=float(self.alpha[i]),
-                    output=_hex(int(packed[i, j])),
-                    contrast_ref=float(self.contrast_ref[i, j]),
-                    contrast=float(self.contrast[i, j]),
-                    gain=float(gain[i, j]),
-                    passes_ref=pr,
-                    passes=p,
-                    newly_passes=npass,
-                    loss=loss,
-                    newly_fails=nfail,
+                    alpha=alphas[i],
+                    output=output[j][i],
+                    contrast_ref=contrast_ref[j][i],
+                    contrast=contrast[j][i],
+                    gain=gain[j][i],
+                    passes_ref=pr[i],
+                    passes=p[i],
+                    newly_passes=npass[i],
+                    loss=loss[i],
+                    newly_fails=nfail[i],
                 )
 
     @cached_property
