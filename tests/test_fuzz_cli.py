@@ -1,9 +1,11 @@
 """Fuzzing the commands in-process: mutated inputs end in exit 0, 1 or 2, never a crash.
 
-Valid theme, manifest, config and SVG texts are mutated (bytes deleted,
-inserted or replaced; lines duplicated or dropped) and ``check`` runs on
-them.  Every run must exit 0, 1 or 2, say why on one line when it is 2,
-print no traceback and create no file (there is no ``--output``).
+Valid theme, manifest, config, baseline and SVG texts are mutated (bytes
+deleted, inserted or replaced; lines duplicated) and ``check`` (table, JSON
+with a baseline, GitHub) or ``suggest`` runs on them.  Every run must exit
+0, 1 or 2, say why on one line when it is 2, print no traceback and create
+no file (there is no ``--output``).  ``ALPHA_AUDIT_FUZZ_EXAMPLES`` raises the
+example count for a longer local run.
 """
 
 from __future__ import annotations
@@ -19,7 +21,7 @@ from typer.testing import CliRunner
 from alpha_audit.cli import app
 
 CI = os.environ.get("CI", "").lower() in ("1", "true", "yes")
-EXAMPLES = 15 if CI else 40
+EXAMPLES = int(os.environ.get("ALPHA_AUDIT_FUZZ_EXAMPLES", 15 if CI else 40))
 
 FILES = {
     "theme.yaml": (
@@ -36,7 +38,17 @@ FILES = {
     ),
     "svg/a.svg": '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 24 24">'
     '<path d="M4 4h16v16H4z"/></svg>',
+    "baseline.json": (
+        '{"schema": "alpha-audit.baseline/1", "entries": [{"theme": "t", "iconset": "s", '
+        '"rule": "loss", "canvas": "ink", "icons": ["a"]}]}'
+    ),
 }
+COMMANDS = [
+    ["check", "theme.yaml", "iconset.yaml"],
+    ["check", "theme.yaml", "iconset.yaml", "--baseline", "baseline.json", "-f", "json"],
+    ["check", "theme.yaml", "iconset.yaml", "-f", "github"],
+    ["suggest", "theme.yaml", "iconset.yaml", "-f", "markdown"],
+]
 INSERTS = [b"\x00", b"\x1b[2J", b"\xe2\x80\xae", b"!!float ''", b"&a", b"*a", b"{", b"- ", b"\n  "]
 
 
@@ -71,8 +83,10 @@ def _snapshot(root: Path) -> set[str]:
     deadline=None,
     suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow],
 )
-@given(mutated())
-def test_check_on_mutated_inputs_exits_cleanly(case: tuple[str, bytes]) -> None:
+@given(mutated(), st.sampled_from(COMMANDS))
+def test_commands_on_mutated_inputs_exit_cleanly(
+    case: tuple[str, bytes], command: list[str]
+) -> None:
     name, data = case
     with tempfile.TemporaryDirectory() as tmp:
         root = Path(tmp).resolve()
@@ -85,7 +99,7 @@ def test_check_on_mutated_inputs_exits_cleanly(case: tuple[str, bytes]) -> None:
         cwd = os.getcwd()
         os.chdir(root)
         try:
-            result = CliRunner().invoke(app, ["check", "theme.yaml", "iconset.yaml"])
+            result = CliRunner().invoke(app, command)
         finally:
             os.chdir(cwd)
         assert _snapshot(root) == before  # nothing written
