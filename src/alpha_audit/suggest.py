@@ -33,8 +33,16 @@ from alpha_audit.color import (
     composite_extended,
     contrast_from_luminance,
     delta_e_2000,
+    delta_e_2000_lab,
+    linear_to_lab,
     relative_luminance,
     to_8bit,
+)
+from alpha_audit.color.nearest import (
+    delta_e_2000_lightness_key,
+    iter_pairs,
+    lightness_weight_max,
+    pairs_below,
 )
 from alpha_audit.errors import UsageError
 from alpha_audit.events import (
@@ -62,6 +70,9 @@ __all__ = [
 # CIEDE2000 has no closed form in a: its crossings are bracketed on this grid
 # (plus every clip breakpoint) and bisected to events.BISECTION_TOLERANCE.
 SEPARATION_GRID_STEP = 1e-3
+# Pair x grid-point evaluations held at once by the separation search (~10 MB
+# per float64 intermediate of colour-science's CIEDE2000).
+_SEPARATION_CHUNK = 1 << 20
 ALPHA_LO = 1.0  # the reference coefficient; the safe interval starts here
 MAX_PRECISION = 9
 _RULE_ORDER = {rule: k for k, rule in enumerate(Rule)}
@@ -408,46 +419,65 @@ class _Suggester:
         return out
 
     def separation_limits(self, tracks: _Tracks) -> list[list[Limit]]:
-        """Per canvas, where CIEDE2000 between two colours first drops below the minimum."""
+        """Per canvas, where CIEDE2000 between two colours first drops below the minimum.
+
+        Canvas by canvas and a chunk of pairs at a time (bounded memory for any
+        number of colours).  A pair whose lightness bound (``dE00 >= |dL| /
+        S_L,max``, :mod:`alpha_audit.color.nearest`) keeps it at or above the
+        minimum at every grid point cannot be found below it by the grid
+        search either, so it is skipped without changing the answer.
+        """
         out: list[list[Limit]] = [[] for _ in self.canvases]
-        if not self.separation:
+        if not self.separation or len(tracks.key) < 2:
             return out
-        n = len(tracks.key)
-        first, second = np.triu_indices(n, k=1)
-        keep = np.array(
-            [
-                (tracks.moving[a] or tracks.moving[b]) and tracks.color[a] != tracks.color[b]
-                for a, b in zip(first, second, strict=True)
-            ],
-            dtype=bool,
-        )
-        first, second = first[keep], second[keep]
-        if first.size == 0:
-            return out
-        bg = self.backgrounds[np.newaxis, :, np.newaxis, :]  # (1, m, 1, 3)
-
-        def output(t: NDArray[np.intp], a: NDArray[np.float64]) -> NDArray[np.float64]:
-            src = tracks.source[t][:, np.newaxis, np.newaxis, :]
-            fixed = tracks.alpha[t][:, np.newaxis, np.newaxis]
-            coef = np.where(tracks.moving[t][:, np.newaxis, np.newaxis], a, fixed)
-            return np.clip(bg + coef[..., np.newaxis] * (src - bg), 0.0, 1.0)
-
-        def delta_e(a: NDArray[np.float64]) -> NDArray[np.float64]:
-            return delta_e_2000(output(first, a), output(second, a))  # (P, m, N)
-
+        labels = np.unique(np.array(tracks.color, dtype=object), return_inverse=True)[1]
+        labels = labels.reshape(-1)
+        level = self.policy.min_delta_e
         steps = max(1, math.ceil((self.a_hi - ALPHA_LO) / SEPARATION_GRID_STEP))
         breaks = clip_breakpoints(
             tracks.source[tracks.moving][:, np.newaxis, :], self.backgrounds[np.newaxis]
         ).reshape(-1)
         breaks = breaks[(breaks > ALPHA_LO) & (breaks < self.a_hi)]
         grid = np.unique(np.concatenate([np.linspace(ALPHA_LO, self.a_hi, steps + 1), breaks]))
-        _, unsafe = first_below(delta_e, grid, self.policy.min_delta_e)
-        for p, j in zip(*np.nonzero(np.isfinite(unsafe)), strict=True):
-            icons = self.icon_names(tracks, [first[p], second[p]])
-            if not self.exempt(Rule.SEPARATION, self.canvases[j], icons):
-                out[j].append(
-                    Limit(Rule.SEPARATION, self.canvases[j], icons, float(unsafe[p, j]), True)
-                )
+        n_grid = grid.size
+        every = np.arange(len(tracks.key))
+        chunk = max(1, _SEPARATION_CHUNK // n_grid)
+        for j, background in enumerate(self.backgrounds):
+
+            def output(
+                t: NDArray[np.intp], a: NDArray[np.float64], bg: NDArray[np.float64] = background
+            ) -> NDArray[np.float64]:
+                coef = np.where(tracks.moving[t][:, np.newaxis], a, tracks.alpha[t][:, np.newaxis])
+                src = tracks.source[t][:, np.newaxis, :]
+                return np.clip(bg + coef[..., np.newaxis] * (src - bg), 0.0, 1.0)
+
+            lightness = linear_to_lab(output(every, grid))[..., 0]  # (T, N)
+            s_l = lightness_weight_max(lightness)
+            for first, second in iter_pairs(len(tracks.key), labels, chunk=chunk):
+                moved = tracks.moving[first] | tracks.moving[second]
+                first, second = first[moved], second[moved]
+                if first.size == 0:
+                    continue
+                gap = np.min(np.abs(lightness[first] - lightness[second]), axis=1) / s_l
+                near = gap < level * (1.0 + 1e-9)
+                first, second = first[near], second[near]
+                if first.size == 0:
+                    continue
+
+                def delta_e(
+                    a: NDArray[np.float64],
+                    f: NDArray[np.intp] = first,
+                    g: NDArray[np.intp] = second,
+                ) -> NDArray[np.float64]:
+                    return delta_e_2000(output(f, a), output(g, a))  # (p, N)
+
+                _, unsafe = first_below(delta_e, grid, level)
+                for p in np.flatnonzero(np.isfinite(unsafe)):
+                    icons = self.icon_names(tracks, [first[p], second[p]])
+                    if not self.exempt(Rule.SEPARATION, self.canvases[j], icons):
+                        out[j].append(
+                            Limit(Rule.SEPARATION, self.canvases[j], icons, float(unsafe[p]), True)
+                        )
         return out
 
     # -- one question ----------------------------------------------------------
@@ -478,14 +508,21 @@ class _Suggester:
             for j in range(len(self.canvases)):
                 if self.collision_group(tracks, codes[:, j], j) is not None:
                     return True
-        if self.separation:
-            for a_i, b_i in zip(*np.triu_indices(len(tracks.key), 1), strict=True):
-                if not (tracks.moving[a_i] or tracks.moving[b_i]):
-                    continue
-                if tracks.color[a_i] == tracks.color[b_i]:
-                    continue
-                de = delta_e_2000(out[a_i], out[b_i])
-                for j in np.flatnonzero(de < self.policy.min_delta_e):
+        if self.separation and len(tracks.key) > 1:
+            labels = np.unique(np.array(tracks.color, dtype=object), return_inverse=True)[1]
+            for j in range(len(self.canvases)):
+                lab = linear_to_lab(out[:, j])
+
+                def distance(
+                    f: NDArray[np.intp], g: NDArray[np.intp], lab: NDArray[np.float64] = lab
+                ) -> NDArray[np.float64]:
+                    return delta_e_2000_lab(lab[f], lab[g])
+
+                key = delta_e_2000_lightness_key(lab)
+                first, second, _ = pairs_below(key, distance, self.policy.min_delta_e, labels)
+                for a_i, b_i in zip(first.tolist(), second.tolist(), strict=True):
+                    if not (tracks.moving[a_i] or tracks.moving[b_i]):
+                        continue
                     names = self.icon_names(tracks, [a_i, b_i])
                     if not self.exempt(Rule.SEPARATION, self.canvases[j], names):
                         return True

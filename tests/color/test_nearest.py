@@ -117,3 +117,25 @@ def test_audit_separation_is_the_same_pruned_or_brute_force(monkeypatch) -> None
         (s.canvas, s.delta_e, s.delta_e_ref, s.icons, s.sources, s.pairs) for s in pruned
     ] == strip
     assert all(isinstance(s.decreases, int) for s in brute)
+
+
+@settings(max_examples=40, deadline=None)
+@given(codes, st.sampled_from([0.5, 5.0, 20.0]))
+def test_pairs_below_lists_exactly_the_brute_force_pairs(rgb, level: float) -> None:
+    from alpha_audit.color.nearest import pairs_below
+
+    lab = _lab(rgb)
+    labels = np.arange(len(rgb)) % 2
+
+    def distance(i: np.ndarray, j: np.ndarray) -> np.ndarray:
+        return delta_e_2000_lab(lab[i], lab[j])
+
+    first, second, values = pairs_below(delta_e_2000_lightness_key(lab), distance, level, labels)
+    expected = [
+        (int(a), int(b))
+        for f, s in iter_pairs(len(rgb), labels)
+        for a, b, d in zip(f, s, distance(f, s), strict=True)
+        if d < level
+    ]
+    assert list(zip(first.tolist(), second.tolist(), strict=True)) == expected
+    assert np.all(values < level)

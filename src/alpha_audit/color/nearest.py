@@ -47,6 +47,7 @@ __all__ = [
     "delta_e_2000_lightness_key",
     "iter_pairs",
     "lightness_weight_max",
+    "pairs_below",
 ]
 
 # Pairs evaluated per call of the distance: 2^16 pairs of Lab triples are a few
@@ -167,6 +168,56 @@ def closest_pair(
     if best_pair[0] == k:
         return None
     return ClosestPair(best_pair[0], best_pair[1], best)
+
+
+def pairs_below(
+    key: ArrayLike,
+    distance: Distance,
+    level: float,
+    labels: ArrayLike | None = None,
+    *,
+    chunk: int = PAIR_CHUNK,
+) -> tuple[NDArray[np.intp], NDArray[np.intp], NDArray[np.float64]]:
+    """Every pair ``first < second`` with different labels and ``distance < level``.
+
+    The same sorted walk as :func:`closest_pair` with a fixed radius: only
+    pairs whose keys are within ``level`` are evaluated, a chunk at a time.
+    Returns index arrays and distances, sorted by ``(first, second)``.
+
+    >>> points = np.array([0.0, 10.0, 3.0, 11.5])
+    >>> first, second, d = pairs_below(points, lambda i, j: np.abs(points[i] - points[j]), 4.0)
+    >>> first.tolist(), second.tolist(), d.tolist()
+    ([0, 1], [2, 3], [3.0, 1.5])
+    """
+    z = np.asarray(key, dtype=np.float64).reshape(-1)
+    k = z.size
+    lab = None if labels is None else np.asarray(labels).reshape(-1)
+    order = np.argsort(z, kind="stable")
+    zs = z[order]
+    radius = level * (1.0 + _PRUNE_SLACK)
+    found_a, found_b, found_d = [], [], []
+    for d in range(1, k):
+        i = np.arange(k - d)
+        near = zs[i + d] - zs[i] <= radius
+        if not near.any():
+            break  # keys only drift further apart at larger offsets
+        a, b = order[i[near]], order[i[near] + d]
+        if lab is not None:
+            differ = lab[a] != lab[b]
+            a, b = a[differ], b[differ]
+        lo, hi = np.minimum(a, b), np.maximum(a, b)
+        for start in range(0, lo.size, chunk):
+            values = np.asarray(distance(lo[start : start + chunk], hi[start : start + chunk]))
+            below = values < level
+            found_a.append(lo[start : start + chunk][below])
+            found_b.append(hi[start : start + chunk][below])
+            found_d.append(values[below])
+    if not found_a:
+        empty = np.zeros(0, dtype=np.intp)
+        return empty, empty, np.zeros(0)
+    first, second, values = (np.concatenate(x) for x in (found_a, found_b, found_d))
+    order2 = np.lexsort((second, first))
+    return first[order2], second[order2], values[order2]
 
 
 def iter_pairs(
