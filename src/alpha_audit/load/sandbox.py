@@ -53,6 +53,7 @@ class _Worker:
             "HOME": "/nonexistent",
             "USER": "alpha-audit",
             "LOGNAME": "alpha-audit",
+            "TZ": "UTC",  # no /etc/localtime
         }
         self.proc = subprocess.Popen(
             [sys.executable, "-I", str(_WORKER), str(limits.memory), str(limits.cpu)],
