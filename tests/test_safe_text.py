@@ -56,3 +56,22 @@ def test_github_escape_keeps_newline_escaping_and_drops_escape_sequences() -> No
     assert escape_data("a\nb") == "a%0Ab"
     out = escape_data("x\x1b[31m\u202e")
     assert "\x1b" not in out and "\u202e" not in out and "%0A" not in out
+
+
+@pytest.mark.parametrize("name", ["a\u202eb", "\ud800", "x\u2066y", "bell\x07", "c1\x9b"])
+def test_names_and_reasons_with_unsafe_characters_are_refused(tmp_path, name: str) -> None:
+    from alpha_audit.load.config import config_from_doc
+    from alpha_audit.load.theme import theme_from_doc
+    from alpha_audit.load.yamldoc import parse_yaml
+
+    escaped = name.encode("unicode_escape").decode("ascii")
+    theme = parse_yaml(f'name: "{escaped}"\ncanvases: []\n', tmp_path / "t.yaml")
+    with pytest.raises(InputError, match="not a usable name") as info:
+        theme_from_doc(theme)
+    assert first_unsafe(str(info.value)) is None
+    config = parse_yaml(
+        f'exempt:\n  - {{icon: a, reason: "{escaped}"}}\n', tmp_path / "alpha-audit.yaml"
+    )
+    with pytest.raises(InputError, match="not a usable reason") as info:
+        config_from_doc(config)
+    assert first_unsafe(str(info.value)) is None
