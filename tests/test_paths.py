@@ -133,3 +133,11 @@ def test_a_symlinked_manifest_keeps_its_own_folder_as_base(root: Path) -> None:
     os.symlink(root / "real.yaml", root / "sets/iconset.yaml")
     icons = load_iconset(root / "sets/iconset.yaml")
     assert [i.file for i in icons.icons] == [root / "sets/svg/b.svg"]
+
+
+def test_glob_refuses_control_characters_in_folders_on_the_way(root: Path) -> None:
+    (root / "svg/\x1b]52;c;x\x07").mkdir()
+    (root / "svg/\x1b]52;c;x\x07/e.svg").write_text(SVG)
+    with pytest.raises(PathRefused, match="control or format character") as info:
+        glob_contained(root, root, "svg/*/*.svg", limit=10)
+    assert "\x1b" not in str(info.value)

@@ -169,15 +169,16 @@ def glob_contained(root: Path, base: Path, pattern: str, *, limit: int) -> list[
                 if entry.is_dir(follow_symlinks=False):
                     walk(Path(entry.path), tail)
             elif entry.is_file(follow_symlinks=True) or entry.is_symlink():
-                if first_unsafe(entry.name) is not None:
+                shown = os.path.relpath(entry.path, start)
+                if first_unsafe(shown) is not None:  # folders on the way count too
                     raise PathRefused(
-                        f"{_shown(entry.name)} matched by {_shown(pattern)} has a control or "
+                        f"{_shown(shown)} matched by {_shown(pattern)} has a control or "
                         "format character in its name; not allowed"
                     )
                 target = resolve(Path(entry.path))
                 if not target.is_relative_to(root):
                     raise PathRefused(
-                        f"{_shown(os.path.relpath(entry.path, start))} matched by "
+                        f"{_shown(shown)} matched by "
                         f"{_shown(pattern)} resolves outside the project root; not allowed"
                     )
                 if target.is_file():
