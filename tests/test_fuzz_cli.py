@@ -49,7 +49,14 @@ COMMANDS = [
     ["check", "theme.yaml", "iconset.yaml", "-f", "github"],
     ["suggest", "theme.yaml", "iconset.yaml", "-f", "markdown"],
 ]
-INSERTS = [b"\x00", b"\x1b[2J", b"\xe2\x80\xae", b"!!float ''", b"&a", b"*a", b"{", b"- ", b"\n  "]
+INSERTS = [
+    # bytes and YAML structure
+    *(b"\x00", b"\x1b[2J", b"\xe2\x80\xae", b"!!float ''", b"&a", b"*a", b"{", b"- ", b"\n  "),
+    *(b"!!timestamp x", b"\n  - {name: x, color: '#000'}", b'\n  - {icon: a, reason: "\\ud800"}'),
+    # SVG structure: references, external resources, entities, text
+    *(b'<use href="#a"/>', b'<g id="a"><use href="#a"/></g>', b"<!DOCTYPE x [<!ENTITY e 'b'>]>"),
+    *(b'<image href="file:///etc/passwd" width="9" height="9"/>', b"<text>\xe2\x80\xae</text>"),
+]
 
 
 @st.composite
