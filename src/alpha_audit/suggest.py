@@ -73,6 +73,8 @@ SEPARATION_GRID_STEP = 1e-3
 # Pair x grid-point evaluations held at once by the separation search (~10 MB
 # per float64 intermediate of colour-science's CIEDE2000).
 _SEPARATION_CHUNK = 1 << 20
+# Code timelines kept between questions (a few KB per colour and canvas).
+_TIMELINE_CACHE_BYTES = 64 << 20
 ALPHA_LO = 1.0  # the reference coefficient; the safe interval starts here
 MAX_PRECISION = 9
 _RULE_ORDER = {rule: k for k, rule in enumerate(Rule)}
@@ -214,6 +216,7 @@ class _Suggester:
     ) -> None:
         self.policy = policy
         self._timelines: dict[tuple[bytes, int], tuple[NDArray[np.float64], NDArray[np.int64]]] = {}
+        self._timeline_bytes = 0
         self.threshold = threshold
         self.a_hi = alpha_max
         self.names = tuple(i.name for i in iconset.icons)
@@ -351,7 +354,12 @@ class _Suggester:
             timeline = code_timeline(source, self.backgrounds[j], ALPHA_LO, self.a_hi)
             codes = timeline.elements()[2]  # (3, 2K + 1)
             found = (timeline.points, _pack(codes.T))
+            size = found[0].nbytes + found[1].nbytes
+            if self._timeline_bytes + size > _TIMELINE_CACHE_BYTES:
+                self._timelines.clear()  # memory stays bounded; recomputing is exact
+                self._timeline_bytes = 0
             self._timelines[key] = found
+            self._timeline_bytes += size
         return found
 
     def collision_limits(self, tracks: _Tracks) -> list[list[Limit]]:
