@@ -8,10 +8,10 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
-from alpha_audit.cli.check import pair_outputs
 from typer.testing import CliRunner
 
 from alpha_audit.cli import app
+from alpha_audit.cli.check import pair_outputs
 from alpha_audit.errors import UsageError
 from alpha_audit.render import CheckFormat
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 
-from alpha_audit.audit import AuditResult, audit
+from alpha_audit.audit import AuditResult, audit, check_combinations
 from alpha_audit.errors import SvgError, UsageError
 from alpha_audit.gate import CheckReport, FindingKey, evaluate
 from alpha_audit.load.iconset import load_iconset
@@ -82,6 +82,7 @@ def check_project(
         )
     loaded_themes = [load_theme(t) for t in _unique(themes)]
     loaded_sets = [load_iconset(s) for s in _unique(iconsets)]
+    check_combinations(loaded_themes, loaded_sets)  # before any icon is rendered
     if on_start is not None:
         on_start(sum(len(s.icons) for s in loaded_sets))
     audits = []
