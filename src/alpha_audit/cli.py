@@ -163,3 +163,8 @@ app.command("reproduce")(reproduce_command)
 def main() -> None:
     """Console-script entry point."""
     app()
+
+
+from alpha_audit.cli_export import export_command  # noqa: E402
+
+app.command("export")(export_command)

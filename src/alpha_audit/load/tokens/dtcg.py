@@ -287,26 +287,38 @@ class TokenTree:
             chain = " -> ".join([*stack[stack.index(pointer) :], pointer])
             raise token_error(f"$ref cycle: {chain}", **where)
         parts = [p.replace("~1", "/").replace("~0", "~") for p in pointer[1:].split("/")[1:]]
-        node: Any = raw.doc.data
-        for i, part in enumerate(parts):
+        # A pointer at a token (in any merged source: the last one wins, as for
+        # aliases) is an alias; a pointer into its value walks the resolved value.
+        for i in range(len(parts), 0, -1):
+            token_path = ".".join(parts[:i])
+            if token_path not in self.raw:
+                continue
+            rest = parts[i:]
+            target = self._token(token_path, stack)
+            if not rest or rest == ["$value"] or (self.legacy and rest == ["value"]):
+                return target.value, target
+            if rest[0] not in ("$value", "value"):
+                raise token_error(
+                    f"$ref {pointer} points into token {token_path} but not at its $value",
+                    **where,
+                )
+            node: Any = target.value
+            for part in rest[1:]:
+                if isinstance(node, dict) and part in node:
+                    node = node[part]
+                elif isinstance(node, list) and part.isdigit() and int(part) < len(node):
+                    node = node[int(part)]
+                else:
+                    raise token_error(f"$ref {pointer} points at nothing (no {part!r})", **where)
+            return node, None
+        node = raw.doc.data
+        for part in parts:
             if isinstance(node, dict) and part in node:
                 node = node[part]
             elif isinstance(node, list) and part.isdigit() and int(part) < len(node):
                 node = node[int(part)]
             else:
                 raise token_error(f"$ref {pointer} points at nothing (no {part!r})", **where)
-            if part in ("$value", "value") and i > 0:
-                token_path = ".".join(parts[:i])
-                if token_path in self.raw and i == len(parts) - 1:
-                    target = self._token(token_path, stack)
-                    return target.value, target
-                if token_path in self.raw:
-                    self._token(token_path, stack)  # cycle check through the token
-        if isinstance(node, dict) and self._is_token(node):
-            token_path = ".".join(parts)
-            if token_path in self.raw:
-                target = self._token(token_path, stack)
-                return target.value, target
         if len(stack) > MAX_ALIAS_CHAIN:
             raise token_error(f"$ref chain longer than {MAX_ALIAS_CHAIN}", **where)
         return self._value(raw, node, keys, [*stack, pointer])[0], None
