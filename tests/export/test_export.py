@@ -229,3 +229,29 @@ def test_cli_export(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     err = runner.invoke(app, ["export", "--gamut", "error"])
     assert err.exit_code == 2 and "base.tokens.json:16: color.icon.danger" in err.output
     assert runner.invoke(app, ["export", "-f", "nope"]).exit_code == 2
+
+
+def test_cli_check_on_tokens_and_export_agree(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The bar: export colours equal check's output for every icon colour and canvas."""
+    import yaml
+
+    project = tmp_path / "p"
+    shutil.copytree(EXAMPLE, project)
+    monkeypatch.chdir(project)
+    runner = CliRunner()
+    checked = runner.invoke(app, ["check", "-f", "json"])
+    assert checked.exit_code in (0, 1), checked.output
+    exported = json.loads(runner.invoke(app, ["export", "-f", "json"]).stdout)
+    manifest = yaml.safe_load((project / "iconset.yaml").read_text())
+    color_of = {icon: o["color"] for icon, o in manifest["overrides"].items()}
+    audits = json.loads(checked.stdout)["audits"]
+    assert len(audits) == len(exported["modes"]) == 2
+    compared = 0
+    for audit_doc, mode in zip(audits, exported["modes"], strict=True):
+        outputs = {c["token"]: c["outputs"] for c in mode["colors"]}
+        for row in audit_doc["rows"]:
+            assert row["output"] == outputs[color_of[row["icon"]]][row["canvas"]]
+            compared += 1
+    assert compared == 16

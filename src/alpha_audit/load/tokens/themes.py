@@ -118,6 +118,10 @@ class TokenMode:
     theme: Theme
     colors: dict[str, TokenColor]
 
+    def theme_palette(self) -> dict[str, str]:
+        """``{token path: exact colour}`` of this mode's icon colours."""
+        return {path: c.css for path, c in self.colors.items()}
+
 
 @dataclass(frozen=True)
 class TokenThemes:
@@ -137,7 +141,7 @@ class TokenThemes:
     def palette(self, mode: str | None = None) -> dict[str, str]:
         """``{token path: colour}`` of one mode (default: the first), for a manifest's palette."""
         chosen = self.modes[0] if mode is None else next(m for m in self.modes if m.name == mode)
-        return {path: c.css for path, c in chosen.colors.items()}
+        return chosen.theme_palette()
 
 
 def _matches(path: str, patterns: Sequence[str]) -> bool:
