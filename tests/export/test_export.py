@@ -255,3 +255,11 @@ def test_cli_check_on_tokens_and_export_agree(
             assert row["output"] == outputs[color_of[row["icon"]]][row["canvas"]]
             compared += 1
     assert compared == 16
+
+
+def test_replace_keeps_exact_colours_and_takes_new_ones() -> None:
+    from dataclasses import replace
+
+    icon = Icon("i", Path("i.svg"), "oklch(0.55 0.16 255)", 1.0)
+    assert replace(icon, alpha=1.2).linear == icon.linear
+    assert replace(icon, color="#ff0000").linear == (1.0, 0.0, 0.0)
