@@ -148,7 +148,7 @@ def _read_back(files: dict[str, str], tmp_path: Path, fmt: str) -> dict[str, dic
     return out
 
 
-colour = st.tuples(*(st.integers(0, 255) for _ in range(3))).map(lambda c: "#%02x%02x%02x" % c)
+colour = st.tuples(*(st.integers(0, 255) for _ in range(3))).map(lambda c: "#" + bytes(c).hex())
 
 
 @settings(max_examples=25, suppress_health_check=[HealthCheck.function_scoped_fixture])
@@ -166,9 +166,7 @@ def test_round_trip_exported_tokens_give_back_the_same_colours(
         doc = {"color": {"$type": "color", "bg": {}, "icon": {}}}
         for i, c in enumerate(canvases):
             if mode == "dark":
-                c = "#%02x%02x%02x" % tuple(
-                    (int(c[k : k + 2], 16) + dark_shift) % 256 for k in (1, 3, 5)
-                )
+                c = "#" + bytes((int(c[k : k + 2], 16) + dark_shift) % 256 for k in (1, 3, 5)).hex()
             doc["color"]["bg"][f"c{i}"] = {"$value": c}
         for i, (c, a) in enumerate(icons):
             doc["color"]["icon"][f"i{i}"] = {

@@ -61,7 +61,12 @@ def test_cycle_is_an_error_naming_the_chain() -> None:
 
 
 def test_ref_cycle_is_an_error() -> None:
-    text = '{"a": {"$type": "color", "$value": {"$ref": "#/b/$value"}}, "b": {"$type": "color", "$value": {"$ref": "#/a/$value"}}}'
+    text = json.dumps(
+        {
+            "a": {"$type": "color", "$value": {"$ref": "#/b/$value"}},
+            "b": {"$type": "color", "$value": {"$ref": "#/a/$value"}},
+        }
+    )
     with pytest.raises(InputError, match="cycle"):
         _tokens(text)
 
