@@ -25,6 +25,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Literal, get_args
 
 import numpy as np
@@ -38,6 +39,7 @@ __all__ = [
     "GamutPolicy",
     "ParsedColor",
     "color_from_components",
+    "gamut_delta_e",
     "parse_css_color",
 ]
 
@@ -94,7 +96,14 @@ class ParsedColor:
     alpha: float
     in_gamut: bool
     gamut: GamutPolicy
-    delta_e: float
+
+    @cached_property
+    def delta_e(self) -> float:
+        """CIEDE2000 between the colour before and after the gamut step (0 in gamut).
+
+        Computed on first use; :func:`gamut_delta_e` does many at once.
+        """
+        return 0.0 if self.in_gamut else float(gamut_delta_e([self])[0])
 
     @property
     def adjusted(self) -> bool:
@@ -147,12 +156,6 @@ def _resolve(color: object, text: str, space: str, *, gamut: str, allow_alpha: b
             "to accept it, or give an sRGB colour"
         )
     encoded = tuple(float(v) for v in np.clip(np.array(fitted, dtype=np.float64), 0.0, 1.0))
-    delta_e = 0.0
-    if not in_gamut:
-        from alpha_audit.color.metrics import delta_e_2000
-        from alpha_audit.color.srgb import srgb_decode
-
-        delta_e = float(delta_e_2000(srgb_decode(unmapped), srgb_decode(encoded)))
     return ParsedColor(
         text=text,
         space=space,
@@ -161,8 +164,21 @@ def _resolve(color: object, text: str, space: str, *, gamut: str, allow_alpha: b
         alpha=alpha,
         in_gamut=in_gamut,
         gamut=gamut,  # type: ignore[arg-type]
-        delta_e=delta_e,
     )
+
+
+def gamut_delta_e(colors: Sequence[ParsedColor]) -> NDArray[np.float64]:
+    """CIEDE2000 of each colour's gamut step, in one vectorised call.
+
+    >>> gamut_delta_e([parse_css_color("#fff")]).tolist()
+    [0.0]
+    """
+    from alpha_audit.color.metrics import delta_e_2000
+    from alpha_audit.color.srgb import srgb_decode
+
+    before = srgb_decode(np.array([c.unmapped for c in colors], dtype=np.float64).reshape(-1, 3))
+    after = srgb_decode(np.array([c.encoded for c in colors], dtype=np.float64).reshape(-1, 3))
+    return np.asarray(delta_e_2000(before, after), dtype=np.float64).reshape(-1)
 
 
 def parse_css_color(

@@ -22,6 +22,7 @@ decides, as today.
 from __future__ import annotations
 
 import fnmatch
+import json
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -30,7 +31,7 @@ from typing import Any
 
 import numpy as np
 
-from alpha_audit.color.css import GAMUT_POLICIES, GamutPolicy, ParsedColor
+from alpha_audit.color.css import GAMUT_POLICIES, GamutPolicy, ParsedColor, gamut_delta_e
 from alpha_audit.color.srgb import srgb_decode
 from alpha_audit.errors import InputError
 from alpha_audit.load.tokens import load_token_modes, token_color
@@ -179,7 +180,10 @@ def _alpha(token: Token, key: str) -> float | None:
 def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
     """Build a theme and icon colours per mode from resolved tokens."""
     modes: list[TokenMode] = []
-    adjusted: list[GamutAdjustment] = []
+    adjusted: list[tuple[str, Token, ParsedColor]] = []
+    # Modes share most colours (aliases of one palette); CSS gamut mapping costs
+    # ~30 conversions per colour, so each distinct value is converted once.
+    seen: dict[str, ParsedColor] = {}
     for name, tokens in source.modes.items():
         canvases: list[Canvas] = []
         colors: dict[str, TokenColor] = {}
@@ -188,20 +192,12 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
             is_color = _matches(path, config.colors)
             if not (is_canvas or is_color):
                 continue
-            parsed = token_color(token, gamut=config.gamut)
+            key = json.dumps(token.value, sort_keys=True)
+            if key not in seen or token.type != "color":
+                seen[key] = token_color(token, gamut=config.gamut)
+            parsed = seen[key]
             if parsed.adjusted:
-                adjusted.append(
-                    GamutAdjustment(
-                        mode=name,
-                        token=path,
-                        text=parsed.text,
-                        policy=config.gamut,
-                        output=_hex(parsed),
-                        delta_e=parsed.delta_e,
-                        file=token.file,
-                        line=token.line,
-                    )
-                )
+                adjusted.append((name, token, parsed))
             if is_canvas:
                 canvases.append(Canvas(path, parsed.css, config.modes.get(name), line=token.line))
             if is_color:
@@ -213,7 +209,21 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
             )
         theme = Theme(name, tuple(canvases), path=source.source)
         modes.append(TokenMode(name, theme, colors))
-    return TokenThemes(source.source, source.kind, config.gamut, tuple(modes), tuple(adjusted))
+    delta_e = gamut_delta_e([p for _, _, p in adjusted]) if adjusted else []
+    notes = tuple(
+        GamutAdjustment(
+            mode=name,
+            token=token.path,
+            text=parsed.text,
+            policy=config.gamut,
+            output=_hex(parsed),
+            delta_e=float(de),
+            file=token.file,
+            line=token.line,
+        )
+        for (name, token, parsed), de in zip(adjusted, delta_e, strict=True)
+    )
+    return TokenThemes(source.source, source.kind, config.gamut, tuple(modes), notes)
 
 
 def _hex(parsed: ParsedColor) -> str:
