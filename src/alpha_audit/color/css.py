@@ -152,8 +152,8 @@ def _resolve(color: object, text: str, space: str, *, gamut: str, allow_alpha: b
     else:
         shown = ", ".join(f"{v:.4f}" for v in unmapped)
         raise ColorSyntaxError(
-            f"{text!r} is outside sRGB (sRGB channels {shown}); set gamut: clip or gamut: map "
-            "to accept it, or give an sRGB colour"
+            f"{text!r} is outside sRGB (sRGB channels {shown}); give an sRGB colour, or "
+            "(for design tokens) set gamut: clip or gamut: map in the config's tokens: table"
         )
     encoded = tuple(float(v) for v in np.clip(np.array(fitted, dtype=np.float64), 0.0, 1.0))
     return ParsedColor(
