@@ -155,7 +155,7 @@ def modes_from_resolver(
     modes = {}
     for context in contexts:
         tree = TokenTree(legacy=legacy)
-        for (kind, node, keys), _ in zip(entries, range(len(entries)), strict=True):
+        for kind, node, keys in entries:
             if kind == "set":
                 r.sources(tree, (*keys, "sources"), node.get("sources"))
                 continue
