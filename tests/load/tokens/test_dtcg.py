@@ -235,3 +235,16 @@ def test_resolver_source_outside_root_is_refused(tmp_path: Path) -> None:
     path.write_text(json.dumps(doc))
     with pytest.raises(InputError, match="outside"):
         load_token_modes(path)
+
+
+def test_extends_sees_what_the_target_inherits_itself() -> None:
+    text = json.dumps(
+        {
+            "x": {"$extends": "{y}"},
+            "y": {"sub": {"$extends": "{z}"}, "own": {"$type": "color", "$value": "#111111"}},
+            "z": {"deep": {"$type": "color", "$value": "#222222"}},
+        }
+    )
+    tokens = _tokens(text)
+    assert tokens["x.sub.deep"].value == "#222222"
+    assert tokens["x.own"].value == "#111111"

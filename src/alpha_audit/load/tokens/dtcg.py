@@ -156,9 +156,11 @@ class TokenTree:
                     line=group.doc.line((*group.keys, "$extends")),
                     path=group.path,
                 )
-            if group.extends in self.groups:
-                visit(self.groups[group.extends], [*stack, group.path])
             prefix = group.extends + "."
+            # The target and its subgroups get their own inherited tokens first.
+            for other in list(self.groups.values()):
+                if other.path == group.extends or other.path.startswith(prefix):
+                    visit(other, [*stack, group.path])
             inherited = [r for p, r in self.raw.items() if p.startswith(prefix)]
             if not inherited:
                 raise token_error(
@@ -170,6 +172,13 @@ class TokenTree:
             for r in inherited:
                 path = (group.path + "." if group.path else "") + r.path[len(prefix) :]
                 if path not in self.raw:
+                    if len(self.raw) >= MAX_TOKENS:
+                        raise token_error(
+                            f"$extends makes more than {MAX_TOKENS} tokens; not allowed",
+                            file=group.doc.path,
+                            line=group.doc.line((*group.keys, "$extends")),
+                            path=group.path,
+                        )
                     self.raw[path] = _Raw(path, r.node, r.doc, r.keys, r.group_type or group.type)
             done.add(group.path)
 
