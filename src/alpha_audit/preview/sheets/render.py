@@ -1,0 +1,76 @@
+"""Drawing planned sheets: the one place that picks a layout's drawing function."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from typing import assert_never
+
+import numpy as np
+from numpy.typing import NDArray
+
+from alpha_audit.color import NON_TEXT_THRESHOLD
+from alpha_audit.model import IconSet
+from alpha_audit.preview.sheets.compare import draw_compare
+from alpha_audit.preview.sheets.grid import draw_grid
+from alpha_audit.preview.sheets.plan import (
+    SWATCH_ALPHAS,
+    Alpha,
+    Layout,
+    SheetSpec,
+    default_alphas,
+)
+from alpha_audit.preview.sheets.surface import Sheet
+from alpha_audit.preview.sheets.swatches import draw_swatches
+
+__all__ = ["DEFAULT_MAX_WIDTH", "render_all", "render_sheet"]
+
+DEFAULT_MAX_WIDTH = 1400
+"""px; the grid layout wraps its icons to this width (a laptop screen at 100%)."""
+
+
+def render_sheet(
+    spec: SheetSpec,
+    iconset: IconSet,
+    masks: Mapping[tuple[str, int], NDArray[np.float64]],
+    *,
+    alphas: Sequence[Alpha] | None = None,
+    threshold: float = NON_TEXT_THRESHOLD,
+    max_width: int = DEFAULT_MAX_WIDTH,
+    title: str | None = None,
+) -> Sheet:
+    """Draw one planned sheet.
+
+    ``masks`` maps ``(icon name, size)`` to coverage (icons without a mask are
+    left out); ``alphas`` are the rows (``None`` entries use each icon's own
+    coefficient; default :func:`default_alphas`, or :data:`SWATCH_ALPHAS` for
+    swatches); ``max_width`` bounds the grid layout's width in pixels.
+    """
+    label = title or iconset.name
+    match spec.layout:
+        case Layout.GRID:
+            rows = default_alphas(iconset) if alphas is None else list(alphas)
+            return draw_grid(spec, iconset, masks, rows, threshold, max_width, label)
+        case Layout.SWATCHES:
+            picked = [a for a in (alphas or ()) if a is not None] or list(SWATCH_ALPHAS)
+            return draw_swatches(spec, iconset, picked, threshold, label)
+        case Layout.COMPARE:
+            rows = default_alphas(iconset) if alphas is None else list(alphas)
+            return draw_compare(spec, iconset, masks, rows, threshold, label)
+        case _:
+            assert_never(spec.layout)
+
+
+def render_all(
+    specs: Sequence[SheetSpec],
+    iconset: IconSet,
+    masks: Mapping[tuple[str, int], NDArray[np.float64]],
+    *,
+    on_sheet: Callable[[], None] | None = None,
+    **options: object,
+) -> Iterator[Sheet]:
+    """Render ``specs`` one at a time (a sheet can be large; write each, then drop it)."""
+    for spec in specs:
+        sheet = render_sheet(spec, iconset, masks, **options)  # type: ignore[arg-type]
+        yield sheet
+        if on_sheet is not None:
+            on_sheet()
