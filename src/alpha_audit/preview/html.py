@@ -26,12 +26,37 @@ from numpy.typing import NDArray
 from alpha_audit.errors import UsageError
 from alpha_audit.model import IconSet, Theme
 
-__all__ = ["ATLAS_MAX_WIDTH", "mask_atlas", "preview_data", "preview_html"]
+__all__ = [
+    "ATLAS_MAX_WIDTH",
+    "SCRIPT_ASSETS",
+    "mask_atlas",
+    "page_script",
+    "preview_data",
+    "preview_html",
+]
 
 # WebGL2 guarantees MAX_TEXTURE_SIZE >= 2048 (OpenGL ES 3.0, table 6.28);
 # keeping atlases this narrow leaves height for thousands of icons.
 ATLAS_MAX_WIDTH = 2048
 _PLACEHOLDERS = ("__ALPHA_AUDIT_TITLE__", "__ALPHA_AUDIT_DATA__", "__ALPHA_AUDIT_SCRIPT__")
+
+# The page's script, in the order it runs: one function scope, one file each per concern.
+SCRIPT_ASSETS = (
+    "page_data.js",  # the embedded data and the page's fixed choices
+    "page_colour.js",  # float64 colour maths for labels and contrast
+    "page_shader.js",  # the WebGL2 shader and renderer
+    "page_layout.js",  # state, layout and drawing
+    "page_ui.js",  # tooltip and controls
+    "page_start.js",  # the validation hook and start-up
+)
+_SCRIPT_HEAD = """\
+// alpha-audit preview page: the paper's compositing expression in a WebGL2 fragment shader.
+// Pixel = encode(q * clip(Cb + a (Cs - Cb), 0, 1) + (1 - q) * Cb) in linear sRGB
+// ("Opacity Is Not Just Opacity", Appendix A.2). No network, no external files.
+"use strict";
+(() => {
+"""
+_SCRIPT_TAIL = "})();\n"
 
 
 def mask_atlas(masks: Sequence[NDArray[np.float64]], size: int) -> tuple[int, NDArray[np.uint8]]:
@@ -99,6 +124,14 @@ def _asset(name: str) -> str:
     return resources.files("alpha_audit.preview").joinpath(name).read_text(encoding="utf-8")
 
 
+def page_script() -> str:
+    """The page's script: :data:`SCRIPT_ASSETS` joined inside one strict function scope."""
+    script = _SCRIPT_HEAD + "".join(_asset(name) for name in SCRIPT_ASSETS) + _SCRIPT_TAIL
+    if "</script" in script.lower():
+        raise AssertionError("the page's script must not contain a closing script tag")
+    return script
+
+
 def preview_html(
     theme: Theme,
     iconset: IconSet,
@@ -111,9 +144,7 @@ def preview_html(
     data = preview_data(theme, iconset, masks, sizes=sizes, alpha=alpha)
     # Inside <script> only "</" could end the element early; \u003c is the same JSON string.
     payload = json.dumps(data, separators=(",", ":"), allow_nan=False).replace("<", "\\u003c")
-    script = _asset("page.js")
-    if "</script" in script.lower():
-        raise AssertionError("page.js must not contain a closing script tag")
+    script = page_script()
     page = _asset("page.html")
     for marker in _PLACEHOLDERS:
         if marker not in page:
