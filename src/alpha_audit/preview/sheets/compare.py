@@ -9,12 +9,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
 from alpha_audit.color import contrast_ratio, parse_color, srgb_decode
-from alpha_audit.model import IconSet
+from alpha_audit.model import Icon, IconSet
 from alpha_audit.preview.compose import blend_colors, composite_masks
 from alpha_audit.preview.sheets.plan import (
     ICON_ALPHA,
@@ -36,7 +37,7 @@ from alpha_audit.preview.sheets.surface import (
     rgb,
 )
 
-__all__ = ["PAGE_COLOR", "draw_compare", "panel_columns"]
+__all__ = ["PAGE_COLOR", "CompareFrame", "compare_frame", "draw_compare", "panel_columns"]
 
 PAGE_COLOR = "#ffffff"
 """The page around the canvas panels."""
@@ -65,21 +66,36 @@ def panel_columns(n: int) -> int:
     return max(1, min(n, max(_MIN_COLUMNS, math.ceil(math.sqrt(2 * n)))))
 
 
-def draw_compare(
+@dataclass(frozen=True)
+class CompareFrame:
+    """Everything about a comparison sheet but its pixels."""
+
+    width: int
+    height: int
+    panels: tuple[Alpha, ...]
+    cols: int
+    gap: int
+    pad: int
+    panel_w: int
+    panel_h: int
+    row_head: int
+    row_h: int
+    top: int
+    fonts: Fonts
+    header: str
+    legend: str
+
+
+def compare_frame(
     spec: SheetSpec,
-    iconset: IconSet,
-    masks: Mapping[tuple[str, int], NDArray[np.float64]],
+    icons: Sequence[Icon],
     alphas: Sequence[Alpha],
-    threshold: float,
     title: str,
-) -> Sheet:
-    """Draw a comparison sheet (see the module docstring)."""
+) -> CompareFrame:
+    """Lay out a comparison sheet of ``icons`` on ``spec.canvases`` without drawing it."""
     size = spec.size
-    icons = available(iconset.icons, masks, size)
     n = len(icons)
     fonts = Fonts(12)
-    page = srgb_decode(parse_color(PAGE_COLOR))
-    ink = ink_on((float(page[0]), float(page[1]), float(page[2])))
     panels: list[Alpha] = [1.0, *(a for a in alphas if a != 1.0)]
     if len(panels) == 1:
         panels.append(ICON_ALPHA)
@@ -103,9 +119,45 @@ def draw_compare(
     row_h = row_head + panel_h + _ROW_GAP
     width = 2 * MARGIN + content_w
     height = top + len(spec.canvases) * row_h - _ROW_GAP + MARGIN
-    out = Surface(width, height, rgb(PAGE_COLOR))
-    out.text((MARGIN, MARGIN), header, fonts.title, ink.text)
-    out.text((MARGIN, header_bottom(0)), legend, fonts.body, ink.muted)
+    return CompareFrame(
+        width,
+        height,
+        tuple(panels),
+        cols,
+        gap,
+        pad,
+        panel_w,
+        panel_h,
+        row_head,
+        row_h,
+        top,
+        fonts,
+        header,
+        legend,
+    )
+
+
+def draw_compare(
+    spec: SheetSpec,
+    iconset: IconSet,
+    masks: Mapping[tuple[str, int], NDArray[np.float64]],
+    alphas: Sequence[Alpha],
+    threshold: float,
+    title: str,
+) -> Sheet:
+    """Draw a comparison sheet (see the module docstring)."""
+    size = spec.size
+    icons = available(iconset.icons, masks, size)
+    n = len(icons)
+    frame = compare_frame(spec, icons, alphas, title)
+    fonts, panels, cols, gap, pad = frame.fonts, frame.panels, frame.cols, frame.gap, frame.pad
+    panel_w, panel_h, row_head, row_h = frame.panel_w, frame.panel_h, frame.row_head, frame.row_h
+    top = frame.top
+    page = srgb_decode(parse_color(PAGE_COLOR))
+    ink = ink_on((float(page[0]), float(page[1]), float(page[2])))
+    out = Surface(frame.width, frame.height, rgb(PAGE_COLOR))
+    out.text((MARGIN, MARGIN), frame.header, fonts.title, ink.text)
+    out.text((MARGIN, header_bottom(0)), frame.legend, fonts.body, ink.muted)
     stack = np.stack([masks[(i.name, size)] for i in icons]) if icons else np.zeros((0, size, size))
     sources = np.array([i.linear for i in icons], dtype=np.float64).reshape(-1, 3)
     for r, canvas in enumerate(spec.canvases):

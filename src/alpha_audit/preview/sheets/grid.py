@@ -9,12 +9,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
 from alpha_audit.color import contrast_ratio
-from alpha_audit.model import IconSet
+from alpha_audit.model import Icon, IconSet
 from alpha_audit.preview.compose import blend_colors, composite_masks
 from alpha_audit.preview.sheets.plan import Alpha, SheetSpec, alpha_label, alphas_for
 from alpha_audit.preview.sheets.surface import (
@@ -29,7 +30,7 @@ from alpha_audit.preview.sheets.surface import (
     ink_on,
 )
 
-__all__ = ["draw_grid"]
+__all__ = ["GridFrame", "draw_grid", "grid_frame"]
 
 # Spacing, in px.
 _MIN_GAP = 10
@@ -48,21 +49,35 @@ _UNDERLINE_DROP = 1
 """Below the label's font size, where the failing-contrast underline goes."""
 
 
-def draw_grid(
+@dataclass(frozen=True)
+class GridFrame:
+    """Everything about a grid sheet but its pixels: sizes, positions and the texts."""
+
+    width: int
+    height: int
+    cols: int
+    gap: int
+    cell_w: int
+    cell_h: int
+    block_h: int
+    fonts: Fonts
+    header: str
+    sub: str
+    legend: str
+    blocks: tuple[tuple[NDArray[np.float64], NDArray[np.float64], str, str], ...]
+
+
+def grid_frame(
     spec: SheetSpec,
-    iconset: IconSet,
-    masks: Mapping[tuple[str, int], NDArray[np.float64]],
+    icons: Sequence[Icon],
     alphas: Sequence[Alpha],
     threshold: float,
     max_width: int,
     title: str,
-) -> Sheet:
-    """Draw a grid sheet: a block per coefficient row (see the module docstring)."""
+) -> GridFrame:
+    """Lay out a grid sheet of ``icons`` without drawing it (its size is known before)."""
     canvas, size = spec.canvases[0], spec.size
-    icons = available(iconset.icons, masks, size)
     fonts = Fonts(11 if size <= 24 else 12)
-    ink = ink_on(canvas.linear)
-    fill = fill_of(canvas.linear)
     n = len(icons)
 
     gap = max(_MIN_GAP, size // 3)
@@ -73,7 +88,6 @@ def draw_grid(
     cols = max(1, min(n, (max_width - 2 * MARGIN + gap) // cell_w))
     rows = max(1, math.ceil(n / cols))
 
-    stack = np.stack([masks[(i.name, size)] for i in icons]) if icons else np.zeros((0, size, size))
     sources = np.array([i.linear for i in icons], dtype=np.float64).reshape(-1, 3)
     background = np.array(canvas.linear)
     passing_ref = int((contrast_ratio(sources, background) >= threshold).sum())
@@ -99,16 +113,40 @@ def draw_grid(
         *(Fonts.width(fonts.row, b[2]) + Fonts.width(fonts.body, b[3]) for b in blocks),
     )
     block_h = _BLOCK_GAP + _BLOCK_HEAD + rows * cell_h
-    top = header_bottom(2)
     width = 2 * MARGIN + content_w
-    height = top + len(alphas) * block_h + MARGIN
-    out = Surface(width, height, fill)
+    height = header_bottom(2) + len(alphas) * block_h + MARGIN
+    return GridFrame(
+        width, height, cols, gap, cell_w, cell_h, block_h, fonts, header, sub, legend, tuple(blocks)
+    )
 
-    out.text((MARGIN, MARGIN), header, fonts.title, ink.text)
-    out.text((MARGIN, header_bottom(0)), sub, fonts.body, ink.muted)
-    out.text((MARGIN, header_bottom(1)), legend, fonts.body, ink.muted)
-    y = top + _BLOCK_GAP
-    for coeff, contrast, label, summary in blocks:
+
+def draw_grid(
+    spec: SheetSpec,
+    iconset: IconSet,
+    masks: Mapping[tuple[str, int], NDArray[np.float64]],
+    alphas: Sequence[Alpha],
+    threshold: float,
+    max_width: int,
+    title: str,
+) -> Sheet:
+    """Draw a grid sheet: a block per coefficient row (see the module docstring)."""
+    canvas, size = spec.canvases[0], spec.size
+    icons = available(iconset.icons, masks, size)
+    frame = grid_frame(spec, icons, alphas, threshold, max_width, title)
+    fonts, cols, gap = frame.fonts, frame.cols, frame.gap
+    cell_w, cell_h = frame.cell_w, frame.cell_h
+    ink = ink_on(canvas.linear)
+    fill = fill_of(canvas.linear)
+    stack = np.stack([masks[(i.name, size)] for i in icons]) if icons else np.zeros((0, size, size))
+    sources = np.array([i.linear for i in icons], dtype=np.float64).reshape(-1, 3)
+    background = np.array(canvas.linear)
+    out = Surface(frame.width, frame.height, fill)
+
+    out.text((MARGIN, MARGIN), frame.header, fonts.title, ink.text)
+    out.text((MARGIN, header_bottom(0)), frame.sub, fonts.body, ink.muted)
+    out.text((MARGIN, header_bottom(1)), frame.legend, fonts.body, ink.muted)
+    y = header_bottom(2) + _BLOCK_GAP
+    for coeff, contrast, label, summary in frame.blocks:
         pixels = composite_masks(stack, sources, background, coeff)
         used = out.text((MARGIN, y), label, fonts.row, ink.text)
         out.text((MARGIN + used, y + _CAPTION_DROP), summary, fonts.body, ink.muted)
@@ -134,5 +172,5 @@ def draw_grid(
             if value < threshold:
                 underline = ty + fonts.small.size + _UNDERLINE_DROP
                 out.rect((tx, underline, tx + tw, underline + 1), color)
-        y += block_h
+        y += frame.block_h
     return out.finish(spec)

@@ -20,7 +20,7 @@ from alpha_audit.preview.sheets.plan import (
     default_alphas,
 )
 from alpha_audit.preview.sheets.surface import Sheet
-from alpha_audit.preview.sheets.swatches import draw_swatches
+from alpha_audit.preview.sheets.swatches import draw_swatches, swatch_colors
 
 __all__ = ["DEFAULT_MAX_WIDTH", "render_all", "render_sheet"]
 
@@ -52,7 +52,7 @@ def render_sheet(
             return draw_grid(spec, iconset, masks, rows, threshold, max_width, label)
         case Layout.SWATCHES:
             picked = [a for a in (alphas or ()) if a is not None] or list(SWATCH_ALPHAS)
-            return draw_swatches(spec, iconset, picked, threshold, label)
+            return draw_swatches(spec, swatch_colors(iconset), picked, threshold, label)
         case Layout.COMPARE:
             rows = default_alphas(iconset) if alphas is None else list(alphas)
             return draw_compare(spec, iconset, masks, rows, threshold, label)

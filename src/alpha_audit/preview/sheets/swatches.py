@@ -8,6 +8,7 @@ underneath.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -26,7 +27,7 @@ from alpha_audit.preview.sheets.surface import (
     ink_on,
 )
 
-__all__ = ["draw_swatches", "swatch_colors"]
+__all__ = ["SwatchFrame", "draw_swatches", "swatch_colors", "swatch_frame"]
 
 # Spacing, in px.
 _MIN_SIDE, _MAX_SIDE = 56, 96
@@ -59,31 +60,50 @@ def swatch_colors(iconset: IconSet) -> list[tuple[str, str]]:
     return [(label, color) for color, label in seen.items()]
 
 
-def draw_swatches(
-    spec: SheetSpec, iconset: IconSet, alphas: Sequence[float], threshold: float, title: str
-) -> Sheet:
-    """Draw a swatch sheet (see the module docstring)."""
+@dataclass(frozen=True)
+class SwatchFrame:
+    """Everything about a swatch sheet but its pixels."""
+
+    width: int
+    height: int
+    side: int
+    left: int
+    top: int
+    head_h: int
+    cell_w: int
+    cell_h: int
+    fonts: Fonts
+    header: str
+    sub: str
+    legend: str
+    labels: tuple[str, ...]
+
+
+def swatch_frame(
+    spec: SheetSpec,
+    colors: Sequence[tuple[str, str]],
+    alphas: Sequence[float],
+    threshold: float,
+    title: str,
+) -> SwatchFrame:
+    """Lay out a swatch sheet of ``colors`` (label, hex) without drawing it."""
     canvas = spec.canvases[0]
     fonts = Fonts(12)
-    ink = ink_on(canvas.linear)
-    fill = fill_of(canvas.linear)
-    colors = swatch_colors(iconset)
     side = max(_MIN_SIDE, min(spec.size, _MAX_SIDE))
-    gap = _GAP
-    labels = [f"alpha = {a:g}" for a in alphas]
+    labels = tuple(f"alpha = {a:g}" for a in alphas)
     left = max(Fonts.width(fonts.row, t) for t in labels) + _ROW_LABEL_GAP
     col_w = max(
         side,
         Fonts.width(fonts.small, "#000000"),
         *(Fonts.width(fonts.body, name) for name, _ in colors),
     )
-    cell_w = col_w + gap
-    cell_h = side + 2 * (fonts.small.size + _LABEL_GAP) + gap
+    cell_w = col_w + _GAP
+    cell_h = side + 2 * (fonts.small.size + _LABEL_GAP) + _GAP
     header = f"{canvas.name}  {canvas.color}"
     sub = f"{title} · palette across, coefficient down"
     legend = f"under each swatch: output colour and contrast; underlined below {threshold:g}:1"
     content_w = max(
-        left + len(colors) * cell_w - gap,
+        left + len(colors) * cell_w - _GAP,
         Fonts.width(fonts.title, header),
         Fonts.width(fonts.body, sub),
         Fonts.width(fonts.body, legend),
@@ -91,11 +111,30 @@ def draw_swatches(
     top = header_bottom(2) + _HEADER_GAP
     head_h = 2 * (fonts.body.size + _LINE_PAD) + _HEAD_GAP
     width = 2 * MARGIN + content_w
-    height = top + head_h + len(alphas) * cell_h - gap + _BOTTOM_PAD + MARGIN
-    out = Surface(width, height, fill)
-    out.text((MARGIN, MARGIN), header, fonts.title, ink.text)
-    out.text((MARGIN, header_bottom(0)), sub, fonts.body, ink.muted)
-    out.text((MARGIN, header_bottom(1)), legend, fonts.body, ink.muted)
+    height = top + head_h + len(alphas) * cell_h - _GAP + _BOTTOM_PAD + MARGIN
+    return SwatchFrame(
+        width, height, side, left, top, head_h, cell_w, cell_h, fonts, header, sub, legend, labels
+    )
+
+
+def draw_swatches(
+    spec: SheetSpec,
+    colors: Sequence[tuple[str, str]],
+    alphas: Sequence[float],
+    threshold: float,
+    title: str,
+) -> Sheet:
+    """Draw a swatch sheet of ``colors`` (label, hex; see the module docstring)."""
+    canvas = spec.canvases[0]
+    frame = swatch_frame(spec, colors, alphas, threshold, title)
+    fonts, side, left, top = frame.fonts, frame.side, frame.left, frame.top
+    cell_w, cell_h, head_h, labels = frame.cell_w, frame.cell_h, frame.head_h, frame.labels
+    ink = ink_on(canvas.linear)
+    fill = fill_of(canvas.linear)
+    out = Surface(frame.width, frame.height, fill)
+    out.text((MARGIN, MARGIN), frame.header, fonts.title, ink.text)
+    out.text((MARGIN, header_bottom(0)), frame.sub, fonts.body, ink.muted)
+    out.text((MARGIN, header_bottom(1)), frame.legend, fonts.body, ink.muted)
 
     sources = srgb_decode(np.array([parse_color(c) for _, c in colors])).reshape(-1, 3)
     background = np.array(canvas.linear)
