@@ -155,7 +155,7 @@ def draw_compare(
     top = frame.top
     page = srgb_decode(parse_color(PAGE_COLOR))
     ink = ink_on((float(page[0]), float(page[1]), float(page[2])))
-    out = Surface(frame.width, frame.height, rgb(PAGE_COLOR))
+    out = Surface(spec, frame.width, frame.height, rgb(PAGE_COLOR))
     out.text((MARGIN, MARGIN), frame.header, fonts.title, ink.text)
     out.text((MARGIN, header_bottom(0)), frame.legend, fonts.body, ink.muted)
     stack = np.stack([masks[(i.name, size)] for i in icons]) if icons else np.zeros((0, size, size))
@@ -186,4 +186,4 @@ def draw_compare(
                     ),
                     pixels[k],
                 )
-    return out.finish(spec)
+    return out.finish()

@@ -140,7 +140,7 @@ def draw_grid(
     stack = np.stack([masks[(i.name, size)] for i in icons]) if icons else np.zeros((0, size, size))
     sources = np.array([i.linear for i in icons], dtype=np.float64).reshape(-1, 3)
     background = np.array(canvas.linear)
-    out = Surface(frame.width, frame.height, fill)
+    out = Surface(spec, frame.width, frame.height, fill)
 
     out.text((MARGIN, MARGIN), frame.header, fonts.title, ink.text)
     out.text((MARGIN, header_bottom(0)), frame.sub, fonts.body, ink.muted)
@@ -173,4 +173,4 @@ def draw_grid(
                 underline = ty + fonts.small.size + _UNDERLINE_DROP
                 out.rect((tx, underline, tx + tw, underline + 1), color)
         y += frame.block_h
-    return out.finish(spec)
+    return out.finish()

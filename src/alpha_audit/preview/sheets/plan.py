@@ -18,11 +18,14 @@ __all__ = [
     "SWATCH_ALPHAS",
     "Alpha",
     "Layout",
+    "Page",
     "SheetSpec",
     "alpha_label",
     "alphas_for",
     "default_alphas",
     "plan_sheets",
+    "sheet_rows",
+    "sheet_title",
 ]
 
 Alpha = float | None
@@ -44,13 +47,51 @@ class Layout(StrEnum):
 
 
 @dataclass(frozen=True)
+class Page:
+    """Which part of a sheet too large for one image a page shows.
+
+    ``first:stop`` indexes the set's icons (grid, compare) or its swatch
+    colours (swatches); ``note`` says the same in words for the sheet's title.
+    """
+
+    number: int
+    count: int
+    first: int
+    stop: int
+    note: str
+
+
+@dataclass(frozen=True)
 class SheetSpec:
-    """One planned sheet: its file name, layout, canvases and icon size."""
+    """One planned sheet: its file name, layout, canvases and icon size (and page, if split)."""
 
     name: str
     layout: Layout
     canvases: tuple[Canvas, ...]
     size: int
+    page: Page | None = None
+
+
+def sheet_title(spec: SheetSpec, title: str) -> str:
+    """The title a sheet carries: ``title``, and which page it is when the sheet is split."""
+    if spec.page is None:
+        return title
+    return f"{title} · page {spec.page.number} of {spec.page.count} ({spec.page.note})"
+
+
+def sheet_rows(layout: Layout, iconset: IconSet, alphas: Sequence[Alpha] | None) -> list[Alpha]:
+    """The coefficient rows of a sheet: ``alphas``, or the layout's default for ``None``.
+
+    Grid and compare default to :func:`default_alphas`; swatches take only
+    real coefficients and default to :data:`SWATCH_ALPHAS`.
+    """
+    match layout:
+        case Layout.GRID | Layout.COMPARE:
+            return default_alphas(iconset) if alphas is None else list(alphas)
+        case Layout.SWATCHES:
+            return [a for a in (alphas or ()) if a is not None] or list(SWATCH_ALPHAS)
+        case _:
+            assert_never(layout)
 
 
 def default_alphas(iconset: IconSet) -> list[Alpha]:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable, Iterator, Mapping, Sequence
+from dataclasses import replace
 from typing import assert_never
 
 import numpy as np
@@ -12,13 +13,7 @@ from alpha_audit.color import NON_TEXT_THRESHOLD
 from alpha_audit.model import IconSet
 from alpha_audit.preview.sheets.compare import draw_compare
 from alpha_audit.preview.sheets.grid import draw_grid
-from alpha_audit.preview.sheets.plan import (
-    SWATCH_ALPHAS,
-    Alpha,
-    Layout,
-    SheetSpec,
-    default_alphas,
-)
+from alpha_audit.preview.sheets.plan import Alpha, Layout, SheetSpec, sheet_rows, sheet_title
 from alpha_audit.preview.sheets.surface import Sheet
 from alpha_audit.preview.sheets.swatches import draw_swatches, swatch_colors
 
@@ -45,16 +40,22 @@ def render_sheet(
     coefficient; default :func:`default_alphas`, or :data:`SWATCH_ALPHAS` for
     swatches); ``max_width`` bounds the grid layout's width in pixels.
     """
-    label = title or iconset.name
+    label = sheet_title(spec, title or iconset.name)
+    rows = sheet_rows(spec.layout, iconset, alphas)
+    page = spec.page
     match spec.layout:
         case Layout.GRID:
-            rows = default_alphas(iconset) if alphas is None else list(alphas)
+            if page is not None:
+                iconset = replace(iconset, icons=iconset.icons[page.first : page.stop])
             return draw_grid(spec, iconset, masks, rows, threshold, max_width, label)
         case Layout.SWATCHES:
-            picked = [a for a in (alphas or ()) if a is not None] or list(SWATCH_ALPHAS)
-            return draw_swatches(spec, swatch_colors(iconset), picked, threshold, label)
+            colors = swatch_colors(iconset)
+            if page is not None:
+                colors = colors[page.first : page.stop]
+            return draw_swatches(spec, colors, rows, threshold, label)  # type: ignore[arg-type]
         case Layout.COMPARE:
-            rows = default_alphas(iconset) if alphas is None else list(alphas)
+            if page is not None:
+                iconset = replace(iconset, icons=iconset.icons[page.first : page.stop])
             return draw_compare(spec, iconset, masks, rows, threshold, label)
         case _:
             assert_never(spec.layout)

@@ -18,12 +18,14 @@ from numpy.typing import NDArray
 from PIL import Image, ImageDraw, ImageFont
 
 from alpha_audit.color import contrast_ratio, parse_color, srgb_decode, srgb_encode, to_8bit
+from alpha_audit.errors import UsageError
 from alpha_audit.model import Icon
 from alpha_audit.preview.sheets.plan import SheetSpec
 
 __all__ = [
     "BODY_LINE",
     "MARGIN",
+    "PIXEL_BUDGET",
     "TITLE_LINE",
     "Fonts",
     "Ink",
@@ -31,6 +33,7 @@ __all__ = [
     "Sheet",
     "Surface",
     "available",
+    "check_budget",
     "fill_of",
     "header_bottom",
     "ink_on",
@@ -46,6 +49,28 @@ TITLE_LINE = 32
 """From the top of the 22 px title to the top of the line under it."""
 BODY_LINE = 22
 """From the top of one 14 px header line to the top of the next."""
+
+
+PIXEL_BUDGET = 1 << 24
+"""Most pixels in one sheet image: 16,777,216 (a 4096 x 4096 square, 48 MiB as 8-bit RGB).
+
+A sheet is held in memory about three times while it is drawn and encoded, so
+this bounds a sheet's peak at roughly 150 MB; and it stays well under Pillow's
+decompression-bomb limit (``PIL.Image.MAX_IMAGE_PIXELS``, 89,478,485 px, above
+which Pillow warns and at twice which it refuses to open a file), so every
+sheet opens in Pillow and ordinary image viewers.  Larger sheets are split into
+pages (:mod:`~alpha_audit.preview.sheets.pages`) or refused.
+"""
+
+
+def check_budget(name: str, width: int, height: int) -> None:
+    """Refuse a sheet of more than :data:`PIXEL_BUDGET` pixels."""
+    if width * height > PIXEL_BUDGET:
+        raise UsageError(
+            f"sheet {name} would be {width:,} x {height:,} = {width * height:,} px, more than "
+            f"the {PIXEL_BUDGET:,} px allowed per image even for one icon or colour a page; "
+            "use fewer alpha rows, a smaller size or fewer canvases"
+        )
 
 
 def header_bottom(body_lines: int) -> int:
@@ -153,7 +178,9 @@ def available(
 class Surface:
     """A sheet under construction: flat colour, then labels, then icon blocks."""
 
-    def __init__(self, width: int, height: int, fill: RGB8) -> None:
+    def __init__(self, spec: SheetSpec, width: int, height: int, fill: RGB8) -> None:
+        check_budget(spec.name, width, height)
+        self.spec = spec
         self.image = Image.new("RGB", (width, height), fill)
         self.draw = ImageDraw.Draw(self.image)
         self.blocks: list[tuple[Placement, NDArray[np.uint8]]] = []
@@ -196,9 +223,9 @@ class Surface:
         """Queue composited pixels; they are copied in by :meth:`finish`, over any label."""
         self.blocks.append((placement, pixels))
 
-    def finish(self, spec: SheetSpec) -> Sheet:
+    def finish(self) -> Sheet:
         """The finished sheet: labels are in, icons go on top, untouched."""
         array = np.array(self.image)
         for p, pixels in self.blocks:
             array[p.y : p.y + p.size, p.x : p.x + p.size] = pixels
-        return Sheet(spec, Image.fromarray(array, "RGB"), tuple(p for p, _ in self.blocks))
+        return Sheet(self.spec, Image.fromarray(array, "RGB"), tuple(p for p, _ in self.blocks))

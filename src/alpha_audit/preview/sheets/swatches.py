@@ -131,7 +131,7 @@ def draw_swatches(
     cell_w, cell_h, head_h, labels = frame.cell_w, frame.cell_h, frame.head_h, frame.labels
     ink = ink_on(canvas.linear)
     fill = fill_of(canvas.linear)
-    out = Surface(frame.width, frame.height, fill)
+    out = Surface(spec, frame.width, frame.height, fill)
     out.text((MARGIN, MARGIN), frame.header, fonts.title, ink.text)
     out.text((MARGIN, header_bottom(0)), frame.sub, fonts.body, ink.muted)
     out.text((MARGIN, header_bottom(1)), frame.legend, fonts.body, ink.muted)
@@ -168,4 +168,4 @@ def draw_swatches(
             if value < threshold:
                 line = ty2 + fonts.small.size + _UNDERLINE_DROP
                 out.rect((x, line, x + tw, line + 1), color)
-    return out.finish(spec)
+    return out.finish()
