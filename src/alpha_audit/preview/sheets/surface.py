@@ -9,6 +9,7 @@ recompute pixel by pixel.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -150,22 +151,31 @@ def ink_on(background: tuple[float, float, float]) -> Ink:
     return Ink(*(tuple(int(v) for v in to_8bit(c)) for c in (text, muted, alert)))
 
 
-Font = ImageFont.FreeTypeFont | ImageFont.ImageFont
+@functools.lru_cache(maxsize=8)
+def _default_font(size: int) -> ImageFont.FreeTypeFont:
+    # load_default is typed to return either font class; given a size it is always FreeType.
+    return ImageFont.load_default(size=size)  # type: ignore[return-value]
+
+
+@functools.lru_cache(maxsize=1 << 16)
+def _text_width(size: float, text: str) -> int:
+    # Pages are planned by measuring the same labels many times; they are measured once.
+    return math.ceil(_default_font(int(size)).getlength(text))
 
 
 class Fonts:
     """Pillow's bundled font at the sizes the sheets use (no system fonts needed)."""
 
     def __init__(self, small: int) -> None:
-        self.title = ImageFont.load_default(size=22)
-        self.body = ImageFont.load_default(size=14)
-        self.row = ImageFont.load_default(size=16)
-        self.small = ImageFont.load_default(size=small)
+        self.title = _default_font(22)
+        self.body = _default_font(14)
+        self.row = _default_font(16)
+        self.small = _default_font(small)
 
     @staticmethod
-    def width(font: Font, text: str) -> int:
-        """Advance width of ``text`` in whole pixels."""
-        return math.ceil(font.getlength(text))
+    def width(font: ImageFont.FreeTypeFont, text: str) -> int:
+        """Advance width of ``text`` in whole pixels (``font`` is one of :class:`Fonts`')."""
+        return _text_width(font.size, text)
 
 
 def available(
@@ -190,7 +200,7 @@ class Surface:
         """Fill ``box`` = (left, top, right, bottom), right and bottom exclusive."""
         self.draw.rectangle((box[0], box[1], box[2] - 1, box[3] - 1), fill=fill)
 
-    def text(self, xy: tuple[int, int], text: str, font: Font, fill: RGB8) -> int:
+    def text(self, xy: tuple[int, int], text: str, font: ImageFont.FreeTypeFont, fill: RGB8) -> int:
         """Draw ``text`` with its top-left at ``xy``; return its width."""
         self.draw.text(xy, text, font=font, fill=fill, anchor="la")
         return Fonts.width(font, text)
