@@ -23,6 +23,7 @@ from importlib import resources
 import numpy as np
 from numpy.typing import NDArray
 
+from alpha_audit.color import to_8bit
 from alpha_audit.errors import UsageError
 from alpha_audit.model import IconSet, Theme
 
@@ -79,6 +80,11 @@ def mask_atlas(masks: Sequence[NDArray[np.float64]], size: int) -> tuple[int, ND
     return cols, atlas
 
 
+def _hex(linear: tuple[float, float, float]) -> str:
+    """``#rrggbb`` of a linear colour: the page's own notation, whatever the input wrote."""
+    return "#" + "".join(f"{int(v):02x}" for v in to_8bit(linear))
+
+
 def preview_data(
     theme: Theme,
     iconset: IconSet,
@@ -101,6 +107,7 @@ def preview_data(
         }
     alphas = [i.alpha for i in icons]
     usual = max(sorted(set(alphas)), key=alphas.count) if alphas else 1.0  # the set's usual one
+    own = [s for s in iconset.sizes if s in sizes]  # the page opens at the set's own size
     return {
         "schema": "alpha-audit.preview/1",
         "title": f"{iconset.name} on {theme.name}",
@@ -108,14 +115,15 @@ def preview_data(
         "threshold": theme.threshold,
         "alpha": float(alpha if alpha is not None else usual),
         "canvases": [
-            {"name": c.name, "hex": c.color, "mode": c.mode, "linear": list(c.linear)}
+            {"name": c.name, "hex": _hex(c.linear), "mode": c.mode, "linear": list(c.linear)}
             for c in theme.canvases
         ],
         "icons": [
-            {"name": i.name, "hex": i.color, "alpha": i.alpha, "linear": list(i.linear)}
+            {"name": i.name, "hex": _hex(i.linear), "alpha": i.alpha, "linear": list(i.linear)}
             for i in icons
         ],
         "sizes": sizes,
+        "size": max(own) if own else max(sizes, default=0),
         "atlases": atlases,
     }
 

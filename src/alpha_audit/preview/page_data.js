@@ -1,3 +1,4 @@
+  // ---- the data embedded by html.py, and the page's fixed choices --------------------------
   const DATA = JSON.parse(document.getElementById("alpha-audit-data").textContent);
   const BLENDS = [
     { id: "alpha", label: "α (extended)", code: 0 },

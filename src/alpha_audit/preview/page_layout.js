@@ -1,4 +1,8 @@
-  // ---- state and layout --------------------------------------------------------------------
+  // ---- state, layout and tiled drawing -------------------------------------------------------
+  // The view is a stack of bands (one per canvas shown), each a grid of cells: an icon with its
+  // name and contrast ratio under it. It is drawn in horizontal tiles, each a 2D canvas no larger
+  // than the GPU allows, painted only while near the viewport (3,000 icons x 40 canvases would be
+  // gigabytes as one image) and released when far from it.
   const $ = (id) => document.getElementById(id);
   const sizes = DATA.sizes;
   const ownAlphas = [...new Set(DATA.icons.map((i) => i.alpha))];
@@ -9,10 +13,12 @@
     canvas: 0,
     custom: null,
     all: false,
-    size: sizes.includes(48) ? 48 : sizes[sizes.length - 1],
+    size: sizes.includes(DATA.size) ? DATA.size : sizes[sizes.length - 1],
     zoom: 1,
     labels: true,
   };
+  // Tiles this tall keep one readback near 10 MB and scrolling smooth; the GPU may allow less.
+  const TILE_CAP = 2048;
 
   function canvasList() {
     const list = DATA.canvases.map((c) => ({ name: c.name, hex: c.hex, linear: c.linear }));
@@ -29,131 +35,167 @@
   }
 
   let renderer = null;
+  let limits = null; // the largest tile the GPU draws: {w, h}, from its queried limits
   let current = null; // the layout on screen
+  let generation = 0; // bumped by every change of what the pixels show
+  let observer = null;
+  const visible = new Set();
+
+  function tileLimits() {
+    const l = renderer.limits();
+    return {
+      w: Math.min(l.viewportW, l.renderbuffer, l.texture),
+      h: Math.min(l.viewportH, l.renderbuffer, l.texture, TILE_CAP),
+    };
+  }
 
   function computeLayout() {
     const z = state.zoom, size = state.size, n = DATA.icons.length;
     const gap = Math.max(8, Math.floor(size / 3));
-    const cellW = Math.max(size + gap, Math.ceil(50 / z));
-    const labelH = state.labels ? Math.ceil(17 / z) : 0;
+    const cellW = Math.max(size + gap, Math.ceil(56 / z));
+    const labelH = state.labels ? Math.ceil(30 / z) : 0; // two lines: name, contrast
     const cellH = size + gap + labelH;
     const pad = Math.ceil(14 / z);
     const titleH = Math.ceil(26 / z);
     const avail = Math.max(200, document.querySelector("main").clientWidth - 40);
-    const cols = Math.max(1, Math.min(n, Math.floor((avail / z - 2 * pad + gap) / cellW)));
+    const fitCols = Math.floor((avail / z - 2 * pad + gap) / cellW);
+    const maxCols = Math.floor((limits.w - 2 * pad + gap) / cellW); // a tile's width
+    const cols = Math.max(1, Math.min(n, fitCols, maxCols));
     const rows = Math.max(1, Math.ceil(n / cols));
     const width = 2 * pad + cols * cellW - gap;
     const bandH = titleH + rows * cellH + pad - gap;
-    const bands = canvasList().map((canvas, b) => ({ canvas, y: b * bandH, h: bandH }));
-    const cells = [];
-    for (const band of bands) {
-      DATA.icons.forEach((icon, k) => {
-        const r = Math.floor(k / cols), c = k % cols;
-        const x0 = pad + c * cellW;
-        const x = x0 + Math.floor((cellW - gap - size) / 2);
-        cells.push({ band, icon: k, x, y: band.y + titleH + r * cellH, cellX: x0, cellW: cellW - gap });
-      });
-    }
-    return { z, size, width, height: bands.length * bandH, bands, cells, labelH };
+    const bands = canvasList().map((canvas, b) => ({ canvas, index: b, y: b * bandH, h: bandH }));
+    const height = bands.length * bandH;
+    const tiles = [];
+    for (let y = 0; y < height; y += limits.h) tiles.push({ y, h: Math.min(limits.h, height - y) });
+    return { z, size, gap, cellW, cellH, pad, titleH, labelH, cols, rows, width, height, bands, tiles };
   }
 
-  function buildOverlay(layout) {
-    const overlay = $("overlay");
-    overlay.replaceChildren();
-    const z = layout.z;
-    for (const band of layout.bands) {
-      const title = document.createElement("div");
-      title.className = "band-title";
-      title.style.left = `${Math.ceil(14 / z) * z}px`;
-      title.style.top = `${band.y * z + 6}px`;
-      title.style.color = inkFor(band.canvas.linear);
-      band.titleEl = title;
-      overlay.append(title);
-    }
-    for (const cell of layout.cells) {
-      const hit = document.createElement("div");
-      hit.className = "hit";
-      Object.assign(hit.style, { left: `${cell.x * z}px`, top: `${cell.y * z}px`,
-        width: `${layout.size * z}px`, height: `${layout.size * z}px` });
-      hit.addEventListener("mouseenter", () => showTip(cell, hit));
-      hit.addEventListener("mouseleave", hideTip);
-      overlay.append(hit);
-      if (state.labels) {
-        const label = document.createElement("div");
-        label.className = "cr";
-        Object.assign(label.style, { left: `${cell.cellX * z}px`, width: `${cell.cellW * z}px`,
-          top: `${(cell.y + layout.size) * z + 2}px`, color: inkFor(cell.band.canvas.linear) });
-        cell.labelEl = label;
-        overlay.append(label);
-      }
-    }
+  /** The cell of icon k in a band: icon box at (x, y), label column from cellX, cellW wide. */
+  function cellOf(layout, band, k) {
+    const r = Math.floor(k / layout.cols), c = k % layout.cols;
+    const cellX = layout.pad + c * layout.cellW;
+    return {
+      band, icon: k, cellX, cellW: layout.cellW - layout.gap,
+      x: cellX + Math.floor((layout.cellW - layout.gap - layout.size) / 2),
+      y: band.y + layout.titleH + r * layout.cellH,
+    };
   }
 
-  function metrics(icon, canvas) {
-    const a = alphaFor(icon);
-    const out = blend(icon.linear, canvas.linear, a, state.blend);
-    return { a, out, cr: contrast(out, canvas.linear), ref: contrast(icon.linear, canvas.linear) };
-  }
-
-  const fmt = (v) => (v < 10 ? v.toFixed(2) : v.toFixed(1));
-
-  function updateLabels(layout) {
-    const t = DATA.threshold;
-    const tally = new Map();
-    for (const cell of layout.cells) {
-      const m = metrics(DATA.icons[cell.icon], cell.band.canvas);
-      const entry = tally.get(cell.band) || { pass: 0, ref: 0 };
-      entry.pass += m.cr >= t ? 1 : 0;
-      entry.ref += m.ref >= t ? 1 : 0;
-      tally.set(cell.band, entry);
-      if (cell.labelEl) {
-        cell.labelEl.textContent = fmt(m.cr);
-        cell.labelEl.classList.toggle("fail", m.cr < t);
-      }
-    }
+  /** Cells whose icon box starts at or below y0 and above y1 (whole = false: any overlap). */
+  function cellsIn(layout, y0, y1, whole) {
+    const out = [];
     const n = DATA.icons.length;
-    let pass = 0, ref = 0;
     for (const band of layout.bands) {
-      const e = tally.get(band) || { pass: 0, ref: 0 };
-      pass += e.pass; ref += e.ref;
-      band.titleEl.innerHTML = "";
-      band.titleEl.append(band.canvas.name);
-      const span = document.createElement("span");
-      span.textContent = `${band.canvas.hex} · ${e.pass} of ${n} ≥ ${t}:1 (α = 1: ${e.ref})`;
-      band.titleEl.append(span);
+      if (band.y >= y1 || band.y + band.h <= y0) continue;
+      const top = band.y + layout.titleH;
+      const reach = whole ? 0 : layout.size - 1;
+      const r0 = Math.max(0, Math.ceil((y0 - reach - top) / layout.cellH));
+      const r1 = Math.min(layout.rows - 1, Math.floor((y1 - 1 - top) / layout.cellH));
+      for (let r = r0; r <= r1; r++) {
+        for (let k = r * layout.cols; k < Math.min(n, (r + 1) * layout.cols); k++) {
+          out.push(cellOf(layout, band, k));
+        }
+      }
     }
-    const total = n * layout.bands.length;
-    const mode = state.blend ? BLENDS[state.blend].label : state.own ? "each icon's own α" : `α = ${state.alpha}`;
-    $("stats").textContent = `${mode}: ${pass} of ${total} icon-canvas pairs at or above ${t}:1 (at α = 1: ${ref})`;
+    return out;
   }
 
-  function draw(layout) {
-    renderer.resize(layout.width, layout.height);
-    for (const band of layout.bands) {
-      renderer.fill(0, band.y, layout.width, band.h, hexToCodes(band.canvas.hex));
-      const items = layout.cells.filter((c) => c.band === band)
-        .map((c) => ({ icon: c.icon, x: c.x, y: c.y, alpha: alphaFor(DATA.icons[c.icon]) }));
-      renderer.draw(layout.size, band.canvas.linear, state.blend, items);
+  /** Draw one tile through the shader and copy its pixels into the tile's 2D canvas. */
+  function paintTile(layout, tile) {
+    if (!renderer.resize(layout.width, tile.h)) {
+      throw new Error(`the browser refused a ${layout.width} x ${tile.h} drawing buffer`);
     }
-    const canvas = $("gl");
-    canvas.style.width = `${layout.width * layout.z}px`;
-    canvas.style.height = `${layout.height * layout.z}px`;
+    for (const band of layout.bands) {
+      const y0 = Math.max(band.y, tile.y), y1 = Math.min(band.y + band.h, tile.y + tile.h);
+      if (y0 < y1) renderer.fill(0, y0 - tile.y, layout.width, y1 - y0, hexToCodes(band.canvas.hex));
+    }
+    const cells = cellsIn(layout, tile.y, tile.y + tile.h, false);
+    for (const band of layout.bands) {
+      const items = cells.filter((c) => c.band === band)
+        .map((c) => ({ icon: c.icon, x: c.x, y: c.y - tile.y, alpha: alphaFor(DATA.icons[c.icon]) }));
+      if (items.length) renderer.draw(layout.size, band.canvas.linear, state.blend, items);
+    }
+    const pixels = renderer.read(layout.width, tile.h);
+    const canvas = tile.canvas;
+    if (canvas.width !== layout.width) canvas.width = layout.width;
+    if (canvas.height !== tile.h) canvas.height = tile.h;
+    canvas.getContext("2d").putImageData(new ImageData(pixels, layout.width, tile.h), 0, 0);
+    tile.painted = generation;
+    canvas.dataset.generation = String(generation);
+  }
+
+  function releaseTile(tile) {
+    tile.canvas.width = 0; // frees the pixels; the element keeps its place and CSS size
+    tile.canvas.height = 0;
+    tile.painted = -1;
+    delete tile.canvas.dataset.generation;
+    tile.overlay.replaceChildren();
+    tile.cells = null;
+  }
+
+  function buildStage(layout) {
+    if (observer) observer.disconnect();
+    visible.clear();
+    const z = layout.z;
+    const stage = $("stage"), tiles = $("tiles");
+    stage.style.width = `${layout.width * z}px`;
+    stage.style.height = `${layout.height * z}px`;
+    tiles.replaceChildren();
+    observer = new IntersectionObserver((entries) => {
+      for (const entry of entries) {
+        const tile = entry.target.tile;
+        if (entry.isIntersecting) visible.add(tile);
+        else if (visible.delete(tile)) releaseTile(tile);
+      }
+      schedule(false);
+    }, { rootMargin: "50% 0px" });
+    layout.tiles.forEach((tile, t) => {
+      const canvas = document.createElement("canvas");
+      canvas.className = "tile";
+      canvas.width = 0;
+      canvas.height = 0;
+      canvas.dataset.tile = String(t);
+      Object.assign(canvas.style, { top: `${tile.y * z}px`, width: `${layout.width * z}px`,
+        height: `${tile.h * z}px` });
+      const overlay = document.createElement("div");
+      overlay.className = "tile-overlay";
+      Object.assign(tile, { canvas, overlay, painted: -1, cells: null });
+      canvas.tile = tile;
+      tiles.append(canvas, overlay);
+      observer.observe(canvas);
+    });
+    buildBands(layout);
   }
 
   function render(relayout) {
     if (relayout || !current) {
       current = computeLayout();
-      buildOverlay(current);
+      generation++;
+      buildStage(current);
     }
-    draw(current);
-    updateLabels(current);
+    for (const tile of visible) {
+      if (tile.painted !== generation) paintTile(current, tile);
+      if (!tile.cells) buildCells(current, tile);
+      updateCells(tile);
+    }
+    if (current.counted !== generation) {
+      updateTitles(current);
+      current.counted = generation;
+    }
+    $("stage").dataset.generation = String(generation);
   }
 
   let pending = false;
-  function schedule(relayout) {
+  function schedule(relayout, changed = false) {
     if (relayout) current = null;
+    else if (changed) generation++;
+    $("stage").dataset.pending = "1";
     if (pending) return;
     pending = true;
-    requestAnimationFrame(() => { pending = false; render(false); });
+    requestAnimationFrame(() => {
+      pending = false;
+      render(false);
+      $("stage").dataset.pending = "0";
+    });
   }
-

@@ -1,4 +1,6 @@
-  // ---- WebGL2 ------------------------------------------------------------------------------
+  // ---- the WebGL2 shader and its renderer: one offscreen drawing buffer, drawn in tiles -----
+  // The renderer draws into an offscreen canvas no larger than the GPU's limits and hands the
+  // pixels back; the page copies them into 2D tile canvases (page_layout.js).
   const VERTEX = `#version 300 es
 in vec2 a_corner;
 uniform vec2 u_viewport;
@@ -86,32 +88,72 @@ void main() {
       this.textures = new Map();
     }
 
+    /** The GPU's own limits, queried (WebGL2 guarantees only minimums; never assume more). */
+    limits() {
+      const gl = this.gl;
+      const viewport = gl.getParameter(gl.MAX_VIEWPORT_DIMS);
+      return {
+        viewportW: viewport[0], viewportH: viewport[1],
+        texture: gl.getParameter(gl.MAX_TEXTURE_SIZE),
+        renderbuffer: gl.getParameter(gl.MAX_RENDERBUFFER_SIZE),
+      };
+    }
+
+    /**
+     * The mask atlas of one size as textures of at most MAX_TEXTURE_SIZE rows each: icon k sits
+     * in chunk floor(row / rowsPerChunk), row = floor(k / columns).
+     */
     texture(size) {
       const gl = this.gl;
       if (!this.textures.has(size)) {
         const atlas = DATA.atlases[String(size)];
+        const limit = gl.getParameter(gl.MAX_TEXTURE_SIZE);
+        if (atlas.width > limit) throw new Error(`mask atlas wider than this GPU's ${limit} px`);
         const bytes = Uint8Array.from(atob(atlas.data), (ch) => ch.charCodeAt(0));
-        const tex = gl.createTexture();
-        gl.bindTexture(gl.TEXTURE_2D, tex);
-        gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
-        gl.texImage2D(gl.TEXTURE_2D, 0, gl.R8, atlas.width, atlas.height, 0, gl.RED,
-          gl.UNSIGNED_BYTE, bytes);
-        for (const p of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) {
-          gl.texParameteri(gl.TEXTURE_2D, p, gl.NEAREST);
+        const rowsPerChunk = Math.max(1, Math.floor(limit / size));
+        const chunks = [];
+        for (let row0 = 0; row0 * size < atlas.height; row0 += rowsPerChunk) {
+          const height = Math.min(rowsPerChunk * size, atlas.height - row0 * size);
+          const tex = gl.createTexture();
+          gl.bindTexture(gl.TEXTURE_2D, tex);
+          gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+          gl.texImage2D(gl.TEXTURE_2D, 0, gl.R8, atlas.width, height, 0, gl.RED,
+            gl.UNSIGNED_BYTE, bytes.subarray(row0 * size * atlas.width,
+              (row0 * size + height) * atlas.width));
+          for (const p of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) {
+            gl.texParameteri(gl.TEXTURE_2D, p, gl.NEAREST);
+          }
+          for (const p of [gl.TEXTURE_WRAP_S, gl.TEXTURE_WRAP_T]) {
+            gl.texParameteri(gl.TEXTURE_2D, p, gl.CLAMP_TO_EDGE);
+          }
+          chunks.push(tex);
         }
-        for (const p of [gl.TEXTURE_WRAP_S, gl.TEXTURE_WRAP_T]) {
-          gl.texParameteri(gl.TEXTURE_2D, p, gl.CLAMP_TO_EDGE);
-        }
-        this.textures.set(size, { tex, columns: atlas.columns });
+        this.textures.set(size, { chunks, rowsPerChunk, columns: atlas.columns });
       }
       return this.textures.get(size);
     }
 
+    /** Size the drawing buffer; false if the browser gave less than asked (its own limit). */
     resize(width, height) {
       if (this.canvas.width !== width) this.canvas.width = width;
       if (this.canvas.height !== height) this.canvas.height = height;
-      this.gl.viewport(0, 0, width, height);
-      this.gl.uniform2f(this.u.u_viewport, width, height);
+      const gl = this.gl;
+      gl.viewport(0, 0, width, height);
+      gl.uniform2f(this.u.u_viewport, width, height);
+      return gl.drawingBufferWidth === width && gl.drawingBufferHeight === height;
+    }
+
+    /** The drawing buffer's RGBA bytes, rows top-down (readPixels gives them bottom-up). */
+    read(width, height) {
+      const gl = this.gl;
+      const raw = new Uint8Array(width * height * 4);
+      gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, raw);
+      const out = new Uint8ClampedArray(raw.length);
+      const stride = width * 4;
+      for (let r = 0; r < height; r++) {
+        out.set(raw.subarray((height - 1 - r) * stride, (height - r) * stride), r * stride);
+      }
+      return out;
     }
 
     /** Fill a rectangle (top-down coordinates) with an 8-bit sRGB colour. */
@@ -127,9 +169,9 @@ void main() {
     /** Draw icons of one size on one canvas colour; items are {icon, x, y, alpha}, top-down. */
     draw(size, background, blendCode, items) {
       const gl = this.gl;
-      const { tex, columns } = this.texture(size);
+      const { chunks, rowsPerChunk, columns } = this.texture(size);
       gl.activeTexture(gl.TEXTURE0);
-      gl.bindTexture(gl.TEXTURE_2D, tex);
+      let bound = -1;
       gl.uniform1i(this.u.u_size, size);
       gl.uniform3f(this.u.u_background, background[0], background[1], background[2]);
       gl.uniform1i(this.u.u_blend, blendCode);
@@ -139,8 +181,9 @@ void main() {
         gl.uniform3f(this.u.u_source, s[0], s[1], s[2]);
         gl.uniform1f(this.u.u_alpha, item.alpha);
         gl.uniform2i(this.u.u_origin, item.x, this.canvas.height - item.y - size);
-        gl.uniform2i(this.u.u_atlas, (item.icon % columns) * size,
-          Math.floor(item.icon / columns) * size);
+        const row = Math.floor(item.icon / columns), chunk = Math.floor(row / rowsPerChunk);
+        if (chunk !== bound) { gl.bindTexture(gl.TEXTURE_2D, chunks[chunk]); bound = chunk; }
+        gl.uniform2i(this.u.u_atlas, (item.icon % columns) * size, (row % rowsPerChunk) * size);
         gl.drawArrays(gl.TRIANGLES, 0, 6);
       }
     }

@@ -1,4 +1,4 @@
-  // ---- hook for automated validation (tests/preview/test_browser.py) -----------------------
+  // ---- hook for automated validation (tests/preview/test_browser.py), and start-up ---------
   function toBase64(bytes) {
     let text = "";
     for (let i = 0; i < bytes.length; i += 0x8000) {
@@ -10,6 +10,7 @@
   /**
    * Render every icon for each job {canvas, size, blend, alpha} through the page's shader and
    * return base64 RGB bytes, job by job, icon by icon, rows top-down: the 8-bit canvas output.
+   * Icons are drawn in batches that fit the GPU's drawing-buffer limits.
    */
   function renderBatch(jobs) {
     const n = DATA.icons.length;
@@ -18,37 +19,41 @@
     const out = new Uint8Array(total);
     let offset = 0;
     for (const job of jobs) {
-      const size = job.size, cols = Math.ceil(Math.sqrt(n)), rows = Math.ceil(n / cols);
+      const size = job.size;
+      const cols = Math.max(1, Math.min(Math.ceil(Math.sqrt(n)), Math.floor(limits.w / size)));
+      const perBatch = cols * Math.max(1, Math.floor(limits.h / size));
       const canvas = DATA.canvases[job.canvas];
       const code = BLENDS.find((b) => b.id === job.blend).code;
-      renderer.resize(cols * size, rows * size);
-      renderer.fill(0, 0, cols * size, rows * size, hexToCodes(canvas.hex));
-      const items = DATA.icons.map((icon, k) => ({ icon: k, x: (k % cols) * size,
-        y: Math.floor(k / cols) * size, alpha: job.alpha }));
-      renderer.draw(size, canvas.linear, code, items);
-      const w = cols * size, h = rows * size;
-      const pixels = new Uint8Array(w * h * 4);
-      const gl = renderer.gl;
-      gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
-      for (const item of items) {
-        for (let r = 0; r < size; r++) {
-          const glRow = h - 1 - (item.y + r); // readPixels rows are bottom-up
-          let src = (glRow * w + item.x) * 4;
-          for (let c = 0; c < size; c++, src += 4) {
-            out[offset++] = pixels[src];
-            out[offset++] = pixels[src + 1];
-            out[offset++] = pixels[src + 2];
+      for (let first = 0; first < n; first += perBatch) {
+        const count = Math.min(perBatch, n - first);
+        const w = cols * size, h = Math.ceil(count / cols) * size;
+        renderer.resize(w, h);
+        renderer.fill(0, 0, w, h, hexToCodes(canvas.hex));
+        const items = [];
+        for (let k = 0; k < count; k++) {
+          items.push({ icon: first + k, x: (k % cols) * size, y: Math.floor(k / cols) * size,
+            alpha: job.alpha });
+        }
+        renderer.draw(size, canvas.linear, code, items);
+        const pixels = renderer.read(w, h);
+        for (const item of items) {
+          for (let r = 0; r < size; r++) {
+            let src = ((item.y + r) * w + item.x) * 4;
+            for (let c = 0; c < size; c++, src += 4) {
+              out[offset++] = pixels[src];
+              out[offset++] = pixels[src + 1];
+              out[offset++] = pixels[src + 2];
+            }
           }
         }
       }
     }
-    current = null;
-    schedule(true); // put the interactive view back
     return toBase64(out);
   }
 
   try {
-    renderer = new Renderer($("gl"));
+    renderer = new Renderer(document.createElement("canvas")); // offscreen; tiles are 2D canvases
+    limits = tileLimits();
     setup();
     render(true);
     const gl = renderer.gl;
