@@ -434,6 +434,45 @@ def _check_view(view, iconset, stacks, size, canvases, alpha):
     return expected
 
 
+def _check_label_is_on_top(devtools: DevTools, view: dict) -> None:
+    """A label whose icon starts in one tile but which hangs into the next one is visible."""
+    seams = [round(t["y"]) for t in view["tiles"][1:]]
+    key, seam = next(
+        (k, seam)
+        for k, label in view["labels"].items()
+        for seam in seams
+        if view["hits"][k]["y"] < seam and label["y"] + label["h"] - seam >= 14  # a text line
+    )
+    below = max(0.0, seam - view["labels"][key]["y"])  # look only at the part in the next tile
+    b, k = key.split(":")
+    find = f".cr[data-band='{b}'][data-icon='{k}']"
+    top = view["hits"][key]["y"]
+    rect = devtools.evaluate(
+        "(async () => { const stage = document.getElementById('stage');"
+        f" window.scrollTo(0, stage.getBoundingClientRect().top + scrollY + {top} - 300);"
+        f' for (let i = 0; i < 600 && !document.querySelector("{find}"); i++)'
+        " await new Promise((r) => requestAnimationFrame(() => setTimeout(r, 0)));"
+        f' const r = document.querySelector("{find}").getBoundingClientRect();'
+        " return {x: r.left + scrollX, y: r.top + scrollY, w: r.width, h: r.height}; })()"
+    )
+    time.sleep(0.3)
+    shot = devtools.call(
+        "Page.captureScreenshot",
+        {
+            "format": "png",
+            "clip": {
+                "x": rect["x"],
+                "y": rect["y"] + below,
+                "width": rect["w"],
+                "height": rect["h"] - below,
+                "scale": 1,
+            },
+        },
+    )
+    pixels = _decode_png("data:image/png;base64," + shot["data"]).reshape(-1, 3)
+    assert len(np.unique(pixels, axis=0)) > 2, "a label is hidden under the next tile"
+
+
 def test_the_real_page_tiles_labels_and_controls(chromium, tmp_path):
     theme = load_theme(ROOT / "themes" / "paper16.yaml")
     example = load_iconset(ROOT / "examples" / "vibrant" / "iconset.yaml")
@@ -478,6 +517,7 @@ def test_the_real_page_tiles_labels_and_controls(chromium, tmp_path):
         view = _view(devtools, limits)
         assert view["height"] > limits["h"] and len(view["tiles"]) > 1
         before = _check_view(view, iconset, stacks, size, all_canvases, 1.0)
+        _check_label_is_on_top(devtools, view)
 
         # Moving the slider repaints exactly the icon pixels whose CPU output changes.
         devtools.evaluate(

@@ -138,10 +138,11 @@
     if (observer) observer.disconnect();
     visible.clear();
     const z = layout.z;
-    const stage = $("stage"), tiles = $("tiles");
+    const stage = $("stage"), tiles = $("tiles"), cells = $("cells");
     stage.style.width = `${layout.width * z}px`;
     stage.style.height = `${layout.height * z}px`;
     tiles.replaceChildren();
+    cells.replaceChildren(); // above every tile: a label may hang over the next tile down
     observer = new IntersectionObserver((entries) => {
       for (const entry of entries) {
         const tile = entry.target.tile;
@@ -162,7 +163,8 @@
       overlay.className = "tile-overlay";
       Object.assign(tile, { canvas, overlay, painted: -1, cells: null });
       canvas.tile = tile;
-      tiles.append(canvas, overlay);
+      tiles.append(canvas);
+      cells.append(overlay);
       observer.observe(canvas);
     });
     buildBands(layout);
