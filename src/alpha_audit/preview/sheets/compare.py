@@ -105,7 +105,7 @@ def compare_frame(
     rows = max(1, math.ceil(n / cols))
     panel_w = 2 * pad + cols * (size + gap) - gap
     panel_h = 2 * pad + rows * (size + gap) - gap
-    row_head = _CAPTION_TOP + fonts.body.size + _CAPTION_TO_PANEL
+    row_head = _CAPTION_TOP + fonts.body_px + _CAPTION_TO_PANEL
     header = f"{title} · {size} px"
     legend = "each row: one canvas; left to right: " + ", ".join(
         alpha_label(a, icons) for a in panels

@@ -82,7 +82,7 @@ def grid_frame(
 
     gap = max(_MIN_GAP, size // 3)
     label_w = Fonts.width(fonts.small, "00.00")
-    label_h = fonts.small.size + _LABEL_PAD
+    label_h = fonts.small_px + _LABEL_PAD
     cell_w = max(size, label_w) + gap
     cell_h = size + _LABEL_GAP + label_h + gap // 2 + _LABEL_GAP
     cols = max(1, min(n, (max_width - 2 * MARGIN + gap) // cell_w))
@@ -168,9 +168,9 @@ def draw_grid(
             tw = Fonts.width(fonts.small, text)
             tx = cx + (cell_w - gap - tw) // 2
             ty = cy + size + _LABEL_GAP
-            out.label((tx, ty), text, fonts.small, color, fill)  # type: ignore[arg-type]
+            out.label((tx, ty), text, fonts.small, color, fill)
             if value < threshold:
-                underline = ty + fonts.small.size + _UNDERLINE_DROP
+                underline = ty + fonts.small_px + _UNDERLINE_DROP
                 out.rect((tx, underline, tx + tw, underline + 1), color)
         y += frame.block_h
     return out.finish()

@@ -134,7 +134,8 @@ def paginate(
             case Layout.GRID:
                 parts = _grid_parts(spec, iconset, rows, threshold, max_width, label, budget)
             case Layout.SWATCHES:
-                parts = _swatch_parts(spec, iconset, rows, threshold, label, budget)  # type: ignore[arg-type]
+                real = [a for a in rows if a is not None]  # swatch rows are never None
+                parts = _swatch_parts(spec, iconset, real, threshold, label, budget)
             case Layout.COMPARE:
                 parts = _compare_parts(spec, iconset, rows, label, budget)
             case _:

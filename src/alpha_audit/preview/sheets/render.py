@@ -52,7 +52,8 @@ def render_sheet(
             colors = swatch_colors(iconset)
             if page is not None:
                 colors = colors[page.first : page.stop]
-            return draw_swatches(spec, colors, rows, threshold, label)  # type: ignore[arg-type]
+            real = [a for a in rows if a is not None]  # swatch rows are never None
+            return draw_swatches(spec, colors, real, threshold, label)
         case Layout.COMPARE:
             if page is not None:
                 iconset = replace(iconset, icons=iconset.icons[page.first : page.stop])
@@ -71,6 +72,7 @@ def render_all(
 ) -> Iterator[Sheet]:
     """Render ``specs`` one at a time (a sheet can be large; write each, then drop it)."""
     for spec in specs:
+        # options are render_sheet's keywords, passed through untyped
         sheet = render_sheet(spec, iconset, masks, **options)  # type: ignore[arg-type]
         yield sheet
         if on_sheet is not None:

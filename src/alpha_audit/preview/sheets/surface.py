@@ -15,7 +15,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 from PIL import Image, ImageDraw, ImageFont
 
 from alpha_audit.color import contrast_ratio, parse_color, srgb_decode, srgb_encode, to_8bit
@@ -131,7 +131,7 @@ def rgb(hex_color: str) -> RGB8:
     return r, g, b
 
 
-def fill_of(linear: tuple[float, float, float]) -> RGB8:
+def fill_of(linear: ArrayLike) -> RGB8:
     """The 8-bit code of a linear sRGB colour."""
     r, g, b = (int(v) for v in to_8bit(linear))
     return r, g, b
@@ -148,7 +148,7 @@ def ink_on(background: tuple[float, float, float]) -> Ink:
         alert = text
     muted_encoded = _MUTED_WEIGHT * srgb_encode(text) + (1 - _MUTED_WEIGHT) * srgb_encode(bg)
     muted = srgb_decode(muted_encoded)
-    return Ink(*(tuple(int(v) for v in to_8bit(c)) for c in (text, muted, alert)))
+    return Ink(fill_of(text), fill_of(muted), fill_of(alert))
 
 
 @functools.lru_cache(maxsize=8)
@@ -167,10 +167,11 @@ class Fonts:
     """Pillow's bundled font at the sizes the sheets use (no system fonts needed)."""
 
     def __init__(self, small: int) -> None:
-        self.title = _default_font(22)
-        self.body = _default_font(14)
-        self.row = _default_font(16)
-        self.small = _default_font(small)
+        self.title_px, self.body_px, self.row_px, self.small_px = 22, 14, 16, small
+        self.title = _default_font(self.title_px)
+        self.body = _default_font(self.body_px)
+        self.row = _default_font(self.row_px)
+        self.small = _default_font(self.small_px)
 
     @staticmethod
     def width(font: ImageFont.FreeTypeFont, text: str) -> int:

@@ -98,7 +98,7 @@ def swatch_frame(
         *(Fonts.width(fonts.body, name) for name, _ in colors),
     )
     cell_w = col_w + _GAP
-    cell_h = side + 2 * (fonts.small.size + _LABEL_GAP) + _GAP
+    cell_h = side + 2 * (fonts.small_px + _LABEL_GAP) + _GAP
     header = f"{canvas.name}  {canvas.color}"
     sub = f"{title} · palette across, coefficient down"
     legend = f"under each swatch: output colour and contrast; underlined below {threshold:g}:1"
@@ -109,7 +109,7 @@ def swatch_frame(
         Fonts.width(fonts.body, legend),
     )
     top = header_bottom(2) + _HEADER_GAP
-    head_h = 2 * (fonts.body.size + _LINE_PAD) + _HEAD_GAP
+    head_h = 2 * (fonts.body_px + _LINE_PAD) + _HEAD_GAP
     width = 2 * MARGIN + content_w
     height = top + head_h + len(alphas) * cell_h - _GAP + _BOTTOM_PAD + MARGIN
     return SwatchFrame(
@@ -141,11 +141,11 @@ def draw_swatches(
     for j, (name, color) in enumerate(colors):
         x = MARGIN + left + j * cell_w
         out.text((x, top), name, fonts.body, ink.text)
-        out.text((x, top + fonts.body.size + _LINE_PAD), color, fonts.small, ink.muted)
+        out.text((x, top + fonts.body_px + _LINE_PAD), color, fonts.small, ink.muted)
     full = np.ones((len(colors), side, side))
     for r, alpha in enumerate(alphas):
         y = top + head_h + r * cell_h
-        out.text((MARGIN, y + (side - fonts.row.size) // 2), labels[r], fonts.row, ink.text)
+        out.text((MARGIN, y + (side - fonts.row_px) // 2), labels[r], fonts.row, ink.text)
         coeff = np.full(len(colors), float(alpha))
         pixels = composite_masks(full, sources, background, coeff)
         output = blend_colors(sources, background, coeff)
@@ -162,10 +162,10 @@ def draw_swatches(
             ty = y + side + _LABEL_GAP
             out.text((x, ty), hex_out, fonts.small, ink.muted)
             value = float(contrast[j])
-            color = ink.text if value >= threshold else ink.alert
-            ty2 = ty + fonts.small.size + _LABEL_GAP
-            tw = out.text((x, ty2), f"{value:.2f}:1", fonts.small, color)
+            tone = ink.text if value >= threshold else ink.alert
+            ty2 = ty + fonts.small_px + _LABEL_GAP
+            tw = out.text((x, ty2), f"{value:.2f}:1", fonts.small, tone)
             if value < threshold:
-                line = ty2 + fonts.small.size + _UNDERLINE_DROP
-                out.rect((x, line, x + tw, line + 1), color)
+                line = ty2 + fonts.small_px + _UNDERLINE_DROP
+                out.rect((x, line, x + tw, line + 1), tone)
     return out.finish()

@@ -50,7 +50,7 @@ class SweepResult:
     collision_rate: dict[str, tuple[float, ...]]
 
 
-def _group_means(theme: Theme, per_canvas: NDArray) -> dict[str, tuple[float, ...]]:
+def _group_means(theme: Theme, per_canvas: NDArray[np.float64]) -> dict[str, tuple[float, ...]]:
     """Mean over each mode's canvases (equal weights), then over the groups."""
     modes = np.array([c.mode for c in theme.canvases])
     groups = {

@@ -96,6 +96,7 @@ def broad_grid(
                 decrease=c.decrease,
                 loss_le_0_25=c.loss_le_limit,
                 max_loss=c.max_loss,
+                # three channels each, built from c.worst[:3] and c.worst[3:]
                 worst_source=source,  # type: ignore[arg-type]
                 worst_background=background,  # type: ignore[arg-type]
                 worst_contrast=worst,

@@ -32,7 +32,9 @@ def check_alphas(alphas: Iterable[float]) -> tuple[float, ...]:
     return values
 
 
-def source_parts(levels: NDArray, m: int) -> tuple[NDArray, NDArray]:
+def source_parts(
+    levels: NDArray[np.float64], m: int
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Source luminance parts, canvas-independent, broadcast to m canvases."""
     p = (_WR * levels[:, np.newaxis] + _WG * levels[np.newaxis, :]).ravel()
     return np.broadcast_to(p, (m, p.size)), np.broadcast_to(_WB * levels, (m, levels.size))

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -134,7 +135,9 @@ class FullGamutResult:
         return sum(changes[1:], changes[0])
 
 
-def _blend_parts(levels: NDArray, backgrounds: NDArray, kind: str) -> tuple[NDArray, NDArray]:
+def _blend_parts(
+    levels: NDArray[np.float64], backgrounds: NDArray[np.float64], kind: str
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Luminance parts of Difference / Exclusion outputs (same expressions as color.composite)."""
     s = levels[np.newaxis, np.newaxis, :]
     b = backgrounds[:, :, np.newaxis]
@@ -176,7 +179,7 @@ def full_gamut(
     progress(0.1)
 
     fast = [a for a in alphas if a >= 0]
-    stats: dict[float, dict[str, NDArray]] = {}
+    stats: dict[float, dict[str, NDArray[Any]]] = {}
     if fast:
         tables = kernels.channel_tables(
             lev, np.tile(backgrounds, (len(fast), 1)), np.repeat(fast, m)
