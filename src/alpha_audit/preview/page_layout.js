@@ -104,7 +104,15 @@
   /** Draw one tile through the shader and copy its pixels into the tile's 2D canvas. */
   function paintTile(layout, tile) {
     if (!renderer.resize(layout.width, tile.h)) {
-      throw new Error(`the browser refused a ${layout.width} x ${tile.h} drawing buffer`);
+      // The browser gave a smaller drawing buffer than the GPU's limits promise: use what it
+      // gave from now on, and lay the view out again.
+      const gl = renderer.gl;
+      if (gl.drawingBufferWidth < 1 || gl.drawingBufferHeight < 1) {
+        throw new Error("the browser gave no WebGL2 drawing buffer");
+      }
+      limits = { w: Math.min(limits.w, gl.drawingBufferWidth), h: Math.min(limits.h, gl.drawingBufferHeight) };
+      schedule(true);
+      return false;
     }
     for (const band of layout.bands) {
       const y0 = Math.max(band.y, tile.y), y1 = Math.min(band.y + band.h, tile.y + tile.h);
@@ -123,6 +131,7 @@
     canvas.getContext("2d").putImageData(new ImageData(pixels, layout.width, tile.h), 0, 0);
     tile.painted = generation;
     canvas.dataset.generation = String(generation);
+    return true;
   }
 
   function releaseTile(tile) {
@@ -177,7 +186,7 @@
       buildStage(current);
     }
     for (const tile of visible) {
-      if (tile.painted !== generation) paintTile(current, tile);
+      if (tile.painted !== generation && !paintTile(current, tile)) return; // laid out again
       if (!tile.cells) buildCells(current, tile);
       updateCells(tile);
     }
@@ -197,7 +206,12 @@
     pending = true;
     requestAnimationFrame(() => {
       pending = false;
-      render(false);
-      $("stage").dataset.pending = "0";
+      try {
+        render(false);
+      } catch (error) {
+        $("error").style.display = "block";
+        $("error").textContent = String(error.message || error);
+      }
+      if (!pending) $("stage").dataset.pending = "0";
     });
   }
