@@ -373,21 +373,23 @@ def _decode_png(data_url: str) -> np.ndarray:
 
 
 def _hex_codes(hex_color: str) -> np.ndarray:
-    return np.array([int(hex_color[i : i + 2], 16) for i in (1, 3, 5)], dtype=np.int16)
+    return np.array([int(hex_color[i : i + 2], 16) for i in (1, 3, 5)], dtype=np.uint8)
 
 
 def _view(devtools: DevTools, limits: dict) -> dict:
     """Everything on screen: the stage's pixels assembled from its tiles, boxes and labels."""
     view = json.loads(devtools.evaluate(COLLECT))
     height, width = round(view["height"]), round(view["width"])
-    image = np.full((height, width, 3), -1, dtype=np.int16)
+    image = np.zeros((height, width, 3), dtype=np.uint8)
+    filled = np.zeros((height, width), dtype=bool)
     for tile in view["tiles"]:
         assert tile["width"] <= limits["w"] and tile["height"] <= limits["h"]
-        pixels = _decode_png(tile["png"]).astype(np.int16)
+        pixels = _decode_png(tile["png"])
         y, x = round(tile["y"]), round(tile["x"])
         assert pixels.shape == (tile["height"], tile["width"], 3)
         image[y : y + pixels.shape[0], x : x + pixels.shape[1]] = pixels
-    assert image.min() >= 0, "part of the stage is in no tile"
+        filled[y : y + pixels.shape[0], x : x + pixels.shape[1]] = True
+    assert filled.all(), "part of the stage is in no tile"
     view["image"] = image
     return view
 
@@ -410,7 +412,7 @@ def _check_view(view, iconset, stacks, size, canvases, alpha):
             assert (round(hit["w"]), round(hit["h"])) == (size, size)
             assert y0 <= y and y + size <= y1, "an icon box outside its band"
             expected[y : y + size, x : x + size] = cpu[k]
-    error = np.abs(image - expected).max(axis=-1)
+    error = (np.maximum(image, expected) - np.minimum(image, expected)).max(axis=-1)
     covered = np.zeros(error.shape, dtype=bool)
     for key, hit in view["hits"].items():
         k = int(key.split(":")[1])
@@ -428,8 +430,10 @@ def _check_view(view, iconset, stacks, size, canvases, alpha):
         cpu = composite_masks(
             stacks[size][k : k + 1], iconset.sources[k : k + 1], np.array(canvases[b][0]), alpha
         )[0]
-        block = image[y : y + size, x : x + size]
-        assert np.abs(block - cpu).max() <= TOLERANCE, f"label {label['name']} is not under it"
+        block = image[y : y + size, x : x + size].astype(np.int16)
+        assert np.abs(block - cpu.astype(np.int16)).max() <= TOLERANCE, (
+            f"label {label['name']} is not under it"
+        )
     assert len(view["labels"]) == len(view["hits"])
     return expected
 
@@ -554,5 +558,50 @@ def test_the_real_page_tiles_labels_and_controls(chromium, tmp_path):
         assert "#123456" in devtools.evaluate("document.getElementById('custom-option').text")
         linear = tuple(float(v) for v in srgb_decode(parse_color("#123456")))
         _check_view(custom, iconset, stacks, size, [(linear, "#123456")], 1.4)
+    finally:
+        devtools.close()
+
+
+def test_three_thousand_icons_at_48px_each_whole_in_its_own_cell(chromium, tmp_path):
+    """The issue's set size: 3,000 icons at 48 px on one canvas, every icon whole in its cell.
+
+    Masks are synthetic (no SVG rasterising needed for the page): random 8-bit coverage with a
+    fully covered one-pixel frame, so any icon sliced, shifted or drawn into the wrong cell
+    shows.
+    """
+    size, n = 48, 3000
+    rng = np.random.default_rng(3000)
+    theme = load_theme(ROOT / "themes" / "paper16.yaml")
+    masks = {}
+    icons = []
+    for k in range(n):
+        q = rng.integers(0, 256, (size, size)) / 255.0
+        q[[0, -1], :] = 1.0
+        q[:, [0, -1]] = 1.0
+        name = f"i{k:04d}"
+        masks[(name, size)] = q
+        icons.append(Icon(name, Path(f"{name}.svg"), f"#{int(rng.integers(0, 1 << 24)):06x}", 1))
+    iconset = IconSet("three-thousand", tuple(icons), sizes=(size,))
+    page = tmp_path / "big.html"
+    page.write_text(preview_html(theme, iconset, masks, sizes=[size]), encoding="utf-8")
+    stacks = {size: np.stack([masks[(i.name, size)] for i in icons])}
+    canvas = theme.canvases[0]
+    hex_color = "#" + "".join(f"{int(v):02x}" for v in to_8bit(canvas.linear))
+    devtools = DevTools(chromium, timeout=120)
+    try:
+        devtools.open(page.as_uri())
+        devtools.call(
+            "Emulation.setDeviceMetricsOverride",
+            {"width": 1280, "height": 900, "deviceScaleFactor": 1, "mobile": False},
+        )
+        deadline = time.monotonic() + 60
+        while not devtools.evaluate("Boolean(window.alphaAuditPreview)"):
+            assert time.monotonic() < deadline, "the page did not start"
+            time.sleep(0.05)
+        assert devtools.evaluate("alphaAuditPreview.ready")
+        limits = devtools.evaluate(LIMITS)
+        view = _view(devtools, limits)
+        assert view["height"] > limits["h"]
+        _check_view(view, iconset, stacks, size, [(canvas.linear, hex_color)], 1.0)
     finally:
         devtools.close()
