@@ -75,3 +75,16 @@ def test_measure_paints_matches_independent_reduction(icons: list[tuple[str, Pat
     (disc,) = result.icons["disc"].coverage
     assert disc.group.opacity == pytest.approx(0.3)
     assert disc.sizes[48].q50 == 1.0  # its geometry is solid; the 0.3 lives in the opacity
+
+
+def test_render_pool_serves_several_map_calls() -> None:
+    """measure_paints batches its jobs; workers kept between map() calls must still be heard."""
+    from alpha_audit.load.sandbox import RenderPool
+    from alpha_audit.load.svg import RenderLimits
+
+    svg = LUCIDE_LIKE.encode()
+    with RenderPool(RenderLimits(timeout=20.0), workers=1) as pool:
+        first = pool.map([(svg, (8,))])
+        second = pool.map([(svg, (8,)), (svg, (8,))])
+    assert all(not isinstance(o, str) for o in [*first, *second])
+    np.testing.assert_array_equal(first[0][0], second[1][0])
