@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -24,6 +25,13 @@ from alpha_audit.paint_audit import (
     paint_findings,
     resolve_pipeline,
 )
+from alpha_audit.policy import Policy, Rule
+
+
+def find(result, rules, **limits):  # type: ignore[no-untyped-def]
+    """Findings of the named rules with the policy's limits."""
+    return paint_findings(result, Policy(rules=frozenset(Rule(r) for r in rules), **limits))
+
 
 LIGHT = Theme("primer", (Canvas("light-default", "#ffffff"), Canvas("light-muted", "#f6f8fa")))
 SOLID = CoverageStats(q50=1.0, full_share=1.0, ink=10.0, pixels=10)
@@ -61,7 +69,7 @@ def test_primer_severe_and_danger_confuse_at_1_15() -> None:
     ]
     iconset, paints = painted(icons)
     result = audit_paints(LIGHT, iconset, paints)
-    found = paint_findings(result, {"confusion"})
+    found = find(result, {"confusion"})
     assert [(f.rule, f.canvas) for f in found] == [
         ("confusion", "light-default"),
         ("confusion", "light-muted"),
@@ -73,7 +81,7 @@ def test_primer_severe_and_danger_confuse_at_1_15() -> None:
     assert set(first.icons) == {"alert", "stop"}
     # at alpha 1 they are told apart: no finding
     iconset1, paints1 = painted([Icon(i.name, i.file, i.color, 1.0, i.color_name) for i in icons])
-    assert paint_findings(audit_paints(LIGHT, iconset1, paints1), {"confusion"}) == []
+    assert find(audit_paints(LIGHT, iconset1, paints1), {"confusion"}) == []
 
 
 def test_slate_500_drifts_29_5_at_1_2_on_white() -> None:
@@ -92,14 +100,15 @@ def test_slate_500_drifts_29_5_at_1_2_on_white() -> None:
         abs=1e-12,
     )
     assert row.hue_shift is not None and abs(row.hue_shift) < 30
-    drift = paint_findings(result, {"drift"}, max_drift=20)
+    drift = find(result, {"drift"}, max_drift=20)
     assert [(f.rule, f.canvas, f.numbers["output"]) for f in drift] == [
         ("drift", "white", "#00195d")
     ]
-    assert paint_findings(result, {"drift"}, max_drift=30) == []
-    locked = paint_findings(result, {"lock"}, locked_icons={"muted"})
-    assert [f.rule for f in locked] == ["lock"]
-    assert paint_findings(result, {"lock"}) == []
+    assert find(result, {"drift"}, max_drift=30) == []
+    assert find(result, {"lock"}) == []
+    locked_set = replace(iconset, locked=frozenset({"muted"}))
+    locked = find(audit_paints(result.theme, locked_set, paints), {"lock"})
+    assert [f.rule for f in locked] == [Rule.LOCK]
 
 
 def test_fixed_colour_is_audited_as_itself_with_a_finding() -> None:
@@ -116,7 +125,7 @@ def test_fixed_colour_is_audited_as_itself_with_a_finding() -> None:
     assert rows[1].contrast == pytest.approx(
         float(contrast_ratio(hex_to_linear("#ff0000"), np.ones(3)))
     )
-    (finding,) = paint_findings(result, {"fixed-colour"})
+    (finding,) = find(result, {"fixed-colour"})
     assert finding.paint == "#ff0000" and finding.line == 3 and "will not follow" in finding.message
 
 
@@ -164,9 +173,9 @@ def test_thin_strokes_and_size_contrast() -> None:
     )
     assert row.sizes[16].contrast == pytest.approx(expected, rel=1e-12)
     assert row.sizes[16].contrast < row.contrast
-    (finding,) = paint_findings(result, {"thin-strokes"})
+    (finding,) = find(result, {"thin-strokes"})
     assert finding.numbers["size"] == 16
-    assert paint_findings(result, {"thin-strokes"}, min_size_contrast=1.5) == []
+    assert find(result, {"thin-strokes"}, min_size_contrast=1.5) == []
 
 
 def test_cvd_confusion_finds_red_green_only_under_protanopia() -> None:
@@ -177,18 +186,14 @@ def test_cvd_confusion_finds_red_green_only_under_protanopia() -> None:
     ]
     iconset, paints = painted(icons)
     result = audit_paints(Theme("w", (Canvas("white", "#ffffff"),)), iconset, paints)
-    assert paint_findings(result, {"confusion"}) == []
-    found = paint_findings(result, {"cvd-confusion"})
+    assert find(result, {"confusion"}) == []
+    found = find(result, {"cvd-confusion"})
     assert [f.numbers["deficiency"] for f in found] == ["protanopia"]
     assert found[0].numbers["delta_e_ref"] == pytest.approx(12.8, abs=0.05)
     assert found[0].numbers["delta_e"] == pytest.approx(4.9, abs=0.05)
     # at alpha 1 nothing changes, so neither CVD rule objects
     same = painted([Icon(i.name, i.file, i.color, 1.0, i.color_name) for i in icons])
-    assert (
-        paint_findings(audit_paints(result.theme, *same), {"cvd-confusion", "cvd-collision"}) == []
-    )
-    with pytest.raises(UsageError, match="unknown paint rule"):
-        paint_findings(result, {"colour-blind"})
+    assert find(audit_paints(result.theme, *same), {"cvd-confusion", "cvd-collision"}) == []
 
 
 def test_cvd_collision_is_new_at_alpha() -> None:
@@ -198,7 +203,7 @@ def test_cvd_collision_is_new_at_alpha() -> None:
         Icon("b", "b.svg", "#005500", 3.0, color_name="g"),
     ]
     result = audit_paints(Theme("w", (Canvas("white", "#ffffff"),)), *painted(icons))
-    found = paint_findings(result, {"cvd-collision"})
+    found = find(result, {"cvd-collision"})
     assert {f.numbers["deficiency"] for f in found} == {"protanopia", "deuteranopia", "tritanopia"}
     assert all(f.numbers["output"] == "#000000" and set(f.icons) == {"a", "b"} for f in found)
 
@@ -220,5 +225,5 @@ def test_end_to_end_with_rendered_masks(tmp_path: Path) -> None:
     for r in rows:
         assert r.sizes[16].contrast <= r.sizes[48].contrast <= r.contrast + 1e-12
         assert 0 < r.sizes[16].q50 <= 1
-    rules = [f.rule for f in paint_findings(result, {"fixed-colour", "not-audited"})]
+    rules = [f.rule for f in find(result, {"fixed-colour", "not-audited"})]
     assert rules == ["fixed-colour", "not-audited"]

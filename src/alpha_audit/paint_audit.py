@@ -15,7 +15,8 @@ source ``Cs`` at opacity ``o`` on canvas ``Cb`` with coefficient ``a``:
 * per size, ``q50``, the full share and the size contrast
   (:mod:`alpha_audit.color.coverage`).
 
-Rules over these figures (:func:`paint_findings`): ``fixed-colour``,
+Rules over these figures (:func:`paint_findings`, rules of
+:data:`~alpha_audit.policy.PAINT_RULES`): ``fixed-colour``,
 ``not-audited``, ``drift``, ``lock``, ``confusion``, ``thin-strokes``,
 ``cvd-collision`` and ``cvd-confusion`` (docs/model.md).  Pure computation:
 nothing is printed.  Shapes: ``p`` paint rows (icon x paint group) by ``m``
@@ -25,7 +26,7 @@ canvases by ``k`` sizes.
 from __future__ import annotations
 
 import math
-from collections.abc import Collection, Iterator, Mapping
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
 
@@ -51,11 +52,10 @@ from alpha_audit.errors import InputError, UsageError
 from alpha_audit.load.paint_masks import PaintSet
 from alpha_audit.load.paints import CURRENT_COLOR
 from alpha_audit.model import Icon, IconSet, Theme
+from alpha_audit.policy import PAINT_RULES, Policy, Rule
 
 __all__ = [
-    "DEFAULT_MAX_DRIFT",
     "LOCK_TOLERANCE",
-    "PAINT_RULES",
     "PaintAudit",
     "PaintFinding",
     "PaintRow",
@@ -69,19 +69,6 @@ __all__ = [
 # A locked (brand) colour may move by less than one just-noticeable
 # difference: CIEDE2000 = 1 is the usual reading of one JND.
 LOCK_TOLERANCE = 1.0
-# ``drift`` is opt-in; its default limit is the confusion rule's min-delta-e:
-# a colour that moves further than two roles need to stay apart has changed role.
-DEFAULT_MAX_DRIFT = 10.0
-PAINT_RULES = (
-    "fixed-colour",
-    "not-audited",
-    "drift",
-    "lock",
-    "confusion",
-    "thin-strokes",
-    "cvd-collision",
-    "cvd-confusion",
-)
 
 
 def resolve_pipeline(*choices: str | None) -> Pipeline:
@@ -159,9 +146,9 @@ class PaintRow:
 
 @dataclass(frozen=True)
 class PaintFinding:
-    """A paint rule's objection; ``rule`` is one of :data:`PAINT_RULES`."""
+    """A paint rule's objection; ``rule`` is one of :data:`~alpha_audit.policy.PAINT_RULES`."""
 
-    rule: str
+    rule: Rule
     canvas: str | None
     icons: tuple[str, ...]
     message: str
@@ -324,54 +311,43 @@ def audit_paints(
     )
 
 
-def paint_findings(
-    result: PaintAudit,
-    rules: Collection[str],
-    *,
-    min_delta_e: float = 10.0,
-    max_drift: float = DEFAULT_MAX_DRIFT,
-    min_size_contrast: float | None = None,
-    locked_icons: Collection[str] = (),
-    locked_colors: Collection[str] = (),
-) -> list[PaintFinding]:
-    """Findings of the enabled paint ``rules``, in rule order then canvas and icon order.
+def paint_findings(result: PaintAudit, policy: Policy) -> list[PaintFinding]:
+    """Findings of ``policy``'s paint rules, in rule order, then canvas and icon order.
 
-    ``locked_icons`` are icon names and ``locked_colors`` palette names (or
-    colours) with ``lock: true``; ``min_size_contrast`` defaults to the
-    threshold.  Unknown rule names raise :class:`UsageError`.
+    Limits come from the policy (``min_delta_e``, ``max_drift``,
+    ``min_size_contrast``, default the threshold); locked names from the icon
+    set (``lock:``).  Exemptions are the gate's business.
     """
-    unknown = sorted(set(rules) - set(PAINT_RULES))
-    if unknown:
-        raise UsageError(f"unknown paint rule {unknown[0]!r}; use one of: {', '.join(PAINT_RULES)}")
+    rules = policy.rules & PAINT_RULES
     out: list[PaintFinding] = []
-    if "fixed-colour" in rules:
+    if Rule.FIXED_COLOUR in rules:
         out += _fixed_colour(result)
-    if "not-audited" in rules:
+    if Rule.NOT_AUDITED in rules:
         out += _not_audited(result)
-    if "drift" in rules:
-        out += _drift(result, "drift", max_drift, np.ones(len(result.entries), bool))
-    if "lock" in rules:
+    if Rule.DRIFT in rules:
+        everything = np.ones(len(result.entries), dtype=bool)
+        out += _drift(result, Rule.DRIFT, policy.max_drift, everything)
+    if Rule.LOCK in rules:
+        names = result.iconset.locked
         locked = np.array(
             [
-                e.icon.name in locked_icons
-                or (e.paint == CURRENT_COLOR and _role(e.icon) in locked_colors)
-                or e.source in locked_colors
+                e.icon.name in names or (e.paint == CURRENT_COLOR and e.icon.color_name in names)
                 for e in result.entries
             ],
             dtype=bool,
         )
-        out += _drift(result, "lock", LOCK_TOLERANCE, locked)
-    if "confusion" in rules:
-        out += _confusion(result, min_delta_e, None)
-    if "thin-strokes" in rules:
-        limit = result.threshold if min_size_contrast is None else float(min_size_contrast)
+        out += _drift(result, Rule.LOCK, LOCK_TOLERANCE, locked)
+    if Rule.CONFUSION in rules:
+        out += _confusion(result, policy.min_delta_e, None)
+    if Rule.THIN_STROKES in rules:
+        limit = result.threshold if policy.min_size_contrast is None else policy.min_size_contrast
         out += _thin_strokes(result, limit)
-    if "cvd-collision" in rules:
+    if Rule.CVD_COLLISION in rules:
         for deficiency in DEFICIENCIES:
             out += _cvd_collisions(result, deficiency)
-    if "cvd-confusion" in rules:
+    if Rule.CVD_CONFUSION in rules:
         for deficiency in DEFICIENCIES:
-            out += _confusion(result, min_delta_e, deficiency)
+            out += _confusion(result, policy.min_delta_e, deficiency)
     return out
 
 
@@ -393,7 +369,7 @@ def _fixed_colour(result: PaintAudit) -> Iterator[PaintFinding]:
             if p.color == e.paint
         )
         yield PaintFinding(
-            "fixed-colour",
+            Rule.FIXED_COLOUR,
             None,
             (e.icon.name,),
             f"{first.kind} {e.paint} of {first.element} is hard-coded: it is audited as itself "
@@ -412,7 +388,7 @@ def _not_audited(result: PaintAudit) -> Iterator[PaintFinding]:
             continue
         for u in measured.paints.unaudited:
             yield PaintFinding(
-                "not-audited",
+                Rule.NOT_AUDITED,
                 None,
                 (icon.name,),
                 f"{u.element}: {u.reason}",
@@ -422,7 +398,7 @@ def _not_audited(result: PaintAudit) -> Iterator[PaintFinding]:
 
 
 def _drift(
-    result: PaintAudit, rule: str, limit: float, selected: NDArray[np.bool_]
+    result: PaintAudit, rule: Rule, limit: float, selected: NDArray[np.bool_]
 ) -> Iterator[PaintFinding]:
     over = (result.drift > limit + DELTA_E_TOLERANCE) & selected[:, np.newaxis]
     for j, canvas in enumerate(result.theme.canvases):
@@ -430,7 +406,7 @@ def _drift(
             e = result.entries[int(p)]
             d = float(result.drift[p, j])
             shown = linear_to_hex(result.output[p, j])
-            what = "locked colour" if rule == "lock" else "colour"
+            what = "locked colour" if rule is Rule.LOCK else "colour"
             yield PaintFinding(
                 rule,
                 canvas.name,
@@ -451,7 +427,7 @@ def _thin_strokes(result: PaintAudit, limit: float) -> Iterator[PaintFinding]:
             size = result.sizes[k]
             c = float(result.size_contrast[p, j, k])
             yield PaintFinding(
-                "thin-strokes",
+                Rule.THIN_STROKES,
                 canvas.name,
                 (e.icon.name,),
                 f"at {size}px half the ink of {e.paint} is at coverage <= "
@@ -507,7 +483,7 @@ def _confusion(
     de_ref = delta_e_2000(*solid)  # (q, m)
     de = delta_e_2000(*shown)
     confused = (de_ref >= min_delta_e) & (de < min_delta_e)
-    rule = "confusion" if deficiency is None else "cvd-confusion"
+    rule = Rule.CONFUSION if deficiency is None else Rule.CVD_CONFUSION
     under = "" if deficiency is None else f" under simulated {deficiency}"
     for j, canvas in enumerate(result.theme.canvases):
         worst: dict[tuple[str, str], int] = {}
@@ -560,7 +536,7 @@ def _cvd_collisions(result: PaintAudit, deficiency: str) -> Iterator[PaintFindin
                 continue
             out = "#{:02x}{:02x}{:02x}".format(*code)
             yield PaintFinding(
-                "cvd-collision",
+                Rule.CVD_COLLISION,
                 canvas.name,
                 tuple(result.entries[idx[r]].icon.name for r in members),
                 f"{', '.join(colours)} all look like {out} under simulated {deficiency}",
