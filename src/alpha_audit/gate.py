@@ -17,7 +17,8 @@ import numpy as np
 
 from alpha_audit.audit import AuditResult
 from alpha_audit.errors import InputError, UsageError
-from alpha_audit.policy import Exemption, Policy, Rule
+from alpha_audit.paint_audit import paint_findings
+from alpha_audit.policy import PAINT_RULES, Exemption, Policy, Rule
 
 __all__ = [
     "BASELINE_SCHEMA",
@@ -234,6 +235,15 @@ def findings_for(result: AuditResult, policy: Policy) -> list[Finding]:
                     "sources": ", ".join(s.sources),
                 }
                 add(Rule.SEPARATION, s.canvas, tuple(sorted(s.icons)), message, numbers)
+
+    if result.paints is not None and policy.rules & PAINT_RULES:
+        for pf in paint_findings(result.paints, policy):
+            numbers = dict(pf.numbers)
+            if pf.paint is not None:
+                numbers["paint"] = pf.paint
+            if pf.element is not None:
+                numbers["element"] = pf.element + (f" (line {pf.line})" if pf.line else "")
+            add(pf.rule, pf.canvas, pf.icons, pf.message, numbers)
 
     if Rule.UNRENDERABLE in policy.rules:
         # Broken icons are not in result.iconset any more; name their file directly.
