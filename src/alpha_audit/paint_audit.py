@@ -89,22 +89,32 @@ def resolve_pipeline(*choices: str | None) -> Pipeline:
     return "linear"
 
 
-def check_pipeline(iconset: IconSet, pipeline: Pipeline) -> None:
+_CSS_WAY_OUT = (
+    "CSS opacity is limited to [0, 1]; use pipeline: linear (WebGL, an SVG filter in "
+    "linearRGB) or export per-theme colours (docs/model.md, 'Pipelines')"
+)
+
+
+def check_pipeline(iconset: IconSet, pipeline: Pipeline, alpha: float | None = None) -> None:
     """Refuse coefficients ``pipeline`` cannot draw: under ``css``, alpha outside [0, 1].
 
-    The error names the pipeline, the icon, its manifest line and the way out.
+    ``alpha`` is the ``--alpha`` override, reported as a usage error; else the
+    error names the icon and its manifest line.  Both name the pipeline and the
+    way out.
     """
     if pipeline != "css":
+        return
+    if alpha is not None:
+        if not 0.0 <= alpha <= 1.0:
+            raise UsageError(f"--alpha {alpha:g} cannot be drawn by pipeline css: {_CSS_WAY_OUT}")
         return
     for icon in iconset.icons:
         if not 0.0 <= icon.alpha <= 1.0:
             raise InputError(
-                f"alpha {icon.alpha:g} cannot be drawn by pipeline css: CSS opacity is "
-                "limited to [0, 1]; use pipeline: linear (WebGL, an SVG filter in linearRGB) "
-                "or export per-theme colours (docs/model.md, 'Pipelines')",
+                f"icon {icon.name!r} has alpha {icon.alpha:g}, which pipeline css cannot "
+                f"draw: {_CSS_WAY_OUT}",
                 path=iconset.path,
                 line=icon.alpha_line,
-                key=f"{icon.name}.alpha",
             )
 
 
@@ -137,11 +147,24 @@ class PaintRow:
     drift: float
     hue_shift: float | None  # None where the hue is powerless (achromatic)
     sizes: Mapping[int, SizeFigures] = field(default_factory=dict)
+    passes_ref: bool = False
+    passes: bool = False
+    loss: bool = False
 
     @property
     def fixed(self) -> bool:
         """Whether the paint is hard-coded in the SVG (it will not follow the theme)."""
         return self.paint != CURRENT_COLOR
+
+    @property
+    def newly_passes(self) -> bool:
+        """Below the threshold at alpha = 1, at or above it at the icon's alpha."""
+        return self.passes and not self.passes_ref
+
+    @property
+    def newly_fails(self) -> bool:
+        """At or above the threshold at alpha = 1, below it at the icon's alpha."""
+        return self.passes_ref and not self.passes
 
 
 @dataclass(frozen=True)
@@ -190,10 +213,37 @@ class PaintAudit:
     q50: NDArray[np.float64]  # (p, k)
     full_share: NDArray[np.float64]  # (p, k)
     size_contrast: NDArray[np.float64]  # (p, m, k)
+    tolerance: float = CONTRAST_TOLERANCE
+
+    @property
+    def gain(self) -> NDArray[np.float64]:
+        """``contrast - contrast_ref``, ``(p, m)``."""
+        return self.contrast - self.contrast_ref
+
+    @property
+    def passes_ref(self) -> NDArray[np.bool_]:
+        """At or above the threshold at alpha = 1."""
+        return self.contrast_ref >= self.threshold
+
+    @property
+    def passes(self) -> NDArray[np.bool_]:
+        """At or above the threshold at the icon's alpha."""
+        return self.contrast >= self.threshold
+
+    @property
+    def loss(self) -> NDArray[np.bool_]:
+        """Contrast decreased by more than the float tolerance."""
+        return self.gain < -self.tolerance
+
+    @property
+    def newly_fails(self) -> NDArray[np.bool_]:
+        """At or above the threshold at alpha = 1, below it at the icon's alpha."""
+        return self.passes_ref & ~self.passes
 
     def rows(self) -> Iterator[PaintRow]:
         """Rows in stable order: canvas order, then icon order, then paint order."""
         codes = to_8bit(self.output)
+        passes_ref, passes, loss = self.passes_ref, self.passes, self.loss
         for j, canvas in enumerate(self.theme.canvases):
             for p, e in enumerate(self.entries):
                 shift = float(self.hue_shift[p, j])
@@ -221,6 +271,9 @@ class PaintAudit:
                         )
                         for k, s in enumerate(self.sizes)
                     },
+                    passes_ref=bool(passes_ref[p, j]),
+                    passes=bool(passes[p, j]),
+                    loss=bool(loss[p, j]),
                 )
 
     @cached_property
@@ -251,9 +304,9 @@ def audit_paints(
     audited as themselves.  Icons missing from ``paints`` (problems) are left
     out.  Under ``css``, alpha outside [0, 1] raises :class:`InputError`.
     """
+    check_pipeline(iconset, pipeline, alpha)
     if alpha is not None:
         iconset = iconset.with_alpha(alpha)
-    check_pipeline(iconset, pipeline)
     threshold = theme.threshold if threshold is None else float(threshold)
     sizes = tuple(iconset.sizes)
     entries: list[_Entry] = []

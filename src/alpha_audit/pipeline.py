@@ -94,7 +94,7 @@ def check_files(
     theme = load_theme(theme_path)
     iconset = load_iconset(iconset_path)
     chosen = resolve_pipeline(pipeline, iconset.pipeline, theme.pipeline)
-    check_pipeline(iconset if alpha is None else iconset.with_alpha(alpha), chosen)
+    check_pipeline(iconset, chosen, alpha)
     if on_start is not None:
         on_start(len(iconset.icons))
     paints = _render(iconset, strict_svg=strict_svg, on_icon=on_icon)
@@ -136,7 +136,7 @@ def check_project(
     }
     for s in loaded_sets:
         for t in loaded_themes:
-            check_pipeline(s if alpha is None else s.with_alpha(alpha), chosen[(t.name, s.name)])
+            check_pipeline(s, chosen[(t.name, s.name)], alpha)
     if on_start is not None:
         on_start(sum(len(s.icons) for s in loaded_sets))
     audits = []
