@@ -241,3 +241,29 @@ def test_isolated_masks_partition_what_the_renderer_draws() -> None:
     whole = rasterize(svg, 8)
     np.testing.assert_allclose(whole[:, :4], 0.3, atol=1 / 255)
     np.testing.assert_allclose(whole[:, 4:], 0.5, atol=1 / 255)
+
+
+def test_isolated_mask_keeps_mask_content_inherited_from_the_root() -> None:
+    """<mask> content inherits the root's fill; isolating must not turn it to none."""
+    import numpy as np
+
+    from alpha_audit.load.svg import rasterize
+
+    svg = (
+        f'<svg {NS} viewBox="0 0 8 8" fill="#ffffff">'
+        '<mask id="m"><rect width="4" height="8"/></mask>'
+        '<rect width="8" height="8" fill="currentColor" mask="url(#m)"/></svg>'
+    ).encode()
+    mask = rasterize(isolate_paints(svg, lambda p: True), 8)
+    np.testing.assert_array_equal(mask[:, :4], 1.0)
+    np.testing.assert_array_equal(mask[:, 4:], 0.0)
+
+
+def test_isolating_many_paints_on_many_elements_is_bounded() -> None:
+    from alpha_audit.load.paints import MAX_ISOLATE_WORK, isolate_groups
+
+    n = MAX_ISOLATE_WORK // 10
+    svg = (f"<svg {NS}>" + '<rect width="1" height="1"/>' * n + "</svg>").encode()
+    groups = extract_paints(svg).groups() * 11
+    with pytest.raises(SvgError, match="element renders; refused"):
+        isolate_groups(svg, groups)

@@ -17,7 +17,7 @@ from pathlib import Path
 
 from alpha_audit.color.coverage import CoverageStats, coverage_stats
 from alpha_audit.errors import SvgError
-from alpha_audit.load.paints import PaintGroup, SvgPaints, extract_paints, isolate_paints
+from alpha_audit.load.paints import PaintGroup, SvgPaints, extract_paints, isolate_groups
 from alpha_audit.load.svg import IconProblem, RenderLimits, read_svg
 
 __all__ = ["MAX_PAINT_GROUPS", "IconPaints", "PaintCoverage", "PaintSet", "measure_paints"]
@@ -87,10 +87,7 @@ def measure_paints(
                     f"{MAX_PAINT_GROUPS} are audited per icon",
                     path=path,
                 )
-            variants = [
-                isolate_paints(data, lambda p, key=g.key: (p.color, p.opacity) == key, path=path)
-                for g in groups
-            ]
+            variants = isolate_groups(data, groups, path=path)
         except SvgError as exc:
             problems.append(IconProblem(name, path, _with_line(exc)))
             if progress is not None:

@@ -33,7 +33,7 @@ approximation (the group is composited once, so overlaps are not doubled).
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Literal
@@ -50,6 +50,7 @@ __all__ = [
     "CURRENT_COLOR",
     "MAX_DEPTH",
     "MAX_ELEMENTS",
+    "MAX_ISOLATE_WORK",
     "MAX_MATCH_WORK",
     "Paint",
     "PaintGroup",
@@ -57,6 +58,8 @@ __all__ = [
     "SvgPaints",
     "Unaudited",
     "extract_paints",
+    "isolate_each",
+    "isolate_groups",
     "isolate_paints",
 ]
 
@@ -71,6 +74,7 @@ PaintKind = Literal["fill", "stroke"]
 MAX_ELEMENTS = 20_000
 MAX_DEPTH = 500
 MAX_MATCH_WORK = 2_000_000  # elements x selectors
+MAX_ISOLATE_WORK = 100_000  # rendered elements x per-paint variants
 
 _SHAPES = frozenset({"path", "rect", "circle", "ellipse", "line", "polyline", "polygon"})
 _CONTAINERS = frozenset({"svg", "g", "a", "switch"})
@@ -210,26 +214,55 @@ def isolate_paints(
     ``!important``, the last word in the cascade, so ``<style>`` rules cannot
     undo them; geometry (``stroke-width``, transforms, clip paths) is untouched.
     """
-    root = None
-    for element in _walk(svg, path, []):
-        node = element.node
-        if root is None:
-            root = node
-        decls = ["opacity: 1", "filter: none"]
-        if element.hidden_kind:
-            decls.append("display: none")
-        for kind in ("fill", "stroke"):
-            paint = next((p for p in element.paints if p.kind == kind), None)
-            drawn = paint is not None and paint.opacity > 0.0 and keep(paint)
-            decls.append(f"{kind}: {_MASK_INK if drawn else 'none'}")
-            decls.append(f"{kind}-opacity: 1")
-        decls += [f"{m}: none" for m in _MARKERS]
-        _override_style(node, decls)
-    if root is None:  # pragma: no cover - _walk always yields the root
-        raise SvgError("has no <svg> element; not an SVG file", path=path)
-    # ElementTree writes the SVG namespace with a prefix (ns0:svg); the renderer
-    # matches elements by namespace, not prefix, so the drawing is the same.
-    return ET.tostring(root, encoding="utf-8")
+    return isolate_each(svg, [keep], path=path)[0]
+
+
+def isolate_groups(
+    svg: bytes, groups: Sequence[PaintGroup], *, path: str | Path | None = None
+) -> list[bytes]:
+    """One :func:`isolate_paints` SVG per paint group, from one parse and one cascade."""
+    keys = [g.key for g in groups]
+    return isolate_each(svg, [lambda p, k=k: (p.color, p.opacity) == k for k in keys], path=path)
+
+
+def isolate_each(
+    svg: bytes, keeps: Sequence[Callable[[Paint], bool]], *, path: str | Path | None = None
+) -> list[bytes]:
+    """:func:`isolate_paints` for several predicates; the work is bounded by
+    :data:`MAX_ISOLATE_WORK` (rendered elements x variants)."""
+    visited = list(_walk(svg, path, []))
+    if len(visited) * len(keeps) > MAX_ISOLATE_WORK:
+        raise SvgError(
+            f"{len(keeps)} paints on {len(visited)} elements need more than "
+            f"{MAX_ISOLATE_WORK} element renders; refused (resource limit)",
+            path=path,
+        )
+    fixed = ["opacity: 1", "filter: none", *(f"{m}: none" for m in _MARKERS)]
+    ours = {d.split(":", 1)[0] for d in fixed} | {
+        "display",
+        "fill",
+        "stroke",
+        "fill-opacity",
+        "stroke-opacity",
+    }
+    kept = [_kept_declarations(v.node, ours) for v in visited]
+    out = []
+    for keep in keeps:
+        for v, own in zip(visited, kept, strict=True):
+            decls = list(fixed)
+            if v.hidden_kind:
+                decls.append("display: none")
+            # Paint only on shapes: a container's fill would be inherited by <mask>
+            # and <clipPath> content defined under it, changing the geometry.
+            for kind in ("fill", "stroke") if _local(v.node) in _SHAPES else ():
+                paint = next((p for p in v.paints if p.kind == kind), None)
+                drawn = paint is not None and paint.opacity > 0.0 and keep(paint)
+                decls += [f"{kind}: {_MASK_INK if drawn else 'none'}", f"{kind}-opacity: 1"]
+            v.node.set("style", "; ".join([*own, *(f"{d} !important" for d in decls)]))
+        # ElementTree writes the SVG namespace with a prefix (ns0:svg); the renderer
+        # matches elements by namespace, not prefix, so the drawing is the same.
+        out.append(ET.tostring(visited[0].node, encoding="utf-8"))
+    return out
 
 
 @dataclass
@@ -239,17 +272,15 @@ class _Visited:
     hidden_kind: bool  # an element the audit does not judge (text, image, use ...)
 
 
-def _override_style(node: ET.Element, decls: list[str]) -> None:
-    """Keep the element's valid inline declarations, then ours with ``!important``."""
-    ours = {d.split(":", 1)[0] for d in decls}
-    kept = [
+def _kept_declarations(node: ET.Element, ours: set[str]) -> list[str]:
+    """The element's valid inline declarations, minus the properties we override."""
+    return [
         f"{d.name}: {tinycss2.serialize(d.value).strip()}{' !important' if d.important else ''}"
         for d in tinycss2.parse_declaration_list(
             node.get("style", ""), skip_comments=True, skip_whitespace=True
         )
         if d.type == "declaration" and d.lower_name not in ours
     ]
-    node.set("style", "; ".join([*kept, *(f"{d} !important" for d in decls)]))
 
 
 def _parse(svg: bytes, path: str | Path | None) -> tuple[ET.Element, dict[int, int]]:
