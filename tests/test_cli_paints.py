@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
 
 import numpy as np
@@ -144,3 +145,32 @@ def test_lock_from_the_manifest(project: Path) -> None:
     assert {(f["rule"], tuple(f["icons"])) for f in doc["gate"]["failures"]} == {
         ("lock", ("alert",))
     }
+
+
+def test_config_sets_pipeline_and_paint_limits(project: Path) -> None:
+    (project / "alpha-audit.yaml").write_text(
+        "theme: theme.yaml\niconset: set.yaml\npipeline: css\nalpha: 0.6\n"
+        "fail-on: [drift, thin-strokes]\nmax-drift: 5\nmin-size-contrast: 1.2\n"
+    )
+    old = Path.cwd()
+    os.chdir(project)
+    try:
+        result = runner.invoke(app, ["check", "-f", "json"])
+        doc = json.loads(result.stdout)
+        assert doc["pipeline"] == "css"
+        policy = doc["gate"]["policy"]
+        assert (policy["max_drift"], policy["min_size_contrast"]) == (5.0, 1.2)
+        (project / "alpha-audit.yaml").write_text("theme: theme.yaml\npipeline: 3\n")
+        bad = runner.invoke(app, ["check"])
+        assert bad.exit_code == 2 and "alpha-audit.yaml:2" in bad.output
+        assert "is not a pipeline" in bad.output
+    finally:
+        os.chdir(old)
+
+
+def test_theme_pipeline_is_used_when_nothing_else_says(project: Path) -> None:
+    (project / "theme.yaml").write_text(
+        'pipeline: css\ncanvases: [{name: white, color: "#ffffff"}]\n'
+    )
+    code, doc, output = check(project, "--alpha", "0.5", "--exit-zero")
+    assert code == 0 and doc["pipeline"] == "css", output
