@@ -174,3 +174,20 @@ def test_theme_pipeline_is_used_when_nothing_else_says(project: Path) -> None:
     )
     code, doc, output = check(project, "--alpha", "0.5", "--exit-zero")
     assert code == 0 and doc["pipeline"] == "css", output
+
+
+def test_pair_shows_linear_and_css_side_by_side() -> None:
+    table = runner.invoke(app, ["pair", "#ee7733", "--on", "white", "-a", "0.6", "-a", "1.4"])
+    assert table.exit_code == 0
+    (line,) = [row for row in table.stdout.splitlines() if "#f5ad85" in row]
+    assert "#f5bdad" in line and "1.641 → 1.875" in line
+    assert max(len(row) for row in table.stdout.splitlines()) <= 80
+    doc = json.loads(
+        runner.invoke(
+            app, ["pair", "#ee7733", "--on", "white", "-a", "0.6", "-a", "1.4", "-f", "json"]
+        ).stdout
+    )
+    assert [(r["output"], r["css_output"]) for r in doc["rows"]] == [
+        ("#f5bdad", "#f5ad85"),
+        ("#e70000", None),
+    ]
