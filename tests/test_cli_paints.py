@@ -191,3 +191,11 @@ def test_pair_shows_linear_and_css_side_by_side() -> None:
         ("#f5bdad", "#f5ad85"),
         ("#e70000", None),
     ]
+
+
+def test_table_names_the_worst_drift(project: Path) -> None:
+    result = runner.invoke(
+        app, ["check", str(project / "theme.yaml"), str(project / "set.yaml"), "--exit-zero"]
+    )
+    text = " ".join(result.stdout.split())
+    assert "colour drift up to 29.5 CIEDE2000" in text
