@@ -149,7 +149,7 @@ def test_css_pipeline_at_0_6_is_the_gamma_blend_and_refuses_1_2(tmp_path: Path) 
     linear = next(audit_paints(white, iconset, paints).rows())
     assert (css.output, css.pipeline) == ("#f5ad85", "css")
     assert (linear.output, linear.pipeline) == ("#f5bdad", "linear")
-    with pytest.raises(UsageError, match=r"--alpha 1.2 cannot be drawn by pipeline css"):
+    with pytest.raises(UsageError, match=r"`alpha` 1.2 cannot be drawn by pipeline css"):
         audit_paints(white, iconset, paints, alpha=1.2, pipeline="css")
     with pytest.raises(InputError, match=r"'a' has alpha 1.2, which pipeline css.*export per-the"):
         check_pipeline(iconset.with_alpha(1.2), "css")

@@ -98,7 +98,7 @@ _CSS_WAY_OUT = (
 def check_pipeline(iconset: IconSet, pipeline: Pipeline, alpha: float | None = None) -> None:
     """Refuse coefficients ``pipeline`` cannot draw: under ``css``, alpha outside [0, 1].
 
-    ``alpha`` is the ``--alpha`` override, reported as a usage error; else the
+    ``alpha`` is the override of every icon's (``--alpha``), a usage error; else the
     error names the icon and its manifest line.  Both name the pipeline and the
     way out.
     """
@@ -106,7 +106,7 @@ def check_pipeline(iconset: IconSet, pipeline: Pipeline, alpha: float | None = N
         return
     if alpha is not None:
         if not 0.0 <= alpha <= 1.0:
-            raise UsageError(f"--alpha {alpha:g} cannot be drawn by pipeline css: {_CSS_WAY_OUT}")
+            raise UsageError(f"`alpha` {alpha:g} cannot be drawn by pipeline css: {_CSS_WAY_OUT}")
         return
     for icon in iconset.icons:
         if not 0.0 <= icon.alpha <= 1.0:

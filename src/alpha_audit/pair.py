@@ -17,7 +17,7 @@ from alpha_audit.color import (
     srgb_decode,
 )
 
-__all__ = ["PairRow", "pair_table"]
+__all__ = ["PairReport", "PairRow", "pair_report", "pair_table"]
 
 
 @dataclass(frozen=True)
@@ -35,6 +35,19 @@ class PairRow:
     # The same alpha drawn by a browser (pipeline css, docs/model.md); None outside [0, 1].
     css_output: str | None = None
     css_contrast: float | None = None
+
+
+@dataclass(frozen=True)
+class PairReport:
+    """What ``alpha-audit pair`` reports: the colour as given and its rows."""
+
+    color: str
+    rows: tuple[PairRow, ...]
+
+
+def pair_report(color: str, backgrounds: Sequence[str], alphas: Sequence[float]) -> PairReport:
+    """:func:`pair_table` with the colour it was asked about, ready for a renderer."""
+    return PairReport(color, tuple(pair_table(color, backgrounds, alphas)))
 
 
 def pair_table(color: str, backgrounds: Sequence[str], alphas: Sequence[float]) -> list[PairRow]:

@@ -2,12 +2,17 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Annotated
 
 import typer
+from typer.core import TyperCommand
+
+from alpha_audit.errors import UsageError
 
 __all__ = [
+    "OPTION_ORDER",
     "ConfigOption",
     "ForceOption",
     "IconsetArgument",
@@ -15,19 +20,26 @@ __all__ = [
     "MaxLossOption",
     "MinDeltaEOption",
     "MinSizeContrastOption",
+    "OrderedOptionsCommand",
     "PipelineOption",
     "StrictSvgOption",
     "ThemeArgument",
     "ThresholdOption",
+    "require_finite",
 ]
 
 ThemeArgument = Annotated[
     Path | None,
-    typer.Argument(help="Theme YAML (default: what the project config names)."),
+    typer.Argument(
+        help="Theme YAML or a bundled theme name (default: what the project config names)."
+    ),
 ]
 IconsetArgument = Annotated[
     Path | None,
-    typer.Argument(help="Icon-set manifest YAML (default: what the project config names)."),
+    typer.Argument(
+        help="Icon-set manifest YAML or vibrant, the bundled example "
+        "(default: what the project config names)."
+    ),
 ]
 ConfigOption = Annotated[
     Path | None,
@@ -79,3 +91,27 @@ StrictSvgOption = Annotated[
     typer.Option("--strict-svg", help="Treat an SVG that cannot be rendered as an input error."),
 ]
 ForceOption = Annotated[bool, typer.Option("--force", help="Replace existing output files.")]
+
+
+def require_finite(value: float | None, option: str) -> float | None:
+    """``value`` unchanged, or a usage error naming ``option`` if it is NaN or infinite."""
+    if value is not None and not math.isfinite(value):
+        raise UsageError(f"{option} must be a finite number, got {value}")
+    return value
+
+
+OPTION_ORDER = "alpha_audit.option_order"
+
+
+class OrderedOptionsCommand(TyperCommand):
+    """A command that records the order its options were given in (``ctx.meta``).
+
+    Click hands each repeatable option over as one list, which loses which
+    ``--output`` followed which ``--format``; the parser knows, so ask it once.
+    """
+
+    def parse_args(self, ctx: typer.Context, args: list[str]) -> list[str]:  # type: ignore[override]
+        """Record ``[param name, ...]`` per option occurrence, then parse as usual."""
+        _, _, order = self.make_parser(ctx).parse_args(args=list(args))
+        ctx.meta[OPTION_ORDER] = [p.name for p in order]
+        return super().parse_args(ctx, args)

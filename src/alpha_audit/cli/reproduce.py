@@ -1,0 +1,122 @@
+"""``alpha-audit reproduce``: the paper's numerical evaluation (registered by ``app.py``).
+
+Runs the library (:mod:`alpha_audit.reproduce`), shows progress on stderr
+(only on a terminal), prints rich tables, JSON or Markdown on stdout and,
+with ``--out``, writes ``results.json``, ``report.md`` and the sweep figures
+once everything has been computed, so a failed run leaves no partial files.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.console import Console
+from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+from alpha_audit.bundled import bundled_theme, theme_source
+from alpha_audit.cli.console import emit, stderr_note, stdout_options
+from alpha_audit.cli.status import ExitStatus
+from alpha_audit.errors import UsageError
+from alpha_audit.load.theme import load_theme
+from alpha_audit.reproduce.files import check_results_folder, write_results
+from alpha_audit.reproduce.report import ReproduceFormat
+from alpha_audit.reproduce.run import Experiment, Reproduction, reproduce
+
+__all__ = ["DEFAULT_THEME", "ReproduceFormat", "reproduce_command"]
+
+DEFAULT_THEME = "paper16"
+"""The bundled theme with the paper's sixteen canvases, used without ``--theme``."""
+
+
+def _run_with_progress(run_kwargs: dict, console: Console) -> Reproduction:
+    """``reproduce(**run_kwargs)`` with one progress bar per experiment on stderr."""
+    with Progress(
+        TextColumn("{task.description:<12}"),
+        BarColumn(),
+        TimeElapsedColumn(),
+        console=console,
+        transient=True,
+        disable=not console.is_terminal,
+    ) as bars:
+        tasks: dict[Experiment, int] = {}
+
+        def advance(experiment: Experiment, fraction: float) -> None:
+            if experiment not in tasks:
+                tasks[experiment] = bars.add_task(experiment.value, total=1.0)
+            bars.advance(tasks[experiment], fraction)
+
+        return reproduce(**run_kwargs, progress=advance)
+
+
+def reproduce_command(
+    theme: Annotated[
+        Path | None,
+        typer.Option(
+            "--theme",
+            help="Theme YAML with the canvases, or a bundled theme name (default: paper16, "
+            "bundled).",
+        ),
+    ] = None,
+    only: Annotated[
+        list[Experiment] | None,
+        typer.Option(
+            "--only",
+            metavar="EXPERIMENT",
+            help="Run only this experiment (repeatable): full-gamut, broad-grid, sweep, palette.",
+            show_default=False,
+        ),
+    ] = None,
+    alphas: Annotated[
+        list[float] | None,
+        typer.Option(
+            "--alpha",
+            metavar="A",
+            help="Coefficient for full gamut, broad grid and palette (repeatable; default 1.1 "
+            "and 1.4).",
+            show_default=False,
+        ),
+    ] = None,
+    out: Annotated[
+        Path | None,
+        typer.Option(
+            "--out",
+            help="Directory for results.json, report.md and the sweep figures.",
+            file_okay=False,
+        ),
+    ] = None,
+    quick: Annotated[
+        bool, typer.Option("--quick", help="Small grids (seconds, not the paper's sizes).")
+    ] = False,
+    output_format: Annotated[
+        ReproduceFormat,
+        typer.Option("--format", help="What to print on stdout."),
+    ] = ReproduceFormat.TABLE,
+    force: Annotated[
+        bool, typer.Option("--force", help="Replace existing files in the --out folder.")
+    ] = False,
+) -> ExitStatus:
+    """Reproduce the paper's numerical evaluation (Section 4) exactly and fast."""
+    if out is not None and out.exists() and not out.is_dir():
+        raise UsageError(f"--out {out} exists and is not a directory")
+    if out is not None:
+        check_results_folder(out, only or (), overwrite=force)  # before minutes of work
+    theme_path = bundled_theme(DEFAULT_THEME) if theme is None else theme_source(theme)
+    if not theme_path.is_file():
+        raise UsageError(f"theme file {theme_path} not found")
+    loaded = load_theme(theme_path)
+    run = _run_with_progress(
+        {
+            "theme": loaded,
+            "only": only or (),
+            "alphas": alphas or (1.1, 1.4),
+            "quick": quick,
+        },
+        Console(stderr=True),
+    )
+    emit(output_format.renderer()(run, stdout_options()), None, False)
+    if out is not None:
+        for path in write_results(run, out, overwrite=force):
+            stderr_note(f"wrote {path}")
+    return ExitStatus.OK
