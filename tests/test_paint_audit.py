@@ -237,3 +237,17 @@ def test_suggest_refuses_paint_rules_it_cannot_honour() -> None:
     iconset = IconSet("s", (Icon("a", "a.svg", "#bc4c00", 1.15, color_name="severe"),))
     with pytest.raises(UsageError, match="does not yet honour the paint rules confusion"):
         suggest(theme, iconset, Policy(rules=frozenset({Rule.LOSS, Rule.CONFUSION})))
+
+
+def test_paint_audit_size_is_bounded(monkeypatch: pytest.MonkeyPatch) -> None:
+    import alpha_audit.paint_audit as pa
+
+    iconset, paints = painted(
+        [Icon(f"i{n}", f"{n}.svg", "#0969da", 1.0) for n in range(4)], sizes=(16, 24, 48)
+    )
+    monkeypatch.setattr(pa, "MAX_SIZE_CELLS", 4 * 2 * 3 - 1)
+    two = Theme("t", (Canvas("a", "#ffffff"), Canvas("b", "#000000")))
+    with pytest.raises(InputError, match="4 paints x 2 canvases x 3 sizes is more than"):
+        audit_paints(two, iconset, paints)
+    monkeypatch.setattr(pa, "MAX_SIZE_CELLS", 4 * 2 * 3)
+    assert len(list(audit_paints(two, iconset, paints).rows())) == 8

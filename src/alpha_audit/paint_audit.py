@@ -33,6 +33,7 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import NDArray
 
+from alpha_audit.audit import MAX_COMBINATIONS
 from alpha_audit.color import (
     CONTRAST_TOLERANCE,
     DEFICIENCIES,
@@ -56,6 +57,7 @@ from alpha_audit.policy import PAINT_RULES, Policy, Rule
 
 __all__ = [
     "LOCK_TOLERANCE",
+    "MAX_SIZE_CELLS",
     "PaintAudit",
     "PaintFinding",
     "PaintRow",
@@ -65,6 +67,11 @@ __all__ = [
     "paint_findings",
     "resolve_pipeline",
 ]
+
+# Bounds on one paint audit.  Rows are the manifest audit's combinations cap
+# (alpha_audit.audit.MAX_COMBINATIONS) counted per paint; size figures hold a
+# (rows, sizes, 3) float64 array and its temporaries, ~200 MB at the cap.
+MAX_SIZE_CELLS = 2_000_000
 
 # A locked (brand) colour may move by less than one just-noticeable
 # difference: CIEDE2000 = 1 is the usual reading of one JND.
@@ -325,6 +332,13 @@ def audit_paints(
                 [cov.sizes[s].full_share if s in cov.sizes else np.nan for s in sizes]
             )
     p, m, k = len(entries), len(theme.canvases), len(sizes)
+    if p * m > MAX_COMBINATIONS or p * m * k > MAX_SIZE_CELLS:
+        raise InputError(
+            f"{p} paints x {m} canvases x {k} sizes is more than this check audits "
+            f"({MAX_COMBINATIONS:,} paint rows, {MAX_SIZE_CELLS:,} paint x canvas x size "
+            "figures); split the theme or the icon set, or give fewer sizes",
+            path=iconset.path,
+        )
     sources = np.array([hex_to_linear(e.source) for e in entries], dtype=np.float64).reshape(p, 3)
     opacity = np.array([e.opacity for e in entries], dtype=np.float64)
     alphas = np.array([e.icon.alpha for e in entries], dtype=np.float64)

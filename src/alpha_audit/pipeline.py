@@ -6,7 +6,7 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import replace
 from pathlib import Path
 
-from alpha_audit.audit import AuditResult, audit
+from alpha_audit.audit import AuditResult, audit, check_combinations
 from alpha_audit.color import Pipeline
 from alpha_audit.errors import SvgError, UsageError
 from alpha_audit.gate import CheckReport, FindingKey, evaluate
@@ -129,6 +129,7 @@ def check_project(
         )
     loaded_themes = [load_theme(t) for t in _unique(themes)]
     loaded_sets = [load_iconset(s) for s in _unique(iconsets)]
+    check_combinations(loaded_themes, loaded_sets)  # before any icon is rendered
     chosen = {
         (t.name, s.name): resolve_pipeline(pipeline, s.pipeline, t.pipeline)
         for s in loaded_sets
