@@ -88,3 +88,15 @@ def test_render_pool_serves_several_map_calls() -> None:
         second = pool.map([(svg, (8,)), (svg, (8,))])
     assert all(not isinstance(o, str) for o in [*first, *second])
     np.testing.assert_array_equal(first[0][0], second[1][0])
+
+
+def test_batches_of_one_job_give_the_same_figures(
+    icons: list[tuple[str, Path]], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A tiny mask budget sends one job per pool.map call; nothing changes but memory."""
+    import alpha_audit.load.paint_masks as pm
+
+    together = measure_paints(icons, [16, 48])
+    monkeypatch.setattr(pm, "_BATCH_BYTES", 1)
+    apart = measure_paints(icons, [16, 48])
+    assert together == apart

@@ -26,7 +26,11 @@ __all__ = ["MAX_PAINT_GROUPS", "IconPaints", "PaintCoverage", "PaintSet", "measu
 # handful; an illustration with hundreds is not an icon this audit can judge
 # paint by paint, and one render per paint would be unbounded work.
 MAX_PAINT_GROUPS = 32
-_BATCH = 256  # render jobs per pool.map: bounds the masks held at once (~14 MB at 48 px)
+# Masks held at once: the pool returns each job's masks as float64, so a batch
+# of jobs is sized to stay under this many bytes (at least one job: 1024 px x 3
+# sizes is 24 MiB).  Larger batches keep the workers busier.
+_BATCH_BYTES = 64 << 20
+_MAX_BATCH = 1024
 
 
 @dataclass(frozen=True)
@@ -101,8 +105,10 @@ def measure_paints(
     failed: dict[int, str] = {}
     remaining = {i: len(groups) for i, (_, _, _, groups) in enumerate(read)}
     with RenderPool(limits, workers=max(1, min(limits.workers, len(jobs)))) as pool:
-        for start in range(0, len(jobs), _BATCH):
-            batch = jobs[start : start + _BATCH]
+        per_job = 8 * sum(s * s for s in sizes)
+        step = max(1, min(_MAX_BATCH, _BATCH_BYTES // max(1, per_job)))
+        for start in range(0, len(jobs), step):
+            batch = jobs[start : start + step]
             outcomes = pool.map([(svg, sizes) for _, _, svg in batch])
             for (icon, group, _), outcome in zip(batch, outcomes, strict=True):
                 if isinstance(outcome, str):
