@@ -17,6 +17,7 @@ FLAGS: dict[str, str] = {
     "overwrite=True": "--force",
     "alphas": "--alpha",
     "alpha": "--alpha",
+    "rules": "--fail-on",
     "sizes": "--size",
     "out_dir": "-o DIR",
     "html_path": "--html FILE",

@@ -16,9 +16,12 @@ __all__ = [
     "ConfigOption",
     "ForceOption",
     "IconsetArgument",
+    "MaxDriftOption",
     "MaxLossOption",
     "MinDeltaEOption",
+    "MinSizeContrastOption",
     "OrderedOptionsCommand",
+    "PipelineOption",
     "StrictSvgOption",
     "ThemeArgument",
     "ThresholdOption",
@@ -56,7 +59,32 @@ MaxLossOption = Annotated[
 ]
 MinDeltaEOption = Annotated[
     float | None,
-    typer.Option("--min-delta-e", help="Smallest CIEDE2000 for separation. [default: 10]"),
+    typer.Option(
+        "--min-delta-e",
+        help="Smallest CIEDE2000 for separation and confusion. [default: 10]",
+    ),
+]
+MaxDriftOption = Annotated[
+    float | None,
+    typer.Option("--max-drift", help="Largest CIEDE2000 colour drift for drift. [default: 10]"),
+]
+MinSizeContrastOption = Annotated[
+    float | None,
+    typer.Option(
+        "--min-size-contrast",
+        help="Smallest size contrast for thin-strokes. [default: the threshold]",
+    ),
+]
+PipelineOption = Annotated[
+    str | None,
+    typer.Option(
+        "--pipeline",
+        metavar="linear|css",
+        help="How icons are drawn: linear (the paper: WebGL, linearRGB filter, exported "
+        "colours) or css (browser opacity, alpha in [0, 1]). [default: the config's, the "
+        "icon set's, the theme's, else linear]",
+        show_default=False,
+    ),
 ]
 StrictSvgOption = Annotated[
     bool,
