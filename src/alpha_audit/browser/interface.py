@@ -134,6 +134,11 @@ class ProcessGroup:
                         stream.close()
         processes.clear()
 
+    @property
+    def pids(self) -> tuple[int, ...]:
+        """Process ids of the group leaders started so far (each leads its own group)."""
+        return tuple(p.pid for p in self._processes)
+
     def close(self) -> None:
         """End every process group (idempotent)."""
         self._finalizer()
