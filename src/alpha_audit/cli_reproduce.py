@@ -20,12 +20,14 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 from rich.text import Text
 
+from alpha_audit.cli_reproduce_browser import browser_tables
 from alpha_audit.errors import UsageError
 from alpha_audit.load.theme import load_theme
 from alpha_audit.reproduce.figures import write_figures
 from alpha_audit.reproduce.paper import PAPER, matches_printed
 from alpha_audit.reproduce.report import alpha_key, render_json, render_markdown
 from alpha_audit.reproduce.run import Experiment, Reproduction, reproduce
+from alpha_audit.reproduce.runtime import runtime_figure
 
 __all__ = ["ReproduceFormat", "default_theme_path", "reproduce_command"]
 
@@ -144,7 +146,7 @@ def _tables(run: Reproduction) -> list[Table]:
                 else "—",
             )
         tables.append(t)
-    return tables
+    return tables + browser_tables(run)
 
 
 def _run_with_progress(run_kwargs: dict, console: Console) -> Reproduction:
@@ -179,7 +181,8 @@ def reproduce_command(
         typer.Option(
             "--only",
             metavar="EXPERIMENT",
-            help="Run only this experiment (repeatable): full-gamut, broad-grid, sweep, palette.",
+            help="Run only this experiment (repeatable): full-gamut, broad-grid, sweep, palette; "
+            "browser and runtime (in browsers, never by default) need --icons.",
             show_default=False,
         ),
     ] = None,
@@ -208,6 +211,25 @@ def reproduce_command(
         ReproduceFormat,
         typer.Option("--format", help="What to print on stdout."),
     ] = ReproduceFormat.TABLE,
+    icons: Annotated[
+        Path | None,
+        typer.Option(
+            "--icons",
+            help="Directory of SVG icons for browser and runtime (the first 300 by SHA-256 "
+            "of their path).",
+            file_okay=False,
+        ),
+    ] = None,
+    engines: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--engine",
+            metavar="ENGINE",
+            help="Browser engine for browser and runtime (repeatable: chromium, firefox, "
+            "webkit; default every installed one).",
+            show_default=False,
+        ),
+    ] = None,
 ) -> None:
     """Reproduce the paper's numerical evaluation (Section 4) exactly and fast."""
     if out is not None and out.exists() and not out.is_dir():
@@ -222,6 +244,8 @@ def reproduce_command(
             "only": only or (),
             "alphas": alphas or (1.1, 1.4),
             "quick": quick,
+            "icons": icons,
+            "engines": engines or None,
         },
         Console(stderr=True),
     )
@@ -242,3 +266,5 @@ def reproduce_command(
         (out / "report.md").write_text(render_markdown(run), encoding="utf-8")
         if run.sweep is not None:
             write_figures(run.sweep, out)
+        if run.runtime is not None:
+            runtime_figure(run.runtime).save(out / "runtime.png", format="PNG")

@@ -21,6 +21,12 @@ from alpha_audit.reproduce.paper import (
     PaperValue,
     matches_printed,
 )
+from alpha_audit.reproduce.report_browser import (
+    browser_json,
+    browser_markdown,
+    runtime_json,
+    runtime_markdown,
+)
 from alpha_audit.reproduce.run import Reproduction
 
 __all__ = ["SCHEMA", "alpha_key", "render_json", "render_markdown", "to_json_dict"]
@@ -131,6 +137,10 @@ def to_json_dict(run: Reproduction) -> dict[str, Any]:
             "collisions": {alpha_key(a): n for a, n in p.random_collisions.items()},
         }
         doc["palette"] = pal
+    if run.browser is not None:
+        doc["browser"] = browser_json(run.browser)
+    if run.runtime is not None:
+        doc["runtime"] = runtime_json(run.runtime)
     doc["paper"] = {
         experiment: {
             group: {
@@ -381,4 +391,8 @@ def render_markdown(run: Reproduction) -> str:
         lines += _sweep_section(run)
     if run.palette is not None:
         lines += _palette_section(run)
+    if run.browser is not None:
+        lines += browser_markdown(run.browser)
+    if run.runtime is not None:
+        lines += runtime_markdown(run.runtime)
     return "\n".join(lines).rstrip() + "\n"
