@@ -14,7 +14,6 @@ Everything listens on loopback only; pages are local files.
 from __future__ import annotations
 
 import abc
-import atexit
 import contextlib
 import json
 import os
@@ -84,8 +83,8 @@ class ProcessGroup:
 
     def __init__(self) -> None:
         self._processes: list[subprocess.Popen[bytes]] = []
+        # A finalizer also runs at interpreter exit (weakref.finalize.atexit is True).
         self._finalizer = weakref.finalize(self, ProcessGroup._end_all, self._processes)
-        atexit.register(self._finalizer)
 
     def start(
         self,
