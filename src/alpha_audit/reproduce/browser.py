@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from alpha_audit.browser import ENGINES, installed_engines
+from alpha_audit.browser import ENGINES, engine_class, installed_engines
 from alpha_audit.browser.validate import PAPER_CONFIGURATIONS, PageValidation, validate_page
 from alpha_audit.errors import UsageError
 from alpha_audit.load.svg import rasterize_icons
@@ -124,8 +124,7 @@ def run_engines(
     found = installed_engines()
     wanted = list(engines) if engines else list(ENGINES)
     for name in wanted:
-        if name not in ENGINES:
-            raise UsageError(f"unknown browser engine {name!r}; choose from {', '.join(ENGINES)}")
+        engine_class(name)  # unknown names: a UsageError listing the valid ones
     present = [n for n in wanted if n in found]
     missing = tuple(n for n in wanted if n not in found)
     if not present:
