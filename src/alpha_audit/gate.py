@@ -356,7 +356,7 @@ def read_baseline(path: str | Path) -> frozenset[FindingKey]:
             raw = fh.read(MAX_BASELINE_BYTES + 1)
     except FileNotFoundError as exc:
         raise UsageError(
-            "baseline file not found (create it with --write-baseline)", path=p
+            "baseline file not found (record one with `baseline_document`)", path=p
         ) from exc
     except OSError as exc:
         raise InputError(f"cannot read: {exc.strerror}", path=p) from exc

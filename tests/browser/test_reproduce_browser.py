@@ -30,7 +30,7 @@ ICONS = ROOT / "examples" / "vibrant" / "svg"
 
 def _cli(*args: str) -> subprocess.CompletedProcess[str]:
     return subprocess.run(
-        [sys.executable, "-c", "from alpha_audit.cli import main; main()", *args],
+        [sys.executable, "-m", "alpha_audit", *args],
         capture_output=True,
         text=True,
         timeout=600,
@@ -115,7 +115,7 @@ def test_select_icons_leaves_out_links_leaving_the_directory(tmp_path):
 
 @pytest.mark.parametrize("make", [lambda p: p / "missing", lambda p: p])
 def test_select_icons_needs_a_directory_with_svgs(tmp_path, make):
-    with pytest.raises(UsageError, match="--icons"):
+    with pytest.raises(UsageError, match="`icons`"):
         select_icons(make(tmp_path))
 
 

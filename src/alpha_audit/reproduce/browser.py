@@ -13,6 +13,7 @@ every covered pixel within 1/255.
 from __future__ import annotations
 
 import hashlib
+import os
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -59,13 +60,20 @@ def select_icons(directory: Path, count: int = PAPER_ICONS) -> list[Path]:
     """
     root = Path(directory)
     if not root.is_dir():
-        raise UsageError(f"--icons {root}: not a directory of SVG files")
+        raise UsageError(f"`icons` {root} is not a directory of SVG files")
     real_root = root.resolve()
+    # os.walk skips directories it cannot read or that vanish while walking, and does
+    # not follow directory symlinks; file symlinks leading out of the root are dropped.
     files = [
-        p for p in root.rglob("*.svg") if p.is_file() and p.resolve().is_relative_to(real_root)
+        path
+        for folder, _, names in os.walk(root)
+        for name in names
+        if name.endswith(".svg")
+        and (path := Path(folder) / name).is_file()
+        and path.resolve().is_relative_to(real_root)
     ]
     if not files:
-        raise UsageError(f"--icons {root}: no *.svg files found")
+        raise UsageError(f"`icons` {root} holds no *.svg files")
     return sorted(files, key=lambda p: _path_key(root, p))[:count]
 
 
@@ -86,7 +94,7 @@ def load_validation_icons(
     rendered = rasterize_icons([(i.name, i.file) for i in icons], sizes)
     ok = tuple(i for i in icons if rendered.ok(i.name))
     if not ok:
-        raise UsageError(f"--icons {root}: none of the selected SVG files could be rasterised")
+        raise UsageError(f"`icons` {root}: none of the selected SVG files could be rasterised")
     palette = {f"vibrant{k + 1}": c for k, c in enumerate(VIBRANT)}
     iconset = IconSet(root.name or "icons", ok, palette=palette, sizes=tuple(sizes))
     return iconset, rendered.masks, len(icons) - len(ok)

@@ -45,7 +45,7 @@ class Experiment(enum.StrEnum):
     RUNTIME = "runtime"
 
 
-# Run when nothing is selected; the browser experiments need engines and --icons, so they
+# Run when nothing is selected; the browser experiments need engines and icons, so they
 # run only when asked for.
 DEFAULT_EXPERIMENTS = frozenset(
     {Experiment.FULL_GAMUT, Experiment.BROAD_GRID, Experiment.SWEEP, Experiment.PALETTE}
@@ -111,10 +111,10 @@ def reproduce(
     selected = set(only) or set(DEFAULT_EXPERIMENTS)
     if selected & BROWSER_EXPERIMENTS and icons is None:
         names = " and ".join(sorted(e.value for e in selected & BROWSER_EXPERIMENTS))
-        raise UsageError(f"--only {names} needs --icons DIR (a directory of SVG icons)")
+        raise UsageError(f"experiment {names} needs `icons` (a directory of SVG icons)")
     alphas = tuple(float(a) for a in alphas)
     if not alphas:
-        raise UsageError("give at least one --alpha")
+        raise UsageError("`alphas` is empty; give at least one coefficient")
     settings = Settings.quick() if quick else Settings.paper()
     results: dict[str, object] = {}
     for experiment in Experiment:

@@ -1,4 +1,4 @@
-"""Rich tables for ``reproduce --only browser`` and ``--only runtime`` (used by cli_reproduce)."""
+"""Rich tables for ``reproduce --only browser`` and ``--only runtime`` (used by cli.reproduce)."""
 
 from __future__ import annotations
 

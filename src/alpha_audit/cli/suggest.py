@@ -7,7 +7,8 @@ from typing import Annotated
 
 import typer
 
-from alpha_audit.cli_options import (
+from alpha_audit.cli.console import emit, stdout_options
+from alpha_audit.cli.options import (
     ConfigOption,
     ForceOption,
     IconsetArgument,
@@ -15,7 +16,9 @@ from alpha_audit.cli_options import (
     MinDeltaEOption,
     ThemeArgument,
     ThresholdOption,
+    require_finite,
 )
+from alpha_audit.cli.status import ExitStatus
 from alpha_audit.suggest_report import SuggestFormat
 
 __all__ = ["suggest_command"]
@@ -60,7 +63,7 @@ def suggest_command(
             help="Write the set-wide alpha into the manifest (only the alpha values change).",
         ),
     ] = False,
-) -> None:
+) -> ExitStatus:
     """The largest alpha every coefficient in [1, alpha] keeps the gate policy for.
 
     Computed exactly from where contrast, 8-bit codes and separation change, not
@@ -72,7 +75,7 @@ def suggest_command(
     Example:
     [bold]alpha-audit suggest themes/paper16.yaml examples/vibrant/iconset.yaml --apply[/]
     """
-    from alpha_audit.cli import emit, require_finite, stdout_options
+    from alpha_audit.bundled import iconset_source, theme_source
     from alpha_audit.errors import UsageError
     from alpha_audit.load.config import project_config
     from alpha_audit.load.iconset import load_iconset
@@ -94,6 +97,13 @@ def suggest_command(
                 f"{len(project.iconsets)} icon set(s))"
             )
         theme, iconset = project.themes[0], project.iconsets[0]
+    theme, source = theme_source(theme), iconset_source(iconset)
+    if apply and source != Path(iconset):
+        raise UsageError(
+            f"--apply rewrites the manifest in place and {iconset} is the bundled example; "
+            f"copy {source.parent} into your project and give its {source.name}"
+        )
+    iconset = source
     policy = project.policy.with_overrides(
         rules=fail_on, max_loss=max_loss, min_delta_e=min_delta_e
     )
@@ -114,3 +124,4 @@ def suggest_command(
         changed = apply_alpha(iconset, result.alpha, precision)
         note = "wrote" if changed else "already has"
         typer.echo(f"{note} alpha {format_alpha(result.alpha, precision)} in {iconset}", err=True)
+    return ExitStatus.OK
