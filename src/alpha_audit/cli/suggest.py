@@ -19,7 +19,7 @@ from alpha_audit.cli.options import (
     require_finite,
 )
 from alpha_audit.cli.status import ExitStatus
-from alpha_audit.suggest_report import SuggestFormat
+from alpha_audit.suggest.report import SuggestFormat
 
 __all__ = ["suggest_command"]
 
@@ -80,10 +80,14 @@ def suggest_command(
     from alpha_audit.load.config import project_config
     from alpha_audit.load.iconset import load_iconset
     from alpha_audit.load.theme import load_theme
-    from alpha_audit.manifest_edit import apply_alpha, format_alpha
+    from alpha_audit.output import check_targets
+    from alpha_audit.render.common import RenderOptions, check_suffix
     from alpha_audit.suggest import suggest
-    from alpha_audit.suggest_report import render_suggest
+    from alpha_audit.suggest.apply import apply_alpha, format_alpha
 
+    if output is not None:
+        check_suffix(fmt.value, output)
+        check_targets([output], overwrite=force)  # before the work, not after
     require_finite(alpha_max, "--alpha-max")
     require_finite(threshold, "--threshold")
     if (theme is None) != (iconset is None):
@@ -116,8 +120,8 @@ def suggest_command(
         precision=precision,
         threshold=threshold if threshold is not None else project.threshold,
     )
-    width = stdout_options().width if output is None else 100
-    emit(render_suggest(result, fmt, width=width), output, force)
+    options = stdout_options() if output is None else RenderOptions()
+    emit(fmt.renderer()(result, options), output, force)
     if apply:
         if result.alpha is None:
             raise UsageError("no safe alpha to apply: the policy already fails at alpha = 1")

@@ -9,9 +9,13 @@ increase outside [0, 1]) stand beside ours.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
+from rich.table import Table
+
 from alpha_audit.browser import ENGINES
+from alpha_audit.render.common import escape_markdown
 from alpha_audit.reproduce.browser import (
     PAPER_ICONS,
     PAPER_INSTANCES,
@@ -20,7 +24,13 @@ from alpha_audit.reproduce.browser import (
 )
 from alpha_audit.reproduce.runtime import BACKGROUNDS, CANVAS, ICON_SIZE, RuntimeResult
 
-__all__ = ["browser_json", "browser_markdown", "runtime_json", "runtime_markdown"]
+__all__ = [
+    "browser_json",
+    "browser_markdown",
+    "browser_tables",
+    "runtime_json",
+    "runtime_markdown",
+]
 
 
 def _finite(value: float) -> float | None:
@@ -102,7 +112,10 @@ def browser_markdown(result: BrowserValidationResult) -> list[str]:
         "",
     ]
     for e in engines:
-        lines.append(f"- {_label(e.engine)}: {e.version}; WebGL renderer {e.renderer}")
+        lines.append(
+            f"- {_label(e.engine)}: {escape_markdown(e.version)}; "
+            f"WebGL renderer {escape_markdown(e.renderer)}"
+        )
     return [*lines, ""]
 
 
@@ -165,3 +178,47 @@ def runtime_markdown(result: RuntimeResult) -> list[str]:
     if result.missing:
         lines += ["", "Not installed: " + ", ".join(_label(m) for m in result.missing) + "."]
     return [*lines, ""]
+
+
+def browser_tables(
+    browser: BrowserValidationResult | None,
+    runtime: RuntimeResult | None,
+    table: Callable[[str], Table],
+) -> list[Table]:
+    """Rich tables of the two experiments that ran, each made by ``table(title)``."""
+    tables = []
+    if browser is not None:
+        b = browser
+        t = table(f"Output validation in browsers, {b.icons} icons: instances, max error")
+        t.add_column("configuration", no_wrap=True)
+        for e in b.engines:
+            t.add_column(_label(e.engine), justify="right", no_wrap=True)
+        for k, first in enumerate(b.engines[0].results if b.engines else ()):
+            t.add_row(
+                first.configuration.label,
+                *(f"{e.results[k].instances:,}  {e.results[k].max_error}/255" for e in b.engines),
+            )
+        t.add_row("all", *(f"{e.instances:,}  {e.max_error}/255" for e in b.engines))
+        ok = b.max_error <= PAPER_MAX_ERROR
+        t.caption = (
+            f"all engines: {b.instances:,} instances (paper {PAPER_INSTANCES:,}), max error "
+            f"{b.max_error}/255 (paper {PAPER_MAX_ERROR}/255): "
+            + ("within" if ok else "OUTSIDE")
+            + ("" if not b.missing else f"; not installed: {', '.join(b.missing)}")
+        )
+        tables.append(t)
+    if runtime is not None:
+        r = runtime
+        s = r.settings
+        t = table(f"Runtime, {len(s.alphas)} coefficients x {s.rounds} rounds (relative)")
+        t.caption = (
+            f"{s.frames}-frame blocks; on software GL absolute times are not the paper's; "
+            "the claim is relative: no sustained increase outside [0, 1]"
+        )
+        for col in ("engine", "median ms/frame", "outside/inside [0,1]", "worst/inside"):
+            t.add_column(col, justify="left" if col == "engine" else "right", no_wrap=True)
+        for e in r.engines:
+            t.add_row(_label(e.engine), f"{min(e.median):.3f}-{max(e.median):.3f}",
+                      f"{e.outside_vs_inside:.3f}", f"{e.worst_vs_inside:.3f}")  # fmt: skip
+        tables.append(t)
+    return tables

@@ -33,6 +33,7 @@ from PIL import Image, ImageDraw
 from alpha_audit.browser import ENGINES, Browser
 from alpha_audit.browser.interface import BrowserError
 from alpha_audit.color.srgb import srgb_decode
+from alpha_audit.output import Output
 from alpha_audit.preview.html import mask_atlas
 from alpha_audit.reproduce.browser import PAPER_ICONS, load_validation_icons, run_engines
 from alpha_audit.reproduce.experiments import sweep_alphas
@@ -41,18 +42,21 @@ from alpha_audit.reproduce.grids import PAPER_SEED
 
 __all__ = [
     "BACKGROUNDS",
+    "RUNTIME_FIGURE",
     "EngineTiming",
     "RuntimeResult",
     "RuntimeSettings",
     "preview_shaders",
     "runtime",
     "runtime_figure",
+    "runtime_figure_output",
 ]
 
 # The paper's backgrounds are "warm light" and "cool dark" without values; these are ours
 # (encoded sRGB): a cream and a slate blue.
 BACKGROUNDS = {"warm light": "#faf3e0", "cool dark": "#1c2633"}
 CANVAS = (1280, 960)  # Appendix A.3
+RUNTIME_FIGURE = "runtime.png"  # what ``reproduce --out`` calls the figure
 ICON_SIZE = 48  # Appendix A.3
 _TEMPLATE = re.compile(r"const (VERTEX|FRAGMENT) = `(#version 300 es.*?)`;", re.DOTALL)
 
@@ -316,6 +320,11 @@ def _runtime_panel(draw: ImageDraw.ImageDraw, ox: int, timing: EngineTiming) -> 
                 draw.line((x, y, x, min(y + 3, y1)), fill=(90, 90, 90))
     draw.line([(px(a), py(v)) for a, v in zip(alphas, mid, strict=True)], fill=colour, width=2)
     draw.rectangle((x0, y0, x1, y1), outline="black")  # last: the band must not cover it
+
+
+def runtime_figure_output(result: RuntimeResult, path: Path) -> Output:
+    """The figure as an :class:`~alpha_audit.output.Output` for the one writer."""
+    return Output(path, lambda fh: runtime_figure(result).save(fh, format="PNG"))
 
 
 def runtime_figure(result: RuntimeResult) -> Image.Image:
