@@ -22,6 +22,7 @@ FLAGS: dict[str, str] = {
     "out_dir": "-o DIR",
     "html_path": "--html FILE",
     "baseline_document": "--write-baseline",
+    "icons": "--icons",
 }
 """Backticked phrase in a library message -> what the command line says instead."""
 
