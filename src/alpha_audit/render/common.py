@@ -24,10 +24,11 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from io import StringIO
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Protocol, TypeVar
+from typing import TYPE_CHECKING, Any, Literal, Protocol, TypeVar
 
 if TYPE_CHECKING:
     from rich.console import RenderableType
+    from rich.table import Table
 
 __all__ = [
     "SUFFIXES",
@@ -38,6 +39,10 @@ __all__ = [
     "dumps",
     "escape_html",
     "escape_markdown",
+    "fitted_table",
+    "wrap_name",
+    "name_column",
+    "number_column",
     "records",
     "shorten_names",
     "to_text",
@@ -270,3 +275,142 @@ def shorten_names(names: Sequence[str], limit: int = 3) -> str:
     """
     head = ", ".join(names[:limit])
     return head if len(names) <= limit else f"{head} +{len(names) - limit} more"
+
+
+@dataclass(frozen=True)
+class TableColumn:
+    """One column of a :func:`fitted_table`: a number (never cut) or a name (folds).
+
+    ``min_width`` is how narrow a name column may fold (9 keeps ``■ #rrggbb``
+    whole); a number column is always as wide as its widest cell.
+    """
+
+    header: str
+    number: bool
+    justify: Literal["left", "right"] = "left"
+    min_width: int = 1
+
+
+def number_column(header: str, justify: Literal["left", "right"] = "right") -> TableColumn:
+    """A column of figures (contrast, gain, alpha, hex, counts): never cut, never wrapped."""
+    return TableColumn(header, True, justify)
+
+
+def name_column(header: str, min_width: int = 1) -> TableColumn:
+    """A column of names from input files: wraps after spaces and separators, folds long words."""
+    return TableColumn(header, False, "left", min_width)
+
+
+# Where a name may break besides a space: after a separator, so
+# "surface-container-lowest" wraps as "surface-container-" / "lowest".
+_BREAK_AFTER = re.compile(r"[\s\-_/.:]+")
+
+
+def wrap_name(text: str, width: int) -> list[str]:
+    """``text`` in lines of at most ``width`` cells, broken after spaces and separators.
+
+    A piece longer than ``width`` is folded; nothing is ever dropped.
+
+    >>> wrap_name("surface-container-lowest", 19)
+    ['surface-container-', 'lowest']
+    >>> wrap_name("abcdef", 4)
+    ['abcd', 'ef']
+    """
+    from rich.cells import cell_len
+
+    width = max(width, 1)
+    pieces, start = [], 0
+    for match in _BREAK_AFTER.finditer(text):
+        pieces.append(text[start : match.end()])
+        start = match.end()
+    if start < len(text):
+        pieces.append(text[start:])
+    lines: list[str] = []
+    line = ""
+    for piece in pieces:
+        if line and cell_len((line + piece).rstrip()) > width:
+            lines.append(line.rstrip())
+            line = ""
+        while cell_len(piece.rstrip()) > width:  # longer than a line: fold it
+            cut = width
+            while cell_len(piece[:cut]) > width:
+                cut -= 1
+            lines.append(piece[:cut])
+            piece = piece[cut:]
+        line += piece
+    if line.strip() or not lines:
+        lines.append(line.rstrip())
+    return lines
+
+
+class _Name:
+    """A cell that wraps after spaces and separators at whatever width rich gives it."""
+
+    def __init__(self, text: Any, min_width: int) -> None:
+        from rich.text import Text
+
+        self.text = text if isinstance(text, Text) else Text(str(text))
+        self.min_width = min_width
+
+    def __rich_measure__(self, console: Any, options: Any) -> Any:
+        from rich.cells import cell_len
+        from rich.measure import Measurement
+
+        full = cell_len(self.text.plain)
+        return Measurement(min(full, self.min_width), full)
+
+    def __rich_console__(self, console: Any, options: Any) -> Any:
+        from rich.text import Text
+
+        plain, offset = self.text.plain, 0
+        for line in wrap_name(plain, options.max_width):
+            start = plain.index(line, offset) if line else offset
+            yield self.text[start : start + len(line)] if line else Text("")
+            offset = start + len(line)
+
+
+def fitted_table(
+    columns: Sequence[TableColumn], rows: Iterable[Sequence[Any]], **table_options: Any
+) -> Table:
+    """A rich table that gives way in its name columns only.
+
+    Rich shares out a too-narrow width by shrinking wrapping columns first and
+    then, as a last resort, every column with an ellipsis, which is how a hex
+    code became ``#10b9…``.  Here figures are ``no_wrap`` with a minimum width
+    of their widest cell (so they are never shrunk) and names fold, so at any
+    width where the figures fit, every figure is printed whole.  Cells that are
+    strings become literal :class:`~rich.text.Text` (names are never markup).
+    """
+    from rich.cells import cell_len
+    from rich.table import Table
+    from rich.text import Text
+
+    body = [[c if isinstance(c, Text) else Text(str(c)) for c in row] for row in rows]
+    table_options.setdefault("padding", (0, 1, 0, 0))  # one space between columns
+    table = Table(**table_options)
+    for k, column in enumerate(columns):
+        if column.number:
+            widest = max((cell_len(row[k].plain) for row in body if k < len(row)), default=1)
+            table.add_column(
+                column.header,
+                justify=column.justify,
+                no_wrap=True,
+                min_width=max(widest, cell_len(column.header)),
+            )
+        else:
+            table.add_column(
+                column.header,
+                justify=column.justify,
+                overflow="fold",
+                min_width=column.min_width,
+            )
+    for row in body:
+        table.add_row(
+            *(
+                cell
+                if k >= len(columns) or columns[k].number
+                else _Name(cell, columns[k].min_width)
+                for k, cell in enumerate(row)
+            )
+        )
+    return table
