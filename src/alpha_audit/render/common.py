@@ -40,12 +40,12 @@ __all__ = [
     "escape_html",
     "escape_markdown",
     "fitted_table",
-    "wrap_name",
     "name_column",
     "number_column",
     "records",
     "shorten_names",
     "to_text",
+    "wrap_name",
 ]
 
 
