@@ -88,8 +88,8 @@ def test_sarif_points_at_icon_and_manifest_line() -> None:
     assert doc["version"] == "2.1.0"
     run = doc["runs"][0]
     ids = [r["id"] for r in run["tool"]["driver"]["rules"]]
-    loss = next(r for r in run["results"] if r["ruleId"] == "loss")
-    assert ids[loss["ruleIndex"]] == "loss" and loss["level"] == "error"
+    loss = next(r for r in run["results"] if r["ruleId"] == "AA001")
+    assert ids[loss["ruleIndex"]] == "AA001" and loss["level"] == "error"
     uris = [
         (
             loc["physicalLocation"]["artifactLocation"]["uri"],
@@ -97,15 +97,15 @@ def test_sarif_points_at_icon_and_manifest_line() -> None:
         )
         for loc in loss["locations"]
     ]
-    assert uris == [("icons/deep.svg", None), ("icons/iconset.yaml", 7), ("icons/iconset.yaml", 8)]
+    assert uris == [("icons/iconset.yaml", 7), ("icons/iconset.yaml", 8), ("icons/deep.svg", 1)]
     assert loss["properties"]["canvas"] == "sun" and loss["partialFingerprints"]
-    assert run["originalUriBaseIds"]["SRCROOT"]["uri"] == "file:///repo/"
+    assert "uri" not in run["originalUriBaseIds"]["%SRCROOT%"]  # no local absolute path
 
 
 def test_sarif_suppresses_exempted_findings() -> None:
     policy = Policy(exemptions=(Exemption(reason="brand yellow", icon="deep"),))
     run = json.loads(render_check(_report(policy=policy), "sarif", OPTIONS))["runs"][0]
-    (loss,) = [r for r in run["results"] if r["ruleId"] == "loss"]
+    (loss,) = [r for r in run["results"] if r["ruleId"] == "AA001"]
     assert loss["suppressions"] == [{"kind": "external", "justification": "brand yellow"}]
 
 
@@ -121,7 +121,7 @@ def test_github_annotations_cannot_be_injected() -> None:
     text = render_check(_report(HOSTILE), "github", OPTIONS)
     lines = text.splitlines()
     assert all(line.startswith(("::error ", "::notice ", "::warning ")) for line in lines)
-    assert lines[0].startswith("::error file=icons/deep.svg,title=alpha-audit loss::evil")
+    assert lines[0].startswith("::error file=icons/iconset.yaml,line=7,title=alpha-audit loss::evil")
     assert "%0A::error::x%250A" in lines[0]
     assert escape_property("a:b,c") == "a%3Ab%2Cc"
 
