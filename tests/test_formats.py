@@ -111,9 +111,9 @@ def test_sarif_suppresses_exempted_findings() -> None:
 
 def test_markdown_escapes_cells() -> None:
     text = render_check(_report(HOSTILE), "markdown", OPTIONS)
-    row = next(line for line in text.splitlines() if line.startswith("| loss"))
-    assert row.count(" | ") == 4  # five cells: the pipe in the name is escaped
-    assert "<b>" not in text and "@team" not in text and "&#64;team" in text
+    row = next(line for line in text.splitlines() if " | loss | " in line)
+    assert row.count(" | ") == 5  # six cells: the pipe in the name is escaped
+    assert "<b>@" not in text and "@team" not in text and "&#64;team" in text
     assert escape_cell("a|b\nc") == "a\\|b c"
 
 
@@ -121,7 +121,7 @@ def test_github_annotations_cannot_be_injected() -> None:
     text = render_check(_report(HOSTILE), "github", OPTIONS)
     lines = text.splitlines()
     assert all(line.startswith(("::error ", "::notice ", "::warning ")) for line in lines)
-    assert lines[0].startswith("::error file=icons/iconset.yaml,line=7,title=alpha-audit loss::evil")
+    assert lines[0].startswith("::error file=icons/deep.svg,title=alpha-audit loss::evil")
     assert "%0A::error::x%250A" in lines[0]
     assert escape_property("a:b,c") == "a%3Ab%2Cc"
 

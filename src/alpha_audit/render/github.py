@@ -46,12 +46,8 @@ def _annotation(f: Finding, base: Path | None) -> str:
     message = f"{where} ({f.theme}): {f.message}"
     if manifest and f.lines:
         message += f" [colour/alpha set in {manifest} line {', '.join(map(str, f.lines))}]"
-    # The manifest line that sets the colour or alpha is where the fix goes (and
-    # is more often in the pull request's diff than the drawing); else the SVG.
-    if manifest and f.lines:
-        file, line = manifest, f.lines[0]
-    else:
-        file, line = (display_path(f.files[0], base) if f.files else manifest), None
+    file = display_path(f.files[0], base) if f.files else manifest
+    line = None if f.files else (f.lines[0] if f.lines else None)
     return _command("error", message, file=file, line=line, title=f"alpha-audit {f.rule.value}")
 
 
