@@ -191,3 +191,33 @@ def test_wrap_name_breaks_after_separators_and_drops_nothing(
     assert out == lines
     assert all(len(line) <= width for line in out)
     assert "".join(out).replace(" ", "") == text.replace(" ", "")
+
+
+@cache
+def reproduction() -> Any:
+    from alpha_audit.reproduce.run import Experiment, reproduce
+
+    theme = load_theme(ROOT / "themes" / "material3.yaml")
+    experiments = [Experiment.FULL_GAMUT, Experiment.SWEEP, Experiment.PALETTE]
+    return reproduce(theme, only=experiments, quick=True)
+
+
+@pytest.mark.parametrize("width", WIDTHS)
+def test_reproduce_tables_keep_every_figure_whole(width: int) -> None:
+    from alpha_audit.reproduce.report import ReproduceFormat
+
+    run = reproduction()
+    tokens: set[str] = set()
+    for fg in run.full_gamut:
+        for c in (fg.total, fg.group("light"), fg.group("dark")):
+            tokens |= {
+                f"{v:.4f}"
+                for v in (c.increase_pct, c.decrease_pct, c.unchanged_pct, c.mean_change,
+                          c.newly_reach_pct, c.mean_difference_change, c.mean_exclusion_change)
+            }  # fmt: skip
+    pal = run.palette
+    tokens |= {f"{n:,} of {pal.random_combinations:,}" for n in pal.random_collisions.values()}
+    tokens |= {str(n) for n in (*pal.smaller.values(), *pal.collisions.values())}
+    text = ReproduceFormat.TABLE.renderer()(run, RenderOptions(width=width))
+    assert max(map(len, text.splitlines())) <= width
+    assert not _missing(tokens, text)
