@@ -143,8 +143,8 @@ def _numbers(f: Finding) -> str:
         )
     if "delta_e" in n:
         return f"ΔE00 {n['delta_e']:.2f} (α=1: {n['delta_e_ref']:.2f}) < {n['min_delta_e']:g}"
-    if "output" in n:
-        return f"{n['sources']} → {n['output']}"
+    if "output" in n:  # the colours are in the colour column already
+        return f"all give {n['output']}" + ("" if n.get("new") != "false" else " (also at α=1)")
     return f.message
 
 
@@ -255,7 +255,7 @@ def render_markdown(
         )
     budget.add(MARKER, head, "", f"Rules: {rules}; max loss {gate.policy.max_loss:g}.", "")
     budget.add(
-        "| theme | icon set | icons | α | verdict | failing groups | newly passing "
+        "| theme | icon set | icons | α | verdict | failing groups | newly passing icon×canvas "
         "| collisions | unrendered |",
         "|---|---|--:|--:|---|--:|--:|--:|--:|",
     )
