@@ -289,6 +289,7 @@ class TableColumn:
     number: bool
     justify: Literal["left", "right"] = "left"
     min_width: int = 1
+    shrink_first: bool = False
 
 
 def number_column(header: str, justify: Literal["left", "right"] = "right") -> TableColumn:
@@ -296,9 +297,13 @@ def number_column(header: str, justify: Literal["left", "right"] = "right") -> T
     return TableColumn(header, True, justify)
 
 
-def name_column(header: str, min_width: int = 1) -> TableColumn:
-    """A column of names from input files: wraps after spaces and separators, folds long words."""
-    return TableColumn(header, False, "left", min_width)
+def name_column(header: str, min_width: int = 1, *, shrink_first: bool = False) -> TableColumn:
+    """A column of names from input files: wraps after spaces and separators, folds long words.
+
+    ``shrink_first`` marks a column that gives way before the others (an icon
+    list), so the row's key (a canvas name) keeps its line.
+    """
+    return TableColumn(header, False, "left", min_width, shrink_first)
 
 
 # Where a name may break besides a space: after a separator, so
@@ -369,6 +374,49 @@ class _Name:
             offset = start + len(line)
 
 
+def _table_class() -> type[Table]:
+    """A rich Table whose ``shrink_first`` columns give their width to the other names.
+
+    Rich narrows the widest wrapping column first, so a long canvas name wrapped
+    while an icon list beside it kept its line.  After rich's own sharing out,
+    width moves from the ``shrink_first`` columns (down to their minimum) to the
+    name columns still narrower than their longest cell; the total is unchanged.
+    """
+    from rich.table import Table
+
+    class FittedTable(Table):
+        shrink_first: list[int]
+
+        def _calculate_column_widths(self, console: Any, options: Any) -> list[int]:
+            widths = list(super()._calculate_column_widths(console, options))
+            donors = [k for k in self.shrink_first if k < len(widths)]
+            if not donors:
+                return widths
+            wanted = [
+                max(
+                    (self._measure_column(console, options, c).maximum - self._get_padding_width(k))
+                    if k not in donors
+                    else 0,
+                    0,
+                )
+                for k, c in enumerate(self.columns)
+            ]
+            for k, column in enumerate(self.columns):
+                if k in donors or column.no_wrap:
+                    continue
+                need = wanted[k] - widths[k] + self._get_padding_width(k)
+                for d in donors:
+                    floor = (self.columns[d].min_width or 1) + self._get_padding_width(d)
+                    give = min(max(need, 0), widths[d] - floor)
+                    if give > 0:
+                        widths[d] -= give
+                        widths[k] += give
+                        need -= give
+            return widths
+
+    return FittedTable
+
+
 def fitted_table(
     columns: Sequence[TableColumn], rows: Iterable[Sequence[Any]], **table_options: Any
 ) -> Table:
@@ -382,12 +430,12 @@ def fitted_table(
     strings become literal :class:`~rich.text.Text` (names are never markup).
     """
     from rich.cells import cell_len
-    from rich.table import Table
     from rich.text import Text
 
     body = [[c if isinstance(c, Text) else Text(str(c)) for c in row] for row in rows]
     table_options.setdefault("padding", (0, 1, 0, 0))  # one space between columns
-    table = Table(**table_options)
+    table = _table_class()(**table_options)
+    table.shrink_first = [k for k, c in enumerate(columns) if c.shrink_first]  # type: ignore[attr-defined]
     for k, column in enumerate(columns):
         if column.number:
             widest = max((cell_len(row[k].plain) for row in body if k < len(row)), default=1)

@@ -109,7 +109,7 @@ def _findings(result: AuditResult) -> list[RenderableType]:
         columns = [
             number_column(name, "right" if name.startswith("contrast") else "left")
             if name in figures
-            else name_column(name, name_widths.get(name, 6))
+            else name_column(name, name_widths.get(name, 6), shrink_first=name == "icons")
             for name in header
         ]
         table = fitted_table(

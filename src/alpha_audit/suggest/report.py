@@ -156,7 +156,7 @@ def render_table(result: SuggestResult, options: RenderOptions) -> str:
             name_column("limited by", min_width=6),
             number_column("unsafe at"),
             *([name_column("on canvas", min_width=8)] if with_canvas else []),
-            name_column("icons", min_width=6),
+            name_column("icons", min_width=6, shrink_first=True),
         ]
         return fitted_table(
             columns,
