@@ -55,7 +55,18 @@ def _table(themes: tuple[tuple[str, Theme], ...]) -> Table:
     ]
     columns = [name_column("theme", 6), name_column("canvas", 8)]
     columns += [number_column("colour", "left"), name_column("mode", 5)]
-    return fitted_table(columns, rows, box=box.SIMPLE_HEAD, pad_edge=False, collapse_padding=True)
+    ends, n = set(), -1
+    for _, theme in themes:
+        n += len(theme.canvases)
+        ends.add(n)
+    return fitted_table(
+        columns,
+        rows,
+        section_ends=frozenset(ends),
+        box=box.SIMPLE_HEAD,
+        pad_edge=False,
+        collapse_padding=True,
+    )
 
 
 def themes_command(

@@ -418,7 +418,11 @@ def _table_class() -> type[Table]:
 
 
 def fitted_table(
-    columns: Sequence[TableColumn], rows: Iterable[Sequence[Any]], **table_options: Any
+    columns: Sequence[TableColumn],
+    rows: Iterable[Sequence[Any]],
+    *,
+    section_ends: frozenset[int] = frozenset(),
+    **table_options: Any,
 ) -> Table:
     """A rich table that gives way in its name columns only.
 
@@ -428,6 +432,7 @@ def fitted_table(
     of their widest cell (so they are never shrunk) and names fold, so at any
     width where the figures fit, every figure is printed whole.  Cells that are
     strings become literal :class:`~rich.text.Text` (names are never markup).
+    A rule is drawn under the rows whose index is in ``section_ends``.
     """
     from rich.cells import cell_len
     from rich.text import Text
@@ -452,13 +457,14 @@ def fitted_table(
                 overflow="fold",
                 min_width=column.min_width,
             )
-    for row in body:
+    for n, row in enumerate(body):
         table.add_row(
             *(
                 cell
                 if k >= len(columns) or columns[k].number
                 else _Name(cell, columns[k].min_width)
                 for k, cell in enumerate(row)
-            )
+            ),
+            end_section=n in section_ends,
         )
     return table
