@@ -8,12 +8,12 @@ from typing import Annotated, Any, assert_never
 import typer
 from rich import box
 from rich.table import Table
-from rich.text import Text
 
 from alpha_audit.bundled import load_bundled_themes
 from alpha_audit.cli.console import emit, stdout_console
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.model import Theme
+from alpha_audit.render.common import fitted_table, name_column, number_column
 from alpha_audit.render.json import dumps
 
 __all__ = ["ThemesFormat", "themes_command", "themes_document"]
@@ -47,19 +47,26 @@ def themes_document(themes: tuple[tuple[str, Theme], ...]) -> dict[str, Any]:
 
 
 def _table(themes: tuple[tuple[str, Theme], ...]) -> Table:
-    table = Table(box=box.SIMPLE_HEAD, pad_edge=False, collapse_padding=True)
-    for column in ("theme", "canvas", "colour", "mode"):
-        table.add_column(column, no_wrap=True)
-    for name, theme in themes:
-        for i, canvas in enumerate(theme.canvases):
-            table.add_row(
-                Text(name if i == 0 else ""),
-                Text(canvas.name),
-                Text(canvas.color),
-                Text(str(canvas.mode)),
-                end_section=i == len(theme.canvases) - 1,
-            )
-    return table
+    """Names wrap, hex codes never cut (render.common.fitted_table)."""
+    rows = [
+        (name if i == 0 else "", canvas.name, canvas.color, str(canvas.mode))
+        for name, theme in themes
+        for i, canvas in enumerate(theme.canvases)
+    ]
+    columns = [name_column("theme", 6), name_column("canvas", 8)]
+    columns += [number_column("colour", "left"), name_column("mode", 5)]
+    ends, n = set(), -1
+    for _, theme in themes:
+        n += len(theme.canvases)
+        ends.add(n)
+    return fitted_table(
+        columns,
+        rows,
+        section_ends=frozenset(ends),
+        box=box.SIMPLE_HEAD,
+        pad_edge=False,
+        collapse_padding=True,
+    )
 
 
 def themes_command(

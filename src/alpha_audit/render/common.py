@@ -24,10 +24,11 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from io import StringIO
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Protocol, TypeVar
+from typing import TYPE_CHECKING, Any, Literal, Protocol, TypeVar
 
 if TYPE_CHECKING:
     from rich.console import RenderableType
+    from rich.table import Table
 
 __all__ = [
     "SUFFIXES",
@@ -38,9 +39,13 @@ __all__ = [
     "dumps",
     "escape_html",
     "escape_markdown",
+    "fitted_table",
+    "name_column",
+    "number_column",
     "records",
     "shorten_names",
     "to_text",
+    "wrap_name",
 ]
 
 
@@ -270,3 +275,196 @@ def shorten_names(names: Sequence[str], limit: int = 3) -> str:
     """
     head = ", ".join(names[:limit])
     return head if len(names) <= limit else f"{head} +{len(names) - limit} more"
+
+
+@dataclass(frozen=True)
+class TableColumn:
+    """One column of a :func:`fitted_table`: a number (never cut) or a name (folds).
+
+    ``min_width`` is how narrow a name column may fold (9 keeps ``■ #rrggbb``
+    whole); a number column is always as wide as its widest cell.
+    """
+
+    header: str
+    number: bool
+    justify: Literal["left", "right"] = "left"
+    min_width: int = 1
+    shrink_first: bool = False
+
+
+def number_column(header: str, justify: Literal["left", "right"] = "right") -> TableColumn:
+    """A column of figures (contrast, gain, alpha, hex, counts): never cut, never wrapped."""
+    return TableColumn(header, True, justify)
+
+
+def name_column(header: str, min_width: int = 1, *, shrink_first: bool = False) -> TableColumn:
+    """A column of names from input files: wraps after spaces and separators, folds long words.
+
+    ``shrink_first`` marks a column that gives way before the others (an icon
+    list), so the row's key (a canvas name) keeps its line.
+    """
+    return TableColumn(header, False, "left", min_width, shrink_first)
+
+
+# Where a name may break besides a space: after a separator, so
+# "surface-container-lowest" wraps as "surface-container-" / "lowest".
+_BREAK_AFTER = re.compile(r"[\s\-_/.:]+")
+
+
+def wrap_name(text: str, width: int) -> list[str]:
+    """``text`` in lines of at most ``width`` cells, broken after spaces and separators.
+
+    A piece longer than ``width`` is folded; nothing is ever dropped.
+
+    >>> wrap_name("surface-container-lowest", 19)
+    ['surface-container-', 'lowest']
+    >>> wrap_name("abcdef", 4)
+    ['abcd', 'ef']
+    """
+    from rich.cells import cell_len
+
+    width = max(width, 1)
+    pieces, start = [], 0
+    for match in _BREAK_AFTER.finditer(text):
+        pieces.append(text[start : match.end()])
+        start = match.end()
+    if start < len(text):
+        pieces.append(text[start:])
+    lines: list[str] = []
+    line = ""
+    for piece in pieces:
+        if line and cell_len((line + piece).rstrip()) > width:
+            lines.append(line.rstrip())
+            line = ""
+        while cell_len(piece.rstrip()) > width:  # longer than a line: fold it
+            cut = width
+            while cell_len(piece[:cut]) > width:
+                cut -= 1
+            lines.append(piece[:cut])
+            piece = piece[cut:]
+        line += piece
+    if line.strip() or not lines:
+        lines.append(line.rstrip())
+    return lines
+
+
+class _Name:
+    """A cell that wraps after spaces and separators at whatever width rich gives it."""
+
+    def __init__(self, text: Any, min_width: int) -> None:
+        from rich.text import Text
+
+        self.text = text if isinstance(text, Text) else Text(str(text))
+        self.min_width = min_width
+
+    def __rich_measure__(self, console: Any, options: Any) -> Any:
+        from rich.cells import cell_len
+        from rich.measure import Measurement
+
+        full = cell_len(self.text.plain)
+        return Measurement(min(full, self.min_width), full)
+
+    def __rich_console__(self, console: Any, options: Any) -> Any:
+        from rich.text import Text
+
+        plain, offset = self.text.plain, 0
+        for line in wrap_name(plain, options.max_width):
+            start = plain.index(line, offset) if line else offset
+            yield self.text[start : start + len(line)] if line else Text("")
+            offset = start + len(line)
+
+
+def _table_class() -> type[Table]:
+    """A rich Table whose ``shrink_first`` columns give their width to the other names.
+
+    Rich narrows the widest wrapping column first, so a long canvas name wrapped
+    while an icon list beside it kept its line.  After rich's own sharing out,
+    width moves from the ``shrink_first`` columns (down to their minimum) to the
+    name columns still narrower than their longest cell; the total is unchanged.
+    """
+    from rich.table import Table
+
+    class FittedTable(Table):
+        shrink_first: list[int]
+
+        def _calculate_column_widths(self, console: Any, options: Any) -> list[int]:
+            widths = list(super()._calculate_column_widths(console, options))
+            donors = [k for k in self.shrink_first if k < len(widths)]
+            if not donors:
+                return widths
+            wanted = [
+                max(
+                    (self._measure_column(console, options, c).maximum - self._get_padding_width(k))
+                    if k not in donors
+                    else 0,
+                    0,
+                )
+                for k, c in enumerate(self.columns)
+            ]
+            for k, column in enumerate(self.columns):
+                if k in donors or column.no_wrap:
+                    continue
+                need = wanted[k] - widths[k] + self._get_padding_width(k)
+                for d in donors:
+                    floor = (self.columns[d].min_width or 1) + self._get_padding_width(d)
+                    give = min(max(need, 0), widths[d] - floor)
+                    if give > 0:
+                        widths[d] -= give
+                        widths[k] += give
+                        need -= give
+            return widths
+
+    return FittedTable
+
+
+def fitted_table(
+    columns: Sequence[TableColumn],
+    rows: Iterable[Sequence[Any]],
+    *,
+    section_ends: frozenset[int] = frozenset(),
+    **table_options: Any,
+) -> Table:
+    """A rich table that gives way in its name columns only.
+
+    Rich shares out a too-narrow width by shrinking wrapping columns first and
+    then, as a last resort, every column with an ellipsis, which is how a hex
+    code became ``#10b9…``.  Here figures are ``no_wrap`` with a minimum width
+    of their widest cell (so they are never shrunk) and names fold, so at any
+    width where the figures fit, every figure is printed whole.  Cells that are
+    strings become literal :class:`~rich.text.Text` (names are never markup).
+    A rule is drawn under the rows whose index is in ``section_ends``.
+    """
+    from rich.cells import cell_len
+    from rich.text import Text
+
+    body = [[c if isinstance(c, Text) else Text(str(c)) for c in row] for row in rows]
+    table_options.setdefault("padding", (0, 1, 0, 0))  # one space between columns
+    table = _table_class()(**table_options)
+    table.shrink_first = [k for k, c in enumerate(columns) if c.shrink_first]  # type: ignore[attr-defined]
+    for k, column in enumerate(columns):
+        if column.number:
+            widest = max((cell_len(row[k].plain) for row in body if k < len(row)), default=1)
+            table.add_column(
+                column.header,
+                justify=column.justify,
+                no_wrap=True,
+                min_width=max(widest, cell_len(column.header)),
+            )
+        else:
+            table.add_column(
+                column.header,
+                justify=column.justify,
+                overflow="fold",
+                min_width=column.min_width,
+            )
+    for n, row in enumerate(body):
+        table.add_row(
+            *(
+                cell
+                if k >= len(columns) or columns[k].number
+                else _Name(cell, columns[k].min_width)
+                for k, cell in enumerate(row)
+            ),
+            end_section=n in section_ends,
+        )
+    return table

@@ -1,4 +1,4 @@
-"""GitHub Actions workflow commands: an annotation on each offending icon file.
+"""GitHub Actions workflow commands: annotations on the offending files, within GitHub's limits.
 
 ``::error file=...,title=...::message`` lines, which the Actions runner turns
 into annotations on the pull request's diff.  Values are escaped as the
@@ -14,7 +14,7 @@ from alpha_audit.gate import CheckReport, Finding
 from alpha_audit.render.common import RenderOptions, display_path
 from alpha_audit.safe_text import safe_text
 
-__all__ = ["escape_data", "escape_property", "render_report"]
+__all__ = ["MAX_ANNOTATIONS", "escape_data", "escape_property", "render_report"]
 
 
 def escape_data(text: str) -> str:
@@ -53,26 +53,68 @@ def _annotation(f: Finding, base: Path | None) -> str:
     return _command("error", message, file=file, line=line, title=f"alpha-audit {f.rule.value}")
 
 
+# GitHub shows at most 10 error and 10 warning annotations per step and drops
+# the rest without a word (actions/toolkit#734; GitHub Docs, "Workflow commands
+# for GitHub Actions", annotation limits).  One of each is kept for the roll-up.
+MAX_ANNOTATIONS = 10
+
+
+def _capped(level: str, annotations: list[str], rollup: str) -> list[str]:
+    """At most MAX_ANNOTATIONS lines of ``level``: the first, then ``rollup`` naming the rest."""
+    if len(annotations) <= MAX_ANNOTATIONS:
+        return annotations
+    kept = MAX_ANNOTATIONS - 1
+    left_out = len(annotations) - kept
+    message = rollup.format(n=left_out)
+    return [
+        *annotations[:kept],
+        _command(level, message, file=None, line=None, title="alpha-audit"),
+    ]
+
+
 def render_report(report: CheckReport, options: RenderOptions) -> str:
-    """One annotation per failing finding, warnings for unrenderable icons, a summary notice."""
+    """Annotations GitHub displays: failures and warnings each capped at 10, with a roll-up.
+
+    Up to 9 failing findings (10 when they fit) are annotated on their files;
+    the last error line is the verdict, naming how many findings were left out
+    (the job summary, written from ``--format markdown``, lists them all).
+    Warnings for unrenderable icons are capped the same way.
+    """
     gate = report.gate
-    lines = [_annotation(f, options.base) for f in gate.failures]
-    for w in gate.warnings:
-        lines.append(
-            _command(
-                "warning",
-                f"{', '.join(w.icons)}: {w.message}",
-                file=display_path(w.files[0], options.base) if w.files else None,
-                line=None,
-                title="alpha-audit could not render this icon",
-            )
+    errors = [_annotation(f, options.base) for f in gate.failures]
+    warnings = [
+        _command(
+            "warning",
+            f"{', '.join(w.icons)}: {w.message}",
+            file=display_path(w.files[0], options.base) if w.files else None,
+            line=None,
+            title="alpha-audit could not render this icon",
         )
+        for w in gate.warnings
+    ]
+    lines: list[str] = []
     if gate.passed:
         summary = f"gate passed ({len(report.audits)} audit(s))"
         lines.append(_command("notice", summary, file=None, line=None, title="alpha-audit"))
     else:
         counts = ", ".join(f"{n} {rule}" for rule, n in gate.counts().items())
-        lines.append(
-            _command("error", f"gate failed: {counts}", file=None, line=None, title="alpha-audit")
+        # The verdict is an error line too: the findings get the other nine.
+        shown = errors if len(errors) < MAX_ANNOTATIONS else errors[: MAX_ANNOTATIONS - 1]
+        verdict = f"gate failed: {counts}"
+        if len(shown) < len(errors):
+            verdict += (
+                f"; {len(errors) - len(shown)} more finding(s) not annotated "
+                "(GitHub shows 10 per step): see the job summary"
+            )
+        lines += shown
+        lines.append(_command("error", verdict, file=None, line=None, title="alpha-audit"))
+    lines = (
+        _capped(
+            "warning",
+            warnings,
+            "{n} more icon(s) could not be rendered (GitHub shows 10 warnings per step): "
+            "see the job summary",
         )
+        + lines
+    )
     return "\n".join(lines) + "\n"

@@ -1,18 +1,138 @@
-"""Markdown: a summary fit for a pull-request comment or a CI step summary.
+"""Markdown: a pull-request comment (and CI job summary) a reviewer can act on.
 
-Every name that reaches a table cell comes from files a pull request can
-change, so it is escaped: Markdown and HTML punctuation, pipes, line breaks
-and ``@`` (which would mention someone).
+Layout: a hidden marker (:data:`MARKER`, so a bot updates one sticky comment),
+a headline verdict, one summary row per audit, then per audit (theme x icon
+set) a ``<details>`` section with the failing groups, each a colour (role) on
+a canvas under one rule, its icons shortened to a count and the first names,
+and its fix; then what improved (newly passing), exemptions, the baseline and
+icons that could not be rendered.  The whole text stays within GitHub's
+comment limit (:data:`COMMENT_LIMIT`); what is left out is counted and the
+reader is pointed at the full report.
+
+The fix text comes from a hook (:data:`FixHook`: a finding in, an optional
+sentence out).  :func:`safe_alpha_fixes` fills in the largest safe alpha for
+the finding's colour from :func:`alpha_audit.suggest.suggest`; a richer hook
+(smallest alpha reaching the threshold, nearest passing colour) plugs in via
+:func:`render_markdown`'s ``fix`` argument.
+
+Every name comes from files a pull request can change, so it is escaped
+(:func:`~alpha_audit.render.common.escape_markdown`).
 """
 
 from __future__ import annotations
 
+import re
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
 from alpha_audit.gate import CheckReport, Finding
-from alpha_audit.render.common import RenderOptions, escape_markdown
+from alpha_audit.policy import Rule
+from alpha_audit.render.common import RenderOptions, escape_markdown, shorten_names
 
-__all__ = ["MAX_ROWS", "render_report"]
+if TYPE_CHECKING:
+    from alpha_audit.audit import AuditResult
+    from alpha_audit.suggest.engine import SuggestResult
 
-MAX_ROWS = 100  # failures listed in full; the JSON and SARIF reports have every one
+__all__ = [
+    "COMMENT_LIMIT",
+    "MARKER",
+    "FixHook",
+    "no_fix",
+    "render_markdown",
+    "render_report",
+    "safe_alpha_fixes",
+]
+
+# GitHub refuses issue and pull-request comments longer than 65,536 characters
+# (REST API "Create an issue comment": "body is too long (maximum is 65536
+# characters)").  The job summary allows 1 MiB, so one text fits both.
+COMMENT_LIMIT = 65_536
+MARKER = "<!-- alpha-audit -->"  # finds the sticky comment to update (action.yml)
+_NAMES = 3  # icon names shown per group; the JSON report has them all
+_NAME = 100  # characters of a theme or icon-set name in a <details> summary
+_RESERVE = 1_000  # room kept for the closing lines and the "left out" note
+_FRAME = 600  # room kept per audit for its <details> lines and summary (names are capped)
+
+FixHook = Callable[[Finding], "str | None"]
+"""A finding in, a sentence saying how to fix it out (``None``: nothing to suggest)."""
+
+
+def no_fix(finding: Finding) -> str | None:
+    """The hook that suggests nothing."""
+    return None
+
+
+_CONTRAST_RULES = frozenset({Rule.LOSS, Rule.BELOW_THRESHOLD, Rule.NEWLY_FAILING})
+
+
+def safe_alpha_fixes(report: CheckReport) -> FixHook:
+    """A hook naming the largest safe alpha for the finding's colour.
+
+    One :func:`~alpha_audit.suggest.suggest` run per audit and rule that has a
+    failing finding, computed on first use, at the alphas and threshold of that
+    audit, with the gate's policy narrowed to the finding's rule (so a colour
+    that fails the threshold at every alpha does not hide the answer for a
+    collision).  Collisions and separations get the largest safe set-wide alpha.
+    """
+    audits = {(r.theme.name, r.iconset.name): r for r in report.audits}
+    cache: dict[tuple[str, str, Rule], SuggestResult | None] = {}
+
+    def answer(finding: Finding) -> SuggestResult | None:
+        key = (finding.theme, finding.iconset, finding.rule)
+        if key not in cache:
+            result = audits.get(key[:2])
+            cache[key] = None if result is None else _suggest(result, report, finding.rule)
+        return cache[key]
+
+    def fix(finding: Finding) -> str | None:
+        if finding.rule is Rule.UNRENDERABLE:
+            return "fix the SVG file or remove the icon"
+        suggested = answer(finding)
+        if suggested is None:
+            return None
+        p = suggested.precision
+        if finding.rule in _CONTRAST_RULES:
+            icons = set(finding.icons)
+            for c in suggested.per_color:
+                if icons & set(c.icons):
+                    if c.safe.alpha is None:
+                        rule = finding.rule.value
+                        return f"not even α=1 passes {rule} for {c.color}: change the colour"
+                    return f"{c.color}: largest safe alpha {c.safe.alpha:.{p}f}"
+            return None
+        overall = suggested.overall.alpha
+        if overall is None:
+            return "not even α=1 is safe: move the colours apart"
+        return f"largest safe set-wide alpha {overall:.{p}f}, or move the colours apart"
+
+    return fix
+
+
+def _suggest(result: AuditResult, report: CheckReport, rule: Rule) -> SuggestResult:
+    from dataclasses import replace
+
+    from alpha_audit.suggest import suggest
+
+    # The audit's icon set already carries a command-line alpha and leaves out
+    # icons that did not render: the answer is for the set as audited.
+    policy = replace(report.gate.policy, rules=frozenset({rule}))
+    return suggest(result.theme, result.iconset, policy, threshold=result.threshold)
+
+
+# ------------------------------------------------------------------ grouping
+
+
+@dataclass
+class _Group:
+    """Findings of one rule for one colour (or colour set) on one canvas."""
+
+    rule: Rule
+    colour: str
+    canvas: str
+    numbers: str
+    first: Finding
+    icons: list[str] = field(default_factory=list)
 
 
 def _numbers(f: Finding) -> str:
@@ -23,35 +143,124 @@ def _numbers(f: Finding) -> str:
         )
     if "delta_e" in n:
         return f"ΔE00 {n['delta_e']:.2f} (α=1: {n['delta_e_ref']:.2f}) < {n['min_delta_e']:g}"
-    if "output" in n:
-        return f"{n['sources']} → {n['output']}"
+    if "output" in n:  # the colours are in the colour column already
+        return f"all give {n['output']}" + ("" if n.get("new") != "false" else " (also at α=1)")
     return f.message
 
 
-def _row(f: Finding, extra: str = "") -> str:
-    cells = [f.rule.value, ", ".join(f.icons), f.canvas or "", f.theme, _numbers(f)]
-    if extra:
-        cells.append(extra)
-    return "| " + " | ".join(escape_markdown(c) for c in cells) + " |"
+def _groups(findings: Sequence[Finding], roles: dict[str, str]) -> list[_Group]:
+    """Findings that differ only by icon merged; colour (first seen) then canvas order."""
+    groups: dict[tuple[object, ...], _Group] = {}
+    for f in findings:
+        n = f.numbers
+        source = str(n.get("source", n.get("sources", "")))
+        role = roles.get(f.icons[0], "") if "source" in n else ""
+        colour = f"{role} {source}".strip()
+        key = (f.rule, colour, f.canvas, n.get("alpha"), n.get("output"))
+        if key not in groups:
+            groups[key] = _Group(f.rule, colour, f.canvas or "", _numbers(f), f)
+        groups[key].icons.extend(f.icons)
+    order = {c: k for k, c in enumerate(dict.fromkeys(g.colour for g in groups.values()))}
+    return sorted(groups.values(), key=lambda g: order[g.colour])  # stable: canvas order kept
 
 
-def render_report(report: CheckReport, options: RenderOptions) -> str:
-    """Verdict, per-audit summary table, failures, exemptions and baseline news."""
+def _icons(names: Sequence[str]) -> str:
+    count = f"{len(names)} icon{'s' if len(names) != 1 else ''}"
+    return f"{count}: {shorten_names(list(names), _NAMES)}"
+
+
+_BACKSLASH = re.compile(r"\\(.)")
+
+
+def _html(text: str) -> str:
+    """A name inert inside an HTML block (``<summary>``), where Markdown is not parsed."""
+    return _BACKSLASH.sub(r"\1", escape_markdown(text))
+
+
+# ------------------------------------------------------------------ rendering
+
+
+class _Budget:
+    """Lines kept while they fit GitHub's comment limit; counts what did not."""
+
+    def __init__(self, limit: int) -> None:
+        self.lines: list[str] = []
+        self.size = 0
+        self.limit = limit
+        self.left_out = 0
+
+    def force(self, *lines: str) -> None:
+        """Add ``lines`` whatever the size (short frame lines budgeted by the caller)."""
+        self.lines.extend(lines)
+        self.size += sum(len(line) + 1 for line in lines)
+
+    def add(self, *lines: str) -> bool:
+        cost = sum(len(line) + 1 for line in lines)
+        if self.size + cost > self.limit:
+            return False
+        self.lines.extend(lines)
+        self.size += cost
+        return True
+
+
+def _table(
+    budget: _Budget, title: str, header: str, rows: Sequence[str], left_out: list[int]
+) -> None:
+    if not rows:
+        return
+    cells = header.count("|") - 1
+    if not budget.add("", title, "", header, "|" + "---|" * cells):
+        left_out[0] += len(rows)
+        return
+    for k, row in enumerate(rows):
+        if not budget.add(row):
+            left_out[0] += len(rows) - k
+            return
+
+
+def render_markdown(
+    report: CheckReport,
+    options: RenderOptions,
+    *,
+    fix: FixHook = no_fix,
+    limit: int = COMMENT_LIMIT,
+) -> str:
+    """The comment, at most ``limit`` characters, with ``fix`` giving each failing group's fix."""
     gate = report.gate
+    audits = report.audits
+    failing_audits = {(f.theme, f.iconset) for f in gate.failures}
     rules = ", ".join(f"`{r}`" for r in sorted(r.value for r in gate.policy.rules))
-    lines: list[str] = []
+    budget = _Budget(limit - _RESERVE)
+    left_out = [0]
+
+    all_roles = {
+        (r.theme.name, r.iconset.name): {i.name: i.color_name or "" for i in r.iconset.icons}
+        for r in audits
+    }
+    per_audit = {
+        key: _groups([f for f in gate.failures if (f.theme, f.iconset) == key], roles)
+        for key, roles in all_roles.items()
+    }
+    group_count = sum(map(len, per_audit.values()))
     if gate.passed:
-        lines.append("## alpha-audit: ✅ gate passed")
+        improved = sum(s.summary.newly_pass for s in audits)
+        head = f"## ✅ alpha-audit: gate passed ({len(audits)} audit(s)"
+        head += f"; {improved} icon×canvas newly reach the threshold)" if improved else ")"
     else:
         counts = ", ".join(f"{n} {escape_markdown(rule)}" for rule, n in gate.counts().items())
-        lines.append(f"## alpha-audit: ❌ gate failed ({counts})")
-    lines += ["", f"Rules: {rules}; max loss {gate.policy.max_loss:g}.", ""]
-    lines += [
-        "| theme | icon set | icons | α | mean gain | losses | newly failing | collisions "
-        "| unrendered |",
-        "|---|---|--:|--:|--:|--:|--:|--:|--:|",
-    ]
-    for r in report.audits:
+        head = (
+            f"## ❌ alpha-audit: gate failed: {group_count} failing group(s) "
+            f"({len(gate.failures)} finding(s): {counts}) in {len(failing_audits)} of "
+            f"{len(audits)} audit(s)"
+        )
+    budget.add(MARKER, head, "", f"Rules: {rules}; max loss {gate.policy.max_loss:g}.", "")
+    budget.add(
+        "| theme | icon set | icons | α | verdict | failing groups | newly passing icon×canvas "
+        "| collisions | unrendered |",
+        "|---|---|--:|--:|---|--:|--:|--:|--:|",
+    )
+    for r in audits:
+        key = (r.theme.name, r.iconset.name)
         s = r.summary
         alphas = sorted({float(a) for a in r.alpha})
         alpha = (
@@ -62,43 +271,130 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
             escape_markdown(r.iconset.name),
             str(len(r.iconset.icons)),
             alpha,
-            f"{s.mean_gain:+.3f}",
-            str(s.losses),
-            str(s.newly_fail),
+            "❌ failed" if key in failing_audits else "✅ passed",
+            str(len(per_audit[key])),
+            str(s.newly_pass),
             f"{s.collisions} ({s.new_collisions} new)",
             str(len(r.problems)),
         ]
-        lines.append("| " + " | ".join(cells) + " |")
-    failures = gate.failures
-    if failures:
-        lines += [
-            "",
-            "### Failures",
-            "",
-            "| rule | icon | canvas | theme | numbers |",
-            "|---|---|---|---|---|",
-        ]
-        lines += [_row(f) for f in failures[:MAX_ROWS]]
-        if len(failures) > MAX_ROWS:
-            lines.append(f"\n… and {len(failures) - MAX_ROWS} more; see the JSON or SARIF report.")
-    exempt = gate.exempted
-    if exempt:
-        lines += ["", "<details><summary>Exempted findings</summary>", ""]
-        lines += [
-            "| rule | icon | canvas | theme | numbers | reason |",
-            "|---|---|---|---|---|---|",
-        ]
-        lines += [_row(f, f.exemption.reason) for f in exempt[:MAX_ROWS] if f.exemption]
-        lines += ["", "</details>"]
-    baselined = len(gate.baselined)
-    if baselined or gate.stale:
-        lines += [
-            "",
-            f"{baselined} finding(s) already in the baseline; "
-            f"{len(gate.stale)} baseline entries no longer occur.",
-        ]
+        budget.add("| " + " | ".join(cells) + " |")
+
+    for k, r in enumerate(audits):
+        key = (r.theme.name, r.iconset.name)
+        groups = per_audit[key]
+        roles = all_roles[key]
+        verdict = f"❌ {len(groups)} failing group(s)" if groups else "✅ passed"
+        newly = _groups_of_rows(r, roles)
+        summary = f"{_html(r.theme.name[:_NAME])} / {_html(r.iconset.name[:_NAME])}: {verdict}"
+        if newly:
+            summary += f"; {len(newly)} newly passing"
+        opened = " open" if groups else ""
+        # Every audit gets its <details> and an equal share of what is left, so
+        # a long first theme cannot crowd the others out of the comment.
+        budget.force("", f"<details{opened}><summary><b>{summary}</b></summary>")
+        remaining = len(audits) - k
+        section = _Budget((budget.limit - budget.size - _FRAME * remaining) // remaining)
+        rows = []
+        for g in groups:
+            text = fix(g.first)
+            rows.append(
+                "| "
+                + " | ".join(
+                    [
+                        escape_markdown(g.colour),
+                        escape_markdown(g.canvas),
+                        escape_markdown(g.rule.value),
+                        escape_markdown(g.numbers),
+                        escape_markdown(_icons(g.icons)),
+                        escape_markdown(text) if text else "",
+                    ]
+                )
+                + " |"
+            )
+        _table(
+            section,
+            "**Failing** (colour on canvas)",
+            "| colour | canvas | rule | numbers | icons | fix |",
+            rows,
+            left_out,
+        )
+        _table(
+            section,
+            f"**Improved**: newly reach {r.threshold:g}:1",
+            "| colour | canvas | contrast | icons |",
+            [
+                "| "
+                + " | ".join(escape_markdown(c) for c in (colour, canvas, numbers, _icons(icons)))
+                + " |"
+                for colour, canvas, numbers, icons in newly
+            ],
+            left_out,
+        )
+        exempt = [f for f in gate.exempted if (f.theme, f.iconset) == key]
+        _table(
+            section,
+            "**Exempted**",
+            "| colour | canvas | rule | icons | reason |",
+            [
+                "| "
+                + " | ".join(
+                    escape_markdown(c)
+                    for c in (
+                        g.colour,
+                        g.canvas,
+                        g.rule.value,
+                        _icons(g.icons),
+                        g.first.exemption.reason if g.first.exemption else "",
+                    )
+                )
+                + " |"
+                for g in _groups(exempt, roles)
+            ],
+            left_out,
+        )
+        baselined = sum(1 for f in gate.baselined if (f.theme, f.iconset) == key)
+        if baselined:
+            section.add("", f"{baselined} finding(s) already in the baseline.")
+        budget.force(*section.lines, "", "</details>")
+
+    if gate.stale:
+        budget.add("", f"{len(gate.stale)} baseline entries no longer occur.")
     if gate.warnings:
-        lines += ["", "### Icons that could not be rendered", ""]
-        for w in gate.warnings:
-            lines.append(f"- {escape_markdown(', '.join(w.icons))}: {escape_markdown(w.message)}")
+        budget.add("", "### Icons that could not be rendered", "")
+        for k, w in enumerate(gate.warnings):
+            line = f"- {escape_markdown(', '.join(w.icons))}: {escape_markdown(w.message)}"
+            if not budget.add(line):
+                left_out[0] += len(gate.warnings) - k
+                break
+    lines = budget.lines
+    if left_out[0]:
+        lines += [
+            "",
+            f"**{left_out[0]} row(s) left out** to stay within GitHub's "
+            f"{COMMENT_LIMIT:,}-character comment limit; every finding is in the JSON "
+            "(`--format json`) and SARIF reports and in the workflow run's job summary.",
+        ]
     return "\n".join(lines) + "\n"
+
+
+def _groups_of_rows(
+    result: AuditResult, roles: dict[str, str]
+) -> list[tuple[str, str, str, list[str]]]:
+    """Newly passing (colour, canvas) pairs: colour, canvas, contrast change, icons."""
+    groups: dict[tuple[str, str, float], tuple[str, str, str, list[str]]] = {}
+    for row in result.rows():
+        if not row.newly_passes:
+            continue
+        key = (row.source, row.canvas, row.alpha)
+        if key not in groups:
+            colour = f"{roles.get(row.icon, '')} {row.source}".strip()
+            change = f"{row.contrast_ref:.3f} → {row.contrast:.3f} at α={row.alpha:g}"
+            groups[key] = (colour, row.canvas, change, [])
+        groups[key][3].append(row.icon)
+    order = {c: k for k, c in enumerate(dict.fromkeys(g[0] for g in groups.values()))}
+    return sorted(groups.values(), key=lambda g: order[g[0]])
+
+
+def render_report(report: CheckReport, options: RenderOptions) -> str:
+    """The comment with the largest safe alpha per colour as each group's fix."""
+    return render_markdown(report, options, fix=safe_alpha_fixes(report))

@@ -5,11 +5,19 @@ from __future__ import annotations
 from enum import StrEnum
 from typing import Any, assert_never
 
-from rich.table import Table
+from rich import box
 from rich.text import Text
 
 from alpha_audit.pair import PairReport
-from alpha_audit.render.common import Renderer, RenderOptions, dumps, records, to_text
+from alpha_audit.render.common import (
+    Renderer,
+    RenderOptions,
+    dumps,
+    fitted_table,
+    number_column,
+    records,
+    to_text,
+)
 
 __all__ = ["PAIR_SCHEMA", "PairFormat", "pair_document", "render_json", "render_table"]
 
@@ -50,13 +58,10 @@ def render_table(report: PairReport, options: RenderOptions) -> str:
     """
     rows = report.rows
     backgrounds = len({r.background for r in rows})
-    title = Text(f"{report.color} on {backgrounds} background(s)")  # never rich markup
-    table = Table(title=title, title_justify="left")
-    for name in ("background", "α", "output", "contrast", "gain", "ΔE00 vs Cs", "clipped"):
-        left = name in ("background", "output", "clipped")
-        table.add_column(name, justify="left" if left else "right", no_wrap=True)
-    for r in rows:
-        table.add_row(
+    # Never rich markup; the title also says what the ΔE00 column measures.
+    title = Text(f"{report.color} on {backgrounds} background(s); ΔE00 from {report.color}")
+    rows = [
+        (
             Text(r.background, style=f"on {r.background}"),
             f"{r.alpha:g}",
             Text(r.output, style=f"on {r.output}"),
@@ -65,22 +70,55 @@ def render_table(report: PairReport, options: RenderOptions) -> str:
             f"{r.delta_e_from_source:.2f}",
             "yes" if r.clipped else "",
         )
+        for r in rows
+    ]
+    # Every column is a figure: none is ever cut (the whole table fits 60 columns).
+    columns = [
+        number_column("background", "left"),
+        number_column("α"),
+        number_column("output", "left"),
+        number_column("contrast"),
+        number_column("gain"),
+        number_column("ΔE00"),
+        number_column("clipped", "left"),
+    ]
+    table = fitted_table(
+        columns,
+        rows,
+        title=title,
+        title_justify="left",
+        box=box.SIMPLE_HEAD,
+        padding=(0, 0),
+        pad_edge=False,
+    )
     text = to_text(table, options)
-    drawable = [r for r in rows if r.css_output is not None and r.alpha != 1.0]
+    drawable = [r for r in report.rows if r.css_output is not None and r.alpha != 1.0]
     if not drawable:
         return text
-    css = Table(
-        title="the same in a browser (pipeline css; alpha in [0, 1])",
-        title_justify="left",
-    )
-    for name in ("background", "α", "linear", "css", "contrast linear → css"):
-        css.add_column(name, justify="right" if name in ("α",) else "left", no_wrap=True)
-    for r in drawable:
-        css.add_row(
+    css_rows = [
+        (
             Text(r.background, style=f"on {r.background}"),
             f"{r.alpha:g}",
             Text(r.output, style=f"on {r.output}"),
             Text(str(r.css_output), style=f"on {r.css_output}"),
             f"{r.contrast:.3f} → {r.css_contrast:.3f}",
         )
+        for r in drawable
+    ]
+    css_columns = [
+        number_column("background", "left"),
+        number_column("α"),
+        number_column("linear", "left"),
+        number_column("css", "left"),
+        number_column("contrast linear → css"),
+    ]
+    css = fitted_table(
+        css_columns,
+        css_rows,
+        title="the same in a browser (pipeline css; alpha in [0, 1])",
+        title_justify="left",
+        box=box.SIMPLE_HEAD,
+        padding=(0, 0),
+        pad_edge=False,
+    )
     return text + to_text(css, options)

@@ -16,7 +16,13 @@ from rich.text import Text
 
 from alpha_audit.audit import AuditResult, Row
 from alpha_audit.gate import CheckReport, GateResult
-from alpha_audit.render.common import RenderOptions, to_text
+from alpha_audit.render.common import (
+    RenderOptions,
+    fitted_table,
+    name_column,
+    number_column,
+    to_text,
+)
 from alpha_audit.render.common import shorten_names as icons_label
 from alpha_audit.safe_text import safe_text
 
@@ -36,27 +42,38 @@ def _fmt_alpha(result: AuditResult) -> str:
 
 def _summary_table(result: AuditResult) -> Table:
     t = result.threshold
-    table = Table(box=box.SIMPLE_HEAD, pad_edge=False, collapse_padding=True, header_style="bold")
-    table.add_column("canvas", no_wrap=True, max_width=20, overflow="ellipsis")
-    for name in ("bg", "gain", f"≥{t:g}:1", "new", "loss", "coll", "min ΔE"):
-        table.add_column(name, justify="left" if name == "bg" else "right", no_wrap=True)
+    rows = []
     for cs in result.canvas_summaries():
         passing = f"{cs.passing_ref}→{cs.passing}/{cs.icons}"
         loss = Text(f"{cs.losses} (-{cs.max_loss:.2f})", style="red") if cs.losses else Text("0")
         coll = Text(str(cs.collisions), style="red") if cs.collisions else Text("0")
         sep = cs.separation
         de = "-" if sep is None else f"{sep.delta_e_ref:.1f}→{sep.delta_e:.1f}"
-        table.add_row(
-            Text(cs.canvas),
-            Text(cs.background, style=f"on {cs.background}"),
-            Text(f"{cs.mean_gain:+.2f}", style="green" if cs.mean_gain > 0 else "red"),
-            passing,
-            Text(str(cs.newly_pass), style="green") if cs.newly_pass else "0",
-            loss,
-            coll,
-            de,
+        rows.append(
+            (
+                Text(cs.canvas),
+                Text(cs.background, style=f"on {cs.background}"),
+                Text(f"{cs.mean_gain:+.2f}", style="green" if cs.mean_gain > 0 else "red"),
+                passing,
+                Text(str(cs.newly_pass), style="green") if cs.newly_pass else "0",
+                loss,
+                coll,
+                de,
+            )
         )
-    return table
+    columns = [
+        name_column("canvas", min_width=8),
+        number_column("bg", justify="left"),
+        *(number_column(name) for name in ("gain", f"≥{t:g}:1", "new", "loss", "coll", "min ΔE")),
+    ]
+    return fitted_table(
+        columns,
+        rows,
+        box=box.SIMPLE_HEAD,
+        padding=(0, 0),  # the box's space divider is the gap: the row fits 60 columns
+        pad_edge=False,
+        header_style="bold",
+    )
 
 
 def _grouped(result: AuditResult, rows: Iterable[Row]) -> list[tuple[Row, list[str]]]:
@@ -80,36 +97,30 @@ def _findings(result: AuditResult) -> list[RenderableType]:
     rows = list(result.rows())
     palette_names = {i.name: i.color_name for i in result.iconset.icons}
 
-    # (header, min width, max width); the last column takes what is left and is cut.
-    widths = {
-        "colour": (16, 18),
-        "α": (4, 6),
-        "canvas": (16, 24),
-        "contrast": (15, 15),
-        "contrast at α": (13, 13),
-        "sources": (16, 24),
-        "output": (7, 26),
-    }
+    # Columns of figures are never cut (render.common.fitted_table); these fold,
+    # no narrower than their longest figure: "■ #rrggbb" and a hex code.
+    name_widths = {"colour": 9, "sources": 7, "output": 7}
+    figures = {"α", "contrast", "contrast at α", "output"}
 
     def section(title: str, style: str, header: tuple[str, ...], items: list[tuple]) -> None:
-        """A titled one-line-per-finding table; long names are cut, never wrapped."""
+        """A titled table, one finding per row; names wrap, figures stay whole."""
         if not items:
             return
         out.append(Text(f"{title} ({len(items)})", style=f"bold {style}"))
-        table = Table(box=None, pad_edge=False, show_header=True, header_style="dim")
-        for name in header:
-            low, high = widths.get(name, (8, None))
-            table.add_column(
-                name,
-                no_wrap=True,
-                overflow="ellipsis",
-                justify="right" if name.startswith("contrast") else "left",
-                min_width=low,
-                max_width=high,
-                ratio=1 if high is None else None,
-            )
-        for item in items[:MAX_FINDINGS]:
-            table.add_row(*(c if isinstance(c, Text) else Text(c) for c in item))  # literal
+        columns = [
+            number_column(name, "right" if name.startswith("contrast") else "left")
+            if name in figures
+            else name_column(name, name_widths.get(name, 6), shrink_first=name == "icons")
+            for name in header
+        ]
+        table = fitted_table(
+            columns,
+            items[:MAX_FINDINGS],
+            box=None,
+            padding=(0, 1),
+            pad_edge=False,
+            header_style="dim",
+        )
         out.append(Padding(table, (0, 0, 0, 2)))
         if len(items) > MAX_FINDINGS:
             out.append(Text(f"  … and {len(items) - MAX_FINDINGS} more (see --format json)"))

@@ -21,6 +21,9 @@ from alpha_audit.render.common import (
     RenderOptions,
     dumps,
     escape_markdown,
+    fitted_table,
+    name_column,
+    number_column,
     shorten_names,
     to_text,
 )
@@ -145,19 +148,25 @@ def render_table(result: SuggestResult, options: RenderOptions) -> str:
     p, a_max = result.precision, result.alpha_max
     parts: list[RenderableType] = [Text(_headline(result))]
 
-    def table(title: str, first: str, *, with_canvas: bool = True) -> Table:
-        t = Table(
-            title=title, title_justify="left", box=box.SIMPLE_HEAD, pad_edge=False,
-            collapse_padding=True,
-        )  # fmt: skip
-        t.add_column(first, no_wrap=True, min_width=12, max_width=24, overflow="ellipsis")
-        t.add_column("alpha", justify="right", no_wrap=True)
-        t.add_column("limited by", no_wrap=True)
-        t.add_column("first unsafe", justify="right", no_wrap=True)
-        if with_canvas:
-            t.add_column("on canvas", no_wrap=True, max_width=20, overflow="ellipsis")
-        t.add_column("icons", no_wrap=True, overflow="ellipsis", ratio=1)
-        return t
+    def table(title: str, first: str, rows: list[list[str]], *, with_canvas: bool = True) -> Table:
+        """Alphas and where they break never cut (render.common.fitted_table); names wrap."""
+        columns = [
+            name_column(first, min_width=9),  # "■ #rrggbb" or a colour name and its hex
+            number_column("alpha"),
+            name_column("limited by", min_width=6),
+            number_column("unsafe at"),
+            *([name_column("on canvas", min_width=8)] if with_canvas else []),
+            name_column("icons", min_width=6, shrink_first=True),
+        ]
+        return fitted_table(
+            columns,
+            rows,
+            title=title,
+            title_justify="left",
+            box=box.SIMPLE_HEAD,
+            padding=(0, 0),
+            pad_edge=False,
+        )
 
     def cells(limit: Limit | None, *, with_canvas: bool = True) -> list[str]:
         """Rule, where it first breaks, canvas and icons; blank when nothing breaks."""
@@ -167,17 +176,26 @@ def render_table(result: SuggestResult, options: RenderOptions) -> str:
         return [limit.rule.value, at, *([limit.canvas] if with_canvas else []),
                 _names(limit.icons)]  # fmt: skip
 
-    canvases = table("Per canvas (every icon moves together)", "canvas", with_canvas=False)
-    for c in result.overall.per_canvas:
-        canvases.add_row(*literal(c.canvas, _alpha(c.alpha, p), *cells(c.limit, with_canvas=False)))
-    colors = table("Per colour (the others keep their alpha)", "colour")
-    for c in result.per_color:
-        colors.add_row(
-            *literal(f"{c.color} {c.source}", _alpha(c.safe.alpha, p), *cells(c.safe.limit))
-        )
-    icons = table("Per icon (the others keep their alpha)", "icon")
-    for i in result.per_icon:
-        icons.add_row(*literal(i.icon, _alpha(i.safe.alpha, p), *cells(i.safe.limit)))
+    canvases = table(
+        "Per canvas (every icon moves together)",
+        "canvas",
+        [
+            [c.canvas, _alpha(c.alpha, p), *cells(c.limit, with_canvas=False)]
+            for c in result.overall.per_canvas
+        ],
+        with_canvas=False,
+    )
+    colors = table(
+        "Per colour (the others keep their alpha)",
+        "colour",
+        [[f"{c.color} {c.source}", _alpha(c.safe.alpha, p), *cells(c.safe.limit)]
+         for c in result.per_color],
+    )  # fmt: skip
+    icons = table(
+        "Per icon (the others keep their alpha)",
+        "icon",
+        [[i.icon, _alpha(i.safe.alpha, p), *cells(i.safe.limit)] for i in result.per_icon],
+    )
     parts += [canvases, colors, icons]
     return to_text(Group(*parts), options)
 

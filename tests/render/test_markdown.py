@@ -1,0 +1,149 @@
+"""The pull-request comment: verdict, a <details> per audit, groups by colour x canvas, fixes."""
+
+from __future__ import annotations
+
+import re
+from dataclasses import replace
+from functools import cache
+from pathlib import Path
+
+from markdown_it import MarkdownIt
+
+from alpha_audit.audit import audit
+from alpha_audit.gate import CheckReport, evaluate
+from alpha_audit.model import Canvas, Icon, IconSet, Theme
+from alpha_audit.policy import Exemption, Policy, Rule
+from alpha_audit.render.common import RenderOptions
+from alpha_audit.render.markdown import COMMENT_LIMIT, MARKER, render_markdown, render_report
+
+OPTIONS = RenderOptions(base=Path("/repo"))
+# Blue at alpha 1.6 loses contrast on mid grey (clipping in linear sRGB); red
+# too; orange at 1.3 newly reaches 3:1 on white.
+LOSING = {"blue": "#0000cc", "red": "#aa0000"}
+
+
+def _theme(name: str = "grey") -> Theme:
+    return Theme(name, (Canvas("mid", "#777777"), Canvas("mid-warm", "#7a7770")))
+
+
+def _iconset(per_colour: int = 10) -> IconSet:
+    icons = tuple(
+        Icon(f"{role}-{k}", Path(f"{role}-{k}.svg"), colour, 1.6, color_name=role)
+        for role, colour in LOSING.items()
+        for k in range(per_colour)
+    )
+    return IconSet("set", icons, palette=dict(LOSING))
+
+
+@cache
+def report() -> CheckReport:
+    audits = tuple(audit(_theme(name), _iconset()) for name in ("grey", "warm grey"))
+    policy = Policy(rules=frozenset({Rule.LOSS}))
+    return CheckReport(audits=audits, gate=evaluate(list(audits), policy))
+
+
+def _rows(text: str, header: str) -> list[list[str]]:
+    """Cells of every row of every Markdown table whose header starts with ``header``."""
+    out, inside = [], False
+    for line in text.splitlines():
+        if line.startswith(header):
+            inside = True
+            continue
+        if inside and line.startswith("|---"):
+            continue
+        if inside and line.startswith("| "):
+            out.append([c.strip() for c in re.split(r"(?<!\\)\|", line)[1:-1]])
+        else:
+            inside = False
+    return out
+
+
+def test_comment_opens_with_the_marker_and_a_verdict() -> None:
+    text = render_report(report(), OPTIONS)
+    first, headline = text.splitlines()[:2]
+    assert first == MARKER
+    failures = len(report().gate.failures)
+    assert headline.startswith(
+        "## ❌ alpha-audit: gate failed: 8 failing group(s)"
+    )  # 2 audits x 2 x 2
+    assert f"({failures} finding(s): {failures} loss)" in headline
+
+
+def test_one_details_section_per_audit_grouped_by_colour_and_canvas() -> None:
+    text = render_report(report(), OPTIONS)
+    html = MarkdownIt("commonmark").enable("table").render(text)
+    assert html.count("<details") == 2 and html.count("</details>") == 2
+    rows = _rows(text, "| colour | canvas | rule |")
+    # 2 audits x 2 colours x 2 canvases, not 40 icons x 2 canvases.
+    assert len(rows) == 8
+    pairs = [(r[0], r[1]) for r in rows[:4]]
+    assert pairs == [("blue #0000cc", "mid"), ("blue #0000cc", "mid-warm"),
+                     ("red #aa0000", "mid"), ("red #aa0000", "mid-warm")]  # fmt: skip
+    assert rows[0][4] == "10 icons: blue-0, blue-1, blue-2 +7 more"
+
+
+def test_each_failing_group_names_a_largest_safe_alpha_that_holds() -> None:
+    text = render_report(report(), OPTIONS)
+    for colour, hexcode in LOSING.items():
+        fixes = {r[5] for r in _rows(text, "| colour | canvas | rule |") if r[0].startswith(colour)}
+        (fix,) = fixes  # one answer per colour, on every canvas and audit
+        alpha = float(re.fullmatch(rf"{colour}: largest safe alpha (\d\.\d{{3}})", fix).group(1))
+        # Checked by compositing again: safe at the value, a loss just above it.
+        for a, loses in ((alpha, False), (alpha + 0.002, True)):
+            icons = tuple(
+                replace(i, alpha=a) if i.color == hexcode else i for i in _iconset(1).icons
+            )
+            result = audit(_theme(), replace(_iconset(1), icons=icons))
+            lost = [r for r in result.rows() if r.loss and r.source == hexcode]
+            assert bool(lost) is loses, (colour, a)
+
+
+def test_the_fix_hook_fills_the_fix_column() -> None:
+    text = render_markdown(report(), OPTIONS, fix=lambda f: f"lower {f.icons[0]}")
+    rows = _rows(text, "| colour | canvas | rule |")
+    assert all(r[5].startswith("lower ") for r in rows)
+    assert all(r[5] == "" for r in _rows(render_markdown(report(), OPTIONS), "| colour |"))
+
+
+def test_newly_passing_groups_are_listed_as_improved() -> None:
+    theme = Theme("paper", (Canvas("white", "#ffffff"),))
+    icons = tuple(
+        Icon(f"o{k}", Path(f"o{k}.svg"), "#ee7733", 1.3, color_name="orange") for k in range(4)
+    )
+    result = audit(theme, IconSet("s", icons))
+    gate = evaluate([result], Policy())
+    text = render_report(CheckReport(audits=(result,), gate=gate), OPTIONS)
+    assert text.splitlines()[1].startswith("## ✅ alpha-audit: gate passed")
+    (row,) = _rows(text, "| colour | canvas | contrast |")
+    assert row[:2] == ["orange #ee7733", "white"] and row[3].startswith("4 icons")
+    assert "2.868 → " in row[2]  # WCAG contrast of #ee7733 on white at alpha 1
+
+
+def test_exempted_groups_show_their_reason() -> None:
+    audits = report().audits
+    policy = Policy(
+        rules=frozenset({Rule.LOSS}), exemptions=(Exemption("brand red", icon="red-0"),)
+    )
+    text = render_report(CheckReport(audits=audits, gate=evaluate(list(audits), policy)), OPTIONS)
+    rows = _rows(text, "| colour | canvas | rule | icons | reason |")
+    assert rows and all(r[4] == "brand red" and r[3].startswith("1 icon:") for r in rows)
+
+
+def test_a_huge_failing_run_fits_githubs_comment_limit_and_says_what_was_left_out() -> None:
+    long = "surface-container-" + "x" * 60
+    theme = Theme("huge", tuple(Canvas(f"{long}-{k}", f"#77{k:02x}77") for k in range(0, 200, 20)))
+    colours = [f"#0000{c:02x}" for c in range(0x80, 0xD0, 2)]  # 40 blues
+    icons = tuple(
+        Icon(f"icon-{'n' * 40}-{k}", Path(f"i{k}.svg"), colours[k % 40], 1.6) for k in range(160)
+    )
+    audits = tuple(audit(replace(theme, name=n), IconSet("big", icons)) for n in ("a", "b", "c"))
+    gate = evaluate(list(audits), Policy(rules=frozenset({Rule.LOSS})))
+    text = render_markdown(CheckReport(audits=audits, gate=gate), OPTIONS)
+    assert len(text) <= COMMENT_LIMIT
+    html = MarkdownIt("commonmark").enable("table").render(text)
+    assert html.count("<details") == 3  # every theme keeps its section
+    shown = len(_rows(text, "| colour | canvas | rule |"))
+    left_out = int(re.search(r"\*\*(\d+) row\(s\) left out\*\*", text).group(1))
+    groups = {(f.theme, f.canvas, f.numbers["source"]) for f in gate.failures}
+    assert shown > 0 and shown + left_out == len(groups)
+    assert "65,536-character comment limit" in text
