@@ -292,3 +292,20 @@ def test_fixes_for_skips_exempted_findings() -> None:
 
 def test_fixes_for_passing_report_is_empty() -> None:
     assert fixes_for(_report(Policy(rules=frozenset()))) == ()
+
+
+def test_json_report_carries_the_fixes() -> None:
+    import json
+
+    from alpha_audit.render import RenderOptions
+    from alpha_audit.render.json import render_report
+
+    report = _report(Policy(rules=frozenset({Rule.BELOW_THRESHOLD})))
+    doc = json.loads(render_report(report, RenderOptions()))
+    fixes = doc["gate"]["fixes"]
+    assert [(f["color"], f["canvas"]) for f in fixes] == [
+        (fx.color, fx.canvas) for fx in report.fixes
+    ]
+    warn = fixes[0]
+    assert warn["nearest_color"]["color"].startswith("#")
+    assert warn["smallest_alpha_reaching"]["mode"] == "light"

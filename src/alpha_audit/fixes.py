@@ -483,8 +483,13 @@ def _audit_fixes(
     return out
 
 
-def fix_to_dict(fix: ColorFix) -> dict[str, Any]:
-    """One fix as plain JSON data (finite floats only; ``None`` where there is no answer)."""
+def fix_to_dict(fix: ColorFix, base: Path | None = None) -> dict[str, Any]:
+    """One fix as plain JSON data (finite floats only; ``None`` where there is no answer).
+
+    ``manifest`` is shown relative to ``base`` when inside it, as findings' paths are.
+    """
+    from alpha_audit.render import display_path  # render imports this module's users
+
     safe = fix.largest_safe
     limit = safe.limit
     near = fix.nearest
@@ -524,5 +529,6 @@ def fix_to_dict(fix: ColorFix) -> dict[str, Any]:
             "delta_e": near.delta_e,
             "oklch": {"l": near.lightness, "c": near.chroma, "h": near.hue},
         },
+        "manifest": display_path(fix.manifest, base),
         "line": fix.line,
     }

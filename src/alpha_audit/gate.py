@@ -11,13 +11,18 @@ from __future__ import annotations
 import json
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from alpha_audit.audit import AuditResult
 from alpha_audit.errors import InputError, UsageError
 from alpha_audit.policy import Exemption, Policy, Rule
+
+if TYPE_CHECKING:
+    from alpha_audit.fixes import ColorFix
 
 __all__ = [
     "BASELINE_SCHEMA",
@@ -103,6 +108,13 @@ class CheckReport:
 
     audits: tuple[AuditResult, ...]
     gate: GateResult
+
+    @cached_property
+    def fixes(self) -> tuple[ColorFix, ...]:
+        """A fix for every failing (colour, canvas), computed once; see :mod:`alpha_audit.fixes`."""
+        from alpha_audit.fixes import fixes_for  # fixes builds on this module
+
+        return fixes_for(self)
 
 
 def _icon_refs(

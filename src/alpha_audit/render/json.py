@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from alpha_audit.audit import AuditResult
+from alpha_audit.fixes import fix_to_dict
 from alpha_audit.gate import CheckReport, Finding, GateResult
 from alpha_audit.render import RenderOptions, as_report, display_path
 
@@ -136,6 +137,8 @@ def gate_to_dict(gate: GateResult, base: Path | None = None) -> dict[str, Any]:
 def report_to_dict(report: CheckReport, base: Path | None = None) -> dict[str, Any]:
     """The whole document: one audit flat at the top level, several under ``audits``."""
     gate = gate_to_dict(report.gate, base)
+    # A fix per failing (colour, canvas): docs/json.md, `gate.fixes`.
+    gate["fixes"] = [fix_to_dict(f, base) for f in report.fixes]
     if len(report.audits) == 1:
         return {**check_to_dict(report.audits[0]), "gate": gate}
     audits = []
