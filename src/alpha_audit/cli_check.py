@@ -95,7 +95,7 @@ def check_command(
             "--format",
             "-f",
             metavar="FORMAT",
-            help="Report format (repeatable): table, json, junit, sarif, markdown, github.",
+            help=f"Report format (repeatable): {', '.join(CheckFormat)}.",
             case_sensitive=False,
             show_default=False,
         ),

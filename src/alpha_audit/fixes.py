@@ -57,9 +57,11 @@ __all__ = [
     "ACHROMATIC_CHROMA",
     "RAYS",
     "RAY_SAMPLES",
+    "CONTRAST_RULES",
     "ColorFix",
     "NearestColor",
     "ReachAlpha",
+    "describe_fix",
     "fix_to_dict",
     "fixes_for",
     "nearest_passing_color",
@@ -481,6 +483,36 @@ def _audit_fixes(
             )
         )
     return out
+
+
+CONTRAST_RULES = frozenset({Rule.LOSS, Rule.BELOW_THRESHOLD, Rule.NEWLY_FAILING})
+
+
+def describe_fix(fix: ColorFix) -> str:
+    """The fix in one plain line (no markup), alternatives joined by "or"; "" when none.
+
+    The smallest reaching alpha and the nearest colour answer a contrast
+    failure, so they are offered only when the colour fails a contrast rule
+    there; the largest safe alpha answers every rule.
+
+    >>> from alpha_audit.suggest import SafeAlpha
+    >>> fix = ColorFix("t", "s", "warn", "#ffcc00", "white", "light", ("a",),
+    ...     (Rule.BELOW_THRESHOLD,), SafeAlpha(None, None, None, ()),
+    ...     ReachAlpha("light", ("white",), 3.0, 1.25, 1.2491),
+    ...     NearestColor("#c9a000", 12.33, 0.7, 0.14, 90.0))
+    >>> describe_fix(fix)
+    'warn: alpha 1.25 or above (every light canvas) or colour #c9a000 (CIEDE2000 12.33 away)'
+    """
+    contrast = any(r in CONTRAST_RULES for r in fix.rules)
+    options = []
+    if fix.largest_safe.alpha is not None:
+        options.append(f"alpha {fix.largest_safe.alpha:g} or below (from 1)")
+    if contrast and fix.reach.alpha is not None:
+        options.append(f"alpha {fix.reach.alpha:g} or above (every {fix.mode} canvas)")
+    if contrast and fix.nearest is not None and fix.nearest.delta_e > 0:
+        near = fix.nearest
+        options.append(f"colour {near.color} (CIEDE2000 {near.delta_e:.2f} away)")
+    return f"{fix.color}: {' or '.join(options)}" if options else ""
 
 
 def fix_to_dict(fix: ColorFix, base: Path | None = None) -> dict[str, Any]:

@@ -43,6 +43,7 @@ class CheckFormat(StrEnum):
     SARIF = "sarif"
     MARKDOWN = "markdown"
     GITHUB = "github"
+    GITLAB = "gitlab"
 
     def renderer(self) -> Callable[[CheckReport, RenderOptions], str]:
         """The render function for this format."""
@@ -70,6 +71,10 @@ class CheckFormat(StrEnum):
             from alpha_audit.render.github import render_report as github
 
             return github
+        if self is CheckFormat.GITLAB:
+            from alpha_audit.render.gitlab import render_report as gitlab
+
+            return gitlab
         assert_never(self)
 
 
