@@ -55,9 +55,9 @@ from alpha_audit.suggest import SafeAlpha, largest_safe_alpha
 
 __all__ = [
     "ACHROMATIC_CHROMA",
+    "CONTRAST_RULES",
     "RAYS",
     "RAY_SAMPLES",
-    "CONTRAST_RULES",
     "ColorFix",
     "NearestColor",
     "ReachAlpha",
@@ -267,9 +267,9 @@ def nearest_passing_color(
     in lightness.  ``None`` when nothing of that hue passes.
 
     >>> white = [[1.0, 1.0, 1.0]]
-    >>> fix = nearest_passing_color([0.2, 0.2, 0.2], white, [1.0], 3.0)
+    >>> fix = nearest_passing_color([0.4, 0.4, 0.4], white, [1.0], 3.0)  # 2.33:1 -> 3:1
     >>> fix.color, round(fix.delta_e, 1)
-    ('#939393', 8.6)
+    ('#949494', 6.7)
     """
     src = np.asarray(source, dtype=np.float64).reshape(3)
     bgs = np.asarray(backgrounds, dtype=np.float64).reshape(-1, 3)
