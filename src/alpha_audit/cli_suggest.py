@@ -16,6 +16,7 @@ from alpha_audit.cli_options import (
     ThemeArgument,
     ThresholdOption,
 )
+from alpha_audit.manifest_edit import ApplyScope
 from alpha_audit.suggest_report import SuggestFormat
 
 __all__ = ["suggest_command"]
@@ -54,10 +55,21 @@ def suggest_command(
     ] = None,
     force: ForceOption = False,
     apply: Annotated[
-        bool,
+        ApplyScope | None,
         typer.Option(
             "--apply",
-            help="Write the set-wide alpha into the manifest (only the alpha values change).",
+            metavar="SCOPE",
+            help="Write the answer into the manifest: set (the set-wide alpha), colour or icon "
+            "(per-icon overrides); only alpha values change.",
+            case_sensitive=False,
+            show_default=False,
+        ),
+    ] = None,
+    replace_explicit: Annotated[
+        bool,
+        typer.Option(
+            "--replace-explicit",
+            help="With --apply, also replace alphas the manifest sets per icon.",
         ),
     ] = False,
 ) -> None:
@@ -70,14 +82,14 @@ def suggest_command(
     written unless --apply is given.
 
     Example:
-    [bold]alpha-audit suggest themes/paper16.yaml examples/vibrant/iconset.yaml --apply[/]
+    [bold]alpha-audit suggest themes/paper16.yaml examples/vibrant/iconset.yaml --apply set[/]
     """
     from alpha_audit.cli import emit, require_finite, stdout_options
     from alpha_audit.errors import UsageError
     from alpha_audit.load.config import project_config
     from alpha_audit.load.iconset import load_iconset
     from alpha_audit.load.theme import load_theme
-    from alpha_audit.manifest_edit import apply_alpha, format_alpha
+    from alpha_audit.manifest_edit import apply_suggestion, describe_plan
     from alpha_audit.suggest import suggest
     from alpha_audit.suggest_report import render_suggest
 
@@ -108,9 +120,6 @@ def suggest_command(
     )
     width = stdout_options().width if output is None else 100
     emit(render_suggest(result, fmt, width=width), output, force)
-    if apply:
-        if result.alpha is None:
-            raise UsageError("no safe alpha to apply: the policy already fails at alpha = 1")
-        changed = apply_alpha(iconset, result.alpha, precision)
-        note = "wrote" if changed else "already has"
-        typer.echo(f"{note} alpha {format_alpha(result.alpha, precision)} in {iconset}", err=True)
+    if apply is not None:
+        plan, changed = apply_suggestion(iconset, result, apply, replace_explicit=replace_explicit)
+        typer.echo(describe_plan(plan, iconset, changed, precision), err=True)
