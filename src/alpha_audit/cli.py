@@ -35,12 +35,43 @@ class ExitStatus(IntEnum):
     INPUT_ERROR = 2
 
 
+try:  # typer >= 0.22 vendors click
+    from typer._click import exceptions as _click_exceptions
+except ImportError:  # pragma: no cover - typer on a separate click
+    from click import exceptions as _click_exceptions  # type: ignore[no-redef]
+
+_ClickUsageError = _click_exceptions.UsageError
+# `alpha-audit` alone prints help through this subclass: not an error line.
+_NoArgsIsHelp = getattr(_click_exceptions, "NoArgsIsHelpError", ())
+
+
+def _usage_line(exc: Exception) -> typer.Exit:
+    """A click usage error as one line on stderr (typer would draw a boxed panel)."""
+    ctx = getattr(exc, "ctx", None)
+    message = " ".join(str(exc.format_message()).split())  # type: ignore[attr-defined]
+    hint = f" (see '{ctx.command_path} -h')" if ctx is not None else ""
+    _stderr().print(Text(f"alpha-audit: error: {message}{hint}"), soft_wrap=True)
+    return typer.Exit(code=ExitStatus.INPUT_ERROR)
+
+
 class _Group(TyperGroup):
     """The single boundary where library errors become one line and exit 2."""
+
+    def make_context(self, *args: Any, **kwargs: Any) -> Any:
+        try:
+            return super().make_context(*args, **kwargs)
+        except _NoArgsIsHelp:
+            raise
+        except _ClickUsageError as exc:  # the group's own options
+            raise _usage_line(exc) from None
 
     def invoke(self, ctx: Any) -> Any:
         try:
             return super().invoke(ctx)
+        except _NoArgsIsHelp:
+            raise
+        except _ClickUsageError as exc:  # a command's arguments and options
+            raise _usage_line(exc) from None
         except AlphaAuditError as exc:
             _stderr().print(Text(f"alpha-audit: error: {exc}"), soft_wrap=True)
             raise typer.Exit(code=ExitStatus.INPUT_ERROR) from None

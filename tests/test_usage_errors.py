@@ -1,0 +1,35 @@
+"""Every usage error is one line on stderr, exit 2; help stays rich."""
+
+from __future__ import annotations
+
+import pytest
+from typer.testing import CliRunner
+
+from alpha_audit.cli import app
+
+CASES = [
+    (["check", "a.yaml", "b.yaml", "c.yaml"], "unexpected extra argument"),
+    (["chek"], "No such command 'chek'. Did you mean 'check'?"),
+    (["--bogus"], "No such option: --bogus"),
+    (["check", "-f", "nope"], "'nope' is not one of"),
+    (["suggest", "--alpha-max", "x"], "--alpha-max"),
+    (["suggest", "--apply", "everything"], "--apply"),
+    (["pair"], "Missing argument"),
+]
+
+
+@pytest.mark.parametrize(("args", "says"), CASES)
+def test_usage_errors_are_one_line(args: list[str], says: str) -> None:
+    res = CliRunner().invoke(app, args)
+    assert res.exit_code == 2, res.output
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1, res.stderr
+    assert lines[0].startswith("alpha-audit: error: ") and says in lines[0]
+    assert "╭" not in res.stderr and "Usage:" not in res.stderr
+    assert res.stdout == ""
+
+
+def test_help_is_still_rich() -> None:
+    res = CliRunner().invoke(app, ["check", "-h"])
+    assert res.exit_code == 0
+    assert "╭" in res.stdout and "Usage:" in res.stdout
