@@ -33,3 +33,14 @@ def test_help_is_still_rich() -> None:
     res = CliRunner().invoke(app, ["check", "-h"])
     assert res.exit_code == 0
     assert "╭" in res.stdout and "Usage:" in res.stdout
+
+
+@pytest.mark.parametrize("command", ["check", "suggest", "preview"])
+@pytest.mark.parametrize("value", ["25", "0.5", "nan", "-inf"])
+def test_threshold_is_range_checked_like_the_themes(command: str, value: str) -> None:
+    res = CliRunner().invoke(app, [command, "--threshold", value])
+    assert res.exit_code == 2, res.output
+    assert res.stderr.strip().splitlines() == [
+        f"alpha-audit: error: --threshold {float(value):g} is out of range; "
+        "expected a contrast ratio between 1 and 21"
+    ]

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Annotated
 
@@ -34,9 +35,25 @@ ConfigOption = Annotated[
         "\\[tool.alpha-audit] in pyproject.toml, found from here upwards).",
     ),
 ]
+
+
+def _threshold_in_range(value: float | None) -> float | None:
+    """--threshold obeys the theme file's range (one line, exit 2, otherwise)."""
+    from alpha_audit.color import THRESHOLD_RANGE, THRESHOLD_WHAT
+    from alpha_audit.errors import UsageError
+
+    low, high = THRESHOLD_RANGE
+    if value is not None and not (math.isfinite(value) and low <= value <= high):
+        raise UsageError(f"--threshold {value:g} is out of range; expected {THRESHOLD_WHAT}")
+    return value
+
+
 ThresholdOption = Annotated[
     float | None,
-    typer.Option(help="Contrast threshold (default: the theme's, else 3.0 = WCAG 1.4.11)."),
+    typer.Option(
+        help="Contrast threshold (default: the theme's, else 3.0 = WCAG 1.4.11).",
+        callback=_threshold_in_range,
+    ),
 ]
 MaxLossOption = Annotated[
     float | None,

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 from typing import Any
 
+from alpha_audit.color import THRESHOLD_RANGE, THRESHOLD_WHAT
 from alpha_audit.errors import InputError, UsageError
 from alpha_audit.load.fields import check_keys, describe, read_mapping, read_name, read_number
 from alpha_audit.load.yamldoc import MAX_YAML_BYTES, KeyPath, YamlDoc, load_yaml
@@ -234,9 +235,9 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
             doc,
             at("threshold"),
             data["threshold"],
-            low=1.0,
-            high=21.0,
-            what="a contrast ratio between 1 and 21",
+            low=THRESHOLD_RANGE[0],
+            high=THRESHOLD_RANGE[1],
+            what=THRESHOLD_WHAT,
         )
     rules = _rules(doc, at("fail-on"), data["fail-on"]) if "fail-on" in data else DEFAULT_RULES
     max_loss = 0.0
