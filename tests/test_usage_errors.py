@@ -44,3 +44,23 @@ def test_threshold_is_range_checked_like_the_themes(command: str, value: str) ->
         f"alpha-audit: error: --threshold {float(value):g} is out of range; "
         "expected a contrast ratio between 1 and 21"
     ]
+
+
+FLAG_ERRORS = [
+    (["check", "--min-delta-e", "-1"], "--min-delta-e -1 is out of range"),
+    (["suggest", "--min-delta-e", "nan"], "--min-delta-e nan is out of range"),
+    (["check", "--max-loss", "-0.5"], "--max-loss -0.5 is out of range"),
+    (["suggest", "--alpha-max", "0.5"], "--alpha-max 0.5 is out of range"),
+    (["suggest", "--precision", "12"], "--precision 12 is out of range"),
+    (["check", "--fail-on", "seperation"], "--fail-on 'seperation' is not a rule; did you mean"),
+    (["suggest", "--fail-on", "unrenderable"], "--fail-on unrenderable is not allowed here"),
+]
+
+
+@pytest.mark.parametrize(("args", "says"), FLAG_ERRORS)
+def test_errors_name_flags_as_flags(args: list[str], says: str) -> None:
+    res = CliRunner().invoke(app, args)
+    assert res.exit_code == 2, res.output
+    (line,) = res.stderr.strip().splitlines()
+    assert says in line
+    assert "min_delta_e" not in line and "max_loss" not in line and "alpha_max" not in line

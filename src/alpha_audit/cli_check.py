@@ -17,6 +17,7 @@ from alpha_audit.cli_options import (
     StrictSvgOption,
     ThemeArgument,
     ThresholdOption,
+    rules_flag,
 )
 from alpha_audit.render import CheckFormat, RenderOptions
 
@@ -82,6 +83,7 @@ def check_command(
             "below-threshold, newly-failing, collision, new-collision, separation, unrenderable. "
             "[default: loss, newly-failing, new-collision]",
             show_default=False,
+            callback=rules_flag("--fail-on"),
         ),
     ] = None,
     max_loss: MaxLossOption = None,

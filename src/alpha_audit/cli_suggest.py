@@ -15,6 +15,8 @@ from alpha_audit.cli_options import (
     MinDeltaEOption,
     ThemeArgument,
     ThresholdOption,
+    at_least,
+    rules_flag,
 )
 from alpha_audit.manifest_edit import ApplyScope
 from alpha_audit.suggest_report import SuggestFormat
@@ -22,15 +24,35 @@ from alpha_audit.suggest_report import SuggestFormat
 __all__ = ["suggest_command"]
 
 
+def _precision(value: int) -> int:
+    """--precision within what suggest can round exactly (named as the flag)."""
+    from alpha_audit.errors import UsageError
+    from alpha_audit.suggest import MAX_PRECISION
+
+    if not 0 <= value <= MAX_PRECISION:
+        raise UsageError(
+            f"--precision {value} is out of range; expected 0-{MAX_PRECISION} decimals"
+        )
+    return value
+
+
 def suggest_command(
     theme: ThemeArgument = None,
     iconset: IconsetArgument = None,
     config: ConfigOption = None,
     alpha_max: Annotated[
-        float, typer.Option("--alpha-max", help="Largest coefficient considered.")
+        float,
+        typer.Option(
+            "--alpha-max",
+            help="Largest coefficient considered.",
+            callback=at_least("--alpha-max", 1.0),
+        ),
     ] = 2.0,
     precision: Annotated[
-        int, typer.Option("--precision", help="Decimals; the answer is rounded down.")
+        int,
+        typer.Option(
+            "--precision", help="Decimals; the answer is rounded down.", callback=_precision
+        ),
     ] = 3,
     threshold: ThresholdOption = None,
     fail_on: Annotated[
@@ -42,6 +64,12 @@ def suggest_command(
             "newly-failing, collision, new-collision, separation. "
             "[default: the config's, else loss, newly-failing, new-collision]",
             show_default=False,
+            # suggest composites colours, it never renders an SVG.
+            callback=rules_flag(
+                "--fail-on",
+                refused=("unrenderable",),
+                why="suggest never renders SVGs; use it with check",
+            ),
         ),
     ] = None,
     max_loss: MaxLossOption = None,
