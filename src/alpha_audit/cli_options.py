@@ -90,7 +90,7 @@ def rules_flag(flag: str, refused: tuple[str, ...] = (), why: str = "") -> Calla
                 close = difflib.get_close_matches(name, allowed, n=1)
                 hint = f"did you mean {close[0]!r}? " if close else ""
                 raise UsageError(
-                    f"{flag} {value!r} is not a rule; {hint}use one of: {', '.join(allowed)}"
+                    f"{flag}: unknown rule {value!r}; {hint}use one of: {', '.join(allowed)}"
                 )
         return values
 

@@ -138,9 +138,13 @@ def suggest_command(
         rules=fail_on, max_loss=max_loss, min_delta_e=min_delta_e
     )
 
+    loaded_theme, loaded_set = load_theme(theme), load_iconset(iconset)
+    policy.check_exemptions(
+        (c.name for c in loaded_theme.canvases), (i.name for i in loaded_set.icons)
+    )
     result = suggest(
-        load_theme(theme),
-        load_iconset(iconset),
+        loaded_theme,
+        loaded_set,
         policy,
         alpha_max=alpha_max,
         precision=precision,

@@ -82,6 +82,10 @@ def check_project(
         )
     loaded_themes = [load_theme(t) for t in _unique(themes)]
     loaded_sets = [load_iconset(s) for s in _unique(iconsets)]
+    (policy or Policy()).check_exemptions(
+        (c.name for t in loaded_themes for c in t.canvases),
+        (i.name for s in loaded_sets for i in s.icons),
+    )
     if on_start is not None:
         on_start(sum(len(s.icons) for s in loaded_sets))
     audits = []

@@ -18,7 +18,7 @@ from typing import Any
 from alpha_audit.color import THRESHOLD_RANGE, THRESHOLD_WHAT
 from alpha_audit.errors import InputError, UsageError
 from alpha_audit.load.fields import check_keys, describe, read_mapping, read_name, read_number
-from alpha_audit.load.yamldoc import MAX_YAML_BYTES, KeyPath, YamlDoc, load_yaml
+from alpha_audit.load.yamldoc import MAX_YAML_BYTES, KeyPath, YamlDoc, format_key, load_yaml
 from alpha_audit.policy import DEFAULT_RULES, Exemption, Policy, Rule
 
 __all__ = [
@@ -204,7 +204,17 @@ def _exemptions(doc: YamlDoc, keys: KeyPath, value: Any) -> tuple[Exemption, ...
         rule = None
         if "rule" in item:
             rule = next(iter(_rules(doc, (*ikeys, "rule"), [item["rule"]])))
-        out.append(Exemption(reason=reason.strip(), canvas=canvas, icon=icon, rule=rule))
+        out.append(
+            Exemption(
+                reason=reason.strip(),
+                canvas=canvas,
+                icon=icon,
+                rule=rule,
+                path=doc.path,
+                line=doc.line(ikeys),
+                key=format_key(ikeys),
+            )
+        )
     return tuple(out)
 
 
