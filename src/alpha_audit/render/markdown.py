@@ -113,7 +113,8 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
         lines += [
             "",
             f"{baselined} finding(s) already in the baseline; "
-            f"{len(gate.stale)} baseline entries no longer occur.",
+            f"{len(gate.stale)} baseline "
+            f"{'entry no longer occurs' if len(gate.stale) == 1 else 'entries no longer occur'}.",
         ]
     problems = [(r, p) for r in report.audits for p in r.problems]
     if problems and Rule.UNRENDERABLE not in gate.policy.rules:
