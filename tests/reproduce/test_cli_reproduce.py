@@ -116,3 +116,15 @@ def test_out_must_not_be_a_file(tmp_path: Path) -> None:
 def test_unknown_choices_exit_2(bad: list[str]) -> None:
     result = invoke("--quick", *bad)
     assert result.exit_code == 2
+
+
+def test_table_prints_the_shared_worst_case_once() -> None:
+    """Both alphas' largest loss is the paper's (0, 0, 0.8125) on yellow: one line, not two."""
+    result = runner.invoke(
+        app, ["reproduce", "--only", "broad-grid", "--alpha", "1.1", "--alpha", "1.4"],
+        env={"COLUMNS": "200"},
+    )  # fmt: skip
+    assert result.exit_code == 0, result.output
+    assert result.stdout.count("largest loss") == 1
+    assert "alpha 1.1 and 1.4: largest loss (0,0,0.8125) on (1,1,0)" in result.stdout
+    assert "9.8118 (a=1.1) > 8.6379 (a=1.4)" in result.stdout
