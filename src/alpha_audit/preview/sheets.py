@@ -41,6 +41,7 @@ from alpha_audit.color import (
 from alpha_audit.errors import UsageError
 from alpha_audit.model import Canvas, Icon, IconSet
 from alpha_audit.preview.compose import blend_colors, composite_masks
+from alpha_audit.preview.fonts import draw_text, text_metrics, text_width
 
 __all__ = [
     "ICON_ALPHA",
@@ -204,7 +205,7 @@ class _Fonts:
 
     @staticmethod
     def width(font: ImageFont.FreeTypeFont | ImageFont.ImageFont, text: str) -> int:
-        return math.ceil(font.getlength(text))
+        return text_width(font, text)  # non-ASCII names: fonts that have them
 
 
 def _alpha_label(alpha: Alpha, icons: Sequence[Icon]) -> str:
@@ -242,8 +243,7 @@ class _Canvas2D:
 
     def text(self, xy: tuple[int, int], text: str, font: object, fill: tuple[int, int, int]) -> int:
         """Draw ``text`` with its top-left at ``xy``; return its width."""
-        self.draw.text(xy, text, font=font, fill=fill, anchor="la")
-        return _Fonts.width(font, text)  # type: ignore[arg-type]
+        return draw_text(self.draw, xy, text, font, fill)  # type: ignore[arg-type]
 
     def label(
         self,
@@ -262,9 +262,9 @@ class _Canvas2D:
         patch = self.patches.get(key)
         if patch is None:
             width = _Fonts.width(font, text)
-            ascent, descent = font.getmetrics()
+            ascent, descent = text_metrics(font, text)
             patch = Image.new("RGB", (width + 2, ascent + descent + 2), ground)
-            ImageDraw.Draw(patch).text((0, 0), text, font=font, fill=fill, anchor="la")
+            draw_text(ImageDraw.Draw(patch), (0, 0), text, font, fill)
             self.patches[key] = patch
         self.image.paste(patch, xy)
         return patch.size[0] - 2
@@ -280,6 +280,21 @@ class _Canvas2D:
 
 
 _MARGIN = 24
+_NAME_CAP = 120  # px: the widest an icon name makes a grid cell
+
+
+def _fit(font: ImageFont.FreeTypeFont, text: str, width: int) -> str:
+    """``text``, or its longest prefix plus "..." that fits in ``width`` pixels."""
+    if _Fonts.width(font, text) <= width:
+        return text
+    lo, hi = 0, len(text)
+    while lo < hi:  # the longest prefix that fits with the ellipsis
+        mid = (lo + hi + 1) // 2
+        if _Fonts.width(font, text[:mid] + "...") <= width:
+            lo = mid
+        else:
+            hi = mid - 1
+    return text[:lo] + "..."
 
 
 def _available(icons: Sequence[Icon], masks: Mapping[tuple[str, int], NDArray], size: int):
@@ -305,8 +320,11 @@ def _grid(
     gap = max(10, size // 3)
     label_w = _Fonts.width(fonts.small, "00.00")
     label_h = fonts.small.size + 4
-    cell_w = max(size, label_w) + gap
-    cell_h = size + 4 + label_h + gap // 2 + 4
+    # Each cell names its icon under the ratio; long names are shortened with "..."
+    # to the cell (at most _NAME_CAP wide), the full names being in the HTML page.
+    widest = max((_Fonts.width(fonts.small, i.name) for i in icons), default=0)
+    cell_w = max(size, label_w, min(widest, _NAME_CAP)) + gap
+    cell_h = size + 4 + 2 * label_h + gap // 2 + 4
     cols = max(1, min(n, (max_width - 2 * _MARGIN + gap) // cell_w))
     rows = max(1, math.ceil(n / cols))
 
@@ -370,6 +388,11 @@ def _grid(
             if value < threshold:
                 underline = ty + fonts.small.size + 1
                 out.rect((tx, underline, tx + tw, underline + 1), color)
+            name = _fit(fonts.small, icon.name, cell_w - gap)
+            nw = _Fonts.width(fonts.small, name)
+            out.label(
+                (cx + (cell_w - gap - nw) // 2, ty + label_h), name, fonts.small, ink.muted, fill
+            )  # type: ignore[arg-type]
         y += block_h
     return out.finish(spec)
 
