@@ -309,3 +309,8 @@ def test_json_report_carries_the_fixes() -> None:
     warn = fixes[0]
     assert warn["nearest_color"]["color"].startswith("#")
     assert warn["smallest_alpha_reaching"]["mode"] == "light"
+    # Each failure points at the fixes of its icons' colours on its canvas.
+    colour = {"a": "warn", "b": "warn", "c": "ink"}
+    for failure in doc["gate"]["failures"]:
+        named = {(fixes[k]["color"], fixes[k]["canvas"]) for k in failure["fixes"]}
+        assert named == {(colour[i], failure["canvas"]) for i in failure["icons"]}

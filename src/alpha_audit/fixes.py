@@ -62,6 +62,7 @@ __all__ = [
     "NearestColor",
     "ReachAlpha",
     "describe_fix",
+    "fix_lookup",
     "fix_to_dict",
     "fixes_for",
     "nearest_passing_color",
@@ -484,6 +485,30 @@ def _audit_fixes(
             )
         )
     return out
+
+
+def fix_lookup(report: CheckReport) -> Callable[[Finding], tuple[ColorFix, ...]]:
+    """A function giving the fixes of one finding: those of its icons' colours on its canvas.
+
+    Renderers use it to put each fix next to the finding it answers.
+    """
+    by_key = {(f.theme, f.iconset, f.color, f.canvas): f for f in report.fixes}
+    colors = {
+        (a.theme.name, a.iconset.name, i.name): i.color_name or i.color
+        for a in report.audits
+        for i in a.iconset.icons
+    }
+
+    def lookup(finding: Finding) -> tuple[ColorFix, ...]:
+        found: list[ColorFix] = []
+        for icon in finding.icons:
+            color = colors.get((finding.theme, finding.iconset, icon))
+            fix = by_key.get((finding.theme, finding.iconset, color or "", finding.canvas or ""))
+            if fix is not None and fix not in found:
+                found.append(fix)
+        return tuple(found)
+
+    return lookup
 
 
 CONTRAST_RULES = frozenset({Rule.LOSS, Rule.BELOW_THRESHOLD, Rule.NEWLY_FAILING})

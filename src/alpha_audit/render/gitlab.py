@@ -23,7 +23,7 @@ import hashlib
 from pathlib import Path, PurePosixPath
 from typing import Any
 
-from alpha_audit.fixes import ColorFix, describe_fix
+from alpha_audit.fixes import ColorFix, describe_fix, fix_lookup
 from alpha_audit.gate import CheckReport, Finding
 from alpha_audit.policy import Rule
 from alpha_audit.render import RenderOptions, display_path
@@ -65,14 +65,8 @@ def _where(f: Finding, base: Path | None) -> tuple[str, int]:
     return _relative(f.manifest, base), 1
 
 
-def _fix_text(f: Finding, fixes: dict[tuple[str, str, str, str], ColorFix], colors: dict) -> str:
-    found = []
-    for icon in f.icons:
-        color = colors.get((f.theme, f.iconset, icon))
-        fix = fixes.get((f.theme, f.iconset, color or "", f.canvas or ""))
-        if fix is not None and fix not in found:
-            found.append(fix)
-    parts = [text for text in map(describe_fix, found) if text]
+def _fix_text(fixes: tuple[ColorFix, ...]) -> str:
+    parts = [text for text in map(describe_fix, fixes) if text]
     return f" Fix: {'; '.join(parts)}." if parts else ""
 
 
@@ -82,12 +76,7 @@ def _fingerprint(text: str) -> str:
 
 def render_report(report: CheckReport, options: RenderOptions) -> str:
     """Every failing finding as one GitLab Code Quality issue, in the gate's order."""
-    fixes = {(x.theme, x.iconset, x.color, x.canvas): x for x in report.fixes}
-    colors = {
-        (a.theme.name, a.iconset.name, i.name): i.color_name or i.color
-        for a in report.audits
-        for i in a.iconset.icons
-    }
+    fixes_of = fix_lookup(report)
     entries: list[tuple[Finding, str]] = [(f, SEVERITY[f.rule]) for f in report.gate.failures]
     if Rule.UNRENDERABLE not in report.gate.policy.rules:
         for audit in report.audits:
@@ -119,7 +108,7 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
             {
                 "type": "issue",
                 "description": f"{where} ({f.theme} / {f.iconset}): {f.message}."
-                + _fix_text(f, fixes, colors),
+                + _fix_text(fixes_of(f)),
                 "check_name": _CHECK_PREFIX + f.rule.value,
                 "fingerprint": fingerprint,
                 "severity": severity,
