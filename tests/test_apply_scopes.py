@@ -124,3 +124,36 @@ def test_apply_unknown_scope_is_a_usage_error(tmp_path: Path, repo: Path) -> Non
     res = CliRunner().invoke(app, ["suggest", theme, str(manifest), "--apply", "everything"])
     assert res.exit_code == 2
     assert manifest.read_text() == (repo / "examples" / "vibrant" / "iconset.yaml").read_text()
+
+
+def test_apply_icon_replace_explicit_rewrites_list_entries_too(tmp_path: Path) -> None:
+    (tmp_path / ".git").mkdir()
+    svg = (Path(__file__).parent.parent / "examples" / "vibrant" / "svg").resolve()
+    (tmp_path / "svg").mkdir()
+    for name in ("alert", "bell", "check"):
+        shutil.copy(svg / f"{name}.svg", tmp_path / "svg" / f"{name}.svg")
+    manifest = tmp_path / "iconset.yaml"
+    manifest.write_text(
+        "name: x  # keep\n"
+        "icons:\n"
+        "  - {file: svg/alert.svg, alpha: 1.05}   # explicit\n"
+        "  - svg/bell.svg\n"
+        "  - svg/check.svg\n"
+        "palette: {o: '#ee7733', b: '#0077bb'}\n"
+        "color: cycle\n"
+        "alpha: 1.1\n"
+    )
+    theme = load_theme(Path(__file__).parent.parent / "themes" / "paper16.yaml")
+    result = suggest(theme, load_iconset(manifest), Policy())
+    kept, _ = apply_suggestion(manifest, result, "icon")
+    assert kept.kept == ("alert",) and "alert" not in kept.icons
+    text = manifest.read_text()
+    assert "{file: svg/alert.svg, alpha: 1.05}   # explicit" in text
+    plan, _ = apply_suggestion(
+        manifest, suggest(theme, load_iconset(manifest)), "icon", replace_explicit=True
+    )
+    assert plan.kept == () and "alert" in plan.icons
+    after = {i.name: i.alpha for i in load_iconset(manifest).icons}
+    assert after["alert"] == plan.icons["alert"]
+    assert manifest.read_text().startswith("name: x  # keep\n")
+    assert evaluate([audit(theme, load_iconset(manifest))], Policy()).passed == plan.passes
