@@ -8,6 +8,7 @@ colour-science's CIEDE2000 on CIELAB of the CSS Color 4 XYZ matrix.
 
 from __future__ import annotations
 
+import json
 import math
 import warnings
 
@@ -304,7 +305,7 @@ def test_json_report_carries_the_fixes() -> None:
     doc = json.loads(render_report(report, RenderOptions()))
     fixes = doc["gate"]["fixes"]
     assert [(f["color"], f["canvas"]) for f in fixes] == [
-        (fx.color, fx.canvas) for fx in report.fixes
+        (fx.color, fx.canvas) for fx in fixes_for(report)
     ]
     warn = fixes[0]
     assert warn["nearest_color"]["color"].startswith("#")
@@ -314,3 +315,21 @@ def test_json_report_carries_the_fixes() -> None:
     for failure in doc["gate"]["failures"]:
         named = {(fixes[k]["color"], fixes[k]["canvas"]) for k in failure["fixes"]}
         assert named == {(colour[i], failure["canvas"]) for i in failure["icons"]}
+
+
+def test_with_fixes_carries_them_and_renderers_use_them() -> None:
+    from dataclasses import replace as dc_replace
+
+    from alpha_audit.fixes import report_fixes, with_fixes
+
+    report = _report(Policy(rules=frozenset({Rule.BELOW_THRESHOLD})))
+    assert report.fixes is None
+    carried = with_fixes(report)
+    assert carried.fixes == fixes_for(report)
+    assert report_fixes(carried) is carried.fixes
+    # What is carried is what renderers show: an empty tuple means no fixes at all.
+    from alpha_audit.render import RenderOptions
+    from alpha_audit.render.json import render_report
+
+    doc = json.loads(render_report(dc_replace(carried, fixes=()), RenderOptions()))
+    assert doc["gate"]["fixes"] == [] and all(f["fixes"] == [] for f in doc["gate"]["failures"])

@@ -16,7 +16,7 @@ from typer.testing import CliRunner
 
 from alpha_audit.audit import audit
 from alpha_audit.cli import ExitStatus, app
-from alpha_audit.cli_check import pair_outputs
+from alpha_audit.cli.check import pair_outputs
 from alpha_audit.errors import UsageError
 from alpha_audit.gate import evaluate
 from alpha_audit.model import Canvas, Icon, IconSet, Theme

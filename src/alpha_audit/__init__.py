@@ -1,44 +1,304 @@
 """alpha-audit: audit icon sets across themes with extended-alpha compositing.
 
-The library is usable without the CLI::
+Everything a command does can be done from Python, and every name below is
+importable from here::
 
-    from alpha_audit import audit, load_iconset, load_theme
+    from alpha_audit import audit, bundled_theme, load_iconset, load_theme, rasterize_icons
 
-    result = audit(load_theme("themes/paper16.yaml"), load_iconset("examples/vibrant/iconset.yaml"))
-    print(result.summary)
+    theme = load_theme(bundled_theme("paper16"))
+    result = audit(theme, load_iconset("examples/vibrant/iconset.yaml"))
+
+Names are imported on first use (PEP 562 module ``__getattr__``), so
+``import alpha_audit`` or ``import alpha_audit.color`` loads neither the gate,
+the loaders nor the command line.
 """
 
-from alpha_audit.audit import AuditResult, Collision, Row, Separation, Summary, audit
-from alpha_audit.errors import AlphaAuditError, InputError, SvgError, UsageError
-from alpha_audit.load.iconset import load_iconset
-from alpha_audit.load.svg import rasterize, rasterize_icons
-from alpha_audit.load.theme import load_theme
-from alpha_audit.model import Canvas, Icon, IconSet, Theme
-from alpha_audit.pair import pair_table
-from alpha_audit.pipeline import check_files
+from __future__ import annotations
+
+import importlib
+import sys
+import types
+from typing import TYPE_CHECKING, Any
 
 __version__ = "0.1.0"
+"""The one version source: ``pyproject.toml`` reads it (``[tool.setuptools.dynamic]``)."""
+
+# name -> (module, attribute); keep the TYPE_CHECKING imports below the same (a test checks).
+_EXPORTS: dict[str, tuple[str, str]] = {
+    "AlphaAuditError": ("alpha_audit.errors", "AlphaAuditError"),
+    "ColorSyntaxError": ("alpha_audit.errors", "ColorSyntaxError"),
+    "InputError": ("alpha_audit.errors", "InputError"),
+    "SvgError": ("alpha_audit.errors", "SvgError"),
+    "UsageError": ("alpha_audit.errors", "UsageError"),
+    "Canvas": ("alpha_audit.model", "Canvas"),
+    "Icon": ("alpha_audit.model", "Icon"),
+    "IconSet": ("alpha_audit.model", "IconSet"),
+    "Theme": ("alpha_audit.model", "Theme"),
+    "composite_extended": ("alpha_audit.color", "composite_extended"),
+    "contrast_ratio": ("alpha_audit.color", "contrast_ratio"),
+    "delta_e_2000": ("alpha_audit.color", "delta_e_2000"),
+    "hex_to_linear": ("alpha_audit.color", "hex_to_linear"),
+    "linear_to_hex": ("alpha_audit.color", "linear_to_hex"),
+    "parse_color": ("alpha_audit.color", "parse_color"),
+    "relative_luminance": ("alpha_audit.color", "relative_luminance"),
+    "srgb_decode": ("alpha_audit.color", "srgb_decode"),
+    "srgb_encode": ("alpha_audit.color", "srgb_encode"),
+    "to_8bit": ("alpha_audit.color", "to_8bit"),
+    "load_theme": ("alpha_audit.load.theme", "load_theme"),
+    "load_iconset": ("alpha_audit.load.iconset", "load_iconset"),
+    "ProjectConfig": ("alpha_audit.load.config", "ProjectConfig"),
+    "load_config": ("alpha_audit.load.config", "load_config"),
+    "project_config": ("alpha_audit.load.config", "project_config"),
+    "IconProblem": ("alpha_audit.load.svg", "IconProblem"),
+    "MaskSet": ("alpha_audit.load.svg", "MaskSet"),
+    "RenderLimits": ("alpha_audit.load.svg", "RenderLimits"),
+    "rasterize": ("alpha_audit.load.svg", "rasterize"),
+    "rasterize_icons": ("alpha_audit.load.svg", "rasterize_icons"),
+    "bundled_iconset": ("alpha_audit.bundled", "bundled_iconset"),
+    "bundled_iconsets": ("alpha_audit.bundled", "bundled_iconsets"),
+    "bundled_theme": ("alpha_audit.bundled", "bundled_theme"),
+    "bundled_themes": ("alpha_audit.bundled", "bundled_themes"),
+    "iconset_source": ("alpha_audit.bundled", "iconset_source"),
+    "load_bundled_themes": ("alpha_audit.bundled", "load_bundled_themes"),
+    "theme_source": ("alpha_audit.bundled", "theme_source"),
+    "AuditResult": ("alpha_audit.audit", "AuditResult"),
+    "CanvasSummary": ("alpha_audit.audit", "CanvasSummary"),
+    "Collision": ("alpha_audit.audit", "Collision"),
+    "Row": ("alpha_audit.audit", "Row"),
+    "Separation": ("alpha_audit.audit", "Separation"),
+    "Summary": ("alpha_audit.audit", "Summary"),
+    "audit": ("alpha_audit.audit", "audit"),
+    "DEFAULT_RULES": ("alpha_audit.policy", "DEFAULT_RULES"),
+    "Exemption": ("alpha_audit.policy", "Exemption"),
+    "Policy": ("alpha_audit.policy", "Policy"),
+    "Rule": ("alpha_audit.policy", "Rule"),
+    "CheckReport": ("alpha_audit.gate", "CheckReport"),
+    "Finding": ("alpha_audit.gate", "Finding"),
+    "FindingKey": ("alpha_audit.gate", "FindingKey"),
+    "GateResult": ("alpha_audit.gate", "GateResult"),
+    "baseline_document": ("alpha_audit.gate", "baseline_document"),
+    "evaluate": ("alpha_audit.gate", "evaluate"),
+    "parse_baseline": ("alpha_audit.gate", "parse_baseline"),
+    "read_baseline": ("alpha_audit.gate", "read_baseline"),
+    "check_files": ("alpha_audit.pipeline", "check_files"),
+    "check_project": ("alpha_audit.pipeline", "check_project"),
+    "CheckFormat": ("alpha_audit.render", "CheckFormat"),
+    "RenderOptions": ("alpha_audit.render", "RenderOptions"),
+    "render_check": ("alpha_audit.render", "render_check"),
+    "SafeAlpha": ("alpha_audit.suggest", "SafeAlpha"),
+    "SuggestResult": ("alpha_audit.suggest", "SuggestResult"),
+    "largest_safe_alpha": ("alpha_audit.suggest", "largest_safe_alpha"),
+    "suggest": ("alpha_audit.suggest", "suggest"),
+    "SuggestFormat": ("alpha_audit.suggest_report", "SuggestFormat"),
+    "render_suggest": ("alpha_audit.suggest_report", "render_suggest"),
+    "suggest_document": ("alpha_audit.suggest_report", "suggest_document"),
+    "apply_alpha": ("alpha_audit.manifest_edit", "apply_alpha"),
+    "PairRow": ("alpha_audit.pair", "PairRow"),
+    "pair_table": ("alpha_audit.pair", "pair_table"),
+    "pair_json": ("alpha_audit.render.pair", "pair_json"),
+    "pair_table_text": ("alpha_audit.render.pair", "pair_table_text"),
+    "PreviewResult": ("alpha_audit.preview.files", "PreviewResult"),
+    "preview_files": ("alpha_audit.preview.files", "preview_files"),
+    "Layout": ("alpha_audit.preview.sheets", "Layout"),
+    "Experiment": ("alpha_audit.reproduce.run", "Experiment"),
+    "Reproduction": ("alpha_audit.reproduce.run", "Reproduction"),
+    "reproduce": ("alpha_audit.reproduce.run", "reproduce"),
+    "write_figures": ("alpha_audit.reproduce.figures", "write_figures"),
+    "write_text": ("alpha_audit.output", "write_text"),
+    "reproduction_json": ("alpha_audit.reproduce.report", "render_json"),
+    "reproduction_markdown": ("alpha_audit.reproduce.report", "render_markdown"),
+}
 
 __all__ = [
+    "DEFAULT_RULES",
     "AlphaAuditError",
     "AuditResult",
     "Canvas",
+    "CanvasSummary",
+    "CheckFormat",
+    "CheckReport",
     "Collision",
+    "ColorSyntaxError",
+    "Exemption",
+    "Experiment",
+    "Finding",
+    "FindingKey",
+    "GateResult",
     "Icon",
+    "IconProblem",
     "IconSet",
     "InputError",
+    "Layout",
+    "MaskSet",
+    "PairRow",
+    "Policy",
+    "PreviewResult",
+    "ProjectConfig",
+    "RenderLimits",
+    "RenderOptions",
+    "Reproduction",
     "Row",
+    "Rule",
+    "SafeAlpha",
     "Separation",
+    "SuggestFormat",
+    "SuggestResult",
     "Summary",
     "SvgError",
     "Theme",
     "UsageError",
     "__version__",
+    "apply_alpha",
     "audit",
+    "baseline_document",
+    "bundled_iconset",
+    "bundled_iconsets",
+    "bundled_theme",
+    "bundled_themes",
     "check_files",
+    "check_project",
+    "composite_extended",
+    "contrast_ratio",
+    "delta_e_2000",
+    "evaluate",
+    "hex_to_linear",
+    "iconset_source",
+    "largest_safe_alpha",
+    "linear_to_hex",
+    "load_bundled_themes",
+    "load_config",
     "load_iconset",
     "load_theme",
+    "pair_json",
     "pair_table",
+    "pair_table_text",
+    "parse_baseline",
+    "parse_color",
+    "preview_files",
+    "project_config",
     "rasterize",
     "rasterize_icons",
+    "read_baseline",
+    "relative_luminance",
+    "render_check",
+    "render_suggest",
+    "reproduce",
+    "reproduction_json",
+    "reproduction_markdown",
+    "srgb_decode",
+    "srgb_encode",
+    "suggest",
+    "suggest_document",
+    "theme_source",
+    "to_8bit",
+    "write_figures",
+    "write_text",
 ]
+
+if TYPE_CHECKING:  # for type checkers only; at run time __getattr__ imports on demand
+    from alpha_audit.audit import (
+        AuditResult,
+        CanvasSummary,
+        Collision,
+        Row,
+        Separation,
+        Summary,
+        audit,
+    )
+    from alpha_audit.bundled import (
+        bundled_iconset,
+        bundled_iconsets,
+        bundled_theme,
+        bundled_themes,
+        iconset_source,
+        load_bundled_themes,
+        theme_source,
+    )
+    from alpha_audit.color import (
+        composite_extended,
+        contrast_ratio,
+        delta_e_2000,
+        hex_to_linear,
+        linear_to_hex,
+        parse_color,
+        relative_luminance,
+        srgb_decode,
+        srgb_encode,
+        to_8bit,
+    )
+    from alpha_audit.errors import (
+        AlphaAuditError,
+        ColorSyntaxError,
+        InputError,
+        SvgError,
+        UsageError,
+    )
+    from alpha_audit.gate import (
+        CheckReport,
+        Finding,
+        FindingKey,
+        GateResult,
+        baseline_document,
+        evaluate,
+        parse_baseline,
+        read_baseline,
+    )
+    from alpha_audit.load.config import ProjectConfig, load_config, project_config
+    from alpha_audit.load.iconset import load_iconset
+    from alpha_audit.load.svg import IconProblem, MaskSet, RenderLimits, rasterize, rasterize_icons
+    from alpha_audit.load.theme import load_theme
+    from alpha_audit.manifest_edit import apply_alpha
+    from alpha_audit.model import Canvas, Icon, IconSet, Theme
+    from alpha_audit.output import write_text
+    from alpha_audit.pair import PairRow, pair_table
+    from alpha_audit.pipeline import check_files, check_project
+    from alpha_audit.policy import DEFAULT_RULES, Exemption, Policy, Rule
+    from alpha_audit.preview.files import PreviewResult, preview_files
+    from alpha_audit.preview.sheets import Layout
+    from alpha_audit.render import CheckFormat, RenderOptions, render_check
+    from alpha_audit.render.pair import pair_json, pair_table_text
+    from alpha_audit.reproduce.figures import write_figures
+    from alpha_audit.reproduce.report import render_json as reproduction_json
+    from alpha_audit.reproduce.report import render_markdown as reproduction_markdown
+    from alpha_audit.reproduce.run import Experiment, Reproduction, reproduce
+    from alpha_audit.suggest import SafeAlpha, SuggestResult, largest_safe_alpha, suggest
+    from alpha_audit.suggest_report import SuggestFormat, render_suggest, suggest_document
+
+
+def __getattr__(name: str) -> Any:
+    """Import a public name's module on first use and cache the name here."""
+    try:
+        module, attribute = _EXPORTS[name]
+    except KeyError:
+        raise AttributeError(f"module 'alpha_audit' has no attribute {name!r}") from None
+    value = getattr(importlib.import_module(module), attribute)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *_EXPORTS})
+
+
+class _PublicNamesFirst(types.ModuleType):
+    """This package's module type: ``audit``, ``suggest`` and ``reproduce`` stay functions.
+
+    Importing a submodule binds it on its parent (``alpha_audit.audit = <module>``),
+    which would hide the public function of the same name from ``__getattr__``.
+    The binding is skipped for those names, as the eager ``from alpha_audit.audit
+    import audit`` used to overwrite it; the submodule stays in ``sys.modules``,
+    so ``from alpha_audit.audit import ...`` works as usual (but, as before,
+    ``import alpha_audit.audit as m`` gives the function).
+    """
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        if (
+            name in _EXPORTS
+            and isinstance(value, types.ModuleType)
+            and value.__name__ == f"{__name__}.{name}"
+        ):
+            return
+        super().__setattr__(name, value)
+
+
+sys.modules[__name__].__class__ = _PublicNamesFirst

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from decimal import ROUND_CEILING, Decimal
 from pathlib import Path
 from typing import Any
@@ -67,7 +67,9 @@ __all__ = [
     "fixes_for",
     "nearest_passing_color",
     "passes_everywhere",
+    "report_fixes",
     "smallest_alpha_reaching",
+    "with_fixes",
 ]
 
 ALPHA_LO = 1.0  # the reference coefficient: a fix never asks for less
@@ -487,12 +489,26 @@ def _audit_fixes(
     return out
 
 
-def fix_lookup(report: CheckReport) -> Callable[[Finding], tuple[ColorFix, ...]]:
+def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 3) -> CheckReport:
+    """``report`` carrying its fixes (:func:`fixes_for`), computed once for every renderer."""
+    return replace(report, fixes=fixes_for(report, alpha_max=alpha_max, precision=precision))
+
+
+def report_fixes(report: CheckReport) -> tuple[ColorFix, ...]:
+    """The report's fixes: as carried (:func:`with_fixes`), else computed now (defaults)."""
+    return report.fixes if report.fixes is not None else fixes_for(report)
+
+
+def fix_lookup(
+    report: CheckReport, fixes: Sequence[ColorFix] | None = None
+) -> Callable[[Finding], tuple[ColorFix, ...]]:
     """A function giving the fixes of one finding: those of its icons' colours on its canvas.
 
-    Renderers use it to put each fix next to the finding it answers.
+    Renderers use it to put each fix next to the finding it answers;
+    ``fixes`` defaults to :func:`report_fixes`.
     """
-    by_key = {(f.theme, f.iconset, f.color, f.canvas): f for f in report.fixes}
+    known = report_fixes(report) if fixes is None else fixes
+    by_key = {(f.theme, f.iconset, f.color, f.canvas): f for f in known}
     colors = {
         (a.theme.name, a.iconset.name, i.name): i.color_name or i.color
         for a in report.audits
@@ -541,12 +557,15 @@ def describe_fix(fix: ColorFix) -> str:
     return f"{fix.color}: {' or '.join(options)}" if options else ""
 
 
-def fix_to_dict(fix: ColorFix, base: Path | None = None) -> dict[str, Any]:
+def fix_to_dict(
+    fix: ColorFix, display: Callable[[Path | None], str | None] | None = None
+) -> dict[str, Any]:
     """One fix as plain JSON data (finite floats only; ``None`` where there is no answer).
 
-    ``manifest`` is shown relative to ``base`` when inside it, as findings' paths are.
+    ``display`` shows the manifest path (renderers pass their relative-path
+    helper); by default it is written in POSIX form as stored.
     """
-    from alpha_audit.render import display_path  # render imports this module's users
+    show = display or (lambda p: None if p is None else p.as_posix())
 
     safe = fix.largest_safe
     limit = safe.limit
@@ -587,6 +606,6 @@ def fix_to_dict(fix: ColorFix, base: Path | None = None) -> dict[str, Any]:
             "delta_e": near.delta_e,
             "oklch": {"l": near.lightness, "c": near.chroma, "h": near.hue},
         },
-        "manifest": display_path(fix.manifest, base),
+        "manifest": show(fix.manifest),
         "line": fix.line,
     }

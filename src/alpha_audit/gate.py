@@ -11,7 +11,6 @@ from __future__ import annotations
 import json
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
-from functools import cached_property
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -108,13 +107,9 @@ class CheckReport:
 
     audits: tuple[AuditResult, ...]
     gate: GateResult
-
-    @cached_property
-    def fixes(self) -> tuple[ColorFix, ...]:
-        """A fix for every failing (colour, canvas), computed once; see :mod:`alpha_audit.fixes`."""
-        from alpha_audit.fixes import fixes_for  # fixes builds on this module
-
-        return fixes_for(self)
+    # A fix per failing (colour, canvas), from alpha_audit.fixes.with_fixes
+    # (which builds on this module); None when not computed.
+    fixes: tuple[ColorFix, ...] | None = None
 
 
 def _icon_refs(
@@ -368,7 +363,7 @@ def read_baseline(path: str | Path) -> frozenset[FindingKey]:
             raw = fh.read(MAX_BASELINE_BYTES + 1)
     except FileNotFoundError as exc:
         raise UsageError(
-            "baseline file not found (create it with --write-baseline)", path=p
+            "baseline file not found (record one with `baseline_document`)", path=p
         ) from exc
     except OSError as exc:
         raise InputError(f"cannot read: {exc.strerror}", path=p) from exc

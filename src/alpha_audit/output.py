@@ -19,7 +19,7 @@ def write_text(path: str | Path, text: str, *, overwrite: bool = False) -> Path:
     """
     target = Path(path)
     if target.exists() and not overwrite:
-        raise UsageError("already exists; pass --force to replace it", path=target)
+        raise UsageError("already exists; pass `overwrite=True` to replace it", path=target)
     if target.exists() and not target.is_file():
         raise UsageError("is not a regular file; refusing to replace it", path=target)
     folder = target.parent if str(target.parent) else Path(".")

@@ -7,6 +7,7 @@ from pathlib import Path
 
 from alpha_audit.audit import AuditResult, audit
 from alpha_audit.errors import SvgError, UsageError
+from alpha_audit.fixes import with_fixes
 from alpha_audit.gate import CheckReport, FindingKey, evaluate
 from alpha_audit.load.iconset import load_iconset
 from alpha_audit.load.svg import MaskSet, rasterize_icons
@@ -96,7 +97,8 @@ def check_project(
                 audit(theme, iconset, alpha=alpha, threshold=threshold, problems=problems)
             )
     gate = evaluate(audits, policy or Policy(), baseline=baseline)
-    return CheckReport(audits=tuple(audits), gate=gate)
+    # Every renderer shows the fix for each failing colour: computed once, here.
+    return with_fixes(CheckReport(audits=tuple(audits), gate=gate))
 
 
 def _unique(paths: Sequence[str | Path]) -> list[Path]:

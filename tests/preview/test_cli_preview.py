@@ -63,7 +63,7 @@ def test_existing_files_are_not_replaced_without_force(tmp_path):
     [
         ([], "nothing to write"),
         (["-o", "OUT", "-a", "nan"], "--alpha must be a finite number"),
-        (["-o", "OUT", "-s", "0"], "--size must be between 1 and"),
+        (["-o", "OUT", "-s", "0"], "every value in --size must be between 1 and"),
         (["-o", "OUT", "-l", "mosaic"], "mosaic"),
         (["--html", "missing/page.html"], "does not exist"),
     ],

@@ -167,7 +167,7 @@ def test_write_refuses_to_overwrite(tmp_path, example):
     sheet = render_sheet(spec, iconset, masks)
     path = write_sheet(sheet, tmp_path)
     assert np.array_equal(np.asarray(Image.open(path)), np.asarray(sheet.image))
-    with pytest.raises(UsageError, match="already exists; pass --force"):
+    with pytest.raises(UsageError, match="already exists; pass `overwrite=True`"):
         write_sheet(sheet, tmp_path)
     write_sheet(sheet, tmp_path, overwrite=True)
     assert [p.name for p in tmp_path.iterdir()] == [spec.name]  # no temporary files left

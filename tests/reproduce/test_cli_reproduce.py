@@ -10,7 +10,7 @@ import typer
 from PIL import Image
 from typer.testing import CliRunner
 
-from alpha_audit.cli_reproduce import reproduce_command
+from alpha_audit.cli.reproduce import reproduce_command
 from alpha_audit.errors import InputError, UsageError
 from alpha_audit.reproduce.report import SCHEMA
 

@@ -65,12 +65,13 @@ def render_alpha(svg: bytes, size: int) -> bytes:
     return bytes(square)
 
 
-def describe_failure(exc: BaseException) -> str:
-    """A one-line reason for a failed render."""
+def describe_failure(exc: BaseException, memory_bytes: int | None = None) -> str:
+    """A one-line reason for a failed render (``memory_bytes``: the limit, to name it)."""
     if isinstance(exc, RecursionError):
         return "nested too deeply (recursive or deeply nested <use>/groups)"
     if isinstance(exc, MemoryError):
-        return "needs more memory than the render limit allows"
+        limit = "" if memory_bytes is None else f" of {memory_bytes >> 20} MiB"
+        return f"needs more memory than the render limit{limit} allows"
     name = type(exc).__name__
     if name == "EntitiesForbidden":
         return "declares XML entities, which are refused (entity expansion)"
@@ -128,7 +129,7 @@ def _read_exact(stream, n: int) -> bytes:
     return data
 
 
-def serve(stdin, stdout) -> None:
+def serve(stdin, stdout, memory_bytes: int | None = None) -> None:
     """Answer render requests until a request with no sizes or end of input."""
     u32 = struct.Struct(">I")
     while True:
@@ -148,7 +149,8 @@ def serve(stdin, stdout) -> None:
             except BaseException as exc:  # every failure of a hostile file is a reply
                 if isinstance(exc, KeyboardInterrupt | SystemExit):
                     raise
-                payload, status = describe_failure(exc).encode("utf-8", "replace"), FAILED
+                reason = describe_failure(exc, memory_bytes)
+                payload, status = reason.encode("utf-8", "replace"), FAILED
             reply += struct.pack(">BI", status, len(payload)) + payload
         stdout.write(reply)
         stdout.flush()
@@ -165,7 +167,7 @@ def main() -> None:
         4,
     )
     install_sandbox(memory_bytes, cpu_seconds)
-    serve(sys.stdin.buffer, sys.stdout.buffer)
+    serve(sys.stdin.buffer, sys.stdout.buffer, memory_bytes)
 
 
 if __name__ == "__main__":

@@ -24,11 +24,13 @@ from collections import deque
 from collections.abc import Sequence
 from pathlib import Path
 from types import TracebackType
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
 
-from alpha_audit.load.svg import RenderLimits
+if TYPE_CHECKING:  # svg imports this module to render: a run-time import back would be a cycle
+    from alpha_audit.load.svg import RenderLimits
 
 __all__ = ["Outcome", "RenderPool"]
 
@@ -44,6 +46,7 @@ class _Worker:
     """One render process and the job it is working on."""
 
     def __init__(self, limits: RenderLimits) -> None:
+        self.limits = limits
         env = {"PATH": os.environ.get("PATH", ""), "OPENBLAS_NUM_THREADS": "1", "LC_ALL": "C"}
         self.proc = subprocess.Popen(
             [sys.executable, "-I", str(_WORKER), str(limits.memory), str(limits.cpu)],
@@ -122,8 +125,11 @@ class _Worker:
             except ValueError:
                 name = f"signal {-code}"
             if name == "SIGXCPU":
-                return "renderer ran out of CPU time; refused"
-            return f"renderer crashed ({name}); the file may need too much memory"
+                return f"renderer ran out of CPU time (limit {self.limits.cpu} s); refused"
+            return (
+                f"renderer crashed ({name}); the file may need more than the "
+                f"{self.limits.memory >> 20} MiB render memory limit"
+            )
         return f"renderer stopped unexpectedly (exit code {code})"
 
 

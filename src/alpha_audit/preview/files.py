@@ -49,10 +49,10 @@ def preview_canvases(theme: Theme, iconset: IconSet, near_source: bool) -> tuple
 def _check_options(alphas: Sequence[float], sizes: Sequence[int]) -> None:
     for a in alphas:
         if not math.isfinite(a):
-            raise UsageError(f"--alpha must be a finite number, got {a}")
+            raise UsageError(f"every value in `alphas` must be finite, got {a}")
     for s in sizes:
         if not 1 <= s <= MAX_SIZE:
-            raise UsageError(f"--size must be between 1 and {MAX_SIZE} px, got {s}")
+            raise UsageError(f"every value in `sizes` must be between 1 and {MAX_SIZE} px, got {s}")
 
 
 def preview_files(
@@ -78,7 +78,7 @@ def preview_files(
     over icons rasterised plus files written.
     """
     if out_dir is None and html_path is None:
-        raise UsageError("nothing to write: give -o DIR for PNG sheets and/or --html FILE")
+        raise UsageError("nothing to write: give `out_dir` for PNG sheets and/or `html_path`")
     _check_options(alphas, sizes)
     theme = load_theme(theme_path)
     iconset = load_iconset(iconset_path)

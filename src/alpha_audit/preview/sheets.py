@@ -615,7 +615,7 @@ def check_writable(targets: Sequence[Path], *, overwrite: bool) -> None:
     """Refuse before any work if a target exists (without ``overwrite``) or is not a file."""
     for target in targets:
         if target.exists() and not overwrite:
-            raise UsageError("already exists; pass --force to replace it", path=target)
+            raise UsageError("already exists; pass `overwrite=True` to replace it", path=target)
         if target.exists() and not target.is_file():
             raise UsageError("is not a regular file; refusing to replace it", path=target)
         if not target.parent.is_dir():

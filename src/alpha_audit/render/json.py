@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from alpha_audit.audit import AuditResult
-from alpha_audit.fixes import fix_lookup, fix_to_dict
+from alpha_audit.fixes import fix_lookup, fix_to_dict, report_fixes
 from alpha_audit.gate import CheckReport, Finding, GateResult
 from alpha_audit.render import RenderOptions, as_report, display_path
 
@@ -139,9 +139,10 @@ def report_to_dict(report: CheckReport, base: Path | None = None) -> dict[str, A
     gate = gate_to_dict(report.gate, base)
     # A fix per failing (colour, canvas): docs/json.md, `gate.fixes`; each
     # failure names its fixes by index there.
-    gate["fixes"] = [fix_to_dict(f, base) for f in report.fixes]
-    position = {fix: n for n, fix in enumerate(report.fixes)}
-    fixes_of = fix_lookup(report)
+    fixes = report_fixes(report)
+    gate["fixes"] = [fix_to_dict(f, lambda p: display_path(p, base)) for f in fixes]
+    position = {fix: n for n, fix in enumerate(fixes)}
+    fixes_of = fix_lookup(report, fixes)
     for entry, finding in zip(gate["failures"], report.gate.failures, strict=True):
         entry["fixes"] = [position[x] for x in fixes_of(finding)]
     if len(report.audits) == 1:

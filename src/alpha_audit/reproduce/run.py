@@ -86,7 +86,7 @@ def reproduce(
     selected = set(only) or set(Experiment)
     alphas = tuple(float(a) for a in alphas)
     if not alphas:
-        raise UsageError("give at least one --alpha")
+        raise UsageError("`alphas` is empty; give at least one coefficient")
     settings = Settings.quick() if quick else Settings.paper()
     results: dict[str, object] = {}
     for experiment in Experiment:

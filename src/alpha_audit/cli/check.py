@@ -8,7 +8,8 @@ from typing import Annotated
 
 import typer
 
-from alpha_audit.cli_options import (
+from alpha_audit.cli.console import emit, progress_bar, stderr_note, stdout_options
+from alpha_audit.cli.options import (
     ConfigOption,
     ForceOption,
     IconsetArgument,
@@ -17,8 +18,10 @@ from alpha_audit.cli_options import (
     StrictSvgOption,
     ThemeArgument,
     ThresholdOption,
+    require_finite,
     rules_flag,
 )
+from alpha_audit.cli.status import ExitStatus
 from alpha_audit.render import CheckFormat, RenderOptions
 
 __all__ = ["check_command", "pair_outputs"]
@@ -122,7 +125,7 @@ def check_command(
     ] = None,
     force: ForceOption = False,
     strict_svg: StrictSvgOption = False,
-) -> None:
+) -> ExitStatus:
     """Audit icon sets on themes and fail the build on the findings the policy names.
 
     Per canvas: mean contrast gain against a = 1, icons at or above the threshold
@@ -130,19 +133,15 @@ def check_command(
     between distinct colours, and the smallest CIEDE2000 between the set's colours.
     With no THEME ICONSET, audits what the project config names.
 
-    Exit codes: 0 the gate passed, 1 the gate failed, 2 bad input or usage.
+    THEME may name a bundled theme (see [bold]alpha-audit themes[/]) and ICONSET the
+    bundled example set [bold]vibrant[/].
+
+    Exit codes: 0 the gate passed, 1 the gate failed, 2 bad input or usage, 3 a bug.
 
     Example:
     [bold]alpha-audit check themes/github-primer.yaml examples/vibrant/iconset.yaml -a 1.2[/]
     """
-    from alpha_audit.cli import (
-        ExitStatus,
-        emit,
-        progress_bar,
-        require_finite,
-        stderr_note,
-        stdout_options,
-    )
+    from alpha_audit.bundled import iconset_source, theme_source
     from alpha_audit.errors import UsageError
     from alpha_audit.gate import baseline_document, read_baseline
     from alpha_audit.load.config import project_config
@@ -157,8 +156,8 @@ def check_command(
         raise UsageError("give both THEME and ICONSET, or neither (to use the project config)")
 
     project = project_config(config, Path.cwd())
-    cli_themes = ([theme] if theme else []) + list(themes or [])
-    cli_sets = ([iconset] if iconset else []) + list(iconsets or [])
+    cli_themes = [theme_source(t) for t in ([theme] if theme else []) + list(themes or [])]
+    cli_sets = [iconset_source(s) for s in ([iconset] if iconset else []) + list(iconsets or [])]
     policy = project.policy.with_overrides(
         rules=fail_on, max_loss=max_loss, min_delta_e=min_delta_e
     )
@@ -184,12 +183,11 @@ def check_command(
     if write_baseline is not None:
         write_text(write_baseline, dumps(baseline_document(report.gate)), overwrite=force)
         stderr_note(f"wrote baseline {write_baseline}")
-        return
+        return ExitStatus.OK
     gate = report.gate
     if gate.passed:
         stderr_note("gate passed")
-        return
+        return ExitStatus.OK
     counts = ", ".join(f"{n} {rule}" for rule, n in gate.counts().items())
     stderr_note(f"gate failed: {counts}" + (" (--exit-zero)" if exit_zero else ""))
-    if not exit_zero:
-        raise typer.Exit(code=ExitStatus.GATE_FAILED)
+    return ExitStatus.OK if exit_zero else ExitStatus.GATE_FAILED

@@ -7,15 +7,19 @@ from typing import Annotated
 
 import typer
 
-from alpha_audit.cli_options import ForceOption, StrictSvgOption, ThresholdOption
+from alpha_audit.cli.console import progress_bar, stderr_console
+from alpha_audit.cli.options import ForceOption, StrictSvgOption, ThresholdOption, require_finite
+from alpha_audit.cli.status import ExitStatus
 from alpha_audit.preview.sheets import Layout
 
 __all__ = ["preview_command"]
 
 
 def preview_command(
-    theme: Annotated[Path, typer.Argument(help="Theme YAML: canvases (light and dark).")],
-    iconset: Annotated[Path, typer.Argument(help="Icon-set manifest YAML.")],
+    theme: Annotated[
+        Path, typer.Argument(help="Theme YAML (canvases, light and dark) or a bundled theme name.")
+    ],
+    iconset: Annotated[Path, typer.Argument(help="Icon-set manifest YAML, or vibrant (bundled).")],
     output: Annotated[
         Path | None,
         typer.Option("--output", "-o", help="Folder for the PNG sheets (created if missing)."),
@@ -64,7 +68,7 @@ def preview_command(
     threshold: ThresholdOption = None,
     force: ForceOption = False,
     strict_svg: StrictSvgOption = False,
-) -> None:
+) -> ExitStatus:
     """Draw the icons on the theme's canvases: PNG sheets (-o DIR) and/or a WebGL2 page (--html).
 
     Every icon pixel is encode(q * clip(Cb + a(Cs - Cb)) + (1 - q) * Cb) in linear
@@ -74,7 +78,7 @@ def preview_command(
     [bold]alpha-audit preview themes/paper16.yaml examples/vibrant/iconset.yaml -o previews
     --html previews/vibrant.html[/]
     """
-    from alpha_audit.cli import _stderr, progress_bar, require_finite
+    from alpha_audit.bundled import iconset_source, theme_source
     from alpha_audit.preview.files import preview_files
 
     for a in alpha or ():
@@ -82,8 +86,8 @@ def preview_command(
     require_finite(threshold, "--threshold")
     with progress_bar("Rendering previews") as (on_start, on_step):
         result = preview_files(
-            theme,
-            iconset,
+            theme_source(theme),
+            iconset_source(iconset),
             out_dir=output,
             html_path=html,
             layout=layout,
@@ -96,7 +100,7 @@ def preview_command(
             on_start=on_start,
             on_step=on_step,
         )
-    err = _stderr()
+    err = stderr_console()
     for problem in result.problems:
         err.print(
             f"skipped {problem.icon}: {problem.file}: {problem.message}",
@@ -105,3 +109,4 @@ def preview_command(
         )
     for path in result.written:
         err.print(f"wrote {path}", soft_wrap=True, markup=False)
+    return ExitStatus.OK

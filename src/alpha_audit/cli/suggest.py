@@ -7,7 +7,8 @@ from typing import Annotated
 
 import typer
 
-from alpha_audit.cli_options import (
+from alpha_audit.cli.console import emit, stdout_options
+from alpha_audit.cli.options import (
     ConfigOption,
     ForceOption,
     IconsetArgument,
@@ -16,8 +17,10 @@ from alpha_audit.cli_options import (
     ThemeArgument,
     ThresholdOption,
     at_least,
+    require_finite,
     rules_flag,
 )
+from alpha_audit.cli.status import ExitStatus
 from alpha_audit.manifest_edit import ApplyScope
 from alpha_audit.suggest_report import SuggestFormat
 
@@ -100,7 +103,7 @@ def suggest_command(
             help="With --apply, also replace alphas the manifest sets per icon.",
         ),
     ] = False,
-) -> None:
+) -> ExitStatus:
     """The largest alpha every coefficient in [1, alpha] keeps the gate policy for.
 
     Computed exactly from where contrast, 8-bit codes and separation change, not
@@ -112,7 +115,7 @@ def suggest_command(
     Example:
     [bold]alpha-audit suggest themes/paper16.yaml examples/vibrant/iconset.yaml --apply set[/]
     """
-    from alpha_audit.cli import emit, require_finite, stdout_options
+    from alpha_audit.bundled import iconset_source, theme_source
     from alpha_audit.errors import UsageError
     from alpha_audit.load.config import project_config
     from alpha_audit.load.iconset import load_iconset
@@ -134,6 +137,13 @@ def suggest_command(
                 f"{len(project.iconsets)} icon set(s))"
             )
         theme, iconset = project.themes[0], project.iconsets[0]
+    theme, source = theme_source(theme), iconset_source(iconset)
+    if apply is not None and source != Path(iconset):
+        raise UsageError(
+            f"--apply rewrites the manifest in place and {iconset} is the bundled example; "
+            f"copy {source.parent} into your project and give its {source.name}"
+        )
+    iconset = source
     policy = project.policy.with_overrides(
         rules=fail_on, max_loss=max_loss, min_delta_e=min_delta_e
     )
@@ -155,3 +165,4 @@ def suggest_command(
     if apply is not None:
         plan, changed = apply_suggestion(iconset, result, apply, replace_explicit=replace_explicit)
         typer.echo(describe_plan(plan, iconset, changed, precision), err=True)
+    return ExitStatus.OK

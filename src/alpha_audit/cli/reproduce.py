@@ -1,4 +1,4 @@
-"""``alpha-audit reproduce``: the paper's numerical evaluation (registered by ``cli.py``).
+"""``alpha-audit reproduce``: the paper's numerical evaluation (registered by ``app.py``).
 
 Runs the library (:mod:`alpha_audit.reproduce`), shows progress on stderr
 (only on a terminal), prints rich tables, JSON or Markdown on stdout and,
@@ -20,6 +20,8 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 from rich.text import Text
 
+from alpha_audit.bundled import bundled_theme, theme_source
+from alpha_audit.cli.status import ExitStatus
 from alpha_audit.errors import UsageError
 from alpha_audit.load.theme import load_theme
 from alpha_audit.reproduce.figures import write_figures
@@ -27,7 +29,10 @@ from alpha_audit.reproduce.paper import PAPER, matches_printed
 from alpha_audit.reproduce.report import alpha_key, render_json, render_markdown
 from alpha_audit.reproduce.run import Experiment, Reproduction, reproduce
 
-__all__ = ["ReproduceFormat", "default_theme_path", "reproduce_command"]
+__all__ = ["DEFAULT_THEME", "ReproduceFormat", "reproduce_command"]
+
+DEFAULT_THEME = "paper16"
+"""The bundled theme with the paper's sixteen canvases, used without ``--theme``."""
 
 
 class ReproduceFormat(enum.StrEnum):
@@ -36,17 +41,6 @@ class ReproduceFormat(enum.StrEnum):
     TABLE = "table"
     JSON = "json"
     MARKDOWN = "markdown"
-
-
-def default_theme_path() -> Path:
-    """``themes/paper16.yaml`` of the source tree, else of the working directory."""
-    for candidate in (
-        Path(__file__).resolve().parents[2] / "themes" / "paper16.yaml",
-        Path("themes") / "paper16.yaml",
-    ):
-        if candidate.is_file():
-            return candidate
-    raise UsageError("themes/paper16.yaml not found; pass --theme")
 
 
 def _table(title: str) -> Table:
@@ -173,7 +167,9 @@ def reproduce_command(
     theme: Annotated[
         Path | None,
         typer.Option(
-            "--theme", help="Theme YAML with the canvases (default: themes/paper16.yaml)."
+            "--theme",
+            help="Theme YAML with the canvases, or a bundled theme name (default: paper16, "
+            "bundled).",
         ),
     ] = None,
     only: Annotated[
@@ -210,11 +206,11 @@ def reproduce_command(
         ReproduceFormat,
         typer.Option("--format", help="What to print on stdout."),
     ] = ReproduceFormat.TABLE,
-) -> None:
+) -> ExitStatus:
     """Reproduce the paper's numerical evaluation (Section 4) exactly and fast."""
     if out is not None and out.exists() and not out.is_dir():
         raise UsageError(f"--out {out} exists and is not a directory")
-    theme_path = default_theme_path() if theme is None else theme
+    theme_path = bundled_theme(DEFAULT_THEME) if theme is None else theme_source(theme)
     if not theme_path.is_file():
         raise UsageError(f"theme file {theme_path} not found")
     loaded = load_theme(theme_path)
@@ -244,3 +240,4 @@ def reproduce_command(
         (out / "report.md").write_text(render_markdown(run), encoding="utf-8")
         if run.sweep is not None:
             write_figures(run.sweep, out)
+    return ExitStatus.OK

@@ -10,6 +10,8 @@ from typing import Annotated
 
 import typer
 
+from alpha_audit.errors import UsageError
+
 __all__ = [
     "ConfigOption",
     "ForceOption",
@@ -19,15 +21,21 @@ __all__ = [
     "StrictSvgOption",
     "ThemeArgument",
     "ThresholdOption",
+    "require_finite",
 ]
 
 ThemeArgument = Annotated[
     Path | None,
-    typer.Argument(help="Theme YAML (default: what the project config names)."),
+    typer.Argument(
+        help="Theme YAML or a bundled theme name (default: what the project config names)."
+    ),
 ]
 IconsetArgument = Annotated[
     Path | None,
-    typer.Argument(help="Icon-set manifest YAML (default: what the project config names)."),
+    typer.Argument(
+        help="Icon-set manifest YAML or vibrant, the bundled example "
+        "(default: what the project config names)."
+    ),
 ]
 ConfigOption = Annotated[
     Path | None,
@@ -118,3 +126,10 @@ StrictSvgOption = Annotated[
     typer.Option("--strict-svg", help="Treat an SVG that cannot be rendered as an input error."),
 ]
 ForceOption = Annotated[bool, typer.Option("--force", help="Replace existing output files.")]
+
+
+def require_finite(value: float | None, option: str) -> float | None:
+    """``value`` unchanged, or a usage error naming ``option`` if it is NaN or infinite."""
+    if value is not None and not math.isfinite(value):
+        raise UsageError(f"{option} must be a finite number, got {value}")
+    return value

@@ -6,6 +6,10 @@ from typing import Annotated
 
 import typer
 
+from alpha_audit.cli.console import emit, stdout_options
+from alpha_audit.cli.options import require_finite
+from alpha_audit.cli.status import ExitStatus
+
 __all__ = ["pair_command"]
 
 
@@ -28,7 +32,7 @@ def pair_command(
     fmt: Annotated[
         str, typer.Option("--format", "-f", help="table or json.", case_sensitive=False)
     ] = "table",
-) -> None:
+) -> ExitStatus:
     """Show one colour on a few backgrounds at a few coefficients.
 
     Output colour (8-bit hex), contrast at a = 1 -> at a, the gain, CIEDE2000 from the
@@ -36,7 +40,6 @@ def pair_command(
 
     Example: [bold]alpha-audit pair "#ee7733" --on white --on "#0d1117" -a 1 -a 1.2[/]
     """
-    from alpha_audit.cli import emit, require_finite, stdout_options
     from alpha_audit.errors import UsageError
     from alpha_audit.pair import pair_table
     from alpha_audit.render.pair import pair_json, pair_table_text
@@ -53,3 +56,4 @@ def pair_command(
         else pair_table_text(color, rows, stdout_options())
     )
     emit(text, None, False)
+    return ExitStatus.OK

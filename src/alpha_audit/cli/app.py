@@ -1,0 +1,189 @@
+"""The ``alpha-audit`` application: its commands, ``main`` and the one exit boundary.
+
+Each command function returns an :class:`~alpha_audit.cli.status.ExitStatus`;
+only :class:`_Group` here turns results and exceptions into exit codes:
+
+* the command's status (0 passed, 1 gate failed);
+* 2 for :class:`~alpha_audit.errors.AlphaAuditError` (bad input or usage),
+  a usage error typer found, an OS error on a file, input nested too deeply
+  and running out of memory, each as one line on stderr;
+* 3 for any other exception: a bug, reported in one line with the exception's
+  type and text; the traceback only with ``--debug`` or ``ALPHA_AUDIT_DEBUG=1``.
+
+Command modules never import this module (they import :mod:`.console`,
+:mod:`.options` and :mod:`.status`), so the package has no import cycle.
+"""
+
+from __future__ import annotations
+
+import traceback
+from collections.abc import Sequence
+from typing import Annotated, Any, NoReturn
+
+import typer
+from rich.text import Text
+from typer.core import TyperGroup
+
+from alpha_audit import __version__
+from alpha_audit.cli.check import check_command
+from alpha_audit.cli.console import stderr_console
+from alpha_audit.cli.flags import cli_message
+from alpha_audit.cli.pair import pair_command
+from alpha_audit.cli.preview import preview_command
+from alpha_audit.cli.reproduce import reproduce_command
+from alpha_audit.cli.status import ExitStatus
+from alpha_audit.cli.suggest import suggest_command
+from alpha_audit.cli.themes import themes_command
+from alpha_audit.errors import AlphaAuditError
+
+__all__ = ["ExitStatus", "app", "main"]
+
+DEBUG_ENV = "ALPHA_AUDIT_DEBUG"
+
+
+def _error_line(message: str) -> None:
+    """``alpha-audit: error: ...`` on stderr, printed literally (messages quote input)."""
+    stderr_console().print(Text(f"alpha-audit: error: {message}"), soft_wrap=True)
+
+
+def _usage_error(exc: typer.TyperException) -> NoReturn:
+    """A usage error typer found, as one line naming the command and where help is.
+
+    ``alpha-audit`` alone is not an error to reword: typer shows the help
+    (matched by name, as typer itself does, since the class is private).
+    """
+    if type(exc).__name__ == "NoArgsIsHelpError":
+        raise exc
+    ctx = getattr(exc, "ctx", None)
+    path = ctx.command_path if ctx is not None else "alpha-audit"
+    _error_line(f"{exc.format_message().rstrip('.')} (see '{path} --help')")
+    raise typer.Exit(ExitStatus.INPUT_ERROR)
+
+
+def _memory_limit() -> str:
+    """The address-space limit this process runs under, in words."""
+    try:
+        import resource
+    except ImportError:  # pragma: no cover - not POSIX
+        return "the memory available"
+    soft, _ = resource.getrlimit(resource.RLIMIT_AS)
+    if soft == resource.RLIM_INFINITY:
+        return "the memory available (no address-space limit is set)"
+    return f"the address-space limit of {soft / (1 << 20):.0f} MiB"
+
+
+MAX_REASON = 200
+"""Characters of an unexpected exception's text kept in its one-line report."""
+
+
+def _classify(exc: Exception) -> tuple[ExitStatus, str]:
+    """The exit code ``exc`` means and the one line that says why."""
+    if isinstance(exc, AlphaAuditError):
+        return ExitStatus.INPUT_ERROR, cli_message(exc)
+    if isinstance(exc, MemoryError):
+        return ExitStatus.INPUT_ERROR, (
+            f"out of memory: the inputs need more than {_memory_limit()}; "
+            "audit fewer icons, canvases or colours at once"
+        )
+    if isinstance(exc, RecursionError):
+        return ExitStatus.INPUT_ERROR, "input nested too deeply (Python's recursion limit)"
+    if isinstance(exc, OSError) and exc.filename is not None:
+        # The environment refused (permissions, a full disk): not a bug, and the file says where.
+        return ExitStatus.INPUT_ERROR, f"{exc.filename}: {exc.strerror or exc}"
+    reason = " ".join(str(exc).split("\n", 1)[0].split())[:MAX_REASON]
+    return ExitStatus.INTERNAL_ERROR, (
+        "internal error (a bug in alpha-audit, please report it): "
+        + (f"{type(exc).__name__}: {reason}" if reason else type(exc).__name__)
+    )
+
+
+def _exit_code(exc: Exception, *, debug: bool) -> ExitStatus:
+    """Report ``exc`` on stderr in one line (plus the traceback with ``debug``)."""
+    status, line = _classify(exc)
+    if status is ExitStatus.INTERNAL_ERROR and not debug:
+        line += f" (--debug or {DEBUG_ENV}=1 for details)"
+    _error_line(line)
+    if debug:
+        traceback.print_exception(exc)
+    return status
+
+
+class _Group(TyperGroup):
+    """The single boundary where results and exceptions become exit codes."""
+
+    def parse_args(self, ctx: Any, args: list[str]) -> list[str]:
+        try:
+            return super().parse_args(ctx, args)
+        except typer.TyperException as exc:
+            _usage_error(exc)
+
+    def invoke(self, ctx: Any) -> Any:
+        try:
+            status = super().invoke(ctx)
+            if not isinstance(status, ExitStatus):
+                raise TypeError(f"command returned {status!r}, not an ExitStatus")
+        except (typer.Exit, typer.Abort, BrokenPipeError):
+            raise  # typer's own ways out (--help, Ctrl-C, a closed pipe) keep their meaning
+        except typer.TyperException as exc:
+            _usage_error(exc)
+        except Exception as exc:  # the boundary: nothing else turns exceptions into exit codes
+            status = _exit_code(exc, debug=bool(ctx.params.get("debug")))
+        raise typer.Exit(status)
+
+
+app = typer.Typer(
+    cls=_Group,
+    name="alpha-audit",
+    help=(
+        "Audit icon sets across light and dark themes with extended-alpha compositing.\n\n"
+        "Each icon keeps a fixed source colour Cs and coefficient a; on a canvas Cb it shows "
+        "as clip(Cb + a(Cs - Cb)) in linear sRGB. With a > 1 the icon moves away from whatever "
+        "canvas it lands on. alpha-audit measures what that does to WCAG contrast, 8-bit "
+        "collisions and CIEDE2000 separation on your icons and themes.\n\n"
+        "Exit codes: 0 ran (gate passed), 1 gate failed (check), 2 bad input or usage "
+        "(or a resource limit), 3 internal error (a bug)."
+    ),
+    no_args_is_help=True,
+    rich_markup_mode="rich",
+    add_completion=False,
+    pretty_exceptions_enable=False,
+    context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100},
+)
+
+
+def _version(value: bool) -> None:
+    if value:
+        typer.echo(f"alpha-audit {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(
+    version: Annotated[
+        bool,
+        typer.Option("--version", callback=_version, is_eager=True, help="Show the version."),
+    ] = False,
+    debug: Annotated[
+        bool,
+        typer.Option(
+            "--debug",
+            envvar=DEBUG_ENV,
+            help="On an internal error, print the traceback too.",
+            show_envvar=True,
+        ),
+    ] = False,
+) -> None:
+    """Audit icon sets across light and dark themes with extended-alpha compositing."""
+
+
+app.command("check")(check_command)
+app.command("suggest")(suggest_command)
+app.command("preview")(preview_command)
+app.command("pair")(pair_command)
+app.command("reproduce")(reproduce_command)
+app.command("themes")(themes_command)
+
+
+def main(argv: Sequence[str] | None = None) -> None:
+    """Console-script entry point: run one command and exit with its status."""
+    app(args=None if argv is None else list(argv), prog_name="alpha-audit")

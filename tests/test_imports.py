@@ -1,0 +1,202 @@
+"""The package's import structure: no cycles, a lazy top level, a complete ``__all__``."""
+
+from __future__ import annotations
+
+import ast
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import alpha_audit
+
+SRC = Path(alpha_audit.__file__).resolve().parent
+
+
+def _module_name(path: Path) -> str:
+    parts = path.relative_to(SRC.parent).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def _is_type_checking(node: ast.If) -> bool:
+    test = node.test
+    return (isinstance(test, ast.Name) and test.id == "TYPE_CHECKING") or (
+        isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING"
+    )
+
+
+def _imports(tree: ast.AST) -> list[ast.Import | ast.ImportFrom]:
+    """Every import statement, inside functions too, except ``if TYPE_CHECKING:`` blocks
+    (they never run, so they cannot make a cycle at run time)."""
+    found: list[ast.Import | ast.ImportFrom] = []
+    stack: list[ast.AST] = [tree]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, ast.If) and _is_type_checking(node):
+            stack.extend(node.orelse)
+            continue
+        if isinstance(node, ast.Import | ast.ImportFrom):
+            found.append(node)
+        stack.extend(ast.iter_child_nodes(node))
+    return found
+
+
+def import_graph() -> dict[str, set[str]]:
+    """Module -> the package modules it imports.
+
+    ``from a.b import c`` points at ``a.b.c`` when that is a module, else at
+    ``a.b``.  The implicit import of parent packages is not an edge (as in
+    pylint's cyclic-import check): a parent is always initialised first.
+    """
+    files = {_module_name(p): p for p in SRC.rglob("*.py")}
+    graph: dict[str, set[str]] = {name: set() for name in files}
+    for name, path in files.items():
+        package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+        for node in _imports(ast.parse(path.read_text(), str(path))):
+            if isinstance(node, ast.Import):
+                targets = [alias.name for alias in node.names]
+            else:
+                base = node.module or ""
+                if node.level:
+                    anchor = package.split(".")[: len(package.split(".")) - node.level + 1]
+                    base = ".".join([*anchor, base] if base else anchor)
+                targets = [
+                    f"{base}.{alias.name}" if f"{base}.{alias.name}" in files else base
+                    for alias in node.names
+                ]
+            graph[name].update(t for t in targets if t in files and t != name)
+    return graph
+
+
+def find_cycle(graph: dict[str, set[str]]) -> list[str] | None:
+    """One import cycle as a list of modules (first repeated at the end), or None."""
+    state: dict[str, int] = {}  # 1 on the current path, 2 done
+    path: list[str] = []
+
+    def visit(node: str) -> list[str] | None:
+        state[node] = 1
+        path.append(node)
+        for nxt in sorted(graph[node]):
+            if state.get(nxt) == 1:
+                return [*path[path.index(nxt) :], nxt]
+            if nxt not in state and (cycle := visit(nxt)):
+                return cycle
+        path.pop()
+        state[node] = 2
+        return None
+
+    for start in sorted(graph):
+        if start not in state and (cycle := visit(start)):
+            return cycle
+    return None
+
+
+def test_the_graph_sees_imports_inside_functions() -> None:
+    graph = import_graph()
+    assert "alpha_audit.cli.app" in graph["alpha_audit.cli"]
+    assert "alpha_audit.output" in graph["alpha_audit.cli.console"]
+    # check_command imports the pipeline inside its body
+    assert "alpha_audit.pipeline" in graph["alpha_audit.cli.check"]
+
+
+def test_the_cycle_finder_finds_a_cycle() -> None:
+    assert find_cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}}) == ["a", "b", "c", "a"]
+    assert find_cycle({"a": {"b"}, "b": set()}) is None
+
+
+def test_no_import_cycle_in_the_package() -> None:
+    assert find_cycle(import_graph()) is None
+
+
+def test_command_modules_never_import_the_app() -> None:
+    graph = import_graph()
+    importers = {m for m, targets in graph.items() if targets & {"alpha_audit.cli.app"}}
+    assert importers == {"alpha_audit.cli"}
+
+
+def _loaded_after(statement: str) -> list[str]:
+    code = f"import json, sys; {statement}; print(json.dumps(sorted(sys.modules)))"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    return json.loads(out.stdout)
+
+
+def test_import_color_loads_only_color_and_errors() -> None:
+    loaded = _loaded_after("import alpha_audit.color")
+    ours = {m for m in loaded if m.split(".")[0] == "alpha_audit"}
+    assert ours == {
+        "alpha_audit",
+        "alpha_audit.color",
+        "alpha_audit.color.composite",
+        "alpha_audit.color.metrics",
+        "alpha_audit.color.srgb",
+        "alpha_audit.errors",
+    }
+    assert not {"typer", "rich", "yaml", "cairosvg"} & {m.split(".")[0] for m in loaded}
+
+
+def test_import_alpha_audit_loads_nothing_else() -> None:
+    loaded = _loaded_after("import alpha_audit")
+    assert [m for m in loaded if m.split(".")[0] in ("alpha_audit", "typer", "rich", "numpy")] == [
+        "alpha_audit"
+    ]
+
+
+def test_every_public_name_resolves() -> None:
+    for name in alpha_audit.__all__:
+        assert getattr(alpha_audit, name) is not None, name
+    assert sorted(alpha_audit.__all__) == sorted({*alpha_audit._EXPORTS, "__version__"})
+
+
+def test_type_checking_imports_match_the_lazy_map() -> None:
+    tree = ast.parse((SRC / "__init__.py").read_text())
+    block = next(n for n in tree.body if isinstance(n, ast.If) and _is_type_checking(n))
+    declared = {
+        alias.asname or alias.name: (node.module, alias.name)
+        for node in block.body
+        if isinstance(node, ast.ImportFrom)
+        for alias in node.names
+    }
+    assert declared == alpha_audit._EXPORTS
+
+
+def test_unknown_names_raise_attribute_error() -> None:
+    try:
+        alpha_audit.no_such_name  # noqa: B018
+    except AttributeError as exc:
+        assert "no_such_name" in str(exc)
+    else:  # pragma: no cover
+        raise AssertionError("expected AttributeError")
+
+
+def test_every_command_is_reachable_from_the_public_api() -> None:
+    commands = {
+        "check": ("check_project", "Policy", "CheckFormat", "render_check", "read_baseline"),
+        "suggest": ("suggest", "render_suggest", "apply_alpha"),
+        "pair": ("pair_table", "pair_json", "pair_table_text"),
+        "preview": ("preview_files", "Layout"),
+        "reproduce": ("reproduce", "reproduction_json", "write_figures"),
+        "themes": ("bundled_themes", "load_bundled_themes"),
+    }
+    for command, names in commands.items():
+        assert set(names) <= set(alpha_audit.__all__), command
+
+
+def test_one_version_source() -> None:
+    from importlib.metadata import version
+
+    assert version("alpha-audit") == alpha_audit.__version__
+    pyproject = (SRC.parents[1] / "pyproject.toml").read_text()
+    assert 'dynamic = ["version"]' in pyproject and "\nversion =" not in pyproject.split("[tool")[0]
+
+
+def test_public_functions_win_over_submodules_of_the_same_name() -> None:
+    code = (
+        "import alpha_audit.audit, alpha_audit.suggest, alpha_audit.reproduce.run, sys, types\n"
+        "from alpha_audit import audit, reproduce, suggest\n"
+        "from alpha_audit.audit import audit as same\n"
+        "assert sys.modules['alpha_audit.audit'].audit is audit is same\n"
+        "for f in (audit, reproduce, suggest):\n"
+        "    assert callable(f) and not isinstance(f, types.ModuleType), f\n"
+        "assert alpha_audit.audit is audit\n"
+    )
+    subprocess.run([sys.executable, "-c", code], check=True)
