@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: demo test lint format bench clean browser
+.PHONY: demo test lint format bench clean browser dist
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -23,8 +23,14 @@ browser:
 	       && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; } \
 	  || echo "note: no chromium; the WebGL2 test needs it: sudo apt-get install -y chromium"
 
-## test: install, then lint and run the whole test suite
-test: $(STAMP) browser
+## dist: build the sdist and the wheel into dist/ and check their metadata
+dist: $(STAMP)
+	rm -rf dist
+	$(BIN)/python -m build --quiet --outdir dist . >/dev/null
+	$(BIN)/twine check --strict dist/*
+
+## test: install, then lint, build and check the distributions, and run the whole test suite
+test: $(STAMP) browser dist
 	$(BIN)/ruff check src tests benchmarks tools
 	$(BIN)/ruff format --check src tests benchmarks tools
 	$(BIN)/pytest

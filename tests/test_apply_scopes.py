@@ -14,13 +14,13 @@ from alpha_audit.cli import app
 from alpha_audit.gate import evaluate
 from alpha_audit.load.iconset import load_iconset
 from alpha_audit.load.theme import load_theme
-from alpha_audit.manifest_edit import (
+from alpha_audit.policy import Policy
+from alpha_audit.suggest import suggest
+from alpha_audit.suggest.apply import (
     apply_suggestion,
     edit_alphas,
     explicit_alpha_icons,
 )
-from alpha_audit.policy import Policy
-from alpha_audit.suggest import suggest
 
 
 def _alphas(text: str) -> dict[str, object]:

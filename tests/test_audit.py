@@ -13,7 +13,8 @@ from hypothesis import strategies as st
 
 from alpha_audit import audit, load_iconset, load_theme
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
-from alpha_audit.render.json import check_to_dict, dumps
+from alpha_audit.render.common import dumps
+from alpha_audit.render.json import check_to_dict
 
 
 # --- independent reference: plain Python floats, written from the paper ----------------

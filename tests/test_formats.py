@@ -14,8 +14,8 @@ from alpha_audit.gate import CheckReport, evaluate
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
 from alpha_audit.policy import Exemption, Policy, Rule
 from alpha_audit.render import CheckFormat, RenderOptions, render_check
+from alpha_audit.render.common import escape_markdown as escape_cell
 from alpha_audit.render.github import escape_property
-from alpha_audit.render.markdown import escape_cell
 
 BASE = Path("/repo")
 HOSTILE = "evil|name\x07<b>@team\n::error::x%0A*"
@@ -58,7 +58,7 @@ def test_json_gate_section() -> None:
 
 
 def test_json_refuses_nan() -> None:
-    from alpha_audit.render.json import dumps
+    from alpha_audit.render.common import dumps
 
     with pytest.raises(ValueError):
         dumps({"x": math.nan})

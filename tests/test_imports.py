@@ -172,7 +172,7 @@ def test_every_command_is_reachable_from_the_public_api() -> None:
     commands = {
         "check": ("check_project", "Policy", "CheckFormat", "render_check", "read_baseline"),
         "suggest": ("suggest", "render_suggest", "apply_alpha"),
-        "pair": ("pair_table", "pair_json", "pair_table_text"),
+        "pair": ("pair_table", "pair_report", "PairFormat"),
         "preview": ("preview_files", "Layout"),
         "reproduce": ("reproduce", "reproduction_json", "write_figures"),
         "themes": ("bundled_themes", "load_bundled_themes"),

@@ -89,14 +89,16 @@ _EXPORTS: dict[str, tuple[str, str]] = {
     "SuggestResult": ("alpha_audit.suggest", "SuggestResult"),
     "largest_safe_alpha": ("alpha_audit.suggest", "largest_safe_alpha"),
     "suggest": ("alpha_audit.suggest", "suggest"),
-    "SuggestFormat": ("alpha_audit.suggest_report", "SuggestFormat"),
-    "render_suggest": ("alpha_audit.suggest_report", "render_suggest"),
-    "suggest_document": ("alpha_audit.suggest_report", "suggest_document"),
-    "apply_alpha": ("alpha_audit.manifest_edit", "apply_alpha"),
+    "SuggestFormat": ("alpha_audit.suggest.report", "SuggestFormat"),
+    "render_suggest": ("alpha_audit.suggest.report", "render_suggest"),
+    "suggest_document": ("alpha_audit.suggest.report", "suggest_document"),
+    "apply_alpha": ("alpha_audit.suggest.apply", "apply_alpha"),
     "PairRow": ("alpha_audit.pair", "PairRow"),
     "pair_table": ("alpha_audit.pair", "pair_table"),
-    "pair_json": ("alpha_audit.render.pair", "pair_json"),
-    "pair_table_text": ("alpha_audit.render.pair", "pair_table_text"),
+    "PairReport": ("alpha_audit.pair", "PairReport"),
+    "pair_report": ("alpha_audit.pair", "pair_report"),
+    "PairFormat": ("alpha_audit.render.pair", "PairFormat"),
+    "ReproduceFormat": ("alpha_audit.reproduce.report", "ReproduceFormat"),
     "PreviewResult": ("alpha_audit.preview.files", "PreviewResult"),
     "preview_files": ("alpha_audit.preview.files", "preview_files"),
     "Layout": ("alpha_audit.preview.sheets", "Layout"),
@@ -130,12 +132,15 @@ __all__ = [
     "InputError",
     "Layout",
     "MaskSet",
+    "PairFormat",
+    "PairReport",
     "PairRow",
     "Policy",
     "PreviewResult",
     "ProjectConfig",
     "RenderLimits",
     "RenderOptions",
+    "ReproduceFormat",
     "Reproduction",
     "Row",
     "Rule",
@@ -169,9 +174,8 @@ __all__ = [
     "load_config",
     "load_iconset",
     "load_theme",
-    "pair_json",
+    "pair_report",
     "pair_table",
-    "pair_table_text",
     "parse_baseline",
     "parse_color",
     "preview_files",
@@ -247,22 +251,23 @@ if TYPE_CHECKING:  # for type checkers only; at run time __getattr__ imports on 
     from alpha_audit.load.iconset import load_iconset
     from alpha_audit.load.svg import IconProblem, MaskSet, RenderLimits, rasterize, rasterize_icons
     from alpha_audit.load.theme import load_theme
-    from alpha_audit.manifest_edit import apply_alpha
     from alpha_audit.model import Canvas, Icon, IconSet, Theme
     from alpha_audit.output import write_text
-    from alpha_audit.pair import PairRow, pair_table
+    from alpha_audit.pair import PairReport, PairRow, pair_report, pair_table
     from alpha_audit.pipeline import check_files, check_project
     from alpha_audit.policy import DEFAULT_RULES, Exemption, Policy, Rule
     from alpha_audit.preview.files import PreviewResult, preview_files
     from alpha_audit.preview.sheets import Layout
     from alpha_audit.render import CheckFormat, RenderOptions, render_check
-    from alpha_audit.render.pair import pair_json, pair_table_text
+    from alpha_audit.render.pair import PairFormat
     from alpha_audit.reproduce.figures import write_figures
+    from alpha_audit.reproduce.report import ReproduceFormat
     from alpha_audit.reproduce.report import render_json as reproduction_json
     from alpha_audit.reproduce.report import render_markdown as reproduction_markdown
     from alpha_audit.reproduce.run import Experiment, Reproduction, reproduce
     from alpha_audit.suggest import SafeAlpha, SuggestResult, largest_safe_alpha, suggest
-    from alpha_audit.suggest_report import SuggestFormat, render_suggest, suggest_document
+    from alpha_audit.suggest.apply import apply_alpha
+    from alpha_audit.suggest.report import SuggestFormat, render_suggest, suggest_document
 
 
 def __getattr__(name: str) -> Any:

@@ -19,6 +19,7 @@ from alpha_audit.color import (
     composite_extended,
     contrast_from_luminance,
     delta_e_2000,
+    pack_8bit,
     relative_luminance,
     to_8bit,
 )
@@ -119,12 +120,6 @@ class Summary:
     min_delta_e: float | None
 
 
-def _pack(codes: NDArray[np.uint8]) -> NDArray[np.int64]:
-    """8-bit RGB codes (..., 3) to one 24-bit integer per colour."""
-    c = codes.astype(np.int64)
-    return (c[..., 0] << 16) | (c[..., 1] << 8) | c[..., 2]
-
-
 def _hex(packed: int) -> str:
     return f"#{packed:06x}"
 
@@ -139,7 +134,7 @@ def find_collisions(
     source colour ``(n,)``.  Returns ``(canvas index, packed output, icon indices)``.
     """
     m = output_codes.shape[1]
-    packed = _pack(output_codes)  # (n, m)
+    packed = pack_8bit(output_codes)  # (n, m)
     found = []
     for j in range(m):
         outputs = packed[:, j]
@@ -207,7 +202,7 @@ class AuditResult:
     def rows(self) -> Iterator[Row]:
         """Icon x canvas rows in stable order (canvas order, then icon order)."""
         icons, canvases = self.iconset.icons, self.theme.canvases
-        packed = _pack(self.output_codes)
+        packed = pack_8bit(self.output_codes)
         gain = self.gain
         flags = (self.passes_ref, self.passes, self.newly_passes, self.loss, self.newly_fails)
         for j, canvas in enumerate(canvases):

@@ -7,7 +7,7 @@ For each palette colour that fails a gate rule on a canvas:
 2. **the smallest alpha at or above 1 that reaches the threshold on every
    canvas of the failing canvas's mode** -- exact, from events: on ``[1,
    alpha_max]`` each canvas's luminance ``Y(a)`` of ``clip(b + a (s - b))`` is
-   piecewise linear (:func:`alpha_audit.events.luminance_band_pieces`), so the
+   piecewise linear (:func:`alpha_audit.suggest.events.luminance_band_pieces`), so the
    set where contrast is below the threshold is a union of open intervals
    known in closed form, and the answer is the smallest point of ``[1,
    alpha_max]`` outside all of them.  It is reported rounded *up* to
@@ -38,7 +38,6 @@ from numpy.typing import ArrayLike, NDArray
 
 from alpha_audit.audit import AuditResult
 from alpha_audit.color import (
-    CONTRAST_TOLERANCE,
     composite_extended,
     contrast_ratio,
     delta_e_2000,
@@ -48,14 +47,13 @@ from alpha_audit.color import (
     to_8bit,
 )
 from alpha_audit.color.oklch import linear_to_oklch, oklch_to_linear
-from alpha_audit.events import luminance_band, luminance_band_pieces
 from alpha_audit.gate import CheckReport, Finding
-from alpha_audit.policy import Policy, Rule
+from alpha_audit.policy import CONTRAST_RULES, Policy, Rule, contrast_breaks
 from alpha_audit.suggest import SafeAlpha, largest_safe_alpha
+from alpha_audit.suggest.events import luminance_band, luminance_band_pieces
 
 __all__ = [
     "ACHROMATIC_CHROMA",
-    "CONTRAST_RULES",
     "RAYS",
     "RAY_SAMPLES",
     "ColorFix",
@@ -218,8 +216,9 @@ def passes_everywhere(
     bgs = np.asarray(backgrounds, dtype=np.float64).reshape(-1, 3)
     a = np.asarray(alphas, dtype=np.float64).reshape(-1)
     pol = policy or Policy()
-    check_loss = Rule.LOSS in pol.rules
-    allowed = max(pol.max_loss, CONTRAST_TOLERANCE)
+    # "Passes": the threshold always, plus every contrast rule the policy enables
+    # (policy.contrast_breaks is their one statement).
+    rules = {Rule.BELOW_THRESHOLD, *pol.contrast_rules}
     out = np.empty(flat.shape[0], dtype=bool)
     step = max(1, _CHUNK // max(1, bgs.shape[0] * a.size))
     for start in range(0, flat.shape[0], step):
@@ -230,10 +229,9 @@ def passes_everywhere(
             src, bgs[np.newaxis, np.newaxis], a[np.newaxis, :, np.newaxis]
         )
         contrast = contrast_ratio(composite, bgs[np.newaxis, np.newaxis])  # (N, k, m)
-        ok &= np.all(contrast >= threshold, axis=(1, 2))
-        if check_loss:
-            ref = contrast_ratio(src[:, 0], bgs[np.newaxis])  # (N, m)
-            ok &= np.all(contrast - ref[:, np.newaxis, :] >= -allowed, axis=(1, 2))
+        ref = contrast_ratio(src[:, 0], bgs[np.newaxis])[:, np.newaxis, :]  # (N, 1, m)
+        for rule in rules:
+            ok &= ~np.any(contrast_breaks(rule, pol, ref, contrast, threshold), axis=(1, 2))
         out[start : start + step] = ok
     return out.reshape(shape)
 
@@ -525,9 +523,6 @@ def fix_lookup(
         return tuple(found)
 
     return lookup
-
-
-CONTRAST_RULES = frozenset({Rule.LOSS, Rule.BELOW_THRESHOLD, Rule.NEWLY_FAILING})
 
 
 def describe_fix(fix: ColorFix) -> str:

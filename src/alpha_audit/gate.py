@@ -18,7 +18,8 @@ import numpy as np
 
 from alpha_audit.audit import AuditResult
 from alpha_audit.errors import InputError, UsageError
-from alpha_audit.policy import Exemption, Policy, Rule
+from alpha_audit.load.files import read_text_capped
+from alpha_audit.policy import Exemption, Policy, Rule, contrast_breaks
 
 if TYPE_CHECKING:
     from alpha_audit.fixes import ColorFix
@@ -76,17 +77,39 @@ class Finding:
 
 @dataclass(frozen=True)
 class GateResult:
-    """Every finding of the enabled rules, in stable order, plus stale baseline entries."""
+    """Every finding of the enabled rules, in stable order, plus stale baseline entries.
+
+    The verdict is decided here once: ``findings`` splits into :attr:`failures`,
+    :attr:`exempted` and :attr:`baselined`; ``warnings`` are icons that could
+    not be rendered while ``unrenderable`` is not a rule (reported, never
+    failing, never baselined).  Renderers show these; they do not re-decide them.
+    """
 
     policy: Policy
     findings: tuple[Finding, ...]
     stale: tuple[FindingKey, ...] = ()
     problems: int = 0  # icons that could not be rendered (reported, fail only with a rule)
+    warnings: tuple[Finding, ...] = ()
 
     @property
     def failures(self) -> tuple[Finding, ...]:
         """Findings that fail the gate."""
         return tuple(f for f in self.findings if f.fails)
+
+    @property
+    def exempted(self) -> tuple[Finding, ...]:
+        """Findings an exemption covers (with its reason)."""
+        return tuple(f for f in self.findings if f.exemption is not None)
+
+    @property
+    def baselined(self) -> tuple[Finding, ...]:
+        """Findings the baseline covers and no exemption does."""
+        return tuple(f for f in self.findings if f.baselined and f.exemption is None)
+
+    @property
+    def unrenderable_fails(self) -> bool:
+        """Whether an icon that could not be rendered fails the gate (else it is a warning)."""
+        return Rule.UNRENDERABLE in self.policy.rules
 
     @property
     def passed(self) -> bool:
@@ -129,24 +152,18 @@ def _icon_refs(
 def _cell_findings(result: AuditResult, policy: Policy) -> Iterable[tuple[Rule, int, int, str]]:
     """(rule, icon index, canvas index, message) for the per icon x canvas rules."""
     t = result.threshold
-    # A loss counts beyond both the policy's allowance and the float tolerance.
-    loss = result.gain < -max(policy.max_loss, result.tolerance)
-    masks: list[tuple[Rule, np.ndarray, str]] = [
-        (Rule.LOSS, loss, "contrast drops {ref:.3f} -> {now:.3f} ({gain:+.4f}) at alpha {a:g}"),
-        (
-            Rule.NEWLY_FAILING,
-            result.newly_fails,
-            f"passes {t:g}:1 at alpha 1 ({{ref:.3f}}) but not at alpha {{a:g}} ({{now:.3f}})",
+    templates = {
+        Rule.LOSS: "contrast drops {ref:.3f} -> {now:.3f} ({gain:+.4f}) at alpha {a:g}",
+        Rule.NEWLY_FAILING: (
+            f"passes {t:g}:1 at alpha 1 ({{ref:.3f}}) but not at alpha {{a:g}} ({{now:.3f}})"
         ),
-        (
-            Rule.BELOW_THRESHOLD,
-            ~result.passes,
-            f"contrast {{now:.3f}} is below {t:g}:1 at alpha {{a:g}}",
-        ),
-    ]
-    for rule, mask, template in masks:
-        if rule not in policy.rules:
-            continue
+        Rule.BELOW_THRESHOLD: f"contrast {{now:.3f}} is below {t:g}:1 at alpha {{a:g}}",
+    }
+    for rule in policy.contrast_rules:
+        template = templates[rule]
+        mask = contrast_breaks(
+            rule, policy, result.contrast_ref, result.contrast, t, result.tolerance
+        )
         # Canvas order, then icon order: the same order as AuditResult.rows().
         for j, i in zip(*np.nonzero(mask.T), strict=True):
             i, j = int(i), int(j)
@@ -210,14 +227,7 @@ def findings_for(result: AuditResult, policy: Policy) -> list[Finding]:
         }
         add(rule, canvases[j].name, (icons[i].name,), message, numbers)
 
-    # `collision` already covers every new collision; report each once.
-    collision_rule = (
-        Rule.COLLISION
-        if Rule.COLLISION in policy.rules
-        else Rule.NEW_COLLISION
-        if Rule.NEW_COLLISION in policy.rules
-        else None
-    )
+    collision_rule = policy.collision_rule
     for c in result.collisions:
         if collision_rule is None or (collision_rule is Rule.NEW_COLLISION and not c.new):
             continue
@@ -243,22 +253,27 @@ def findings_for(result: AuditResult, policy: Policy) -> list[Finding]:
                 add(Rule.SEPARATION, s.canvas, tuple(sorted(s.icons)), message, numbers)
 
     if Rule.UNRENDERABLE in policy.rules:
-        # Broken icons are not in result.iconset any more; name their file directly.
-        for p in result.problems:
-            out.append(
-                Finding(
-                    rule=Rule.UNRENDERABLE,
-                    theme=theme,
-                    iconset=iconset,
-                    canvas=None,
-                    icons=(p.icon,),
-                    message=p.message,
-                    files=(Path(p.file),),
-                    manifest=manifest,
-                    exemption=policy.exempt(Rule.UNRENDERABLE, None, (p.icon,)),
-                )
-            )
+        out.extend(_problem_findings(result, policy))
     return out
+
+
+def _problem_findings(result: AuditResult, policy: Policy) -> list[Finding]:
+    """One ``unrenderable`` finding per icon that could not be rendered."""
+    # Broken icons are not in result.iconset any more; name their file directly.
+    return [
+        Finding(
+            rule=Rule.UNRENDERABLE,
+            theme=result.theme.name,
+            iconset=result.iconset.name,
+            canvas=None,
+            icons=(p.icon,),
+            message=p.message,
+            files=(Path(p.file),),
+            manifest=result.iconset.path,
+            exemption=policy.exempt(Rule.UNRENDERABLE, None, (p.icon,)),
+        )
+        for p in result.problems
+    ]
 
 
 def evaluate(
@@ -281,14 +296,19 @@ def evaluate(
     [('loss', 'yellow', ('dot',))]
     """
     findings: list[Finding] = []
+    warnings: list[Finding] = []
     unrenderable: set[tuple[str, tuple[str, ...]]] = set()
+    gated = Rule.UNRENDERABLE in policy.rules
     for result in audits:
-        for f in findings_for(result, policy):
+        found = findings_for(result, policy)
+        if not gated:  # reported, never failing: the gate's warnings
+            found += [replace(f, exemption=None) for f in _problem_findings(result, policy)]
+        for f in found:
             if f.rule is Rule.UNRENDERABLE:  # one per icon, not one per theme
                 if (f.iconset, f.icons) in unrenderable:
                     continue
                 unrenderable.add((f.iconset, f.icons))
-            findings.append(f)
+            (findings if gated or f.rule is not Rule.UNRENDERABLE else warnings).append(f)
     stale: tuple[FindingKey, ...] = ()
     if baseline is not None:
         known = set(baseline)
@@ -296,7 +316,13 @@ def evaluate(
         findings = [replace(f, baselined=True) if f.key in known else f for f in findings]
         stale = tuple(sorted(known - seen, key=_sort_key))
     problems = sum(len(r.problems) for r in audits)
-    return GateResult(policy=policy, findings=tuple(findings), stale=stale, problems=problems)
+    return GateResult(
+        policy=policy,
+        findings=tuple(findings),
+        stale=stale,
+        problems=problems,
+        warnings=tuple(warnings),
+    )
 
 
 def _sort_key(key: FindingKey) -> tuple[str, str, str, str, tuple[str, ...]]:
@@ -358,19 +384,7 @@ def parse_baseline(text: str, path: Path) -> frozenset[FindingKey]:
 def read_baseline(path: str | Path) -> frozenset[FindingKey]:
     """Read a baseline file (at most :data:`MAX_BASELINE_BYTES`)."""
     p = Path(path)
-    try:
-        with p.open("rb") as fh:
-            raw = fh.read(MAX_BASELINE_BYTES + 1)
-    except FileNotFoundError as exc:
-        raise UsageError(
-            "baseline file not found (record one with `baseline_document`)", path=p
-        ) from exc
-    except OSError as exc:
-        raise InputError(f"cannot read: {exc.strerror}", path=p) from exc
-    if len(raw) > MAX_BASELINE_BYTES:
-        raise InputError(f"larger than {MAX_BASELINE_BYTES >> 20} MiB", path=p)
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise InputError(f"not UTF-8 text (byte {exc.start})", path=p) from exc
+    if not p.exists() and not p.is_symlink():
+        raise UsageError("baseline file not found (record one with `baseline_document`)", path=p)
+    text = read_text_capped(p, MAX_BASELINE_BYTES, InputError, "an alpha-audit baseline")
     return parse_baseline(text, p)

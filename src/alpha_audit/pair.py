@@ -16,7 +16,7 @@ from alpha_audit.color import (
     srgb_decode,
 )
 
-__all__ = ["PairRow", "pair_table"]
+__all__ = ["PairReport", "PairRow", "pair_report", "pair_table"]
 
 
 @dataclass(frozen=True)
@@ -31,6 +31,19 @@ class PairRow:
     gain: float
     delta_e_from_source: float
     clipped: bool
+
+
+@dataclass(frozen=True)
+class PairReport:
+    """What ``alpha-audit pair`` reports: the colour as given and its rows."""
+
+    color: str
+    rows: tuple[PairRow, ...]
+
+
+def pair_report(color: str, backgrounds: Sequence[str], alphas: Sequence[float]) -> PairReport:
+    """:func:`pair_table` with the colour it was asked about, ready for a renderer."""
+    return PairReport(color, tuple(pair_table(color, backgrounds, alphas)))
 
 
 def pair_table(color: str, backgrounds: Sequence[str], alphas: Sequence[float]) -> list[PairRow]:

@@ -14,9 +14,21 @@ from dataclasses import dataclass, field, replace
 from enum import StrEnum
 from pathlib import Path
 
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from alpha_audit.color import CONTRAST_TOLERANCE
 from alpha_audit.errors import InputError, UsageError
 
-__all__ = ["DEFAULT_RULES", "Exemption", "Policy", "Rule"]
+__all__ = [
+    "CONTRAST_RULES",
+    "DEFAULT_RULES",
+    "Exemption",
+    "Policy",
+    "Rule",
+    "contrast_breaks",
+    "contrast_floor",
+]
 
 
 class Rule(StrEnum):
@@ -132,3 +144,82 @@ class Policy:
                     line=e.line,
                     key=key,
                 )
+
+    def loss_margin(self, tolerance: float = CONTRAST_TOLERANCE) -> float:
+        """How far contrast may drop before ``loss`` objects.
+
+        A loss counts beyond both the policy's allowance and the float
+        tolerance under which a change is "unchanged" (the product brief: 1e-10).
+        """
+        return max(self.max_loss, tolerance)
+
+    @property
+    def contrast_rules(self) -> tuple[Rule, ...]:
+        """The enabled per icon x canvas contrast rules, in :data:`CONTRAST_RULES` order."""
+        return tuple(r for r in CONTRAST_RULES if r in self.rules)
+
+    @property
+    def collision_rule(self) -> Rule | None:
+        """Which collision rule applies: ``collision`` already covers every new one.
+
+        With both enabled a new collision is reported once, as ``collision``.
+        """
+        if Rule.COLLISION in self.rules:
+            return Rule.COLLISION
+        if Rule.NEW_COLLISION in self.rules:
+            return Rule.NEW_COLLISION
+        return None
+
+
+# The per icon x canvas rules, in the order the gate reports them.
+CONTRAST_RULES = (Rule.LOSS, Rule.NEWLY_FAILING, Rule.BELOW_THRESHOLD)
+
+
+def contrast_breaks(
+    rule: Rule,
+    policy: Policy,
+    contrast_ref: ArrayLike,
+    contrast: ArrayLike,
+    threshold: float,
+    tolerance: float = CONTRAST_TOLERANCE,
+) -> NDArray[np.bool_]:
+    """Where a contrast rule objects, given contrast at alpha = 1 and at the icon's alpha.
+
+    The one statement of the three contrast rules; :func:`contrast_floor` is
+    the same statement solved for contrast.
+
+    >>> contrast_breaks(Rule.NEWLY_FAILING, Policy(), [3.2, 2.0], [2.9, 1.5], 3.0).tolist()
+    [True, False]
+    """
+    ref = np.asarray(contrast_ref, dtype=np.float64)
+    now = np.asarray(contrast, dtype=np.float64)
+    if rule is Rule.LOSS:
+        return (now - ref) < -policy.loss_margin(tolerance)
+    if rule is Rule.BELOW_THRESHOLD:
+        return now < threshold
+    if rule is Rule.NEWLY_FAILING:
+        return (ref >= threshold) & (now < threshold)
+    raise ValueError(f"{rule.value} is not a contrast rule")
+
+
+def contrast_floor(
+    rule: Rule,
+    policy: Policy,
+    contrast_ref: ArrayLike,
+    threshold: float,
+    tolerance: float = CONTRAST_TOLERANCE,
+) -> NDArray[np.float64]:
+    """The contrast below which ``rule`` objects (1.0, the least contrast, when it never does).
+
+    ``contrast_breaks(rule, ...)`` is ``contrast < contrast_floor(rule, ...)``
+    up to rounding in the loss subtraction; ``suggest`` uses this form to find
+    where the contrast crosses it.
+    """
+    ref = np.asarray(contrast_ref, dtype=np.float64)
+    if rule is Rule.LOSS:
+        return ref - policy.loss_margin(tolerance)
+    if rule is Rule.BELOW_THRESHOLD:
+        return np.full_like(ref, threshold)
+    if rule is Rule.NEWLY_FAILING:
+        return np.where(ref >= threshold, threshold, 1.0)  # only icons passing at alpha = 1
+    raise ValueError(f"{rule.value} is not a contrast rule")

@@ -128,3 +128,29 @@ def test_table_prints_the_shared_worst_case_once() -> None:
     assert result.stdout.count("largest loss") == 1
     assert "alpha 1.1 and 1.4: largest loss (0,0,0.8125) on (1,1,0)" in result.stdout
     assert "9.8118 (a=1.1) > 8.6379 (a=1.4)" in result.stdout
+
+
+def test_out_refuses_existing_files_unless_forced(tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "report.md").write_text("mine")
+    result = invoke("--quick", "--only", "broad-grid", "--out", str(out))
+    assert isinstance(result.exception, UsageError)  # exit 2 at the real CLI's boundary
+    assert result.exception.path == out / "report.md"
+    assert sorted(p.name for p in out.iterdir()) == ["report.md"]  # nothing else written
+    assert (out / "report.md").read_text() == "mine"
+    forced = invoke("--quick", "--only", "broad-grid", "--out", str(out), "--force")
+    assert forced.exit_code == 0, forced.output
+    assert (out / "report.md").read_text().startswith("# alpha-audit reproduce")
+
+
+def test_out_replaces_a_symlink_instead_of_writing_through_it(tmp_path: Path) -> None:
+    out, victim = tmp_path / "out", tmp_path / "victim.txt"
+    out.mkdir()
+    victim.write_text("outside the folder")
+    (out / "results.json").symlink_to(victim)
+    result = invoke("--quick", "--only", "broad-grid", "--out", str(out), "--force")
+    assert result.exit_code == 0, result.output
+    assert victim.read_text() == "outside the folder"
+    assert not (out / "results.json").is_symlink()
+    assert json.loads((out / "results.json").read_text())["schema"] == SCHEMA

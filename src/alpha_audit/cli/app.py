@@ -28,6 +28,7 @@ from alpha_audit import __version__
 from alpha_audit.cli.check import check_command
 from alpha_audit.cli.console import stderr_console
 from alpha_audit.cli.flags import cli_message
+from alpha_audit.cli.options import OrderedOptionsCommand
 from alpha_audit.cli.pair import pair_command
 from alpha_audit.cli.preview import preview_command
 from alpha_audit.cli.reproduce import reproduce_command
@@ -176,7 +177,7 @@ def _root(
     """Audit icon sets across light and dark themes with extended-alpha compositing."""
 
 
-app.command("check")(check_command)
+app.command("check", cls=OrderedOptionsCommand)(check_command)
 app.command("suggest")(suggest_command)
 app.command("preview")(preview_command)
 app.command("pair")(pair_command)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import replace
 from pathlib import Path
 from typing import Annotated
@@ -10,6 +11,7 @@ import typer
 
 from alpha_audit.cli.console import emit, progress_bar, stderr_note, stdout_options
 from alpha_audit.cli.options import (
+    OPTION_ORDER,
     ConfigOption,
     ForceOption,
     IconsetArgument,
@@ -23,37 +25,65 @@ from alpha_audit.cli.options import (
 )
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.render import CheckFormat, RenderOptions
+from alpha_audit.render.common import check_suffix
 
 __all__ = ["check_command", "pair_outputs"]
 
 
 def pair_outputs(
-    formats: list[CheckFormat], outputs: list[Path]
+    formats: list[CheckFormat], outputs: list[Path], order: Sequence[str] | None = None
 ) -> list[tuple[CheckFormat, Path | None]]:
-    """Pair each ``--format`` with the ``--output`` in the same position.
+    """Give each ``--output`` to the ``--format`` before it (``-`` or none: stdout).
 
-    Formats without an output (or with ``-``) go to stdout; only one may.
+    ``order`` is ``"format"`` / ``"output"`` per option as given on the command
+    line (:class:`~alpha_audit.cli_options.OrderedOptionsCommand` records it);
+    without it, the n-th output goes with the n-th format.  One ``-o`` with one
+    ``-f`` pair in either order.  Refused: an output whose extension belongs to
+    another format (``-f junit -o a.sarif``), an output with no format before
+    it, two outputs for one format, and two formats on stdout.
     """
     from alpha_audit.errors import UsageError
 
     formats = formats or [CheckFormat.TABLE]
-    if len(outputs) > len(formats):
-        raise UsageError(
-            f"{len(outputs)} --output for {len(formats)} --format; give one format per output"
-        )
+    targets: list[Path | None] = [None] * len(formats)
+    if (len(outputs) <= 1 and len(formats) == 1) or order is None:
+        if len(outputs) > len(formats):
+            raise UsageError(
+                f"{len(outputs)} --output for {len(formats)} --format; give one format per output"
+            )
+        targets[: len(outputs)] = outputs
+    else:
+        f = o = 0
+        for kind in order:
+            if kind == "format":
+                f += 1
+            elif kind == "output":
+                if f == 0 or targets[f - 1] is not None:
+                    where = f"after --format {formats[f - 1].value}" if f else "before any --format"
+                    raise UsageError(
+                        f"--output {outputs[o]} has no --format of its own ({where}); "
+                        "put each --output right after its --format"
+                    )
+                targets[f - 1] = outputs[o]
+                o += 1
     pairs = [
-        (fmt, None if i >= len(outputs) or str(outputs[i]) == "-" else outputs[i])
-        for i, fmt in enumerate(formats)
+        (fmt, None if out is None or str(out) == "-" else out)
+        for fmt, out in zip(formats, targets, strict=True)
     ]
+    for fmt, out in pairs:
+        if out is not None:
+            check_suffix(fmt.value, out)
     to_stdout = [fmt.value for fmt, out in pairs if out is None]
     if len(to_stdout) > 1:
         raise UsageError(
-            f"formats {', '.join(to_stdout)} would all go to stdout; give each but one an --output"
+            f"formats {' and '.join(to_stdout)} would both go to stdout; "
+            "give each but one an --output"
         )
     return pairs
 
 
 def check_command(
+    ctx: typer.Context,
     theme: ThemeArgument = None,
     iconset: IconsetArgument = None,
     themes: Annotated[
@@ -111,7 +141,7 @@ def check_command(
             "--output",
             "-o",
             metavar="PATH",
-            help="File for the --format in the same position ('-' = stdout; repeatable).",
+            help="File for the --format before it ('-' = stdout; repeatable).",
             show_default=False,
         ),
     ] = None,
@@ -145,13 +175,19 @@ def check_command(
     from alpha_audit.errors import UsageError
     from alpha_audit.gate import baseline_document, read_baseline
     from alpha_audit.load.config import project_config
-    from alpha_audit.output import write_text
+    from alpha_audit.output import Output, check_targets, write_files
     from alpha_audit.pipeline import check_project
-    from alpha_audit.render.json import dumps
+    from alpha_audit.render.common import dumps
 
     require_finite(alpha, "--alpha")
     require_finite(threshold, "--threshold")
-    pairs = pair_outputs(list(fmt or []), list(output or []))
+    given = ctx.meta.get(OPTION_ORDER)
+    order = None if given is None else ["format" if n == "fmt" else n for n in given]
+    pairs = pair_outputs(list(fmt or []), list(output or []), order)
+    # Every file target is checked before the audit runs and again as one write at the end.
+    files = [out for _, out in pairs if out is not None]
+    files += [write_baseline] if write_baseline is not None else []
+    check_targets(files, overwrite=force)
     if (theme is None) != (iconset is None):
         raise UsageError("give both THEME and ICONSET, or neither (to use the project config)")
 
@@ -177,12 +213,19 @@ def check_command(
             on_icon=on_icon,
         )
     base = Path.cwd().resolve()
+    outputs, stdout_text = [], None
     for kind, out in pairs:
-        options = replace(stdout_options(), base=base) if out is None else RenderOptions(base=base)
-        emit(kind.renderer()(report, options), out, force)
+        if out is None:
+            stdout_text = kind.renderer()(report, replace(stdout_options(), base=base))
+        else:
+            outputs.append(Output.text(out, kind.renderer()(report, RenderOptions(base=base))))
     if write_baseline is not None:
-        write_text(write_baseline, dumps(baseline_document(report.gate)), overwrite=force)
-        stderr_note(f"wrote baseline {write_baseline}")
+        outputs.append(Output.text(write_baseline, dumps(baseline_document(report.gate))))
+    for path in write_files(outputs, overwrite=force):
+        stderr_note(f"wrote {'baseline ' if path == write_baseline else ''}{path}")
+    if stdout_text is not None:
+        emit(stdout_text, None, force)
+    if write_baseline is not None:
         return ExitStatus.OK
     gate = report.gate
     if gate.passed:

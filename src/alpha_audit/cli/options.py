@@ -9,15 +9,18 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
+from typer.core import TyperCommand
 
 from alpha_audit.errors import UsageError
 
 __all__ = [
+    "OPTION_ORDER",
     "ConfigOption",
     "ForceOption",
     "IconsetArgument",
     "MaxLossOption",
     "MinDeltaEOption",
+    "OrderedOptionsCommand",
     "StrictSvgOption",
     "ThemeArgument",
     "ThresholdOption",
@@ -133,3 +136,20 @@ def require_finite(value: float | None, option: str) -> float | None:
     if value is not None and not math.isfinite(value):
         raise UsageError(f"{option} must be a finite number, got {value}")
     return value
+
+
+OPTION_ORDER = "alpha_audit.option_order"
+
+
+class OrderedOptionsCommand(TyperCommand):
+    """A command that records the order its options were given in (``ctx.meta``).
+
+    Click hands each repeatable option over as one list, which loses which
+    ``--output`` followed which ``--format``; the parser knows, so ask it once.
+    """
+
+    def parse_args(self, ctx: typer.Context, args: list[str]) -> list[str]:  # type: ignore[override]
+        """Record ``[param name, ...]`` per option occurrence, then parse as usual."""
+        _, _, order = self.make_parser(ctx).parse_args(args=list(args))
+        ctx.meta[OPTION_ORDER] = [p.name for p in order]
+        return super().parse_args(ctx, args)

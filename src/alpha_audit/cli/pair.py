@@ -9,6 +9,7 @@ import typer
 from alpha_audit.cli.console import emit, stdout_options
 from alpha_audit.cli.options import require_finite
 from alpha_audit.cli.status import ExitStatus
+from alpha_audit.render.pair import PairFormat
 
 __all__ = ["pair_command"]
 
@@ -30,8 +31,8 @@ def pair_command(
         ),
     ] = None,
     fmt: Annotated[
-        str, typer.Option("--format", "-f", help="table or json.", case_sensitive=False)
-    ] = "table",
+        PairFormat, typer.Option("--format", "-f", help="table or json.", case_sensitive=False)
+    ] = PairFormat.TABLE,
 ) -> ExitStatus:
     """Show one colour on a few backgrounds at a few coefficients.
 
@@ -40,20 +41,11 @@ def pair_command(
 
     Example: [bold]alpha-audit pair "#ee7733" --on white --on "#0d1117" -a 1 -a 1.2[/]
     """
-    from alpha_audit.errors import UsageError
-    from alpha_audit.pair import pair_table
-    from alpha_audit.render.pair import pair_json, pair_table_text
+    from alpha_audit.pair import pair_report
 
     alphas = alpha or [1.0, 1.1, 1.4]
     for a in alphas:
         require_finite(a, "--alpha")
-    if fmt.lower() not in ("table", "json"):
-        raise UsageError(f"--format {fmt!r} is not supported; use table or json")
-    rows = pair_table(color, on, alphas)
-    text = (
-        pair_json(color, rows)
-        if fmt.lower() == "json"
-        else pair_table_text(color, rows, stdout_options())
-    )
-    emit(text, None, False)
+    report = pair_report(color, on, alphas)
+    emit(PairFormat(fmt).renderer()(report, stdout_options()), None, False)
     return ExitStatus.OK

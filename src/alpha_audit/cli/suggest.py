@@ -21,16 +21,28 @@ from alpha_audit.cli.options import (
     rules_flag,
 )
 from alpha_audit.cli.status import ExitStatus
-from alpha_audit.manifest_edit import ApplyScope
-from alpha_audit.suggest_report import SuggestFormat
+from alpha_audit.suggest.report import SuggestFormat
 
 __all__ = ["suggest_command"]
+
+
+def _scope(value: str | None) -> str | None:
+    """--apply's scope, checked here (the enum lives with the editor, imported lazily)."""
+    from alpha_audit.errors import UsageError
+    from alpha_audit.suggest.apply import ApplyScope
+
+    if value is None:
+        return None
+    scopes = [s.value for s in ApplyScope]
+    if value.strip().lower() not in scopes:
+        raise UsageError(f"--apply {value!r} is not a scope; use one of: {', '.join(scopes)}")
+    return value.strip().lower()
 
 
 def _precision(value: int) -> int:
     """--precision within what suggest can round exactly (named as the flag)."""
     from alpha_audit.errors import UsageError
-    from alpha_audit.suggest import MAX_PRECISION
+    from alpha_audit.suggest.engine import MAX_PRECISION
 
     if not 0 <= value <= MAX_PRECISION:
         raise UsageError(
@@ -86,14 +98,14 @@ def suggest_command(
     ] = None,
     force: ForceOption = False,
     apply: Annotated[
-        ApplyScope | None,
+        str | None,
         typer.Option(
             "--apply",
-            metavar="SCOPE",
+            metavar="set|colour|icon",
             help="Write the answer into the manifest: set (the set-wide alpha), colour or icon "
             "(per-icon overrides); only alpha values change.",
-            case_sensitive=False,
             show_default=False,
+            callback=_scope,
         ),
     ] = None,
     replace_explicit: Annotated[
@@ -120,10 +132,14 @@ def suggest_command(
     from alpha_audit.load.config import project_config
     from alpha_audit.load.iconset import load_iconset
     from alpha_audit.load.theme import load_theme
-    from alpha_audit.manifest_edit import apply_suggestion, describe_plan
+    from alpha_audit.output import check_targets
+    from alpha_audit.render.common import RenderOptions, check_suffix
     from alpha_audit.suggest import suggest
-    from alpha_audit.suggest_report import render_suggest
+    from alpha_audit.suggest.apply import apply_suggestion, describe_plan
 
+    if output is not None:
+        check_suffix(fmt.value, output)
+        check_targets([output], overwrite=force)  # before the work, not after
     require_finite(alpha_max, "--alpha-max")
     require_finite(threshold, "--threshold")
     if (theme is None) != (iconset is None):
@@ -160,8 +176,8 @@ def suggest_command(
         precision=precision,
         threshold=threshold if threshold is not None else project.threshold,
     )
-    width = stdout_options().width if output is None else 100
-    emit(render_suggest(result, fmt, width=width), output, force)
+    options = stdout_options() if output is None else RenderOptions()
+    emit(fmt.renderer()(result, options), output, force)
     if apply is not None:
         plan, changed = apply_suggestion(iconset, result, apply, replace_explicit=replace_explicit)
         typer.echo(describe_plan(plan, iconset, changed, precision), err=True)

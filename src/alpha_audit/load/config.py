@@ -18,6 +18,7 @@ from typing import Any
 from alpha_audit.color import THRESHOLD_RANGE, THRESHOLD_WHAT
 from alpha_audit.errors import InputError, UsageError
 from alpha_audit.load.fields import check_keys, describe, read_mapping, read_name, read_number
+from alpha_audit.load.files import read_text_capped
 from alpha_audit.load.yamldoc import MAX_YAML_BYTES, KeyPath, YamlDoc, format_key, load_yaml
 from alpha_audit.policy import DEFAULT_RULES, Exemption, Policy, Rule
 
@@ -98,17 +99,9 @@ def find_config(start: str | Path) -> Path | None:
 
 def _load_toml_table(path: Path) -> dict[str, Any] | None:
     """The ``[tool.alpha-audit]`` table of a pyproject file, or None if absent."""
+    text = read_text_capped(path, MAX_YAML_BYTES, InputError, "a pyproject.toml")
     try:
-        with path.open("rb") as fh:
-            raw = fh.read(MAX_YAML_BYTES + 1)
-    except OSError as exc:
-        raise InputError(f"cannot read: {exc.strerror}", path=path) from exc
-    if len(raw) > MAX_YAML_BYTES:
-        raise InputError(f"larger than {MAX_YAML_BYTES // 1024} KiB", path=path)
-    try:
-        data = tomllib.loads(raw.decode("utf-8"))
-    except UnicodeDecodeError as exc:
-        raise InputError(f"not UTF-8 text (byte {exc.start})", path=path) from exc
+        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"invalid TOML: {exc}", path=path) from exc
     except RecursionError as exc:

@@ -6,7 +6,7 @@ from pathlib import Path
 
 from alpha_audit.errors import InputError
 
-__all__ = ["read_capped"]
+__all__ = ["read_capped", "read_text_capped"]
 
 
 def read_capped(path: str | Path, limit: int, error: type[InputError], kind: str) -> bytes:
@@ -27,3 +27,20 @@ def read_capped(path: str | Path, limit: int, error: type[InputError], kind: str
     if len(data) > limit:
         raise error(f"larger than {limit // 1024} KiB; not {kind}", path=p)
     return data
+
+
+def read_text_capped(
+    path: str | Path, limit: int, error: type[InputError], kind: str, *, bom: bool = False
+) -> str:
+    """:func:`read_capped`, decoded as UTF-8 (a leading BOM dropped with ``bom=True``).
+
+    Text that is not UTF-8 or holds NUL bytes raises ``error`` naming the byte.
+    """
+    raw = read_capped(path, limit, error, kind)
+    try:
+        text = raw.decode("utf-8-sig" if bom else "utf-8")
+    except UnicodeDecodeError as exc:
+        raise error(f"not UTF-8 text (byte {exc.start}); not {kind}", path=Path(path)) from exc
+    if "\x00" in text:
+        raise error(f"contains NUL bytes; not {kind}", path=Path(path))
+    return text

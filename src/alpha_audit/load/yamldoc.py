@@ -17,7 +17,7 @@ import yaml
 from yaml.constructor import SafeConstructor
 
 from alpha_audit.errors import InputError
-from alpha_audit.load.files import read_capped
+from alpha_audit.load.files import read_text_capped
 
 __all__ = ["MAX_YAML_BYTES", "MAX_YAML_NODES", "KeyPath", "YamlDoc", "load_yaml", "parse_yaml"]
 
@@ -159,11 +159,6 @@ def parse_yaml(text: str, path: Path) -> YamlDoc:
 def load_yaml(path: str | Path) -> YamlDoc:
     """Read and parse a YAML file of at most :data:`MAX_YAML_BYTES`."""
     p = Path(path)
-    raw = read_capped(p, MAX_YAML_BYTES, InputError, "a YAML theme, manifest or config")
-    try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise InputError(f"not UTF-8 text (byte {exc.start})", path=p) from exc
-    if "\x00" in text:
-        raise InputError("contains NUL bytes; not a YAML text file", path=p)
+    kind = "a YAML theme, manifest or config"
+    text = read_text_capped(p, MAX_YAML_BYTES, InputError, kind, bom=True)
     return parse_yaml(text, p)

@@ -17,9 +17,7 @@ as a :class:`Placement`, which is what the tests recompute pixel by pixel.
 from __future__ import annotations
 
 import math
-import os
 import re
-import tempfile
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from enum import StrEnum
@@ -38,8 +36,8 @@ from alpha_audit.color import (
     srgb_encode,
     to_8bit,
 )
-from alpha_audit.errors import UsageError
 from alpha_audit.model import Canvas, Icon, IconSet
+from alpha_audit.output import check_targets, write_bytes
 from alpha_audit.preview.compose import blend_colors, composite_masks
 from alpha_audit.preview.fonts import draw_text, text_metrics, text_width
 
@@ -587,39 +585,20 @@ def render_sheet(
 
 
 def write_sheet(sheet: Sheet, folder: str | Path, *, overwrite: bool = False) -> Path:
-    """Save ``sheet`` as ``folder/<name>`` via a temporary file and rename.
+    """Save ``sheet`` as ``folder/<name>`` atomically (:func:`alpha_audit.output.write_bytes`).
 
     An existing file is replaced only with ``overwrite=True``.
     """
-    target = Path(folder) / sheet.spec.name
-    check_writable([target], overwrite=overwrite)
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".png", dir=target.parent)
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            sheet.image.save(fh, format="PNG", compress_level=_PNG_LEVEL)
-        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600; a sheet is an ordinary file
-        os.replace(tmp, target)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return target
-
-
-def _umask() -> int:
-    mask = os.umask(0o022)
-    os.umask(mask)
-    return mask
+    return write_bytes(
+        Path(folder) / sheet.spec.name,
+        lambda fh: sheet.image.save(fh, format="PNG", compress_level=_PNG_LEVEL),
+        overwrite=overwrite,
+    )
 
 
 def check_writable(targets: Sequence[Path], *, overwrite: bool) -> None:
-    """Refuse before any work if a target exists (without ``overwrite``) or is not a file."""
-    for target in targets:
-        if target.exists() and not overwrite:
-            raise UsageError("already exists; pass `overwrite=True` to replace it", path=target)
-        if target.exists() and not target.is_file():
-            raise UsageError("is not a regular file; refusing to replace it", path=target)
-        if not target.parent.is_dir():
-            raise UsageError(f"folder {target.parent} does not exist", path=target)
+    """Refuse before any work if the targets cannot all be written (:mod:`alpha_audit.output`)."""
+    check_targets(targets, overwrite=overwrite)
 
 
 def render_all(

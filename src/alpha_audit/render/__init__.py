@@ -1,37 +1,36 @@
-"""Renderers: pure functions from a check report to text, chosen by name.
+"""Renderers: pure functions from a result to text, chosen by a format enum.
 
-Each format lives in its own module with a ``render_report(report, options)``
-function; :meth:`CheckFormat.renderer` is the registry the CLI reads.  A
-renderer never probes its destination (no ``isatty``, no clock): everything it
-may know is in :class:`RenderOptions`, and its output order is stable.
+Every result type has the same frame: an enum of its formats whose
+``renderer()`` returns one :class:`~alpha_audit.render.common.Renderer` per
+format (dispatch ending in ``assert_never``), so a new format is one module and
+one line.  The result types and their enums:
+
+=================  ==========================================  =====================
+result             formats                                     enum
+=================  ==========================================  =====================
+``CheckReport``    table, json, junit, sarif, markdown, github  :class:`CheckFormat`
+``SuggestResult``  table, json, markdown                        ``SuggestFormat``
+``PairReport``     table, json                                  ``PairFormat``
+``Reproduction``   table, json, markdown                        ``ReproduceFormat``
+=================  ==========================================  =====================
+
+(:mod:`alpha_audit.suggest.report`, :mod:`alpha_audit.render.pair`,
+:mod:`alpha_audit.reproduce.report`.)  Shared helpers (escaping, JSON, text)
+live once in :mod:`alpha_audit.render.common`.  A renderer never probes its
+destination (no ``isatty``, no clock) and its output order is stable.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from dataclasses import dataclass
 from enum import StrEnum
-from pathlib import Path
-from typing import assert_never
+from typing import TYPE_CHECKING, assert_never
 
-from alpha_audit.audit import AuditResult
-from alpha_audit.gate import CheckReport, evaluate
-from alpha_audit.policy import Policy
+from alpha_audit.render.common import SUFFIXES, Renderer, RenderOptions, display_path
 
-__all__ = ["CheckFormat", "RenderOptions", "as_report", "display_path", "render_check"]
+if TYPE_CHECKING:
+    from alpha_audit.gate import CheckReport
 
-
-@dataclass(frozen=True)
-class RenderOptions:
-    """What a renderer may know about its destination (never probed inside).
-
-    ``base`` is the folder file paths are shown relative to (the working
-    directory, usually the repository root in CI).
-    """
-
-    width: int = 100
-    color: bool = False
-    base: Path | None = None
+__all__ = ["SUFFIXES", "CheckFormat", "RenderOptions", "Renderer", "display_path", "render_check"]
 
 
 class CheckFormat(StrEnum):
@@ -45,8 +44,8 @@ class CheckFormat(StrEnum):
     GITHUB = "github"
     GITLAB = "gitlab"
 
-    def renderer(self) -> Callable[[CheckReport, RenderOptions], str]:
-        """The render function for this format."""
+    def renderer(self) -> Renderer[CheckReport]:
+        """The render function for this format (imported on first use)."""
         if self is CheckFormat.TABLE:
             from alpha_audit.render.table import render_report as table
 
@@ -78,28 +77,12 @@ class CheckFormat(StrEnum):
         assert_never(self)
 
 
-def as_report(result: AuditResult | CheckReport, policy: Policy | None = None) -> CheckReport:
-    """A single audit wrapped as a report, gated by ``policy`` (default policy)."""
-    if isinstance(result, CheckReport):
-        return result
-    return CheckReport(audits=(result,), gate=evaluate([result], policy or Policy()))
+def render_check(report: CheckReport, fmt: CheckFormat | str, options: RenderOptions) -> str:
+    """Render a gated report in ``fmt``.
 
-
-def render_check(
-    result: AuditResult | CheckReport, fmt: CheckFormat | str, options: RenderOptions
-) -> str:
-    """Render a report (or one audit, gated by the default policy) in ``fmt``."""
-    return CheckFormat(fmt).renderer()(as_report(result), options)
-
-
-def display_path(path: Path | str | None, base: Path | None) -> str | None:
-    """``path`` relative to ``base`` when inside it, in POSIX form; else as given."""
-    if path is None:
-        return None
-    p = Path(path)
-    if base is not None and p.is_absolute():
-        try:
-            return p.relative_to(base).as_posix()
-        except ValueError:
-            pass
-    return p.as_posix()
+    An :class:`~alpha_audit.audit.AuditResult` alone has no verdict: gate it
+    with :func:`alpha_audit.gate.evaluate` and the policy you mean, and wrap
+    it in a :class:`~alpha_audit.gate.CheckReport` (or use
+    :func:`alpha_audit.pipeline.check_project`).
+    """
+    return CheckFormat(fmt).renderer()(report, options)

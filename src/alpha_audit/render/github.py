@@ -11,8 +11,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from alpha_audit.gate import CheckReport, Finding
-from alpha_audit.policy import Rule
-from alpha_audit.render import RenderOptions, display_path
+from alpha_audit.render.common import RenderOptions, display_path
 
 __all__ = ["escape_data", "escape_property", "render_report"]
 
@@ -56,18 +55,16 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     """One annotation per failing finding, warnings for unrenderable icons, a summary notice."""
     gate = report.gate
     lines = [_annotation(f, options.base) for f in gate.failures]
-    if Rule.UNRENDERABLE not in gate.policy.rules:
-        for result in report.audits:
-            for p in result.problems:
-                lines.append(
-                    _command(
-                        "warning",
-                        f"{p.icon}: {p.message}",
-                        file=display_path(p.file, options.base),
-                        line=None,
-                        title="alpha-audit could not render this icon",
-                    )
-                )
+    for w in gate.warnings:
+        lines.append(
+            _command(
+                "warning",
+                f"{', '.join(w.icons)}: {w.message}",
+                file=display_path(w.files[0], options.base) if w.files else None,
+                line=None,
+                title="alpha-audit could not render this icon",
+            )
+        )
     if gate.passed:
         summary = f"gate passed ({len(report.audits)} audit(s))"
         lines.append(_command("notice", summary, file=None, line=None, title="alpha-audit"))

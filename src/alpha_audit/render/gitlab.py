@@ -26,8 +26,7 @@ from typing import Any
 from alpha_audit.fixes import ColorFix, describe_fix, fix_lookup
 from alpha_audit.gate import CheckReport, Finding
 from alpha_audit.policy import Rule
-from alpha_audit.render import RenderOptions, display_path
-from alpha_audit.render.json import dumps
+from alpha_audit.render.common import RenderOptions, display_path, dumps
 
 __all__ = ["SEVERITY", "render_report"]
 

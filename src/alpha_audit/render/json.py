@@ -7,7 +7,6 @@ audits (themes x icon sets): ``audits`` lists each audit's fields, and
 
 from __future__ import annotations
 
-import json
 from dataclasses import asdict
 from pathlib import Path
 from typing import Any
@@ -15,14 +14,12 @@ from typing import Any
 from alpha_audit.audit import AuditResult
 from alpha_audit.fixes import fix_lookup, fix_to_dict, report_fixes
 from alpha_audit.gate import CheckReport, Finding, GateResult
-from alpha_audit.render import RenderOptions, as_report, display_path
+from alpha_audit.render.common import RenderOptions, display_path, dumps, records
 
 __all__ = [
     "CHECK_SCHEMA",
     "check_to_dict",
-    "dumps",
     "gate_to_dict",
-    "render_check",
     "render_report",
     "report_to_dict",
 ]
@@ -49,7 +46,7 @@ def check_to_dict(result: AuditResult) -> dict[str, Any]:
             "sizes": list(iconset.sizes),
         },
         "threshold": result.threshold,
-        "rows": [asdict(row) for row in result.rows()],
+        "rows": records(result.rows()),
         "collisions": [
             {
                 "canvas": c.canvas,
@@ -77,11 +74,6 @@ def check_to_dict(result: AuditResult) -> dict[str, Any]:
         ],
         "summary": asdict(result.summary),
     }
-
-
-def dumps(document: dict[str, Any]) -> str:
-    """Strict JSON (NaN/inf refused), stable key order, trailing newline."""
-    return json.dumps(document, indent=2, allow_nan=False, ensure_ascii=False) + "\n"
 
 
 def finding_to_dict(finding: Finding, base: Path | None = None) -> dict[str, Any]:
@@ -122,11 +114,10 @@ def gate_to_dict(gate: GateResult, base: Path | None = None) -> dict[str, Any]:
             ],
         },
         "counts": gate.counts(),
-        "failures": [finding_to_dict(f, base) for f in gate.findings if f.fails],
-        "exempted": [finding_to_dict(f, base) for f in gate.findings if f.exemption],
-        "baselined": [
-            finding_to_dict(f, base) for f in gate.findings if f.baselined and not f.exemption
-        ],
+        "failures": [finding_to_dict(f, base) for f in gate.failures],
+        "exempted": [finding_to_dict(f, base) for f in gate.exempted],
+        "baselined": [finding_to_dict(f, base) for f in gate.baselined],
+        "warnings": [finding_to_dict(f, base) for f in gate.warnings],
         "stale_baseline": [
             {"theme": t, "iconset": s, "rule": r, "canvas": c, "icons": list(i)}
             for t, s, r, c, i in gate.stale
@@ -158,8 +149,3 @@ def report_to_dict(report: CheckReport, base: Path | None = None) -> dict[str, A
 def render_report(report: CheckReport, options: RenderOptions) -> str:
     """Render a report as ``alpha-audit.check/1`` JSON."""
     return dumps(report_to_dict(report, options.base))
-
-
-def render_check(result: AuditResult | CheckReport, options: RenderOptions | None = None) -> str:
-    """Render one audit (gated by the default policy) or a report as JSON."""
-    return render_report(as_report(result), options or RenderOptions())

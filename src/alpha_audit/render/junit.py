@@ -15,8 +15,7 @@ import xml.etree.ElementTree as ET
 from collections import defaultdict
 
 from alpha_audit.gate import CheckReport, Finding
-from alpha_audit.policy import Rule
-from alpha_audit.render import RenderOptions, display_path
+from alpha_audit.render.common import RenderOptions, display_path
 
 __all__ = ["render_report", "xml_safe"]
 
@@ -53,7 +52,7 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     for f in report.gate.findings:
         for icon in f.icons:
             by_cell[(f.theme, f.iconset, f.canvas, icon)].append(f)
-    unrenderable_fails = Rule.UNRENDERABLE in report.gate.policy.rules
+    unrenderable_fails = report.gate.unrenderable_fails
 
     root = ET.Element("testsuites", {"name": "alpha-audit"})
     totals = {"tests": 0, "failures": 0, "errors": 0, "skipped": 0}

@@ -7,30 +7,12 @@ and ``@`` (which would mention someone).
 
 from __future__ import annotations
 
-import re
-
 from alpha_audit.gate import CheckReport, Finding
-from alpha_audit.policy import Rule
-from alpha_audit.render import RenderOptions
+from alpha_audit.render.common import RenderOptions, escape_markdown
 
-__all__ = ["MAX_ROWS", "escape_cell", "render_report"]
+__all__ = ["MAX_ROWS", "render_report"]
 
 MAX_ROWS = 100  # failures listed in full; the JSON and SARIF reports have every one
-
-# What changes meaning inside a GFM table cell: emphasis, code, links, pipes, strikethrough.
-_MARKDOWN_SPECIAL = re.compile(r"([\\`*_\[\]|~])")
-
-
-def escape_cell(text: object) -> str:
-    """``text`` safe inside a Markdown table cell, on one line.
-
-    >>> escape_cell("a|b <script> @team\\n*x*")
-    'a\\\\|b &lt;script&gt; &#64;team \\\\*x\\\\*'
-    """
-    s = str(text).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
-    s = s.replace("@", "&#64;")
-    s = re.sub(r"[\x00-\x1f\x7f]+", " ", s)
-    return _MARKDOWN_SPECIAL.sub(r"\\\1", s).strip()
 
 
 def _numbers(f: Finding) -> str:
@@ -50,7 +32,7 @@ def _row(f: Finding, extra: str = "") -> str:
     cells = [f.rule.value, ", ".join(f.icons), f.canvas or "", f.theme, _numbers(f)]
     if extra:
         cells.append(extra)
-    return "| " + " | ".join(escape_cell(c) for c in cells) + " |"
+    return "| " + " | ".join(escape_markdown(c) for c in cells) + " |"
 
 
 def render_report(report: CheckReport, options: RenderOptions) -> str:
@@ -61,7 +43,7 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     if gate.passed:
         lines.append("## alpha-audit: ✅ gate passed")
     else:
-        counts = ", ".join(f"{n} {escape_cell(rule)}" for rule, n in gate.counts().items())
+        counts = ", ".join(f"{n} {escape_markdown(rule)}" for rule, n in gate.counts().items())
         lines.append(f"## alpha-audit: ❌ gate failed ({counts})")
     lines += ["", f"Rules: {rules}; max loss {gate.policy.max_loss:g}.", ""]
     lines += [
@@ -76,8 +58,8 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
             "" if not alphas else f"{alphas[0]:g}" + (f"–{alphas[-1]:g}" if len(alphas) > 1 else "")
         )
         cells = [
-            escape_cell(r.theme.name),
-            escape_cell(r.iconset.name),
+            escape_markdown(r.theme.name),
+            escape_markdown(r.iconset.name),
             str(len(r.iconset.icons)),
             alpha,
             f"{s.mean_gain:+.3f}",
@@ -99,7 +81,7 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
         lines += [_row(f) for f in failures[:MAX_ROWS]]
         if len(failures) > MAX_ROWS:
             lines.append(f"\n… and {len(failures) - MAX_ROWS} more; see the JSON or SARIF report.")
-    exempt = [f for f in gate.findings if f.exemption is not None]
+    exempt = gate.exempted
     if exempt:
         lines += ["", "<details><summary>Exempted findings</summary>", ""]
         lines += [
@@ -108,7 +90,7 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
         ]
         lines += [_row(f, f.exemption.reason) for f in exempt[:MAX_ROWS] if f.exemption]
         lines += ["", "</details>"]
-    baselined = sum(f.baselined and f.exemption is None for f in gate.findings)
+    baselined = len(gate.baselined)
     if baselined or gate.stale:
         lines += [
             "",
@@ -116,13 +98,8 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
             f"{len(gate.stale)} baseline "
             f"{'entry no longer occurs' if len(gate.stale) == 1 else 'entries no longer occur'}.",
         ]
-    problems = [(r, p) for r in report.audits for p in r.problems]
-    if problems and Rule.UNRENDERABLE not in gate.policy.rules:
-        seen = set()
+    if gate.warnings:
         lines += ["", "### Icons that could not be rendered", ""]
-        for _, p in problems:
-            if (p.icon, p.message) in seen:
-                continue
-            seen.add((p.icon, p.message))
-            lines.append(f"- {escape_cell(p.icon)}: {escape_cell(p.message)}")
+        for w in gate.warnings:
+            lines.append(f"- {escape_markdown(', '.join(w.icons))}: {escape_markdown(w.message)}")
     return "\n".join(lines) + "\n"

@@ -2,34 +2,54 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from dataclasses import asdict
+from enum import StrEnum
+from typing import Any, assert_never
 
 from rich.table import Table
 from rich.text import Text
 
-from alpha_audit.pair import PairRow
-from alpha_audit.render import RenderOptions
-from alpha_audit.render.json import dumps
-from alpha_audit.render.table import to_text
+from alpha_audit.pair import PairReport
+from alpha_audit.render.common import Renderer, RenderOptions, dumps, records, to_text
 
-__all__ = ["PAIR_SCHEMA", "pair_json", "pair_table_text"]
+__all__ = ["PAIR_SCHEMA", "PairFormat", "pair_document", "render_json", "render_table"]
 
 PAIR_SCHEMA = "alpha-audit.pair/1"
 
 
-def pair_json(color: str, rows: Sequence[PairRow]) -> str:
+class PairFormat(StrEnum):
+    """Output formats of ``alpha-audit pair``."""
+
+    TABLE = "table"
+    JSON = "json"
+
+    def renderer(self) -> Renderer[PairReport]:
+        """The render function for this format."""
+        if self is PairFormat.TABLE:
+            return render_table
+        if self is PairFormat.JSON:
+            return render_json
+        assert_never(self)
+
+
+def pair_document(report: PairReport) -> dict[str, Any]:
     """``{"schema": "alpha-audit.pair/1", "color": ..., "rows": [...]}``."""
-    return dumps({"schema": PAIR_SCHEMA, "color": color, "rows": [asdict(r) for r in rows]})
+    return {"schema": PAIR_SCHEMA, "color": report.color, "rows": records(report.rows)}
 
 
-def pair_table_text(color: str, rows: Sequence[PairRow], options: RenderOptions) -> str:
+def render_json(report: PairReport, options: RenderOptions) -> str:
+    """The report as ``alpha-audit.pair/1`` JSON (``options`` change nothing)."""
+    return dumps(pair_document(report))
+
+
+def render_table(report: PairReport, options: RenderOptions) -> str:
     """One row per background x alpha, swatches shown when colour is on."""
+    rows = report.rows
     backgrounds = len({r.background for r in rows})
-    table = Table(title=f"{color} on {backgrounds} background(s)", title_justify="left")
+    title = Text(f"{report.color} on {backgrounds} background(s)")  # never rich markup
+    table = Table(title=title, title_justify="left")
     for name in ("background", "α", "output", "contrast", "gain", "ΔE00 vs Cs", "clipped"):
-        justify = "left" if name in ("background", "output", "clipped") else "right"
-        table.add_column(name, justify=justify, no_wrap=True)
+        left = name in ("background", "output", "clipped")
+        table.add_column(name, justify="left" if left else "right", no_wrap=True)
     for r in rows:
         table.add_row(
             Text(r.background, style=f"on {r.background}"),

@@ -16,8 +16,7 @@ from typing import Any
 
 from alpha_audit.gate import CheckReport, Finding
 from alpha_audit.policy import Rule
-from alpha_audit.render import RenderOptions, display_path
-from alpha_audit.render.json import dumps
+from alpha_audit.render.common import RenderOptions, display_path, dumps
 
 __all__ = ["RULE_HELP", "SARIF_SCHEMA", "render_report"]
 

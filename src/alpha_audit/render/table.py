@@ -6,26 +6,28 @@ function of the result; the CLI decides width and colour.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Sequence
-from io import StringIO
+from collections.abc import Callable, Iterable
 
 from rich import box
-from rich.console import Console, Group, RenderableType
+from rich.console import Group, RenderableType
 from rich.padding import Padding
 from rich.table import Table
 from rich.text import Text
 
 from alpha_audit.audit import AuditResult, Row
 from alpha_audit.gate import CheckReport, GateResult
-from alpha_audit.render import RenderOptions, as_report
+from alpha_audit.render.common import RenderOptions, to_text
+from alpha_audit.render.common import shorten_names as icons_label
 
-__all__ = ["MAX_FINDINGS", "check_renderable", "gate_renderable", "render_check", "render_report"]
+__all__ = ["MAX_FINDINGS", "check_renderable", "gate_renderable", "render_report"]
 
 MAX_FINDINGS = 12  # per section; the JSON has everything
 
 
 def _fmt_alpha(result: AuditResult) -> str:
     alphas = sorted({float(a) for a in result.alpha})
+    if not alphas:  # every icon failed to render: nothing was composited
+        return "-"
     if len(alphas) == 1:
         return f"{alphas[0]:g}"
     return f"{alphas[0]:g}..{alphas[-1]:g}"
@@ -54,12 +56,6 @@ def _summary_table(result: AuditResult) -> Table:
             de,
         )
     return table
-
-
-def icons_label(names: Sequence[str], limit: int = 3) -> str:
-    """``a, b, c`` or ``a, b, c +4 more``: long icon lists stay on one line."""
-    head = ", ".join(names[:limit])
-    return head if len(names) <= limit else f"{head} +{len(names) - limit} more"
 
 
 def _grouped(result: AuditResult, rows: Iterable[Row]) -> list[tuple[Row, list[str]]]:
@@ -229,10 +225,10 @@ def gate_renderable(gate: GateResult) -> RenderableType:
             out.append(Text(f"  … and {more} more (see --format json or markdown)"))
     else:
         out.append(Text(f"Gate passed [{rules}]", style="bold green"))
-    exempt = [f for f in gate.findings if f.exemption is not None]
-    baselined = [f for f in gate.findings if f.baselined and f.exemption is None]
-    if exempt:
-        out.append(Text(f"  {len(exempt)} exempted finding(s), e.g. {exempt[0].exemption.reason}"))
+    exempt, baselined = gate.exempted, gate.baselined
+    if exempt and exempt[0].exemption is not None:
+        reason = exempt[0].exemption.reason
+        out.append(Text(f"  {len(exempt)} exempted finding(s), e.g. {reason}"))
     if baselined:
         out.append(Text(f"  {len(baselined)} finding(s) already in the baseline"))
     if gate.stale:
@@ -254,24 +250,3 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
         parts += [check_renderable(result), Text("")]
     parts.append(gate_renderable(report.gate))
     return to_text(Group(*parts), options)
-
-
-def render_check(result: AuditResult | CheckReport, options: RenderOptions) -> str:
-    """Render one audit (gated by the default policy) or a whole report."""
-    return render_report(as_report(result), options)
-
-
-def to_text(renderable: RenderableType, options: RenderOptions) -> str:
-    """Render at ``options.width`` columns, with or without ANSI colour."""
-    buffer = StringIO()
-    console = Console(
-        file=buffer,
-        width=options.width,
-        color_system="truecolor" if options.color else None,
-        force_terminal=options.color,
-        no_color=not options.color,
-        highlight=False,
-        emoji=False,
-    )
-    console.print(renderable)
-    return buffer.getvalue()

@@ -8,15 +8,17 @@ deterministic for a given result.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
+from typing import BinaryIO
 
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
+from alpha_audit.output import Output, write_files
 from alpha_audit.reproduce.experiments import SweepResult
 
-__all__ = ["FIGURES", "sweep_figure", "write_figures"]
+__all__ = ["FIGURES", "figure_outputs", "sweep_figure", "write_figures"]
 
 # File name -> alpha range, as in the paper (Figure 3: [1, 2]; Figure 6: [0, 2]).
 FIGURES = {"sweep-1-2.png": (1.0, 2.0), "sweep-0-2.png": (0.0, 2.0)}
@@ -112,11 +114,20 @@ def sweep_figure(result: SweepResult, alpha_range: tuple[float, float]) -> Image
     return image
 
 
-def write_figures(result: SweepResult, directory: Path) -> list[Path]:
-    """Write ``sweep-1-2.png`` and ``sweep-0-2.png``; returns the paths written."""
-    written = []
-    for name, alpha_range in FIGURES.items():
-        path = Path(directory) / name
-        sweep_figure(result, alpha_range).save(path, format="PNG")
-        written.append(path)
-    return written
+def figure_outputs(result: SweepResult, directory: str | Path) -> list[Output]:
+    """``sweep-1-2.png`` and ``sweep-0-2.png`` as :class:`~alpha_audit.output.Output` items.
+
+    Each figure is drawn and encoded while its temporary file is written.
+    """
+
+    def png(alpha_range: tuple[float, float]) -> Callable[[BinaryIO], None]:
+        return lambda fh: sweep_figure(result, alpha_range).save(fh, format="PNG")
+
+    return [Output(Path(directory) / name, png(r)) for name, r in FIGURES.items()]
+
+
+def write_figures(
+    result: SweepResult, directory: str | Path, *, overwrite: bool = False
+) -> list[Path]:
+    """Write both figures atomically (existing files only with ``overwrite``); their paths."""
+    return write_files(figure_outputs(result, directory), overwrite=overwrite)

@@ -1,6 +1,7 @@
-"""Renderers of a :class:`~alpha_audit.reproduce.run.Reproduction`: JSON and Markdown.
+"""Renderers of a :class:`~alpha_audit.reproduce.run.Reproduction`: table, JSON and Markdown.
 
-Pure functions of the result: no printing, no clock, stable order.  The JSON
+Pure functions of the result: no printing, no clock, stable order.  The rich
+tables fit 80 columns and never cut a number.  The JSON
 schema ``alpha-audit.reproduce/1`` is documented in ``docs/reproduce.md``;
 numbers are unrounded.  The Markdown report puts the paper's printed values
 beside ours and says, per value, whether it is comparable in digits and
@@ -9,10 +10,16 @@ whether ours matches to every printed digit.
 
 from __future__ import annotations
 
-import json
+from enum import StrEnum
 from importlib.metadata import PackageNotFoundError, version
-from typing import Any
+from typing import Any, assert_never
 
+from rich import box
+from rich.console import Group
+from rich.table import Table
+from rich.text import Text
+
+from alpha_audit.render.common import Renderer, RenderOptions, dumps, escape_markdown, to_text
 from alpha_audit.reproduce.experiments import ContrastChange
 from alpha_audit.reproduce.paper import (
     PAPER,
@@ -23,9 +30,36 @@ from alpha_audit.reproduce.paper import (
 )
 from alpha_audit.reproduce.run import Reproduction
 
-__all__ = ["SCHEMA", "alpha_key", "render_json", "render_markdown", "to_json_dict"]
+__all__ = [
+    "SCHEMA",
+    "ReproduceFormat",
+    "alpha_key",
+    "render_json",
+    "render_markdown",
+    "render_table",
+    "tables",
+    "to_json_dict",
+]
 
 SCHEMA = "alpha-audit.reproduce/1"
+
+
+class ReproduceFormat(StrEnum):
+    """Output formats of ``alpha-audit reproduce`` (``--out`` writes JSON and Markdown)."""
+
+    TABLE = "table"
+    JSON = "json"
+    MARKDOWN = "markdown"
+
+    def renderer(self) -> Renderer[Reproduction]:
+        """The render function for this format."""
+        if self is ReproduceFormat.TABLE:
+            return render_table
+        if self is ReproduceFormat.JSON:
+            return render_json
+        if self is ReproduceFormat.MARKDOWN:
+            return render_markdown
+        assert_never(self)
 
 
 def alpha_key(alpha: float) -> str:
@@ -149,9 +183,9 @@ def to_json_dict(run: Reproduction) -> dict[str, Any]:
     return doc
 
 
-def render_json(run: Reproduction) -> str:
-    """``to_json_dict`` as indented JSON text (trailing newline)."""
-    return json.dumps(to_json_dict(run), indent=2, allow_nan=False) + "\n"
+def render_json(run: Reproduction, options: RenderOptions | None = None) -> str:
+    """``to_json_dict`` as JSON text (``options`` change nothing)."""
+    return dumps(to_json_dict(run))
 
 
 # --------------------------------------------------------------------------- Markdown
@@ -245,8 +279,8 @@ def _full_gamut_section(run: Reproduction) -> list[str]:
         "## Full gamut (Section 4.2, Table 1)",
         "",
         f"All {first.levels}^3 sources on the {len(first.canvases)} canvases of theme "
-        f"`{first.theme}`.  The paper does not publish its sixteen canvases, so these figures are "
-        "comparable in method only.",
+        f"{escape_markdown(first.theme)}.  The paper does not publish its sixteen canvases, so "
+        "these figures are comparable in method only.",
         "",
         *_HEADER,
     ]
@@ -271,7 +305,7 @@ def _full_gamut_section(run: Reproduction) -> list[str]:
         "|---|---|---|---:|---:|---:|---:|---:|",
     ]
     for r in run.full_gamut:
-        rows = [(c.name, c.mode, c.change) for c in r.canvases]
+        rows = [(escape_markdown(c.name), c.mode, c.change) for c in r.canvases]
         rows += [(f"*{m} group*", m, r.group(m)) for m in ("light", "dark") if r.group(m)]
         for name, mode, c in rows:
             assert c is not None
@@ -322,7 +356,8 @@ def _palette_section(run: Reproduction) -> list[str]:
     lines = [
         "## Palette separation (Section 4.3)",
         "",
-        f"All {len(p.palette) * (len(p.palette) - 1) // 2} pairs of {', '.join(p.palette)} on each "
+        f"All {len(p.palette) * (len(p.palette) - 1) // 2} pairs of "
+        f"{escape_markdown(', '.join(p.palette))} on each "
         f"canvas ({p.combinations} combinations); {p.random_pairs:,} random pairs on each canvas "
         f"({p.random_combinations:,} combinations).  Counts of combinations are comparable; "
         "smaller-CIEDE2000 and collision counts depend on the unpublished canvases and pair "
@@ -355,12 +390,16 @@ def _palette_section(run: Reproduction) -> list[str]:
     return [*lines, ""]
 
 
-def render_markdown(run: Reproduction) -> str:
-    """The report: per experiment, the paper's printed values beside ours."""
+def render_markdown(run: Reproduction, options: RenderOptions | None = None) -> str:
+    """The report: per experiment, the paper's printed values beside ours.
+
+    Theme and canvas names come from input files: escaped like every Markdown
+    report (:func:`~alpha_audit.render.common.escape_markdown`).
+    """
     lines = [
         "# alpha-audit reproduce: Opacity Is Not Just Opacity, Section 4",
         "",
-        f"Theme `{run.theme.name}` ({len(run.theme.canvases)} canvases); "
+        f"Theme {escape_markdown(run.theme.name)} ({len(run.theme.canvases)} canvases); "
         f"alphas {', '.join(alpha_key(a) for a in run.alphas)}"
         + (
             "; **quick grids** (not the paper's sizes)."
@@ -382,3 +421,111 @@ def render_markdown(run: Reproduction) -> str:
     if run.palette is not None:
         lines += _palette_section(run)
     return "\n".join(lines).rstrip() + "\n"
+
+
+# --------------------------------------------------------------------------- tables
+
+
+def _table(title: str) -> Table:
+    """A compact table that fits 80 columns: numbers are never cut or wrapped."""
+    return Table(
+        title=Text(title),  # theme names come from input files: never rich markup
+        title_justify="left",
+        box=box.SIMPLE_HEAD,
+        collapse_padding=True,
+        pad_edge=False,
+        caption_justify="left",
+    )
+
+
+def tables(run: Reproduction) -> list[Table]:
+    """Rich tables of a run, one per experiment."""
+    tables = []
+    if run.broad_grid is not None:
+        t = _table("Broad grid (paper Table 1 and Section 4.2): paper vs ours")
+        for col in ("alpha", "quantity", "paper", "ours", "every digit?"):
+            t.add_column(col, justify="left" if col == "quantity" else "right", no_wrap=True)
+        # One line per distinct worst case: every alpha usually shares the paper's one.
+        worst_cases: dict[str, list[str]] = {}
+        paper_grid = run.settings.source_levels == 17 and run.settings.background_levels == 33
+        quantities = (
+            ("increase_pct", "increase %"),
+            ("decrease_pct", "decrease %"),
+            ("max_loss", "maximum loss"),
+            ("loss_le_0_25_pct", "losses <= 0.25, %"),
+        )
+        for r in run.broad_grid:
+            printed = PAPER["broad_grid"].get(alpha_key(r.alpha), {}) if paper_grid else {}
+            for name, label in quantities:
+                ours = getattr(r, name)
+                paper = printed.get(name)
+                if paper is None:
+                    t.add_row(alpha_key(r.alpha), label, "—", f"{ours:.4f}", "—")
+                    continue
+                ok = matches_printed(ours, paper)
+                t.add_row(
+                    alpha_key(r.alpha),
+                    label,
+                    f"{paper.value:.{paper.decimals}f}",
+                    f"{ours:.{paper.decimals}f}",
+                    Text("yes", style="green") if ok else Text("NO", style="bold red"),
+                )
+            worst = " > ".join(f"{cr:.4f} (a={alpha_key(a)})" for a, cr in r.worst_contrast.items())
+            src, bg = (",".join(f"{v:g}" for v in c) for c in (r.worst_source, r.worst_background))
+            case = f"largest loss ({src}) on ({bg}), CR {worst}"
+            worst_cases.setdefault(case, []).append(alpha_key(r.alpha))
+        t.caption = "\n".join(
+            f"alpha {' and '.join(alphas)}: {case}" for case, alphas in worst_cases.items()
+        )
+        tables.append(t)
+    if run.full_gamut is not None:
+        t = _table(f"Full gamut on {run.theme.name} (comparable to the paper in method only)")
+        for col in ("alpha", "group", "inc %", "dec %", "same %", "mean", "3:1 %", "Diff", "Excl"):
+            t.add_column(col, justify="right", no_wrap=True)
+        for fg in run.full_gamut:
+            rows = [("all", fg.total)] + [(m, fg.group(m)) for m in ("light", "dark")]
+            for name, c in rows:
+                if c is None:
+                    continue
+                t.add_row(
+                    alpha_key(fg.alpha), name, f"{c.increase_pct:.4f}", f"{c.decrease_pct:.4f}",
+                    f"{c.unchanged_pct:.4f}", f"{c.mean_change:.4f}", f"{c.newly_reach_pct:.4f}",
+                    f"{c.mean_difference_change:.4f}", f"{c.mean_exclusion_change:.4f}",
+                )  # fmt: skip
+        tables.append(t)
+    if run.sweep is not None:
+        s = run.sweep
+        t = _table(f"Sweep on {s.levels}^3 sources, {s.pairs:,} random pairs (every 0.25)")
+        for col in ("alpha", "mean change L/D", "decreases L/D", "collisions L/D"):
+            t.add_column(col, justify="right", no_wrap=True)
+        for i, a in enumerate(s.alphas):
+            if abs(a * 4 - round(a * 4)) > 1e-9:
+                continue
+
+            def pair(series: dict[str, tuple[float, ...]], i: int = i) -> str:
+                return " / ".join(f"{series[g][i]:.4f}" for g in ("light", "dark") if g in series)
+
+            t.add_row(f"{a:g}", pair(s.mean_change), pair(s.decrease_share),
+                      pair(s.collision_rate))  # fmt: skip
+        tables.append(t)
+    if run.palette is not None:
+        pal = run.palette
+        t = _table(f"Palette separation: {pal.combinations} pair x canvas combinations")
+        for col in ("alpha", "smaller CIEDE2000", "collisions", "random-pair collisions"):
+            t.add_column(col, justify="right", no_wrap=True)
+        for a in sorted(set(pal.alphas) | set(pal.random_alphas)):
+            t.add_row(
+                alpha_key(a),
+                str(pal.smaller.get(a, "—")),
+                str(pal.collisions.get(a, "—")),
+                f"{pal.random_collisions[a]:,} of {pal.random_combinations:,}"
+                if a in pal.random_collisions
+                else "—",
+            )
+        tables.append(t)
+    return tables
+
+
+def render_table(run: Reproduction, options: RenderOptions) -> str:
+    """Every experiment's table at ``options.width`` columns."""
+    return to_text(Group(*tables(run)), options)

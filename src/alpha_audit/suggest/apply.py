@@ -3,35 +3,41 @@
 ``suggest --apply`` uses this.  The manifest is not re-serialised: the YAML is
 composed only to find where each ``alpha`` value sits (top level, in an
 ``icons:`` entry, in ``overrides:``), and those character spans are replaced.
-Comments, order, quoting and spacing everywhere else stay byte for byte.
+Comments, order, quoting, spacing and line endings everywhere else stay byte
+for byte.  The edited text is parsed again and must mean the same document
+with only the alpha values changed, or nothing is written; an anchored alpha
+(which an alias elsewhere would follow) is refused.  The file keeps its mode,
+and a symbolic link keeps pointing at the edited file (its target must lie in
+the project).
 """
 
 from __future__ import annotations
 
 import json
+import os
 import re
-from collections.abc import Callable
+import stat
 from dataclasses import dataclass, field, replace
 from enum import StrEnum
 from pathlib import Path, PurePosixPath
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import yaml
 
 from alpha_audit.errors import InputError, UsageError
+from alpha_audit.load.files import read_text_capped
 from alpha_audit.load.yamldoc import MAX_YAML_BYTES
-from alpha_audit.output import write_text
+from alpha_audit.output import write_bytes
 
 if TYPE_CHECKING:
     from alpha_audit.model import IconSet
-    from alpha_audit.suggest import SuggestResult
+    from alpha_audit.suggest.engine import SuggestResult
 
 __all__ = [
     "ApplyPlan",
     "ApplyScope",
     "alpha_spans",
     "apply_alpha",
-    "apply_plan",
     "apply_suggestion",
     "describe_plan",
     "edit_alphas",
@@ -46,11 +52,11 @@ def format_alpha(alpha: float, precision: int) -> str:
     """A coefficient as YAML: at most ``precision`` decimals, no trailing zeros.
 
     >>> format_alpha(1.25, 3), format_alpha(2.0, 3), format_alpha(1.0, 0), format_alpha(20.0, 0)
-    ('1.25', '2.0', '1.0', '20.0')
+    ('1.25', '2.0', '1', '20')
     """
     text = f"{alpha:.{precision}f}"
     if "." not in text:  # precision 0: "20" must not lose its zero
-        return text + ".0"
+        return text
     text = text.rstrip("0")
     return text + "0" if text.endswith(".") else text
 
@@ -70,6 +76,11 @@ def alpha_spans(text: str, path: str | Path | None = None) -> tuple[list[tuple[i
     """
     try:
         root = yaml.compose(text, Loader=yaml.SafeLoader)
+        anchored = {
+            e.start_mark.index
+            for e in yaml.parse(text, Loader=yaml.SafeLoader)
+            if isinstance(e, yaml.NodeEvent) and e.anchor is not None
+        }
     except yaml.YAMLError as exc:
         raise InputError(f"cannot edit this manifest: {exc}", path=path) from exc
     if not isinstance(root, yaml.MappingNode):
@@ -103,6 +114,12 @@ def alpha_spans(text: str, path: str | Path | None = None) -> tuple[list[tuple[i
                 "is not a plain number",
                 path=path,
             )
+        if node.start_mark.index in anchored:
+            raise InputError(
+                f"cannot edit this manifest: alpha on line {node.start_mark.line + 1} carries "
+                "an anchor that other values may follow; write the number itself there",
+                path=path,
+            )
     spans = sorted({(n.start_mark.index, n.end_mark.index) for n in nodes})
     return spans, top is not None
 
@@ -111,56 +128,111 @@ def set_alpha(text: str, value: str, path: str | Path | None = None) -> str:
     """``text`` with every alpha value replaced by ``value`` (and a top-level one added).
 
     Without a top-level ``alpha:`` the icons that use the default would keep
-    1.0, so one is appended at the end of the document.  A comment after a
-    value keeps its column.
+    1.0, so one is appended at the end of the document.
 
     >>> print(set_alpha("# demo\\nalpha: 1.1  # was\\noverrides:\\n  a: {alpha: 1.3}\\n", "1.25"))
     # demo
-    alpha: 1.25 # was
+    alpha: 1.25  # was
     overrides:
       a: {alpha: 1.25}
     <BLANKLINE>
     """
-    explicit = _Manifest(text, path).explicit
-    return edit_alphas(text, top=value, icons=dict.fromkeys(explicit, value), path=path)
+    spans, has_top = alpha_spans(text, path)
+    out = []
+    pos = 0
+    for start, end in spans:
+        out.append(text[pos:start])
+        out.append(value)
+        pos = end
+    out.append(text[pos:])
+    edited = "".join(out)
+    if not has_top:
+        eol = _eol(text)
+        newline = "" if edited.endswith("\n") or not edited else eol
+        edited += f"{newline}alpha: {value}{eol}"
+    _check_meaning(text, edited, float(value), path)
+    return edited
 
 
-def apply_alpha(path: str | Path, alpha: float, precision: int) -> bool:
-    """Write ``alpha`` into every alpha value of the manifest at ``path``; whether it changed.
+def _with_alpha(data: Any, alpha: float) -> Any:
+    """``data`` (a parsed manifest) as it should read after the edit."""
+    if not isinstance(data, dict):
+        return data
+    out = dict(data, alpha=alpha)
+    if isinstance(out.get("icons"), list):
+        out["icons"] = [
+            dict(i, alpha=alpha) if isinstance(i, dict) and "alpha" in i else i
+            for i in out["icons"]
+        ]
+    if isinstance(out.get("overrides"), dict):
+        out["overrides"] = {
+            k: dict(v, alpha=alpha) if isinstance(v, dict) and "alpha" in v else v
+            for k, v in out["overrides"].items()
+        }
+    return out
 
-    The file is replaced atomically and only when its text changes.
+
+def _check_meaning(before: str, after: str, alpha: float, path: str | Path | None) -> None:
+    """Refuse an edit whose text does not parse, or means more than new alpha values."""
+    try:
+        expected = _with_alpha(yaml.safe_load(before), alpha)
+        got = yaml.safe_load(after)
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        where = f" at line {mark.line + 1}" if mark is not None else ""
+        problem = getattr(exc, "problem", None) or "a syntax error"
+        raise InputError(
+            "cannot edit this manifest safely: with alpha added the text would not be valid "
+            f"YAML ({problem}{where}); set alpha by hand",
+            path=path,
+        ) from exc
+    if got != expected:
+        raise InputError(
+            "cannot edit this manifest safely: the edit would change more than the alpha "
+            "values (flow style, an indented top level or a document end marker?); "
+            f"set alpha: {alpha:g} by hand",
+            path=path,
+        )
+
+
+def apply_alpha(
+    path: str | Path, alpha: float, precision: int, *, root: str | Path | None = None
+) -> bool:
+    """Write ``alpha`` into the manifest at ``path``; returns whether the file changed.
+
+    The file is replaced atomically and only when its text changes, keeping
+    its mode.  If ``path`` is a symbolic link, the file it points to is edited
+    (the link stays) when that file lies inside ``root`` (default: the working
+    directory); otherwise the edit is refused.
     """
-    value = format_alpha(alpha, precision)
-    return _edit_file(Path(path), lambda text, target: set_alpha(text, value, target))
+    given = Path(path)
+    target = _edit_target(given, root)
+    text = read_text_capped(target, MAX_YAML_BYTES, InputError, "an icon-set manifest")
+    return _write_if_changed(target, text, set_alpha(text, format_alpha(alpha, precision), given))
 
 
-def _edit_file(target: Path, edit: Callable[[str, Path], str]) -> bool:
-    """Apply ``edit`` to a manifest's text (capped, UTF-8, line endings kept); atomic write."""
-    text, crlf = _read_manifest(target)
-    return _write_if_changed(target, text, edit(text, target), crlf)
-
-
-def _read_manifest(target: Path) -> tuple[str, bool]:
-    """The manifest's text with ``\\n`` line endings, and whether it had ``\\r\\n``."""
+def _edit_target(given: Path, root: str | Path | None) -> Path:
+    """The file to edit: ``given``, or the file its link points at inside ``root``."""
+    if not given.is_symlink():
+        return given
     try:
-        with target.open("rb") as fh:
-            raw = fh.read(MAX_YAML_BYTES + 1)
-    except OSError as exc:
-        raise InputError(f"cannot read: {exc.strerror}", path=target) from exc
-    if len(raw) > MAX_YAML_BYTES:
-        raise InputError(f"larger than {MAX_YAML_BYTES} bytes; not editing it", path=target)
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise InputError("not UTF-8 text; not editing it", path=target) from exc
-    return text.replace("\r\n", "\n"), "\r" in text
+        target = given.resolve(strict=True)
+    except (OSError, RuntimeError) as exc:  # dangling, or a loop of links
+        raise InputError("is a link that leads to no file; not editing it", path=given) from exc
+    base = Path(root if root is not None else Path.cwd()).resolve()
+    if not target.is_relative_to(base):
+        raise InputError(
+            f"is a link to {target}, outside the project {base}; not editing it", path=given
+        )
+    return target
 
 
-def _write_if_changed(target: Path, text: str, edited: str, crlf: bool) -> bool:
+def _write_if_changed(target: Path, text: str, edited: str) -> bool:
+    """Replace ``target`` atomically with ``edited`` (mode kept) when it differs from ``text``."""
     if edited == text:
         return False
-    # Keep Windows line endings: edited with \n, written with \r\n.
-    write_text(target, edited.replace("\n", "\r\n") if crlf else edited, overwrite=True)
+    mode = stat.S_IMODE(os.stat(target).st_mode)
+    write_bytes(target, edited.encode("utf-8"), overwrite=True, mode=mode)
     return True
 
 
@@ -246,9 +318,15 @@ def _key(name: str) -> str:
     return name if plain else json.dumps(name, ensure_ascii=False)
 
 
+def _eol(text: str) -> str:
+    """The file's own line ending (CRLF when most lines use it)."""
+    return "\r\n" if text.count("\r\n") * 2 > text.count("\n") else "\n"
+
+
 def _line_end(text: str, index: int) -> int:
     end = text.find("\n", index)
-    return len(text) if end < 0 else end
+    end = len(text) if end < 0 else end
+    return end - 1 if end > 0 and text[end - 1] == "\r" else end  # before a CRLF
 
 
 def _replacement(text: str, start: int, end: int, value: str) -> tuple[int, int, str]:
@@ -289,6 +367,7 @@ def edit_alphas(
       new:    {alpha: 1.4}
     """
     m = _Manifest(text, path)
+    eol = _eol(text)
     edits: list[tuple[int, int, str]] = []
     appended: list[str] = []
     if top is not None:
@@ -310,12 +389,12 @@ def edit_alphas(
         elif isinstance(node, yaml.MappingNode) and node.value:
             indent = node.value[0][0].start_mark.column
             at = _line_end(text, node.end_mark.index - 1)
-            edits.append((at, at, "\n" + " " * indent + f"alpha: {value}"))
+            edits.append((at, at, eol + " " * indent + f"alpha: {value}"))
         else:  # `alert:` with nothing (or ~): becomes a flow mapping
             start, end = _span(node)
             edits.append((start, end, f"{'' if text[start - 1] == ' ' else ' '}{{alpha: {value}}}"))
     if new_entries:
-        _add_entries(text, m, new_entries, edits, appended)
+        _add_entries(text, m, new_entries, edits, appended, eol)
     out, pos = [], 0
     for start, end, value in sorted(edits, key=lambda e: (e[0], e[1])):
         out += [text[pos:start], value]
@@ -323,8 +402,8 @@ def edit_alphas(
     out.append(text[pos:])
     edited = "".join(out)
     if appended:
-        newline = "" if edited.endswith("\n") or not edited else "\n"
-        edited += newline + "\n".join(appended) + "\n"
+        newline = "" if edited.endswith("\n") or not edited else eol
+        edited += newline + eol.join(appended) + eol
     return edited
 
 
@@ -334,6 +413,7 @@ def _add_entries(
     entries: list[tuple[str, str]],
     edits: list[tuple[int, int, str]],
     appended: list[str],
+    eol: str,
 ) -> None:
     """New ``overrides:`` entries, placed and aligned like the existing ones."""
     node = m.overrides
@@ -367,7 +447,7 @@ def _add_entries(
         head = " " * indent + f"{_key(name)}:"
         lines.append(head + " " * max(1, column - len(head)) + f"{{alpha: {value}}}")
     if at >= 0:
-        edits.append((at, at, "".join("\n" + line for line in lines)))
+        edits.append((at, at, "".join(eol + line for line in lines)))
     else:
         appended.append("overrides:")
         appended.extend(lines)
@@ -407,7 +487,7 @@ def plan_apply(
     written per icon where it differs from what the icon has now.  The plan
     then re-runs the gate on the result (``passes``).
     """
-    from alpha_audit.suggest import largest_safe_alpha
+    from alpha_audit.suggest.engine import largest_safe_alpha
 
     scope = ApplyScope(scope)
     iconset = result.iconset
@@ -481,15 +561,20 @@ def apply_suggestion(
     scope: ApplyScope | str,
     *,
     replace_explicit: bool = False,
+    root: str | Path | None = None,
 ) -> tuple[ApplyPlan, bool]:
     """Plan (:func:`plan_apply`) and write a suggestion into the manifest at ``path``.
 
-    Returns the plan and whether the file changed.  Raises :class:`UsageError`
+    Returns the plan and whether the file changed.  The file is handled as
+    :func:`apply_alpha` handles it (capped read, a link edited at its target
+    inside ``root``, mode kept, atomic write), and the edit is parsed again
+    and must mean exactly the planned alphas.  Raises :class:`UsageError`
     when there is nothing safe to write at all.
     """
-    target = Path(path)
-    text, crlf = _read_manifest(target)
-    explicit = explicit_alpha_icons(text, target)
+    given = Path(path)
+    target = _edit_target(given, root)
+    text = read_text_capped(target, MAX_YAML_BYTES, InputError, "an icon-set manifest")
+    explicit = explicit_alpha_icons(text, given)
     plan = plan_apply(result, scope, explicit, replace_explicit=replace_explicit)
     if plan.top is None and not plan.icons and plan.skipped:
         raise UsageError(
@@ -498,8 +583,63 @@ def apply_suggestion(
         )
     top = None if plan.top is None else format_alpha(plan.top, result.precision)
     icons = {n: format_alpha(a, result.precision) for n, a in plan.icons.items()}
-    edited = edit_alphas(text, top=top, icons=icons, path=target)
-    return plan, _write_if_changed(target, text, edited, crlf)
+    edited = edit_alphas(text, top=top, icons=icons, path=given)
+    _check_edit(text, edited, top, icons, given)
+    return plan, _write_if_changed(target, text, edited)
+
+
+def _icon_entry_name(item: Any) -> str | None:
+    """The icon name an ``icons:`` mapping entry gives (``name:``, else the file's stem)."""
+    if not isinstance(item, dict):
+        return None
+    if isinstance(item.get("name"), str):
+        return item["name"]
+    file = item.get("file")
+    return PurePosixPath(file.replace("\\", "/")).stem if isinstance(file, str) else None
+
+
+def _check_edit(
+    before: str, after: str, top: str | None, icons: dict[str, str], path: str | Path | None
+) -> None:
+    """Refuse an edit that does not parse, or means more than the planned alpha values."""
+    data = yaml.safe_load(before)
+    expected = dict(data) if isinstance(data, dict) else data
+    if isinstance(expected, dict):
+        if top is not None:
+            expected["alpha"] = float(top)
+        entries = expected.get("icons")
+        listed: set[str] = set()
+        if isinstance(entries, list):
+            new_entries = []
+            for item in entries:
+                name = _icon_entry_name(item)
+                if name in icons and isinstance(item, dict) and "alpha" in item:
+                    item = dict(item, alpha=float(icons[name]))
+                    listed.add(name)
+                new_entries.append(item)
+            expected["icons"] = new_entries
+        overrides = dict(expected.get("overrides") or {})
+        for name, value in icons.items():
+            entry = overrides.get(name)
+            if name in listed and not (isinstance(entry, dict) and "alpha" in entry):
+                continue
+            overrides[name] = dict(entry or {}, alpha=float(value))
+        if overrides or "overrides" in expected:
+            expected["overrides"] = overrides
+    try:
+        got = yaml.safe_load(after)
+    except yaml.YAMLError as exc:
+        raise InputError(
+            "cannot edit this manifest safely: the edit would not be valid YAML; "
+            "set the alphas by hand",
+            path=path,
+        ) from exc
+    if got != expected:
+        raise InputError(
+            "cannot edit this manifest safely: the edit would change more than the alpha "
+            "values; set the alphas by hand",
+            path=path,
+        )
 
 
 def describe_plan(plan: ApplyPlan, path: str | Path, changed: bool, precision: int) -> str:
@@ -527,12 +667,3 @@ def describe_plan(plan: ApplyPlan, path: str | Path, changed: bool, precision: i
     if plan.passes is not None:
         parts.append("the gate passes" if plan.passes else "the gate still fails (see check)")
     return "; ".join(parts)
-
-
-def apply_plan(path: str | Path, plan: ApplyPlan, precision: int) -> bool:
-    """Write ``plan`` into the manifest at ``path`` (atomically, only if it changes)."""
-    top = None if plan.top is None else format_alpha(plan.top, precision)
-    icons = {n: format_alpha(a, precision) for n, a in plan.icons.items()}
-    return _edit_file(
-        Path(path), lambda text, target: edit_alphas(text, top=top, icons=icons, path=target)
-    )

@@ -5,7 +5,7 @@ For a gate :class:`~alpha_audit.policy.Policy` ``P`` the largest safe alpha is
     a* = sup { a <= a_max : every a' in [1, a] satisfies P }
 
 (issue 4).  It is computed from *events*, not a sweep (see
-:mod:`alpha_audit.events`): contrast rules cross their thresholds at
+:mod:`alpha_audit.suggest.events`): contrast rules cross their thresholds at
 closed-form points of a piecewise-linear luminance, 8-bit collisions live on
 intervals between code changes known exactly, and only CIEDE2000 separation
 is bracketed and bisected to 1e-9.  The reported value is ``a*`` rounded
@@ -29,23 +29,23 @@ import numpy as np
 from numpy.typing import NDArray
 
 from alpha_audit.color import (
-    CONTRAST_TOLERANCE,
     composite_extended,
     contrast_from_luminance,
     delta_e_2000,
+    pack_8bit,
     relative_luminance,
     to_8bit,
 )
 from alpha_audit.errors import UsageError
-from alpha_audit.events import (
+from alpha_audit.model import IconSet, Theme
+from alpha_audit.policy import Policy, Rule, contrast_breaks, contrast_floor
+from alpha_audit.suggest.events import (
     clip_breakpoints,
     code_timeline,
     first_below,
     first_in_luminance_band,
     luminance_band,
 )
-from alpha_audit.model import IconSet, Theme
-from alpha_audit.policy import Policy, Rule
 
 __all__ = [
     "SEPARATION_GRID_STEP",
@@ -160,11 +160,6 @@ class _Tracks:
     icons: tuple[tuple[int, ...], ...]
 
 
-def _pack(codes: NDArray[np.integer]) -> NDArray[np.int64]:
-    c = codes.astype(np.int64)
-    return (c[..., 0] << 16) | (c[..., 1] << 8) | c[..., 2]
-
-
 def _round_down(value: float, precision: int) -> float:
     """``value`` rounded towards minus infinity to ``precision`` decimals, exactly."""
     step = Decimal(1).scaleb(-precision)
@@ -189,26 +184,16 @@ class _Suggester:
         self.y_bg = relative_luminance(self.backgrounds)
         n = len(self.names)
         self.keys = np.unique(self.sources, axis=0, return_inverse=True)[1].reshape(n)
-        ref_codes = _pack(to_8bit(self.sources))
+        ref_codes = pack_8bit(to_8bit(self.sources))
         self.refs = np.unique(ref_codes, return_inverse=True)[1].reshape(n)
         # audit.py: collisions already present at alpha = 1 (source keys sharing a code).
         groups: dict[int, set[int]] = {}
         for k, r in zip(self.keys.tolist(), self.refs.tolist(), strict=True):
             groups.setdefault(r, set()).add(k)
         self.ref_groups = {frozenset(g) for g in groups.values() if len(g) > 1}
-        rules = policy.rules
-        self.contrast_rules = [
-            r for r in (Rule.LOSS, Rule.BELOW_THRESHOLD, Rule.NEWLY_FAILING) if r in rules
-        ]
-        # gate.py: `collision` already covers every new collision.
-        self.collision_rule = (
-            Rule.COLLISION
-            if Rule.COLLISION in rules
-            else Rule.NEW_COLLISION
-            if Rule.NEW_COLLISION in rules
-            else None
-        )
-        self.separation = Rule.SEPARATION in rules
+        self.contrast_rules = policy.contrast_rules
+        self.collision_rule = policy.collision_rule
+        self.separation = Rule.SEPARATION in policy.rules
         # Exemptions or multi-source 8-bit classes need the group-by-group verdict.
         self.slow_collisions = bool(policy.exemptions) or (
             self.collision_rule is Rule.NEW_COLLISION and bool(self.ref_groups)
@@ -259,15 +244,8 @@ class _Suggester:
         s = tracks.source[mv]
         y_src = relative_luminance(s)
         c_ref = contrast_from_luminance(y_src[:, np.newaxis], self.y_bg[np.newaxis, :])
-        t = self.threshold
         for rule in self.contrast_rules:
-            if rule is Rule.LOSS:
-                # gate.py: a loss counts beyond both max_loss and the float tolerance.
-                limit = c_ref - max(self.policy.max_loss, CONTRAST_TOLERANCE)
-            elif rule is Rule.BELOW_THRESHOLD:
-                limit = np.full_like(c_ref, t)
-            else:  # newly failing: only icons that pass at alpha = 1
-                limit = np.where(c_ref >= t, t, 1.0)
+            limit = contrast_floor(rule, self.policy, c_ref, self.threshold)
             lo, hi = luminance_band(limit, self.y_bg[np.newaxis, :])
             start, attained = first_in_luminance_band(
                 s[:, np.newaxis, :], self.backgrounds[np.newaxis, :, :], lo, hi, ALPHA_LO, self.a_hi
@@ -309,7 +287,7 @@ class _Suggester:
         if rule is None or mv.size == 0 or len(tracks.key) < 2:
             return out
         fixed = np.flatnonzero(~tracks.moving)
-        fixed_codes = _pack(
+        fixed_codes = pack_8bit(
             to_8bit(
                 composite_extended(
                     tracks.source[fixed, np.newaxis, :],
@@ -326,7 +304,7 @@ class _Suggester:
                 tracks.source[mv].reshape(-1), np.tile(background, mv.size), ALPHA_LO, self.a_hi
             )
             start, is_point, codes = timeline.elements()
-            moving_codes = _pack(codes.reshape(mv.size, 3, -1).transpose(0, 2, 1))  # (M, E)
+            moving_codes = pack_8bit(codes.reshape(mv.size, 3, -1).transpose(0, 2, 1))  # (M, E)
             all_codes = np.concatenate(
                 [moving_codes, np.repeat(fixed_codes[:, j : j + 1], start.size, axis=1)]
             )  # (T, E): moving tracks come first
@@ -398,19 +376,14 @@ class _Suggester:
         y_bg = self.y_bg[np.newaxis, :]
         c_ref = contrast_from_luminance(relative_luminance(tracks.source[mv])[:, np.newaxis], y_bg)
         contrast = contrast_from_luminance(relative_luminance(out[mv]), y_bg)
-        t = self.threshold
-        broken = {
-            Rule.LOSS: contrast - c_ref < -max(self.policy.max_loss, CONTRAST_TOLERANCE),
-            Rule.BELOW_THRESHOLD: contrast < t,
-            Rule.NEWLY_FAILING: (c_ref >= t) & (contrast < t),
-        }
         for rule in self.contrast_rules:
-            for r, j in zip(*np.nonzero(broken[rule]), strict=True):
+            broken = contrast_breaks(rule, self.policy, c_ref, contrast, self.threshold)
+            for r, j in zip(*np.nonzero(broken), strict=True):
                 names = self.icon_names(tracks, [mv[r]])
                 if self.unexempt_icons(rule, self.canvases[j], names):
                     return True
         if self.collision_rule is not None:
-            codes = _pack(to_8bit(out))
+            codes = pack_8bit(to_8bit(out))
             for j in range(len(self.canvases)):
                 if self.collision_group(tracks, codes[:, j], j) is not None:
                     return True

@@ -7,7 +7,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from alpha_audit.color import composite_extended, relative_luminance, to_8bit
-from alpha_audit.events import (
+from alpha_audit.suggest.events import (
     CODE_THRESHOLDS,
     code_timeline,
     first_in_luminance_band,

@@ -1,6 +1,6 @@
 """``suggest``: the exact largest safe alpha, judged by independent implementations.
 
-Two judges that share nothing with :mod:`alpha_audit.events`:
+Two judges that share nothing with :mod:`alpha_audit.suggest.events`:
 
 * ``broken_at`` -- a straightforward vectorised evaluation of the gate rules at
   many coefficients at once (composite, quantise, compare pairwise);

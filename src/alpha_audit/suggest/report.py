@@ -8,19 +8,33 @@ icons in manifest order.
 
 from __future__ import annotations
 
-import json
 from enum import StrEnum
-from io import StringIO
 from typing import Any, assert_never
 
 from rich import box
-from rich.console import Console
+from rich.console import Group, RenderableType
 from rich.table import Table
 from rich.text import Text
 
-from alpha_audit.suggest import Limit, SafeAlpha, SuggestResult
+from alpha_audit.render.common import (
+    Renderer,
+    RenderOptions,
+    dumps,
+    escape_markdown,
+    shorten_names,
+    to_text,
+)
+from alpha_audit.suggest.engine import Limit, SafeAlpha, SuggestResult
 
-__all__ = ["SCHEMA", "SuggestFormat", "render_suggest", "suggest_document"]
+__all__ = [
+    "SCHEMA",
+    "SuggestFormat",
+    "render_json",
+    "render_markdown",
+    "render_suggest",
+    "render_table",
+    "suggest_document",
+]
 
 SCHEMA = "alpha-audit.suggest/1"
 _MAX_NAMES = 3  # icon names shown per cell in table and markdown; JSON has all
@@ -32,6 +46,16 @@ class SuggestFormat(StrEnum):
     TABLE = "table"
     JSON = "json"
     MARKDOWN = "markdown"
+
+    def renderer(self) -> Renderer[SuggestResult]:
+        """The render function for this format."""
+        if self is SuggestFormat.TABLE:
+            return render_table
+        if self is SuggestFormat.JSON:
+            return render_json
+        if self is SuggestFormat.MARKDOWN:
+            return render_markdown
+        assert_never(self)
 
 
 def _limit(limit: Limit | None) -> dict[str, Any] | None:
@@ -86,8 +110,7 @@ def _alpha(value: float | None, precision: int) -> str:
 
 
 def _names(icons: tuple[str, ...]) -> str:
-    shown = ", ".join(icons[:_MAX_NAMES])
-    return shown + (f" +{len(icons) - _MAX_NAMES}" if len(icons) > _MAX_NAMES else "")
+    return shorten_names(icons, _MAX_NAMES)
 
 
 def _why(limit: Limit | None, alpha_max: float) -> str:
@@ -117,10 +140,10 @@ def literal(*cells: str) -> list[Text]:
     return [Text(c) for c in cells]
 
 
-def _render_table(result: SuggestResult, width: int) -> str:
+def render_table(result: SuggestResult, options: RenderOptions) -> str:
+    """Headline, then per canvas, per colour and per icon tables at ``options.width``."""
     p, a_max = result.precision, result.alpha_max
-    console = Console(file=StringIO(), width=width, color_system=None, highlight=False)
-    console.print(Text(_headline(result)), soft_wrap=False)
+    parts: list[RenderableType] = [Text(_headline(result))]
 
     def table(title: str, first: str, *, with_canvas: bool = True) -> Table:
         t = Table(
@@ -155,23 +178,24 @@ def _render_table(result: SuggestResult, width: int) -> str:
     icons = table("Per icon (the others keep their alpha)", "icon")
     for i in result.per_icon:
         icons.add_row(*literal(i.icon, _alpha(i.safe.alpha, p), *cells(i.safe.limit)))
-    for t in (canvases, colors, icons):
-        console.print(t)
-    return console.file.getvalue()  # type: ignore[attr-defined]
+    parts += [canvases, colors, icons]
+    return to_text(Group(*parts), options)
 
 
-def _cell(text: str) -> str:
-    return text.replace("\\", "\\\\").replace("|", "\\|").replace("\n", " ")
-
-
-def _render_markdown(result: SuggestResult) -> str:
+def render_markdown(result: SuggestResult, options: RenderOptions) -> str:
+    """A pull-request comment: headline and one Markdown table per question."""
     p, a_max = result.precision, result.alpha_max
-    lines = [f"### alpha-audit suggest: {_cell(result.iconset.name)}", "", _cell(_headline(result))]
+    lines = [
+        f"### alpha-audit suggest: {escape_markdown(result.iconset.name)}",
+        "",
+        escape_markdown(_headline(result)),
+    ]
 
     def section(title: str, first: str, rows: list[tuple[str, float | None, Limit | None]]) -> None:
         lines.extend(["", f"**{title}**", "", f"| {first} | alpha | limited by |", "|---|--:|---|"])
         for name, alpha, limit in rows:
-            lines.append(f"| {_cell(name)} | {_alpha(alpha, p)} | {_cell(_why(limit, a_max))} |")
+            why = escape_markdown(_why(limit, a_max))
+            lines.append(f"| {escape_markdown(name)} | {_alpha(alpha, p)} | {why} |")
 
     section(
         "Per canvas", "canvas", [(c.canvas, c.alpha, c.limit) for c in result.overall.per_canvas]
@@ -183,13 +207,13 @@ def _render_markdown(result: SuggestResult) -> str:
     return "\n".join(lines) + "\n"
 
 
-def render_suggest(result: SuggestResult, fmt: SuggestFormat | str, *, width: int = 100) -> str:
+def render_json(result: SuggestResult, options: RenderOptions) -> str:
+    """The ``alpha-audit.suggest/1`` document (``options`` change nothing)."""
+    return dumps(suggest_document(result))
+
+
+def render_suggest(
+    result: SuggestResult, fmt: SuggestFormat | str, options: RenderOptions | None = None
+) -> str:
     """``result`` as text in ``fmt``."""
-    fmt = SuggestFormat(fmt)
-    if fmt is SuggestFormat.TABLE:
-        return _render_table(result, width)
-    if fmt is SuggestFormat.JSON:
-        return json.dumps(suggest_document(result), indent=2, allow_nan=False) + "\n"
-    if fmt is SuggestFormat.MARKDOWN:
-        return _render_markdown(result)
-    assert_never(fmt)
+    return SuggestFormat(fmt).renderer()(result, options or RenderOptions())

@@ -1,0 +1,137 @@
+"""Each gate rule stated once: the gate, suggest and the audit agree because they share it.
+
+Independent judges: contrast rules re-derived from the paper's formula for every
+cell of an audit; the gate's split of findings checked against their flags.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from alpha_audit.audit import audit
+from alpha_audit.color import CONTRAST_TOLERANCE, pack_8bit
+from alpha_audit.gate import evaluate
+from alpha_audit.load.svg import IconProblem
+from alpha_audit.model import Canvas, Icon, IconSet, Theme
+from alpha_audit.policy import (
+    CONTRAST_RULES,
+    Exemption,
+    Policy,
+    Rule,
+    contrast_breaks,
+    contrast_floor,
+)
+from alpha_audit.suggest import largest_safe_alpha
+
+contrast = st.floats(1.0, 21.0)
+
+
+@given(contrast, contrast, st.floats(1.0, 7.0), st.floats(0.0, 1.0))
+def test_breaks_is_contrast_below_the_floor(ref: float, now: float, t: float, loss: float) -> None:
+    policy = Policy(max_loss=loss)
+    for rule in CONTRAST_RULES:
+        floor = float(contrast_floor(rule, policy, ref, t))
+        broken = bool(contrast_breaks(rule, policy, ref, now, t))
+        if abs(now - floor) > 1e-9:  # off the boundary, the two statements agree exactly
+            assert broken == (now < floor), rule
+
+
+def test_each_contrast_rule_means_what_the_paper_says() -> None:
+    ref = np.array([4.0, 4.0, 2.0, 3.0])
+    now = np.array([3.5, 4.0 - 1e-12, 1.5, 2.999])
+    p = Policy(max_loss=0.25)
+    assert contrast_breaks(Rule.LOSS, p, ref, now, 3.0).tolist() == [True, False, True, False]
+    assert contrast_breaks(Rule.BELOW_THRESHOLD, p, ref, now, 3.0).tolist() == [
+        False,
+        False,
+        True,
+        True,
+    ]
+    assert contrast_breaks(Rule.NEWLY_FAILING, p, ref, now, 3.0).tolist() == [
+        False,
+        False,
+        False,
+        True,
+    ]
+    # The float tolerance under the policy's allowance: a change of 1e-12 is no loss.
+    assert Policy().loss_margin() == CONTRAST_TOLERANCE
+    with pytest.raises(ValueError):
+        contrast_breaks(Rule.COLLISION, p, ref, now, 3.0)
+
+
+@pytest.mark.parametrize(
+    ("rules", "expected"),
+    [
+        ({Rule.COLLISION, Rule.NEW_COLLISION}, Rule.COLLISION),
+        ({Rule.NEW_COLLISION}, Rule.NEW_COLLISION),
+        ({Rule.LOSS}, None),
+    ],
+)
+def test_which_collision_rule_applies(rules: set[Rule], expected: Rule | None) -> None:
+    assert Policy(rules=frozenset(rules)).collision_rule is expected
+
+
+def test_pack_8bit_is_the_hex_code() -> None:
+    codes = np.array([[[0, 0, 0], [255, 255, 255]], [[18, 52, 86], [1, 2, 3]]], dtype=np.uint8)
+    packed = pack_8bit(codes)
+    assert packed.shape == (2, 2)
+    assert [f"#{int(v):06x}" for v in packed.ravel()] == [
+        "#000000",
+        "#ffffff",
+        "#123456",
+        "#010203",
+    ]
+
+
+def test_gate_and_suggest_draw_the_loss_line_in_the_same_place() -> None:
+    """Just below suggest's answer the gate passes; at the first unsafe alpha it fails."""
+    theme = Theme("t", (Canvas("yellow", "#ffff00"),))
+    icons = IconSet("s", (Icon("dot", "dot.svg", "#0000d0", 1.0),))
+    policy = Policy(rules=frozenset({Rule.LOSS}), max_loss=0.05)
+    safe = largest_safe_alpha(theme, icons, policy, precision=6)
+    assert safe.limit is not None and safe.limit.rule is Rule.LOSS
+    below = evaluate([audit(theme, icons.with_alpha(safe.alpha))], policy)
+    above = evaluate([audit(theme, icons.with_alpha(safe.limit.at + 1e-6))], policy)
+    assert below.passed and not above.passed
+
+
+def _gated(rules: set[Rule], exemptions: tuple[Exemption, ...] = (), baseline=None):
+    theme = Theme("t", (Canvas("yellow", "#ffff00"),))
+    icons = IconSet(
+        "s",
+        (Icon("dot", "dot.svg", "#0000d0", 1.4), Icon("ok", "ok.svg", "#000000", 1.4)),
+    )
+    broken = (IconProblem("gone", Path("gone.svg"), "not an SVG"),)
+    result = audit(theme, icons, problems=broken)
+    return evaluate(
+        [result, result], Policy(frozenset(rules), exemptions=exemptions), baseline=baseline
+    )
+
+
+def test_unrenderable_icons_are_warnings_unless_the_rule_is_on() -> None:
+    off = _gated({Rule.LOSS})
+    assert [w.icons for w in off.warnings] == [("gone",)]  # once, not once per audit
+    assert all(f.rule is not Rule.UNRENDERABLE for f in off.findings)
+    assert not off.unrenderable_fails
+    on = _gated({Rule.LOSS, Rule.UNRENDERABLE})
+    assert on.warnings == () and on.unrenderable_fails
+    assert [f.icons for f in on.failures if f.rule is Rule.UNRENDERABLE] == [("gone",)]
+
+
+def test_findings_split_once_into_failures_exempted_and_baselined() -> None:
+    exempt = (Exemption("brand colour", icon="dot", rule=Rule.LOSS),)
+    gate = _gated(
+        {Rule.LOSS, Rule.UNRENDERABLE},
+        exempt,
+        baseline={("t", "s", "unrenderable", None, ("gone",))},
+    )
+    assert {f.icons for f in gate.exempted} == {("dot",)}
+    assert {f.icons for f in gate.baselined} == {("gone",)}
+    assert gate.failures == () and gate.passed
+    split = [*gate.exempted, *gate.baselined, *gate.failures]
+    assert len(split) == len(gate.findings) and all(f in gate.findings for f in split)

@@ -1,0 +1,152 @@
+"""Every result type x every format: one frame, and each output parses as its format.
+
+The four result types (check, suggest, pair, reproduce) share one mechanism: an
+enum whose ``renderer()`` gives a ``(result, options) -> str`` function.  Names
+here are hostile (Markdown, HTML, a mention, a bare URL, a control character),
+so a format that lets one through fails its parse check, not a snapshot.
+"""
+
+from __future__ import annotations
+
+import json
+import xml.etree.ElementTree as ET
+from collections.abc import Callable
+from enum import StrEnum
+from functools import cache
+from pathlib import Path
+from typing import Any
+
+import pytest
+from markdown_it import MarkdownIt
+
+from alpha_audit.audit import audit
+from alpha_audit.gate import CheckReport, evaluate
+from alpha_audit.load.svg import IconProblem
+from alpha_audit.model import Canvas, Icon, IconSet, Theme
+from alpha_audit.pair import pair_report
+from alpha_audit.policy import Policy, Rule
+from alpha_audit.render import CheckFormat
+from alpha_audit.render.common import RenderOptions
+from alpha_audit.render.pair import PairFormat
+from alpha_audit.reproduce.report import ReproduceFormat
+from alpha_audit.reproduce.run import Experiment, reproduce
+from alpha_audit.suggest import suggest
+from alpha_audit.suggest.report import SuggestFormat
+
+BASE = Path("/repo")
+HOSTILE = "evil|x <img src=x> @team https://evil.example `c` *b*\x07"
+OPTIONS = RenderOptions(width=100, base=BASE)
+
+
+def _theme() -> Theme:
+    return Theme(
+        HOSTILE, (Canvas(f"sun {HOSTILE}", "#ffff00", "light"), Canvas("ink", "#0d1117", "dark"))
+    )
+
+
+def _iconset() -> IconSet:
+    icons = (
+        Icon(HOSTILE, BASE / "icons" / "deep.svg", "#0000cf", 1.4, color_line=7),
+        Icon("pale", BASE / "icons" / "pale.svg", "#eeeeee", 2.0),
+        Icon("paler", BASE / "icons" / "paler.svg", "#dddddd", 2.0),
+    )
+    return IconSet(HOSTILE, icons, path=BASE / "icons" / "iconset.yaml")
+
+
+@cache
+def check_report() -> CheckReport:
+    result = audit(_theme(), _iconset())
+    policy = Policy(rules=frozenset({Rule.LOSS, Rule.COLLISION, Rule.SEPARATION}))
+    return CheckReport(audits=(result,), gate=evaluate([result], policy))
+
+
+@cache
+def suggest_result() -> Any:
+    return suggest(_theme(), _iconset())
+
+
+@cache
+def pair() -> Any:
+    return pair_report("#ee7733", ["white", "#0d1117"], [1.0, 1.4])
+
+
+@cache
+def reproduction() -> Any:
+    return reproduce(_theme(), only=[Experiment.FULL_GAMUT, Experiment.SWEEP], quick=True)
+
+
+RESULTS: dict[type[StrEnum], Callable[[], Any]] = {
+    CheckFormat: check_report,
+    SuggestFormat: suggest_result,
+    PairFormat: pair,
+    ReproduceFormat: reproduction,
+}
+CASES = [
+    pytest.param(fmt, RESULTS[kind], id=f"{kind.__name__}-{fmt}")
+    for kind in RESULTS
+    for fmt in kind
+]
+
+
+def _strict_json(text: str) -> Any:
+    def refuse(name: str) -> None:
+        raise AssertionError(f"{name} in JSON output")
+
+    return json.loads(text, parse_constant=refuse)
+
+
+def _markdown(text: str) -> str:
+    """The HTML GitHub-flavoured Markdown turns ``text`` into (tables on)."""
+    html = MarkdownIt("commonmark").enable("table").render(text)
+    assert "<img" not in html and "<a " not in html, "hostile name became markup"
+    assert "@team" not in text and "https://evil" not in text and "\x07" not in text
+    return html
+
+
+def _check(fmt: str, text: str) -> None:
+    if fmt == "json":
+        assert isinstance(_strict_json(text), dict)
+    elif fmt == "sarif":
+        assert _strict_json(text)["version"] == "2.1.0"
+    elif fmt == "junit":
+        assert ET.fromstring(text).tag == "testsuites"
+    elif fmt == "markdown":
+        assert "<table>" in _markdown(text)
+    elif fmt == "github":
+        assert all(line.startswith("::") for line in text.splitlines())
+    elif fmt == "table":
+        assert "\x1b" not in text  # no colour unless asked
+    elif fmt == "gitlab":
+        issues = _strict_json(text)
+        assert isinstance(issues, list)
+        prints = [i["fingerprint"] for i in issues]
+        assert len(set(prints)) == len(prints)
+        assert all(not i["location"]["path"].startswith("/") for i in issues)
+    else:  # pragma: no cover - a new format needs its parse check here
+        raise AssertionError(f"no parse check for format {fmt!r}")
+
+
+@pytest.mark.parametrize(("fmt", "make"), CASES)
+def test_every_result_type_renders_every_format(fmt: StrEnum, make: Callable[[], Any]) -> None:
+    renderer = fmt.renderer()  # type: ignore[attr-defined]
+    text = renderer(make(), OPTIONS)
+    assert text.strip() and text.endswith("\n")
+    _check(fmt.value, text)
+    assert renderer(make(), OPTIONS) == text  # pure: same result, same text
+
+
+@pytest.mark.parametrize("fmt", list(CheckFormat))
+def test_a_report_where_no_icon_rendered_is_still_a_report(fmt: CheckFormat) -> None:
+    iconset = _iconset()
+    broken = tuple(IconProblem(i.name, Path(i.file), "not an SVG") for i in iconset.icons)
+    result = audit(_theme(), iconset, problems=broken)
+    report = CheckReport(audits=(result,), gate=evaluate([result], Policy()))
+    _check(fmt.value, fmt.renderer()(report, OPTIONS))
+
+
+def test_json_documents_are_ascii_and_keep_every_float() -> None:
+    text = SuggestFormat.JSON.renderer()(suggest_result(), OPTIONS)
+    assert text.isascii()
+    doc = _strict_json(text)
+    assert doc["iconset"] == HOSTILE  # escaped in the text, identical once parsed
+    assert doc["per_color"][0]["exact"] == suggest_result().per_color[0].safe.exact
