@@ -51,3 +51,94 @@ def make_project(root: Path, icons: list[Path], sizes: tuple[int, ...] = (16, 24
         " red: '#cc3311', teal: '#009988', grey: '#bbbbbb'}\n"
     )
     return manifest
+
+
+def _npm_package(name: str) -> Path:
+    """``package/`` of an npm tarball unpacked under the cache (downloads once)."""
+    folder = CACHE / name
+    if not (folder / "package").is_dir():
+        if shutil.which("npm") is None:
+            raise SystemExit(f"benchmarks need npm to fetch {name} (apt-get install npm)")
+        folder.mkdir(parents=True, exist_ok=True)
+        out = subprocess.run(
+            ["npm", "pack", name, "--silent"],
+            cwd=folder,
+            check=True,
+            capture_output=True,
+            text=True,
+        ).stdout.split()[-1]
+        with tarfile.open(folder / out) as tar:
+            tar.extractall(folder, filter="data")
+    return folder / "package"
+
+
+def simple_icons(count: int | None = None) -> list[tuple[Path, str]]:
+    """simple-icons logos with their brand colour ``(svg, '#rrggbb')``, by slug order."""
+    import json
+
+    package = _npm_package("simple-icons")
+    data = json.loads((package / "data/simple-icons.json").read_text())
+    found = []
+    for entry in sorted(data, key=lambda e: e.get("slug", "")):
+        svg = package / "icons" / f"{entry.get('slug', '')}.svg"
+        if svg.is_file():
+            found.append((svg, "#" + entry["hex"].lower()))
+    return found[:count] if count is not None else found
+
+
+def canvases(count: int = 38) -> list[str]:
+    """``count`` canvas colours: the bundled themes' canvases, then greys to fill up."""
+    import yaml
+
+    themes = Path(__file__).resolve().parents[1] / "themes"
+    colors: list[str] = []
+    for theme in sorted(themes.glob("*.yaml")):
+        for canvas in yaml.safe_load(theme.read_text())["canvases"]:
+            if canvas["color"].lower() not in colors:
+                colors.append(canvas["color"].lower())
+    grey = 0
+    while len(colors) < count:
+        value = f"#{grey:02x}{grey:02x}{grey:02x}"
+        if value not in colors:
+            colors.append(value)
+        grey = (grey + 37) % 256
+    return colors[:count]
+
+
+def write_theme(path: Path, colors: list[str]) -> Path:
+    """A theme file with one canvas per colour."""
+    lines = ["name: bench", "canvases:"]
+    lines += [f"  - {{name: c{k}, color: '{c}'}}" for k, c in enumerate(colors)]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def make_brand_project(
+    root: Path, logos: list[tuple[Path, str]], *, palette: list[str] | None = None
+) -> Path:
+    """A throwaway project of logos, each in its own brand colour (or ``palette`` in turn)."""
+    (root / ".git").mkdir(parents=True, exist_ok=True)
+    svg = root / "svg"
+    svg.mkdir(exist_ok=True)
+    lines = ["name: brands", "alpha: 1.1", "sizes: [24]", "icons:"]
+    for k, (icon, color) in enumerate(logos):
+        shutil.copy(icon, svg / icon.name)
+        chosen = palette[k % len(palette)] if palette else color
+        lines.append(f"  - {{file: svg/{icon.name}, color: '{chosen}'}}")
+    manifest = root / "iconset.yaml"
+    manifest.write_text("\n".join(lines) + "\n")
+    return manifest
+
+
+def run_measured(args: list[str]) -> tuple[float, int, int]:
+    """Run a command under ``/usr/bin/time -v``: (seconds, peak RSS in MB, exit code)."""
+    import re
+    import time
+
+    start = time.perf_counter()
+    done = subprocess.run(
+        ["/usr/bin/time", "-v", *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True
+    )
+    seconds = time.perf_counter() - start
+    found = re.search(r"Maximum resident set size \(kbytes\): (\d+)", done.stderr)
+    return seconds, int(found.group(1)) // 1024 if found else -1, done.returncode

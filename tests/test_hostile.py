@@ -9,7 +9,10 @@ traceback; no URL may be fetched (network or file); YAML and path tricks exit
 from __future__ import annotations
 
 import os
+import shutil
 import socket
+import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -313,3 +316,60 @@ def test_yaml_reader_raises_only_clean_errors_on_garbage_bytes(tmp_path: Path, r
         theme_from_doc(doc)
     except AlphaAuditError:
         pass
+
+
+@pytest.mark.parametrize("value", ['!!float ""', '!!bool ""', '!!timestamp "x"', '!!int "z"'])
+def test_explicit_tags_on_bad_scalars_are_clean_input_errors(tmp_path: Path, value: str) -> None:
+    path = tmp_path / "theme.yaml"
+    path.write_text(f"name: {value}\ncanvases: []\n")
+    with pytest.raises(AlphaAuditError, match=r"theme\.yaml:1") as info:
+        theme_from_doc(load_yaml(path))
+    assert "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize(
+    ("entries", "message"),
+    [
+        ('[{"theme": "t", "iconset": "s", "rule": "loss", "canvas": 1' + "0" * 5000 + "}]", "JSON"),
+        ('[{"theme": "t", "iconset": "s", "rule": "loss", "icons": []}]', "entries\\[0\\]"),
+        ('[{"theme": "t", "iconset": "s", "rule": "nope", "canvas": null, "icons": []}]', "rule"),
+    ],
+)
+def test_bad_baselines_name_the_file(tmp_path: Path, entries: str, message: str) -> None:
+    from alpha_audit.gate import BASELINE_SCHEMA, read_baseline
+
+    path = tmp_path / "base.json"
+    path.write_text(f'{{"schema": "{BASELINE_SCHEMA}", "entries": {entries}}}')
+    with pytest.raises(AlphaAuditError, match=message) as info:
+        read_baseline(path)
+    assert "base.json" in str(info.value) and "\n" not in str(info.value)
+
+
+def test_empty_fail_on_is_an_error(tmp_path: Path) -> None:
+    path = tmp_path / "alpha-audit.yaml"
+    path.write_text("fail-on: []\n")
+    with pytest.raises(AlphaAuditError, match=r"fail-on.*empty list"):
+        config_from_doc(load_yaml(path))
+
+
+@pytest.mark.skipif(shutil.which("strace") is None, reason="needs strace (apt-get install strace)")
+def test_render_workers_open_no_account_database_and_start_no_subprocess(tmp_path: Path) -> None:
+    (tmp_path / "a.svg").write_text(HEAD + DOT + "</svg>")
+    script = (
+        "from pathlib import Path; from alpha_audit.load.svg import rasterize_icons; "
+        f"r = rasterize_icons([('a', Path({str(tmp_path / 'a.svg')!r}))], [16]); "
+        "assert not r.problems, r.problems"
+    )
+    trace = tmp_path / "trace.txt"
+    strace = ["strace", "-f", "-qq", "-s", "300", "-e", "trace=open,openat,execve"]
+    subprocess.run(
+        [*strace, "-o", str(trace), sys.executable, "-c", script], check=True, timeout=120
+    )
+    lines = trace.read_text().splitlines()
+    workers = {ln.split()[0] for ln in lines if "execve(" in ln and "_svg_worker" in ln}
+    assert workers, "no render worker started"
+    worker_lines = [ln for ln in lines if ln.split()[0] in workers]
+    assert not any("/etc/passwd" in ln for ln in worker_lines)
+    # The only programs run are the workers themselves (no ldconfig, no gcc).
+    execs = [ln for ln in lines if "execve(" in ln and "= 0" in ln]
+    assert all("_svg_worker" in ln for ln in execs[1:]), execs

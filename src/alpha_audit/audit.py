@@ -6,7 +6,7 @@ and findings; it never prints.  Shapes: ``n`` icons x ``m`` canvases.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, replace
 from functools import cached_property
 
@@ -18,11 +18,19 @@ from alpha_audit.color import (
     DELTA_E_TOLERANCE,
     composite_extended,
     contrast_from_luminance,
-    delta_e_2000,
+    delta_e_2000_lab,
+    linear_to_lab,
     pack_8bit,
     relative_luminance,
     to_8bit,
 )
+from alpha_audit.color.nearest import (
+    PAIR_CHUNK,
+    ClosestPair,
+    closest_pair_delta_e_2000,
+    iter_pairs,
+)
+from alpha_audit.errors import InputError
 from alpha_audit.load.svg import IconProblem
 from alpha_audit.model import IconSet, Theme
 
@@ -78,7 +86,8 @@ class Separation:
     delta_e_ref: float
     icons: tuple[str, str]
     sources: tuple[str, str]
-    decreases: int  # pairs whose CIEDE2000 is smaller than at alpha = 1
+    # Pairs whose CIEDE2000 is smaller than at alpha = 1; None above DECREASES_BUDGET.
+    decreases: int | None
     pairs: int
 
 
@@ -133,18 +142,28 @@ def find_collisions(
     ``output_codes`` is ``(n, m, 3)``, ``source_keys`` identifies each icon's
     source colour ``(n,)``.  Returns ``(canvas index, packed output, icon indices)``.
     """
-    m = output_codes.shape[1]
+    n, m = output_codes.shape[:2]
+    if n == 0 or m == 0:
+        return []
     packed = pack_8bit(output_codes)  # (n, m)
-    found = []
-    for j in range(m):
-        outputs = packed[:, j]
-        order = np.lexsort((source_keys, outputs))
-        sorted_out = outputs[order]
-        starts = np.flatnonzero(np.r_[True, sorted_out[1:] != sorted_out[:-1]])
-        for group in np.split(order, starts[1:]):
-            if len(np.unique(source_keys[group])) > 1:
-                found.append((j, int(outputs[group[0]]), np.sort(group)))
-    return found
+    # One sort of every (canvas, output, source) triple: O(nm log nm), no loop
+    # over canvases or output groups; only real collisions reach Python.
+    canvas = np.repeat(np.arange(m), n)
+    icon = np.tile(np.arange(n), m)
+    out = packed.T.reshape(-1)
+    keys = np.asarray(source_keys).reshape(-1)[icon]
+    order = np.lexsort((icon, keys, out, canvas))
+    c, o, s = canvas[order], out[order], keys[order]
+    new_group = np.r_[True, (c[1:] != c[:-1]) | (o[1:] != o[:-1])]
+    starts = np.flatnonzero(new_group)
+    ends = np.r_[starts[1:], order.size]
+    # Sources are sorted within a group: distinct ones exist iff first != last.
+    colliding = s[starts] != s[ends - 1]
+    members = icon[order]
+    return [
+        (int(c[a]), int(o[a]), np.sort(members[a:b]))
+        for a, b in zip(starts[colliding].tolist(), ends[colliding].tolist(), strict=True)
+    ]
 
 
 @dataclass(frozen=True)
@@ -160,41 +179,46 @@ class AuditResult:
     contrast_ref: NDArray[np.float64]  # (n, m), alpha = 1
     contrast: NDArray[np.float64]  # (n, m)
     collisions: tuple[Collision, ...]
-    separations: tuple[Separation, ...]
     problems: tuple[IconProblem, ...] = ()
     tolerance: float = CONTRAST_TOLERANCE
 
-    @property
+    @cached_property
+    def separations(self) -> tuple[Separation, ...]:
+        """Closest pair of distinct colours per canvas, computed on first use only."""
+        return tuple(_separations(self.theme, self.iconset, self.output))
+
+    # Derived arrays are cached: per-canvas summaries read them once per canvas.
+    @cached_property
     def gain(self) -> NDArray[np.float64]:
         """``contrast - contrast_ref``."""
         return self.contrast - self.contrast_ref
 
-    @property
+    @cached_property
     def loss(self) -> NDArray[np.bool_]:
         """Contrast decreased by more than the tolerance."""
         return self.gain < -self.tolerance
 
-    @property
+    @cached_property
     def increase(self) -> NDArray[np.bool_]:
         """Contrast increased by more than the tolerance."""
         return self.gain > self.tolerance
 
-    @property
+    @cached_property
     def passes_ref(self) -> NDArray[np.bool_]:
         """At or above the threshold at alpha = 1."""
         return self.contrast_ref >= self.threshold
 
-    @property
+    @cached_property
     def passes(self) -> NDArray[np.bool_]:
         """At or above the threshold at the icon's alpha."""
         return self.contrast >= self.threshold
 
-    @property
+    @cached_property
     def newly_passes(self) -> NDArray[np.bool_]:
         """Below the threshold at alpha = 1, at or above it at the icon's alpha."""
         return self.passes & ~self.passes_ref
 
-    @property
+    @cached_property
     def newly_fails(self) -> NDArray[np.bool_]:
         """At or above the threshold at alpha = 1, below it at the icon's alpha."""
         return self.passes_ref & ~self.passes
@@ -202,27 +226,34 @@ class AuditResult:
     def rows(self) -> Iterator[Row]:
         """Icon x canvas rows in stable order (canvas order, then icon order)."""
         icons, canvases = self.iconset.icons, self.theme.canvases
-        packed = pack_8bit(self.output_codes)
-        gain = self.gain
-        flags = (self.passes_ref, self.passes, self.newly_passes, self.loss, self.newly_fails)
+        # Python lists per column once: indexing numpy scalars per cell costs
+        # ~50x more than the row itself (5,100 rows: 0.25 s).
+        output = [[_hex(v) for v in col] for col in pack_8bit(self.output_codes).T.tolist()]
+        contrast_ref, contrast = self.contrast_ref.T.tolist(), self.contrast.T.tolist()
+        gain = self.gain.T.tolist()
+        flags = [
+            f.T.tolist()
+            for f in (self.passes_ref, self.passes, self.newly_passes, self.loss, self.newly_fails)
+        ]
+        alphas = self.alpha.tolist()
         for j, canvas in enumerate(canvases):
+            pr, p, npass, loss, nfail = (f[j] for f in flags)
             for i, icon in enumerate(icons):
-                pr, p, npass, loss, nfail = (bool(f[i, j]) for f in flags)
                 yield Row(
                     icon=icon.name,
                     canvas=canvas.name,
                     source=icon.color,
                     background=canvas.color,
-                    alpha=float(self.alpha[i]),
-                    output=_hex(int(packed[i, j])),
-                    contrast_ref=float(self.contrast_ref[i, j]),
-                    contrast=float(self.contrast[i, j]),
-                    gain=float(gain[i, j]),
-                    passes_ref=pr,
-                    passes=p,
-                    newly_passes=npass,
-                    loss=loss,
-                    newly_fails=nfail,
+                    alpha=alphas[i],
+                    output=output[j][i],
+                    contrast_ref=contrast_ref[j][i],
+                    contrast=contrast[j][i],
+                    gain=gain[j][i],
+                    passes_ref=pr[i],
+                    passes=p[i],
+                    newly_passes=npass[i],
+                    loss=loss[i],
+                    newly_fails=nfail[i],
                 )
 
     @cached_property
@@ -279,12 +310,42 @@ class AuditResult:
         return out
 
 
+# Icon x canvas combinations in one check (all audits together): each is a
+# JSON row of about 450 bytes and a few microseconds of work, so this bounds
+# time (seconds) and report size (~110 MB) whatever a pull request puts in a
+# theme (up to 4,096 canvases) or a manifest (up to 10,000 icons).
+MAX_COMBINATIONS = 250_000
+
+
+def check_combinations(themes: Sequence[Theme], iconsets: Sequence[IconSet]) -> None:
+    """Refuse a check larger than :data:`MAX_COMBINATIONS` before any work is done."""
+    total = sum(len(t.canvases) for t in themes) * sum(len(s.icons) for s in iconsets)
+    if total > MAX_COMBINATIONS:
+        icons = sum(len(s.icons) for s in iconsets)
+        canvases = sum(len(t.canvases) for t in themes)
+        raise InputError(
+            f"{icons} icons x {canvases} canvases = {total:,} combinations; at most "
+            f"{MAX_COMBINATIONS:,} per check (split the theme or the icon set)",
+            path=themes[0].path if len(themes) == 1 else None,
+        )
+
+
+# Counting the pairs that got closer needs every pair (no bound prunes it):
+# above this many pair x canvas evaluations ``Separation.decreases`` is None.
+# 10^6 CIEDE2000 evaluations take about a second (colour-science, one core).
+DECREASES_BUDGET = 1_000_000
+
+
 def _separations(
     theme: Theme,
     iconset: IconSet,
     output: NDArray[np.float64],
 ) -> list[Separation]:
-    """Closest pair of distinct source colours per canvas, at alpha and at 1."""
+    """Closest pair of distinct source colours per canvas, at alpha and at 1.
+
+    Exact and in bounded memory: :func:`~alpha_audit.color.nearest.closest_pair`
+    prunes by lightness instead of holding every pair.
+    """
     icons = iconset.icons
     # One representative icon per distinct (source colour, alpha) style.
     styles: dict[tuple[str, float], int] = {}
@@ -292,28 +353,52 @@ def _separations(
         styles.setdefault((icon.color, icon.alpha), i)
     reps = np.array(sorted(styles.values()), dtype=np.intp)
     colors = [icons[i].color for i in reps]
-    first, second = np.triu_indices(len(reps), k=1)
-    distinct = np.array([colors[a] != colors[b] for a, b in zip(first, second, strict=True)], bool)
-    first, second = first[distinct], second[distinct]
-    if first.size == 0:
+    labels = np.unique(np.array(colors, dtype=object), return_inverse=True)[1].reshape(-1)
+    k, m = reps.size, len(theme.canvases)
+    group_sizes = np.bincount(labels) if k else np.zeros(0, dtype=np.intp)
+    pairs = k * (k - 1) // 2 - int(np.sum(group_sizes * (group_sizes - 1) // 2))
+    if pairs == 0:
         return []
-    sources = iconset.sources[reps]
-    de_ref = delta_e_2000(sources[first], sources[second])  # (p,)
-    out_reps = output[reps]  # (k, m, 3)
-    de = delta_e_2000(out_reps[first], out_reps[second])  # (p, m)
+    lab_ref = linear_to_lab(iconset.sources[reps])  # (k, 3)
+    lab_out = linear_to_lab(output[reps])  # (k, m, 3)
+    decreases: list[int | None] = [None] * m
+    closest: list[ClosestPair | None] = [None] * m
+    if pairs * m <= DECREASES_BUDGET:
+        # Few pairs: every pair on every canvas at once, in triu order (argmin
+        # ties go to the first pair, as in the pruned search).
+        counts = np.zeros(m, dtype=np.int64)
+        best = np.full(m, np.inf)
+        best_pair = np.zeros((m, 2), dtype=np.intp)
+        for first, second in iter_pairs(k, labels, chunk=max(1, PAIR_CHUNK // max(1, m))):
+            de_ref = delta_e_2000_lab(lab_ref[first], lab_ref[second])  # (p,)
+            de = delta_e_2000_lab(lab_out[first], lab_out[second]).reshape(first.size, m)
+            counts += np.sum(de < (de_ref - DELTA_E_TOLERANCE)[:, np.newaxis], axis=0)
+            t = np.argmin(de, axis=0)
+            value = de[t, np.arange(m)]
+            better = value < best
+            best = np.where(better, value, best)
+            best_pair[better] = np.stack([first[t], second[t]], axis=1)[better]
+        decreases = [int(c) for c in counts]
+        closest = [
+            ClosestPair(int(a), int(b), float(v)) for (a, b), v in zip(best_pair, best, strict=True)
+        ]
+    else:
+        closest = [closest_pair_delta_e_2000(lab_out[:, j], labels) for j in range(m)]
     result = []
     for j, canvas in enumerate(theme.canvases):
-        k = int(np.argmin(de[:, j]))
-        a, b = int(reps[first[k]]), int(reps[second[k]])
+        pair = closest[j]
+        assert pair is not None  # pairs > 0
+        a, b = int(reps[pair.first]), int(reps[pair.second])
+        de_ref = delta_e_2000_lab(lab_ref[pair.first], lab_ref[pair.second])
         result.append(
             Separation(
                 canvas=canvas.name,
-                delta_e=float(de[k, j]),
-                delta_e_ref=float(de_ref[k]),
+                delta_e=pair.distance,
+                delta_e_ref=float(de_ref),
                 icons=(icons[a].name, icons[b].name),
                 sources=(icons[a].color, icons[b].color),
-                decreases=int((de[:, j] < de_ref - DELTA_E_TOLERANCE).sum()),
-                pairs=int(first.size),
+                decreases=decreases[j],
+                pairs=pairs,
             )
         )
     return result
@@ -338,6 +423,7 @@ def audit(
     >>> next(audit(theme, icons).rows()).output
     '#ec5a00'
     """
+    check_combinations([theme], [iconset])
     if alpha is not None:
         iconset = iconset.with_alpha(alpha)
     broken = {p.icon for p in problems}
@@ -382,6 +468,5 @@ def audit(
         contrast_ref=contrast_ref,
         contrast=contrast,
         collisions=tuple(collisions),
-        separations=tuple(_separations(theme, iconset, output)),
         problems=tuple(problems),
     )

@@ -51,8 +51,11 @@ class AlphaAuditError(Exception):
         return ": ".join(parts)
 
     def __str__(self) -> str:
+        # Keys, paths and values come from untrusted files: one sanitiser for all.
+        from alpha_audit.safe_text import safe_text
+
         where = self.where()
-        return f"{where}: {self.message}" if where else self.message
+        return safe_text(f"{where}: {self.message}" if where else self.message)
 
 
 class InputError(AlphaAuditError):

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from alpha_audit.audit import AuditResult
-from alpha_audit.errors import InputError, UsageError
+from alpha_audit.errors import AlphaAuditError, InputError, UsageError
 from alpha_audit.load.files import read_text_capped
 from alpha_audit.policy import Exemption, Policy, Rule, contrast_breaks
 
@@ -90,6 +90,12 @@ class GateResult:
     stale: tuple[FindingKey, ...] = ()
     problems: int = 0  # icons that could not be rendered (reported, fail only with a rule)
     warnings: tuple[Finding, ...] = ()
+    audited: int | None = None  # icon x canvas combinations audited; None: not counted
+
+    @property
+    def vacuous(self) -> bool:
+        """True when nothing was audited (every icon unrenderable): the gate cannot pass."""
+        return self.audited == 0
 
     @property
     def failures(self) -> tuple[Finding, ...]:
@@ -113,12 +119,14 @@ class GateResult:
 
     @property
     def passed(self) -> bool:
-        """True when no finding fails the gate."""
-        return not self.failures
+        """True when no finding fails the gate and something was audited."""
+        return not self.failures and not self.vacuous
 
     def counts(self) -> dict[str, int]:
         """Failures per rule name, rules in policy order (stable)."""
         out: dict[str, int] = {}
+        if self.vacuous:  # every report then says why the gate failed without findings
+            out[VACUOUS] = self.problems
         for f in self.failures:
             out[f.rule.value] = out.get(f.rule.value, 0) + 1
         return dict(sorted(out.items()))
@@ -316,12 +324,14 @@ def evaluate(
         findings = [replace(f, baselined=True) if f.key in known else f for f in findings]
         stale = tuple(sorted(known - seen, key=_sort_key))
     problems = sum(len(r.problems) for r in audits)
+    audited = sum(int(r.contrast.size) for r in audits)
     return GateResult(
         policy=policy,
         findings=tuple(findings),
         stale=stale,
         problems=problems,
         warnings=tuple(warnings),
+        audited=audited,
     )
 
 
@@ -331,6 +341,8 @@ def _sort_key(key: FindingKey) -> tuple[str, str, str, str, tuple[str, ...]]:
 
 
 BASELINE_SCHEMA = "alpha-audit.baseline/1"
+# The counts() entry of a gate that audited nothing (like pytest's "no tests ran").
+VACUOUS = "unrenderable, nothing audited"
 MAX_BASELINE_BYTES = 16 << 20  # 16 MiB: a few hundred bytes per entry
 
 
@@ -358,8 +370,8 @@ def parse_baseline(text: str, path: Path) -> frozenset[FindingKey]:
 
     try:
         doc = json.loads(text)
-    except (json.JSONDecodeError, RecursionError) as exc:
-        raise bad(f"invalid JSON ({exc})") from exc
+    except (ValueError, RecursionError) as exc:  # ValueError: also the int-digits limit
+        raise bad(f"invalid JSON ({str(exc)[:100]})") from exc
     if not isinstance(doc, dict) or doc.get("schema") != BASELINE_SCHEMA:
         raise bad(f'expected {{"schema": "{BASELINE_SCHEMA}", "entries": [...]}}')
     entries = doc.get("entries")
@@ -370,13 +382,17 @@ def parse_baseline(text: str, path: Path) -> frozenset[FindingKey]:
         ok = (
             isinstance(e, dict)
             and all(isinstance(e.get(k), str) for k in ("theme", "iconset", "rule"))
-            and (e.get("canvas") is None or isinstance(e.get("canvas"), str))
+            and "canvas" in e
+            and (e["canvas"] is None or isinstance(e["canvas"], str))
             and isinstance(e.get("icons"), list)
             and all(isinstance(i, str) for i in e["icons"])
         )
         if not ok:
             raise bad(f"entries[{n}] needs theme, iconset, rule, canvas and icons")
-        rule = Rule.parse(e["rule"]).value
+        try:
+            rule = Rule.parse(e["rule"]).value
+        except (AlphaAuditError, ValueError) as exc:
+            raise bad(f"entries[{n}].rule: {getattr(exc, 'message', exc)}") from exc
         keys.add((e["theme"], e["iconset"], rule, e["canvas"], tuple(e["icons"])))
     return frozenset(keys)
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 
-from alpha_audit.audit import AuditResult, audit
+from alpha_audit.audit import AuditResult, audit, check_combinations
 from alpha_audit.errors import SvgError, UsageError
 from alpha_audit.fixes import with_fixes
 from alpha_audit.gate import CheckReport, FindingKey, evaluate
@@ -87,6 +87,7 @@ def check_project(
         (c.name for t in loaded_themes for c in t.canvases),
         (i.name for s in loaded_sets for i in s.icons),
     )
+    check_combinations(loaded_themes, loaded_sets)  # before any icon is rendered
     if on_start is not None:
         on_start(sum(len(s.icons) for s in loaded_sets))
     audits = []

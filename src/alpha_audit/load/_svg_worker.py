@@ -160,6 +160,12 @@ def main() -> None:
     """Worker entry point: ``python -I _svg_worker.py MEMORY_BYTES CPU_SECONDS``."""
     memory_bytes, cpu_seconds = int(sys.argv[1]), int(sys.argv[2])
     sys.setrecursionlimit(2000)
+    # cairocffi looks cairo up with ctypes.util.find_library, which runs
+    # ldconfig and gcc (subprocesses writing files in /tmp).  Without it
+    # cairocffi dlopens "libcairo.so.2" through the loader cache instead.
+    import ctypes.util
+
+    ctypes.util.find_library = lambda name: None
     # Warm up before sandboxing: imports open files, and fontconfig loads for text.
     render_alpha(
         b'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 4 4"><text>a</text>'

@@ -19,8 +19,10 @@ from alpha_audit.color import THRESHOLD_RANGE, THRESHOLD_WHAT
 from alpha_audit.errors import InputError, UsageError
 from alpha_audit.load.fields import check_keys, describe, read_mapping, read_name, read_number
 from alpha_audit.load.files import read_text_capped
+from alpha_audit.load.paths import PathRefused, contain_argument, project_root
 from alpha_audit.load.yamldoc import MAX_YAML_BYTES, KeyPath, YamlDoc, format_key, load_yaml
 from alpha_audit.policy import DEFAULT_RULES, Exemption, Policy, Rule
+from alpha_audit.safe_text import is_safe, safe_text
 
 __all__ = [
     "CONFIG_KEYS",
@@ -78,11 +80,15 @@ def _has_tool_table(pyproject: Path) -> bool:
 def find_config(start: str | Path) -> Path | None:
     """The nearest config file at or above ``start``, or None.
 
-    The search stops at the first folder holding ``.git``.  Two configs in one
-    folder are ambiguous and refused.
+    The search stops at the project root (the first folder holding ``.git``,
+    or ``start`` itself when there is none: never ``/tmp`` or ``$HOME``).
+    Two configs in one folder are ambiguous and refused.
     """
     start = Path(start).resolve()
+    root = project_root(start)
     for folder in (start, *start.parents):
+        if not folder.is_relative_to(root):
+            break
         found = [folder / n for n in CONFIG_NAMES if (folder / n).is_file()]
         pyproject = folder / "pyproject.toml"
         if pyproject.is_file() and _has_tool_table(pyproject) and _load_toml_table(pyproject):
@@ -121,6 +127,11 @@ def project_config(explicit: str | Path | None, start: str | Path) -> ProjectCon
 def load_config(path: str | Path) -> ProjectConfig:
     """Load a YAML config or the ``[tool.alpha-audit]`` table of ``pyproject.toml``."""
     p = Path(path)
+    if p.exists():
+        try:
+            contain_argument(p)  # a symlinked config may not point outside the project
+        except PathRefused as err:
+            raise InputError(str(err), path=p) from err
     if p.name == "pyproject.toml" or p.suffix == ".toml":
         if not p.is_file():
             raise UsageError("config file not found", path=p)
@@ -168,6 +179,9 @@ def _rules(doc: YamlDoc, keys: KeyPath, value: Any) -> frozenset[Rule]:
     items = [value] if isinstance(value, str) else value
     if not isinstance(items, list):
         raise doc.error(keys, f"expected a list of rules, got {describe(value)}")
+    if not items:
+        # An empty list would pass every gate silently; --exit-zero says so explicitly.
+        raise doc.error(keys, "an empty list of rules disables the gate; name at least one rule")
     rules = set()
     for i, item in enumerate(items):
         if not isinstance(item, str):
@@ -190,6 +204,13 @@ def _exemptions(doc: YamlDoc, keys: KeyPath, value: Any) -> tuple[Exemption, ...
         reason = item.get("reason")
         if not isinstance(reason, str) or not reason.strip():
             raise doc.error((*ikeys, "reason"), "every exemption needs a reason: (why it is fine)")
+        if not is_safe(reason) or len(reason) > 500:
+            # Reasons are printed with findings: the same rule as names.
+            raise doc.error(
+                (*ikeys, "reason"),
+                f"{safe_text(reason[:40])!r} is not a usable reason: at most 500 characters, "
+                "no control, format (bidi) or surrogate characters",
+            )
         canvas = read_name(doc, (*ikeys, "canvas"), item["canvas"]) if "canvas" in item else None
         icon = read_name(doc, (*ikeys, "icon"), item["icon"]) if "icon" in item else None
         if canvas is None and icon is None:
@@ -219,7 +240,8 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
     data = read_mapping(doc, prefix, raw, "an alpha-audit configuration")
     data = _normalise_keys(doc, prefix, data)
     check_keys(doc, prefix, data, CONFIG_KEYS)
-    base = doc.path.resolve().parent
+    # The config's own folder (a symlinked config never picks its target's).
+    base = doc.path.absolute().parent.resolve()
 
     def at(key: str) -> KeyPath:
         return (*prefix, key)

@@ -4,13 +4,13 @@ from __future__ import annotations
 
 import difflib
 import math
-import unicodedata
 from collections.abc import Iterable
 from typing import Any
 
 from alpha_audit.color import parse_color
 from alpha_audit.errors import ColorSyntaxError
 from alpha_audit.load.yamldoc import KeyPath, YamlDoc
+from alpha_audit.safe_text import is_safe, safe_text
 
 __all__ = ["check_keys", "read_color", "read_mapping", "read_name", "read_number"]
 
@@ -62,13 +62,13 @@ def read_name(doc: YamlDoc, keys: KeyPath, value: Any) -> str:
     if isinstance(value, bool) or not isinstance(value, str | int | float):
         raise doc.error(keys, f"expected a name (text), got {describe(value)}")
     text = str(value).strip()
-    # Control characters (newlines, ESC sequences) would forge report lines or
-    # drive the reviewer's terminal; names reach every report format.
-    control = any(unicodedata.category(ch) == "Cc" for ch in text)
-    if not text or control or len(text) > 200:
+    # Control, format (bidi) and surrogate characters would forge report lines,
+    # drive the reviewer's terminal or crash UTF-8 output; names reach every format.
+    if not text or not is_safe(text) or len(text) > 200:
         raise doc.error(
             keys,
-            f"{text[:40]!r} is not a usable name: 1-200 characters, no control characters",
+            f"{safe_text(text[:40])!r} is not a usable name: 1-200 characters, "
+            "no control, format (bidi) or surrogate characters",
         )
     return text
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import difflib
 import itertools
-from pathlib import Path, PurePosixPath
+from pathlib import Path
 from typing import Any
 
 from alpha_audit.errors import InputError
@@ -16,8 +16,10 @@ from alpha_audit.load.fields import (
     read_name,
     read_number,
 )
+from alpha_audit.load.paths import PathRefused, contain, contain_argument, glob_contained
 from alpha_audit.load.yamldoc import KeyPath, YamlDoc, load_yaml
 from alpha_audit.model import Icon, IconSet
+from alpha_audit.safe_text import safe_text
 
 __all__ = [
     "ALPHA_LIMIT",
@@ -55,9 +57,14 @@ def load_iconset(path: str | Path, *, root: str | Path | None = None) -> IconSet
 
     ``root`` bounds where icon files may live (default: :func:`find_project_root`).
     """
-    doc = load_yaml(path)
-    base = Path(path).resolve().parent
-    return iconset_from_doc(doc, root=Path(root).resolve() if root else find_project_root(base))
+    # The root is found from where the manifest's name is, not where a link points.
+    folder = Path(path).absolute().parent
+    chosen = Path(root).resolve() if root else find_project_root(folder)
+    try:
+        contain_argument(path, chosen)  # before a byte is read
+    except PathRefused as err:
+        raise InputError(str(err), path=path) from err
+    return iconset_from_doc(load_yaml(path), root=chosen)
 
 
 class _Manifest:
@@ -66,7 +73,8 @@ class _Manifest:
     def __init__(self, doc: YamlDoc, root: Path) -> None:
         self.doc = doc
         self.root = root
-        self.base = doc.path.resolve().parent
+        # The manifest's own folder: a symlinked manifest never picks its target's.
+        self.base = doc.path.absolute().parent.resolve()
         self.data = read_mapping(doc, (), doc.data, "an icon-set manifest")
         check_keys(doc, (), self.data, _MANIFEST_KEYS)
         self.palette = self.read_palette()
@@ -121,18 +129,11 @@ class _Manifest:
         return tuple(sorted(set(sizes)))
 
     def resolve_file(self, keys: KeyPath, relative: str) -> Path:
-        """A path relative to the manifest that must stay inside the project root."""
-        pure = PurePosixPath(relative.replace("\\", "/"))
-        if pure.is_absolute() or (relative[1:3] == ":/" or relative[1:3] == ":\\"):
-            raise self.doc.error(
-                keys, f"{relative!r} is absolute; give a path relative to the manifest"
-            )
-        candidate = (self.base / pure).resolve()
-        if not candidate.is_relative_to(self.root):
-            raise self.doc.error(
-                keys, f"{relative!r} resolves outside the project root {self.root}; not allowed"
-            )
-        return candidate
+        """A path relative to the manifest, resolved and contained (:mod:`.paths`)."""
+        try:
+            return contain(self.root, self.base, relative)
+        except PathRefused as err:
+            raise self.doc.error(keys, str(err)) from err
 
     def existing_file(self, keys: KeyPath, relative: str) -> Path:
         """A named icon file: inside the project root and present (a glob only finds real ones)."""
@@ -144,20 +145,13 @@ class _Manifest:
 
     def glob(self, pattern: str) -> list[Path]:
         keys: KeyPath = ("icons",)
-        pure = PurePosixPath(pattern.replace("\\", "/"))
-        if pure.is_absolute() or ".." in pure.parts:
-            raise self.doc.error(
-                keys, f"{pattern!r} leaves the manifest's folder; use a pattern like svg/*.svg"
-            )
-        found = []
-        for match in sorted(self.base.glob(str(pure))):
-            if match.is_file():
-                found.append(self.resolve_file(keys, str(match.relative_to(self.base))))
-                if len(found) > MAX_ICONS:
-                    raise self.doc.error(keys, f"matches more than {MAX_ICONS} files")
+        try:
+            found = glob_contained(self.root, self.base, pattern, limit=MAX_ICONS)
+        except PathRefused as err:
+            raise self.doc.error(keys, str(err)) from err
         if not found:
-            raise self.doc.error(keys, f"{pattern!r} matches no files under {self.base}")
-        return sorted(found, key=lambda p: (p.name, str(p)))
+            raise self.doc.error(keys, f"{safe_text(pattern)!r} matches no files under {self.base}")
+        return sorted(set(found), key=lambda p: (p.name, str(p)))
 
     def entries(self) -> list[tuple[KeyPath, Path, dict[str, Any]]]:
         """(key path, file, explicit fields) for every icon, in manifest order."""

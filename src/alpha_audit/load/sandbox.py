@@ -39,7 +39,7 @@ _HEADER = struct.Struct(">BI")
 _MAX_MESSAGE_BYTES = 4096
 
 # Per job: a reason string when the whole icon failed, else one mask or reason per size.
-Outcome = str | list[NDArray[np.float64] | str]
+Outcome = str | list[NDArray[np.uint8] | str]  # 8-bit coverage codes, alpha x 255
 
 
 class _Worker:
@@ -47,7 +47,17 @@ class _Worker:
 
     def __init__(self, limits: RenderLimits) -> None:
         self.limits = limits
-        env = {"PATH": os.environ.get("PATH", ""), "OPENBLAS_NUM_THREADS": "1", "LC_ALL": "C"}
+        # HOME (and USER) set: without them the interpreter asks the account
+        # database (NSS, /etc/passwd) at start-up, before the guard is installed.
+        env = {
+            "PATH": os.environ.get("PATH", ""),
+            "OPENBLAS_NUM_THREADS": "1",
+            "LC_ALL": "C",
+            "HOME": "/nonexistent",
+            "USER": "alpha-audit",
+            "LOGNAME": "alpha-audit",
+            "TZ": "UTC",  # no /etc/localtime
+        }
         self.proc = subprocess.Popen(
             [sys.executable, "-I", str(_WORKER), str(limits.memory), str(limits.cpu)],
             stdin=subprocess.PIPE,
@@ -71,9 +81,9 @@ class _Worker:
         self.stdin.flush()
         self.deadline = time.monotonic() + timeout
 
-    def parse(self) -> list[NDArray[np.float64] | str] | None:
+    def parse(self) -> list[NDArray[np.uint8] | str] | None:
         """The complete reply in the buffer, None if incomplete; ValueError if malformed."""
-        out: list[NDArray[np.float64] | str] = []
+        out: list[NDArray[np.uint8] | str] = []
         pos = 0
         for size in self.sizes:
             if len(self.buffer) < pos + _HEADER.size:
@@ -89,8 +99,8 @@ class _Worker:
             chunk = bytes(self.buffer[pos : pos + n])
             pos += n
             if status == 0:
-                mask = np.frombuffer(chunk, dtype=np.uint8).reshape(size, size)
-                out.append(mask.astype(np.float64) / 255.0)
+                # Kept as cairo's 8-bit codes: 1 byte a pixel instead of 8.
+                out.append(np.frombuffer(chunk, dtype=np.uint8).reshape(size, size))
             else:
                 text = chunk.decode("utf-8", "replace")
                 out.append("".join(ch if ch.isprintable() else " " for ch in text))

@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from alpha_audit.color import NON_TEXT_THRESHOLD, THRESHOLD_RANGE, THRESHOLD_WHAT
+from alpha_audit.errors import InputError
 from alpha_audit.load.fields import (
     check_keys,
     read_color,
@@ -12,6 +13,7 @@ from alpha_audit.load.fields import (
     read_name,
     read_number,
 )
+from alpha_audit.load.paths import PathRefused, contain_argument
 from alpha_audit.load.yamldoc import YamlDoc, load_yaml
 from alpha_audit.model import Canvas, Theme
 
@@ -27,6 +29,10 @@ def load_theme(path: str | Path) -> Theme:
 
     >>> theme = load_theme("themes/paper16.yaml")  # doctest: +SKIP
     """
+    try:
+        contain_argument(path)  # before a byte is read
+    except PathRefused as err:
+        raise InputError(str(err), path=path) from err
     return theme_from_doc(load_yaml(path))
 
 

@@ -127,8 +127,20 @@ class _Converter:
             return float(node.value)
         try:
             return self.constructor.construct_object(node, deep=True)
-        except (yaml.YAMLError, ValueError, OverflowError) as exc:
-            raise self.fail(node, f"cannot read value {node.value!r}: {exc}") from exc
+        except (
+            yaml.YAMLError,
+            ValueError,
+            OverflowError,
+            # Explicit tags on bad scalars: !!float "" (IndexError), !!bool ""
+            # (KeyError), !!timestamp "x" (AttributeError) crash PyYAML itself.
+            IndexError,
+            KeyError,
+            AttributeError,
+            TypeError,
+        ) as exc:
+            raise self.fail(
+                node, f"cannot read value {node.value[:40]!r} as {node.tag.rsplit(':', 1)[-1]}"
+            ) from exc
 
 
 def parse_yaml(text: str, path: Path) -> YamlDoc:

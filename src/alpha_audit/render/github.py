@@ -12,6 +12,7 @@ from pathlib import Path
 
 from alpha_audit.gate import CheckReport, Finding
 from alpha_audit.render.common import RenderOptions, display_path
+from alpha_audit.safe_text import safe_text
 
 __all__ = ["escape_data", "escape_property", "render_report"]
 
@@ -22,6 +23,7 @@ def escape_data(text: str) -> str:
     >>> escape_data("50%\\nnext")
     '50%25%0Anext'
     """
+    text = safe_text(text, newlines=True)  # ESC, C1, bidi: escaped before the runner sees them
     return text.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
 
 

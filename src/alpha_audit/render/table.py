@@ -18,6 +18,7 @@ from alpha_audit.audit import AuditResult, Row
 from alpha_audit.gate import CheckReport, GateResult
 from alpha_audit.render.common import RenderOptions, to_text
 from alpha_audit.render.common import shorten_names as icons_label
+from alpha_audit.safe_text import safe_text
 
 __all__ = ["MAX_FINDINGS", "check_renderable", "gate_renderable", "render_report"]
 
@@ -182,7 +183,7 @@ def _findings(result: AuditResult) -> list[RenderableType]:
             Text(f"Icons that could not be rendered ({len(result.problems)})", style="bold yellow")
         )
         for p in result.problems[:MAX_FINDINGS]:
-            out.append(Text(f"  {p.icon} ({p.file}): {p.message}"))
+            out.append(Text(safe_text(f"  {p.icon} ({p.file}): {p.message}")))
         if len(result.problems) > MAX_FINDINGS:
             out.append(
                 Text(f"  … and {len(result.problems) - MAX_FINDINGS} more (see --format json)")
@@ -215,7 +216,9 @@ def gate_renderable(gate: GateResult) -> RenderableType:
     out: list[RenderableType] = []
     rules = ", ".join(sorted(r.value for r in gate.policy.rules))
     failures = gate.failures
-    if failures:
+    if gate.vacuous:
+        out.append(Text(f"Gate failed: no icon could be audited [{rules}]", style="bold red"))
+    elif failures:
         out.append(Text(f"Gate failed: {len(failures)} finding(s) [{rules}]", style="bold red"))
         for f in failures[:MAX_FINDINGS]:
             where = f"{icons_label(f.icons)} on {f.canvas}" if f.canvas else icons_label(f.icons)

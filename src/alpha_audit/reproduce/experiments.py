@@ -41,7 +41,6 @@ from alpha_audit.reproduce.grids import (
     encoded_levels,
     random_source_pairs,
 )
-from alpha_audit.reproduce.reference import reference_full_gamut
 
 __all__ = [
     "BroadGridResult",
@@ -263,11 +262,19 @@ def full_gamut(
             }
     progress(0.8 * len(fast) / len(alphas))
     for a in alphas:
-        if a < 0:  # reverse scaling: tables fall with the level; no fast path
-            ref = reference_full_gamut(
-                encoded, backgrounds, a, tol=tol, threshold=threshold, controls=False
+        if a < 0:  # reverse scaling: tables fall with the level; every combination from them
+            po, qo = kernels.luminance_parts(
+                kernels.channel_tables(lev, backgrounds, np.full(m, a))
             )
-            stats[a] = {k: ref[k] for k in ("increase", "decrease", "newly_reach", "sum_change")}
+            counts = kernels.change_counts_any_order(
+                ps, qs, po, qo, yb, tol=tol, threshold=threshold
+            )
+            stats[a] = {
+                "increase": counts.increase,
+                "decrease": counts.decrease,
+                "newly_reach": counts.newly_reach,
+                "sum_change": kernels.contrast_sums(po, qo, yb) - sum_source,
+            }
             progress(0.8 / len(alphas))
     results = []
     for a in alphas:

@@ -42,6 +42,7 @@ from alpha_audit.color import LUMINANCE_WEIGHTS, contrast_from_luminance
 __all__ = [
     "ChangeCounts",
     "change_counts",
+    "change_counts_any_order",
     "channel_tables",
     "contrast_sums",
     "first_at_or_above",
@@ -479,3 +480,45 @@ def _over_blocks(shape: tuple[int, int], block: Callable, lead: tuple[int, ...] 
         for r in range(0, n_rows, rows_per):
             totals[..., pr] += block(pr, slice(r, min(r + rows_per, n_rows)))
     return totals.astype(np.int64) if lead else totals
+
+
+def change_counts_any_order(
+    ps: NDArray,
+    qs: NDArray,
+    po: NDArray,
+    qo: NDArray,
+    yb: NDArray,
+    *,
+    tol: float,
+    threshold: float,
+) -> ChangeCounts:
+    """The counts of :func:`change_counts` for output tables in any order (``alpha < 0``).
+
+    A negative coefficient reverses the output tables (they fall with the
+    level), so the interval searches of :func:`change_counts` do not apply.
+    Every combination is still formed from the tables, ``Y = P[row] + Q[col]``
+    (bit-identical to the straightforward luminance, see the module
+    docstring), and judged with the reference's float expressions, in blocks
+    of about ``_BLOCK * 8`` combinations: no power function, no compositing,
+    bounded memory.  ``ps``, ``po`` are (m, R); ``qs``, ``qo`` (m, C).
+    """
+    m, n_cols = qs.shape
+    n_rows = ps.shape[1]
+    rows_per = max(1, (_BLOCK * 8) // n_cols)
+    inc = np.zeros(m, dtype=np.int64)
+    dec = np.zeros(m, dtype=np.int64)
+    reach = np.zeros(m, dtype=np.int64)
+    for i in range(m):
+        y_b = yb[i]
+        for r in range(0, n_rows, rows_per):
+            rows = slice(r, min(r + rows_per, n_rows))
+            cr_s = contrast_from_luminance(ps[i, rows, np.newaxis] + qs[i, np.newaxis, :], y_b)
+            cr_o = contrast_from_luminance(po[i, rows, np.newaxis] + qo[i, np.newaxis, :], y_b)
+            change = cr_o - cr_s
+            inc[i] += np.count_nonzero(change > tol)
+            dec[i] += np.count_nonzero(change < -tol)
+            # The reference's expression: source contrast plus change, not cr_o.
+            reach[i] += np.count_nonzero((cr_s < threshold) & (change + cr_s >= threshold))
+    return ChangeCounts(
+        increase=inc, decrease=dec, newly_reach=reach, exact_evaluations=m * n_rows * n_cols
+    )

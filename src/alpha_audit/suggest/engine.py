@@ -32,9 +32,17 @@ from alpha_audit.color import (
     composite_extended,
     contrast_from_luminance,
     delta_e_2000,
+    delta_e_2000_lab,
+    linear_to_lab,
     pack_8bit,
     relative_luminance,
     to_8bit,
+)
+from alpha_audit.color.nearest import (
+    delta_e_2000_lightness_key,
+    iter_pairs,
+    lightness_weight_max,
+    pairs_below,
 )
 from alpha_audit.errors import UsageError
 from alpha_audit.model import IconSet, Theme
@@ -62,6 +70,11 @@ __all__ = [
 # CIEDE2000 has no closed form in a: its crossings are bracketed on this grid
 # (plus every clip breakpoint) and bisected to events.BISECTION_TOLERANCE.
 SEPARATION_GRID_STEP = 1e-3
+# Pair x grid-point evaluations held at once by the separation search (~10 MB
+# per float64 intermediate of colour-science's CIEDE2000).
+_SEPARATION_CHUNK = 1 << 20
+# Code timelines kept between questions (a few KB per colour and canvas).
+_TIMELINE_CACHE_BYTES = 64 << 20
 ALPHA_LO = 1.0  # the reference coefficient; the safe interval starts here
 MAX_PRECISION = 9
 _RULE_ORDER = {rule: k for k, rule in enumerate(Rule)}
@@ -160,6 +173,30 @@ class _Tracks:
     icons: tuple[tuple[int, ...], ...]
 
 
+def _shared_code_starts(
+    lo: NDArray[np.int64], hi: NDArray[np.int64], code: NDArray[np.int64]
+) -> NDArray[np.int64]:
+    """Sorted elements where a code's set of overlapping segments changes and holds two or more.
+
+    Segments are inclusive element ranges ``[lo, hi]`` with one code each.
+    Between consecutive boundaries of one code the set of its segments is
+    constant, so any collision verdict can only change at these elements.
+
+    >>> _shared_code_starts(np.array([0, 2, 5]), np.array([4, 6, 5]), np.array([7, 7, 7])).tolist()
+    [2, 5]
+    """
+    pos = np.concatenate([lo, hi + 1])
+    delta = np.concatenate([np.ones(lo.size, np.int64), -np.ones(hi.size, np.int64)])
+    codes = np.concatenate([code, code])
+    order = np.lexsort((pos, codes))
+    pos, delta, codes = pos[order], delta[order], codes[order]
+    active = np.cumsum(delta)  # codes are contiguous and each returns to 0
+    # The count after the last event at each (code, element).
+    last_at = np.r_[(pos[1:] != pos[:-1]) | (codes[1:] != codes[:-1]), True]
+    shared = last_at & (active >= 2)
+    return np.unique(pos[shared])
+
+
 def _round_down(value: float, precision: int) -> float:
     """``value`` rounded towards minus infinity to ``precision`` decimals, exactly."""
     step = Decimal(1).scaleb(-precision)
@@ -173,6 +210,8 @@ class _Suggester:
         self, theme: Theme, iconset: IconSet, policy: Policy, threshold: float, alpha_max: float
     ) -> None:
         self.policy = policy
+        self._timelines: dict[tuple[bytes, int], tuple[NDArray[np.float64], NDArray[np.int64]]] = {}
+        self._timeline_bytes = 0
         self.threshold = threshold
         self.a_hi = alpha_max
         self.names = tuple(i.name for i in iconset.icons)
@@ -279,8 +318,39 @@ class _Suggester:
                 return icons
         return None
 
+    def track_segments(
+        self, source: NDArray[np.float64], j: int
+    ) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+        """One moving source's own timeline on canvas ``j``: (points, packed element codes).
+
+        Cached per (source, canvas): the set-wide, per-colour and per-icon
+        questions move the same sources again and again.
+        """
+        key = (source.tobytes(), j)
+        found = self._timelines.get(key)
+        if found is None:
+            timeline = code_timeline(source, self.backgrounds[j], ALPHA_LO, self.a_hi)
+            codes = timeline.elements()[2]  # (3, 2K + 1)
+            found = (timeline.points, pack_8bit(codes.T))
+            size = found[0].nbytes + found[1].nbytes
+            if self._timeline_bytes + size > _TIMELINE_CACHE_BYTES:
+                self._timelines.clear()  # memory stays bounded; recomputing is exact
+                self._timeline_bytes = 0
+            self._timelines[key] = found
+            self._timeline_bytes += size
+        return found
+
     def collision_limits(self, tracks: _Tracks) -> list[list[Limit]]:
-        """Per canvas, where the first unsafe 8-bit collision starts (exact)."""
+        """Per canvas, where the first unsafe 8-bit collision starts (exact).
+
+        Each track's code is a step function of alpha: a list of segments
+        (a point or an open gap, each one code).  A collision needs two
+        segments with one code overlapping, so one sort of all segments by
+        code finds every place where two or more share a code; only those
+        places are judged, in order, by :meth:`collision_group`.  Cost and
+        memory are linear in the number of segments (about 2 x 3 x 255 per
+        moving track at most), never tracks x tracks x events.
+        """
         out: list[list[Limit]] = [[] for _ in self.canvases]
         rule = self.collision_rule
         mv = np.flatnonzero(tracks.moving)
@@ -296,72 +366,104 @@ class _Suggester:
                 )
             )
         )  # (F, m)
-        distinct = tracks.key[mv, np.newaxis] != tracks.key[np.newaxis, :]  # (M, T)
-        new = tracks.ref[mv, np.newaxis] != tracks.ref[np.newaxis, :]
-        pairs = distinct if rule is Rule.COLLISION or self.slow_collisions else new
-        for j, background in enumerate(self.backgrounds):
-            timeline = code_timeline(
-                tracks.source[mv].reshape(-1), np.tile(background, mv.size), ALPHA_LO, self.a_hi
-            )
-            start, is_point, codes = timeline.elements()
-            moving_codes = pack_8bit(codes.reshape(mv.size, 3, -1).transpose(0, 2, 1))  # (M, E)
-            all_codes = np.concatenate(
-                [moving_codes, np.repeat(fixed_codes[:, j : j + 1], start.size, axis=1)]
-            )  # (T, E): moving tracks come first
-            same = moving_codes[:, np.newaxis, :] == all_codes[np.newaxis, :, :]
-            candidates = np.flatnonzero(np.any(same & pairs[:, :, np.newaxis], axis=(0, 1)))
-            for e in candidates:
-                icons = self.collision_group(tracks, all_codes[:, e], j)
+        n_tracks = len(tracks.key)
+        for j in range(len(self.canvases)):
+            own = [self.track_segments(tracks.source[t], j) for t in mv]
+            points = np.unique(np.concatenate([p for p, _ in own]))  # every event of canvas j
+            last = 2 * (points.size - 1)  # global elements 0..last: point, gap, point, ...
+            seg_track, seg_lo, seg_hi, seg_code = [], [], [], []
+            for t, (p, codes) in zip(mv, own, strict=True):
+                g = 2 * np.searchsorted(points, p)  # this track's points as global elements
+                lo = np.empty(codes.size, dtype=np.int64)
+                hi = np.empty(codes.size, dtype=np.int64)
+                lo[0::2], hi[0::2] = g, g
+                lo[1::2], hi[1::2] = g[:-1] + 1, g[1:] - 1
+                seg_track.append(np.full(codes.size, t))
+                seg_lo.append(lo)
+                seg_hi.append(hi)
+                seg_code.append(codes)
+            seg_track.append(fixed)
+            seg_lo.append(np.zeros(fixed.size, dtype=np.int64))
+            seg_hi.append(np.full(fixed.size, last, dtype=np.int64))
+            seg_code.append(fixed_codes[:, j])
+            track = np.concatenate(seg_track)
+            lo, hi, code = (np.concatenate(x) for x in (seg_lo, seg_hi, seg_code))
+            candidates = _shared_code_starts(lo, hi, code)
+            if candidates.size == 0:
+                continue
+            # Every track's code at a candidate element: its segment by track then start.
+            order = np.lexsort((lo, track))
+            sorted_key = track[order] * (last + 2) + lo[order]
+            everyone = np.arange(n_tracks) * (last + 2)
+            for e in candidates.tolist():
+                at = order[np.searchsorted(sorted_key, everyone + e, side="right") - 1]
+                icons = self.collision_group(tracks, code[at], j)
                 if icons is not None:
-                    out[j].append(
-                        Limit(rule, self.canvases[j], icons, float(start[e]), bool(is_point[e]))
-                    )
+                    start, is_point = float(points[e // 2]), e % 2 == 0
+                    out[j].append(Limit(rule, self.canvases[j], icons, start, is_point))
                     break
-                if not self.slow_collisions:  # pragma: no cover - fast path is exact
-                    raise AssertionError("collision candidate without an unsafe group")
         return out
 
     def separation_limits(self, tracks: _Tracks) -> list[list[Limit]]:
-        """Per canvas, where CIEDE2000 between two colours first drops below the minimum."""
+        """Per canvas, where CIEDE2000 between two colours first drops below the minimum.
+
+        Canvas by canvas and a chunk of pairs at a time (bounded memory for any
+        number of colours).  A pair whose lightness bound (``dE00 >= |dL| /
+        S_L,max``, :mod:`alpha_audit.color.nearest`) keeps it at or above the
+        minimum at every grid point cannot be found below it by the grid
+        search either, so it is skipped without changing the answer.
+        """
         out: list[list[Limit]] = [[] for _ in self.canvases]
-        if not self.separation:
+        if not self.separation or len(tracks.key) < 2:
             return out
-        n = len(tracks.key)
-        first, second = np.triu_indices(n, k=1)
-        keep = np.array(
-            [
-                (tracks.moving[a] or tracks.moving[b]) and tracks.color[a] != tracks.color[b]
-                for a, b in zip(first, second, strict=True)
-            ],
-            dtype=bool,
-        )
-        first, second = first[keep], second[keep]
-        if first.size == 0:
-            return out
-        bg = self.backgrounds[np.newaxis, :, np.newaxis, :]  # (1, m, 1, 3)
-
-        def output(t: NDArray[np.intp], a: NDArray[np.float64]) -> NDArray[np.float64]:
-            src = tracks.source[t][:, np.newaxis, np.newaxis, :]
-            fixed = tracks.alpha[t][:, np.newaxis, np.newaxis]
-            coef = np.where(tracks.moving[t][:, np.newaxis, np.newaxis], a, fixed)
-            return np.clip(bg + coef[..., np.newaxis] * (src - bg), 0.0, 1.0)
-
-        def delta_e(a: NDArray[np.float64]) -> NDArray[np.float64]:
-            return delta_e_2000(output(first, a), output(second, a))  # (P, m, N)
-
+        labels = np.unique(np.array(tracks.color, dtype=object), return_inverse=True)[1]
+        labels = labels.reshape(-1)
+        level = self.policy.min_delta_e
         steps = max(1, math.ceil((self.a_hi - ALPHA_LO) / SEPARATION_GRID_STEP))
         breaks = clip_breakpoints(
             tracks.source[tracks.moving][:, np.newaxis, :], self.backgrounds[np.newaxis]
         ).reshape(-1)
         breaks = breaks[(breaks > ALPHA_LO) & (breaks < self.a_hi)]
         grid = np.unique(np.concatenate([np.linspace(ALPHA_LO, self.a_hi, steps + 1), breaks]))
-        _, unsafe = first_below(delta_e, grid, self.policy.min_delta_e)
-        for p, j in zip(*np.nonzero(np.isfinite(unsafe)), strict=True):
-            icons = self.icon_names(tracks, [first[p], second[p]])
-            if not self.exempt(Rule.SEPARATION, self.canvases[j], icons):
-                out[j].append(
-                    Limit(Rule.SEPARATION, self.canvases[j], icons, float(unsafe[p, j]), True)
-                )
+        n_grid = grid.size
+        every = np.arange(len(tracks.key))
+        chunk = max(1, _SEPARATION_CHUNK // n_grid)
+        for j, background in enumerate(self.backgrounds):
+
+            def output(
+                t: NDArray[np.intp], a: NDArray[np.float64], bg: NDArray[np.float64] = background
+            ) -> NDArray[np.float64]:
+                coef = np.where(tracks.moving[t][:, np.newaxis], a, tracks.alpha[t][:, np.newaxis])
+                src = tracks.source[t][:, np.newaxis, :]
+                return np.clip(bg + coef[..., np.newaxis] * (src - bg), 0.0, 1.0)
+
+            lightness = linear_to_lab(output(every, grid))[..., 0]  # (T, N)
+            s_l = lightness_weight_max(lightness)
+            for first, second in iter_pairs(len(tracks.key), labels, chunk=chunk):
+                moved = tracks.moving[first] | tracks.moving[second]
+                first, second = first[moved], second[moved]
+                if first.size == 0:
+                    continue
+                gap = np.min(np.abs(lightness[first] - lightness[second]), axis=1) / s_l
+                near = gap < level * (1.0 + 1e-9)
+                first, second = first[near], second[near]
+                if first.size == 0:
+                    continue
+
+                def delta_e(
+                    a: NDArray[np.float64],
+                    f: NDArray[np.intp] = first,
+                    g: NDArray[np.intp] = second,
+                ) -> NDArray[np.float64]:
+                    return delta_e_2000(output(f, a), output(g, a))  # (p, N)
+
+                _, unsafe = first_below(delta_e, grid, level)
+                for p in np.flatnonzero(np.isfinite(unsafe)):
+                    icons = self.icon_names(tracks, [first[p], second[p]])
+                    if not self.exempt(Rule.SEPARATION, self.canvases[j], icons):
+                        out[j].append(
+                            Limit(Rule.SEPARATION, self.canvases[j], icons, float(unsafe[p]), True)
+                        )
         return out
 
     # -- one question ----------------------------------------------------------
@@ -387,14 +489,21 @@ class _Suggester:
             for j in range(len(self.canvases)):
                 if self.collision_group(tracks, codes[:, j], j) is not None:
                     return True
-        if self.separation:
-            for a_i, b_i in zip(*np.triu_indices(len(tracks.key), 1), strict=True):
-                if not (tracks.moving[a_i] or tracks.moving[b_i]):
-                    continue
-                if tracks.color[a_i] == tracks.color[b_i]:
-                    continue
-                de = delta_e_2000(out[a_i], out[b_i])
-                for j in np.flatnonzero(de < self.policy.min_delta_e):
+        if self.separation and len(tracks.key) > 1:
+            labels = np.unique(np.array(tracks.color, dtype=object), return_inverse=True)[1]
+            for j in range(len(self.canvases)):
+                lab = linear_to_lab(out[:, j])
+
+                def distance(
+                    f: NDArray[np.intp], g: NDArray[np.intp], lab: NDArray[np.float64] = lab
+                ) -> NDArray[np.float64]:
+                    return delta_e_2000_lab(lab[f], lab[g])
+
+                key = delta_e_2000_lightness_key(lab)
+                first, second, _ = pairs_below(key, distance, self.policy.min_delta_e, labels)
+                for a_i, b_i in zip(first.tolist(), second.tolist(), strict=True):
+                    if not (tracks.moving[a_i] or tracks.moving[b_i]):
+                        continue
                     names = self.icon_names(tracks, [a_i, b_i])
                     if not self.exempt(Rule.SEPARATION, self.canvases[j], names):
                         return True

@@ -1,0 +1,193 @@
+"""Containment of every path read from a pull request: one mechanism, used before any I/O.
+
+Every file of the checkout is attacker-controlled, symlinks included (git
+stores them).  So a path is *resolved first* -- symlinks followed, ``..``
+collapsed -- and only then compared with the one project root; a glob is
+expanded by walking real directories under its base (symlinked directories
+are never entered), and each match is contained the same way.  Nothing here
+reads a file's contents.
+
+:class:`PathRefused` carries a one-line reason; loaders turn it into their
+:class:`~alpha_audit.errors.InputError` naming the file and key.
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import os
+import re
+from pathlib import Path, PurePosixPath
+
+from alpha_audit.safe_text import first_unsafe, safe_text
+
+__all__ = [
+    "MAX_GLOB_ENTRIES",
+    "PathRefused",
+    "contain",
+    "contain_argument",
+    "glob_contained",
+    "project_root",
+    "resolve",
+]
+
+# Directory entries one glob may visit before it is refused (time bound on a
+# PR that adds a huge or deep tree; the icon count cap is checked separately).
+MAX_GLOB_ENTRIES = 200_000
+# RFC 3986, 3.1: scheme = ALPHA *( ALPHA / DIGIT / "+" / "-" / "." ) ":"; two
+# letters at least so that Windows drive letters are reported as absolute.
+_URL = re.compile(r"^[A-Za-z][A-Za-z0-9+.-]+:")
+
+
+class PathRefused(ValueError):
+    """A path or pattern that may not be used; the message says why, on one line."""
+
+
+def _shown(text: str) -> str:
+    return f"'{safe_text(text)}'"
+
+
+def _check_text(text: str) -> PurePosixPath:
+    """The relative POSIX path of ``text``, or :class:`PathRefused`."""
+    if not text or not text.strip() or text.strip() in (".", "./"):
+        raise PathRefused(f"{_shown(text)} is empty; give a path like svg/icon.svg")
+    bad = first_unsafe(text)
+    if bad is not None:
+        raise PathRefused(
+            f"{_shown(text)} contains the control or format character {safe_text(bad)}; not allowed"
+        )
+    if _URL.match(text) and not re.match(r"^[A-Za-z]:[\\/]", text):
+        raise PathRefused(f"{_shown(text)} is a URL; give a path relative to the file")
+    pure = PurePosixPath(text.replace("\\", "/"))
+    if pure.is_absolute() or re.match(r"^[A-Za-z]:[\\/]", text):
+        raise PathRefused(f"{_shown(text)} is absolute; give a path relative to the file")
+    return pure
+
+
+def resolve(path: Path) -> Path:
+    """``path`` with every symlink followed; loops and unreadable links refused."""
+    try:
+        return path.resolve(strict=False)
+    except RuntimeError as err:  # Python < 3.13: "Symlink loop from ..."
+        raise PathRefused(f"{_shown(str(path))} is a symlink loop") from err
+    except OSError as err:
+        raise PathRefused(f"{_shown(str(path))} cannot be resolved: {err.strerror}") from err
+
+
+def project_root(start: Path, markers: tuple[str, ...] = (".git",)) -> Path:
+    """The nearest folder at or above ``start`` holding one of ``markers``, else ``start``.
+
+    Never above: without a marker the search does not climb to ``/tmp`` or
+    ``$HOME``, whose files a pull request does not control but an attacker
+    on a shared runner might.
+    """
+    start = resolve(start)
+    for folder in (start, *start.parents):
+        if any((folder / marker).exists() for marker in markers):
+            return folder
+    return start
+
+
+def contain_argument(path: str | Path, root: Path | None = None) -> Path:
+    """A file named by the user or found by discovery, resolved and inside its project root.
+
+    The root comes from where the *name* is (its folder, resolved), never
+    from where a symlink points, so a link cannot pick its own base:
+    ``theme.yaml -> /etc/passwd`` is refused before a byte is read.
+    """
+    p = Path(path)
+    if first_unsafe(str(p)) is not None:
+        raise PathRefused(f"{_shown(str(p))} has a control or format character; not allowed")
+    folder = resolve(p.absolute().parent)
+    root = resolve(root) if root is not None else project_root(folder)
+    target = resolve(folder / p.name)
+    if not target.is_relative_to(root):
+        raise PathRefused(
+            f"{_shown(str(p))} is a symlink to a file outside the project root {root}; not allowed"
+        )
+    return target
+
+
+def contain(root: Path, base: Path, relative: str) -> Path:
+    """``base / relative`` resolved, symlinks included, and required inside ``root``.
+
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     root = Path(tmp).resolve()
+    ...     contain(root, root, "svg/a.svg") == root / "svg/a.svg"
+    True
+    """
+    pure = _check_text(relative)
+    candidate = resolve(base / pure)
+    if not candidate.is_relative_to(resolve(root)):
+        raise PathRefused(f"{_shown(relative)} resolves outside the project root; not allowed")
+    return candidate
+
+
+def glob_contained(root: Path, base: Path, pattern: str, *, limit: int) -> list[Path]:
+    """Files under ``base`` matching ``pattern`` (``*``, ``?``, ``[...]``, ``**``), contained.
+
+    Walks real directories only: a symlinked directory is never entered, so
+    ``up/**`` with ``up -> /`` lists nothing outside; a matched file that is
+    a symlink is resolved and must land inside ``root``.  At most ``limit``
+    matches and :data:`MAX_GLOB_ENTRIES` visited entries.
+    """
+    pure = _check_text(pattern)
+    if ".." in pure.parts:
+        raise PathRefused(f"{_shown(pattern)} leaves the manifest's folder; use svg/*.svg")
+    root = resolve(root)
+    start = resolve(base)
+    if not start.is_relative_to(root):
+        raise PathRefused(f"{_shown(str(base))} is outside the project root; not allowed")
+    parts = [p for p in pure.parts if p not in ("", ".")]
+    visited = 0
+    found: list[Path] = []
+
+    def walk(folder: Path, rest: list[str]) -> None:
+        nonlocal visited
+        head, tail = rest[0], rest[1:]
+        try:
+            with os.scandir(folder) as it:
+                entries = sorted(it, key=lambda e: e.name)
+        except OSError:
+            return
+        visited += len(entries)
+        if visited > MAX_GLOB_ENTRIES:
+            raise PathRefused(
+                f"{_shown(pattern)} visits more than {MAX_GLOB_ENTRIES} directory entries"
+            )
+        if head == "**":
+            if tail:
+                walk(folder, tail)  # ** matches zero folders
+            for entry in entries:
+                if entry.is_dir(follow_symlinks=False) and not entry.name.startswith("."):
+                    walk(Path(entry.path), rest)
+            return
+        for entry in entries:
+            if not fnmatch.fnmatchcase(entry.name, head):
+                continue
+            if tail:
+                if entry.is_dir(follow_symlinks=False):
+                    walk(Path(entry.path), tail)
+            elif entry.is_file(follow_symlinks=True) or entry.is_symlink():
+                shown = os.path.relpath(entry.path, start)
+                if first_unsafe(shown) is not None:  # folders on the way count too
+                    raise PathRefused(
+                        f"{_shown(shown)} matched by {_shown(pattern)} has a control or "
+                        "format character in its name; not allowed"
+                    )
+                target = resolve(Path(entry.path))
+                if not target.is_relative_to(root):
+                    raise PathRefused(
+                        f"{_shown(shown)} matched by "
+                        f"{_shown(pattern)} resolves outside the project root; not allowed"
+                    )
+                if target.is_file():
+                    found.append(target)
+                    if len(found) > limit:
+                        raise PathRefused(f"{_shown(pattern)} matches more than {limit} files")
+
+    if parts and parts[-1] == "**":
+        raise PathRefused(f"{_shown(pattern)} ends in **; add a file pattern like **/*.svg")
+    if parts:
+        walk(start, parts)
+    return found

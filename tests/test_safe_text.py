@@ -1,0 +1,77 @@
+"""One sanitiser for printed text: every instruction character escaped, text kept."""
+
+from __future__ import annotations
+
+import unicodedata
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from alpha_audit.errors import InputError
+from alpha_audit.render.github import escape_data
+from alpha_audit.safe_text import UNSAFE_CATEGORIES, first_unsafe, safe_text
+
+HOSTILE = [
+    "\x1b]52;c;SGVsbG8=\x07",  # OSC 52: write the reviewer's clipboard
+    "\x1b]8;;https://evil/\x1b\\link\x1b]8;;\x1b\\",  # OSC 8 hyperlink
+    "\x1b[2J\x1b[H",  # clear screen
+    "\x9b2J",  # C1 CSI, one byte
+    "name\n::add-mask::secret",  # forged workflow command
+    "\r::stop-commands::x",
+    "a\u202eexe.svg",  # RIGHT-TO-LEFT OVERRIDE (Trojan Source)
+    "\u2066isolate\u2069",
+    "\ud800",  # lone surrogate
+    "line\u2028sep",
+]
+
+
+@pytest.mark.parametrize("text", HOSTILE)
+def test_hostile_strings_become_printable_one_line_utf8(text: str) -> None:
+    out = safe_text(text)
+    assert first_unsafe(out) is None
+    assert "\n" not in out and "\r" not in out and "\x1b" not in out
+    out.encode("utf-8")  # no UnicodeEncodeError
+
+
+@given(st.text())
+def test_output_never_holds_an_unsafe_character_and_safe_text_is_kept(text: str) -> None:
+    out = safe_text(text)
+    assert all(unicodedata.category(ch) not in UNSAFE_CATEGORIES for ch in out)
+    if first_unsafe(text) is None:
+        assert out == text
+
+
+def test_ordinary_unicode_passes_unchanged() -> None:
+    assert safe_text("Café ΔE00 ≥ 3 — 日本") == "Café ΔE00 ≥ 3 — 日本"
+
+
+def test_error_str_is_sanitised_in_keys_and_paths() -> None:
+    err = InputError("bad value", path="icons/\x1b]52;c;x\x07.yaml", key="ca\u202envas")
+    text = str(err)
+    assert first_unsafe(text) is None and "\\x1b" in text and "\\u202e" in text
+
+
+def test_github_escape_keeps_newline_escaping_and_drops_escape_sequences() -> None:
+    assert escape_data("a\nb") == "a%0Ab"
+    out = escape_data("x\x1b[31m\u202e")
+    assert "\x1b" not in out and "\u202e" not in out and "%0A" not in out
+
+
+@pytest.mark.parametrize("name", ["a\u202eb", "\ud800", "x\u2066y", "bell\x07", "c1\x9b"])
+def test_names_and_reasons_with_unsafe_characters_are_refused(tmp_path, name: str) -> None:
+    from alpha_audit.load.config import config_from_doc
+    from alpha_audit.load.theme import theme_from_doc
+    from alpha_audit.load.yamldoc import parse_yaml
+
+    escaped = name.encode("unicode_escape").decode("ascii")
+    theme = parse_yaml(f'name: "{escaped}"\ncanvases: []\n', tmp_path / "t.yaml")
+    with pytest.raises(InputError, match="not a usable name") as info:
+        theme_from_doc(theme)
+    assert first_unsafe(str(info.value)) is None
+    config = parse_yaml(
+        f'exempt:\n  - {{icon: a, reason: "{escaped}"}}\n', tmp_path / "alpha-audit.yaml"
+    )
+    with pytest.raises(InputError, match="not a usable reason") as info:
+        config_from_doc(config)
+    assert first_unsafe(str(info.value)) is None
