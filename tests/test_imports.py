@@ -127,8 +127,10 @@ def test_import_color_loads_only_color_and_errors() -> None:
         "alpha_audit",
         "alpha_audit.color",
         "alpha_audit.color.composite",
+        "alpha_audit.color.css",
         "alpha_audit.color.metrics",
         "alpha_audit.color.srgb",
+        "alpha_audit.color.transfer",
         "alpha_audit.errors",
     }
     assert not {"typer", "rich", "yaml", "cairosvg"} & {m.split(".")[0] for m in loaded}

@@ -108,6 +108,10 @@ _EXPORTS: dict[str, tuple[str, str]] = {
     "write_figures": ("alpha_audit.reproduce.figures", "write_figures"),
     "write_text": ("alpha_audit.output", "write_text"),
     "reproduction_json": ("alpha_audit.reproduce.report", "render_json"),
+    "export_table": ("alpha_audit.export", "export_table"),
+    "render_export": ("alpha_audit.export", "render_export"),
+    "load_token_modes": ("alpha_audit.load.tokens", "load_token_modes"),
+    "load_token_themes": ("alpha_audit.load.tokens.themes", "load_token_themes"),
     "reproduction_markdown": ("alpha_audit.reproduce.report", "render_markdown"),
 }
 
@@ -166,6 +170,7 @@ __all__ = [
     "contrast_ratio",
     "delta_e_2000",
     "evaluate",
+    "export_table",
     "hex_to_linear",
     "iconset_source",
     "largest_safe_alpha",
@@ -174,6 +179,8 @@ __all__ = [
     "load_config",
     "load_iconset",
     "load_theme",
+    "load_token_modes",
+    "load_token_themes",
     "pair_report",
     "pair_table",
     "parse_baseline",
@@ -185,6 +192,7 @@ __all__ = [
     "read_baseline",
     "relative_luminance",
     "render_check",
+    "render_export",
     "render_suggest",
     "reproduce",
     "reproduction_json",
@@ -237,6 +245,7 @@ if TYPE_CHECKING:  # for type checkers only; at run time __getattr__ imports on 
         SvgError,
         UsageError,
     )
+    from alpha_audit.export import export_table, render_export
     from alpha_audit.gate import (
         CheckReport,
         Finding,
@@ -251,6 +260,8 @@ if TYPE_CHECKING:  # for type checkers only; at run time __getattr__ imports on 
     from alpha_audit.load.iconset import load_iconset
     from alpha_audit.load.svg import IconProblem, MaskSet, RenderLimits, rasterize, rasterize_icons
     from alpha_audit.load.theme import load_theme
+    from alpha_audit.load.tokens import load_token_modes
+    from alpha_audit.load.tokens.themes import load_token_themes
     from alpha_audit.model import Canvas, Icon, IconSet, Theme
     from alpha_audit.output import write_text
     from alpha_audit.pair import PairReport, PairRow, pair_report, pair_table

@@ -31,9 +31,21 @@ def infer_mode(linear: NDArray[np.float64]) -> Mode:
 
 
 def _normalise(obj: object, color: str) -> None:
-    """Store ``color`` as ``#rrggbb`` and its linear-light triple on a frozen dataclass."""
+    """Store ``color`` as ``#rrggbb`` and its linear-light triple on a frozen dataclass.
+
+    The colour as given is kept in ``exact``, so ``dataclasses.replace`` (which
+    re-runs this with the normalised hex) does not round an ``oklch()`` or
+    ``color(srgb ...)`` colour to 8 bits.
+    """
+    spec = color
+    exact = getattr(obj, "exact", None)
     encoded = parse_color(color)
+    if exact is not None and exact != color:
+        kept = parse_color(exact)
+        if np.array_equal(np.rint(kept * 255), np.rint(encoded * 255)):  # not a new colour
+            spec, encoded = exact, kept
     r, g, b = (int(v) for v in np.rint(encoded * 255))
+    object.__setattr__(obj, "exact", spec)
     object.__setattr__(obj, "color", f"#{r:02x}{g:02x}{b:02x}")
     object.__setattr__(obj, "linear", tuple(float(c) for c in srgb_decode(encoded)))
 
@@ -46,6 +58,7 @@ class Canvas:
     color: str
     mode: Mode | None = None
     line: int | None = field(default=None, compare=False)
+    exact: str | None = field(default=None, compare=False, repr=False)
     linear: tuple[float, float, float] = field(init=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -80,6 +93,7 @@ class Icon:
     color_name: str | None = None
     color_line: int | None = field(default=None, compare=False)
     alpha_line: int | None = field(default=None, compare=False)
+    exact: str | None = field(default=None, compare=False, repr=False)
     linear: tuple[float, float, float] = field(init=False, compare=False)
 
     def __post_init__(self) -> None:

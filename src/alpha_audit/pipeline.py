@@ -12,6 +12,7 @@ from alpha_audit.gate import CheckReport, FindingKey, evaluate
 from alpha_audit.load.iconset import load_iconset
 from alpha_audit.load.svg import MaskSet, rasterize_icons
 from alpha_audit.load.theme import load_theme
+from alpha_audit.load.tokens.themes import TokenConfig
 from alpha_audit.model import IconSet
 from alpha_audit.policy import Policy
 
@@ -69,13 +70,29 @@ def check_project(
     strict_svg: bool = False,
     on_start: Callable[[int], None] | None = None,
     on_icon: Callable[[], None] | None = None,
+    tokens: TokenConfig | None = None,
 ) -> CheckReport:
     """Audit every icon set on every theme and apply the gate ``policy``.
 
     Every file is loaded (and every input error raised) before any icon is
     rendered; each icon set is rendered once whatever the number of themes.
-    Audits come in icon-set order, then theme order.
+    Audits come in icon-set order, then theme order.  With ``tokens`` (the
+    config's ``tokens:`` table) each icon set is also audited on every token
+    mode, its icons' colours named by token path.
     """
+    if tokens is not None:
+        return _check_with_tokens(
+            themes,
+            iconsets,
+            tokens,
+            policy=policy,
+            alpha=alpha,
+            threshold=threshold,
+            baseline=baseline,
+            strict_svg=strict_svg,
+            on_start=on_start,
+            on_icon=on_icon,
+        )
     if not themes or not iconsets:
         raise UsageError(
             "nothing to audit: give THEME ICONSET, or name themes and iconsets in "
@@ -100,6 +117,45 @@ def check_project(
     gate = evaluate(audits, policy or Policy(), baseline=baseline)
     # Every renderer shows the fix for each failing colour: computed once, here.
     return with_fixes(CheckReport(audits=tuple(audits), gate=gate))
+
+
+def _check_with_tokens(
+    themes: Sequence[str | Path],
+    iconsets: Sequence[str | Path],
+    tokens: TokenConfig,
+    *,
+    policy: Policy | None,
+    alpha: float | None,
+    threshold: float | None,
+    baseline: Iterable[FindingKey] | None,
+    strict_svg: bool,
+    on_start: Callable[[int], None] | None,
+    on_icon: Callable[[], None] | None,
+) -> CheckReport:
+    """check_project with token themes: every icon set on every token mode (and YAML theme)."""
+    from alpha_audit.load.tokens.project import token_audit_pairs
+    from alpha_audit.load.tokens.themes import load_token_themes
+
+    if not iconsets:
+        raise UsageError("nothing to audit: the config has tokens: but names no iconset")
+    token_themes = load_token_themes(tokens)
+    loaded_themes = [load_theme(t) for t in _unique(themes)]
+    per_set = [token_audit_pairs(token_themes, s) for s in _unique(iconsets)]
+    if on_start is not None:
+        on_start(sum(len(pairs[0][1].icons) for pairs in per_set))
+    audits = []
+    for pairs in per_set:
+        # The modes differ in colours only: the icons render once.
+        first = pairs[0][1]
+        problems = _render(first, strict_svg=strict_svg, on_icon=on_icon).problems
+        for theme, iconset in pairs:
+            audits.append(
+                audit(theme, iconset, alpha=alpha, threshold=threshold, problems=problems)
+            )
+        for theme in loaded_themes:  # YAML themes get the first mode's icon colours
+            audits.append(audit(theme, first, alpha=alpha, threshold=threshold, problems=problems))
+    gate = evaluate(audits, policy or Policy(), baseline=baseline)
+    return CheckReport(audits=tuple(audits), gate=gate)
 
 
 def _unique(paths: Sequence[str | Path]) -> list[Path]:

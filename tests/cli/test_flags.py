@@ -13,7 +13,7 @@ from alpha_audit.cli.flags import FLAGS, cli_message
 from alpha_audit.errors import InputError, UsageError
 
 SRC = Path(alpha_audit.__file__).resolve().parent
-FLAG = re.compile(r"(?<![\w-])--?[a-z][a-z-]*\b")
+FLAG = re.compile(r"(?<![\w-])--?(?!color-)[a-z][a-z-]*\b")  # not CSS --color-* properties
 PHRASE = re.compile(r"`([^`\n]+)`")
 
 

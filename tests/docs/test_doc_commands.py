@@ -38,20 +38,24 @@ iconsets: [examples/vibrant/iconset.yaml]
 """
 
 
-def doc_commands() -> list[tuple[str, str]]:
-    """``(where, command)`` for every runnable ``alpha-audit`` example in the docs."""
-    found: list[tuple[str, str]] = []
+def doc_commands() -> list[tuple[str, str, str]]:
+    """``(where, folder, command)`` for every runnable ``alpha-audit`` example in the docs.
+
+    ``folder`` is where the command runs, relative to the project root: a
+    ``cd DIR`` line in the same block moves the commands after it.
+    """
+    found: list[tuple[str, str, str]] = []
     for doc in DOCS:
         if doc in GENERATED:
             continue
         in_block = in_shell = False
-        pending = ""
+        pending, folder = "", "."
         for number, line in enumerate(doc.read_text(encoding="utf-8").splitlines(), 1):
             fence = FENCE.match(line.strip())
             if fence:
                 in_block = not in_block
                 in_shell = in_block and fence.group(1) in SHELL_FENCES
-                pending = ""
+                pending, folder = "", "."
                 continue
             if not in_shell:
                 continue
@@ -62,13 +66,16 @@ def doc_commands() -> list[tuple[str, str]]:
                 pending = text[:-1].strip()
                 continue
             pending = ""
+            if text.startswith("cd "):
+                folder = shlex.split(text, comments=True)[1]
+                continue
             if not text.startswith("alpha-audit "):
                 continue
             words = shlex.split(text, comments=True)
             command = shlex.join(words)
             if PLACEHOLDER.search(command.replace("#", "")):
                 continue
-            found.append((f"{doc.relative_to(REPO)}:{number}", command))
+            found.append((f"{doc.relative_to(REPO)}:{number}", folder, command))
     return found
 
 
@@ -101,11 +108,11 @@ def _snapshot(folder: Path) -> dict[Path, float]:
 def test_the_docs_show_commands() -> None:
     # Guards the extractor itself: the README's examples must be found.
     assert len(COMMANDS) >= 10
-    assert any(" check " in f" {c} " for _, c in COMMANDS)
+    assert any(" check " in f" {c} " for _, _, c in COMMANDS)
 
 
-@pytest.mark.parametrize(("where", "command"), COMMANDS, ids=[w for w, _ in COMMANDS])
-def test_documented_command_runs(where: str, command: str, tmp_path: Path) -> None:
+@pytest.mark.parametrize(("where", "folder", "command"), COMMANDS, ids=[w for w, _, _ in COMMANDS])
+def test_documented_command_runs(where: str, folder: str, command: str, tmp_path: Path) -> None:
     for name in INPUTS:
         shutil.copytree(REPO / name, tmp_path / name, symlinks=False)
     (tmp_path / ".git").mkdir()  # the project root, as in a checkout
@@ -115,7 +122,7 @@ def test_documented_command_runs(where: str, command: str, tmp_path: Path) -> No
     exe = Path(sys.executable).with_name("alpha-audit")
     proc = subprocess.run(
         [str(exe), *argv[1:]],
-        cwd=tmp_path,
+        cwd=tmp_path / folder,
         capture_output=True,
         text=True,
         timeout=300,

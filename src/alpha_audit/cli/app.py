@@ -27,6 +27,7 @@ from typer.core import TyperGroup
 from alpha_audit import __version__
 from alpha_audit.cli.check import check_command
 from alpha_audit.cli.console import stderr_console
+from alpha_audit.cli.export import export_command
 from alpha_audit.cli.flags import cli_message
 from alpha_audit.cli.options import OrderedOptionsCommand
 from alpha_audit.cli.pair import pair_command
@@ -183,6 +184,7 @@ app.command("preview")(preview_command)
 app.command("pair")(pair_command)
 app.command("reproduce")(reproduce_command)
 app.command("themes")(themes_command)
+app.command("export")(export_command)
 
 
 def main(argv: Sequence[str] | None = None) -> None:

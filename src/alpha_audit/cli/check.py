@@ -211,6 +211,7 @@ def check_command(
             strict_svg=strict_svg or project.strict_svg,
             on_start=on_start,
             on_icon=on_icon,
+            tokens=None if cli_themes or cli_sets else project.tokens,
         )
     base = Path.cwd().resolve()
     outputs, stdout_text = [], None

@@ -16,6 +16,7 @@ __all__ = ["FLAGS", "cli_message"]
 FLAGS: dict[str, str] = {
     "overwrite=True": "--force",
     "alphas": "--alpha",
+    "alpha": "--alpha",
     "sizes": "--size",
     "out_dir": "-o DIR",
     "html_path": "--html FILE",

@@ -7,6 +7,13 @@ from alpha_audit.color.composite import (
     difference_blend,
     exclusion_blend,
 )
+from alpha_audit.color.css import (
+    GAMUT_POLICIES,
+    GamutPolicy,
+    ParsedColor,
+    color_from_components,
+    parse_css_color,
+)
 from alpha_audit.color.metrics import (
     CONTRAST_TOLERANCE,
     DELTA_E_TOLERANCE,
@@ -35,10 +42,14 @@ from alpha_audit.color.srgb import (
 __all__ = [
     "CONTRAST_TOLERANCE",
     "DELTA_E_TOLERANCE",
+    "GAMUT_POLICIES",
     "LUMINANCE_WEIGHTS",
     "NON_TEXT_THRESHOLD",
     "THRESHOLD_RANGE",
     "THRESHOLD_WHAT",
+    "GamutPolicy",
+    "ParsedColor",
+    "color_from_components",
     "composite_coverage",
     "composite_extended",
     "composite_raw",
@@ -54,6 +65,7 @@ __all__ = [
     "linear_to_lab",
     "pack_8bit",
     "parse_color",
+    "parse_css_color",
     "relative_luminance",
     "srgb_decode",
     "srgb_encode",

@@ -20,6 +20,7 @@ from alpha_audit.errors import InputError, UsageError
 from alpha_audit.load.fields import check_keys, describe, read_mapping, read_name, read_number
 from alpha_audit.load.files import read_text_capped
 from alpha_audit.load.paths import PathRefused, contain_argument, project_root
+from alpha_audit.load.tokens.themes import TokenConfig, token_config_from_mapping
 from alpha_audit.load.yamldoc import MAX_YAML_BYTES, KeyPath, YamlDoc, format_key, load_yaml
 from alpha_audit.policy import DEFAULT_RULES, Exemption, Policy, Rule
 from alpha_audit.safe_text import is_safe, safe_text
@@ -48,6 +49,7 @@ CONFIG_KEYS = (
     "theme",
     "themes",
     "threshold",
+    "tokens",
 )
 _EXEMPT_KEYS = ("canvas", "icon", "reason", "rule")
 _TOOL_TABLE = ("tool", "alpha-audit")
@@ -65,6 +67,7 @@ class ProjectConfig:
     policy: Policy = field(default_factory=Policy)
     baseline: Path | None = None
     strict_svg: bool = False
+    tokens: TokenConfig | None = None
 
 
 def _has_tool_table(pyproject: Path) -> bool:
@@ -276,6 +279,13 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
     strict_svg = data.get("strict-svg", False)
     if not isinstance(strict_svg, bool):
         raise doc.error(at("strict-svg"), f"expected true or false, got {describe(strict_svg)}")
+    tokens = None
+    if "tokens" in data:
+        tokens = token_config_from_mapping(
+            data["tokens"],
+            base=base,
+            where=lambda sub, message: doc.error((*at("tokens"), *sub), message),
+        )
     return ProjectConfig(
         path=doc.path,
         themes=tuple(found["themes"]),
@@ -285,4 +295,5 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
         policy=Policy(rules, max_loss, min_delta_e, exemptions),
         baseline=baseline,
         strict_svg=strict_svg,
+        tokens=tokens,
     )

@@ -1,0 +1,53 @@
+"""CSS custom properties: one block per mode, plus ``light-dark()`` for light + dark."""
+
+from __future__ import annotations
+
+from alpha_audit.export.escape import css_ident, css_string
+from alpha_audit.export.table import ExportMode, ExportTable, exported_path
+
+__all__ = ["DEFAULT_SELECTOR", "mode_properties", "render_css"]
+
+DEFAULT_SELECTOR = '[data-theme="<mode>"]'
+
+
+def mode_properties(mode: ExportMode) -> list[tuple[str, str]]:
+    """``(property, hex)`` for every colour and canvas of a mode, in stable order."""
+    out = []
+    for color in mode.colors:
+        for canvas, hex_ in zip(mode.canvases, color.outputs, strict=True):
+            out.append(
+                ("--" + css_ident(exported_path(color.token, canvas, mode).replace(".", "-")), hex_)
+            )
+    return out
+
+
+def _selector(template: str, mode: str) -> str:
+    quoted = css_string(mode)
+    if '"<mode>"' in template:
+        return template.replace('"<mode>"', quoted)
+    return template.replace("<mode>", css_ident(mode))
+
+
+def render_css(table: ExportTable, *, selector: str = DEFAULT_SELECTOR) -> str:
+    """One rule per mode under ``selector`` (``<mode>`` is replaced by the mode name).
+
+    With exactly one light and one dark mode, a ``:root`` rule with
+    ``light-dark(<light>, <dark>)`` values and ``color-scheme: light dark``
+    follows (CSS Color 5, ``light-dark()``).
+    """
+    lines = [f"/* alpha-audit export from {css_ident(table.source)} (gamut: {table.gamut}) */"]
+    for mode in table.modes:
+        lines.append(f"{_selector(selector, mode.name)} {{")
+        lines.extend(f"  {prop}: {value};" for prop, value in mode_properties(mode))
+        lines.append("}")
+    kinds = [m.kind for m in table.modes]
+    if len(table.modes) == 2 and sorted(k or "" for k in kinds) == ["dark", "light"]:
+        light = dict(mode_properties(table.modes[kinds.index("light")]))
+        dark = dict(mode_properties(table.modes[kinds.index("dark")]))
+        lines.append(":root {")
+        lines.append("  color-scheme: light dark;")
+        lines.extend(
+            f"  {prop}: light-dark({light[prop]}, {dark[prop]});" for prop in light if prop in dark
+        )
+        lines.append("}")
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,57 @@
+"""SVG filters that do the paper's compositing: one ``<filter>`` per canvas (and coefficient).
+
+``feComponentTransfer`` with ``type="linear"`` computes ``slope*C + intercept``
+per channel on non-premultiplied colour, then clamps to [0, 1] (Filter
+Effects 1, section 15.11); in ``color-interpolation-filters="linearRGB"``
+that is linear light.  With ``slope = a`` and ``intercept = (1 - a) Cb``
+(``Cb`` the canvas in linear light) it is ``clip(Cb + a (Cs - Cb))``: the
+paper's formula with its clip, for one canvas colour.  The icon keeps its one
+source colour and the filter does the rest.  Antialiased edges are then
+blended by the browser in gamma-encoded sRGB, not in linear light.
+"""
+
+from __future__ import annotations
+
+from alpha_audit.export.escape import xml_attr, xml_id
+from alpha_audit.export.table import ExportTable
+
+__all__ = ["filter_id", "render_svg"]
+
+
+def filter_id(mode: str, canvas: str, alpha: float, distinct_alphas: int) -> str:
+    """The filter's id: mode and canvas, plus the coefficient when a mode has several."""
+    base = xml_id(f"alpha-{mode}-{canvas}")
+    return base if distinct_alphas == 1 else xml_id(f"{base}-a{alpha:g}".replace(".", "_"))
+
+
+def render_svg(table: ExportTable) -> str:
+    """An SVG document of ``<filter>`` definitions (no drawing, nothing executable)."""
+    lines = [
+        '<svg xmlns="http://www.w3.org/2000/svg" width="0" height="0" aria-hidden="true">',
+        "  <defs>",
+    ]
+    for mode in table.modes:
+        alphas = sorted({c.alpha for c in mode.colors})
+        for canvas in mode.canvases:
+            for a in alphas:
+                fid = filter_id(mode.name, canvas.short, a, len(alphas))
+                lines.append(
+                    f'    <filter id={xml_attr(fid)} color-interpolation-filters="linearRGB" '
+                    f'x="0" y="0" width="100%" height="100%">'
+                )
+                lines.append(f"      <desc>{_text(canvas.token)} {canvas.hex}, alpha {a!r}</desc>")
+                lines.append("      <feComponentTransfer>")
+                for channel, cb in zip("RGB", canvas.linear, strict=True):
+                    intercept = (1 - a) * cb
+                    lines.append(
+                        f'        <feFunc{channel} type="linear" slope="{a!r}" '
+                        f'intercept="{intercept!r}"/>'
+                    )
+                lines.append("      </feComponentTransfer>")
+                lines.append("    </filter>")
+    lines += ["  </defs>", "</svg>"]
+    return "\n".join(lines) + "\n"
+
+
+def _text(text: str) -> str:
+    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")

@@ -1,0 +1,131 @@
+"""What ``export`` writes: every icon colour's displayed output per mode and canvas.
+
+The numbers are the audit's: ``composite_extended`` then ``to_8bit`` on the
+same linear float64 colours, so every exported hex equals ``check``'s
+``output`` for that icon colour and canvas, to the 8-bit code.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from alpha_audit.color import composite_extended, srgb_decode, to_8bit
+from alpha_audit.errors import UsageError
+from alpha_audit.load.tokens.themes import GamutAdjustment, TokenThemes
+
+__all__ = ["ExportCanvas", "ExportColor", "ExportMode", "ExportTable", "export_table"]
+
+
+@dataclass(frozen=True)
+class ExportCanvas:
+    """A canvas of one mode: token path, short name for exported names, colour."""
+
+    token: str
+    short: str
+    hex: str
+    linear: tuple[float, float, float]
+
+
+@dataclass(frozen=True)
+class ExportColor:
+    """One icon colour of one mode with its displayed output on each canvas."""
+
+    token: str
+    source: str
+    alpha: float
+    outputs: tuple[str, ...]  # "#rrggbb" per canvas, in the mode's canvas order
+
+
+@dataclass(frozen=True)
+class ExportMode:
+    """One mode (a Resolver context, Figma mode, ...) and its light/dark kind."""
+
+    name: str
+    kind: str | None
+    canvases: tuple[ExportCanvas, ...]
+    colors: tuple[ExportColor, ...]
+
+
+@dataclass(frozen=True)
+class ExportTable:
+    """Everything every export format needs; renderers are pure functions of it."""
+
+    source: str
+    gamut: str
+    modes: tuple[ExportMode, ...]
+    adjusted: tuple[GamutAdjustment, ...] = ()
+
+
+def _hex(codes: np.ndarray) -> str:
+    r, g, b = (int(c) for c in codes)
+    return f"#{r:02x}{g:02x}{b:02x}"
+
+
+def _short_names(paths: list[str]) -> list[str]:
+    """Canvas paths without their common leading groups (``color.bg.canvas`` -> ``canvas``)."""
+    split = [p.split(".") for p in paths]
+    common = 0
+    while all(len(s) > common + 1 for s in split) and len({s[common] for s in split}) == 1:
+        common += 1
+    if len(paths) == 1:
+        common = len(split[0]) - 1
+    return [".".join(s[common:]) for s in split]
+
+
+def export_table(
+    themes: TokenThemes, *, alpha: float | None = None, default_alpha: float | None = None
+) -> ExportTable:
+    """Composite every icon colour on every canvas of every mode.
+
+    ``alpha`` overrides every colour's coefficient (``--alpha``);
+    ``default_alpha`` applies to colours whose token carries none.
+    """
+    modes = []
+    for mode in themes.modes:
+        canvases = mode.theme.canvases
+        shorts = _short_names([c.name for c in canvases])
+        backgrounds = mode.theme.backgrounds  # (m, 3)
+        out_colors = []
+        for path, color in mode.colors.items():
+            a = (
+                alpha
+                if alpha is not None
+                else (color.alpha if color.alpha is not None else default_alpha)
+            )
+            if a is None:
+                raise UsageError(
+                    f"icon colour {path} (mode {mode.name}) has no coefficient: add "
+                    f"$extensions {{com.alpha-audit: {{alpha: ...}}}} to the token or pass `alpha`"
+                )
+            source = srgb_decode(color.parsed.array)
+            output = composite_extended(source[np.newaxis, :], backgrounds, a)
+            codes = to_8bit(output)
+            source_hex = _hex(to_8bit(source))
+            out_colors.append(
+                ExportColor(path, source_hex, float(a), tuple(_hex(c) for c in codes))
+            )
+        modes.append(
+            ExportMode(
+                name=mode.name,
+                kind=canvases[0].mode if len({c.mode for c in canvases}) == 1 else None,
+                canvases=tuple(
+                    ExportCanvas(c.name, s, c.color, c.linear)
+                    for c, s in zip(canvases, shorts, strict=True)
+                ),
+                colors=tuple(out_colors),
+            )
+        )
+    return ExportTable(themes.source.name, themes.gamut, tuple(modes), themes.adjusted)
+
+
+def exported_path(color: str, canvas: ExportCanvas, mode: ExportMode) -> str:
+    """Token path of a colour's output on a canvas: ``<color>`` with one canvas, else
+    ``<color>.on.<canvas>``."""
+    return color if len(mode.canvases) == 1 else f"{color}.on.{canvas.short}"
+
+
+def property_name(path: str) -> str:
+    """CSS custom property of a token path: dots to dashes (``--color-icon-ok``)."""
+    return "--" + path.replace(".", "-")

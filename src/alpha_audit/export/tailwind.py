@@ -1,0 +1,38 @@
+"""A Tailwind v4 ``@theme`` block: the first mode's colours, other modes as overrides.
+
+Tailwind generates utilities only for ``--color-*`` properties declared in
+``@theme``; names not starting with ``color.`` are put under ``color-``.
+The other modes override the same properties under ``[data-theme="<mode>"]``,
+the form alpha-audit's Tailwind reader takes back.
+"""
+
+from __future__ import annotations
+
+from alpha_audit.export.escape import css_ident, css_string
+from alpha_audit.export.table import ExportMode, ExportTable, exported_path
+
+__all__ = ["render_tailwind"]
+
+
+def _props(mode: ExportMode) -> list[tuple[str, str]]:
+    out = []
+    for color in mode.colors:
+        for canvas, hex_ in zip(mode.canvases, color.outputs, strict=True):
+            path = exported_path(color.token, canvas, mode)
+            if not path.startswith("color."):
+                path = f"color.{path}"
+            out.append(("--" + css_ident(path.replace(".", "-")), hex_))
+    return out
+
+
+def render_tailwind(table: ExportTable) -> str:
+    """``@theme { --color-...: #rrggbb; }`` plus per-mode overrides."""
+    first, *rest = table.modes
+    lines = [f"/* alpha-audit export, mode {css_ident(first.name)} in @theme */", "@theme {"]
+    lines.extend(f"  {p}: {v};" for p, v in _props(first))
+    lines.append("}")
+    for mode in rest:
+        lines.append(f"[data-theme={css_string(mode.name)}] {{")
+        lines.extend(f"  {p}: {v};" for p, v in _props(mode))
+        lines.append("}")
+    return "\n".join(lines) + "\n"

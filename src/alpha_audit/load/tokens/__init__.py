@@ -1,0 +1,95 @@
+"""Design tokens as input: DTCG 2025.10 (with the Resolver Module), Tokens Studio,
+Style Dictionary, Figma Variables and Tailwind v4 ``@theme`` CSS.
+
+:func:`load_token_modes` detects the format from the file and returns
+:class:`TokenModes`: resolved tokens per mode, each remembering the file and
+JSON line that set it.  :func:`token_color` turns a colour token into sRGB
+under a gamut policy.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from alpha_audit.load.tokens.colors import token_color
+from alpha_audit.load.tokens.dtcg import TokenTree, tokens_from_docs
+from alpha_audit.load.tokens.figma import is_figma, modes_from_figma
+from alpha_audit.load.tokens.jsondoc import JsonDoc, load_json, parse_json
+from alpha_audit.load.tokens.model import Token, TokenModes
+from alpha_audit.load.tokens.resolver import is_resolver, modes_from_resolver
+from alpha_audit.load.tokens.studio import is_studio_file, modes_from_studio
+from alpha_audit.load.tokens.tailwind import modes_from_tailwind
+
+__all__ = [
+    "TOKEN_FORMATS",
+    "JsonDoc",
+    "Token",
+    "TokenModes",
+    "TokenTree",
+    "load_json",
+    "load_token_modes",
+    "parse_json",
+    "token_color",
+    "tokens_from_docs",
+]
+
+TOKEN_FORMATS = (
+    "auto",
+    "dtcg",
+    "resolver",
+    "tokens-studio",
+    "style-dictionary",
+    "figma",
+    "tailwind",
+)
+
+
+def _has_dollar_value(data: Any, depth: int = 0) -> bool:
+    if depth > 64 or not isinstance(data, dict):
+        return False
+    return "$value" in data or any(_has_dollar_value(v, depth + 1) for v in data.values())
+
+
+def detect_format(doc: JsonDoc) -> str:
+    """The token format of a parsed JSON file."""
+    if is_figma(doc.data):
+        return "figma"
+    if is_resolver(doc.data):
+        return "resolver"
+    if is_studio_file(doc):
+        return "tokens-studio"
+    return "dtcg" if _has_dollar_value(doc.data) else "style-dictionary"
+
+
+def load_token_modes(
+    path: str | Path,
+    *,
+    root: str | Path | None = None,
+    modifier: str | None = None,
+    format: str = "auto",
+) -> TokenModes:
+    """Load a token file of any supported format.
+
+    ``root`` bounds the files a resolver or ``$themes.json`` may name
+    (default: the file's folder).  ``modifier`` picks the Resolver modifier
+    (or Figma collection) whose contexts are the modes.
+    """
+    p = Path(path)
+    bound = Path(root).resolve() if root is not None else p.resolve().parent
+    if format == "tailwind" or (format == "auto" and p.suffix.lower() == ".css"):
+        return modes_from_tailwind(p)
+    doc = load_json(p)
+    kind = detect_format(doc) if format == "auto" else format
+    if kind == "figma":
+        return modes_from_figma(doc, collection=modifier)
+    if kind == "resolver":
+        return modes_from_resolver(doc, root=bound, modifier=modifier)
+    if kind == "tokens-studio":
+        return modes_from_studio(doc, root=bound)
+    if kind in ("dtcg", "style-dictionary"):
+        tokens = tokens_from_docs([doc], legacy=kind == "style-dictionary")
+        return TokenModes(p, kind, {"default": tokens}, "default")
+    from alpha_audit.errors import UsageError
+
+    raise UsageError(f"token format {format!r} is not one of {', '.join(TOKEN_FORMATS)}")

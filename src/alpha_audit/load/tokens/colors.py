@@ -1,0 +1,53 @@
+"""Colour token values to sRGB: DTCG colour objects and CSS colour strings."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from alpha_audit.color.css import GamutPolicy, ParsedColor, color_from_components, parse_css_color
+from alpha_audit.errors import ColorSyntaxError
+from alpha_audit.load.tokens.model import Token, token_error
+
+__all__ = ["token_color"]
+
+_OBJECT_KEYS = frozenset({"colorSpace", "components", "alpha", "hex"})
+
+
+def token_color(
+    token: Token, *, gamut: GamutPolicy = "error", allow_alpha: bool = False
+) -> ParsedColor:
+    """The sRGB colour of a ``color`` token under ``gamut``.
+
+    Accepts the DTCG Color Module object ``{colorSpace, components, alpha?,
+    hex?}`` (``hex`` is only a fallback for tools without the space, so the
+    components decide) and any CSS Color 4 string, which many files in the
+    wild still use.  Errors name the token's file, line and path.
+    """
+    where = {"file": token.file, "line": token.line, "path": token.path}
+    if token.type != "color":
+        raise token_error(f"is a {token.type!r} token, not a color token", **where)
+    value: Any = token.value
+    try:
+        if isinstance(value, str):
+            return parse_css_color(value, gamut=gamut, allow_alpha=allow_alpha)
+        if isinstance(value, dict):
+            unknown = sorted(set(value) - _OBJECT_KEYS)
+            if unknown or "colorSpace" not in value or "components" not in value:
+                raise ColorSyntaxError(
+                    "a colour object has colorSpace, components, alpha (optional) and hex "
+                    f"(optional); got keys {', '.join(sorted(value))}"
+                )
+            components = value["components"]
+            if not isinstance(components, list):
+                raise ColorSyntaxError(f"components must be a list, got {components!r:.40}")
+            return color_from_components(
+                value["colorSpace"],
+                components,
+                value.get("alpha", 1.0),
+                gamut=gamut,
+                allow_alpha=allow_alpha,
+                text=f"{value['colorSpace']} {components}",
+            )
+    except ColorSyntaxError as exc:
+        raise token_error(exc.message, **where) from exc
+    raise token_error(f"expected a colour object or string, got {value!r:.40}", **where)

@@ -1,0 +1,174 @@
+"""JSON with the line of every value, read within size and depth bounds.
+
+The standard ``json`` module returns plain data without positions.  Here the
+document's *structure* (objects, arrays, keys) is walked by a small loop and
+every string and scalar is decoded by ``json`` itself
+(``json.decoder.scanstring`` and ``JSONDecoder.raw_decode``), so the grammar
+stays the standard library's while each key path gets its line.  Duplicate
+keys, ``NaN``/``Infinity`` and nesting deeper than :data:`MAX_JSON_DEPTH` are
+input errors, because a token file is untrusted.
+"""
+
+from __future__ import annotations
+
+import bisect
+import json
+import json.decoder
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from alpha_audit.errors import InputError
+from alpha_audit.load.files import read_capped
+
+__all__ = ["MAX_JSON_BYTES", "MAX_JSON_DEPTH", "JsonDoc", "JsonPath", "load_json", "parse_json"]
+
+MAX_JSON_BYTES = 8 << 20  # 8 MiB: large design systems export a few MiB of tokens
+MAX_JSON_DEPTH = 64  # token groups nest a handful of levels
+MAX_JSON_VALUES = 1_000_000
+
+JsonPath = tuple[str | int, ...]
+
+_WHITESPACE = " \t\n\r"
+
+
+@dataclass(frozen=True)
+class JsonDoc:
+    """Plain data from a JSON file plus the line of every key path."""
+
+    path: Path
+    data: Any
+    lines: dict[JsonPath, int]
+
+    def line(self, keys: JsonPath) -> int | None:
+        """Line of ``keys`` or of its nearest recorded parent."""
+        for n in range(len(keys), -1, -1):
+            if keys[:n] in self.lines:
+                return self.lines[keys[:n]]
+        return None
+
+
+def _no_constant(name: str) -> Any:
+    raise ValueError(f"{name} is not JSON")
+
+
+class _Parser:
+    def __init__(self, text: str, path: Path) -> None:
+        self.text = text
+        self.path = path
+        self.newlines = [i for i, ch in enumerate(text) if ch == "\n"]
+        self.lines: dict[JsonPath, int] = {}
+        self.count = 0
+        self.decoder = json.JSONDecoder(parse_constant=_no_constant)
+
+    def line_of(self, pos: int) -> int:
+        return bisect.bisect_left(self.newlines, pos) + 1
+
+    def fail(self, pos: int, message: str) -> InputError:
+        return InputError(f"invalid JSON: {message}", path=self.path, line=self.line_of(pos))
+
+    def skip(self, pos: int) -> int:
+        text = self.text
+        while pos < len(text) and text[pos] in _WHITESPACE:
+            pos += 1
+        return pos
+
+    def expect(self, pos: int, char: str) -> int:
+        pos = self.skip(pos)
+        if pos >= len(self.text) or self.text[pos] != char:
+            found = "end of file" if pos >= len(self.text) else repr(self.text[pos])
+            raise self.fail(pos, f"expected {char!r}, found {found}")
+        return pos + 1
+
+    def value(self, pos: int, keys: JsonPath) -> tuple[Any, int]:
+        pos = self.skip(pos)
+        self.count += 1
+        if self.count > MAX_JSON_VALUES:
+            raise self.fail(pos, f"more than {MAX_JSON_VALUES} values; not a token file")
+        if len(keys) > MAX_JSON_DEPTH:
+            raise self.fail(pos, f"nested deeper than {MAX_JSON_DEPTH} levels")
+        self.lines.setdefault(keys, self.line_of(pos))
+        if pos >= len(self.text):
+            raise self.fail(pos, "unexpected end of file")
+        char = self.text[pos]
+        if char == "{":
+            return self.obj(pos + 1, keys)
+        if char == "[":
+            return self.array(pos + 1, keys)
+        try:
+            return self.decoder.raw_decode(self.text, pos)
+        except json.JSONDecodeError as exc:
+            raise self.fail(exc.pos, exc.msg) from exc
+        except ValueError as exc:  # NaN, Infinity, or an integer with too many digits
+            raise self.fail(pos, str(exc)) from exc
+
+    def obj(self, pos: int, keys: JsonPath) -> tuple[dict[str, Any], int]:
+        out: dict[str, Any] = {}
+        pos = self.skip(pos)
+        if pos < len(self.text) and self.text[pos] == "}":
+            return out, pos + 1
+        while True:
+            pos = self.skip(pos)
+            if pos >= len(self.text) or self.text[pos] != '"':
+                raise self.fail(pos, "expected a quoted key")
+            key_pos = pos
+            try:
+                key, pos = json.decoder.scanstring(self.text, pos + 1)
+            except json.JSONDecodeError as exc:
+                raise self.fail(exc.pos, exc.msg) from exc
+            if key in out:
+                raise InputError(
+                    f"duplicate key {key!r}; JSON names must be unique",
+                    path=self.path,
+                    line=self.line_of(key_pos),
+                    key=".".join(str(k) for k in (*keys, key)),
+                )
+            self.lines[(*keys, key)] = self.line_of(key_pos)
+            pos = self.expect(pos, ":")
+            out[key], pos = self.value(pos, (*keys, key))
+            pos = self.skip(pos)
+            if pos < len(self.text) and self.text[pos] == ",":
+                pos += 1
+                continue
+            return out, self.expect(pos, "}")
+
+    def array(self, pos: int, keys: JsonPath) -> tuple[list[Any], int]:
+        out: list[Any] = []
+        pos = self.skip(pos)
+        if pos < len(self.text) and self.text[pos] == "]":
+            return out, pos + 1
+        while True:
+            item, pos = self.value(pos, (*keys, len(out)))
+            out.append(item)
+            pos = self.skip(pos)
+            if pos < len(self.text) and self.text[pos] == ",":
+                pos += 1
+                continue
+            return out, self.expect(pos, "]")
+
+
+def parse_json(text: str, path: str | Path = "<string>") -> JsonDoc:
+    """Parse JSON text, recording the line of every key path.
+
+    >>> doc = parse_json('{\\n  "a": {\\n    "b": [1, 2]\\n  }\\n}')
+    >>> doc.data, doc.lines[("a", "b")]
+    ({'a': {'b': [1, 2]}}, 3)
+    """
+    p = Path(path)
+    parser = _Parser(text, p)
+    data, end = parser.value(0, ())
+    end = parser.skip(end)
+    if end != len(text):
+        raise parser.fail(end, "extra data after the document")
+    return JsonDoc(p, data, parser.lines)
+
+
+def load_json(path: str | Path, *, limit: int = MAX_JSON_BYTES) -> JsonDoc:
+    """Read (capped) and parse a UTF-8 JSON file."""
+    p = Path(path)
+    raw = read_capped(p, limit, InputError, "a token file")
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not UTF-8 text (byte {exc.start})", path=p) from exc
+    return parse_json(text, p)

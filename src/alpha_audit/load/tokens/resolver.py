@@ -1,0 +1,169 @@
+"""DTCG Resolver Module 2025.10: sets, modifiers with contexts, and a resolution order.
+
+A resolver document names token files (``sources``: ``{"$ref": "file.json"}``
+or inline token groups) in ``sets`` and ``modifiers``.  Each modifier has
+``contexts`` (``light``, ``dark``, ...) and a ``default``.
+``resolutionOrder`` lists sets and modifiers (``{"$ref": "#/sets/base"}`` or
+inline ``{"type": "set" | "modifier", ...}``); their tokens merge in that
+order, the last occurrence winning.  Each context of the chosen modifier is
+one mode; the other modifiers take their default context.
+
+Source files must lie inside the project root (a pull request can change the
+resolver); remote URLs are refused: no network.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from alpha_audit.load.tokens.dtcg import TokenTree
+from alpha_audit.load.tokens.jsondoc import JsonDoc, load_json
+from alpha_audit.load.tokens.model import TokenModes, token_error
+
+__all__ = ["MAX_SOURCES", "is_resolver", "modes_from_resolver"]
+
+MAX_SOURCES = 256
+
+
+def is_resolver(data: Any) -> bool:
+    """A resolver document has ``resolutionOrder`` at its top level."""
+    return isinstance(data, dict) and "resolutionOrder" in data
+
+
+class _Resolver:
+    def __init__(self, doc: JsonDoc, root: Path, legacy: bool) -> None:
+        self.doc = doc
+        self.root = root
+        self.legacy = legacy
+        self.base = doc.path.resolve().parent
+        self.files: dict[Path, JsonDoc] = {}
+
+    def error(self, keys: tuple[str | int, ...], message: str) -> Exception:
+        return token_error(
+            message,
+            file=self.doc.path,
+            line=self.doc.line(keys),
+            path=".".join(str(k) for k in keys) or None,
+        )
+
+    def file(self, keys: tuple[str | int, ...], ref: str) -> JsonDoc:
+        if "://" in ref or ref.startswith("//"):
+            raise self.error(keys, f"$ref {ref!r} is remote; only files in the project are read")
+        target = (self.base / ref.split("#", 1)[0]).resolve()
+        if not target.is_relative_to(self.root):
+            raise self.error(keys, f"$ref {ref!r} resolves outside {self.root}; not allowed")
+        if target not in self.files:
+            if len(self.files) >= MAX_SOURCES:
+                raise self.error(keys, f"more than {MAX_SOURCES} source files")
+            self.files[target] = load_json(target)
+        return self.files[target]
+
+    def pointer(self, keys: tuple[str | int, ...], ref: str) -> tuple[Any, tuple[str, ...]]:
+        parts = tuple(p.replace("~1", "/").replace("~0", "~") for p in ref[2:].split("/"))
+        node: Any = self.doc.data
+        for part in parts:
+            if not isinstance(node, dict) or part not in node:
+                raise self.error(keys, f"$ref {ref!r} points at nothing")
+            node = node[part]
+        return node, parts
+
+    def sources(self, tree: TokenTree, keys: tuple[str | int, ...], items: Any) -> None:
+        if not isinstance(items, list):
+            raise self.error(keys, "expected a list of sources ({$ref: file} or token groups)")
+        for i, item in enumerate(items):
+            ikeys = (*keys, i)
+            if isinstance(item, dict) and set(item) == {"$ref"} and isinstance(item["$ref"], str):
+                ref = item["$ref"]
+                if ref.startswith("#/"):
+                    node, parts = self.pointer(ikeys, ref)
+                    tree.add(self.doc, node, parts)
+                else:
+                    doc = self.file(ikeys, ref)
+                    if "#" in ref:
+                        node, parts = _walk_pointer(doc, ref.split("#", 1)[1])
+                        tree.add(doc, node, parts)
+                    else:
+                        tree.add(doc)
+            elif isinstance(item, dict):
+                tree.add(self.doc, item, ikeys)
+            else:
+                raise self.error(ikeys, f"expected a source object, got {item!r:.40}")
+
+    def entries(self) -> list[tuple[str, Any, tuple[str | int, ...]]]:
+        """``("set" | "modifier", definition, keys)`` in resolution order."""
+        order = self.doc.data.get("resolutionOrder")
+        if not isinstance(order, list) or not order:
+            raise self.error(("resolutionOrder",), "expected a non-empty list")
+        out = []
+        for i, item in enumerate(order):
+            keys: tuple[str | int, ...] = ("resolutionOrder", i)
+            if isinstance(item, dict) and isinstance(item.get("$ref"), str):
+                ref = item["$ref"]
+                if not ref.startswith("#/sets/") and not ref.startswith("#/modifiers/"):
+                    raise self.error(
+                        keys, f"$ref {ref!r} must point at #/sets/... or #/modifiers/..."
+                    )
+                node, parts = self.pointer(keys, ref)
+                out.append(("set" if parts[0] == "sets" else "modifier", node, parts))
+            elif isinstance(item, dict) and item.get("type") in ("set", "modifier"):
+                out.append((item["type"], item, keys))
+            else:
+                raise self.error(keys, "expected {$ref: #/sets/...} or an inline set or modifier")
+        return out
+
+
+def _walk_pointer(doc: JsonDoc, fragment: str) -> tuple[Any, tuple[str, ...]]:
+    parts = tuple(p.replace("~1", "/").replace("~0", "~") for p in fragment.lstrip("/").split("/"))
+    node: Any = doc.data
+    for part in parts:
+        if not isinstance(node, dict) or part not in node:
+            raise token_error(f"#{fragment} points at nothing", file=doc.path, line=1, path=None)
+        node = node[part]
+    return node, parts
+
+
+def modes_from_resolver(
+    doc: JsonDoc, *, root: Path, modifier: str | None = None, legacy: bool = False
+) -> TokenModes:
+    """One mode per context of ``modifier`` (default: the only modifier with contexts)."""
+    r = _Resolver(doc, root, legacy)
+    entries = r.entries()
+    modifiers = [(node, keys) for kind, node, keys in entries if kind == "modifier"]
+    names = [str(node.get("name", keys[-1])) for node, keys in modifiers]
+    if modifier is None:
+        if len(modifiers) > 1:
+            raise r.error(
+                ("modifiers",),
+                f"{len(modifiers)} modifiers ({', '.join(names)}); say which one gives the "
+                "modes with tokens: {modifier: <name>} in the config",
+            )
+        chosen = names[0] if names else None
+    else:
+        if modifier not in names:
+            raise r.error(("modifiers",), f"no modifier {modifier!r}; have {', '.join(names)}")
+        chosen = modifier
+    contexts: list[str] = ["default"]
+    default: str | None = None
+    for (node, keys), name in zip(modifiers, names, strict=True):
+        ctx = node.get("contexts")
+        if not isinstance(ctx, dict) or not ctx:
+            raise r.error((*keys, "contexts"), "expected a mapping of contexts to sources")
+        if name == chosen:
+            contexts = list(ctx)
+            default = node.get("default") if isinstance(node.get("default"), str) else None
+    modes = {}
+    for context in contexts:
+        tree = TokenTree(legacy=legacy)
+        for kind, node, keys in entries:
+            if kind == "set":
+                r.sources(tree, (*keys, "sources"), node.get("sources"))
+                continue
+            name = str(node.get("name", keys[-1]))
+            ctx = node["contexts"]
+            pick = context if name == chosen else node.get("default", next(iter(ctx)))
+            if pick not in ctx:
+                raise r.error((*keys, "default"), f"default {pick!r} is not one of its contexts")
+            r.sources(tree, (*keys, "contexts", pick), ctx[pick])
+        modes[context] = tree.resolve()
+    return TokenModes(doc.path, "resolver", modes, default)

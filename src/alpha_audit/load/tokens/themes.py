@@ -1,0 +1,300 @@
+"""Themes and icon colours from design tokens, as the project config selects them.
+
+The config's ``tokens:`` table names a token file and which token paths are
+canvases and which are icon colours (glob patterns, ``*`` matching any
+characters including dots), which mode (light/dark) each context is, the
+gamut policy, and the ``$extensions`` key holding a colour's coefficient::
+
+    tokens:
+      file: tokens/system.resolver.json
+      canvases: "color.bg.*"
+      colors: "color.icon.*"
+      modes: {light: light, dark: dark}
+      gamut: map
+      alpha-extension: com.alpha-audit
+
+A coefficient lives in ``$extensions`` because DTCG's own ``alpha`` is
+limited to 0-1: ``{"com.alpha-audit": {"alpha": 1.2}}`` (or the flat key
+``"com.alpha-audit.alpha": 1.2``).  Without one, the manifest or ``--alpha``
+decides, as today.
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import json
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from alpha_audit.color.css import GAMUT_POLICIES, GamutPolicy, ParsedColor, gamut_delta_e
+from alpha_audit.color.srgb import srgb_decode
+from alpha_audit.errors import InputError
+from alpha_audit.load.tokens import load_token_modes, token_color
+from alpha_audit.load.tokens.model import Token, TokenModes, token_error
+from alpha_audit.model import Canvas, Mode, Theme
+
+__all__ = [
+    "DEFAULT_ALPHA_EXTENSION",
+    "GamutAdjustment",
+    "TokenColor",
+    "TokenConfig",
+    "TokenMode",
+    "TokenThemes",
+    "load_token_themes",
+    "token_config_from_mapping",
+    "token_themes",
+]
+
+DEFAULT_ALPHA_EXTENSION = "com.alpha-audit"
+_CONFIG_KEYS = (
+    "file",
+    "canvases",
+    "colors",
+    "modes",
+    "modifier",
+    "gamut",
+    "alpha-extension",
+    "format",
+)
+
+
+@dataclass(frozen=True)
+class TokenConfig:
+    """The ``tokens:`` table of a project config (paths absolute)."""
+
+    file: Path
+    canvases: tuple[str, ...]
+    colors: tuple[str, ...] = ()
+    modes: dict[str, Mode] = field(default_factory=dict)
+    modifier: str | None = None
+    gamut: GamutPolicy = "error"
+    alpha_extension: str = DEFAULT_ALPHA_EXTENSION
+    format: str = "auto"
+    root: Path | None = None
+
+
+@dataclass(frozen=True)
+class GamutAdjustment:
+    """A token colour outside sRGB and what the gamut policy made of it."""
+
+    mode: str
+    token: str
+    text: str
+    policy: GamutPolicy
+    output: str
+    delta_e: float
+    file: Path | None
+    line: int | None
+
+
+@dataclass(frozen=True)
+class TokenColor:
+    """An icon colour from a token: exact sRGB, its CSS form and its coefficient."""
+
+    token: Token
+    parsed: ParsedColor
+    alpha: float | None
+
+    @property
+    def css(self) -> str:
+        """Exact ``color(srgb ...)``: what a palette entry or an :class:`Icon` colour takes."""
+        return self.parsed.css
+
+    @property
+    def linear(self) -> np.ndarray:
+        """Linear-light sRGB, float64."""
+        return srgb_decode(self.parsed.array)
+
+
+@dataclass(frozen=True)
+class TokenMode:
+    """One mode: its theme (canvases from tokens) and its icon colours."""
+
+    name: str
+    theme: Theme
+    colors: dict[str, TokenColor]
+
+    def theme_palette(self) -> dict[str, str]:
+        """``{token path: exact colour}`` of this mode's icon colours."""
+        return {path: c.css for path, c in self.colors.items()}
+
+
+@dataclass(frozen=True)
+class TokenThemes:
+    """Every mode of a token source, with the colours the gamut policy moved."""
+
+    source: Path
+    kind: str
+    gamut: GamutPolicy
+    modes: tuple[TokenMode, ...]
+    adjusted: tuple[GamutAdjustment, ...] = ()
+
+    @property
+    def themes(self) -> tuple[Theme, ...]:
+        """One :class:`Theme` per mode (named after the mode)."""
+        return tuple(m.theme for m in self.modes)
+
+    def palette(self, mode: str | None = None) -> dict[str, str]:
+        """``{token path: colour}`` of one mode (default: the first), for a manifest's palette."""
+        chosen = self.modes[0] if mode is None else next(m for m in self.modes if m.name == mode)
+        return chosen.theme_palette()
+
+
+def _matches(path: str, patterns: Sequence[str]) -> bool:
+    return any(fnmatch.fnmatchcase(path, p) for p in patterns)
+
+
+def _alpha(token: Token, key: str) -> float | None:
+    ext = token.extensions
+    raw: Any = None
+    if isinstance(ext.get(key), dict):
+        raw = ext[key].get("alpha")
+    elif f"{key}.alpha" in ext:
+        raw = ext[f"{key}.alpha"]
+    elif isinstance(ext.get(key), int | float):
+        raw = ext[key]
+    if raw is None:
+        return None
+    if isinstance(raw, bool) or not isinstance(raw, int | float) or not math.isfinite(raw):
+        raise token_error(
+            f"$extensions {key} alpha must be a finite number, got {raw!r:.40}",
+            file=token.alias_file or token.file,
+            line=token.alias_line or token.line,
+            path=token.path,
+        )
+    if abs(raw) > 100:
+        raise token_error(
+            f"$extensions {key} alpha {raw} is out of range; expected -100 to 100",
+            file=token.alias_file or token.file,
+            line=token.alias_line or token.line,
+            path=token.path,
+        )
+    return float(raw)
+
+
+def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
+    """Build a theme and icon colours per mode from resolved tokens."""
+    modes: list[TokenMode] = []
+    adjusted: list[tuple[str, Token, ParsedColor]] = []
+    # Modes share most colours (aliases of one palette); CSS gamut mapping costs
+    # ~30 conversions per colour, so each distinct value is converted once.
+    seen: dict[str, ParsedColor] = {}
+    for name, tokens in source.modes.items():
+        canvases: list[Canvas] = []
+        colors: dict[str, TokenColor] = {}
+        for path, token in tokens.items():
+            is_canvas = _matches(path, config.canvases)
+            is_color = _matches(path, config.colors)
+            if not (is_canvas or is_color):
+                continue
+            key = json.dumps(token.value, sort_keys=True)
+            if key not in seen or token.type != "color":
+                seen[key] = token_color(token, gamut=config.gamut)
+            parsed = seen[key]
+            if parsed.adjusted:
+                adjusted.append((name, token, parsed))
+            if is_canvas:
+                canvases.append(Canvas(path, parsed.css, config.modes.get(name), line=token.line))
+            if is_color:
+                colors[path] = TokenColor(token, parsed, _alpha(token, config.alpha_extension))
+        if not canvases:
+            raise InputError(
+                f"mode {name!r} has no token matching canvases {', '.join(config.canvases)}",
+                path=source.source,
+            )
+        theme = Theme(name, tuple(canvases), path=source.source)
+        modes.append(TokenMode(name, theme, colors))
+    delta_e = gamut_delta_e([p for _, _, p in adjusted]) if adjusted else []
+    notes = tuple(
+        GamutAdjustment(
+            mode=name,
+            token=token.path,
+            text=parsed.text,
+            policy=config.gamut,
+            output=_hex(parsed),
+            delta_e=float(de),
+            file=token.file,
+            line=token.line,
+        )
+        for (name, token, parsed), de in zip(adjusted, delta_e, strict=True)
+    )
+    return TokenThemes(source.source, source.kind, config.gamut, tuple(modes), notes)
+
+
+def _hex(parsed: ParsedColor) -> str:
+    r, g, b = (int(v) for v in np.rint(parsed.array * 255))
+    return f"#{r:02x}{g:02x}{b:02x}"
+
+
+def load_token_themes(config: TokenConfig) -> TokenThemes:
+    """Load ``config.file`` and build its themes and icon colours."""
+    source = load_token_modes(
+        config.file, root=config.root, modifier=config.modifier, format=config.format
+    )
+    return token_themes(source, config)
+
+
+def token_config_from_mapping(value: Any, *, base: Path, where: Any) -> TokenConfig:
+    """Validate a config's ``tokens:`` mapping.
+
+    ``where(key_suffix, message)`` returns the loader's error for a sub-key, so
+    messages carry the config's file and line.  Paths are relative to ``base``
+    and must stay inside it.
+    """
+    if not isinstance(value, dict):
+        raise where((), "expected a mapping {file, canvases, colors, modes, gamut, ...}")
+    data = {str(k).replace("_", "-"): v for k, v in value.items()}
+    for key in data:
+        if key not in _CONFIG_KEYS:
+            raise where((key,), f"unknown key {key!r}; allowed: {', '.join(sorted(_CONFIG_KEYS))}")
+    file = data.get("file")
+    if not isinstance(file, str) or not file.strip() or "\x00" in file:
+        raise where(("file",), "expected the token file, a path relative to the config")
+    path = (base / file).resolve()
+    if Path(file).is_absolute() or not path.is_relative_to(base):
+        raise where(("file",), f"{file!r} resolves outside {base}; not allowed")
+
+    def patterns(key: str, required: bool) -> tuple[str, ...]:
+        raw = data.get(key)
+        if raw is None and not required:
+            return ()
+        items = [raw] if isinstance(raw, str) else raw
+        if not isinstance(items, list) or not items or not all(isinstance(i, str) for i in items):
+            raise where((key,), 'expected a token-path pattern or a list, e.g. "color.bg.*"')
+        return tuple(items)
+
+    modes_raw = data.get("modes", {})
+    if not isinstance(modes_raw, dict) or not all(
+        v in ("light", "dark") for v in modes_raw.values()
+    ):
+        raise where(("modes",), "expected {context: light|dark, ...}")
+    gamut = data.get("gamut", "error")
+    if gamut not in GAMUT_POLICIES:
+        raise where(("gamut",), f"{gamut!r} is not a gamut policy; use {', '.join(GAMUT_POLICIES)}")
+    ext = data.get("alpha-extension", DEFAULT_ALPHA_EXTENSION)
+    if not isinstance(ext, str) or not ext:
+        raise where(("alpha-extension",), "expected a reverse-DNS key such as com.alpha-audit")
+    modifier = data.get("modifier")
+    if modifier is not None and not isinstance(modifier, str):
+        raise where(("modifier",), "expected the name of a Resolver modifier or Figma collection")
+    fmt = data.get("format", "auto")
+    from alpha_audit.load.tokens import TOKEN_FORMATS
+
+    if fmt not in TOKEN_FORMATS:
+        raise where(("format",), f"{fmt!r} is not one of {', '.join(TOKEN_FORMATS)}")
+    return TokenConfig(
+        file=path,
+        canvases=patterns("canvases", True),
+        colors=patterns("colors", False),
+        modes={str(k): v for k, v in modes_raw.items()},
+        modifier=modifier,
+        gamut=gamut,
+        alpha_extension=ext,
+        format=fmt,
+        root=base,
+    )
