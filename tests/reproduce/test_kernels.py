@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 from alpha_audit.color import CONTRAST_TOLERANCE, relative_luminance, srgb_decode
 from alpha_audit.model import Canvas, Theme
 from alpha_audit.reproduce import full_gamut, kernels
-from alpha_audit.reproduce.experiments import _source_parts
+from alpha_audit.reproduce.experiments.common import source_parts as _source_parts
 from alpha_audit.reproduce.grids import encoded_levels
 from alpha_audit.reproduce.reference import reference_full_gamut
 

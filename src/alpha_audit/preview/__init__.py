@@ -1,6 +1,7 @@
 """Previews: PNG sheets and a self-contained WebGL2 page, pixel-exact to the paper's maths."""
 
 from alpha_audit.preview.compose import (
+    MAX_NEAR_SOURCE_COLORS,
     Blend,
     blend_colors,
     composite_masks,
@@ -8,13 +9,16 @@ from alpha_audit.preview.compose import (
 )
 from alpha_audit.preview.sheets import (
     ICON_ALPHA,
+    PIXEL_BUDGET,
     SWATCH_ALPHAS,
     Layout,
+    Page,
     Placement,
     Sheet,
     SheetSpec,
     check_writable,
     default_alphas,
+    paginate,
     plan_sheets,
     render_all,
     render_sheet,
@@ -23,9 +27,12 @@ from alpha_audit.preview.sheets import (
 
 __all__ = [
     "ICON_ALPHA",
+    "MAX_NEAR_SOURCE_COLORS",
+    "PIXEL_BUDGET",
     "SWATCH_ALPHAS",
     "Blend",
     "Layout",
+    "Page",
     "Placement",
     "Sheet",
     "SheetSpec",
@@ -34,6 +41,7 @@ __all__ = [
     "composite_masks",
     "default_alphas",
     "near_source_canvases",
+    "paginate",
     "plan_sheets",
     "render_all",
     "render_sheet",

@@ -16,6 +16,7 @@ from __future__ import annotations
 import colorsys
 from collections.abc import Mapping
 from enum import StrEnum
+from pathlib import Path
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -27,10 +28,12 @@ from alpha_audit.color import (
     parse_color,
     to_8bit,
 )
+from alpha_audit.errors import UsageError
 from alpha_audit.model import Canvas
 
 __all__ = [
     "DARK_GREY",
+    "MAX_NEAR_SOURCE_COLORS",
     "NEAR_SOURCE_WHITE",
     "Blend",
     "blend_colors",
@@ -124,19 +127,34 @@ def composite_masks(
 NEAR_SOURCE_WHITE = 0.10
 # The paper's galleries add "a dark gray canvas" without giving its value; ours.
 DARK_GREY = "#333333"
+# The paper's galleries use the seven Vibrant colours.  A set without a palette
+# gets one canvas per distinct icon colour (a brand set: thousands), and every
+# canvas is a sheet, a row or a page; beyond this many the preview is refused.
+MAX_NEAR_SOURCE_COLORS = 64
 # Below this HSV saturation a palette colour counts as grey and goes after the hues.
 _NEUTRAL_SATURATION = 0.08
 
 
-def near_source_canvases(palette: Mapping[str, str]) -> tuple[Canvas, ...]:
+def near_source_canvases(
+    palette: Mapping[str, str], *, path: str | Path | None = None
+) -> tuple[Canvas, ...]:
     """Canvases close to each palette colour, plus a dark grey (the paper's galleries).
 
     Each colour is mixed with 10% white in encoded sRGB and rounded to 8 bits;
     chromatic colours come first from warm to cool hue, then greys, then dark grey.
+    More than :data:`MAX_NEAR_SOURCE_COLORS` colours are refused (``path``
+    names the icon set in the message).
 
     >>> [c.color for c in near_source_canvases({"orange": "#ee7733", "grey": "#bbbbbb"})]
     ['#f08547', '#c2c2c2', '#333333']
     """
+    if len(palette) > MAX_NEAR_SOURCE_COLORS:
+        raise UsageError(
+            f"near-source canvases: {len(palette):,} colours (palette, else distinct icon "
+            f"colours), at most {MAX_NEAR_SOURCE_COLORS} are allowed; give the manifest a "
+            "palette of the colours to compare",
+            path=path,
+        )
     entries = []
     for name, color in palette.items():
         encoded = parse_color(color)

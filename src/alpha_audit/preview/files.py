@@ -20,6 +20,7 @@ from alpha_audit.preview.sheets import (
     Layout,
     check_writable,
     default_alphas,
+    paginate,
     plan_sheets,
     render_all,
     write_sheet,
@@ -43,7 +44,7 @@ def preview_canvases(theme: Theme, iconset: IconSet, near_source: bool) -> tuple
     if not near_source:
         return theme.canvases
     palette = iconset.palette or {i.color_name or i.color: i.color for i in iconset.icons}
-    return near_source_canvases(palette)
+    return near_source_canvases(palette, path=iconset.path)
 
 
 def _check_options(alphas: Sequence[float], sizes: Sequence[int]) -> None:
@@ -88,6 +89,7 @@ def preview_files(
     sheet_sizes = sorted(set(sizes)) if sizes else [DEFAULT_SIZE]
     page_sizes = sorted(set(sizes)) if sizes else sorted({*iconset.sizes, DEFAULT_SIZE})
     prefix = "near-source" if near_source else theme.name
+    title = f"{iconset.name} on {'near-source canvases' if near_source else theme.name}"
 
     specs = []
     targets: list[Path] = []
@@ -95,7 +97,13 @@ def preview_files(
         folder = Path(out_dir)
         if folder.exists() and not folder.is_dir():
             raise UsageError("is not a folder", path=folder)
-        specs = plan_sheets(layout, canvases, sheet_sizes, prefix)
+        specs = paginate(
+            plan_sheets(layout, canvases, sheet_sizes, prefix),
+            iconset,
+            alphas=list(alphas) or None,
+            threshold=theme.threshold,
+            title=title,
+        )
         targets += [folder / s.name for s in specs]
     if html_path is not None:
         targets.append(Path(html_path))
@@ -119,11 +127,11 @@ def preview_files(
     written: list[Path] = []
     for sheet in render_all(
         specs,
-        usable,
+        iconset,  # pages index the manifest's icons; icons without masks are left out
         masks.masks,
         alphas=rows if (alphas or layout is not Layout.SWATCHES) else None,
         threshold=theme.threshold,
-        title=f"{usable.name} on {'near-source canvases' if near_source else theme.name}",
+        title=title,
     ):
         written.append(write_sheet(sheet, out_dir or ".", overwrite=overwrite))
         if on_step is not None:

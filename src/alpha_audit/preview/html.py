@@ -23,15 +23,41 @@ from importlib import resources
 import numpy as np
 from numpy.typing import NDArray
 
+from alpha_audit.color import to_8bit
 from alpha_audit.errors import UsageError
 from alpha_audit.model import IconSet, Theme
 
-__all__ = ["ATLAS_MAX_WIDTH", "mask_atlas", "preview_data", "preview_html"]
+__all__ = [
+    "ATLAS_MAX_WIDTH",
+    "SCRIPT_ASSETS",
+    "mask_atlas",
+    "page_script",
+    "preview_data",
+    "preview_html",
+]
 
 # WebGL2 guarantees MAX_TEXTURE_SIZE >= 2048 (OpenGL ES 3.0, table 6.28);
 # keeping atlases this narrow leaves height for thousands of icons.
 ATLAS_MAX_WIDTH = 2048
 _PLACEHOLDERS = ("__ALPHA_AUDIT_TITLE__", "__ALPHA_AUDIT_DATA__", "__ALPHA_AUDIT_SCRIPT__")
+
+# The page's script, in the order it runs: one function scope, one file each per concern.
+SCRIPT_ASSETS = (
+    "page_data.js",  # the embedded data and the page's fixed choices
+    "page_colour.js",  # float64 colour maths for labels and contrast
+    "page_shader.js",  # the WebGL2 shader and renderer
+    "page_layout.js",  # state, layout and drawing
+    "page_ui.js",  # tooltip and controls
+    "page_start.js",  # the validation hook and start-up
+)
+_SCRIPT_HEAD = """\
+// alpha-audit preview page: the paper's compositing expression in a WebGL2 fragment shader.
+// Pixel = encode(q * clip(Cb + a (Cs - Cb), 0, 1) + (1 - q) * Cb) in linear sRGB
+// ("Opacity Is Not Just Opacity", Appendix A.2). No network, no external files.
+"use strict";
+(() => {
+"""
+_SCRIPT_TAIL = "})();\n"
 
 
 def mask_atlas(masks: Sequence[NDArray[np.float64]], size: int) -> tuple[int, NDArray[np.uint8]]:
@@ -52,6 +78,11 @@ def mask_atlas(masks: Sequence[NDArray[np.float64]], size: int) -> tuple[int, ND
         codes = np.rint(np.clip(np.asarray(mask, dtype=np.float64), 0.0, 1.0) * 255.0)
         atlas[r * size : (r + 1) * size, c * size : (c + 1) * size] = codes
     return cols, atlas
+
+
+def _hex(linear: tuple[float, float, float]) -> str:
+    """``#rrggbb`` of a linear colour: the page's own notation, whatever the input wrote."""
+    return "#" + "".join(f"{int(v):02x}" for v in to_8bit(linear))
 
 
 def preview_data(
@@ -76,6 +107,7 @@ def preview_data(
         }
     alphas = [i.alpha for i in icons]
     usual = max(sorted(set(alphas)), key=alphas.count) if alphas else 1.0  # the set's usual one
+    own = [s for s in iconset.sizes if s in sizes]  # the page opens at the set's own size
     return {
         "schema": "alpha-audit.preview/1",
         "title": f"{iconset.name} on {theme.name}",
@@ -83,20 +115,29 @@ def preview_data(
         "threshold": theme.threshold,
         "alpha": float(alpha if alpha is not None else usual),
         "canvases": [
-            {"name": c.name, "hex": c.color, "mode": c.mode, "linear": list(c.linear)}
+            {"name": c.name, "hex": _hex(c.linear), "mode": c.mode, "linear": list(c.linear)}
             for c in theme.canvases
         ],
         "icons": [
-            {"name": i.name, "hex": i.color, "alpha": i.alpha, "linear": list(i.linear)}
+            {"name": i.name, "hex": _hex(i.linear), "alpha": i.alpha, "linear": list(i.linear)}
             for i in icons
         ],
         "sizes": sizes,
+        "size": max(own) if own else max(sizes, default=0),
         "atlases": atlases,
     }
 
 
 def _asset(name: str) -> str:
     return resources.files("alpha_audit.preview").joinpath(name).read_text(encoding="utf-8")
+
+
+def page_script() -> str:
+    """The page's script: :data:`SCRIPT_ASSETS` joined inside one strict function scope."""
+    script = _SCRIPT_HEAD + "".join(_asset(name) for name in SCRIPT_ASSETS) + _SCRIPT_TAIL
+    if "</script" in script.lower():
+        raise AssertionError("the page's script must not contain a closing script tag")
+    return script
 
 
 def preview_html(
@@ -111,9 +152,7 @@ def preview_html(
     data = preview_data(theme, iconset, masks, sizes=sizes, alpha=alpha)
     # Inside <script> only "</" could end the element early; \u003c is the same JSON string.
     payload = json.dumps(data, separators=(",", ":"), allow_nan=False).replace("<", "\\u003c")
-    script = _asset("page.js")
-    if "</script" in script.lower():
-        raise AssertionError("page.js must not contain a closing script tag")
+    script = page_script()
     page = _asset("page.html")
     for marker in _PLACEHOLDERS:
         if marker not in page:

@@ -1,0 +1,50 @@
+"""PNG sheets: icons composited on canvases, laid out like the paper's figures.
+
+- :mod:`~alpha_audit.preview.sheets.plan`: which sheets, their names and rows;
+- :mod:`~alpha_audit.preview.sheets.surface`: the drawing surface and spacing;
+- one module per layout: :mod:`~alpha_audit.preview.sheets.grid` (a sheet per
+  canvas and size, a row of icons per coefficient, each icon's contrast ratio
+  underneath), :mod:`~alpha_audit.preview.sheets.swatches` (a sheet per canvas,
+  palette across, coefficients down: the paper's figure "Outputs for all seven
+  Vibrant source colors") and :mod:`~alpha_audit.preview.sheets.compare` (a
+  sheet per size, a row per canvas, ``alpha = 1`` beside each other
+  coefficient: the paper's gallery figures);
+- :mod:`~alpha_audit.preview.sheets.pages` splits sheets over
+  :data:`PIXEL_BUDGET` into pages, :mod:`~alpha_audit.preview.sheets.render`
+  picks the layout,
+  :mod:`~alpha_audit.preview.sheets.write` writes the files.
+"""
+
+from alpha_audit.preview.sheets.pages import paginate
+from alpha_audit.preview.sheets.plan import (
+    ICON_ALPHA,
+    SWATCH_ALPHAS,
+    Alpha,
+    Layout,
+    Page,
+    SheetSpec,
+    default_alphas,
+    plan_sheets,
+)
+from alpha_audit.preview.sheets.render import render_all, render_sheet
+from alpha_audit.preview.sheets.surface import PIXEL_BUDGET, Placement, Sheet
+from alpha_audit.preview.sheets.write import check_writable, write_sheet
+
+__all__ = [
+    "ICON_ALPHA",
+    "PIXEL_BUDGET",
+    "SWATCH_ALPHAS",
+    "Alpha",
+    "Layout",
+    "Page",
+    "Placement",
+    "Sheet",
+    "SheetSpec",
+    "check_writable",
+    "default_alphas",
+    "paginate",
+    "plan_sheets",
+    "render_all",
+    "render_sheet",
+    "write_sheet",
+]

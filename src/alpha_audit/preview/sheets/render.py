@@ -1,0 +1,79 @@
+"""Drawing planned sheets: the one place that picks a layout's drawing function."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from dataclasses import replace
+from typing import assert_never
+
+import numpy as np
+from numpy.typing import NDArray
+
+from alpha_audit.color import NON_TEXT_THRESHOLD
+from alpha_audit.model import IconSet
+from alpha_audit.preview.sheets.compare import draw_compare
+from alpha_audit.preview.sheets.grid import draw_grid
+from alpha_audit.preview.sheets.plan import Alpha, Layout, SheetSpec, sheet_rows, sheet_title
+from alpha_audit.preview.sheets.surface import Sheet
+from alpha_audit.preview.sheets.swatches import draw_swatches, swatch_colors
+
+__all__ = ["DEFAULT_MAX_WIDTH", "render_all", "render_sheet"]
+
+DEFAULT_MAX_WIDTH = 1400
+"""px; the grid layout wraps its icons to this width (a laptop screen at 100%)."""
+
+
+def render_sheet(
+    spec: SheetSpec,
+    iconset: IconSet,
+    masks: Mapping[tuple[str, int], NDArray[np.float64]],
+    *,
+    alphas: Sequence[Alpha] | None = None,
+    threshold: float = NON_TEXT_THRESHOLD,
+    max_width: int = DEFAULT_MAX_WIDTH,
+    title: str | None = None,
+) -> Sheet:
+    """Draw one planned sheet.
+
+    ``masks`` maps ``(icon name, size)`` to coverage (icons without a mask are
+    left out); ``alphas`` are the rows (``None`` entries use each icon's own
+    coefficient; default :func:`default_alphas`, or :data:`SWATCH_ALPHAS` for
+    swatches); ``max_width`` bounds the grid layout's width in pixels.
+    """
+    label = sheet_title(spec, title or iconset.name)
+    rows = sheet_rows(spec.layout, iconset, alphas)
+    page = spec.page
+    match spec.layout:
+        case Layout.GRID:
+            if page is not None:
+                iconset = replace(iconset, icons=iconset.icons[page.first : page.stop])
+            return draw_grid(spec, iconset, masks, rows, threshold, max_width, label)
+        case Layout.SWATCHES:
+            colors = swatch_colors(iconset)
+            if page is not None:
+                colors = colors[page.first : page.stop]
+            real = [a for a in rows if a is not None]  # swatch rows are never None
+            return draw_swatches(spec, colors, real, threshold, label)
+        case Layout.COMPARE:
+            if page is not None:
+                iconset = replace(iconset, icons=iconset.icons[page.first : page.stop])
+            return draw_compare(spec, iconset, masks, rows, threshold, label)
+        case _:
+            assert_never(spec.layout)
+
+
+def render_all(
+    specs: Sequence[SheetSpec],
+    iconset: IconSet,
+    masks: Mapping[tuple[str, int], NDArray[np.float64]],
+    *,
+    on_sheet: Callable[[], None] | None = None,
+    **options: object,
+) -> Iterator[Sheet]:
+    """Render ``specs`` one at a time (a sheet can be large; write each, then drop it)."""
+    for spec in specs:
+        # options are render_sheet's keywords, passed through untyped
+        sheet = render_sheet(spec, iconset, masks, **options)  # type: ignore[arg-type]
+        yield sheet
+        if on_sheet is not None:
+            on_sheet()
