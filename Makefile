@@ -16,12 +16,17 @@ $(STAMP): pyproject.toml
 demo: $(STAMP)
 	$(BIN)/alpha-audit check themes/github-primer.yaml examples/vibrant/iconset.yaml --alpha 1.1
 
-## browser: Debian's chromium for the WebGL2 validation test (apt-get only when missing and root)
+## browser: Debian's Chromium, Firefox ESR and WebKitGTK driver for the WebGL2 tests
+## (apt-get only for what is missing, and only as root; otherwise a note and the tests skip)
+BROWSER_PACKAGES = \
+  $(if $(shell command -v chromium || echo "$$ALPHA_AUDIT_CHROMIUM"),,chromium) \
+  $(if $(shell command -v firefox-esr || command -v firefox || echo "$$ALPHA_AUDIT_FIREFOX"),,firefox-esr libegl1 libegl-mesa0 libgl1-mesa-dri) \
+  $(if $(shell command -v WebKitWebDriver && command -v Xvfb),,webkit2gtk-driver xvfb libgl1-mesa-dri)
 browser:
-	@command -v chromium >/dev/null 2>&1 || [ -n "$$ALPHA_AUDIT_CHROMIUM" ] \
+	@[ -z "$(strip $(BROWSER_PACKAGES))" ] \
 	  || { [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1 && apt-get update -qq \
-	       && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; } \
-	  || echo "note: no chromium; the WebGL2 test needs it: sudo apt-get install -y chromium"
+	       && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(sort $(BROWSER_PACKAGES)) >/dev/null; } \
+	  || echo "note: missing $(sort $(BROWSER_PACKAGES)); the WebGL2 tests skip those engines: sudo apt-get install -y $(sort $(BROWSER_PACKAGES))"
 
 ## dist: build the sdist and the wheel into dist/ and check their metadata
 dist: $(STAMP)

@@ -16,8 +16,10 @@ from alpha_audit.gate import baseline_document, evaluate, parse_baseline
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
 from alpha_audit.policy import Policy
 
+# fill="currentColor": the manifest colour is audited (an unfilled rect is SVG's default black).
 SVG = (
-    '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 24 24"><rect width="9" height="9"/></svg>'
+    '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 24 24">'
+    '<rect width="9" height="9" fill="currentColor"/></svg>'
 )
 
 

@@ -47,7 +47,7 @@ def test_every_format_renders_deterministically(fmt: CheckFormat) -> None:
 
 def test_json_gate_section() -> None:
     doc = json.loads(render_check(_report(), "json", OPTIONS))
-    assert doc["schema"] == "alpha-audit.check/1"
+    assert doc["schema"] == "alpha-audit.check/2"
     gate = doc["gate"]
     assert gate["passed"] is False and gate["counts"] == {"loss": 1, "new-collision": 1}
     loss, collision = gate["failures"]

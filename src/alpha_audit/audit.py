@@ -9,6 +9,7 @@ from __future__ import annotations
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, replace
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
@@ -33,6 +34,9 @@ from alpha_audit.color.nearest import (
 from alpha_audit.errors import InputError
 from alpha_audit.load.svg import IconProblem
 from alpha_audit.model import IconSet, Theme
+
+if TYPE_CHECKING:
+    from alpha_audit.paint_audit import PaintAudit
 
 __all__ = [
     "AuditResult",
@@ -181,6 +185,9 @@ class AuditResult:
     collisions: tuple[Collision, ...]
     problems: tuple[IconProblem, ...] = ()
     tolerance: float = CONTRAST_TOLERANCE
+    # Per (icon, paint, canvas) figures when the icons' own paints were read
+    # (alpha_audit.paint_audit); None for an audit of manifest colours only.
+    paints: PaintAudit | None = None
 
     @cached_property
     def separations(self) -> tuple[Separation, ...]:

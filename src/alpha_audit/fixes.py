@@ -3,7 +3,8 @@
 For each palette colour that fails a gate rule on a canvas:
 
 1. **the largest safe alpha** for that colour (its icons moving together), which
-   is :func:`alpha_audit.suggest.largest_safe_alpha` -- reused, not restated;
+   is :func:`alpha_audit.suggest.largest_safe_alpha` -- reused, not restated
+   (over the policy's rules but the paint rules, which suggest does not answer yet);
 2. **the smallest alpha at or above 1 that reaches the threshold on every
    canvas of the failing canvas's mode** -- exact, from events: on ``[1,
    alpha_max]`` each canvas's luminance ``Y(a)`` of ``clip(b + a (s - b))`` is
@@ -48,7 +49,7 @@ from alpha_audit.color import (
 )
 from alpha_audit.color.oklch import linear_to_oklch, oklch_to_linear
 from alpha_audit.gate import CheckReport, Finding
-from alpha_audit.policy import CONTRAST_RULES, Policy, Rule, contrast_breaks
+from alpha_audit.policy import CONTRAST_RULES, PAINT_RULES, Policy, Rule, contrast_breaks
 from alpha_audit.suggest import SafeAlpha, largest_safe_alpha
 from alpha_audit.suggest.events import luminance_band, luminance_band_pieces
 
@@ -422,6 +423,9 @@ def _audit_fixes(
     for i, icon in enumerate(iconset.icons):
         members.setdefault(key_of[icon.name], []).append(i)
     canvas_index = {c.name: j for j, c in enumerate(theme.canvases)}
+    # suggest does not answer the paint rules (drift, confusion, ...) yet: the
+    # largest safe alpha covers the other rules of the policy.
+    suggestable = replace(policy, rules=policy.rules - PAINT_RULES)
     failing: dict[tuple[str, int], set[Rule]] = {}
     for f in failures:
         j = canvas_index.get(f.canvas or "")
@@ -444,7 +448,7 @@ def _audit_fixes(
             safe_cache[color] = largest_safe_alpha(
                 theme,
                 iconset,
-                policy,
+                suggestable,
                 icons=[iconset.icons[i].name for i in idx],
                 alpha_max=alpha_max,
                 precision=precision,

@@ -19,7 +19,9 @@ import numpy as np
 from alpha_audit.audit import AuditResult
 from alpha_audit.errors import AlphaAuditError, InputError, UsageError
 from alpha_audit.load.files import read_text_capped
-from alpha_audit.policy import Exemption, Policy, Rule, contrast_breaks
+from alpha_audit.load.paints import CURRENT_COLOR
+from alpha_audit.paint_audit import PaintAudit, paint_findings
+from alpha_audit.policy import PAINT_RULES, Exemption, Policy, Rule, contrast_breaks
 
 if TYPE_CHECKING:
     from alpha_audit.fixes import ColorFix
@@ -157,8 +159,10 @@ def _icon_refs(
     return tuple(files), tuple(sorted(set(lines)))
 
 
-def _cell_findings(result: AuditResult, policy: Policy) -> Iterable[tuple[Rule, int, int, str]]:
-    """(rule, icon index, canvas index, message) for the per icon x canvas rules."""
+def _cell_findings(
+    result: AuditResult | PaintAudit, policy: Policy
+) -> Iterable[tuple[Rule, int, int, str]]:
+    """(rule, row index, canvas index, message) for the per icon (or paint) x canvas rules."""
     t = result.threshold
     templates = {
         Rule.LOSS: "contrast drops {ref:.3f} -> {now:.3f} ({gain:+.4f}) at alpha {a:g}",
@@ -223,17 +227,26 @@ def findings_for(result: AuditResult, policy: Policy) -> list[Finding]:
         )
 
     canvases, icons = result.theme.canvases, result.iconset.icons
-    for rule, i, j, message in _cell_findings(result, policy):
-        numbers = {
-            "alpha": float(result.alpha[i]),
-            "contrast_ref": float(result.contrast_ref[i, j]),
-            "contrast": float(result.contrast[i, j]),
-            "gain": float(result.gain[i, j]),
-            "threshold": float(result.threshold),
-            "source": icons[i].color,
+    # With the icons' own paints read, the per-cell rules judge every paint as drawn.
+    cells = result.paints if result.paints is not None else result
+    for rule, i, j, message in _cell_findings(cells, policy):
+        numbers: dict[str, float | str] = {
+            "alpha": float(cells.alpha[i]),
+            "contrast_ref": float(cells.contrast_ref[i, j]),
+            "contrast": float(cells.contrast[i, j]),
+            "gain": float(cells.gain[i, j]),
+            "threshold": float(cells.threshold),
             "background": canvases[j].color,
         }
-        add(rule, canvases[j].name, (icons[i].name,), message, numbers)
+        if result.paints is None:
+            numbers["source"] = icons[i].color
+            add(rule, canvases[j].name, (icons[i].name,), message, numbers)
+            continue
+        entry = result.paints.entries[i]
+        numbers.update(source=entry.source, paint=entry.paint, opacity=entry.opacity)
+        if entry.paint != CURRENT_COLOR or entry.opacity != 1.0:
+            message += f" (paint {entry.paint} at opacity {entry.opacity:g})"
+        add(rule, canvases[j].name, (entry.icon.name,), message, numbers)
 
     collision_rule = policy.collision_rule
     for c in result.collisions:
@@ -259,6 +272,15 @@ def findings_for(result: AuditResult, policy: Policy) -> list[Finding]:
                     "sources": ", ".join(s.sources),
                 }
                 add(Rule.SEPARATION, s.canvas, tuple(sorted(s.icons)), message, numbers)
+
+    if result.paints is not None and policy.rules & PAINT_RULES:
+        for pf in paint_findings(result.paints, policy):
+            numbers = dict(pf.numbers)
+            if pf.paint is not None:
+                numbers["paint"] = pf.paint
+            if pf.element is not None:
+                numbers["element"] = pf.element + (f" (line {pf.line})" if pf.line else "")
+            add(pf.rule, pf.canvas, pf.icons, pf.message, numbers)
 
     if Rule.UNRENDERABLE in policy.rules:
         out.extend(_problem_findings(result, policy))

@@ -14,7 +14,13 @@ from typing import Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from alpha_audit.color import NON_TEXT_THRESHOLD, parse_color, relative_luminance, srgb_decode
+from alpha_audit.color import (
+    NON_TEXT_THRESHOLD,
+    Pipeline,
+    parse_color,
+    relative_luminance,
+    srgb_decode,
+)
 
 __all__ = ["Canvas", "Icon", "IconSet", "Mode", "Theme", "infer_mode"]
 
@@ -75,6 +81,7 @@ class Theme:
     canvases: tuple[Canvas, ...]
     threshold: float = NON_TEXT_THRESHOLD
     path: Path | None = field(default=None, compare=False)
+    pipeline: Pipeline | None = None  # how this platform draws icons; None: not said
 
     @property
     def backgrounds(self) -> NDArray[np.float64]:
@@ -110,6 +117,8 @@ class IconSet:
     sizes: tuple[int, ...] = (24,)
     path: Path | None = field(default=None, compare=False)
     root: Path | None = field(default=None, compare=False)
+    pipeline: Pipeline | None = None  # how these icons are drawn; None: not said
+    locked: frozenset[str] = frozenset()  # icon and palette names with lock (brand colours)
 
     @property
     def sources(self) -> NDArray[np.float64]:

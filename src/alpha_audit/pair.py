@@ -8,6 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from alpha_audit.color import (
+    composite_css,
     composite_raw,
     contrast_ratio,
     delta_e_2000,
@@ -31,6 +32,9 @@ class PairRow:
     gain: float
     delta_e_from_source: float
     clipped: bool
+    # The same alpha drawn by a browser (pipeline css, docs/model.md); None outside [0, 1].
+    css_output: str | None = None
+    css_contrast: float | None = None
 
 
 @dataclass(frozen=True)
@@ -51,6 +55,8 @@ def pair_table(color: str, backgrounds: Sequence[str], alphas: Sequence[float]) 
 
     >>> [r.output for r in pair_table("#ee7733", ["#ffffff"], [1.1])]
     ['#ec5a00']
+    >>> [(r.output, r.css_output) for r in pair_table("#ee7733", ["#ffffff"], [0.6])]
+    [('#f5bdad', '#f5ad85')]
     """
     source = srgb_decode(parse_color(color))
     rows = []
@@ -61,6 +67,7 @@ def pair_table(color: str, backgrounds: Sequence[str], alphas: Sequence[float]) 
             raw = composite_raw(source, bg, alpha)
             out = np.clip(raw, 0.0, 1.0)
             cr = float(contrast_ratio(out, bg))
+            css = composite_css(source, bg, alpha) if 0.0 <= alpha <= 1.0 else None
             rows.append(
                 PairRow(
                     background=linear_to_hex(bg),
@@ -71,6 +78,8 @@ def pair_table(color: str, backgrounds: Sequence[str], alphas: Sequence[float]) 
                     gain=cr - ref,
                     delta_e_from_source=float(delta_e_2000(out, source)),
                     clipped=bool(np.any((raw < 0) | (raw > 1))),
+                    css_output=None if css is None else linear_to_hex(css),
+                    css_contrast=None if css is None else float(contrast_ratio(css, bg)),
                 )
             )
     return rows

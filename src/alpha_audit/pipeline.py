@@ -1,19 +1,23 @@
-"""Files in, audit out: load themes and icon sets, rasterise, audit, apply the gate."""
+"""Files in, audit out: load themes and icon sets, read and rasterise paints, audit, gate."""
 
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Sequence
+from dataclasses import replace
 from pathlib import Path
 
 from alpha_audit.audit import AuditResult, audit, check_combinations
+from alpha_audit.color import Pipeline
 from alpha_audit.errors import SvgError, UsageError
 from alpha_audit.fixes import with_fixes
 from alpha_audit.gate import CheckReport, FindingKey, evaluate
 from alpha_audit.load.iconset import load_iconset
-from alpha_audit.load.svg import MaskSet, rasterize_icons
+from alpha_audit.load.paint_masks import PaintSet, measure_paints
+from alpha_audit.load.svg import IconProblem
 from alpha_audit.load.theme import load_theme
 from alpha_audit.load.tokens.themes import TokenConfig
-from alpha_audit.model import IconSet
+from alpha_audit.model import IconSet, Theme
+from alpha_audit.paint_audit import audit_paints, check_pipeline, resolve_pipeline
 from alpha_audit.policy import Policy
 
 __all__ = ["check_files", "check_project"]
@@ -24,14 +28,49 @@ def _render(
     *,
     strict_svg: bool,
     on_icon: Callable[[], None] | None,
-) -> MaskSet:
-    masks = rasterize_icons(
+) -> PaintSet:
+    """Every icon's paints, each measured at every size; empty icons become problems."""
+    paints = measure_paints(
         [(i.name, i.file) for i in iconset.icons], iconset.sizes, progress=on_icon
     )
-    if strict_svg and masks.problems:
-        first = masks.problems[0]
+    empty = []
+    for name, measured in paints.icons.items():
+        inked = [
+            size
+            for size in iconset.sizes
+            if any(c.sizes[size].pixels > 0 for c in measured.coverage)
+        ]
+        if len(inked) < len(iconset.sizes) and not measured.paints.unaudited:
+            missing = next(s for s in iconset.sizes if s not in inked)
+            empty.append(
+                IconProblem(name, measured.file, f"renders nothing at {missing}px (empty icon)")
+            )
+    if empty:
+        gone = {p.icon for p in empty}
+        order = {i.name: n for n, i in enumerate(iconset.icons)}
+        problems = sorted([*paints.problems, *empty], key=lambda p: order.get(p.icon, 0))
+        paints = PaintSet({k: v for k, v in paints.icons.items() if k not in gone}, tuple(problems))
+    if strict_svg and paints.problems:
+        first = paints.problems[0]
         raise SvgError(first.message, path=first.file)
-    return masks
+    return paints
+
+
+def _audit(
+    theme: Theme,
+    iconset: IconSet,
+    paints: PaintSet,
+    *,
+    alpha: float | None,
+    threshold: float | None,
+    pipeline: Pipeline,
+) -> AuditResult:
+    """The manifest-colour audit with the per-paint audit attached."""
+    result = audit(theme, iconset, alpha=alpha, threshold=threshold, problems=paints.problems)
+    by_paint = audit_paints(
+        theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=pipeline
+    )
+    return replace(result, paints=by_paint)
 
 
 def check_files(
@@ -41,22 +80,27 @@ def check_files(
     alpha: float | None = None,
     threshold: float | None = None,
     strict_svg: bool = False,
+    pipeline: str | None = None,
     on_start: Callable[[int], None] | None = None,
     on_icon: Callable[[], None] | None = None,
 ) -> AuditResult:
-    """Load both files, rasterise every icon at every size and audit.
+    """Load both files, read and rasterise every icon's paints at every size, and audit.
 
     Icons that cannot be rendered are left out and listed in
     ``result.problems``; with ``strict_svg`` the first one raises
-    :class:`~alpha_audit.errors.SvgError`.  ``on_start(n)`` and ``on_icon()``
-    report progress.
+    :class:`~alpha_audit.errors.SvgError`.  ``pipeline`` overrides the icon
+    set's and the theme's (docs/model.md); an alpha the pipeline cannot draw
+    is an :class:`~alpha_audit.errors.InputError` raised before any render.
+    ``on_start(n)`` and ``on_icon()`` report progress.
     """
     theme = load_theme(theme_path)
     iconset = load_iconset(iconset_path)
+    chosen = resolve_pipeline(pipeline, iconset.pipeline, theme.pipeline)
+    check_pipeline(iconset, chosen, alpha)
     if on_start is not None:
         on_start(len(iconset.icons))
-    masks = _render(iconset, strict_svg=strict_svg, on_icon=on_icon)
-    return audit(theme, iconset, alpha=alpha, threshold=threshold, problems=masks.problems)
+    paints = _render(iconset, strict_svg=strict_svg, on_icon=on_icon)
+    return _audit(theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=chosen)
 
 
 def check_project(
@@ -68,6 +112,7 @@ def check_project(
     threshold: float | None = None,
     baseline: Iterable[FindingKey] | None = None,
     strict_svg: bool = False,
+    pipeline: str | None = None,
     on_start: Callable[[int], None] | None = None,
     on_icon: Callable[[], None] | None = None,
     tokens: TokenConfig | None = None,
@@ -78,7 +123,9 @@ def check_project(
     rendered; each icon set is rendered once whatever the number of themes.
     Audits come in icon-set order, then theme order.  With ``tokens`` (the
     config's ``tokens:`` table) each icon set is also audited on every token
-    mode, its icons' colours named by token path.
+    mode, its icons' colours named by token path.  ``pipeline`` (from
+    ``--pipeline`` or the config) overrides each icon set's, then each
+    theme's; ``linear`` when none says.
     """
     if tokens is not None:
         return _check_with_tokens(
@@ -90,6 +137,7 @@ def check_project(
             threshold=threshold,
             baseline=baseline,
             strict_svg=strict_svg,
+            pipeline=pipeline,
             on_start=on_start,
             on_icon=on_icon,
         )
@@ -105,14 +153,23 @@ def check_project(
         (i.name for s in loaded_sets for i in s.icons),
     )
     check_combinations(loaded_themes, loaded_sets)  # before any icon is rendered
+    chosen = {
+        (t.name, s.name): resolve_pipeline(pipeline, s.pipeline, t.pipeline)
+        for s in loaded_sets
+        for t in loaded_themes
+    }
+    for s in loaded_sets:
+        for t in loaded_themes:
+            check_pipeline(s, chosen[(t.name, s.name)], alpha)
     if on_start is not None:
         on_start(sum(len(s.icons) for s in loaded_sets))
     audits = []
     for iconset in loaded_sets:
-        problems = _render(iconset, strict_svg=strict_svg, on_icon=on_icon).problems
+        paints = _render(iconset, strict_svg=strict_svg, on_icon=on_icon)
         for theme in loaded_themes:
+            kind = chosen[(theme.name, iconset.name)]
             audits.append(
-                audit(theme, iconset, alpha=alpha, threshold=threshold, problems=problems)
+                _audit(theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=kind)
             )
     gate = evaluate(audits, policy or Policy(), baseline=baseline)
     # Every renderer shows the fix for each failing colour: computed once, here.
@@ -129,6 +186,7 @@ def _check_with_tokens(
     threshold: float | None,
     baseline: Iterable[FindingKey] | None,
     strict_svg: bool,
+    pipeline: str | None,
     on_start: Callable[[int], None] | None,
     on_icon: Callable[[], None] | None,
 ) -> CheckReport:
@@ -141,19 +199,25 @@ def _check_with_tokens(
     token_themes = load_token_themes(tokens)
     loaded_themes = [load_theme(t) for t in _unique(themes)]
     per_set = [token_audit_pairs(token_themes, s) for s in _unique(iconsets)]
+    # YAML themes get the first mode's icon colours.
+    per_set = [pairs + [(t, pairs[0][1]) for t in loaded_themes] for pairs in per_set]
+    for pairs in per_set:  # before any icon is rendered
+        check_combinations([t for t, _ in pairs], [pairs[0][1]])
+        for theme, iconset in pairs:
+            check_pipeline(
+                iconset, resolve_pipeline(pipeline, iconset.pipeline, theme.pipeline), alpha
+            )
     if on_start is not None:
         on_start(sum(len(pairs[0][1].icons) for pairs in per_set))
     audits = []
     for pairs in per_set:
         # The modes differ in colours only: the icons render once.
-        first = pairs[0][1]
-        problems = _render(first, strict_svg=strict_svg, on_icon=on_icon).problems
+        paints = _render(pairs[0][1], strict_svg=strict_svg, on_icon=on_icon)
         for theme, iconset in pairs:
+            kind = resolve_pipeline(pipeline, iconset.pipeline, theme.pipeline)
             audits.append(
-                audit(theme, iconset, alpha=alpha, threshold=threshold, problems=problems)
+                _audit(theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=kind)
             )
-        for theme in loaded_themes:  # YAML themes get the first mode's icon colours
-            audits.append(audit(theme, first, alpha=alpha, threshold=threshold, problems=problems))
     gate = evaluate(audits, policy or Policy(), baseline=baseline)
     return CheckReport(audits=tuple(audits), gate=gate)
 

@@ -23,6 +23,7 @@ from alpha_audit.errors import InputError, UsageError
 __all__ = [
     "CONTRAST_RULES",
     "DEFAULT_RULES",
+    "PAINT_RULES",
     "Exemption",
     "Policy",
     "Rule",
@@ -41,6 +42,15 @@ class Rule(StrEnum):
     NEW_COLLISION = "new-collision"  # ... and not already colliding at alpha = 1
     SEPARATION = "separation"  # smallest CIEDE2000 between outputs below min_delta_e
     UNRENDERABLE = "unrenderable"  # an icon's SVG could not be rendered (opt-in)
+    # Paint rules (alpha_audit.paint_audit, docs/model.md); all opt-in for now.
+    FIXED_COLOUR = "fixed-colour"  # a hard-coded paint that will not follow the theme
+    NOT_AUDITED = "not-audited"  # gradient, pattern, text, image ... the audit cannot judge
+    DRIFT = "drift"  # CIEDE2000 between the colour at alpha 1 and at alpha above max_drift
+    LOCK = "lock"  # a locked (brand) colour drifts by more than one JND
+    CONFUSION = "confusion"  # roles told apart at alpha 1 but not at alpha (min_delta_e)
+    THIN_STROKES = "thin-strokes"  # size contrast below min_size_contrast at some size
+    CVD_COLLISION = "cvd-collision"  # new 8-bit collision under simulated CVD
+    CVD_CONFUSION = "cvd-confusion"  # confusion under simulated CVD
 
     @classmethod
     def parse(cls, text: str) -> Rule:
@@ -60,7 +70,21 @@ def _did_you_mean(name: str, known: Iterable[str]) -> str:
     return f"did you mean {close[0]!r}? " if close else ""
 
 
+# `confusion` joins the default once `suggest` honours it (the issue's deliverable 6):
+# until then suggest would answer coefficients that a default check rejects.
 DEFAULT_RULES = frozenset({Rule.LOSS, Rule.NEWLY_FAILING, Rule.NEW_COLLISION})
+PAINT_RULES = frozenset(
+    {
+        Rule.FIXED_COLOUR,
+        Rule.NOT_AUDITED,
+        Rule.DRIFT,
+        Rule.LOCK,
+        Rule.CONFUSION,
+        Rule.THIN_STROKES,
+        Rule.CVD_COLLISION,
+        Rule.CVD_CONFUSION,
+    }
+)
 
 
 @dataclass(frozen=True)
@@ -91,14 +115,24 @@ class Policy:
 
     rules: frozenset[Rule] = DEFAULT_RULES
     max_loss: float = 0.0  # contrast-ratio units; losses up to this are tolerated
-    min_delta_e: float = 10.0  # CIEDE2000; only used by Rule.SEPARATION
+    min_delta_e: float = 10.0  # CIEDE2000; Rule.SEPARATION, CONFUSION, CVD_CONFUSION
     exemptions: tuple[Exemption, ...] = ()
+    max_drift: float = 10.0  # CIEDE2000; Rule.DRIFT
+    min_size_contrast: float | None = None  # Rule.THIN_STROKES; None: the threshold
 
     def __post_init__(self) -> None:
         if not (math.isfinite(self.max_loss) and self.max_loss >= 0):
             raise UsageError(f"max_loss must be a finite number >= 0, got {self.max_loss}")
         if not (math.isfinite(self.min_delta_e) and self.min_delta_e >= 0):
             raise UsageError(f"min_delta_e must be a finite number >= 0, got {self.min_delta_e}")
+        if not (math.isfinite(self.max_drift) and self.max_drift >= 0):
+            raise UsageError(f"max_drift must be a finite number >= 0, got {self.max_drift}")
+        if self.min_size_contrast is not None and not (
+            math.isfinite(self.min_size_contrast) and 1.0 <= self.min_size_contrast <= 21.0
+        ):
+            raise UsageError(
+                f"min_size_contrast must be a contrast ratio 1-21, got {self.min_size_contrast}"
+            )
         if any(not e.reason.strip() for e in self.exemptions):
             raise UsageError("every exemption needs a reason")
 
@@ -108,6 +142,8 @@ class Policy:
         rules: Iterable[str] | None = None,
         max_loss: float | None = None,
         min_delta_e: float | None = None,
+        max_drift: float | None = None,
+        min_size_contrast: float | None = None,
     ) -> Policy:
         """This policy with command-line overrides applied (``None`` keeps a field)."""
         changes: dict[str, object] = {}
@@ -117,6 +153,10 @@ class Policy:
             changes["max_loss"] = max_loss
         if min_delta_e is not None:
             changes["min_delta_e"] = min_delta_e
+        if max_drift is not None:
+            changes["max_drift"] = max_drift
+        if min_size_contrast is not None:
+            changes["min_size_contrast"] = min_size_contrast
         return replace(self, **changes)
 
     def exempt(self, rule: Rule, canvas: str | None, icons: tuple[str, ...]) -> Exemption | None:

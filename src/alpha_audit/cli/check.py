@@ -15,8 +15,11 @@ from alpha_audit.cli.options import (
     ConfigOption,
     ForceOption,
     IconsetArgument,
+    MaxDriftOption,
     MaxLossOption,
     MinDeltaEOption,
+    MinSizeContrastOption,
+    PipelineOption,
     StrictSvgOption,
     ThemeArgument,
     ThresholdOption,
@@ -113,14 +116,18 @@ def check_command(
             "--fail-on",
             metavar="RULE",
             help="Rule that fails the gate (repeatable; replaces the policy): loss, "
-            "below-threshold, newly-failing, collision, new-collision, separation, unrenderable. "
-            "[default: loss, newly-failing, new-collision]",
+            "below-threshold, newly-failing, collision, new-collision, separation, unrenderable, "
+            "fixed-colour, not-audited, drift, lock, confusion, thin-strokes, cvd-collision, "
+            "cvd-confusion. [default: loss, newly-failing, new-collision]",
             show_default=False,
             callback=rules_flag("--fail-on"),
         ),
     ] = None,
     max_loss: MaxLossOption = None,
     min_delta_e: MinDeltaEOption = None,
+    max_drift: MaxDriftOption = None,
+    min_size_contrast: MinSizeContrastOption = None,
+    pipeline: PipelineOption = None,
     exit_zero: Annotated[
         bool, typer.Option("--exit-zero", help="Report findings but exit 0 even if the gate fails.")
     ] = False,
@@ -181,6 +188,8 @@ def check_command(
 
     require_finite(alpha, "--alpha")
     require_finite(threshold, "--threshold")
+    require_finite(max_drift, "--max-drift")
+    require_finite(min_size_contrast, "--min-size-contrast")
     given = ctx.meta.get(OPTION_ORDER)
     order = None if given is None else ["format" if n == "fmt" else n for n in given]
     pairs = pair_outputs(list(fmt or []), list(output or []), order)
@@ -195,7 +204,11 @@ def check_command(
     cli_themes = [theme_source(t) for t in ([theme] if theme else []) + list(themes or [])]
     cli_sets = [iconset_source(s) for s in ([iconset] if iconset else []) + list(iconsets or [])]
     policy = project.policy.with_overrides(
-        rules=fail_on, max_loss=max_loss, min_delta_e=min_delta_e
+        rules=fail_on,
+        max_loss=max_loss,
+        min_delta_e=min_delta_e,
+        max_drift=max_drift,
+        min_size_contrast=min_size_contrast,
     )
     baseline_path = baseline if baseline is not None else project.baseline
     known = read_baseline(baseline_path) if baseline_path is not None else None
@@ -209,6 +222,7 @@ def check_command(
             threshold=threshold if threshold is not None else project.threshold,
             baseline=known,
             strict_svg=strict_svg or project.strict_svg,
+            pipeline=pipeline if pipeline is not None else project.pipeline,
             on_start=on_start,
             on_icon=on_icon,
             tokens=None if cli_themes or cli_sets else project.tokens,

@@ -17,10 +17,12 @@ FLAGS: dict[str, str] = {
     "overwrite=True": "--force",
     "alphas": "--alpha",
     "alpha": "--alpha",
+    "rules": "--fail-on",
     "sizes": "--size",
     "out_dir": "-o DIR",
     "html_path": "--html FILE",
     "baseline_document": "--write-baseline",
+    "icons": "--icons",
 }
 """Backticked phrase in a library message -> what the command line says instead."""
 

@@ -18,9 +18,12 @@ __all__ = [
     "ConfigOption",
     "ForceOption",
     "IconsetArgument",
+    "MaxDriftOption",
     "MaxLossOption",
     "MinDeltaEOption",
+    "MinSizeContrastOption",
     "OrderedOptionsCommand",
+    "PipelineOption",
     "StrictSvgOption",
     "ThemeArgument",
     "ThresholdOption",
@@ -120,8 +123,34 @@ MinDeltaEOption = Annotated[
     float | None,
     typer.Option(
         "--min-delta-e",
-        help="Smallest CIEDE2000 for separation. [default: 10]",
+        help="Smallest CIEDE2000 for separation and confusion. [default: 10]",
         callback=at_least("--min-delta-e", 0.0),
+    ),
+]
+MaxDriftOption = Annotated[
+    float | None,
+    typer.Option(
+        "--max-drift",
+        help="Largest CIEDE2000 colour drift for drift. [default: 10]",
+        callback=at_least("--max-drift", 0.0),
+    ),
+]
+MinSizeContrastOption = Annotated[
+    float | None,
+    typer.Option(
+        "--min-size-contrast",
+        help="Smallest size contrast for thin-strokes. [default: the threshold]",
+    ),
+]
+PipelineOption = Annotated[
+    str | None,
+    typer.Option(
+        "--pipeline",
+        metavar="linear|css",
+        help="How icons are drawn: linear (the paper: WebGL, linearRGB filter, exported "
+        "colours) or css (browser opacity, alpha in [0, 1]). [default: the config's, the "
+        "icon set's, the theme's, else linear]",
+        show_default=False,
     ),
 ]
 StrictSvgOption = Annotated[

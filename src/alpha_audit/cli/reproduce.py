@@ -64,7 +64,8 @@ def reproduce_command(
         typer.Option(
             "--only",
             metavar="EXPERIMENT",
-            help="Run only this experiment (repeatable): full-gamut, broad-grid, sweep, palette.",
+            help="Run only this experiment (repeatable): full-gamut, broad-grid, sweep, palette; "
+            "browser and runtime (in browsers, never by default) need --icons.",
             show_default=False,
         ),
     ] = None,
@@ -96,6 +97,25 @@ def reproduce_command(
     force: Annotated[
         bool, typer.Option("--force", help="Replace existing files in the --out folder.")
     ] = False,
+    icons: Annotated[
+        Path | None,
+        typer.Option(
+            "--icons",
+            help="Directory of SVG icons for browser and runtime (the first 300 by SHA-256 "
+            "of their path).",
+            file_okay=False,
+        ),
+    ] = None,
+    engines: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--engine",
+            metavar="ENGINE",
+            help="Browser engine for browser and runtime (repeatable: chromium, firefox, "
+            "webkit; default every installed one).",
+            show_default=False,
+        ),
+    ] = None,
 ) -> ExitStatus:
     """Reproduce the paper's numerical evaluation (Section 4) exactly and fast."""
     if out is not None and out.exists() and not out.is_dir():
@@ -112,6 +132,8 @@ def reproduce_command(
             "only": only or (),
             "alphas": alphas or (1.1, 1.4),
             "quick": quick,
+            "icons": icons,
+            "engines": engines or None,
         },
         Console(stderr=True),
     )

@@ -1,11 +1,22 @@
-"""Pure numpy colour maths: sRGB, extended compositing, luminance, contrast, CIEDE2000."""
+"""Pure numpy colour maths: sRGB, compositing pipelines, contrast, CIEDE2000, drift, CVD."""
 
 from alpha_audit.color.composite import (
+    PIPELINES,
+    Pipeline,
     composite_coverage,
+    composite_css,
     composite_extended,
+    composite_paint,
     composite_raw,
     difference_blend,
     exclusion_blend,
+)
+from alpha_audit.color.coverage import (
+    CoverageStats,
+    coverage_stats,
+    full_share,
+    median_coverage,
+    size_contrast,
 )
 from alpha_audit.color.css import (
     GAMUT_POLICIES,
@@ -14,6 +25,8 @@ from alpha_audit.color.css import (
     color_from_components,
     parse_css_color,
 )
+from alpha_audit.color.cvd import DEFICIENCIES, Deficiency, cvd_matrix, simulate_cvd
+from alpha_audit.color.drift import ACHROMATIC_CHROMA, color_drift, hue_shift, linear_to_oklch
 from alpha_audit.color.metrics import (
     CONTRAST_TOLERANCE,
     DELTA_E_TOLERANCE,
@@ -40,33 +53,50 @@ from alpha_audit.color.srgb import (
 )
 
 __all__ = [
+    "ACHROMATIC_CHROMA",
     "CONTRAST_TOLERANCE",
+    "DEFICIENCIES",
     "DELTA_E_TOLERANCE",
     "GAMUT_POLICIES",
     "LUMINANCE_WEIGHTS",
     "NON_TEXT_THRESHOLD",
+    "PIPELINES",
     "THRESHOLD_RANGE",
     "THRESHOLD_WHAT",
+    "CoverageStats",
+    "Deficiency",
     "GamutPolicy",
     "ParsedColor",
+    "Pipeline",
+    "color_drift",
     "color_from_components",
     "composite_coverage",
+    "composite_css",
     "composite_extended",
+    "composite_paint",
     "composite_raw",
     "contrast_from_luminance",
     "contrast_ratio",
+    "coverage_stats",
+    "cvd_matrix",
     "delta_e_2000",
     "delta_e_2000_lab",
     "difference_blend",
     "exclusion_blend",
     "from_8bit",
+    "full_share",
     "hex_to_linear",
+    "hue_shift",
     "linear_to_hex",
     "linear_to_lab",
+    "linear_to_oklch",
+    "median_coverage",
     "pack_8bit",
     "parse_color",
     "parse_css_color",
     "relative_luminance",
+    "simulate_cvd",
+    "size_contrast",
     "srgb_decode",
     "srgb_encode",
     "to_8bit",

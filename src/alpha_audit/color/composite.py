@@ -1,23 +1,43 @@
-"""Extended-coefficient compositing in linear sRGB (paper, Section 3).
+"""Extended-coefficient compositing in linear sRGB (paper, Section 3), and what browsers do.
 
 ``raw = Cb + a (Cs - Cb)`` is ordinary source-over on an opaque canvas written
 as a scaling of the object-background difference; any finite real ``a`` is
 allowed and the result is clipped per channel to [0, 1].  Antialiased coverage
 ``q`` stays separate from ``a`` (paper, Appendix A.2).
+
+Two pipelines draw a paint (see docs/model.md):
+
+* ``linear`` -- the paper: the WebGL shader, an SVG filter in linearRGB or
+  exported per-theme colours; any real ``a``, clipped per channel in linear light;
+* ``css`` -- what a browser does with CSS ``opacity`` or ``rgba()``: source-over
+  on gamma-encoded sRGB values (CSS Compositing 1, section 5.1, applied to the
+  encoded values as CSS Color 3 section 5 / SVG 1.1 ``color-interpolation:
+  sRGB`` prescribe), then 8-bit; ``a`` is limited to [0, 1].
 """
 
 from __future__ import annotations
 
+from typing import Literal
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from alpha_audit.color.srgb import srgb_decode, srgb_encode
+
 __all__ = [
+    "PIPELINES",
+    "Pipeline",
     "composite_coverage",
+    "composite_css",
     "composite_extended",
+    "composite_paint",
     "composite_raw",
     "difference_blend",
     "exclusion_blend",
 ]
+
+Pipeline = Literal["linear", "css"]
+PIPELINES: tuple[Pipeline, ...] = ("linear", "css")
 
 
 def composite_raw(source: ArrayLike, background: ArrayLike, alpha: ArrayLike) -> NDArray:
@@ -56,6 +76,63 @@ def composite_coverage(
     q = np.asarray(coverage, dtype=np.float64)[..., np.newaxis]
     out = composite_extended(source, b, alpha)
     return q * out + (1.0 - q) * b
+
+
+def _check_css_alpha(alpha: NDArray[np.float64]) -> None:
+    if np.any((alpha < 0.0) | (alpha > 1.0)):
+        bad = float(alpha[(alpha < 0.0) | (alpha > 1.0)].flat[0])
+        raise ValueError(
+            f"alpha {bad:g} cannot be expressed in CSS (opacity is limited to [0, 1]); "
+            "use the linear pipeline or export per-theme colours"
+        )
+
+
+def composite_css(source: ArrayLike, background: ArrayLike, alpha: ArrayLike) -> NDArray:
+    """What a browser shows for CSS ``opacity: a``: blend the encoded values, then 8-bit.
+
+    ``source`` and ``background`` are linear sRGB (channels last), as everywhere
+    in alpha-audit; the blend ``Cb' + a (Cs' - Cb')`` happens on their sRGB
+    encodings, is rounded to 8-bit codes (half to even) and returned as linear
+    light again.  ``alpha`` outside [0, 1] raises :class:`ValueError`: CSS
+    clamps it, so an extended coefficient cannot be drawn this way.
+
+    >>> from alpha_audit.color.srgb import hex_to_linear, linear_to_hex
+    >>> linear_to_hex(composite_css(hex_to_linear("#ee7733"), hex_to_linear("#ffffff"), 0.6))
+    '#f5ad85'
+    """
+    a = np.asarray(alpha, dtype=np.float64)
+    _check_css_alpha(a)
+    s = srgb_encode(np.asarray(source, dtype=np.float64))
+    b = srgb_encode(np.asarray(background, dtype=np.float64))
+    encoded = np.clip(b + a[..., np.newaxis] * (s - b), 0.0, 1.0)
+    return srgb_decode(np.rint(encoded * 255.0) / 255.0)  # np.rint rounds half to even
+
+
+def composite_paint(
+    source: ArrayLike,
+    background: ArrayLike,
+    alpha: ArrayLike,
+    opacity: ArrayLike = 1.0,
+    pipeline: Pipeline = "linear",
+) -> NDArray:
+    """Displayed colour of a paint at opacity ``o`` (times coverage) under ``pipeline``.
+
+    ``linear``: ``o * clip(Cb + a (Cs - Cb)) + (1 - o) * Cb`` in linear light
+    (the paper's coverage form, unrounded); ``css``: the browser multiplies
+    every opacity on the way down, so the encoded values blend with ``a * o``
+    and the result is 8-bit.  Unknown pipelines raise :class:`ValueError`
+    listing the valid ones.
+
+    >>> composite_paint([1.0, 1.0, 1.0], [0.0, 0.0, 0.0], 2.0, 0.25).tolist()
+    [0.25, 0.25, 0.25]
+    """
+    if pipeline == "linear":
+        return composite_coverage(source, background, alpha, opacity)
+    if pipeline == "css":
+        a = np.asarray(alpha, dtype=np.float64)
+        _check_css_alpha(a)
+        return composite_css(source, background, a * np.asarray(opacity, dtype=np.float64))
+    raise ValueError(f"unknown pipeline {pipeline!r}; use one of {', '.join(PIPELINES)}")
 
 
 def difference_blend(source: ArrayLike, background: ArrayLike) -> NDArray:

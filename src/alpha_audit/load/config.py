@@ -15,9 +15,16 @@ from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 from typing import Any
 
-from alpha_audit.color import THRESHOLD_RANGE, THRESHOLD_WHAT
+from alpha_audit.color import THRESHOLD_RANGE, THRESHOLD_WHAT, Pipeline
 from alpha_audit.errors import InputError, UsageError
-from alpha_audit.load.fields import check_keys, describe, read_mapping, read_name, read_number
+from alpha_audit.load.fields import (
+    check_keys,
+    describe,
+    read_mapping,
+    read_name,
+    read_number,
+    read_pipeline,
+)
 from alpha_audit.load.files import read_text_capped
 from alpha_audit.load.paths import PathRefused, contain_argument, project_root
 from alpha_audit.load.tokens.themes import TokenConfig, token_config_from_mapping
@@ -43,8 +50,11 @@ CONFIG_KEYS = (
     "fail-on",
     "iconset",
     "iconsets",
+    "max-drift",
     "max-loss",
     "min-delta-e",
+    "min-size-contrast",
+    "pipeline",
     "strict-svg",
     "theme",
     "themes",
@@ -68,6 +78,7 @@ class ProjectConfig:
     baseline: Path | None = None
     strict_svg: bool = False
     tokens: TokenConfig | None = None
+    pipeline: Pipeline | None = None
 
 
 def _has_tool_table(pyproject: Path) -> bool:
@@ -275,6 +286,20 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
     if "min-delta-e" in data:
         min_delta_e = read_number(doc, at("min-delta-e"), data["min-delta-e"], low=0.0, high=200.0)
     exemptions = _exemptions(doc, at("exempt"), data["exempt"]) if "exempt" in data else ()
+    max_drift = 10.0
+    if "max-drift" in data:
+        max_drift = read_number(doc, at("max-drift"), data["max-drift"], low=0.0, high=200.0)
+    min_size_contrast = None
+    if "min-size-contrast" in data:
+        min_size_contrast = read_number(
+            doc,
+            at("min-size-contrast"),
+            data["min-size-contrast"],
+            low=1.0,
+            high=21.0,
+            what="a contrast ratio between 1 and 21",
+        )
+    pipeline = read_pipeline(doc, at("pipeline"), data["pipeline"]) if "pipeline" in data else None
     baseline = _path(doc, at("baseline"), data["baseline"], base) if "baseline" in data else None
     strict_svg = data.get("strict-svg", False)
     if not isinstance(strict_svg, bool):
@@ -292,8 +317,9 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
         iconsets=tuple(found["iconsets"]),
         alpha=alpha,
         threshold=threshold,
-        policy=Policy(rules, max_loss, min_delta_e, exemptions),
+        policy=Policy(rules, max_loss, min_delta_e, exemptions, max_drift, min_size_contrast),
         baseline=baseline,
         strict_svg=strict_svg,
         tokens=tokens,
+        pipeline=pipeline,
     )

@@ -7,12 +7,19 @@ import math
 from collections.abc import Iterable
 from typing import Any
 
-from alpha_audit.color import parse_color
+from alpha_audit.color import PIPELINES, Pipeline, parse_color
 from alpha_audit.errors import ColorSyntaxError
 from alpha_audit.load.yamldoc import KeyPath, YamlDoc
 from alpha_audit.safe_text import is_safe, safe_text
 
-__all__ = ["check_keys", "read_color", "read_mapping", "read_name", "read_number"]
+__all__ = [
+    "check_keys",
+    "read_color",
+    "read_mapping",
+    "read_name",
+    "read_number",
+    "read_pipeline",
+]
 
 _TYPE_NAMES = {
     bool: "a boolean",
@@ -106,3 +113,12 @@ def read_color(doc: YamlDoc, keys: KeyPath, value: Any) -> str:
     except ColorSyntaxError as exc:
         raise doc.error(keys, exc.message) from exc
     return value
+
+
+def read_pipeline(doc: YamlDoc, keys: KeyPath, value: Any) -> Pipeline:
+    """``linear`` or ``css`` (docs/model.md, "Pipelines")."""
+    if not isinstance(value, str) or value.strip().lower() not in PIPELINES:
+        raise doc.error(
+            keys, f"{describe(value)} is not a pipeline; use one of: {', '.join(PIPELINES)}"
+        )
+    return value.strip().lower()  # type: ignore[return-value]

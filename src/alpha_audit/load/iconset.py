@@ -15,6 +15,7 @@ from alpha_audit.load.fields import (
     read_mapping,
     read_name,
     read_number,
+    read_pipeline,
 )
 from alpha_audit.load.paths import PathRefused, contain, contain_argument, glob_contained
 from alpha_audit.load.yamldoc import KeyPath, YamlDoc, load_yaml
@@ -34,9 +35,20 @@ MAX_ICONS = 10_000
 MAX_SIZE = 1024  # px; rasters are size x size float64
 ALPHA_LIMIT = 100.0  # any finite real is valid maths; beyond this it is a typo
 _ROOT_MARKERS = (".git", "pyproject.toml", "alpha-audit.yaml", ".alpha-audit.yaml")
-_MANIFEST_KEYS = ("name", "icons", "palette", "color", "alpha", "sizes", "overrides", "description")
+_MANIFEST_KEYS = (
+    "name",
+    "icons",
+    "palette",
+    "color",
+    "alpha",
+    "sizes",
+    "overrides",
+    "description",
+    "pipeline",
+    "lock",
+)
 _ICON_KEYS = ("file", "name", "color", "alpha")
-_OVERRIDE_KEYS = ("color", "alpha")
+_OVERRIDE_KEYS = ("color", "alpha", "lock")
 
 
 def find_project_root(start: Path) -> Path:
@@ -199,6 +211,7 @@ def iconset_from_doc(doc: YamlDoc, *, root: Path) -> IconSet:
     overrides = read_mapping(
         doc, ("overrides",), {} if raw_overrides is None else raw_overrides, "overrides by icon"
     )
+    locked = set(_palette_locks(m))
     icons: list[Icon] = []
     seen: dict[str, str] = {}
     for keys, file, explicit in m.entries():
@@ -235,6 +248,12 @@ def iconset_from_doc(doc: YamlDoc, *, root: Path) -> IconSet:
             if "alpha" in override:
                 alpha = m.alpha((*okeys, "alpha"), override["alpha"])
                 alpha_keys = (*okeys, "alpha")
+            if "lock" in override:
+                if not isinstance(override["lock"], bool):
+                    got = describe(override["lock"])
+                    raise doc.error((*okeys, "lock"), f"expected true or false, got {got}")
+                if override["lock"]:
+                    locked.add(icon_name)
         if color is None:
             raise doc.error(
                 keys,
@@ -257,7 +276,34 @@ def iconset_from_doc(doc: YamlDoc, *, root: Path) -> IconSet:
         close = difflib.get_close_matches(unknown[0], list(seen), n=1)
         hint = f"; did you mean {close[0]!r}?" if close else ""
         raise doc.error(("overrides", unknown[0]), f"no icon named {unknown[0]!r}{hint}")
-    return IconSet(name, tuple(icons), m.palette, m.sizes(), path=doc.path, root=m.root)
+    pipeline = read_pipeline(doc, ("pipeline",), data["pipeline"]) if "pipeline" in data else None
+    return IconSet(
+        name,
+        tuple(icons),
+        m.palette,
+        m.sizes(),
+        path=doc.path,
+        root=m.root,
+        pipeline=pipeline,
+        locked=frozenset(locked),
+    )
+
+
+def _palette_locks(m: _Manifest) -> list[str]:
+    """``lock: [palette names]``: brand colours that may not drift (docs/model.md)."""
+    if "lock" not in m.data:
+        return []
+    raw = m.data["lock"]
+    items = [raw] if isinstance(raw, str) else raw
+    if not isinstance(items, list):
+        raise m.doc.error(("lock",), f"expected a list of palette names, got {describe(raw)}")
+    for i, item in enumerate(items):
+        if not isinstance(item, str) or item not in m.palette:
+            names = ", ".join(m.palette) or "none defined"
+            raise m.doc.error(
+                ("lock", i), f"{describe(item)} is not a palette name (palette: {names})"
+            )
+    return list(items)
 
 
 def _line_if_set(doc: YamlDoc, keys: KeyPath) -> int | None:

@@ -176,6 +176,8 @@ class RenderPool:
         results: list[Outcome | None] = [None] * len(jobs)
         pending = deque(range(len(jobs)))
         selector = selectors.DefaultSelector()
+        for worker in self.workers:  # workers kept from an earlier map() call
+            selector.register(worker.stdout, selectors.EVENT_READ, worker)
         try:
             while pending or any(w.job is not None for w in self.workers):
                 while pending and (

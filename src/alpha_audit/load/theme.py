@@ -12,6 +12,7 @@ from alpha_audit.load.fields import (
     read_mapping,
     read_name,
     read_number,
+    read_pipeline,
 )
 from alpha_audit.load.paths import PathRefused, contain_argument
 from alpha_audit.load.yamldoc import YamlDoc, load_yaml
@@ -20,7 +21,7 @@ from alpha_audit.model import Canvas, Theme
 __all__ = ["MAX_CANVASES", "load_theme", "theme_from_doc"]
 
 MAX_CANVASES = 4096
-_THEME_KEYS = ("name", "threshold", "canvases", "description", "source")
+_THEME_KEYS = ("name", "threshold", "canvases", "description", "source", "pipeline")
 _CANVAS_KEYS = ("name", "color", "mode")
 
 
@@ -81,4 +82,5 @@ def theme_from_doc(doc: YamlDoc) -> Theme:
         if mode is not None and mode not in ("light", "dark"):
             raise doc.error((*keys, "mode"), f"{mode!r} is not a mode; use light or dark (or omit)")
         canvases.append(Canvas(cname, color, mode, line=doc.line(keys)))
-    return Theme(name, tuple(canvases), threshold, path=doc.path)
+    pipeline = read_pipeline(doc, ("pipeline",), data["pipeline"]) if "pipeline" in data else None
+    return Theme(name, tuple(canvases), threshold, path=doc.path, pipeline=pipeline)

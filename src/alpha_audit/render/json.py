@@ -1,4 +1,4 @@
-"""``alpha-audit.check/1`` JSON: every number at full float precision.
+"""``alpha-audit.check/2`` JSON: every number at full float precision.
 
 One audit: the audit's fields at the top level plus ``gate``.  Several
 audits (themes x icon sets): ``audits`` lists each audit's fields, and
@@ -7,6 +7,7 @@ audits (themes x icon sets): ``audits`` lists each audit's fields, and
 
 from __future__ import annotations
 
+import math
 from dataclasses import asdict
 from pathlib import Path
 from typing import Any
@@ -24,7 +25,9 @@ __all__ = [
     "report_to_dict",
 ]
 
-CHECK_SCHEMA = "alpha-audit.check/1"
+# /2: rows per (icon, paint, canvas) when the icons' paints were read (docs/json.md);
+# every /1 field is kept with its meaning, so a single-paint icon reads as before.
+CHECK_SCHEMA = "alpha-audit.check/2"
 
 
 def check_to_dict(result: AuditResult) -> dict[str, Any]:
@@ -46,7 +49,8 @@ def check_to_dict(result: AuditResult) -> dict[str, Any]:
             "sizes": list(iconset.sizes),
         },
         "threshold": result.threshold,
-        "rows": records(result.rows()),
+        "pipeline": result.paints.pipeline if result.paints is not None else "linear",
+        "rows": _rows(result),
         "collisions": [
             {
                 "canvas": c.canvas,
@@ -72,8 +76,65 @@ def check_to_dict(result: AuditResult) -> dict[str, Any]:
         "problems": [
             {"icon": p.icon, "file": str(p.file), "message": p.message} for p in result.problems
         ],
-        "summary": asdict(result.summary),
+        "summary": {**asdict(result.summary), **_drift_summary(result)},
+        "drift": [
+            {"canvas": canvas, "max_drift": d, "icon": icon, "paint": paint}
+            for canvas, (d, icon, paint) in (
+                result.paints.worst_drift.items() if result.paints is not None else ()
+            )
+        ],
     }
+
+
+def _finite(value: float) -> float | None:
+    """Strict JSON has no NaN: a figure that does not exist (no ink at a size) is null."""
+    return value if math.isfinite(value) else None
+
+
+def _rows(result: AuditResult) -> list[dict[str, Any]]:
+    """Per icon x canvas (manifest colours), or per icon x paint x canvas when paints were read."""
+    if result.paints is None:
+        return records(result.rows())
+    out = []
+    for row in result.paints.rows():
+        out.append(
+            {
+                "icon": row.icon,
+                "canvas": row.canvas,
+                "paint": row.paint,
+                "kinds": list(row.kinds),
+                "source": row.source,
+                "opacity": row.opacity,
+                "background": row.background,
+                "alpha": row.alpha,
+                "pipeline": row.pipeline,
+                "output": row.output,
+                "contrast_ref": row.contrast_ref,
+                "contrast": row.contrast,
+                "gain": row.gain,
+                "passes_ref": row.passes_ref,
+                "passes": row.passes,
+                "newly_passes": row.newly_passes,
+                "loss": row.loss,
+                "newly_fails": row.newly_fails,
+                "drift": row.drift,
+                "hue_shift": row.hue_shift,
+                "sizes": {
+                    str(size): {
+                        "q50": _finite(f.q50),
+                        "full_share": _finite(f.full_share),
+                        "contrast": _finite(f.contrast),
+                    }
+                    for size, f in row.sizes.items()
+                },
+            }
+        )
+    return out
+
+
+def _drift_summary(result: AuditResult) -> dict[str, Any]:
+    worst = result.paints.worst_drift if result.paints is not None else {}
+    return {"max_drift": max((d for d, _, _ in worst.values()), default=None)}
 
 
 def finding_to_dict(finding: Finding, base: Path | None = None) -> dict[str, Any]:
@@ -103,6 +164,8 @@ def gate_to_dict(gate: GateResult, base: Path | None = None) -> dict[str, Any]:
             "rules": sorted(r.value for r in policy.rules),
             "max_loss": policy.max_loss,
             "min_delta_e": policy.min_delta_e,
+            "max_drift": policy.max_drift,
+            "min_size_contrast": policy.min_size_contrast,
             "exemptions": [
                 {
                     "canvas": e.canvas,
@@ -147,5 +210,5 @@ def report_to_dict(report: CheckReport, base: Path | None = None) -> dict[str, A
 
 
 def render_report(report: CheckReport, options: RenderOptions) -> str:
-    """Render a report as ``alpha-audit.check/1`` JSON."""
+    """Render a report as ``alpha-audit.check/2`` JSON."""
     return dumps(report_to_dict(report, options.base))

@@ -42,7 +42,12 @@ def render_json(report: PairReport, options: RenderOptions) -> str:
 
 
 def render_table(report: PairReport, options: RenderOptions) -> str:
-    """One row per background x alpha, swatches shown when colour is on."""
+    """One row per background x alpha, swatches shown when colour is on.
+
+    A second table puts the linear pipeline beside ``css`` (what a browser draws for
+    the same alpha: gamma-space blend, 8-bit) for every alpha in [0, 1) — the only
+    coefficients CSS can express besides 1, where both agree.
+    """
     rows = report.rows
     backgrounds = len({r.background for r in rows})
     title = Text(f"{report.color} on {backgrounds} background(s)")  # never rich markup
@@ -60,4 +65,22 @@ def render_table(report: PairReport, options: RenderOptions) -> str:
             f"{r.delta_e_from_source:.2f}",
             "yes" if r.clipped else "",
         )
-    return to_text(table, options)
+    text = to_text(table, options)
+    drawable = [r for r in rows if r.css_output is not None and r.alpha != 1.0]
+    if not drawable:
+        return text
+    css = Table(
+        title="the same in a browser (pipeline css; alpha in [0, 1])",
+        title_justify="left",
+    )
+    for name in ("background", "α", "linear", "css", "contrast linear → css"):
+        css.add_column(name, justify="right" if name in ("α",) else "left", no_wrap=True)
+    for r in drawable:
+        css.add_row(
+            Text(r.background, style=f"on {r.background}"),
+            f"{r.alpha:g}",
+            Text(r.output, style=f"on {r.output}"),
+            Text(str(r.css_output), style=f"on {r.css_output}"),
+            f"{r.contrast:.3f} → {r.css_contrast:.3f}",
+        )
+    return text + to_text(css, options)

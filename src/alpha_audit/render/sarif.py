@@ -31,6 +31,14 @@ RULE_HELP: dict[Rule, str] = {
     Rule.NEW_COLLISION: "Distinct colours collide at their alpha but not at alpha 1.",
     Rule.SEPARATION: "Two of the set's colours are closer than the minimum CIEDE2000.",
     Rule.UNRENDERABLE: "The icon's SVG could not be rendered.",
+    Rule.FIXED_COLOUR: "The SVG hard-codes a paint colour that will not follow the theme.",
+    Rule.NOT_AUDITED: "The SVG draws something the audit cannot judge (gradient, text, image).",
+    Rule.DRIFT: "The paint's colour moves further than max-drift (CIEDE2000) at its alpha.",
+    Rule.LOCK: "A locked brand colour changes by more than one just-noticeable difference.",
+    Rule.CONFUSION: "Two palette roles told apart at alpha 1 are no longer told apart.",
+    Rule.THIN_STROKES: "At a raster size the antialiased paint falls below min-size-contrast.",
+    Rule.CVD_COLLISION: "Distinct colours newly look identical under simulated colour blindness.",
+    Rule.CVD_CONFUSION: "Two roles are no longer told apart under simulated colour blindness.",
 }
 
 

@@ -205,10 +205,20 @@ def check_renderable(result: AuditResult) -> RenderableType:
         f"down {s.decrease_pct:.1f}%, mean {s.mean_gain:+.3f}; "
         f"{s.newly_pass} newly reach {result.threshold:g}:1, {s.newly_fail} newly fail; "
         f"{s.losses} losses (max {s.max_loss:.4f}); {s.collisions} collisions "
-        f"({s.new_collisions} new)",
+        f"({s.new_collisions} new)" + _drift_note(result),
         style="bold",
     )
     return Group(head, _summary_table(result), *_findings(result), Text(""), foot)
+
+
+def _drift_note(result: AuditResult) -> str:
+    """The worst colour drift over the canvases (docs/model.md), when paints were read."""
+    worst = result.paints.worst_drift if result.paints is not None else {}
+    if not worst:
+        return ""
+    canvas, (drift, icon, paint) = max(worst.items(), key=lambda item: item[1][0])
+    where = icon if paint == "currentColor" else f"{icon} {paint}"
+    return f"; colour drift up to {drift:.1f} CIEDE2000 ({where} on {canvas})"
 
 
 def gate_renderable(gate: GateResult) -> RenderableType:

@@ -14,6 +14,7 @@ from alpha_audit.output import Output, check_targets, write_files
 from alpha_audit.reproduce.figures import FIGURES, figure_outputs
 from alpha_audit.reproduce.report import render_json, render_markdown
 from alpha_audit.reproduce.run import Experiment, Reproduction
+from alpha_audit.reproduce.runtime import RUNTIME_FIGURE, runtime_figure_output
 
 __all__ = [
     "RESULTS_JSON",
@@ -33,6 +34,8 @@ def planned_files(folder: str | Path, only: Iterable[Experiment] = ()) -> list[P
     names = [RESULTS_JSON, RESULTS_MARKDOWN]
     if not set(only) or Experiment.SWEEP in set(only):
         names += list(FIGURES)
+    if Experiment.RUNTIME in set(only):
+        names.append(RUNTIME_FIGURE)
     return [folder / n for n in names]
 
 
@@ -54,5 +57,7 @@ def write_results(run: Reproduction, folder: str | Path, *, overwrite: bool = Fa
     ]
     if run.sweep is not None:
         outputs += figure_outputs(run.sweep, folder)
+    if run.runtime is not None:
+        outputs.append(runtime_figure_output(run.runtime, folder / RUNTIME_FIGURE))
     folder.mkdir(parents=True, exist_ok=True)
     return write_files(outputs, overwrite=overwrite)

@@ -28,6 +28,13 @@ from alpha_audit.reproduce.paper import (
     PaperValue,
     matches_printed,
 )
+from alpha_audit.reproduce.report_browser import (
+    browser_json,
+    browser_markdown,
+    browser_tables,
+    runtime_json,
+    runtime_markdown,
+)
 from alpha_audit.reproduce.run import Reproduction
 
 __all__ = [
@@ -165,6 +172,10 @@ def to_json_dict(run: Reproduction) -> dict[str, Any]:
             "collisions": {alpha_key(a): n for a, n in p.random_collisions.items()},
         }
         doc["palette"] = pal
+    if run.browser is not None:
+        doc["browser"] = browser_json(run.browser)
+    if run.runtime is not None:
+        doc["runtime"] = runtime_json(run.runtime)
     doc["paper"] = {
         experiment: {
             group: {
@@ -420,6 +431,10 @@ def render_markdown(run: Reproduction, options: RenderOptions | None = None) -> 
         lines += _sweep_section(run)
     if run.palette is not None:
         lines += _palette_section(run)
+    if run.browser is not None:
+        lines += browser_markdown(run.browser)
+    if run.runtime is not None:
+        lines += runtime_markdown(run.runtime)
     return "\n".join(lines).rstrip() + "\n"
 
 
@@ -523,7 +538,7 @@ def tables(run: Reproduction) -> list[Table]:
                 else "—",
             )
         tables.append(t)
-    return tables
+    return tables + browser_tables(run.browser, run.runtime, _table)
 
 
 def render_table(run: Reproduction, options: RenderOptions) -> str:

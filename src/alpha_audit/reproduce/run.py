@@ -5,10 +5,12 @@ from __future__ import annotations
 import enum
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
+from pathlib import Path
 from typing import assert_never
 
 from alpha_audit.errors import UsageError
 from alpha_audit.model import Theme
+from alpha_audit.reproduce.browser import BrowserValidationResult, browser_validation
 from alpha_audit.reproduce.experiments import (
     BroadGridResult,
     FullGamutResult,
@@ -20,17 +22,35 @@ from alpha_audit.reproduce.experiments import (
     sweep,
     sweep_alphas,
 )
+from alpha_audit.reproduce.runtime import RuntimeResult, RuntimeSettings, runtime
 
-__all__ = ["Experiment", "Reproduction", "Settings", "reproduce"]
+__all__ = [
+    "BROWSER_EXPERIMENTS",
+    "DEFAULT_EXPERIMENTS",
+    "Experiment",
+    "Reproduction",
+    "Settings",
+    "reproduce",
+]
 
 
 class Experiment(enum.StrEnum):
-    """The four numerical experiments, in the paper's order."""
+    """The four numerical experiments, in the paper's order, then the two in browsers."""
 
     FULL_GAMUT = "full-gamut"
     BROAD_GRID = "broad-grid"
     SWEEP = "sweep"
     PALETTE = "palette"
+    BROWSER = "browser"
+    RUNTIME = "runtime"
+
+
+# Run when nothing is selected; the browser experiments need engines and icons, so they
+# run only when asked for.
+DEFAULT_EXPERIMENTS = frozenset(
+    {Experiment.FULL_GAMUT, Experiment.BROAD_GRID, Experiment.SWEEP, Experiment.PALETTE}
+)
+BROWSER_EXPERIMENTS = frozenset({Experiment.BROWSER, Experiment.RUNTIME})
 
 
 @dataclass(frozen=True)
@@ -67,6 +87,8 @@ class Reproduction:
     broad_grid: tuple[BroadGridResult, ...] | None = None
     sweep: SweepResult | None = None
     palette: PaletteResult | None = None
+    browser: BrowserValidationResult | None = None
+    runtime: RuntimeResult | None = None
 
 
 def reproduce(
@@ -75,15 +97,21 @@ def reproduce(
     *,
     alphas: Iterable[float] = (1.1, 1.4),
     quick: bool = False,
+    icons: Path | None = None,
+    engines: Iterable[str] | None = None,
     progress: Callable[[Experiment, float], None] | None = None,
 ) -> Reproduction:
     """Run the selected experiments (all when ``only`` is empty) on ``theme``.
 
     ``alphas`` apply to the full gamut, broad grid and palette experiments;
-    the sweep always covers [0, 2].  ``progress(experiment, fraction)``
-    reports completed fractions.
+    the sweep always covers [0, 2].  The browser experiments (run only when
+    selected) draw the SVGs of ``icons`` in each installed engine, or in
+    ``engines``.  ``progress(experiment, fraction)`` reports completed fractions.
     """
-    selected = set(only) or set(Experiment)
+    selected = set(only) or set(DEFAULT_EXPERIMENTS)
+    if selected & BROWSER_EXPERIMENTS and icons is None:
+        names = " and ".join(sorted(e.value for e in selected & BROWSER_EXPERIMENTS))
+        raise UsageError(f"experiment {names} needs `icons` (a directory of SVG icons)")
     alphas = tuple(float(a) for a in alphas)
     if not alphas:
         raise UsageError("`alphas` is empty; give at least one coefficient")
@@ -120,6 +148,19 @@ def reproduce(
             case Experiment.PALETTE:
                 results["palette"] = palette_separation(
                     theme, alphas, pairs=settings.pairs, progress=step
+                )
+            case Experiment.BROWSER:
+                assert icons is not None
+                results["browser"] = browser_validation(
+                    theme, icons, engines=engines, progress=step
+                )
+            case Experiment.RUNTIME:
+                assert icons is not None
+                results["runtime"] = runtime(
+                    icons,
+                    settings=RuntimeSettings.quick() if quick else RuntimeSettings.paper(),
+                    engines=engines,
+                    progress=step,
                 )
             case _:
                 assert_never(experiment)

@@ -46,7 +46,7 @@ from alpha_audit.color.nearest import (
 )
 from alpha_audit.errors import UsageError
 from alpha_audit.model import IconSet, Theme
-from alpha_audit.policy import Policy, Rule, contrast_breaks, contrast_floor
+from alpha_audit.policy import PAINT_RULES, Policy, Rule, contrast_breaks, contrast_floor
 from alpha_audit.suggest.events import (
     clip_breakpoints,
     code_timeline,
@@ -623,6 +623,13 @@ def _engine(
         raise UsageError(f"icon set {iconset.name!r} has no icons")
     if not theme.canvases:
         raise UsageError(f"theme {theme.name!r} has no canvases")
+    unsupported = sorted(r.value for r in (policy or Policy()).rules & PAINT_RULES)
+    if unsupported:
+        # Better no answer than an alpha that check then rejects (issue 11, deliverable 6).
+        raise UsageError(
+            f"suggest does not yet honour the paint rules {', '.join(unsupported)}; "
+            "leave them out of `rules` for suggest, or check a chosen alpha"
+        )
     t = theme.threshold if threshold is None else float(threshold)
     if not math.isfinite(t):
         raise UsageError(f"threshold must be a finite number, got {t}")

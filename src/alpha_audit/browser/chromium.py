@@ -1,0 +1,183 @@
+"""Chromium over the DevTools protocol on ``--remote-debugging-pipe`` (standard library only).
+
+The pipe carries NUL-terminated JSON on the child's fds 3 (commands) and 4
+(replies): no port is opened at all.  WebGL2 runs on SwiftShader, on the CPU,
+so results do not depend on a GPU.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import fcntl
+import json
+import os
+import select
+import shutil
+import sys
+import time
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+from alpha_audit.browser.interface import (
+    Browser,
+    BrowserError,
+    Installation,
+    deadline_after,
+    time_left,
+)
+
+__all__ = ["Chromium"]
+
+# Chromium's switches: https://peter.sh/experiments/chromium-command-line-switches/
+_FLAGS = (
+    "--headless",
+    "--no-sandbox",  # root in CI containers cannot use the setuid sandbox
+    "--disable-gpu",
+    "--use-angle=swiftshader",  # WebGL2 on the CPU: no GPU on CI machines
+    "--enable-unsafe-swiftshader",
+    "--disable-quic",
+    "--no-first-run",
+    "--no-default-browser-check",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--disable-extensions",
+    "--mute-audio",
+    "--remote-debugging-pipe",
+)
+# Put the child's pipe ends on fds 3 and 4 after fork; Popen cannot place fds itself.
+_TRAMPOLINE = (
+    "import os, sys; os.dup2(int(sys.argv[1]), 3); os.dup2(int(sys.argv[2]), 4); "
+    "os.close(int(sys.argv[1])); os.close(int(sys.argv[2])); "
+    "os.execv(sys.argv[3], sys.argv[3:])"
+)
+
+
+class Chromium(Browser):
+    """Headless Chromium (Debian's ``chromium``, or ``$ALPHA_AUDIT_CHROMIUM``)."""
+
+    NAME = "chromium"
+    LABEL = "Chromium"
+    INSTALL_HINT = (
+        "install Debian's package (`sudo apt-get install -y chromium`, or `make browser` as "
+        "root), or point ALPHA_AUDIT_CHROMIUM at a Chromium/Chrome binary"
+    )
+
+    @classmethod
+    def find(cls) -> Installation | None:
+        """``$ALPHA_AUDIT_CHROMIUM`` or a Chromium/Chrome on ``PATH``."""
+        configured = os.environ.get("ALPHA_AUDIT_CHROMIUM")
+        if configured:
+            return Installation(cls.NAME, Path(configured)) if Path(configured).is_file() else None
+        for name in ("chromium", "chromium-browser", "google-chrome", "google-chrome-stable"):
+            if found := shutil.which(name):
+                return Installation(cls.NAME, Path(found))
+        return None
+
+    def _start(self) -> None:
+        commands_r, commands_w = os.pipe()
+        replies_r, replies_w = os.pipe()
+        # Move the child's ends above 3 and 4 so that placing them there cannot collide.
+        child_r = fcntl.fcntl(commands_r, fcntl.F_DUPFD, 10)
+        child_w = fcntl.fcntl(replies_w, fcntl.F_DUPFD, 10)
+        os.close(commands_r)
+        os.close(replies_w)
+        self._writer = os.fdopen(commands_w, "wb")
+        self._reader = replies_r
+        try:
+            self.processes.start(
+                [
+                    *(sys.executable, "-c", _TRAMPOLINE, str(child_r), str(child_w)),
+                    str(self.installation.binary),
+                    *_FLAGS,
+                    f"--user-data-dir={self.workdir / 'profile'}",
+                    "about:blank",
+                ],
+                pass_fds=(child_r, child_w),
+            )
+        finally:
+            os.close(child_r)
+            os.close(child_w)
+        self._buffer = bytearray()
+        self._scanned = 0
+        self._next_id = 0
+        self._session: str | None = None
+        self.version = self._call("Browser.getVersion", session=False)["product"]
+        target = self._call("Target.createTarget", {"url": "about:blank"}, session=False)
+        attached = self._call(
+            "Target.attachToTarget", {"targetId": target["targetId"], "flatten": True}
+        )
+        self._session = attached["sessionId"]
+
+    def _messages(self, deadline: float) -> Iterator[dict[str, Any]]:
+        while True:
+            # Only the newest chunk can hold the terminator: scanning it alone keeps a
+            # message of tens of MB linear to receive.
+            while (end := self._buffer.find(b"\0", self._scanned)) >= 0:
+                raw = bytes(self._buffer[:end])
+                del self._buffer[: end + 1]
+                self._scanned = 0
+                yield json.loads(raw)
+            self._scanned = len(self._buffer)
+            left = time_left(deadline, self.LABEL)
+            if not select.select([self._reader], [], [], left)[0]:
+                continue  # time_left raises on the next turn
+            chunk = os.read(self._reader, 1 << 20)
+            if not chunk:
+                raise BrowserError("Chromium closed the DevTools pipe (it crashed or quit)")
+            self._buffer += chunk
+
+    def _call(
+        self,
+        method: str,
+        params: dict[str, Any] | None = None,
+        *,
+        session: bool = True,
+        timeout: float | None = None,
+    ) -> dict[str, Any]:
+        self._next_id += 1
+        message: dict[str, Any] = {"id": self._next_id, "method": method, "params": params or {}}
+        if session and self._session:
+            message["sessionId"] = self._session
+        try:
+            self._writer.write(json.dumps(message).encode() + b"\0")
+            self._writer.flush()
+        except OSError as exc:
+            raise BrowserError(f"Chromium is gone: {exc}") from exc
+        for reply in self._messages(deadline_after(timeout or self.timeout)):
+            if reply.get("id") == self._next_id:
+                if "error" in reply:
+                    raise BrowserError(f"Chromium {method}: {reply['error'].get('message')}")
+                return reply["result"]
+        raise AssertionError("unreachable")
+
+    def _navigate(self, url: str) -> None:
+        reply = self._call("Page.navigate", {"url": url})
+        if reply.get("errorText"):
+            raise BrowserError(f"Chromium could not open {url}: {reply['errorText']}")
+        deadline = deadline_after(self.timeout)
+        check = f"location.href === {json.dumps(url)} && document.readyState === 'complete'"
+        while not self.evaluate(check):
+            time_left(deadline, f"Chromium loading {url}")
+            time.sleep(0.02)
+
+    def _evaluate_text(self, expression: str, timeout: float) -> str:
+        reply = self._call(
+            "Runtime.evaluate",
+            {"expression": expression, "returnByValue": True, "awaitPromise": True},
+            timeout=timeout,
+        )
+        if "exceptionDetails" in reply:
+            details = reply["exceptionDetails"]
+            text = details.get("exception", {}).get("description") or details.get("text")
+            raise BrowserError(f"script error in Chromium: {text}")
+        return reply["result"].get("value")
+
+    def _shutdown(self) -> None:
+        try:
+            self._call("Browser.close", session=False, timeout=5)
+        finally:
+            with contextlib.suppress(OSError):  # the reader may already be gone
+                self._writer.close()
+            os.close(self._reader)

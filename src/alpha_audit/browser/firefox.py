@@ -1,0 +1,152 @@
+"""Firefox (ESR) over WebDriver BiDi on a loopback WebSocket (standard library only).
+
+Firefox is started headless with a fresh profile and
+``--remote-debugging-port=0``; it picks a free port and prints
+``WebDriver BiDi listening on ws://127.0.0.1:PORT`` on stderr.  Commands
+follow the W3C WebDriver BiDi draft: ``session.new``,
+``browsingContext.navigate`` (waiting for ``complete``) and
+``script.evaluate`` with ``awaitPromise``.  Without an X server, WebGL needs
+EGL (``MOZ_WEBGL_FORCE_EGL=1``) and the ``webgl.force-enabled`` pref.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import shutil
+import time
+from pathlib import Path
+from typing import Any
+
+from alpha_audit.browser.interface import (
+    Browser,
+    BrowserError,
+    Installation,
+    deadline_after,
+    time_left,
+)
+from alpha_audit.browser.websocket import WebSocket
+
+__all__ = ["Firefox"]
+
+_LISTENING = re.compile(rb"WebDriver BiDi listening on (ws://127\.0\.0\.1:\d+)")
+# Profile preferences (about:config names).  WebGL without a GPU or display, and no
+# background traffic: the remote agent's recommended prefs already stop most of it.
+_PREFS = {
+    "webgl.force-enabled": True,
+    "webgl.disabled": False,
+    "browser.shell.checkDefaultBrowser": False,
+    "browser.startup.homepage": "about:blank",
+    "browser.startup.page": 0,
+    "app.update.enabled": False,
+    "app.normandy.enabled": False,
+    "datareporting.policy.dataSubmissionEnabled": False,
+    "datareporting.healthreport.uploadEnabled": False,
+    "toolkit.telemetry.enabled": False,
+    "browser.safebrowsing.malware.enabled": False,
+    "browser.safebrowsing.phishing.enabled": False,
+    "extensions.update.enabled": False,
+    "network.captive-portal-service.enabled": False,
+    "network.connectivity-service.enabled": False,
+}
+
+
+class Firefox(Browser):
+    """Headless Firefox ESR (Debian's ``firefox-esr``, or ``$ALPHA_AUDIT_FIREFOX``)."""
+
+    NAME = "firefox"
+    LABEL = "Firefox"
+    INSTALL_HINT = (
+        "install Debian's packages (`sudo apt-get install -y firefox-esr libegl1 libegl-mesa0 "
+        "libgl1-mesa-dri`, or `make browser` as root), or point ALPHA_AUDIT_FIREFOX at a binary"
+    )
+
+    @classmethod
+    def find(cls) -> Installation | None:
+        """``$ALPHA_AUDIT_FIREFOX`` or ``firefox-esr``/``firefox`` on ``PATH``."""
+        configured = os.environ.get("ALPHA_AUDIT_FIREFOX")
+        if configured:
+            return Installation(cls.NAME, Path(configured)) if Path(configured).is_file() else None
+        for name in ("firefox-esr", "firefox"):
+            if found := shutil.which(name):
+                return Installation(cls.NAME, Path(found))
+        return None
+
+    def _start(self) -> None:
+        profile = self.workdir / "profile"
+        profile.mkdir()
+        (profile / "user.js").write_text(
+            "".join(f"user_pref({json.dumps(k)}, {json.dumps(v)});\n" for k, v in _PREFS.items()),
+            encoding="utf-8",
+        )
+        log = self.workdir / "stderr.log"
+        env = {**os.environ, "MOZ_WEBGL_FORCE_EGL": "1", "MOZ_HEADLESS": "1"}
+        env.pop("DISPLAY", None)  # headless and EGL: never an X server that is not ours
+        with log.open("wb") as stderr:  # a file, never a pipe nobody drains
+            self.processes.start(
+                [
+                    str(self.installation.binary),
+                    "--headless",
+                    "--no-remote",
+                    "--profile",
+                    str(profile),
+                    "--remote-debugging-port=0",
+                    "about:blank",
+                ],
+                env=env,
+                stderr=stderr.fileno(),
+            )
+        deadline = deadline_after(self.timeout)
+        while not (match := _LISTENING.search(log.read_bytes())):
+            time_left(deadline, "Firefox (no WebDriver BiDi line on stderr)")
+            time.sleep(0.02)
+        self._socket = WebSocket(match.group(1).decode() + "/session", timeout=self.timeout)
+        self._next_id = 0
+        session = self._call("session.new", {"capabilities": {}})
+        caps = session.get("capabilities", {})
+        self.version = f"{caps.get('browserName', 'firefox')} {caps.get('browserVersion', '')}"
+        self._context = self._call("browsingContext.getTree", {})["contexts"][0]["context"]
+
+    def _call(
+        self, method: str, params: dict[str, Any], *, timeout: float | None = None
+    ) -> dict[str, Any]:
+        self._next_id += 1
+        self._socket.send_text(
+            json.dumps({"id": self._next_id, "method": method, "params": params})
+        )
+        deadline = deadline_after(timeout or self.timeout)
+        while True:
+            message = json.loads(self._socket.receive_text(time_left(deadline, self.LABEL)))
+            if message.get("id") != self._next_id:
+                continue  # events, which we never subscribe to
+            if message.get("type") == "error":
+                raise BrowserError(f"Firefox {method}: {message.get('message')}")
+            return message["result"]
+
+    def _navigate(self, url: str) -> None:
+        self._call(
+            "browsingContext.navigate", {"context": self._context, "url": url, "wait": "complete"}
+        )
+
+    def _evaluate_text(self, expression: str, timeout: float) -> str:
+        reply = self._call(
+            "script.evaluate",
+            {
+                "expression": expression,
+                "target": {"context": self._context},
+                "awaitPromise": True,
+                "resultOwnership": "none",
+            },
+            timeout=timeout,
+        )
+        if reply.get("type") == "exception":
+            details = reply.get("exceptionDetails", {})
+            raise BrowserError(f"script error in Firefox: {details.get('text')}")
+        return reply["result"].get("value")
+
+    def _shutdown(self) -> None:
+        try:
+            self._call("browser.close", {}, timeout=5)
+        finally:
+            self._socket.close()

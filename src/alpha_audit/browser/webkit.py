@@ -1,0 +1,186 @@
+"""WebKitGTK over W3C WebDriver HTTP (``WebKitWebDriver`` + MiniBrowser) on a private Xvfb.
+
+WebKitGTK needs an X display even for automation, so each browser starts its
+own Xvfb (``-displayfd`` reports the display number it chose; no TCP
+listener), then ``WebKitWebDriver`` on a free loopback port, and drives
+MiniBrowser in automation mode with the capability
+``webkitgtk:browserOptions``.  Requests go through :mod:`urllib` with proxies
+disabled: nothing leaves the machine.
+"""
+
+from __future__ import annotations
+
+import glob
+import json
+import os
+import select
+import shutil
+import socket
+import time
+import urllib.error
+import urllib.request
+from pathlib import Path
+from typing import Any
+
+from alpha_audit.browser.interface import (
+    Browser,
+    BrowserError,
+    Installation,
+    deadline_after,
+    time_left,
+)
+
+__all__ = ["WebKit"]
+
+# Debian's webkit2gtk-driver: WebKitWebDriver on PATH, MiniBrowser in the library directory.
+_MINIBROWSER_GLOBS = (
+    "/usr/lib/*/webkit2gtk-4.*/MiniBrowser",
+    "/usr/libexec/webkit2gtk-4.*/MiniBrowser",
+    "/usr/lib/webkit2gtk-4.*/MiniBrowser",
+)
+# The script for execute/async: its last argument is the callback (WebDriver, section 13.2.2).
+_ASYNC = (
+    "const done = arguments[arguments.length - 1];"
+    "({expression}).then((v) => done({{ok: v}}), (e) => done({{error: String(e)}}));"
+)
+_NO_PROXY = urllib.request.build_opener(urllib.request.ProxyHandler({}))
+
+
+def _free_port() -> int:
+    """A port free on loopback right now (the driver has no 'pick one yourself')."""
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as probe:
+        probe.bind(("127.0.0.1", 0))
+        return int(probe.getsockname()[1])
+
+
+class WebKit(Browser):
+    """WebKitGTK's MiniBrowser through ``WebKitWebDriver`` (``$ALPHA_AUDIT_WEBKIT_DRIVER``)."""
+
+    NAME = "webkit"
+    LABEL = "WebKitGTK"
+    INSTALL_HINT = (
+        "install Debian's packages (`sudo apt-get install -y webkit2gtk-driver xvfb "
+        "libgl1-mesa-dri`, or `make browser` as root)"
+    )
+
+    @classmethod
+    def find(cls) -> Installation | None:
+        """``WebKitWebDriver``, MiniBrowser and ``Xvfb``, or ``None`` when any is missing."""
+        driver = os.environ.get("ALPHA_AUDIT_WEBKIT_DRIVER") or shutil.which("WebKitWebDriver")
+        xvfb = shutil.which("Xvfb")
+        browsers = sorted(p for pattern in _MINIBROWSER_GLOBS for p in glob.glob(pattern))
+        if not (driver and Path(driver).is_file() and xvfb and browsers):
+            return None
+        return Installation(cls.NAME, Path(browsers[-1]), (Path(driver), Path(xvfb)))
+
+    def _start(self) -> None:
+        driver, xvfb = self.installation.helpers
+        display = self._start_xvfb(xvfb)
+        port = _free_port()
+        env = {k: v for k, v in os.environ.items() if k not in ("WAYLAND_DISPLAY",)}
+        env["DISPLAY"] = f":{display}"
+        log = self.workdir / "driver.log"
+        with log.open("wb") as stderr:
+            self.processes.start(
+                [str(driver), f"--port={port}", "--host=127.0.0.1"],
+                env=env,
+                stderr=stderr.fileno(),
+                stdout=stderr.fileno(),
+            )
+        self._base = f"http://127.0.0.1:{port}"
+        deadline = deadline_after(self.timeout)
+        while True:
+            try:
+                if self._request("GET", "/status", timeout=2).get("ready", True):
+                    break
+            except BrowserError:
+                pass
+            time_left(deadline, "WebKitWebDriver")
+            time.sleep(0.05)
+        options = {"binary": str(self.installation.binary), "args": ["--automation"]}
+        session = self._request(
+            "POST",
+            "/session",
+            {"capabilities": {"alwaysMatch": {"webkitgtk:browserOptions": options}}},
+        )
+        self._session = session["sessionId"]
+        caps = session.get("capabilities", {})
+        self.version = f"{caps.get('browserName', 'WebKitGTK')} {caps.get('browserVersion', '')}"
+        self._script_timeout: float | None = None
+
+    def _start_xvfb(self, xvfb: Path) -> int:
+        read_end, write_end = os.pipe()
+        try:
+            self.processes.start(
+                [str(xvfb), "-displayfd", str(write_end), "-nolisten", "tcp", "-screen", "0",
+                 "1280x1024x24"],
+                pass_fds=(write_end,),
+            )  # fmt: skip
+        finally:
+            os.close(write_end)
+        deadline = deadline_after(self.timeout)
+        text = b""
+        try:
+            while not text.endswith(b"\n"):
+                left = time_left(deadline, "Xvfb")
+                if select.select([read_end], [], [], left)[0]:
+                    chunk = os.read(read_end, 64)
+                    if not chunk:
+                        raise BrowserError("Xvfb exited before reporting its display")
+                    text += chunk
+        finally:
+            os.close(read_end)
+        return int(text.strip())
+
+    def _request(
+        self,
+        method: str,
+        path: str,
+        body: dict[str, Any] | None = None,
+        *,
+        timeout: float | None = None,
+    ) -> Any:
+        data = None if body is None else json.dumps(body).encode("utf-8")
+        request = urllib.request.Request(
+            self._base + path,
+            data=data,
+            method=method,
+            headers={"Content-Type": "application/json; charset=utf-8"},
+        )
+        try:
+            with _NO_PROXY.open(request, timeout=timeout or self.timeout) as response:
+                payload = json.loads(response.read())
+        except urllib.error.HTTPError as exc:
+            try:
+                value = json.loads(exc.read()).get("value", {})
+                detail = f"{value.get('error')}: {value.get('message')}"
+            except (ValueError, AttributeError):
+                detail = str(exc)
+            raise BrowserError(f"WebKitWebDriver {method} {path}: {detail}") from exc
+        except (OSError, ValueError) as exc:
+            raise BrowserError(f"WebKitWebDriver {method} {path}: {exc}") from exc
+        return payload.get("value")
+
+    def _session_path(self, tail: str) -> str:
+        return f"/session/{self._session}/{tail}"
+
+    def _navigate(self, url: str) -> None:
+        self._request("POST", self._session_path("url"), {"url": url})
+
+    def _evaluate_text(self, expression: str, timeout: float) -> str:
+        if self._script_timeout != timeout:
+            self._request("POST", self._session_path("timeouts"), {"script": int(timeout * 1000)})
+            self._script_timeout = timeout
+        reply = self._request(
+            "POST",
+            self._session_path("execute/async"),
+            {"script": _ASYNC.format(expression=expression), "args": []},
+            timeout=timeout + 10,
+        )
+        if not isinstance(reply, dict) or "error" in reply:
+            detail = reply.get("error") if isinstance(reply, dict) else reply
+            raise BrowserError(f"script error in WebKitGTK: {detail}")
+        return reply["ok"]
+
+    def _shutdown(self) -> None:
+        self._request("DELETE", f"/session/{self._session}", timeout=5)

@@ -1,0 +1,102 @@
+"""The driver interface in every engine: values, errors, timeouts and process cleanup."""
+
+from __future__ import annotations
+
+import os
+import time
+
+import pytest
+
+from alpha_audit.browser import ENGINES, BrowserError, engine_class, installed_engines
+from alpha_audit.browser.interface import json_expression
+from alpha_audit.browser.websocket import WebSocket, accept_key
+from alpha_audit.errors import UsageError
+
+# (JS expression, the JSON value every engine must return)
+VALUES = [
+    ("1 + 1", 2),
+    ("0.1 + 0.2", 0.30000000000000004),  # doubles survive the trip bit for bit
+    ("'é\\u0000\"'", 'é\x00"'),
+    ("[1, 'a', null, true]", [1, "a", None, True]),
+    ("({a: {b: [2.5]}})", {"a": {"b": [2.5]}}),
+    ("undefined", None),
+    ("Promise.resolve(7)", 7),
+    ("new Promise((r) => setTimeout(() => r('late'), 50))", "late"),
+    ("document.getElementById('p').textContent", "hello"),
+]
+
+
+def _groups_gone(pids: list[int], within: float = 5.0) -> bool:
+    """Whether no process is left in any of the process groups led by ``pids``."""
+    deadline = time.monotonic() + within
+    while time.monotonic() < deadline:
+        alive = 0
+        for pid in pids:
+            try:
+                os.killpg(pid, 0)
+                alive += 1
+            except ProcessLookupError:
+                pass
+        if not alive:
+            return True
+        time.sleep(0.05)
+    return False
+
+
+def test_accept_key_is_rfc_6455s_example():
+    assert accept_key("dGhlIHNhbXBsZSBub25jZQ==") == "s3pPLMBiTxaQ9kYGzzhZRbK+xOo="
+
+
+def test_websocket_refuses_anything_but_loopback():
+    with pytest.raises(BrowserError, match="loopback"):
+        WebSocket("ws://example.com:80/session")
+    with pytest.raises(BrowserError, match="loopback"):
+        WebSocket("wss://127.0.0.1:9/session")
+
+
+def test_json_expression_awaits_and_serialises():
+    assert json_expression("x") == '(async () => JSON.stringify(await (x)) ?? "null")()'
+
+
+def test_unknown_engine_names_the_valid_ones():
+    with pytest.raises(UsageError, match="chromium, firefox, webkit"):
+        engine_class("netscape")
+
+
+def test_installed_engines_are_registered_and_found():
+    found = installed_engines()
+    assert set(found) <= set(ENGINES)
+    for name, where in found.items():
+        assert where.engine == name and where.binary.is_file()
+
+
+def test_driver_values_errors_timeouts_and_cleanup(engine):
+    name, installation = engine
+    with ENGINES[name](installation, timeout=30) as browser:
+        pids = list(browser.processes.pids)
+        workdir = browser.workdir
+        assert browser.version
+        browser.open_html("<!doctype html><p id=p>hello</p>")
+        got = [browser.evaluate(expression) for expression, _ in VALUES]
+        assert got == [value for _, value in VALUES]
+        with pytest.raises(BrowserError, match="script error"):
+            browser.evaluate("no_such_name.x")
+        with pytest.raises(BrowserError, match="script error"):
+            browser.evaluate("Promise.reject(new Error('boom'))")
+        started = time.monotonic()
+        with pytest.raises(BrowserError):
+            browser.evaluate("new Promise(() => {})", timeout=2)
+        assert time.monotonic() - started < 15
+        assert browser.evaluate("2 * 21") == 42  # still usable after a timeout
+    assert _groups_gone(pids), f"{name} left processes behind"
+    assert not workdir.exists()
+    with pytest.raises(BrowserError, match="closed"):
+        browser.evaluate("1")
+
+
+def test_processes_end_when_the_block_raises(engine):
+    name, installation = engine
+    with pytest.raises(ZeroDivisionError), ENGINES[name](installation, timeout=30) as browser:
+        pids = list(browser.processes.pids)
+        1 / 0  # noqa: B018
+    assert _groups_gone(pids), f"{name} left processes behind after an exception"

@@ -1,0 +1,269 @@
+"""Paint extraction on hand-written SVGs: the cascade, inheritance and opacity as rendered."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+
+from alpha_audit.errors import SvgError
+from alpha_audit.load.paints import (
+    CURRENT_COLOR,
+    MAX_DEPTH,
+    MAX_ELEMENTS,
+    extract_paints,
+    isolate_paints,
+)
+
+NS = 'xmlns="http://www.w3.org/2000/svg"'
+
+
+def paints(body: str, root_attrs: str = "") -> list[tuple[str, str, float, str]]:
+    svg = f'<svg {NS} viewBox="0 0 24 24" {root_attrs}>{body}</svg>'.encode()
+    return [(p.color, p.kind, round(p.opacity, 12), p.element) for p in extract_paints(svg).paints]
+
+
+def test_default_paint_is_black_fill_no_stroke() -> None:
+    assert paints('<rect width="4" height="4"/>') == [("#000000", "fill", 1.0, "<rect>")]
+
+
+def test_lucide_style_root_inherits_currentcolor_stroke_and_no_fill() -> None:
+    got = paints(
+        '<path d="M1 1h4"/><circle id="c" cx="12" cy="12" r="3"/>',
+        'fill="none" stroke="currentColor" stroke-width="2"',
+    )
+    assert got == [
+        (CURRENT_COLOR, "stroke", 1.0, "<path>"),
+        (CURRENT_COLOR, "stroke", 1.0, '<circle id="c">'),
+    ]
+
+
+def test_nested_group_opacity_multiplies_down() -> None:
+    got = paints(
+        '<g opacity="0.5"><g opacity="50%"><circle r="2" fill="#ff0000" fill-opacity=".8"/>'
+        '</g><rect width="1" height="1" fill="currentColor"/></g>'
+    )
+    assert got == [("#ff0000", "fill", 0.2, "<circle>"), (CURRENT_COLOR, "fill", 0.5, "<rect>")]
+
+
+def test_thirty_percent_disc() -> None:
+    assert paints('<circle r="8" opacity="0.3"/>') == [("#000000", "fill", 0.3, "<circle>")]
+
+
+def test_fill_and_stroke_opacity_inherit_but_opacity_does_not() -> None:
+    got = paints(
+        '<g fill-opacity="0.5" stroke-opacity="0.25" stroke="#00f">'
+        '<rect width="1" height="1" fill="#0f0"/></g>'
+    )
+    assert got == [("#00ff00", "fill", 0.5, "<rect>"), ("#0000ff", "stroke", 0.25, "<rect>")]
+
+
+def test_currentcolor_follows_color_set_in_the_svg() -> None:
+    got = paints(
+        '<g color="#123456"><path d="M0 0h1" fill="currentColor"/></g>'
+        '<path d="M0 0h2" fill="currentColor"/>'
+    )
+    assert got == [("#123456", "fill", 1.0, "<path>"), (CURRENT_COLOR, "fill", 1.0, "<path>")]
+
+
+def test_fill_none_strokes_and_lines_have_no_fill() -> None:
+    got = paints(
+        '<path d="M0 0h1" fill="none" stroke="#ff0000"/><line x2="4" stroke="currentColor"/>'
+        '<polyline points="0,0 1,1" stroke="none"/>'
+    )
+    assert got == [
+        ("#ff0000", "stroke", 1.0, "<path>"),
+        (CURRENT_COLOR, "stroke", 1.0, "<line>"),
+        ("#000000", "fill", 1.0, "<polyline>"),
+    ]
+
+
+def test_style_attribute_beats_presentation_attribute() -> None:
+    got = paints('<rect width="1" height="1" fill="#ff0000" style="fill: #00ff00; opacity: .5"/>')
+    assert got == [("#00ff00", "fill", 0.5, "<rect>")]
+
+
+def test_css_classes_ids_and_specificity_in_style_element() -> None:
+    body = (
+        "<style>.a { fill: #111111 } rect.a { fill: #222222 } #x { stroke: #333333 }"
+        " g .b { fill: currentColor; fill-opacity: 0.5 } path { fill: #444444 }</style>"
+        '<rect class="a" width="1" height="1" fill="#ff0000"/>'
+        '<circle class="a" id="x" r="1"/>'
+        '<g><path class="b" d="M0 0h1"/></g><path d="M0 0h1"/>'
+    )
+    assert paints(body) == [
+        ("#222222", "fill", 1.0, '<rect class="a">'),  # rect.a beats .a; both beat the attribute
+        ("#111111", "fill", 1.0, '<circle id="x">'),
+        ("#333333", "stroke", 1.0, '<circle id="x">'),
+        (CURRENT_COLOR, "fill", 0.5, '<path class="b">'),  # (0,1,1) beats path (0,0,1)
+        ("#444444", "fill", 1.0, "<path>"),
+    ]
+
+
+def test_important_rule_beats_style_attribute() -> None:
+    body = (
+        "<style>rect { fill: #010101 !important }</style>"
+        '<rect style="fill:#ff0000" width="1" height="1"/>'
+    )
+    assert paints(body) == [("#010101", "fill", 1.0, "<rect>")]
+
+
+def test_inherit_rgba_named_colours_and_invalid_values() -> None:
+    got = paints(
+        '<g fill="rgba(255, 0, 0, 0.5)"><rect fill="inherit" width="1" height="1"/></g>'
+        '<rect fill="rebeccapurple" width="1" height="1"/>'
+        '<g fill="#00ff00"><rect fill="not-a-colour" width="1" height="1"/></g>'
+    )
+    assert got == [
+        ("#ff0000", "fill", 0.5, "<rect>"),
+        ("#663399", "fill", 1.0, "<rect>"),
+        ("#00ff00", "fill", 1.0, "<rect>"),  # an invalid value is ignored: inherited green
+    ]
+
+
+def test_hidden_and_invisible_paints_are_left_out() -> None:
+    got = paints(
+        '<g display="none"><rect width="1" height="1"/></g>'
+        '<rect visibility="hidden" width="1" height="1"/>'
+        '<rect fill="transparent" width="1" height="1"/>'
+        '<rect opacity="0" width="1" height="1"/>'
+        '<path d="M0 0h1" fill="none" stroke="#000" stroke-width="0"/>'
+        '<defs><rect id="d" width="1" height="1"/></defs>'
+        '<clipPath id="cp"><rect width="1" height="1"/></clipPath>'
+    )
+    assert got == []
+
+
+def test_gradients_patterns_text_images_use_are_not_audited() -> None:
+    svg = (
+        f'<svg {NS} xmlns:xlink="http://www.w3.org/1999/xlink">'
+        '<defs><linearGradient id="g"><stop offset="0" stop-color="red"/></linearGradient>'
+        '<pattern id="p" width="1" height="1"/></defs>\n'
+        '<rect id="r" fill="url(#g)" stroke="url(#p) red" width="1" height="1"/>\n'
+        '<text x="1">Hi</text>\n<image href="x.png" width="1" height="1"/>\n'
+        '<use xlink:href="#r"/>\n<rect fill="#0000ff" width="1" height="1"/></svg>'
+    ).encode()
+    result = extract_paints(svg)
+    assert [(p.color, p.kind) for p in result.paints] == [("#0000ff", "fill")]
+    assert [(u.element, u.line) for u in result.unaudited] == [
+        ('<rect id="r">', 2),
+        ('<rect id="r">', 2),
+        ("<text>", 3),
+        ("<image>", 4),
+        ("<use>", 5),
+    ]
+    reasons = " | ".join(u.reason for u in result.unaudited)
+    assert '<linearGradient id="g">' in reasons
+    assert '<pattern id="p">' in reasons
+    assert result.paints[0].line == 6
+
+
+def test_fixed_and_groups() -> None:
+    result = extract_paints(
+        f'<svg {NS} fill="none" stroke="currentColor"><path d="M0 0h1"/><path d="M0 0h2"/>'
+        '<circle r="1" fill="#ff0000" stroke="none"/>'
+        '<path d="M0 0h3" stroke="#ff0000"/></svg>'.encode()
+    )
+    groups = result.groups()
+    assert [(g.color, g.opacity, len(g.paints), g.fixed) for g in groups] == [
+        (CURRENT_COLOR, 1.0, 2, False),
+        ("#ff0000", 1.0, 2, True),
+    ]
+    assert [p.kind for p in groups[1].paints] == ["fill", "stroke"]
+
+
+@pytest.mark.parametrize(
+    ("svg", "message"),
+    [
+        (b"<svg", "not well-formed XML"),
+        (
+            b'<?xml version="1.0"?><!DOCTYPE svg [<!ENTITY a "aaaa">]><svg>&a;</svg>',
+            "entities",
+        ),
+        (f"<html {NS}/>".encode(), "no <svg> root"),
+        (
+            f"<svg {NS}>".encode()
+            + b"<g>" * (MAX_DEPTH + 2)
+            + b"</g>" * (MAX_DEPTH + 2)
+            + b"</svg>",
+            "deeper than",
+        ),
+        (f"<svg {NS}>".encode() + b"<g/>" * (MAX_ELEMENTS + 1) + b"</svg>", "more than"),
+        (
+            f"<svg {NS}><style>".encode()
+            + b"".join(b"*.c%d{fill:red}" % i for i in range(200))
+            + b"</style>"
+            + b"<rect/>" * 15000
+            + b"</svg>",
+            "CSS selectors",
+        ),
+    ],
+)
+def test_bad_input_and_limits(svg: bytes, message: str) -> None:
+    with pytest.raises(SvgError, match=message):
+        extract_paints(svg, path="icon.svg")
+
+
+def test_isolate_keeps_only_the_chosen_paints_opaque() -> None:
+    svg = (
+        f'<svg {NS} viewBox="0 0 4 4"><style>.s {{ stroke: #00f; stroke-width: 2 }}</style>'
+        '<g opacity=".5"><rect class="s" fill="#f00" width="2" height="2"/></g>'
+        "<text>a</text></svg>"
+    ).encode()
+    out = isolate_paints(svg, lambda p: p.kind == "stroke")
+    again = extract_paints(out)
+    # the style rule survives; the stroke is black at opacity 1, the fill is gone, text hidden
+    assert [(p.color, p.kind, p.opacity) for p in again.paints] == [("#000000", "stroke", 1.0)]
+    assert b"stroke-width: 2" in out
+    assert re.search(rb"<ns0:text style=\"[^\"]*display: none !important", out)
+
+
+def test_isolated_masks_partition_what_the_renderer_draws() -> None:
+    """Rendered by cairosvg: each paint's mask is its own shape, opaque, whatever its opacity."""
+    import numpy as np
+
+    from alpha_audit.load.svg import rasterize
+
+    svg = (
+        f'<svg {NS} viewBox="0 0 8 8"><style>.l {{ fill: #ff0000 }}</style>'
+        '<g opacity="0.3"><rect class="l" width="4" height="8"/></g>'
+        '<rect x="4" width="4" height="8" fill="currentColor" fill-opacity="0.5"/></svg>'
+    ).encode()
+    groups = extract_paints(svg).groups()
+    assert [(g.color, g.opacity) for g in groups] == [("#ff0000", 0.3), (CURRENT_COLOR, 0.5)]
+    left = rasterize(isolate_paints(svg, lambda p: p.color == "#ff0000"), 8)
+    right = rasterize(isolate_paints(svg, lambda p: p.color == CURRENT_COLOR), 8)
+    np.testing.assert_array_equal(left[:, :4], 1.0)
+    np.testing.assert_array_equal(left[:, 4:], 0.0)
+    np.testing.assert_array_equal(right[:, 4:], 1.0)
+    np.testing.assert_array_equal(right[:, :4], 0.0)
+    # the original draws them translucent: 0.3 and 0.5 in the alpha channel
+    whole = rasterize(svg, 8)
+    np.testing.assert_allclose(whole[:, :4], 0.3, atol=1 / 255)
+    np.testing.assert_allclose(whole[:, 4:], 0.5, atol=1 / 255)
+
+
+def test_isolated_mask_keeps_mask_content_inherited_from_the_root() -> None:
+    """<mask> content inherits the root's fill; isolating must not turn it to none."""
+    import numpy as np
+
+    from alpha_audit.load.svg import rasterize
+
+    svg = (
+        f'<svg {NS} viewBox="0 0 8 8" fill="#ffffff">'
+        '<mask id="m"><rect width="4" height="8"/></mask>'
+        '<rect width="8" height="8" fill="currentColor" mask="url(#m)"/></svg>'
+    ).encode()
+    mask = rasterize(isolate_paints(svg, lambda p: True), 8)
+    np.testing.assert_array_equal(mask[:, :4], 1.0)
+    np.testing.assert_array_equal(mask[:, 4:], 0.0)
+
+
+def test_isolating_many_paints_on_many_elements_is_bounded() -> None:
+    from alpha_audit.load.paints import MAX_ISOLATE_WORK, isolate_groups
+
+    n = MAX_ISOLATE_WORK // 10
+    svg = (f"<svg {NS}>" + '<rect width="1" height="1"/>' * n + "</svg>").encode()
+    groups = extract_paints(svg).groups() * 11
+    with pytest.raises(SvgError, match="element renders; refused"):
+        isolate_groups(svg, groups)
