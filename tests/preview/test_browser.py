@@ -236,6 +236,63 @@ def _icon_set(folder: Path) -> IconSet:
     return IconSet("validation", icons, palette=example.palette, sizes=SIZES)
 
 
+COLLECT = """
+LIMITS = """
+
+
+COLLECT = """
+(async () => {
+  const stage = document.getElementById("stage");
+  const frame = () => new Promise((r) => requestAnimationFrame(() => setTimeout(r, 0)));
+  for (let i = 0; stage.dataset.pending !== "0" || !stage.dataset.generation; i++) {
+    if (i > 600) throw new Error("the page did not settle");
+    await frame();
+  }
+  await frame();
+  const generation = stage.dataset.generation;
+  const box = (el) => {
+    const s = stage.getBoundingClientRect(), r = el.getBoundingClientRect();
+    return { x: r.left - s.left, y: r.top - s.top, w: r.width, h: r.height };
+  };
+  const out = { tiles: [], hits: {}, labels: {}, bands: [] };
+  for (const tile of document.querySelectorAll("#tiles .tile")) {
+    tile.scrollIntoView({ block: "center" });
+    for (let i = 0; tile.dataset.generation !== generation; i++) {
+      if (i > 600) throw new Error("a tile was not painted");
+      await frame();
+    }
+    out.tiles.push({ ...box(tile), width: tile.width, height: tile.height,
+      png: tile.toDataURL("image/png") });
+    for (const el of document.querySelectorAll(".tile-overlay .hit")) {
+      out.hits[el.dataset.band + ":" + el.dataset.icon] = box(el);
+    }
+    for (const el of document.querySelectorAll(".tile-overlay .cr")) {
+      out.labels[el.dataset.band + ":" + el.dataset.icon] = { ...box(el),
+        name: el.querySelector(".name").textContent,
+        value: el.querySelector(".value").textContent };
+    }
+  }
+  for (const el of document.querySelectorAll("#overlay .band")) {
+    out.bands.push({ ...box(el), hex: el.dataset.hex, name: el.dataset.canvas });
+  }
+  const stageBox = box(stage);
+  out.width = stageBox.w; out.height = stageBox.h;
+  return JSON.stringify(out);
+})()
+"""
+
+LIMITS = """
+(() => {
+  const gl = document.createElement("canvas").getContext("webgl2");
+  const v = gl.getParameter(gl.MAX_VIEWPORT_DIMS);
+  return { w: Math.min(v[0], gl.getParameter(gl.MAX_TEXTURE_SIZE),
+                       gl.getParameter(gl.MAX_RENDERBUFFER_SIZE)),
+           h: Math.min(v[1], gl.getParameter(gl.MAX_TEXTURE_SIZE),
+                       gl.getParameter(gl.MAX_RENDERBUFFER_SIZE)) };
+})()
+"""
+
+
 def _decode_png(data_url: str) -> np.ndarray:
     from io import BytesIO
 
