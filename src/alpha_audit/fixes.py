@@ -377,6 +377,14 @@ def _passing_code(
     return lin[int(np.argmin(delta_e_2000(lin, point)))]
 
 
+# Fixes cost about 0.1 s per failing colour (a suggest run and, for contrast
+# failures, a nearest-colour search).  A brand set can fail thousands of colours
+# at once; the first MAX_FIXED_COLORS per check (audits in order, colours in icon
+# order) get one, the rest are counted (:func:`fixes_left_out`) and answered by
+# ``alpha-audit suggest``.  No report shows more than a few dozen groups anyway.
+MAX_FIXED_COLORS = 50
+
+
 def _color_key(result: AuditResult) -> dict[str, str]:
     return {i.name: i.color_name or i.color for i in result.iconset.icons}
 
@@ -397,6 +405,7 @@ def fixes_for(
     """
     policy = report.gate.policy
     out: list[ColorFix] = []
+    budget = [MAX_FIXED_COLORS]
     for result in report.audits:
         failures = [
             f
@@ -406,8 +415,32 @@ def fixes_for(
             and f.canvas is not None
         ]
         if failures:
-            out.extend(_audit_fixes(result, failures, policy, alpha_max, precision))
+            out.extend(_audit_fixes(result, failures, policy, alpha_max, precision, budget))
     return tuple(out)
+
+
+def failing_colors(report: CheckReport) -> int:
+    """How many (audit, colour) pairs fail the gate on some canvas."""
+    total = 0
+    for result in report.audits:
+        key_of = _color_key(result)
+        names = {
+            key_of[n]
+            for f in report.gate.failures
+            if f.theme == result.theme.name
+            and f.iconset == result.iconset.name
+            and f.canvas is not None
+            for n in f.icons
+            if n in key_of
+        }
+        total += len(names)
+    return total
+
+
+def fixes_left_out(report: CheckReport) -> int:
+    """Failing colours without a computed fix (beyond :data:`MAX_FIXED_COLORS`)."""
+    fixed = {(f.theme, f.iconset, f.color) for f in report_fixes(report)}
+    return failing_colors(report) - len(fixed)
 
 
 def _audit_fixes(
@@ -416,7 +449,9 @@ def _audit_fixes(
     policy: Policy,
     alpha_max: float,
     precision: int,
+    budget: list[int],
 ) -> list[ColorFix]:
+    """The fixes of one audit; ``budget[0]`` counts the colours still allowed a fix."""
     theme, iconset = result.theme, result.iconset
     key_of = _color_key(result)
     members: dict[str, list[int]] = {}
@@ -445,6 +480,9 @@ def _audit_fixes(
         first = iconset.icons[idx[0]]
         src = np.array(first.linear)
         if color not in safe_cache:
+            if budget[0] <= 0:
+                continue
+            budget[0] -= 1
             safe_cache[color] = largest_safe_alpha(
                 theme,
                 iconset,
@@ -455,8 +493,14 @@ def _audit_fixes(
                 threshold=result.threshold,
             )
             alphas = np.unique(iconset.alphas[idx])
-            near_cache[color] = nearest_passing_color(
-                src, backgrounds, alphas, result.threshold, policy
+            # The nearest colour answers contrast failures only (describe_fix).
+            contrast = any(
+                r in CONTRAST_RULES for (c, _), rs in failing.items() if c == color for r in rs
+            )
+            near_cache[color] = (
+                nearest_passing_color(src, backgrounds, alphas, result.threshold, policy)
+                if contrast
+                else None
             )
         mode = str(theme.canvases[j].mode)
         if (color, mode) not in reach_cache:

@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from alpha_audit.audit import AuditResult
-from alpha_audit.fixes import fix_lookup, fix_to_dict, report_fixes
+from alpha_audit.fixes import fix_lookup, fix_to_dict, fixes_left_out, report_fixes
 from alpha_audit.gate import CheckReport, Finding, GateResult
 from alpha_audit.render.common import RenderOptions, display_path, dumps, records
 
@@ -195,6 +195,7 @@ def report_to_dict(report: CheckReport, base: Path | None = None) -> dict[str, A
     # failure names its fixes by index there.
     fixes = report_fixes(report)
     gate["fixes"] = [fix_to_dict(f, lambda p: display_path(p, base)) for f in fixes]
+    gate["fixes_left_out"] = fixes_left_out(report)
     position = {fix: n for n, fix in enumerate(fixes)}
     fixes_of = fix_lookup(report, fixes)
     for entry, finding in zip(gate["failures"], report.gate.failures, strict=True):
