@@ -106,7 +106,7 @@ def check_project(
     themes: Sequence[str | Path],
     iconsets: Sequence[str | Path],
     *,
-    policy: Policy | None = None,
+    policy: Policy,
     alpha: float | None = None,
     threshold: float | None = None,
     baseline: Iterable[FindingKey] | None = None,
@@ -117,6 +117,10 @@ def check_project(
     tokens: TokenConfig | None = None,
 ) -> CheckReport:
     """Audit every icon set on every theme and apply the gate ``policy``.
+
+    ``policy`` is required: the gate applies what the caller chose (the
+    CLI passes the config's policy, ``Policy()`` is the documented default),
+    never a default picked here.
 
     Every file is loaded (and every input error raised) before any icon is
     rendered; each icon set is rendered once whatever the number of themes.
@@ -166,7 +170,7 @@ def check_project(
             audits.append(
                 _audit(theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=kind)
             )
-    gate = evaluate(audits, policy or Policy(), baseline=baseline)
+    gate = evaluate(audits, policy, baseline=baseline)
     return CheckReport(audits=tuple(audits), gate=gate)
 
 
@@ -175,7 +179,7 @@ def _check_with_tokens(
     iconsets: Sequence[str | Path],
     tokens: TokenConfig,
     *,
-    policy: Policy | None,
+    policy: Policy,
     alpha: float | None,
     threshold: float | None,
     baseline: Iterable[FindingKey] | None,
@@ -212,7 +216,7 @@ def _check_with_tokens(
             audits.append(
                 _audit(theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=kind)
             )
-    gate = evaluate(audits, policy or Policy(), baseline=baseline)
+    gate = evaluate(audits, policy, baseline=baseline)
     return CheckReport(audits=tuple(audits), gate=gate)
 
 
