@@ -107,7 +107,7 @@ def check_project(
     themes: Sequence[str | Path],
     iconsets: Sequence[str | Path],
     *,
-    policy: Policy | None = None,
+    policy: Policy,
     alpha: float | None = None,
     threshold: float | None = None,
     baseline: Iterable[FindingKey] | None = None,
@@ -118,6 +118,10 @@ def check_project(
     tokens: TokenConfig | None = None,
 ) -> CheckReport:
     """Audit every icon set on every theme and apply the gate ``policy``.
+
+    ``policy`` is required: the gate applies what the caller chose (the
+    CLI passes the config's policy, ``Policy()`` is the documented default),
+    never a default picked here.
 
     Every file is loaded (and every input error raised) before any icon is
     rendered; each icon set is rendered once whatever the number of themes.
@@ -148,7 +152,7 @@ def check_project(
         )
     loaded_themes = [load_theme(t) for t in _unique(themes)]
     loaded_sets = [load_iconset(s) for s in _unique(iconsets)]
-    (policy or Policy()).check_exemptions(
+    policy.check_exemptions(
         (c.name for t in loaded_themes for c in t.canvases),
         (i.name for s in loaded_sets for i in s.icons),
     )
@@ -171,7 +175,7 @@ def check_project(
             audits.append(
                 _audit(theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=kind)
             )
-    gate = evaluate(audits, policy or Policy(), baseline=baseline)
+    gate = evaluate(audits, policy, baseline=baseline)
     # Every renderer shows the fix for each failing colour: computed once, here.
     return with_fixes(CheckReport(audits=tuple(audits), gate=gate))
 
@@ -181,7 +185,7 @@ def _check_with_tokens(
     iconsets: Sequence[str | Path],
     tokens: TokenConfig,
     *,
-    policy: Policy | None,
+    policy: Policy,
     alpha: float | None,
     threshold: float | None,
     baseline: Iterable[FindingKey] | None,
@@ -218,7 +222,7 @@ def _check_with_tokens(
             audits.append(
                 _audit(theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=kind)
             )
-    gate = evaluate(audits, policy or Policy(), baseline=baseline)
+    gate = evaluate(audits, policy, baseline=baseline)
     return with_fixes(CheckReport(audits=tuple(audits), gate=gate))
 
 

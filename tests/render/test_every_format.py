@@ -62,7 +62,7 @@ def check_report() -> CheckReport:
 
 @cache
 def suggest_result() -> Any:
-    return suggest(_theme(), _iconset())
+    return suggest(_theme(), _iconset(), Policy())
 
 
 @cache

@@ -133,7 +133,7 @@ def test_at_80_columns_every_check_column_stays() -> None:
 def test_suggest_table_keeps_every_alpha_whole(width: int) -> None:
     theme = load_theme(ROOT / "themes" / "material3.yaml")
     iconset = load_iconset(ROOT / "examples" / "vibrant" / "iconset.yaml", root=ROOT)
-    result = suggest(theme, iconset)
+    result = suggest(theme, iconset, Policy())
     doc = suggest_document(result)
     p = doc["precision"]
     tokens = {f"{c['alpha']:.{p}f}" for c in doc["per_canvas"] if c["alpha"] is not None}

@@ -281,10 +281,10 @@ def test_separation_is_bracketed_and_bisected() -> None:
 def test_bad_arguments(kwargs: dict, message: str) -> None:
     theme, iconset = random_case(1)
     with pytest.raises(UsageError, match=message):
-        suggest(theme, iconset, **kwargs)
+        suggest(theme, iconset, Policy(), **kwargs)
 
 
 def test_unknown_icon() -> None:
     theme, iconset = random_case(1)
     with pytest.raises(UsageError, match="no icon named 'nope'"):
-        largest_safe_alpha(theme, iconset, icons=["nope"])
+        largest_safe_alpha(theme, iconset, Policy(), icons=["nope"])

@@ -580,7 +580,7 @@ def _swap_names(safe: SafeAlpha, old: str, new: str) -> SafeAlpha:
 def largest_safe_alpha(
     theme: Theme,
     iconset: IconSet,
-    policy: Policy | None = None,
+    policy: Policy,
     *,
     icons: list[str] | None = None,
     alpha_max: float = 2.0,
@@ -594,7 +594,7 @@ def largest_safe_alpha(
     >>> from alpha_audit.model import Canvas, Icon, IconSet, Theme
     >>> theme = Theme("t", (Canvas("yellow", "#ffff00"),))
     >>> dots = IconSet("s", (Icon("dot", "dot.svg", "#0000d0", 1.0),))
-    >>> largest_safe_alpha(theme, dots).limit.rule.value  # the paper's dark blue on yellow
+    >>> largest_safe_alpha(theme, dots, Policy()).limit.rule.value  # dark blue on yellow
     'loss'
     """
     engine = _engine(theme, iconset, policy, alpha_max, precision, threshold)
@@ -610,7 +610,7 @@ def largest_safe_alpha(
 def _engine(
     theme: Theme,
     iconset: IconSet,
-    policy: Policy | None,
+    policy: Policy,
     alpha_max: float,
     precision: int,
     threshold: float | None,
@@ -623,7 +623,7 @@ def _engine(
         raise UsageError(f"icon set {iconset.name!r} has no icons")
     if not theme.canvases:
         raise UsageError(f"theme {theme.name!r} has no canvases")
-    unsupported = sorted(r.value for r in (policy or Policy()).rules & PAINT_RULES)
+    unsupported = sorted(r.value for r in policy.rules & PAINT_RULES)
     if unsupported:
         # Better no answer than an alpha that check then rejects (issue 11, deliverable 6).
         raise UsageError(
@@ -633,13 +633,13 @@ def _engine(
     t = theme.threshold if threshold is None else float(threshold)
     if not math.isfinite(t):
         raise UsageError(f"threshold must be a finite number, got {t}")
-    return _Suggester(theme, iconset, policy or Policy(), t, float(alpha_max))
+    return _Suggester(theme, iconset, policy, t, float(alpha_max))
 
 
 def suggest(
     theme: Theme,
     iconset: IconSet,
-    policy: Policy | None = None,
+    policy: Policy,
     *,
     alpha_max: float = 2.0,
     precision: int = 3,
@@ -649,13 +649,14 @@ def suggest(
 
     Set-wide, every icon takes the same coefficient; per colour, the icons of
     that palette colour move together; per icon, one icon moves.  Others keep
-    their configured alpha.  ``policy`` defaults to the gate's default
-    (no loss, no newly failing icon, no new collision).
+    their configured alpha.  ``policy`` is the gate's (required, so no default
+    is applied silently; ``Policy()`` is the gate's default: no loss, no newly
+    failing icon, no new collision).
 
     >>> from alpha_audit.model import Canvas, Icon, IconSet, Theme
     >>> theme = Theme("t", (Canvas("ink", "#0d1117"),))
     >>> orange, other = Icon("o", "o.svg", "#ee7733", 1.0), Icon("x", "x.svg", "#ff7f36", 1.0)
-    >>> result = suggest(theme, IconSet("s", (orange, other)))
+    >>> result = suggest(theme, IconSet("s", (orange, other)), Policy())
     >>> result.alpha  # together, the two never share an 8-bit output up to 2
     2.0
     >>> alone = result.per_icon[0].safe  # orange alone passes through #ff7f36

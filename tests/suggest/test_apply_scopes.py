@@ -128,7 +128,7 @@ def test_apply_unknown_scope_is_a_usage_error(tmp_path: Path, repo: Path) -> Non
 
 def test_apply_icon_replace_explicit_rewrites_list_entries_too(tmp_path: Path) -> None:
     (tmp_path / ".git").mkdir()
-    svg = (Path(__file__).parent.parent / "examples" / "vibrant" / "svg").resolve()
+    svg = (Path(__file__).parents[2] / "examples" / "vibrant" / "svg").resolve()
     (tmp_path / "svg").mkdir()
     for name in ("alert", "bell", "check"):
         shutil.copy(svg / f"{name}.svg", tmp_path / "svg" / f"{name}.svg")
@@ -143,14 +143,14 @@ def test_apply_icon_replace_explicit_rewrites_list_entries_too(tmp_path: Path) -
         "color: cycle\n"
         "alpha: 1.1\n"
     )
-    theme = load_theme(Path(__file__).parent.parent / "themes" / "paper16.yaml")
+    theme = load_theme(Path(__file__).parents[2] / "themes" / "paper16.yaml")
     result = suggest(theme, load_iconset(manifest), Policy())
     kept, _ = apply_suggestion(manifest, result, "icon")
     assert kept.kept == ("alert",) and "alert" not in kept.icons
     text = manifest.read_text()
     assert "{file: svg/alert.svg, alpha: 1.05}   # explicit" in text
     plan, _ = apply_suggestion(
-        manifest, suggest(theme, load_iconset(manifest)), "icon", replace_explicit=True
+        manifest, suggest(theme, load_iconset(manifest), Policy()), "icon", replace_explicit=True
     )
     assert plan.kept == () and "alert" in plan.icons
     after = {i.name: i.alpha for i in load_iconset(manifest).icons}

@@ -15,7 +15,7 @@ from alpha_audit.cli.check import pair_outputs
 from alpha_audit.errors import UsageError
 from alpha_audit.render import CheckFormat
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 INPUTS = [str(REPO / "themes" / "github-primer.yaml"), str(REPO / "examples/vibrant/iconset.yaml")]
 FMT, OUT = "format", "output"
 

@@ -23,7 +23,7 @@ from alpha_audit.model import Canvas, Icon, IconSet, Theme
 from alpha_audit.policy import Exemption, Policy, Rule
 from alpha_audit.render import CheckFormat
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 SVG = (
     '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 24 24" fill="none" '
     'stroke="currentColor" stroke-width="2"><circle cx="12" cy="12" r="8"/></svg>'
