@@ -591,7 +591,7 @@ def describe_fix(fix: ColorFix) -> str:
     contrast = any(r in CONTRAST_RULES for r in fix.rules)
     options = []
     if fix.largest_safe.alpha is not None:
-        options.append(f"alpha {fix.largest_safe.alpha:g} or below (from 1)")
+        options.append(f"alpha at most {fix.largest_safe.alpha:g}")
     if contrast and fix.reach.alpha is not None:
         options.append(f"alpha {fix.reach.alpha:g} or above (every {fix.mode} canvas)")
     if contrast and fix.nearest is not None and fix.nearest.delta_e > 0:

@@ -87,7 +87,7 @@ def test_each_failing_group_names_a_largest_safe_alpha_that_holds() -> None:
     for colour, hexcode in LOSING.items():
         fixes = {r[5] for r in _rows(text, "| colour | canvas | rule |") if r[0].startswith(colour)}
         (fix,) = fixes  # one answer per colour, on every canvas and audit
-        found = re.match(rf"{colour}: alpha (\d+(?:\.\d+)?) or below", fix)
+        found = re.match(rf"{colour}: alpha at most (\d+(?:\.\d+)?)", fix)
         assert found, fix
         alpha = float(found.group(1))
         # Checked by compositing again: safe at the value, a loss just above it.

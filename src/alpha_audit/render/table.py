@@ -267,10 +267,37 @@ def gate_renderable(gate: GateResult) -> RenderableType:
     return Group(*out)
 
 
+def fixes_renderable(report: CheckReport) -> RenderableType | None:
+    """How to fix the failures: each distinct fix once, in the failures' order.
+
+    The same texts as the pull-request comment
+    (:func:`alpha_audit.render.markdown.report_fixes_hook`).
+    """
+    from alpha_audit.render.markdown import report_fixes_hook
+
+    failures = report.gate.failures
+    if not failures:
+        return None
+    hook = report_fixes_hook(report)
+    seen: dict[str, None] = {}
+    for f in failures:
+        text = hook(f)
+        if text:
+            seen.setdefault(text)
+        if len(seen) >= MAX_FINDINGS:
+            break
+    if not seen:
+        return None
+    return Group(Text("How to fix:"), *(Text(f"  {t}") for t in seen))
+
+
 def render_report(report: CheckReport, options: RenderOptions) -> str:
-    """Every audit of the report, then the gate, at ``options.width`` columns."""
+    """Every audit of the report, then the gate and how to fix it, at ``options.width``."""
     parts: list[RenderableType] = []
     for result in report.audits:
         parts += [check_renderable(result), Text("")]
     parts.append(gate_renderable(report.gate))
+    fixes = fixes_renderable(report)
+    if fixes is not None:
+        parts.append(fixes)
     return to_text(Group(*parts), options)
