@@ -19,7 +19,8 @@ from alpha_audit.policy import Policy, Rule
 from alpha_audit.render import CheckFormat
 from alpha_audit.render.common import RenderOptions
 from alpha_audit.render.github import MAX_ANNOTATIONS
-from alpha_audit.render.sarif import RULE_IDS, relative_uri
+from alpha_audit.render.rules import RULE_IDS
+from alpha_audit.render.sarif import relative_uri
 
 BASE = Path("/home/runner/work/design")
 # A file name with every character a URI must encode: space, "#", "%", "?", a

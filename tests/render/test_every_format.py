@@ -150,3 +150,42 @@ def test_json_documents_are_ascii_and_keep_every_float() -> None:
     doc = _strict_json(text)
     assert doc["iconset"] == HOSTILE  # escaped in the text, identical once parsed
     assert doc["per_color"][0]["exact"] == suggest_result().per_color[0].safe.exact
+
+
+@cache
+def _every_rule_report() -> CheckReport:
+    """The bundled example through the whole pipeline with every rule on, pushed hard.
+
+    Real SVGs, so paints are read and every paint rule (drift, confusion, CVD,
+    thin strokes ...) can produce findings of its own shape.
+    """
+    from alpha_audit.bundled import bundled_iconset, bundled_theme
+    from alpha_audit.pipeline import check_project
+
+    policy = Policy(rules=frozenset(Rule) - {Rule.LOCK}, min_delta_e=25.0, max_drift=5.0)
+    return check_project(
+        [bundled_theme("paper16")], [bundled_iconset("vibrant")], policy=policy, alpha=1.8
+    )
+
+
+def test_the_pipeline_with_every_rule_on_makes_findings_of_many_rules() -> None:
+    rules = {f.rule for f in _every_rule_report().gate.failures}
+    assert {Rule.CONFUSION, Rule.DRIFT, Rule.COLLISION, Rule.SEPARATION} <= rules
+
+
+def test_every_rule_has_an_id_help_fix_and_severity() -> None:
+    from alpha_audit.render.rules import RULE_FIX, RULE_HELP, RULE_IDS, SEVERITY
+
+    for table in (RULE_FIX, RULE_HELP, RULE_IDS, SEVERITY):
+        assert set(table) == set(Rule)
+    assert len(set(RULE_IDS.values())) == len(Rule)
+
+
+@pytest.mark.parametrize("fmt", list(CheckFormat))
+def test_every_format_renders_findings_of_every_rule(fmt: CheckFormat) -> None:
+    text = fmt.renderer()(_every_rule_report(), OPTIONS)
+    assert text.strip()
+    if fmt is not CheckFormat.MARKDOWN:  # the example's names are not hostile
+        _check(fmt.value, text)
+    else:
+        assert "<table>" in MarkdownIt("commonmark").enable("table").render(text)

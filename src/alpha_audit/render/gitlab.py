@@ -27,20 +27,10 @@ from alpha_audit.fixes import ColorFix, describe_fix, fix_lookup
 from alpha_audit.gate import CheckReport, Finding
 from alpha_audit.policy import Rule
 from alpha_audit.render.common import RenderOptions, display_path, dumps
+from alpha_audit.render.rules import SEVERITY
 
-__all__ = ["SEVERITY", "render_report"]
+__all__ = ["render_report"]
 
-# Contrast that no longer meets the threshold is what the gate exists for;
-# collisions and separation make icons hard to tell apart, a lesser harm.
-SEVERITY: dict[Rule, str] = {
-    Rule.LOSS: "major",
-    Rule.BELOW_THRESHOLD: "major",
-    Rule.NEWLY_FAILING: "major",
-    Rule.COLLISION: "minor",
-    Rule.NEW_COLLISION: "minor",
-    Rule.SEPARATION: "minor",
-    Rule.UNRENDERABLE: "major",
-}
 _CHECK_PREFIX = "alpha-audit/"  # namespaced: several tools share one Code Quality widget
 
 

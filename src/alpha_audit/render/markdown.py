@@ -27,8 +27,9 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from alpha_audit.gate import CheckReport, Finding
-from alpha_audit.policy import Rule
+from alpha_audit.policy import PAINT_RULES, Rule
 from alpha_audit.render.common import RenderOptions, escape_markdown, shorten_names
+from alpha_audit.render.rules import RULE_FIX
 
 if TYPE_CHECKING:
     from alpha_audit.audit import AuditResult
@@ -89,6 +90,8 @@ def safe_alpha_fixes(report: CheckReport) -> FixHook:
     def fix(finding: Finding) -> str | None:
         if finding.rule is Rule.UNRENDERABLE:
             return "fix the SVG file or remove the icon"
+        if finding.rule in PAINT_RULES:  # suggest does not answer these (yet): the rule's advice
+            return RULE_FIX[finding.rule].replace("`", "")
         suggested = answer(finding)
         if suggested is None:
             return None
@@ -142,9 +145,11 @@ def _numbers(f: Finding) -> str:
         return (
             f"{n['contrast_ref']:.3f} → {n['contrast']:.3f} ({n['gain']:+.4f}) at α={n['alpha']:g}"
         )
-    if "delta_e" in n:
-        return f"ΔE00 {n['delta_e']:.2f} (α=1: {n['delta_e_ref']:.2f}) < {n['min_delta_e']:g}"
-    if "output" in n:  # the colours are in the colour column already
+    if "delta_e" in n and "delta_e_ref" in n:  # separation, confusion, cvd-confusion
+        floor = f" < {n['min_delta_e']:g}" if "min_delta_e" in n else ""
+        under = f" ({n['deficiency']})" if "deficiency" in n else ""
+        return f"ΔE00 {n['delta_e']:.2f} (α=1: {n['delta_e_ref']:.2f}){floor}{under}"
+    if "output" in n and "sources" in n:  # the colours are in the colour column already
         return f"all give {n['output']}" + ("" if n.get("new") != "false" else " (also at α=1)")
     return f.message
 
