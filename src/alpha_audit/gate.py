@@ -46,7 +46,9 @@ class Finding:
 
     ``numbers`` holds the figures a reviewer needs (contrast before and after,
     threshold, CIEDE2000, 8-bit output ...), ``files`` the icons' SVG files
-    and ``lines`` the manifest lines that set each icon's colour or alpha.
+    and ``lines`` the manifest lines that set each icon's colour or alpha;
+    ``sources`` the (file, line) of each design token that sets a colour of
+    the finding (icon colour first, then the canvas), where the fix goes.
     """
 
     rule: Rule
@@ -60,6 +62,7 @@ class Finding:
     manifest: Path | None = None
     lines: tuple[int, ...] = ()
     exemption: Exemption | None = None
+    sources: tuple[tuple[Path, int], ...] = ()
     baselined: bool = False
 
     @property
@@ -152,6 +155,22 @@ def _icon_refs(
     return tuple(files), tuple(sorted(set(lines)))
 
 
+def _token_sources(
+    result: AuditResult, names: Sequence[str], canvas: str | None
+) -> tuple[tuple[Path, int], ...]:
+    """(file, line) of the design tokens setting the icons' colours, then the canvas's."""
+    by_name = {i.name: i for i in result.iconset.icons}
+    out: list[tuple[Path, int]] = []
+    for name in names:
+        icon = by_name.get(name)
+        if icon is not None and icon.token_file is not None and icon.token_line is not None:
+            out.append((Path(icon.token_file), icon.token_line))
+    for c in result.theme.canvases:
+        if c.name == canvas and c.file is not None and c.line is not None:
+            out.append((Path(c.file), c.line))
+    return tuple(dict.fromkeys(out))  # unique, first-seen order
+
+
 def _cell_findings(
     result: AuditResult | PaintAudit, policy: Policy
 ) -> Iterable[tuple[Rule, int, int, str]]:
@@ -216,6 +235,7 @@ def findings_for(result: AuditResult, policy: Policy) -> list[Finding]:
                 manifest=manifest,
                 lines=lines,
                 exemption=policy.exempt(rule, canvas, icons),
+                sources=_token_sources(result, icons, canvas),
             )
         )
 

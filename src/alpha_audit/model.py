@@ -64,6 +64,9 @@ class Canvas:
     color: str
     mode: Mode | None = None
     line: int | None = field(default=None, compare=False)
+    # The file ``line`` is in when it is not the theme's own (a design token
+    # set in another file of a Resolver document); None: the theme file.
+    file: Path | None = field(default=None, compare=False)
     exact: str | None = field(default=None, compare=False, repr=False)
     linear: tuple[float, float, float] = field(init=False, compare=False)
 
@@ -100,6 +103,10 @@ class Icon:
     color_name: str | None = None
     color_line: int | None = field(default=None, compare=False)
     alpha_line: int | None = field(default=None, compare=False)
+    # Where a design token sets this icon's colour (the end of its alias
+    # chain), so reports point at the line to edit, not only the manifest's.
+    token_file: Path | None = field(default=None, compare=False)
+    token_line: int | None = field(default=None, compare=False)
     exact: str | None = field(default=None, compare=False, repr=False)
     linear: tuple[float, float, float] = field(init=False, compare=False)
 

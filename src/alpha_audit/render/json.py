@@ -149,6 +149,7 @@ def finding_to_dict(finding: Finding, base: Path | None = None) -> dict[str, Any
         "files": [display_path(f, base) for f in finding.files],
         "manifest": display_path(finding.manifest, base),
         "lines": list(finding.lines),
+        "sources": [{"file": display_path(p, base), "line": n} for p, n in finding.sources],
         "exemption": None if finding.exemption is None else finding.exemption.reason,
         "baselined": finding.baselined,
     }

@@ -199,7 +199,11 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
             if parsed.adjusted:
                 adjusted.append((name, token, parsed))
             if is_canvas:
-                canvases.append(Canvas(path, parsed.css, config.modes.get(name), line=token.line))
+                canvases.append(
+                    Canvas(
+                        path, parsed.css, config.modes.get(name), line=token.line, file=token.file
+                    )
+                )
             if is_color:
                 colors[path] = TokenColor(token, parsed, _alpha(token, config.alpha_extension))
         if not canvases:
