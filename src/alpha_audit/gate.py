@@ -19,6 +19,7 @@ from alpha_audit.audit import AuditResult
 from alpha_audit.errors import AlphaAuditError, InputError, UsageError
 from alpha_audit.load.files import read_text_capped
 from alpha_audit.load.paints import CURRENT_COLOR
+from alpha_audit.model import GamutAdjustment
 from alpha_audit.paint_audit import PaintAudit, paint_findings
 from alpha_audit.policy import PAINT_RULES, Exemption, Policy, Rule, contrast_breaks
 
@@ -139,6 +140,7 @@ class CheckReport:
 
     audits: tuple[AuditResult, ...]
     gate: GateResult
+    gamut: tuple[GamutAdjustment, ...] = ()  # colours outside sRGB the gamut policy moved
 
 
 def _icon_refs(

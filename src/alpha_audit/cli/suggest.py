@@ -11,11 +11,13 @@ from alpha_audit.cli.console import emit, stdout_options
 from alpha_audit.cli.options import (
     ConfigOption,
     ForceOption,
+    GamutOption,
     IconsetArgument,
     MaxLossOption,
     MinDeltaEOption,
     ThemeArgument,
     ThresholdOption,
+    read_gamut_option,
     require_finite,
 )
 from alpha_audit.cli.status import ExitStatus
@@ -56,6 +58,7 @@ def suggest_command(
         Path | None, typer.Option("--output", "-o", help="Write the report here instead of stdout.")
     ] = None,
     force: ForceOption = False,
+    gamut: GamutOption = None,
     apply: Annotated[
         bool,
         typer.Option(
@@ -90,9 +93,12 @@ def suggest_command(
         check_targets([output], overwrite=force)  # before the work, not after
     require_finite(alpha_max, "--alpha-max")
     require_finite(threshold, "--threshold")
+    gamut_policy = read_gamut_option(gamut)
     if (theme is None) != (iconset is None):
         raise UsageError("give both THEME and ICONSET, or neither (to use the project config)")
     project = project_config(config, Path.cwd())
+    if gamut_policy is None:
+        gamut_policy = project.gamut
     if theme is None or iconset is None:
         if len(project.themes) != 1 or len(project.iconsets) != 1:
             raise UsageError(
@@ -113,8 +119,8 @@ def suggest_command(
     )
 
     result = suggest(
-        load_theme(theme),
-        load_iconset(iconset),
+        load_theme(theme, gamut=gamut_policy),
+        load_iconset(iconset, gamut=gamut_policy),
         policy,
         alpha_max=alpha_max,
         precision=precision,

@@ -153,7 +153,8 @@ def _resolve(color: object, text: str, space: str, *, gamut: str, allow_alpha: b
         shown = ", ".join(f"{v:.4f}" for v in unmapped)
         raise ColorSyntaxError(
             f"{text!r} is outside sRGB (sRGB channels {shown}); give an sRGB colour, or "
-            "(for design tokens) set gamut: clip or gamut: map in the config's tokens: table"
+            "set gamut: clip or gamut: map (in this file, the config or its tokens: table, "
+            "or `gamut`)"
         )
     encoded = tuple(float(v) for v in np.clip(np.array(fitted, dtype=np.float64), 0.0, 1.0))
     return ParsedColor(

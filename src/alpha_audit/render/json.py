@@ -14,6 +14,7 @@ from typing import Any
 
 from alpha_audit.audit import AuditResult
 from alpha_audit.gate import CheckReport, Finding, GateResult
+from alpha_audit.model import GamutAdjustment
 from alpha_audit.render.common import RenderOptions, display_path, dumps, records
 
 __all__ = [
@@ -188,17 +189,35 @@ def gate_to_dict(gate: GateResult, base: Path | None = None) -> dict[str, Any]:
     }
 
 
+def gamut_to_dict(note: GamutAdjustment, base: Path | None = None) -> dict[str, Any]:
+    """One colour outside sRGB: where it is written, the policy, before, after, CIEDE2000."""
+    return {
+        "file": display_path(note.file, base),
+        "line": note.line,
+        "key": note.token,
+        "mode": note.mode,
+        "policy": note.policy,
+        "before": note.text,
+        "after": note.output,
+        "delta_e": note.delta_e,
+    }
+
+
 def report_to_dict(report: CheckReport, base: Path | None = None) -> dict[str, Any]:
-    """The whole document: one audit flat at the top level, several under ``audits``."""
+    """The whole document: one audit flat at the top level, several under ``audits``.
+
+    ``gamut`` lists every input colour outside sRGB that the gamut policy moved.
+    """
     gate = gate_to_dict(report.gate, base)
+    gamut = [gamut_to_dict(a, base) for a in report.gamut]
     if len(report.audits) == 1:
-        return {**check_to_dict(report.audits[0]), "gate": gate}
+        return {**check_to_dict(report.audits[0]), "gamut": gamut, "gate": gate}
     audits = []
     for result in report.audits:
         doc = check_to_dict(result)
         del doc["schema"]
         audits.append(doc)
-    return {"schema": CHECK_SCHEMA, "audits": audits, "gate": gate}
+    return {"schema": CHECK_SCHEMA, "audits": audits, "gamut": gamut, "gate": gate}
 
 
 def render_report(report: CheckReport, options: RenderOptions) -> str:

@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING
 
 from alpha_audit.gate import CheckReport, Finding
 from alpha_audit.policy import Rule
-from alpha_audit.render.common import RenderOptions, escape_markdown, shorten_names
+from alpha_audit.render.common import RenderOptions, escape_markdown, gamut_line, shorten_names
 
 if TYPE_CHECKING:
     from alpha_audit.audit import AuditResult
@@ -357,6 +357,12 @@ def render_markdown(
             section.add("", f"{baselined} finding(s) already in the baseline.")
         budget.force(*section.lines, "", "</details>")
 
+    if report.gamut:
+        budget.add("", f"### Colours outside sRGB ({len(report.gamut)})", "")
+        for k, note in enumerate(report.gamut):
+            if not budget.add(f"- {escape_markdown(gamut_line(note, options.base))}"):
+                left_out[0] += len(report.gamut) - k
+                break
     if gate.stale:
         budget.add("", f"{len(gate.stale)} baseline entries no longer occur.")
     if gate.warnings:

@@ -13,6 +13,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
+from alpha_audit.color import GamutPolicy
 from alpha_audit.load.iconset import find_project_root, iconset_from_doc
 from alpha_audit.load.tokens.themes import TokenColor, TokenThemes
 from alpha_audit.load.yamldoc import YamlDoc, load_yaml
@@ -41,13 +42,18 @@ def _with_token(icon: Icon, color: TokenColor | None) -> Icon:
     return replace(icon, **changes)
 
 
-def token_audit_pairs(themes: TokenThemes, manifest: str | Path) -> list[tuple[Theme, IconSet]]:
-    """``(mode theme, icon set with that mode's token colours)`` for every mode."""
+def token_audit_pairs(
+    themes: TokenThemes, manifest: str | Path, *, gamut: GamutPolicy | None = None
+) -> list[tuple[Theme, IconSet]]:
+    """``(mode theme, icon set with that mode's token colours)`` for every mode.
+
+    ``gamut`` is the project's policy for the manifest's own colours.
+    """
     doc = load_yaml(manifest)
     root = find_project_root(Path(manifest).resolve().parent)
     pairs = []
     for mode in themes.modes:
-        iconset = iconset_from_doc(_with_palette(doc, mode.theme_palette()), root=root)
+        iconset = iconset_from_doc(_with_palette(doc, mode.theme_palette()), root=root, gamut=gamut)
         colors = mode.colors
         icons = tuple(_with_token(i, colors.get(i.color_name or "")) for i in iconset.icons)
         pairs.append(

@@ -36,7 +36,7 @@ from alpha_audit.color.srgb import srgb_decode
 from alpha_audit.errors import InputError
 from alpha_audit.load.tokens import load_token_modes, token_color
 from alpha_audit.load.tokens.model import Token, TokenModes, token_error
-from alpha_audit.model import Canvas, Mode, Theme
+from alpha_audit.model import Canvas, GamutAdjustment, Mode, Theme
 
 __all__ = [
     "DEFAULT_ALPHA_EXTENSION",
@@ -76,20 +76,6 @@ class TokenConfig:
     alpha_extension: str = DEFAULT_ALPHA_EXTENSION
     format: str = "auto"
     root: Path | None = None
-
-
-@dataclass(frozen=True)
-class GamutAdjustment:
-    """A token colour outside sRGB and what the gamut policy made of it."""
-
-    mode: str
-    token: str
-    text: str
-    policy: GamutPolicy
-    output: str
-    delta_e: float
-    file: Path | None
-    line: int | None
 
 
 @dataclass(frozen=True)
