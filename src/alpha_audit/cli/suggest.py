@@ -100,6 +100,12 @@ def suggest_command(
     if gamut_policy is None:
         gamut_policy = project.gamut
     if theme is None or iconset is None:
+        if project.tokens is not None and not project.themes:
+            raise UsageError(
+                "suggest reads YAML themes, not the config's tokens: table (a coefficient in "
+                "$extensions is never rewritten); give THEME ICONSET, or run check, which "
+                "audits every token mode (docs/tokens.md)"
+            )
         if len(project.themes) != 1 or len(project.iconsets) != 1:
             raise UsageError(
                 "suggest needs one theme and one icon set: give THEME ICONSET, or a project "
