@@ -20,6 +20,7 @@ from alpha_audit.audit import AuditResult
 from alpha_audit.errors import AlphaAuditError, InputError, UsageError
 from alpha_audit.load.files import read_text_capped
 from alpha_audit.load.paints import CURRENT_COLOR
+from alpha_audit.model import GamutAdjustment
 from alpha_audit.paint_audit import PaintAudit, paint_findings
 from alpha_audit.policy import PAINT_RULES, Exemption, Policy, Rule, contrast_breaks
 
@@ -50,7 +51,9 @@ class Finding:
 
     ``numbers`` holds the figures a reviewer needs (contrast before and after,
     threshold, CIEDE2000, 8-bit output ...), ``files`` the icons' SVG files
-    and ``lines`` the manifest lines that set each icon's colour or alpha.
+    and ``lines`` the manifest lines that set each icon's colour or alpha;
+    ``sources`` the (file, line) of each design token that sets a colour of
+    the finding (icon colour first, then the canvas), where the fix goes.
     """
 
     rule: Rule
@@ -64,6 +67,7 @@ class Finding:
     manifest: Path | None = None
     lines: tuple[int, ...] = ()
     exemption: Exemption | None = None
+    sources: tuple[tuple[Path, int], ...] = ()
     baselined: bool = False
 
     @property
@@ -143,6 +147,7 @@ class CheckReport:
     # A fix per failing (colour, canvas), from alpha_audit.fixes.with_fixes
     # (which builds on this module); None when not computed.
     fixes: tuple[ColorFix, ...] | None = None
+    gamut: tuple[GamutAdjustment, ...] = ()  # colours outside sRGB the gamut policy moved
 
 
 def _icon_refs(
@@ -157,6 +162,22 @@ def _icon_refs(
         files.append(Path(icon.file))
         lines.extend(n for n in (icon.color_line, icon.alpha_line) if n is not None)
     return tuple(files), tuple(sorted(set(lines)))
+
+
+def _token_sources(
+    result: AuditResult, names: Sequence[str], canvas: str | None
+) -> tuple[tuple[Path, int], ...]:
+    """(file, line) of the design tokens setting the icons' colours, then the canvas's."""
+    by_name = {i.name: i for i in result.iconset.icons}
+    out: list[tuple[Path, int]] = []
+    for name in names:
+        icon = by_name.get(name)
+        if icon is not None and icon.token_file is not None and icon.token_line is not None:
+            out.append((Path(icon.token_file), icon.token_line))
+    for c in result.theme.canvases:
+        if c.name == canvas and c.file is not None and c.line is not None:
+            out.append((Path(c.file), c.line))
+    return tuple(dict.fromkeys(out))  # unique, first-seen order
 
 
 def _cell_findings(
@@ -223,6 +244,7 @@ def findings_for(result: AuditResult, policy: Policy) -> list[Finding]:
                 manifest=manifest,
                 lines=lines,
                 exemption=policy.exempt(rule, canvas, icons),
+                sources=_token_sources(result, icons, canvas),
             )
         )
 

@@ -16,13 +16,14 @@ from numpy.typing import NDArray
 
 from alpha_audit.color import (
     NON_TEXT_THRESHOLD,
+    GamutPolicy,
     Pipeline,
     parse_color,
     relative_luminance,
     srgb_decode,
 )
 
-__all__ = ["Canvas", "Icon", "IconSet", "Mode", "Theme", "infer_mode"]
+__all__ = ["Canvas", "GamutAdjustment", "Icon", "IconSet", "Mode", "Theme", "infer_mode"]
 
 Mode = Literal["light", "dark"]
 
@@ -57,6 +58,26 @@ def _normalise(obj: object, color: str) -> None:
 
 
 @dataclass(frozen=True)
+class GamutAdjustment:
+    """A colour outside sRGB and what the gamut policy made of it.
+
+    ``token`` is the design-token path, or for a theme or manifest colour the
+    YAML key (``canvases[2].color``); ``mode`` the token mode, or the theme or
+    icon set's name.  ``text`` is the colour as written, ``output`` the sRGB
+    hex it became and ``delta_e`` the CIEDE2000 between the two.
+    """
+
+    mode: str
+    token: str
+    text: str
+    policy: GamutPolicy
+    output: str
+    delta_e: float
+    file: Path | None
+    line: int | None
+
+
+@dataclass(frozen=True)
 class Canvas:
     """An opaque background colour of a theme."""
 
@@ -64,6 +85,9 @@ class Canvas:
     color: str
     mode: Mode | None = None
     line: int | None = field(default=None, compare=False)
+    # The file ``line`` is in when it is not the theme's own (a design token
+    # set in another file of a Resolver document); None: the theme file.
+    file: Path | None = field(default=None, compare=False)
     exact: str | None = field(default=None, compare=False, repr=False)
     linear: tuple[float, float, float] = field(init=False, compare=False)
 
@@ -82,6 +106,7 @@ class Theme:
     threshold: float = NON_TEXT_THRESHOLD
     path: Path | None = field(default=None, compare=False)
     pipeline: Pipeline | None = None  # how this platform draws icons; None: not said
+    adjusted: tuple[GamutAdjustment, ...] = field(default=(), compare=False)  # out-of-sRGB
 
     @property
     def backgrounds(self) -> NDArray[np.float64]:
@@ -100,6 +125,10 @@ class Icon:
     color_name: str | None = None
     color_line: int | None = field(default=None, compare=False)
     alpha_line: int | None = field(default=None, compare=False)
+    # Where a design token sets this icon's colour (the end of its alias
+    # chain), so reports point at the line to edit, not only the manifest's.
+    token_file: Path | None = field(default=None, compare=False)
+    token_line: int | None = field(default=None, compare=False)
     exact: str | None = field(default=None, compare=False, repr=False)
     linear: tuple[float, float, float] = field(init=False, compare=False)
 
@@ -119,6 +148,7 @@ class IconSet:
     root: Path | None = field(default=None, compare=False)
     pipeline: Pipeline | None = None  # how these icons are drawn; None: not said
     locked: frozenset[str] = frozenset()  # icon and palette names with lock (brand colours)
+    adjusted: tuple[GamutAdjustment, ...] = field(default=(), compare=False)  # out-of-sRGB
 
     @property
     def sources(self) -> NDArray[np.float64]:

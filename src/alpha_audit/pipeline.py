@@ -7,7 +7,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from alpha_audit.audit import AuditResult, audit, check_combinations
-from alpha_audit.color import Pipeline
+from alpha_audit.color import GamutPolicy, Pipeline
 from alpha_audit.errors import SvgError, UsageError
 from alpha_audit.fixes import with_fixes
 from alpha_audit.gate import CheckReport, FindingKey, evaluate
@@ -16,7 +16,7 @@ from alpha_audit.load.paint_masks import PaintSet, measure_paints
 from alpha_audit.load.svg import IconProblem
 from alpha_audit.load.theme import load_theme
 from alpha_audit.load.tokens.themes import TokenConfig
-from alpha_audit.model import IconSet, Theme
+from alpha_audit.model import GamutAdjustment, IconSet, Theme
 from alpha_audit.paint_audit import audit_paints, check_pipeline, resolve_pipeline
 from alpha_audit.policy import Policy
 
@@ -83,6 +83,7 @@ def check_files(
     pipeline: str | None = None,
     on_start: Callable[[int], None] | None = None,
     on_icon: Callable[[], None] | None = None,
+    gamut: GamutPolicy | None = None,
 ) -> AuditResult:
     """Load both files, read and rasterise every icon's paints at every size, and audit.
 
@@ -91,10 +92,11 @@ def check_files(
     :class:`~alpha_audit.errors.SvgError`.  ``pipeline`` overrides the icon
     set's and the theme's (docs/model.md); an alpha the pipeline cannot draw
     is an :class:`~alpha_audit.errors.InputError` raised before any render.
-    ``on_start(n)`` and ``on_icon()`` report progress.
+    ``on_start(n)`` and ``on_icon()`` report progress; ``gamut`` is the
+    project's policy for colours outside sRGB (else each file's ``gamut:``).
     """
-    theme = load_theme(theme_path)
-    iconset = load_iconset(iconset_path)
+    theme = load_theme(theme_path, gamut=gamut)
+    iconset = load_iconset(iconset_path, gamut=gamut)
     chosen = resolve_pipeline(pipeline, iconset.pipeline, theme.pipeline)
     check_pipeline(iconset, chosen, alpha)
     if on_start is not None:
@@ -116,6 +118,7 @@ def check_project(
     on_start: Callable[[int], None] | None = None,
     on_icon: Callable[[], None] | None = None,
     tokens: TokenConfig | None = None,
+    gamut: GamutPolicy | None = None,
 ) -> CheckReport:
     """Audit every icon set on every theme and apply the gate ``policy``.
 
@@ -129,8 +132,12 @@ def check_project(
     config's ``tokens:`` table) each icon set is also audited on every token
     mode, its icons' colours named by token path.  ``pipeline`` (from
     ``--pipeline`` or the config) overrides each icon set's, then each
-    theme's; ``linear`` when none says.
+    theme's; ``linear`` when none says.  ``gamut`` (``--gamut``, else the
+    config's) decides colours outside sRGB in every file, tokens included;
+    the colours it moved are in ``report.gamut``.
     """
+    if tokens is not None and gamut is not None:
+        tokens = replace(tokens, gamut=gamut)
     if tokens is not None:
         return _check_with_tokens(
             themes,
@@ -144,14 +151,15 @@ def check_project(
             pipeline=pipeline,
             on_start=on_start,
             on_icon=on_icon,
+            gamut=gamut,
         )
     if not themes or not iconsets:
         raise UsageError(
             "nothing to audit: give THEME ICONSET, or name themes and iconsets in "
             "alpha-audit.yaml or [tool.alpha-audit] in pyproject.toml"
         )
-    loaded_themes = [load_theme(t) for t in _unique(themes)]
-    loaded_sets = [load_iconset(s) for s in _unique(iconsets)]
+    loaded_themes = [load_theme(t, gamut=gamut) for t in _unique(themes)]
+    loaded_sets = [load_iconset(s, gamut=gamut) for s in _unique(iconsets)]
     policy.check_exemptions(
         (c.name for t in loaded_themes for c in t.canvases),
         (i.name for s in loaded_sets for i in s.icons),
@@ -176,8 +184,18 @@ def check_project(
                 _audit(theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=kind)
             )
     gate = evaluate(audits, policy, baseline=baseline)
+    moved = _gamut_notes([*loaded_themes, *loaded_sets])
     # Every renderer shows the fix for each failing colour: computed once, here.
-    return with_fixes(CheckReport(audits=tuple(audits), gate=gate))
+    return with_fixes(CheckReport(audits=tuple(audits), gate=gate, gamut=moved))
+
+
+def _gamut_notes(
+    inputs: Sequence[Theme | IconSet], *extra: Sequence[GamutAdjustment]
+) -> tuple[GamutAdjustment, ...]:
+    """Every colour the gamut policy moved, each once, in input order."""
+    notes = [a for item in inputs for a in item.adjusted]
+    notes += [a for group in extra for a in group]
+    return tuple(dict.fromkeys(notes))
 
 
 def _check_with_tokens(
@@ -193,6 +211,7 @@ def _check_with_tokens(
     pipeline: str | None,
     on_start: Callable[[int], None] | None,
     on_icon: Callable[[], None] | None,
+    gamut: GamutPolicy | None,
 ) -> CheckReport:
     """check_project with token themes: every icon set on every token mode (and YAML theme)."""
     from alpha_audit.load.tokens.project import token_audit_pairs
@@ -201,8 +220,8 @@ def _check_with_tokens(
     if not iconsets:
         raise UsageError("nothing to audit: the config has tokens: but names no iconset")
     token_themes = load_token_themes(tokens)
-    loaded_themes = [load_theme(t) for t in _unique(themes)]
-    per_set = [token_audit_pairs(token_themes, s) for s in _unique(iconsets)]
+    loaded_themes = [load_theme(t, gamut=gamut) for t in _unique(themes)]
+    per_set = [token_audit_pairs(token_themes, s, gamut=gamut) for s in _unique(iconsets)]
     # YAML themes get the first mode's icon colours.
     per_set = [pairs + [(t, pairs[0][1]) for t in loaded_themes] for pairs in per_set]
     for pairs in per_set:  # before any icon is rendered
@@ -223,7 +242,9 @@ def _check_with_tokens(
                 _audit(theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=kind)
             )
     gate = evaluate(audits, policy, baseline=baseline)
-    return with_fixes(CheckReport(audits=tuple(audits), gate=gate))
+    sets = [pairs[0][1] for pairs in per_set]
+    moved = _gamut_notes([*loaded_themes, *sets], token_themes.adjusted)
+    return with_fixes(CheckReport(audits=tuple(audits), gate=gate, gamut=moved))
 
 
 def _unique(paths: Sequence[str | Path]) -> list[Path]:

@@ -14,6 +14,7 @@ from alpha_audit.cli.options import (
     OPTION_ORDER,
     ConfigOption,
     ForceOption,
+    GamutOption,
     IconsetArgument,
     MaxDriftOption,
     MaxLossOption,
@@ -23,6 +24,7 @@ from alpha_audit.cli.options import (
     StrictSvgOption,
     ThemeArgument,
     ThresholdOption,
+    read_gamut_option,
     require_finite,
     rules_flag,
 )
@@ -128,6 +130,7 @@ def check_command(
     max_drift: MaxDriftOption = None,
     min_size_contrast: MinSizeContrastOption = None,
     pipeline: PipelineOption = None,
+    gamut: GamutOption = None,
     exit_zero: Annotated[
         bool, typer.Option("--exit-zero", help="Report findings but exit 0 even if the gate fails.")
     ] = False,
@@ -190,6 +193,7 @@ def check_command(
     require_finite(threshold, "--threshold")
     require_finite(max_drift, "--max-drift")
     require_finite(min_size_contrast, "--min-size-contrast")
+    gamut_policy = read_gamut_option(gamut)
     given = ctx.meta.get(OPTION_ORDER)
     order = None if given is None else ["format" if n == "fmt" else n for n in given]
     pairs = pair_outputs(list(fmt or []), list(output or []), order)
@@ -226,6 +230,7 @@ def check_command(
             on_start=on_start,
             on_icon=on_icon,
             tokens=None if cli_themes or cli_sets else project.tokens,
+            gamut=gamut_policy if gamut_policy is not None else project.gamut,
         )
     base = Path.cwd().resolve()
     outputs, stdout_text = [], None

@@ -8,7 +8,13 @@ from typing import Annotated
 import typer
 
 from alpha_audit.cli.console import emit, stderr_note
-from alpha_audit.cli.options import ConfigOption, ForceOption, require_finite
+from alpha_audit.cli.options import (
+    ConfigOption,
+    ForceOption,
+    GamutOption,
+    read_gamut_option,
+    require_finite,
+)
 from alpha_audit.cli.status import ExitStatus
 
 __all__ = ["export_command"]
@@ -41,10 +47,7 @@ def export_command(
     alpha: Annotated[
         float | None, typer.Option(help="Coefficient for every colour (overrides the tokens).")
     ] = None,
-    gamut: Annotated[
-        str | None,
-        typer.Option(help="Out-of-sRGB colours: clip, map or error (default: the config's)."),
-    ] = None,
+    gamut: GamutOption = None,
     config: ConfigOption = None,
     force: ForceOption = False,
 ) -> ExitStatus:
@@ -53,7 +56,6 @@ def export_command(
     Reads the design tokens named by the project config's tokens: table. Each
     colour equals check's output for that icon colour and canvas, to the 8-bit code.
     """
-    from alpha_audit.color.css import GAMUT_POLICIES
     from alpha_audit.errors import UsageError
     from alpha_audit.export import ExportFormat, render_export, table_from_config, write_export
     from alpha_audit.load.config import project_config
@@ -61,10 +63,9 @@ def export_command(
     formats = [f.value for f in ExportFormat]
     if fmt not in formats:
         raise UsageError(f"--format {fmt!r} is not one of {', '.join(formats)}")
-    if gamut is not None and gamut not in GAMUT_POLICIES:
-        raise UsageError(f"--gamut {gamut!r} is not one of {', '.join(GAMUT_POLICIES)}")
+    gamut_policy = read_gamut_option(gamut)
     require_finite(alpha, "--alpha")
-    table = table_from_config(project_config(config, Path.cwd()), alpha=alpha, gamut=gamut)  # type: ignore[arg-type]
+    table = table_from_config(project_config(config, Path.cwd()), alpha=alpha, gamut=gamut_policy)
     for a in table.adjusted:
         stderr_note(
             f"{a.token} ({a.mode}) is outside sRGB; gamut {a.policy} gives {a.output} "

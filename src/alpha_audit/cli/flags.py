@@ -23,6 +23,7 @@ FLAGS: dict[str, str] = {
     "html_path": "--html FILE",
     "baseline_document": "--write-baseline",
     "icons": "--icons",
+    "gamut": "--gamut",
 }
 """Backticked phrase in a library message -> what the command line says instead."""
 

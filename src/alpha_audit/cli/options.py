@@ -11,12 +11,14 @@ from typing import Annotated
 import typer
 from typer.core import TyperCommand
 
+from alpha_audit.color.css import GAMUT_POLICIES, GamutPolicy
 from alpha_audit.errors import UsageError
 
 __all__ = [
     "OPTION_ORDER",
     "ConfigOption",
     "ForceOption",
+    "GamutOption",
     "IconsetArgument",
     "MaxDriftOption",
     "MaxLossOption",
@@ -27,6 +29,7 @@ __all__ = [
     "StrictSvgOption",
     "ThemeArgument",
     "ThresholdOption",
+    "read_gamut_option",
     "require_finite",
 ]
 
@@ -153,11 +156,32 @@ PipelineOption = Annotated[
         show_default=False,
     ),
 ]
+GamutOption = Annotated[
+    str | None,
+    typer.Option(
+        "--gamut",
+        metavar="clip|map|error",
+        help="Colours outside sRGB in themes, manifests and tokens: clip (per channel, as "
+        "browsers do), map (CSS Color 4 gamut mapping) or error. [default: the config's, "
+        "else each file's gamut:, else error]",
+        show_default=False,
+    ),
+]
 StrictSvgOption = Annotated[
     bool,
     typer.Option("--strict-svg", help="Treat an SVG that cannot be rendered as an input error."),
 ]
 ForceOption = Annotated[bool, typer.Option("--force", help="Replace existing output files.")]
+
+
+def read_gamut_option(value: str | None) -> GamutPolicy | None:
+    """``--gamut`` checked against the policies, or a usage error listing them."""
+    if value is None:
+        return None
+    if value not in GAMUT_POLICIES:
+        allowed = ", ".join(GAMUT_POLICIES)
+        raise UsageError(f"--gamut {value!r} is not a policy; use one of: {allowed}")
+    return value  # type: ignore[return-value]
 
 
 def require_finite(value: float | None, option: str) -> float | None:

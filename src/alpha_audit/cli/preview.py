@@ -8,7 +8,14 @@ from typing import Annotated
 import typer
 
 from alpha_audit.cli.console import progress_bar, stderr_console
-from alpha_audit.cli.options import ForceOption, StrictSvgOption, ThresholdOption, require_finite
+from alpha_audit.cli.options import (
+    ForceOption,
+    GamutOption,
+    StrictSvgOption,
+    ThresholdOption,
+    read_gamut_option,
+    require_finite,
+)
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.preview.sheets import Layout
 
@@ -68,6 +75,7 @@ def preview_command(
     threshold: ThresholdOption = None,
     force: ForceOption = False,
     strict_svg: StrictSvgOption = False,
+    gamut: GamutOption = None,
 ) -> ExitStatus:
     """Draw the icons on the theme's canvases: PNG sheets (-o DIR) and/or a WebGL2 page (--html).
 
@@ -84,6 +92,7 @@ def preview_command(
     for a in alpha or ():
         require_finite(a, "--alpha")
     require_finite(threshold, "--threshold")
+    gamut_policy = read_gamut_option(gamut)
     with progress_bar("Rendering previews") as (on_start, on_step):
         result = preview_files(
             theme_source(theme),
@@ -99,6 +108,7 @@ def preview_command(
             strict_svg=strict_svg,
             on_start=on_start,
             on_step=on_step,
+            gamut=gamut_policy,
         )
     err = stderr_console()
     for problem in result.problems:

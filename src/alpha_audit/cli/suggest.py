@@ -11,12 +11,14 @@ from alpha_audit.cli.console import emit, stdout_options
 from alpha_audit.cli.options import (
     ConfigOption,
     ForceOption,
+    GamutOption,
     IconsetArgument,
     MaxLossOption,
     MinDeltaEOption,
     ThemeArgument,
     ThresholdOption,
     at_least,
+    read_gamut_option,
     require_finite,
     rules_flag,
 )
@@ -97,6 +99,7 @@ def suggest_command(
         Path | None, typer.Option("--output", "-o", help="Write the report here instead of stdout.")
     ] = None,
     force: ForceOption = False,
+    gamut: GamutOption = None,
     apply: Annotated[
         str | None,
         typer.Option(
@@ -142,10 +145,19 @@ def suggest_command(
         check_targets([output], overwrite=force)  # before the work, not after
     require_finite(alpha_max, "--alpha-max")
     require_finite(threshold, "--threshold")
+    gamut_policy = read_gamut_option(gamut)
     if (theme is None) != (iconset is None):
         raise UsageError("give both THEME and ICONSET, or neither (to use the project config)")
     project = project_config(config, Path.cwd())
+    if gamut_policy is None:
+        gamut_policy = project.gamut
     if theme is None or iconset is None:
+        if project.tokens is not None and not project.themes:
+            raise UsageError(
+                "suggest reads YAML themes, not the config's tokens: table (a coefficient in "
+                "$extensions is never rewritten); give THEME ICONSET, or run check, which "
+                "audits every token mode (docs/tokens.md)"
+            )
         if len(project.themes) != 1 or len(project.iconsets) != 1:
             raise UsageError(
                 "suggest needs one theme and one icon set: give THEME ICONSET, or a project "
@@ -164,7 +176,8 @@ def suggest_command(
         rules=fail_on, max_loss=max_loss, min_delta_e=min_delta_e
     )
 
-    loaded_theme, loaded_set = load_theme(theme), load_iconset(iconset)
+    loaded_theme = load_theme(theme, gamut=gamut_policy)
+    loaded_set = load_iconset(iconset, gamut=gamut_policy)
     policy.check_exemptions(
         (c.name for c in loaded_theme.canvases), (i.name for i in loaded_set.icons)
     )

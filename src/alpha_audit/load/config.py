@@ -11,15 +11,16 @@ its folder, because a pull request can change the config as well.
 from __future__ import annotations
 
 import tomllib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path, PurePosixPath
 from typing import Any
 
-from alpha_audit.color import THRESHOLD_RANGE, THRESHOLD_WHAT, Pipeline
+from alpha_audit.color import THRESHOLD_RANGE, THRESHOLD_WHAT, GamutPolicy, Pipeline
 from alpha_audit.errors import InputError, UsageError
 from alpha_audit.load.fields import (
     check_keys,
     describe,
+    read_gamut,
     read_mapping,
     read_name,
     read_number,
@@ -48,6 +49,7 @@ CONFIG_KEYS = (
     "baseline",
     "exempt",
     "fail-on",
+    "gamut",
     "iconset",
     "iconsets",
     "max-drift",
@@ -79,6 +81,7 @@ class ProjectConfig:
     strict_svg: bool = False
     tokens: TokenConfig | None = None
     pipeline: Pipeline | None = None
+    gamut: GamutPolicy | None = None  # for theme and manifest colours; None: each file's own
 
 
 def _has_tool_table(pyproject: Path) -> bool:
@@ -304,6 +307,7 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
     strict_svg = data.get("strict-svg", False)
     if not isinstance(strict_svg, bool):
         raise doc.error(at("strict-svg"), f"expected true or false, got {describe(strict_svg)}")
+    gamut = read_gamut(doc, at("gamut"), data["gamut"]) if "gamut" in data else None
     tokens = None
     if "tokens" in data:
         tokens = token_config_from_mapping(
@@ -311,6 +315,9 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
             base=base,
             where=lambda sub, message: doc.error((*at("tokens"), *sub), message),
         )
+        own = isinstance(data["tokens"], dict) and "gamut" in data["tokens"]
+        if gamut is not None and not own:  # the project's policy, unless tokens: says
+            tokens = replace(tokens, gamut=gamut)
     return ProjectConfig(
         path=doc.path,
         themes=tuple(found["themes"]),
@@ -322,4 +329,5 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
         strict_svg=strict_svg,
         tokens=tokens,
         pipeline=pipeline,
+        gamut=gamut,
     )

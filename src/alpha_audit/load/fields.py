@@ -7,14 +7,19 @@ import math
 from collections.abc import Iterable
 from typing import Any
 
-from alpha_audit.color import PIPELINES, Pipeline, parse_color
+import numpy as np
+
+from alpha_audit.color import PIPELINES, GamutPolicy, Pipeline, parse_color
+from alpha_audit.color.css import GAMUT_POLICIES, parse_css_color
 from alpha_audit.errors import ColorSyntaxError
-from alpha_audit.load.yamldoc import KeyPath, YamlDoc
+from alpha_audit.load.yamldoc import KeyPath, YamlDoc, format_key
+from alpha_audit.model import GamutAdjustment
 from alpha_audit.safe_text import is_safe, safe_text
 
 __all__ = [
     "check_keys",
     "read_color",
+    "read_gamut",
     "read_mapping",
     "read_name",
     "read_number",
@@ -99,8 +104,33 @@ def read_number(
     return number
 
 
-def read_color(doc: YamlDoc, keys: KeyPath, value: Any) -> str:
-    """A colour string accepted by :func:`alpha_audit.color.parse_color`."""
+def read_gamut(doc: YamlDoc, keys: KeyPath, value: Any) -> GamutPolicy:
+    """A gamut policy: ``clip``, ``map`` or ``error`` (:mod:`alpha_audit.color.css`)."""
+    if value not in GAMUT_POLICIES:
+        raise doc.error(
+            keys,
+            f"{describe(value)} is not a gamut policy; use one of: {', '.join(GAMUT_POLICIES)}",
+        )
+    return value  # type: ignore[no-any-return]
+
+
+def read_color(
+    doc: YamlDoc,
+    keys: KeyPath,
+    value: Any,
+    *,
+    gamut: GamutPolicy = "error",
+    adjusted: list[GamutAdjustment] | None = None,
+    owner: str = "",
+) -> str:
+    """A colour string accepted by :func:`alpha_audit.color.parse_color`.
+
+    A colour outside sRGB follows ``gamut``: under ``clip`` or ``map`` the
+    result is the exact fitted ``color(srgb ...)`` and a
+    :class:`~alpha_audit.model.GamutAdjustment` (``owner`` naming the theme or
+    icon set) is appended to ``adjusted``.  In-gamut colours come back as
+    written, so their numbers do not change.
+    """
     if value is None:
         raise doc.error(
             keys,
@@ -111,7 +141,29 @@ def read_color(doc: YamlDoc, keys: KeyPath, value: Any) -> str:
     try:
         parse_color(value)
     except ColorSyntaxError as exc:
-        raise doc.error(keys, exc.message) from exc
+        if gamut == "error":
+            raise doc.error(keys, exc.message) from exc
+        try:  # outside sRGB (or not a colour at all, which raises again)
+            parsed = parse_css_color(value, gamut=gamut)
+        except ColorSyntaxError as again:
+            raise doc.error(keys, again.message) from again
+        if not parsed.adjusted:
+            raise doc.error(keys, exc.message) from exc
+        r, g, b = (int(v) for v in np.rint(parsed.array * 255))
+        if adjusted is not None:
+            adjusted.append(
+                GamutAdjustment(
+                    mode=owner,
+                    token=format_key(keys),
+                    text=value.strip(),
+                    policy=gamut,
+                    output=f"#{r:02x}{g:02x}{b:02x}",
+                    delta_e=parsed.delta_e,
+                    file=doc.path,
+                    line=doc.line(keys),
+                )
+            )
+        return parsed.css
     return value
 
 

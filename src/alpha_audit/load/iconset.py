@@ -4,14 +4,17 @@ from __future__ import annotations
 
 import difflib
 import itertools
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
+from alpha_audit.color import GamutPolicy
 from alpha_audit.errors import InputError
 from alpha_audit.load.fields import (
     check_keys,
     describe,
     read_color,
+    read_gamut,
     read_mapping,
     read_name,
     read_number,
@@ -19,7 +22,7 @@ from alpha_audit.load.fields import (
 )
 from alpha_audit.load.paths import PathRefused, contain, contain_argument, glob_contained
 from alpha_audit.load.yamldoc import KeyPath, YamlDoc, load_yaml
-from alpha_audit.model import Icon, IconSet
+from alpha_audit.model import GamutAdjustment, Icon, IconSet
 from alpha_audit.safe_text import safe_text
 
 __all__ = [
@@ -46,6 +49,7 @@ _MANIFEST_KEYS = (
     "description",
     "pipeline",
     "lock",
+    "gamut",
 )
 _ICON_KEYS = ("file", "name", "color", "alpha")
 _OVERRIDE_KEYS = ("color", "alpha", "lock")
@@ -64,10 +68,14 @@ def find_project_root(start: Path) -> Path:
     return start
 
 
-def load_iconset(path: str | Path, *, root: str | Path | None = None) -> IconSet:
+def load_iconset(
+    path: str | Path, *, root: str | Path | None = None, gamut: GamutPolicy | None = None
+) -> IconSet:
     """Load and validate an icon-set manifest.
 
     ``root`` bounds where icon files may live (default: :func:`find_project_root`).
+    ``gamut`` (the project's policy) wins over the manifest's own ``gamut:``;
+    with neither, a colour outside sRGB is an error.
     """
     # The root is found from where the manifest's name is, not where a link points.
     folder = Path(path).absolute().parent
@@ -76,26 +84,36 @@ def load_iconset(path: str | Path, *, root: str | Path | None = None) -> IconSet
         contain_argument(path, chosen)  # before a byte is read
     except PathRefused as err:
         raise InputError(str(err), path=path) from err
-    return iconset_from_doc(load_yaml(path), root=chosen)
+    return iconset_from_doc(load_yaml(path), root=chosen, gamut=gamut)
 
 
 class _Manifest:
     """Validation state for one manifest document."""
 
-    def __init__(self, doc: YamlDoc, root: Path) -> None:
+    def __init__(self, doc: YamlDoc, root: Path, gamut: GamutPolicy | None) -> None:
         self.doc = doc
         self.root = root
         # The manifest's own folder: a symlinked manifest never picks its target's.
         self.base = doc.path.absolute().parent.resolve()
         self.data = read_mapping(doc, (), doc.data, "an icon-set manifest")
         check_keys(doc, (), self.data, _MANIFEST_KEYS)
+        own = self.data.get("gamut", "error")
+        self.gamut: GamutPolicy = gamut or read_gamut(doc, ("gamut",), own)
+        self.adjusted: list[GamutAdjustment] = []
+        self.owner = str(self.data.get("name", ""))
         self.palette = self.read_palette()
+
+    def read_color(self, keys: KeyPath, value: Any) -> str:
+        """A colour under the manifest's gamut policy, its adjustment recorded."""
+        return read_color(
+            self.doc, keys, value, gamut=self.gamut, adjusted=self.adjusted, owner=self.owner
+        )
 
     def read_palette(self) -> dict[str, str]:
         raw = self.data.get("palette", {})
         raw = read_mapping(self.doc, ("palette",), raw, "a palette {name: colour}")
         return {
-            read_name(self.doc, ("palette", k), k): read_color(self.doc, ("palette", k), v)
+            read_name(self.doc, ("palette", k), k): self.read_color(("palette", k), v)
             for k, v in raw.items()
         }
 
@@ -107,13 +125,13 @@ class _Manifest:
             raise self.doc.error(keys, "'cycle' is only allowed as the manifest-wide color")
         if isinstance(value, str) and self.palette:
             try:
-                return read_color(self.doc, keys, value), None
+                return self.read_color(keys, value), None
             except InputError as exc:
                 names = ", ".join(self.palette)
                 raise self.doc.error(
                     keys, f"{value!r} is neither a palette name ({names}) nor a colour"
                 ) from exc
-        return read_color(self.doc, keys, value), None
+        return self.read_color(keys, value), None
 
     def alpha(self, keys: KeyPath, value: Any) -> float:
         return read_number(
@@ -190,9 +208,9 @@ class _Manifest:
         return out
 
 
-def iconset_from_doc(doc: YamlDoc, *, root: Path) -> IconSet:
+def iconset_from_doc(doc: YamlDoc, *, root: Path, gamut: GamutPolicy | None = None) -> IconSet:
     """Validate a parsed manifest; icon files must resolve inside ``root``."""
-    m = _Manifest(doc, root)
+    m = _Manifest(doc, root, gamut)
     data = m.data
     name = read_name(doc, ("name",), data.get("name", doc.path.parent.name or doc.path.stem))
     default_alpha = m.alpha(("alpha",), data["alpha"]) if "alpha" in data else 1.0
@@ -286,6 +304,7 @@ def iconset_from_doc(doc: YamlDoc, *, root: Path) -> IconSet:
         root=m.root,
         pipeline=pipeline,
         locked=frozenset(locked),
+        adjusted=tuple(replace(a, mode=name) for a in m.adjusted),
     )
 
 

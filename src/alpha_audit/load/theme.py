@@ -4,11 +4,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from alpha_audit.color import NON_TEXT_THRESHOLD, THRESHOLD_RANGE, THRESHOLD_WHAT
+from alpha_audit.color import NON_TEXT_THRESHOLD, THRESHOLD_RANGE, THRESHOLD_WHAT, GamutPolicy
 from alpha_audit.errors import InputError
 from alpha_audit.load.fields import (
     check_keys,
     read_color,
+    read_gamut,
     read_mapping,
     read_name,
     read_number,
@@ -16,17 +17,21 @@ from alpha_audit.load.fields import (
 )
 from alpha_audit.load.paths import PathRefused, contain_argument
 from alpha_audit.load.yamldoc import YamlDoc, load_yaml
-from alpha_audit.model import Canvas, Theme
+from alpha_audit.model import Canvas, GamutAdjustment, Theme
 
 __all__ = ["MAX_CANVASES", "load_theme", "theme_from_doc"]
 
 MAX_CANVASES = 4096
-_THEME_KEYS = ("name", "threshold", "canvases", "description", "source", "pipeline")
+_THEME_KEYS = ("name", "threshold", "canvases", "description", "source", "pipeline", "gamut")
 _CANVAS_KEYS = ("name", "color", "mode")
 
 
-def load_theme(path: str | Path) -> Theme:
+def load_theme(path: str | Path, *, gamut: GamutPolicy | None = None) -> Theme:
     """Load and validate a theme YAML file.
+
+    ``gamut`` (the project's policy: ``--gamut``, else the config's) wins over
+    the file's own ``gamut:`` key; with neither, a colour outside sRGB is an
+    error.
 
     >>> theme = load_theme("themes/paper16.yaml")  # doctest: +SKIP
     """
@@ -34,14 +39,17 @@ def load_theme(path: str | Path) -> Theme:
         contain_argument(path)  # before a byte is read
     except PathRefused as err:
         raise InputError(str(err), path=path) from err
-    return theme_from_doc(load_yaml(path))
+    return theme_from_doc(load_yaml(path), gamut=gamut)
 
 
-def theme_from_doc(doc: YamlDoc) -> Theme:
-    """Validate a parsed theme document."""
+def theme_from_doc(doc: YamlDoc, *, gamut: GamutPolicy | None = None) -> Theme:
+    """Validate a parsed theme document (``gamut`` as in :func:`load_theme`)."""
     data = read_mapping(doc, (), doc.data, "a theme")
     check_keys(doc, (), data, _THEME_KEYS)
     name = read_name(doc, ("name",), data.get("name", doc.path.stem))
+    own = read_gamut(doc, ("gamut",), data["gamut"]) if "gamut" in data else "error"
+    policy: GamutPolicy = gamut or own
+    adjusted: list[GamutAdjustment] = []
     threshold = NON_TEXT_THRESHOLD
     if "threshold" in data:
         threshold = read_number(
@@ -69,7 +77,9 @@ def theme_from_doc(doc: YamlDoc) -> Theme:
         check_keys(doc, keys, item, _CANVAS_KEYS)
         if "color" not in item:
             raise doc.error(keys, 'canvas has no color; add color: "#rrggbb"')
-        color = read_color(doc, (*keys, "color"), item["color"])
+        color = read_color(
+            doc, (*keys, "color"), item["color"], gamut=policy, adjusted=adjusted, owner=name
+        )
         cname = read_name(doc, (*keys, "name"), item.get("name", color))
         if cname in seen:
             raise doc.error(
@@ -83,4 +93,11 @@ def theme_from_doc(doc: YamlDoc) -> Theme:
             raise doc.error((*keys, "mode"), f"{mode!r} is not a mode; use light or dark (or omit)")
         canvases.append(Canvas(cname, color, mode, line=doc.line(keys)))
     pipeline = read_pipeline(doc, ("pipeline",), data["pipeline"]) if "pipeline" in data else None
-    return Theme(name, tuple(canvases), threshold, path=doc.path, pipeline=pipeline)
+    return Theme(
+        name,
+        tuple(canvases),
+        threshold,
+        path=doc.path,
+        pipeline=pipeline,
+        adjusted=tuple(adjusted),
+    )

@@ -7,6 +7,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 
+from alpha_audit.color import GamutPolicy
 from alpha_audit.errors import SvgError, UsageError
 from alpha_audit.load.iconset import MAX_SIZE, load_iconset
 from alpha_audit.load.svg import IconProblem, rasterize_icons
@@ -71,18 +72,20 @@ def preview_files(
     strict_svg: bool = False,
     on_start: Callable[[int], None] | None = None,
     on_step: Callable[[], None] | None = None,
+    gamut: GamutPolicy | None = None,
 ) -> PreviewResult:
     """Load, rasterise once, then write PNG sheets to ``out_dir`` and/or a page to ``html_path``.
 
     Every target is checked before any work: an existing file is an error
     unless ``overwrite``.  ``on_start(n)`` and ``on_step()`` report progress
-    over icons rasterised plus files written.
+    over icons rasterised plus files written; ``gamut`` decides colours
+    outside sRGB (else each file's ``gamut:``, else they are an error).
     """
     if out_dir is None and html_path is None:
         raise UsageError("nothing to write: give `out_dir` for PNG sheets and/or `html_path`")
     _check_options(alphas, sizes)
-    theme = load_theme(theme_path)
-    iconset = load_iconset(iconset_path)
+    theme = load_theme(theme_path, gamut=gamut)
+    iconset = load_iconset(iconset_path, gamut=gamut)
     if threshold is not None:
         theme = replace(theme, threshold=float(threshold))
     canvases = preview_canvases(theme, iconset, near_source)

@@ -30,6 +30,8 @@ if TYPE_CHECKING:
     from rich.console import RenderableType
     from rich.table import Table
 
+    from alpha_audit.model import GamutAdjustment
+
 __all__ = [
     "SUFFIXES",
     "RenderOptions",
@@ -40,6 +42,7 @@ __all__ = [
     "escape_html",
     "escape_markdown",
     "fitted_table",
+    "gamut_line",
     "name_column",
     "number_column",
     "records",
@@ -106,6 +109,22 @@ def check_suffix(fmt: str, path: Path) -> None:
             f"{' or '.join(SUFFIXES[fmt])} (or give a name without one)",
             path=path,
         )
+
+
+def gamut_line(note: GamutAdjustment, base: Path | None) -> str:
+    """One colour the gamut policy moved, as one line (table and markdown share it).
+
+    Names file and line, the key or token path, the colour before and after,
+    the policy and the CIEDE2000 between before and after.
+    """
+    where = display_path(note.file, base) or "?"
+    if note.line:
+        where += f":{note.line}"
+    owner = f" ({note.mode})" if note.mode else ""
+    return (
+        f"{where} {note.token}{owner}: {note.text} → {note.output} "
+        f"({note.policy}, CIEDE2000 {note.delta_e:.2f})"
+    )
 
 
 def display_path(path: Path | str | None, base: Path | None) -> str | None:

@@ -48,8 +48,13 @@ def _annotation(f: Finding, base: Path | None) -> str:
     message = f"{where} ({f.theme}): {f.message}"
     if manifest and f.lines:
         message += f" [colour/alpha set in {manifest} line {', '.join(map(str, f.lines))}]"
+    if f.sources:
+        shown = ", ".join(f"{display_path(p, base)} line {n}" for p, n in f.sources)
+        message += f" [colour set by tokens in {shown}]"
     file = display_path(f.files[0], base) if f.files else manifest
     line = None if f.files else (f.lines[0] if f.lines else None)
+    if f.sources:  # the annotation goes where the colour is set
+        file, line = display_path(f.sources[0][0], base), f.sources[0][1]
     return _command("error", message, file=file, line=line, title=f"alpha-audit {f.rule.value}")
 
 

@@ -15,6 +15,7 @@ from typing import Any
 from alpha_audit.audit import AuditResult
 from alpha_audit.fixes import fix_lookup, fix_to_dict, fixes_left_out, report_fixes
 from alpha_audit.gate import CheckReport, Finding, GateResult
+from alpha_audit.model import GamutAdjustment
 from alpha_audit.render.common import RenderOptions, display_path, dumps, records
 
 __all__ = [
@@ -150,6 +151,7 @@ def finding_to_dict(finding: Finding, base: Path | None = None) -> dict[str, Any
         "files": [display_path(f, base) for f in finding.files],
         "manifest": display_path(finding.manifest, base),
         "lines": list(finding.lines),
+        "sources": [{"file": display_path(p, base), "line": n} for p, n in finding.sources],
         "exemption": None if finding.exemption is None else finding.exemption.reason,
         "baselined": finding.baselined,
     }
@@ -188,8 +190,25 @@ def gate_to_dict(gate: GateResult, base: Path | None = None) -> dict[str, Any]:
     }
 
 
+def gamut_to_dict(note: GamutAdjustment, base: Path | None = None) -> dict[str, Any]:
+    """One colour outside sRGB: where it is written, the policy, before, after, CIEDE2000."""
+    return {
+        "file": display_path(note.file, base),
+        "line": note.line,
+        "key": note.token,
+        "mode": note.mode,
+        "policy": note.policy,
+        "before": note.text,
+        "after": note.output,
+        "delta_e": note.delta_e,
+    }
+
+
 def report_to_dict(report: CheckReport, base: Path | None = None) -> dict[str, Any]:
-    """The whole document: one audit flat at the top level, several under ``audits``."""
+    """The whole document: one audit flat at the top level, several under ``audits``.
+
+    ``gamut`` lists every input colour outside sRGB that the gamut policy moved.
+    """
     gate = gate_to_dict(report.gate, base)
     # A fix per failing (colour, canvas): docs/json.md, `gate.fixes`; each
     # failure names its fixes by index there.
@@ -200,14 +219,15 @@ def report_to_dict(report: CheckReport, base: Path | None = None) -> dict[str, A
     fixes_of = fix_lookup(report, fixes)
     for entry, finding in zip(gate["failures"], report.gate.failures, strict=True):
         entry["fixes"] = [position[x] for x in fixes_of(finding)]
+    gamut = [gamut_to_dict(a, base) for a in report.gamut]
     if len(report.audits) == 1:
-        return {**check_to_dict(report.audits[0]), "gate": gate}
+        return {**check_to_dict(report.audits[0]), "gamut": gamut, "gate": gate}
     audits = []
     for result in report.audits:
         doc = check_to_dict(result)
         del doc["schema"]
         audits.append(doc)
-    return {"schema": CHECK_SCHEMA, "audits": audits, "gate": gate}
+    return {"schema": CHECK_SCHEMA, "audits": audits, "gamut": gamut, "gate": gate}
 
 
 def render_report(report: CheckReport, options: RenderOptions) -> str:

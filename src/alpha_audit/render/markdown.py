@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING
 
 from alpha_audit.gate import CheckReport, Finding
 from alpha_audit.policy import PAINT_RULES, Rule
-from alpha_audit.render.common import RenderOptions, escape_markdown, shorten_names
+from alpha_audit.render.common import RenderOptions, escape_markdown, gamut_line, shorten_names
 from alpha_audit.render.rules import RULE_FIX
 
 if TYPE_CHECKING:
@@ -363,6 +363,12 @@ def render_markdown(
             section.add("", f"{baselined} finding(s) already in the baseline.")
         budget.force(*section.lines, "", "</details>")
 
+    if report.gamut:
+        budget.add("", f"### Colours outside sRGB ({len(report.gamut)})", "")
+        for k, note in enumerate(report.gamut):
+            if not budget.add(f"- {escape_markdown(gamut_line(note, options.base))}"):
+                left_out[0] += len(report.gamut) - k
+                break
     if gate.stale:
         n = len(gate.stale)
         budget.add(

@@ -1,10 +1,12 @@
 """SARIF 2.1.0 for code-scanning dashboards (GitHub, GitLab, Azure DevOps).
 
-Each finding is a result pointing first at the manifest line that sets the
-icon's colour or alpha (where the fix goes), then at the icon's SVG file (line
-1: a drawing has no better line).  URIs are relative to ``%SRCROOT%`` and
-percent-encoded (RFC 3986); no absolute path of the machine appears.  Rule ids
-are opaque (``AA001`` ...), names readable, and each rule has ``help.markdown``.
+Each finding is a result pointing first at the line of each design token
+that sets a colour of the finding (icon colour, then canvas), then at the
+manifest line that sets the icon's colour or alpha (where the fix goes), then
+at the icon's SVG file (line 1: a drawing has no better line).  URIs are
+relative to ``%SRCROOT%`` and percent-encoded (RFC 3986); no absolute path
+of the machine appears.  Rule ids are opaque (``AA001`` ...), names
+readable, and each rule has ``help.markdown``.
 Exempted and baselined findings stay in the log with a ``suppressions`` entry
 (so dashboards show them as dismissed, with the reason), and every result has a
 ``partialFingerprints`` entry built from what a baseline matches on (theme,
@@ -81,6 +83,8 @@ def _result(f: Finding, index: int, base: Path | None, level: str = "error") -> 
         # The manifest lines that set the colour or alpha come first: that is
         # where a fix goes (the SVG file is line 1 of the drawing).
         locations = [_location(f.manifest, base, line) for line in f.lines] + locations
+    # A colour set by a design token is fixed at the token's line, before all else.
+    locations = [_location(path, base, line) for path, line in f.sources] + locations
     result: dict[str, Any] = {
         "ruleId": RULE_IDS[f.rule],
         "ruleIndex": index,

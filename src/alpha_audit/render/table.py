@@ -19,6 +19,7 @@ from alpha_audit.gate import CheckReport, GateResult
 from alpha_audit.render.common import (
     RenderOptions,
     fitted_table,
+    gamut_line,
     name_column,
     number_column,
     to_text,
@@ -296,8 +297,22 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     parts: list[RenderableType] = []
     for result in report.audits:
         parts += [check_renderable(result), Text("")]
+    if report.gamut:
+        parts += [gamut_renderable(report, options), Text("")]
     parts.append(gate_renderable(report.gate))
     fixes = fixes_renderable(report)
     if fixes is not None:
         parts.append(fixes)
     return to_text(Group(*parts), options)
+
+
+def gamut_renderable(report: CheckReport, options: RenderOptions) -> RenderableType:
+    """Colours outside sRGB that the gamut policy moved: one line per colour."""
+    notes = report.gamut
+    out: list[RenderableType] = [
+        Text(f"Colours outside sRGB ({len(notes)}), fitted by the gamut policy", style="bold")
+    ]
+    out += [Text(f"  {safe_text(gamut_line(n, options.base))}") for n in notes[:MAX_FINDINGS]]
+    if len(notes) > MAX_FINDINGS:
+        out.append(Text(f"  … and {len(notes) - MAX_FINDINGS} more (see --format json)"))
+    return Group(*out)

@@ -11,11 +11,13 @@ from __future__ import annotations
 
 from dataclasses import replace
 from pathlib import Path
+from typing import Any
 
+from alpha_audit.color import GamutPolicy
 from alpha_audit.load.iconset import find_project_root, iconset_from_doc
-from alpha_audit.load.tokens.themes import TokenThemes
+from alpha_audit.load.tokens.themes import TokenColor, TokenThemes
 from alpha_audit.load.yamldoc import YamlDoc, load_yaml
-from alpha_audit.model import IconSet, Theme
+from alpha_audit.model import Icon, IconSet, Theme
 
 __all__ = ["token_audit_pairs"]
 
@@ -29,19 +31,31 @@ def _with_palette(doc: YamlDoc, palette: dict[str, str]) -> YamlDoc:
     return YamlDoc(doc.path, {**data, "palette": merged}, doc.lines)
 
 
-def token_audit_pairs(themes: TokenThemes, manifest: str | Path) -> list[tuple[Theme, IconSet]]:
-    """``(mode theme, icon set with that mode's token colours)`` for every mode."""
+def _with_token(icon: Icon, color: TokenColor | None) -> Icon:
+    """``icon`` with its token's location and (if the token has one) its coefficient."""
+    if color is None:
+        return icon
+    token = color.token
+    changes: dict[str, Any] = {"token_file": token.file, "token_line": token.line}
+    if color.alpha is not None:
+        changes["alpha"] = color.alpha
+    return replace(icon, **changes)
+
+
+def token_audit_pairs(
+    themes: TokenThemes, manifest: str | Path, *, gamut: GamutPolicy | None = None
+) -> list[tuple[Theme, IconSet]]:
+    """``(mode theme, icon set with that mode's token colours)`` for every mode.
+
+    ``gamut`` is the project's policy for the manifest's own colours.
+    """
     doc = load_yaml(manifest)
     root = find_project_root(Path(manifest).resolve().parent)
     pairs = []
     for mode in themes.modes:
-        iconset = iconset_from_doc(_with_palette(doc, mode.theme_palette()), root=root)
-        icons = tuple(
-            replace(icon, alpha=mode.colors[icon.color_name].alpha)
-            if icon.color_name in mode.colors and mode.colors[icon.color_name].alpha is not None
-            else icon
-            for icon in iconset.icons
-        )
+        iconset = iconset_from_doc(_with_palette(doc, mode.theme_palette()), root=root, gamut=gamut)
+        colors = mode.colors
+        icons = tuple(_with_token(i, colors.get(i.color_name or "")) for i in iconset.icons)
         pairs.append(
             (mode.theme, replace(iconset, icons=icons, name=f"{iconset.name} ({mode.name})"))
         )

@@ -1,13 +1,23 @@
-"""Tailwind CSS v4 ``@theme`` blocks: ``--color-*`` custom properties as colour tokens.
+"""CSS custom properties as colour tokens: Tailwind v4 ``@theme`` and plain ``:root`` sheets.
 
 The CSS is tokenised by tinycss2 (CSS Syntax Level 3), never by regular
 expressions.  ``--color-red-500: oklch(63.7% 0.237 25.331)`` becomes the
 colour token ``color.red.500`` (dashes to dots, the inverse of the export's
 naming); ``var(--color-x)`` is an alias; ``initial`` (Tailwind's namespace
-reset) and non-colour namespaces are skipped.  Top-level rules whose
-selector is ``.<mode>`` or ``[data-theme="<mode>"]`` override the theme's
-properties in that mode (how Tailwind sites switch dark mode); ``@theme``
-alone is the mode ``default``.
+reset) and non-colour namespaces are skipped.  ``@theme`` (and a rule whose
+selector list has ``:root``) is the mode ``default``; a top-level rule whose
+selectors are ``.<mode>`` or ``[data-theme="<mode>"]`` overrides it in that
+mode (how Tailwind sites switch dark mode; ``.dark, .dark-theme`` is the mode
+``dark``).
+
+Outside ``@theme`` (palettes such as Radix Colors write ``--blue-9: #0090ff``
+in ``:root``), any custom property whose value starts as a colour does
+(a hash, ``rgb()`` ... ``color()``, or ``var()``): custom properties are
+untyped, and guessing more would make a length a colour.  Rules inside
+``@supports (color: color(display-p3 ...))`` or ``@media (color-gamut: p3)``
+are the wide-gamut variant a P3 display uses: they form the modes ``p3`` and
+``<mode>-p3``, each the cascade of default, p3, mode and mode-p3 in that
+order, so they follow the gamut policy like any colour outside sRGB.
 """
 
 from __future__ import annotations
@@ -33,22 +43,85 @@ _VAR = re.compile(r"var\(\s*--([A-Za-z0-9_-]+)\s*\)")
 _MODE_SELECTOR = re.compile(r"""\.([A-Za-z][\w-]*)|\[data-theme=["']?([\w-]+)["']?\]""")
 
 
-def _declarations(rule: Any) -> list[tuple[str, str, int]]:
+# The CSS Color 4 functions a colour value can start with (section 4, "Representing
+# Colors"), plus var() for an alias.
+_COLOR_FUNCTIONS = frozenset(
+    {"rgb", "rgba", "hsl", "hsla", "hwb", "lab", "lch", "oklab", "oklch", "color", "var"}
+)
+_P3 = re.compile(r"display-p3|color-gamut\s*:\s*p3", re.IGNORECASE)
+
+
+def _starts_as_color(node: Any) -> bool:
+    """Whether a declaration's value starts with a hash or a colour function."""
+    first = next((t for t in node.value if t.type not in ("whitespace", "comment")), None)
+    if first is None:
+        return False
+    if first.type == "hash":
+        return True
+    return first.type == "function" and first.lower_name in _COLOR_FUNCTIONS
+
+
+def _declarations(rule: Any, *, any_color: bool = False) -> list[tuple[str, str, int]]:
+    """``(name without --, value, line)`` of the colour properties of a block.
+
+    ``any_color``: every custom property whose value starts as a colour
+    (plain stylesheets), else only Tailwind's ``--color-*`` namespace.
+    """
     import tinycss2
 
     out = []
     for node in tinycss2.parse_blocks_contents(
         rule.content, skip_comments=True, skip_whitespace=True
     ):
-        if node.type == "declaration" and node.name.startswith("--color-"):
+        if node.type != "declaration" or not node.name.startswith("--"):
+            continue
+        if node.name.startswith("--color-") or (any_color and _starts_as_color(node)):
             value = tinycss2.serialize(node.value).strip()
             if value != "initial":
                 out.append((node.name[2:], value, node.source_line))
     return out
 
 
+def _rule_mode(selector: str) -> str | None:
+    """``default`` for a selector list with ``:root``, the first class or theme name, or None."""
+    parts = [p.strip() for p in selector.split(",")]
+    if ":root" in parts:
+        return "default"
+    for part in parts:
+        match = _MODE_SELECTOR.fullmatch(part)
+        if match:
+            return match.group(1) or match.group(2)
+    return None
+
+
+def _collect(rules: list[Any], layers: dict[str, dict[str, tuple[str, int]]], *, p3: bool) -> None:
+    """Add each rule's colour properties to its mode's layer (``<mode>-p3`` inside P3 blocks)."""
+    import tinycss2
+
+    for rule in rules:
+        if rule.type == "at-rule" and rule.content is not None:
+            keyword = rule.lower_at_keyword
+            if keyword == "theme" and not p3:
+                layers.setdefault("default", {}).update(
+                    {n: (v, line) for n, v, line in _declarations(rule)}
+                )
+            elif keyword in ("supports", "media") and _P3.search(tinycss2.serialize(rule.prelude)):
+                inner = tinycss2.parse_rule_list(
+                    rule.content, skip_comments=True, skip_whitespace=True
+                )
+                _collect(inner, layers, p3=True)
+        elif rule.type == "qualified-rule" and rule.content:
+            mode = _rule_mode(tinycss2.serialize(rule.prelude).strip())
+            if mode is None:
+                continue
+            name = ("p3" if mode == "default" else f"{mode}-p3") if p3 else mode
+            layers.setdefault(name, {}).update(
+                {n: (v, line) for n, v, line in _declarations(rule, any_color=True)}
+            )
+
+
 def modes_from_tailwind(path: str | Path) -> TokenModes:
-    """Colour tokens per mode from a Tailwind v4 stylesheet."""
+    """Colour tokens per mode from a Tailwind v4 stylesheet or a ``:root`` palette sheet."""
     import tinycss2
 
     p = Path(path)
@@ -58,26 +131,30 @@ def modes_from_tailwind(path: str | Path) -> TokenModes:
     except UnicodeDecodeError as exc:
         raise InputError(f"not UTF-8 text (byte {exc.start})", path=p) from exc
     rules = tinycss2.parse_stylesheet(text, skip_comments=True, skip_whitespace=True)
-    base: dict[str, tuple[str, int]] = {}
-    overrides: dict[str, dict[str, tuple[str, int]]] = {}
-    for rule in rules:
-        if rule.type == "at-rule" and rule.lower_at_keyword == "theme" and rule.content:
-            base.update({n: (v, line) for n, v, line in _declarations(rule)})
-        elif rule.type == "qualified-rule":
-            selector = tinycss2.serialize(rule.prelude).strip()
-            match = _MODE_SELECTOR.fullmatch(selector)
-            if match and rule.content:
-                mode = match.group(1) or match.group(2)
-                overrides.setdefault(mode, {}).update(
-                    {n: (v, line) for n, v, line in _declarations(rule)}
-                )
+    layers: dict[str, dict[str, tuple[str, int]]] = {}
+    _collect(rules, layers, p3=False)
+    base = layers.get("default", {})
     if not base:
-        raise InputError("has no @theme block with --color-* properties", path=p)
-    if len(base) > MAX_TOKENS:
+        raise InputError(
+            "has no @theme block with --color-* properties and no :root rule with colour "
+            "custom properties",
+            path=p,
+        )
+    if sum(len(layer) for layer in layers.values()) > MAX_TOKENS:
         raise InputError(f"more than {MAX_TOKENS} colour properties", path=p)
     modes = {"default": _resolve(p, base)}
-    for mode, props in overrides.items():
-        modes[mode] = _resolve(p, {**base, **props})
+    for mode in layers:
+        if mode == "default":
+            continue
+        # The cascade in source order: default, p3, the mode, its p3 variant.
+        plain = mode.removesuffix("-p3") if mode != "p3" else "default"
+        order = ["default", "p3", plain, f"{plain}-p3"] if plain != "default" else ["default", "p3"]
+        if not mode.endswith("p3"):
+            order = ["default", mode]
+        merged: dict[str, tuple[str, int]] = {}
+        for name in dict.fromkeys(order):
+            merged.update(layers.get(name, {}))
+        modes[mode] = _resolve(p, merged)
     return TokenModes(p, "tailwind", modes, "default")
 
 

@@ -31,12 +31,18 @@ from typing import Any
 
 import numpy as np
 
-from alpha_audit.color.css import GAMUT_POLICIES, GamutPolicy, ParsedColor, gamut_delta_e
+from alpha_audit.color.css import (
+    GAMUT_POLICIES,
+    GamutPolicy,
+    ParsedColor,
+    gamut_delta_e,
+    map_parsed,
+)
 from alpha_audit.color.srgb import srgb_decode
 from alpha_audit.errors import InputError
 from alpha_audit.load.tokens import load_token_modes, token_color
 from alpha_audit.load.tokens.model import Token, TokenModes, token_error
-from alpha_audit.model import Canvas, Mode, Theme
+from alpha_audit.model import Canvas, GamutAdjustment, Mode, Theme
 
 __all__ = [
     "DEFAULT_ALPHA_EXTENSION",
@@ -76,20 +82,6 @@ class TokenConfig:
     alpha_extension: str = DEFAULT_ALPHA_EXTENSION
     format: str = "auto"
     root: Path | None = None
-
-
-@dataclass(frozen=True)
-class GamutAdjustment:
-    """A token colour outside sRGB and what the gamut policy made of it."""
-
-    mode: str
-    token: str
-    text: str
-    policy: GamutPolicy
-    output: str
-    delta_e: float
-    file: Path | None
-    line: int | None
 
 
 @dataclass(frozen=True)
@@ -177,16 +169,19 @@ def _alpha(token: Token, key: str) -> float | None:
     return float(raw)
 
 
-def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
-    """Build a theme and icon colours per mode from resolved tokens."""
-    modes: list[TokenMode] = []
-    adjusted: list[tuple[str, Token, ParsedColor]] = []
-    # Modes share most colours (aliases of one palette); CSS gamut mapping costs
-    # ~30 conversions per colour, so each distinct value is converted once.
+def _parse_all(
+    source: TokenModes, config: TokenConfig
+) -> tuple[dict[str, ParsedColor], list[tuple[str, str, str, Token, bool, bool]]]:
+    """Every selected token's distinct value parsed once, and the selection in order.
+
+    Modes share most colours (aliases of one palette), so each distinct value
+    is converted once; under ``map`` the values are parsed as ``clip`` (cheap)
+    and the ones outside sRGB are then gamut-mapped in one vectorised batch.
+    """
+    parse_as: GamutPolicy = "clip" if config.gamut == "map" else config.gamut
     seen: dict[str, ParsedColor] = {}
+    selected: list[tuple[str, str, str, Token, bool, bool]] = []
     for name, tokens in source.modes.items():
-        canvases: list[Canvas] = []
-        colors: dict[str, TokenColor] = {}
         for path, token in tokens.items():
             is_canvas = _matches(path, config.canvases)
             is_color = _matches(path, config.colors)
@@ -194,12 +189,34 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
                 continue
             key = json.dumps(token.value, sort_keys=True)
             if key not in seen or token.type != "color":
-                seen[key] = token_color(token, gamut=config.gamut)
+                seen[key] = token_color(token, gamut=parse_as)
+            selected.append((name, path, key, token, is_canvas, is_color))
+    if config.gamut == "map":
+        seen = dict(zip(seen, map_parsed(list(seen.values())), strict=True))
+    return seen, selected
+
+
+def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
+    """Build a theme and icon colours per mode from resolved tokens."""
+    seen, selected = _parse_all(source, config)
+    modes: list[TokenMode] = []
+    adjusted: list[tuple[str, Token, ParsedColor]] = []
+    by_mode: dict[str, list[tuple[str, str, Token, bool, bool]]] = {n: [] for n in source.modes}
+    for name, *entry in selected:
+        by_mode[name].append(tuple(entry))  # type: ignore[arg-type]
+    for name, entries in by_mode.items():
+        canvases: list[Canvas] = []
+        colors: dict[str, TokenColor] = {}
+        for path, key, token, is_canvas, is_color in entries:
             parsed = seen[key]
             if parsed.adjusted:
                 adjusted.append((name, token, parsed))
             if is_canvas:
-                canvases.append(Canvas(path, parsed.css, config.modes.get(name), line=token.line))
+                canvases.append(
+                    Canvas(
+                        path, parsed.css, config.modes.get(name), line=token.line, file=token.file
+                    )
+                )
             if is_color:
                 colors[path] = TokenColor(token, parsed, _alpha(token, config.alpha_extension))
         if not canvases:
