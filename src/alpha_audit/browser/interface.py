@@ -50,6 +50,9 @@ _TERMINATE_GRACE = 3.0
 # The largest viewport side we ask for: Chromium's headless window and Xvfb's screen
 # (webkit.py) are this size at most; screenshots beyond it would be tens of MB anyway.
 _MAX_VIEWPORT = 4096
+_TWO_FRAMES = (
+    "new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(() => done(true))))"
+)
 # PNG, section 5.2 (ISO/IEC 15948).
 _PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
@@ -277,8 +280,14 @@ class Browser(abc.ABC):
             ) from None
 
     def screenshot(self) -> bytes:
-        """A PNG of what the viewport shows now, one image pixel per CSS pixel (ratio 1)."""
+        """A PNG of what the viewport shows now, one image pixel per CSS pixel (ratio 1).
+
+        Two animation frames are awaited first, so that changes a script made
+        have been painted and composited (WebKitGTK's driver does not wait by
+        itself: a first screenshot right after loading could show a stale frame).
+        """
         self._check_open()
+        self.evaluate(_TWO_FRAMES)
         png = self._screenshot()
         if not png.startswith(_PNG_SIGNATURE):
             raise BrowserError(f"{self.LABEL} returned a screenshot that is not a PNG")
