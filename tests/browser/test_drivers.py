@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import io
 import os
 import time
 
+import numpy as np
 import pytest
+from PIL import Image
 
 from alpha_audit.browser import ENGINES, BrowserError, engine_class, installed_engines
 from alpha_audit.browser.interface import json_expression
@@ -100,3 +103,34 @@ def test_processes_end_when_the_block_raises(engine):
         pids = list(browser.processes.pids)
         1 / 0  # noqa: B018
     assert _groups_gone(pids), f"{name} left processes behind after an exception"
+
+
+# Three flat boxes at known places, in sRGB codes; nothing antialiased.
+SHOT_PAGE = """<!doctype html><style>html,body{margin:0;background:#102030}
+div{position:absolute}</style>
+<div style="left:10px;top:20px;width:30px;height:40px;background:#ff8000"></div>
+<div style="right:0;bottom:0;width:5px;height:7px;background:#00ff7f"></div>
+<div style="left:300px;top:0;width:1px;height:100%;background:#fefefe"></div>"""
+
+
+def test_viewport_and_screenshot_show_the_page_pixel_for_pixel(engine):
+    name, installation = engine
+    with ENGINES[name](installation, timeout=30) as browser:
+        browser.open_html(SHOT_PAGE)
+        for width, height in ((640, 360), (801, 613)):  # MiniBrowser is never under ~450 px
+            browser.set_viewport(width, height)
+            assert browser.evaluate("[innerWidth, innerHeight, devicePixelRatio]") == [
+                width,
+                height,
+                1,
+            ]
+            shot = np.asarray(Image.open(io.BytesIO(browser.screenshot())).convert("RGB"))
+            expected = np.empty((height, width, 3), dtype=np.uint8)
+            expected[:] = (0x10, 0x20, 0x30)
+            expected[20:60, 10:40] = (0xFF, 0x80, 0x00)
+            expected[:, 300] = (0xFE, 0xFE, 0xFE)
+            expected[-7:, -5:] = (0x00, 0xFF, 0x7F)
+            assert shot.shape == expected.shape
+            assert np.array_equal(shot, expected), f"{name}: {np.argwhere(shot != expected)[:3]}"
+        with pytest.raises(BrowserError, match="viewport 0 x 10"):
+            browser.set_viewport(0, 10)

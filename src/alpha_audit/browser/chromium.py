@@ -7,6 +7,8 @@ so results do not depend on a GPU.
 
 from __future__ import annotations
 
+import base64
+import binascii
 import contextlib
 import fcntl
 import json
@@ -44,6 +46,7 @@ _FLAGS = (
     "--disable-sync",
     "--disable-extensions",
     "--mute-audio",
+    "--force-color-profile=srgb",  # no colour management: CSS colours reach pixels as codes
     "--remote-debugging-pipe",
 )
 # Put the child's pipe ends on fds 3 and 4 after fork; Popen cannot place fds itself.
@@ -173,6 +176,19 @@ class Chromium(Browser):
             text = details.get("exception", {}).get("description") or details.get("text")
             raise BrowserError(f"script error in Chromium: {text}")
         return reply["result"].get("value")
+
+    def _set_viewport(self, width: int, height: int) -> None:
+        self._call(
+            "Emulation.setDeviceMetricsOverride",
+            {"width": width, "height": height, "deviceScaleFactor": 1, "mobile": False},
+        )
+
+    def _screenshot(self) -> bytes:
+        reply = self._call("Page.captureScreenshot", {"format": "png"})
+        try:
+            return base64.b64decode(reply["data"], validate=True)
+        except (KeyError, TypeError, binascii.Error) as exc:
+            raise BrowserError("Chromium returned no screenshot") from exc
 
     def _shutdown(self) -> None:
         try:

@@ -11,6 +11,8 @@ EGL (``MOZ_WEBGL_FORCE_EGL=1``) and the ``webgl.force-enabled`` pref.
 
 from __future__ import annotations
 
+import base64
+import binascii
 import json
 import os
 import re
@@ -144,6 +146,26 @@ class Firefox(Browser):
             details = reply.get("exceptionDetails", {})
             raise BrowserError(f"script error in Firefox: {details.get('text')}")
         return reply["result"].get("value")
+
+    def _set_viewport(self, width: int, height: int) -> None:
+        self._call(
+            "browsingContext.setViewport",
+            {
+                "context": self._context,
+                "viewport": {"width": width, "height": height},
+                "devicePixelRatio": 1,
+            },
+        )
+
+    def _screenshot(self) -> bytes:
+        reply = self._call(
+            "browsingContext.captureScreenshot",
+            {"context": self._context, "origin": "viewport", "format": {"type": "image/png"}},
+        )
+        try:
+            return base64.b64decode(reply["data"], validate=True)
+        except (KeyError, TypeError, binascii.Error) as exc:
+            raise BrowserError("Firefox returned no screenshot") from exc
 
     def _shutdown(self) -> None:
         try:

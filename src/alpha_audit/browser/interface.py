@@ -2,7 +2,10 @@
 
 Every engine implements :class:`Browser`: ``open`` a URL (or a page given as
 HTML), ``evaluate`` a JavaScript expression (awaiting a promise) and get its
-value back as JSON data, ``close``.  A browser is a context manager, and every
+value back as JSON data, ``set_viewport`` to a size in CSS pixels,
+``screenshot`` what the viewport shows (for what only the compositor sees:
+HTML, CSS and SVG paint; page pixels a script can read are better read by
+the script), ``close``.  A browser is a context manager, and every
 process it starts runs in its own process group that :class:`ProcessGroup`
 terminates (then kills) on close, on exceptions and at interpreter exit, so a
 failed or timed-out run never leaves Firefox content processes, WebKit web
@@ -44,6 +47,14 @@ JSONValue: TypeAlias = bool | int | float | str | list["JSONValue"] | dict[str, 
 
 # How long a process gets to exit after SIGTERM before it is killed.
 _TERMINATE_GRACE = 3.0
+# The largest viewport side we ask for: Chromium's headless window and Xvfb's screen
+# (webkit.py) are this size at most; screenshots beyond it would be tens of MB anyway.
+_MAX_VIEWPORT = 4096
+_TWO_FRAMES = (
+    "new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(() => done(true))))"
+)
+# PNG, section 5.2 (ISO/IEC 15948).
+_PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
 
 class BrowserError(AlphaAuditError):
@@ -147,7 +158,8 @@ class Browser(abc.ABC):
     """A headless browser engine driven from Python.
 
     Subclasses set ``NAME`` and implement :meth:`find`, :meth:`_start`,
-    :meth:`_navigate`, :meth:`_evaluate_text` and :meth:`_shutdown`; this base
+    :meth:`_navigate`, :meth:`_evaluate_text`, :meth:`_set_viewport`,
+    :meth:`_screenshot` and :meth:`_shutdown`; this base
     class owns the temporary directory, the process group and the JSON
     convention, so those exist once.
 
@@ -196,6 +208,14 @@ class Browser(abc.ABC):
         """Evaluate ``expression`` (a promise of a string) and return the string."""
 
     @abc.abstractmethod
+    def _set_viewport(self, width: int, height: int) -> None:
+        """Ask for a ``width`` x ``height`` CSS-pixel viewport at device pixel ratio 1."""
+
+    @abc.abstractmethod
+    def _screenshot(self) -> bytes:
+        """A PNG of the viewport, one image pixel per CSS pixel."""
+
+    @abc.abstractmethod
     def _shutdown(self) -> None:
         """Ask the engine politely to quit (errors are ignored by :meth:`close`)."""
 
@@ -233,6 +253,45 @@ class Browser(abc.ABC):
             if time.monotonic() > deadline:
                 raise BrowserError(f"{self.LABEL}: timed out waiting for {expression[:60]!r}")
             time.sleep(0.05)
+
+    def set_viewport(self, width: int, height: int) -> None:
+        """Make the page's viewport ``width`` x ``height`` CSS pixels, one device pixel each.
+
+        Returns once the page itself reports that size (``innerWidth``,
+        ``innerHeight``, ``devicePixelRatio``), so layout code that runs on
+        resize has seen it.
+        """
+        self._check_open()
+        if not (0 < width <= _MAX_VIEWPORT and 0 < height <= _MAX_VIEWPORT):
+            raise BrowserError(
+                f"viewport {width} x {height} px: each side must be 1 to {_MAX_VIEWPORT}"
+            )
+        self._set_viewport(int(width), int(height))
+        check = (
+            f"innerWidth === {int(width)} && innerHeight === {int(height)}"
+            " && devicePixelRatio === 1"
+        )
+        try:
+            self.wait_for(check, timeout=min(self.timeout, 10.0))
+        except BrowserError:
+            got = self.evaluate("[innerWidth, innerHeight, devicePixelRatio]")
+            raise BrowserError(
+                f"{self.LABEL}: asked for a {width} x {height} viewport at ratio 1, got {got}"
+            ) from None
+
+    def screenshot(self) -> bytes:
+        """A PNG of what the viewport shows now, one image pixel per CSS pixel (ratio 1).
+
+        Two animation frames are awaited first, so that changes a script made
+        have been painted and composited (WebKitGTK's driver does not wait by
+        itself: a first screenshot right after loading could show a stale frame).
+        """
+        self._check_open()
+        self.evaluate(_TWO_FRAMES)
+        png = self._screenshot()
+        if not png.startswith(_PNG_SIGNATURE):
+            raise BrowserError(f"{self.LABEL} returned a screenshot that is not a PNG")
+        return png
 
     def close(self) -> None:
         """Quit the engine, end its processes and delete its temporary files (idempotent)."""

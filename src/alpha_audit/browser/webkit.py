@@ -10,6 +10,8 @@ disabled: nothing leaves the machine.
 
 from __future__ import annotations
 
+import base64
+import binascii
 import glob
 import json
 import os
@@ -181,6 +183,27 @@ class WebKit(Browser):
             detail = reply.get("error") if isinstance(reply, dict) else reply
             raise BrowserError(f"script error in WebKitGTK: {detail}")
         return reply["ok"]
+
+    def _set_viewport(self, width: int, height: int) -> None:
+        # WebDriver sizes the window, not the viewport (section 11.8.2): size it once, measure
+        # what the window's own frame takes, and size it again with that added.
+        path = self._session_path("window/rect")
+        self._request("POST", path, {"width": width, "height": height})
+        inner = self.evaluate("[innerWidth, innerHeight]")
+        outer = self._request("GET", path)
+        if not (isinstance(inner, list) and isinstance(outer, dict)):
+            raise BrowserError("WebKitWebDriver returned no window size")
+        extra_w = int(outer["width"]) - int(inner[0])
+        extra_h = int(outer["height"]) - int(inner[1])
+        if extra_w or extra_h:
+            self._request("POST", path, {"width": width + extra_w, "height": height + extra_h})
+
+    def _screenshot(self) -> bytes:
+        data = self._request("GET", self._session_path("screenshot"))
+        try:
+            return base64.b64decode(str(data), validate=True)
+        except binascii.Error as exc:
+            raise BrowserError("WebKitWebDriver returned no screenshot") from exc
 
     def _shutdown(self) -> None:
         self._request("DELETE", f"/session/{self._session}", timeout=5)

@@ -7,7 +7,9 @@ that is linear light.  With ``slope = a`` and ``intercept = (1 - a) Cb``
 (``Cb`` the canvas in linear light) it is ``clip(Cb + a (Cs - Cb))``: the
 paper's formula with its clip, for one canvas colour.  The icon keeps its one
 source colour and the filter does the rest.  Antialiased edges are then
-blended by the browser in gamma-encoded sRGB, not in linear light.
+blended by the browser in gamma-encoded sRGB, not in linear light, and
+browsers keep linearRGB filter buffers in 8 bits, so dark channels come out
+up to 18/255 off (docs/export.md measures it; the CSS colours are exact).
 """
 
 from __future__ import annotations

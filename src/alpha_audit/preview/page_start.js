@@ -1,4 +1,4 @@
-  // ---- hook for automated validation (tests/preview/test_browser.py), and start-up ---------
+  // ---- hook for automated validation (tests/browser/), and start-up ---------
   function toBase64(bytes) {
     let text = "";
     for (let i = 0; i < bytes.length; i += 0x8000) {
