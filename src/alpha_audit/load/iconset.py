@@ -168,9 +168,9 @@ class _Manifest:
             )
         if len(raw) > MAX_ICONS:
             raise self.doc.error(("icons",), f"{len(raw)} icons; at most {MAX_ICONS} are allowed")
-        out = []
+        out: list[tuple[KeyPath, Path, dict[str, Any]]] = []
         for i, item in enumerate(raw):
-            keys = ("icons", i)
+            keys: KeyPath = ("icons", i)
             if isinstance(item, str):
                 out.append((keys, self.resolve_file(keys, item), {}))
                 continue
@@ -213,6 +213,7 @@ def iconset_from_doc(doc: YamlDoc, *, root: Path) -> IconSet:
             )
         seen[icon_name] = where
         color: str | None
+        color_name: str | None
         if cycle:
             pname, pcolor = next(palette_cycle)
             color, color_name = pcolor, pname

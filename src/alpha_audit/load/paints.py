@@ -36,7 +36,7 @@ import xml.etree.ElementTree as ET
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Literal
+from typing import Literal, cast
 
 import cssselect2
 import defusedxml
@@ -221,8 +221,12 @@ def isolate_groups(
     svg: bytes, groups: Sequence[PaintGroup], *, path: str | Path | None = None
 ) -> list[bytes]:
     """One :func:`isolate_paints` SVG per paint group, from one parse and one cascade."""
-    keys = [g.key for g in groups]
-    return isolate_each(svg, [lambda p, k=k: (p.color, p.opacity) == k for k in keys], path=path)
+    return isolate_each(svg, [_in_group(g.key) for g in groups], path=path)
+
+
+def _in_group(key: tuple[str, float]) -> Callable[[Paint], bool]:
+    """Whether a paint belongs to the group with ``key`` (colour, opacity)."""
+    return lambda p: (p.color, p.opacity) == key
 
 
 def isolate_each(
@@ -484,7 +488,7 @@ def _cascade(
     computed.update(dict.fromkeys(_MARKERS))
     inline_normal, inline_important = _declarations(node.get("style", ""))
     layers: list[list[tuple[str, str]]] = [
-        [(name, node.get(name)) for name in _PROPERTIES if node.get(name) is not None]  # type: ignore[misc]
+        [(name, node.get(name)) for name in _PROPERTIES if node.get(name) is not None]
     ]
     normal, important = matchers
     layers += [rule[-1] for rule in normal.match(wrapper)]
@@ -592,12 +596,13 @@ def _shape_paints(
         effective = opacity * (1.0 if kind_opacity is None else kind_opacity)
         if sort == "current":
             if computed["color"] is None:
-                yield Paint(CURRENT_COLOR, kind, effective, description, line)  # type: ignore[arg-type]
+                yield Paint(CURRENT_COLOR, kind, effective, description, line)
                 continue
             sort, detail = _color_value(computed["color"])
         if sort == "space":
             reason = f"{kind} is a {detail} colour, outside sRGB notation; not audited"
             unaudited.append(Unaudited(description, line, reason))
             continue
-        hex_color, colour_alpha = detail  # type: ignore[misc]
-        yield Paint(hex_color, kind, effective * colour_alpha, description, line)  # type: ignore[arg-type]
+        # what remains is _color_value's ("color", (hex, alpha))
+        hex_color, colour_alpha = cast(tuple[str, float], detail)
+        yield Paint(hex_color, kind, effective * colour_alpha, description, line)

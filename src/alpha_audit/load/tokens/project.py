@@ -37,8 +37,9 @@ def token_audit_pairs(themes: TokenThemes, manifest: str | Path) -> list[tuple[T
     for mode in themes.modes:
         iconset = iconset_from_doc(_with_palette(doc, mode.theme_palette()), root=root)
         icons = tuple(
-            replace(icon, alpha=mode.colors[icon.color_name].alpha)
-            if icon.color_name in mode.colors and mode.colors[icon.color_name].alpha is not None
+            replace(icon, alpha=alpha)
+            if icon.color_name in mode.colors
+            and (alpha := mode.colors[icon.color_name].alpha) is not None
             else icon
             for icon in iconset.icons
         )
