@@ -180,7 +180,8 @@ class WebKit(Browser):
         if not isinstance(reply, dict) or "error" in reply:
             detail = reply.get("error") if isinstance(reply, dict) else reply
             raise BrowserError(f"script error in WebKitGTK: {detail}")
-        return reply["ok"]
+        value: str = reply["ok"]  # JSON text (evaluate() refuses anything else)
+        return value
 
     def _shutdown(self) -> None:
         self._request("DELETE", f"/session/{self._session}", timeout=5)
