@@ -39,6 +39,8 @@ def format_alpha(alpha: float, precision: int) -> str:
 
 
 def _value(node: yaml.MappingNode, key: str) -> yaml.Node | None:
+    k: yaml.Node
+    v: yaml.Node
     for k, v in node.value:
         if isinstance(k, yaml.ScalarNode) and k.value == key:
             return v
@@ -56,7 +58,7 @@ def alpha_spans(text: str, path: str | Path | None = None) -> tuple[list[tuple[i
         anchored = {
             e.start_mark.index
             for e in yaml.parse(text, Loader=yaml.SafeLoader)
-            if isinstance(e, yaml.NodeEvent) and e.anchor is not None
+            if isinstance(e, yaml.NodeEvent) and e.anchor is not None and e.start_mark is not None
         }
     except yaml.YAMLError as exc:
         raise InputError(f"cannot edit this manifest: {exc}", path=path) from exc
