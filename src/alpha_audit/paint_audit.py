@@ -92,7 +92,7 @@ def resolve_pipeline(*choices: str | None) -> Pipeline:
         name = choice.strip().lower()
         if name not in PIPELINES:
             raise UsageError(f"unknown pipeline {choice!r}; use one of: {', '.join(PIPELINES)}")
-        return name  # type: ignore[return-value]
+        return name
     return "linear"
 
 
@@ -557,11 +557,12 @@ def _confusion(
     under = "" if deficiency is None else f" under simulated {deficiency}"
     for j, canvas in enumerate(result.theme.canvases):
         worst: dict[tuple[str, str], int] = {}
-        for q in np.flatnonzero(confused[:, j]):
-            a, b = result.entries[first[q]], result.entries[second[q]]
-            key = tuple(sorted((_role(a.icon), _role(b.icon))))
-            if key not in worst or de[q, j] < de[worst[key], j]:  # type: ignore[index]
-                worst[key] = int(q)  # type: ignore[index]
+        for hit in np.flatnonzero(confused[:, j]):
+            a, b = result.entries[first[hit]], result.entries[second[hit]]
+            role_a, role_b = sorted((_role(a.icon), _role(b.icon)))
+            key = (role_a, role_b)
+            if key not in worst or de[hit, j] < de[worst[key], j]:
+                worst[key] = int(hit)
         for (r1, r2), q in sorted(worst.items()):
             a, b = result.entries[first[q]], result.entries[second[q]]
             yield PaintFinding(
