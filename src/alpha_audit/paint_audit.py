@@ -39,6 +39,7 @@ from alpha_audit.color import (
     DEFICIENCIES,
     DELTA_E_TOLERANCE,
     PIPELINES,
+    Deficiency,
     Pipeline,
     composite_paint,
     contrast_ratio,
@@ -522,7 +523,7 @@ def _styles(result: PaintAudit) -> list[int]:
 
 
 def _confusion(
-    result: PaintAudit, min_delta_e: float, deficiency: str | None
+    result: PaintAudit, min_delta_e: float, deficiency: Deficiency | None
 ) -> Iterator[PaintFinding]:
     """Roles distinct at alpha 1 (CIEDE2000 >= min_delta_e) but not at the icons' alpha."""
     reps = _styles(result)
@@ -548,8 +549,8 @@ def _confusion(
         for idx in (first, second)
     ]
     if deficiency is not None:
-        solid = [simulate_cvd(c, deficiency) for c in solid]  # type: ignore[arg-type]
-        shown = [simulate_cvd(c, deficiency) for c in shown]  # type: ignore[arg-type]
+        solid = [simulate_cvd(c, deficiency) for c in solid]
+        shown = [simulate_cvd(c, deficiency) for c in shown]
     de_ref = delta_e_2000(*solid)  # (q, m)
     de = delta_e_2000(*shown)
     confused = (de_ref >= min_delta_e) & (de < min_delta_e)
@@ -581,7 +582,7 @@ def _confusion(
             )
 
 
-def _cvd_collisions(result: PaintAudit, deficiency: str) -> Iterator[PaintFinding]:
+def _cvd_collisions(result: PaintAudit, deficiency: Deficiency) -> Iterator[PaintFinding]:
     """Distinct sources whose simulated displayed colours share an 8-bit code, new at alpha."""
     reps = _styles(result)
     if len(reps) < 2:
@@ -591,8 +592,8 @@ def _cvd_collisions(result: PaintAudit, deficiency: str) -> Iterator[PaintFindin
     src = result.sources[idx][:, None, :]
     shown = composite_paint(src, bg, result.alpha[idx][:, None], 1.0, result.pipeline)
     solid = composite_paint(src, bg, 1.0, 1.0, result.pipeline)
-    seen = to_8bit(simulate_cvd(shown, deficiency))  # type: ignore[arg-type]
-    ref = to_8bit(simulate_cvd(solid, deficiency))  # type: ignore[arg-type]
+    seen = to_8bit(simulate_cvd(shown, deficiency))
+    ref = to_8bit(simulate_cvd(solid, deficiency))
     sources = [result.entries[p].source for p in idx]
     for j, canvas in enumerate(result.theme.canvases):
         groups: dict[tuple[int, ...], list[int]] = {}

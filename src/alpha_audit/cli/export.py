@@ -64,7 +64,7 @@ def export_command(
     if gamut is not None and gamut not in GAMUT_POLICIES:
         raise UsageError(f"--gamut {gamut!r} is not one of {', '.join(GAMUT_POLICIES)}")
     require_finite(alpha, "--alpha")
-    table = table_from_config(project_config(config, Path.cwd()), alpha=alpha, gamut=gamut)  # type: ignore[arg-type]
+    table = table_from_config(project_config(config, Path.cwd()), alpha=alpha, gamut=gamut)
     for a in table.adjusted:
         stderr_note(
             f"{a.token} ({a.mode}) is outside sRGB; gamut {a.policy} gives {a.output} "

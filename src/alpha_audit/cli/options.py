@@ -110,7 +110,7 @@ class OrderedOptionsCommand(TyperCommand):
     ``--output`` followed which ``--format``; the parser knows, so ask it once.
     """
 
-    def parse_args(self, ctx: typer.Context, args: list[str]) -> list[str]:  # type: ignore[override]
+    def parse_args(self, ctx: typer.Context, args: list[str]) -> list[str]:  # type: ignore[override]  # the base names typer's private click Context; typer.Context is its public subclass
         """Record ``[param name, ...]`` per option occurrence, then parse as usual."""
         _, _, order = self.make_parser(ctx).parse_args(args=list(args))
         ctx.meta[OPTION_ORDER] = [p.name for p in order]

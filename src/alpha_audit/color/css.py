@@ -47,7 +47,7 @@ __all__ = [
 ]
 
 GamutPolicy = Literal["clip", "map", "error"]
-GAMUT_POLICIES: tuple[str, ...] = get_args(GamutPolicy)
+GAMUT_POLICIES: tuple[GamutPolicy, ...] = get_args(GamutPolicy)
 
 # The colour spaces of CSS Color 4 (sections 8-10 and the predefined spaces of
 # 10.1-10.8), named as CSS and the DTCG Color Module 2025.10 name them; the

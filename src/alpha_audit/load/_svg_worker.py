@@ -94,7 +94,7 @@ def install_sandbox(memory_bytes: int, cpu_seconds: int) -> None:
     try:
         import resource
     except ImportError:  # pragma: no cover - not POSIX; the time limit still applies
-        resource = None  # type: ignore[assignment]
+        resource = None  # type: ignore[assignment]  # no resource module off POSIX: None says so
     if resource is not None:
         for limit, value in (
             (resource.RLIMIT_AS, memory_bytes),

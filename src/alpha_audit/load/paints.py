@@ -36,7 +36,7 @@ import xml.etree.ElementTree as ET
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Literal, cast
+from typing import Any, Literal, cast
 
 import cssselect2
 import defusedxml
@@ -293,7 +293,7 @@ def _parse(svg: bytes, path: str | Path | None) -> tuple[ET.Element, dict[int, i
     parser_box: list[defusedxml.ElementTree.DefusedXMLParser] = []
 
     class _LineBuilder(ET.TreeBuilder):
-        def start(self, tag, attrs):  # type: ignore[no-untyped-def]
+        def start(self, tag: Any, attrs: dict[Any, Any], /) -> ET.Element:
             if len(lines) >= MAX_ELEMENTS:
                 raise SvgError(
                     f"has more than {MAX_ELEMENTS} elements; refused (resource limit)", path=path
@@ -550,7 +550,7 @@ def _walk(svg: bytes, path: str | Path | None, unaudited: list[Unaudited]) -> It
         paints: tuple[Paint, ...] = ()
         if tag in _SHAPES:
             paints = tuple(_shape_paints(node, computed, opacity, line, ids, unaudited))
-            if any(computed[m] and computed[m].lower() != "none" for m in _MARKERS):  # type: ignore[union-attr]
+            if any(v and v.lower() != "none" for v in (computed[m] for m in _MARKERS)):
                 unaudited.append(Unaudited(_describe(node), line, "markers are not audited"))
         elif tag not in _CONTAINERS:
             continue  # unknown SVG element: drawn as nothing by the renderer
