@@ -80,3 +80,20 @@ def test_cli_write_then_use_baseline(tmp_path: Path) -> None:
         assert missing.exit_code == 2 and "--write-baseline" in missing.output
     finally:
         os.chdir(old)
+
+
+@pytest.mark.parametrize("fmt", ["table", "markdown"])
+def test_stale_count_is_grammatical(fmt: str) -> None:
+    from alpha_audit.gate import CheckReport
+    from alpha_audit.render import RenderOptions, render_check
+
+    result = _audit(("deep", "#ee7733"))
+    one = (("t", "s", "loss", "sun", ("deep",)),)
+    two = (*one, ("t", "s", "loss", "paper", ("deep",)))
+    texts = []
+    for keys in (one, two):
+        report = CheckReport((result,), evaluate([result], Policy(), baseline=keys))
+        texts.append(render_check(report, fmt, RenderOptions(width=200)))
+    assert "1 baseline entry no longer occurs" in texts[0]
+    assert "entries" not in texts[0]
+    assert "2 baseline entries no longer occur" in texts[1]

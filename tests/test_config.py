@@ -71,6 +71,7 @@ BAD = [
     ("exempt: [{canvas: sun}]\n", "needs a reason"),
     ("exempt: [{reason: why}]\n", "names a canvas, an icon or both"),
     ("exempt: [{icon: x, reason: y, rule: nope}]\n", "unknown rule"),
+    ("exempt: [{icon: x, reason: y, rule: seperation}]\n", "did you mean 'separation'"),
     ("theme: a.yaml\nthemes: [b.yaml]\n", "not both"),
     ("max_loss: 1\nmax-loss: 1\n", "give it once"),
     ("strict-svg: yes please\n", "true or false"),
@@ -93,3 +94,48 @@ def test_bad_toml_names_the_file(tmp_path: Path) -> None:
     cfg.write_text('[tool.alpha-audit]\nthemez = ["t.yaml"]\n')
     with pytest.raises(InputError, match=r"tool\.alpha-audit\.themez.*did you mean 'theme"):
         load_config(cfg)
+
+
+EXEMPT_NAMES = [
+    (
+        "{canvas: whit, reason: ok}",
+        r"exempt\[0\]\.canvas.*canvas 'whit', which no theme has; did you mean 'white'",
+    ),
+    (
+        "{icon: alrt, reason: ok}",
+        r"exempt\[0\]\.icon.*icon 'alrt', which no icon set has; did you mean 'alert'",
+    ),
+    ("{icon: zzz, canvas: white, reason: ok}", r"icon 'zzz', which no icon set has; check"),
+]
+
+
+@pytest.mark.parametrize(("entry", "message"), EXEMPT_NAMES)
+@pytest.mark.parametrize("command", ["check", "suggest"])
+def test_exemptions_naming_nothing_are_errors(
+    tmp_path: Path, repo: Path, entry: str, message: str, command: str
+) -> None:
+    import re
+    import shutil
+
+    from typer.testing import CliRunner
+
+    from alpha_audit.cli import app
+
+    (tmp_path / ".git").mkdir()
+    shutil.copytree(repo / "examples" / "vibrant", tmp_path / "vibrant")
+    shutil.copy(repo / "themes" / "paper16.yaml", tmp_path / "paper16.yaml")
+    write(
+        tmp_path / "alpha-audit.yaml",
+        f"theme: paper16.yaml\niconset: vibrant/iconset.yaml\nexempt:\n  - {entry}\n",
+    )
+    import os
+
+    cwd = os.getcwd()
+    os.chdir(tmp_path)
+    try:
+        res = CliRunner().invoke(app, [command])
+    finally:
+        os.chdir(cwd)
+    assert res.exit_code == 2, res.output
+    (line,) = res.stderr.strip().splitlines()
+    assert "alpha-audit.yaml" in line and re.search(message, line), line

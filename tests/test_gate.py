@@ -326,3 +326,26 @@ def test_pre_commit_hook_fails_on_a_loss_or_collision_and_passes_otherwise(
     assert 'type="new-collision"' in collision.stdout and 'classname="brand-icons.ink"' in (
         collision.stdout
     )
+
+
+@pytest.mark.parametrize(
+    ("path", "runs"),
+    [
+        ("alpha-audit-baseline.json", True),
+        ("ci/baseline.json", True),
+        ("icons/svg/alert.svg", True),
+        ("themes/paper16.yaml", True),
+        ("alpha-audit.yml", True),
+        ("pyproject.toml", True),
+        ("package.json", False),
+        ("baseline.json.bak", False),
+        ("README.md", False),
+    ],
+)
+def test_pre_commit_hook_reruns_when_the_baseline_changes(path: str, runs: bool) -> None:
+    import re
+
+    hooks = yaml.safe_load((REPO / ".pre-commit-hooks.yaml").read_text())
+    hook = next(h for h in hooks if h["id"] == "alpha-audit")
+    # pre-commit matches `files` with re.search on the repository-relative path.
+    assert bool(re.search(hook["files"], path)) is runs

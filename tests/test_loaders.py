@@ -162,6 +162,16 @@ MANIFEST_ERRORS = [
     ),
     ("icons: svg/*.svg\ncolor:\n", r"quote it"),
     ("icons: svg/*.svg\n", r"icon 'alert' has no colour"),
+    (
+        "icons: [svg/alert.svg, svg/nope.svg]\ncolor: red\n",
+        r"icons\[1\]: 'svg/nope.svg' does not exist",
+    ),
+    (
+        "icons: [{file: svg/nope.svg}]\ncolor: red\n",
+        r"icons\[0\]\.file: 'svg/nope.svg' does not exist",
+    ),
+    ("icons: [svg]\ncolor: red\n", r"icons\[0\]: 'svg' is a folder, not a file"),
+    ("icons: svg/*.svg\ncolor: red\noverrides: [a]\n", r"overrides"),
 ]
 
 
@@ -214,3 +224,11 @@ def test_bundled_example_manifest(repo: Path) -> None:
         "#009988",
         "#bbbbbb",
     }
+
+
+@pytest.mark.parametrize("empty", ["overrides:\n", "overrides: ~\n", "overrides:  # none yet\n"])
+def test_empty_overrides_means_none(project: Path, empty: str) -> None:
+    path = write(
+        project, "icons/iconset.yaml", "icons: svg/*.svg\ncolor: red\nalpha: 1.1\n" + empty
+    )
+    assert {(i.color, i.alpha) for i in load_iconset(path).icons} == {("#ff0000", 1.1)}

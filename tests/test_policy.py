@@ -18,7 +18,10 @@ def test_overrides_replace_only_what_is_given() -> None:
 
 
 def test_unknown_rule_lists_the_valid_ones() -> None:
-    with pytest.raises(UsageError, match="unknown rule 'los'; use one of: loss, below-threshold"):
+    with pytest.raises(
+        UsageError,
+        match="unknown rule 'los'; did you mean 'loss'\\? use one of: loss, below-threshold",
+    ):
         Policy().with_overrides(rules=["los"])
 
 

@@ -12,6 +12,7 @@ import json
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -21,6 +22,9 @@ from alpha_audit.load.files import read_text_capped
 from alpha_audit.load.paints import CURRENT_COLOR
 from alpha_audit.paint_audit import PaintAudit, paint_findings
 from alpha_audit.policy import PAINT_RULES, Exemption, Policy, Rule, contrast_breaks
+
+if TYPE_CHECKING:
+    from alpha_audit.fixes import ColorFix
 
 __all__ = [
     "BASELINE_SCHEMA",
@@ -136,6 +140,9 @@ class CheckReport:
 
     audits: tuple[AuditResult, ...]
     gate: GateResult
+    # A fix per failing (colour, canvas), from alpha_audit.fixes.with_fixes
+    # (which builds on this module); None when not computed.
+    fixes: tuple[ColorFix, ...] | None = None
 
 
 def _icon_refs(

@@ -9,6 +9,7 @@ from pathlib import Path
 from alpha_audit.audit import AuditResult, audit, check_combinations
 from alpha_audit.color import Pipeline
 from alpha_audit.errors import SvgError, UsageError
+from alpha_audit.fixes import with_fixes
 from alpha_audit.gate import CheckReport, FindingKey, evaluate
 from alpha_audit.load.iconset import load_iconset
 from alpha_audit.load.paint_masks import PaintSet, measure_paints
@@ -147,6 +148,10 @@ def check_project(
         )
     loaded_themes = [load_theme(t) for t in _unique(themes)]
     loaded_sets = [load_iconset(s) for s in _unique(iconsets)]
+    (policy or Policy()).check_exemptions(
+        (c.name for t in loaded_themes for c in t.canvases),
+        (i.name for s in loaded_sets for i in s.icons),
+    )
     check_combinations(loaded_themes, loaded_sets)  # before any icon is rendered
     chosen = {
         (t.name, s.name): resolve_pipeline(pipeline, s.pipeline, t.pipeline)
@@ -167,7 +172,8 @@ def check_project(
                 _audit(theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=kind)
             )
     gate = evaluate(audits, policy or Policy(), baseline=baseline)
-    return CheckReport(audits=tuple(audits), gate=gate)
+    # Every renderer shows the fix for each failing colour: computed once, here.
+    return with_fixes(CheckReport(audits=tuple(audits), gate=gate))
 
 
 def _check_with_tokens(
@@ -213,7 +219,7 @@ def _check_with_tokens(
                 _audit(theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=kind)
             )
     gate = evaluate(audits, policy or Policy(), baseline=baseline)
-    return CheckReport(audits=tuple(audits), gate=gate)
+    return with_fixes(CheckReport(audits=tuple(audits), gate=gate))
 
 
 def _unique(paths: Sequence[str | Path]) -> list[Path]:

@@ -7,16 +7,18 @@ alpha = 1.
 
 from __future__ import annotations
 
+import difflib
 import math
 from collections.abc import Iterable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from enum import StrEnum
+from pathlib import Path
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from alpha_audit.color import CONTRAST_TOLERANCE
-from alpha_audit.errors import UsageError
+from alpha_audit.errors import InputError, UsageError
 
 __all__ = [
     "CONTRAST_RULES",
@@ -56,8 +58,16 @@ class Rule(StrEnum):
         try:
             return cls(text.strip().lower())
         except ValueError:
-            names = ", ".join(r.value for r in cls)
-            raise UsageError(f"unknown rule {text!r}; use one of: {names}") from None
+            names = [r.value for r in cls]
+            raise UsageError(
+                f"unknown rule {text!r}; {_did_you_mean(text.strip().lower(), names)}"
+                f"use one of: {', '.join(names)}"
+            ) from None
+
+
+def _did_you_mean(name: str, known: Iterable[str]) -> str:
+    close = difflib.get_close_matches(name, list(known), n=1)
+    return f"did you mean {close[0]!r}? " if close else ""
 
 
 # `confusion` joins the default once `suggest` honours it (the issue's deliverable 6):
@@ -85,6 +95,10 @@ class Exemption:
     canvas: str | None = None
     icon: str | None = None
     rule: Rule | None = None
+    # Where the config wrote it (for errors); not part of its identity.
+    path: Path | None = field(default=None, compare=False)
+    line: int | None = field(default=None, compare=False)
+    key: str | None = field(default=None, compare=False)
 
     def covers(self, rule: Rule, canvas: str | None, icons: tuple[str, ...]) -> bool:
         """Whether this exemption applies to a finding of ``rule`` on ``canvas`` for ``icons``."""
@@ -146,6 +160,28 @@ class Policy:
     def exempt(self, rule: Rule, canvas: str | None, icons: tuple[str, ...]) -> Exemption | None:
         """The first exemption covering this finding, if any."""
         return next((e for e in self.exemptions if e.covers(rule, canvas, icons)), None)
+
+    def check_exemptions(self, canvases: Iterable[str], icons: Iterable[str]) -> None:
+        """Refuse an exemption naming a canvas or icon that none of the inputs has.
+
+        A misspelt name would silently exempt nothing; the error names the
+        config line and the closest real name.  (Unknown rules are refused
+        when the config is read.)
+        """
+        known = {"canvas": sorted(set(canvases)), "icon": sorted(set(icons))}
+        for e in self.exemptions:
+            for what, name in (("canvas", e.canvas), ("icon", e.icon)):
+                if name is None or name in known[what]:
+                    continue
+                where = "theme" if what == "canvas" else "icon set"
+                key = f"{e.key}.{what}" if e.key else None
+                raise InputError(
+                    f"exemption names {what} {name!r}, which no {where} has; "
+                    f"{_did_you_mean(name, known[what])}check the spelling",
+                    path=e.path,
+                    line=e.line,
+                    key=key,
+                )
 
     def loss_margin(self, tolerance: float = CONTRAST_TOLERANCE) -> float:
         """How far contrast may drop before ``loss`` objects.

@@ -74,7 +74,7 @@ def test_themes_json() -> None:
 
 
 def test_apply_refuses_to_rewrite_the_bundled_example() -> None:
-    result = runner.invoke(app, ["suggest", "paper16", "vibrant", "--apply"])
+    result = runner.invoke(app, ["suggest", "paper16", "vibrant", "--apply", "set"])
     assert result.exit_code == ExitStatus.INPUT_ERROR
     assert "bundled example" in result.output and "copy" in result.output
 

@@ -19,7 +19,7 @@ from alpha_audit.color import (
     hex_to_linear,
     hue_shift,
     linear_to_hex,
-    linear_to_oklch,
+    oklch_degrees,
     simulate_cvd,
 )
 
@@ -87,14 +87,14 @@ def test_drift_is_zero_at_alpha_one(source: np.ndarray, background: np.ndarray) 
 
 def test_hue_shift_sign_wraps_and_achromatic() -> None:
     red, grey = hex_to_linear("#ff0000"), hex_to_linear("#808080")
-    h_red, h_orange = linear_to_oklch(red)[2], linear_to_oklch(hex_to_linear("#ff8000"))[2]
+    h_red, h_orange = oklch_degrees(red)[2], oklch_degrees(hex_to_linear("#ff8000"))[2]
     assert float(hue_shift(red, hex_to_linear("#ff8000"))) == pytest.approx(h_orange - h_red)
     # magenta (~328 deg) to red (~29 deg) is a short step forward across 0, not -299
     shift = float(hue_shift(hex_to_linear("#ff00ff"), red))
     assert 0 < shift < 90
     assert np.isnan(hue_shift(grey, red))
     assert np.isnan(hue_shift(red, np.zeros(3)))
-    assert np.isnan(linear_to_oklch(grey)[2])
+    assert np.isnan(oklch_degrees(grey)[2])
 
 
 @given(colors, colors)
@@ -151,11 +151,11 @@ def test_achromatic_threshold_separates_8bit_greys_from_near_greys() -> None:
 
     levels = np.arange(256)
     greys = np.repeat(levels[:, None], 3, axis=1)
-    assert np.all(linear_to_oklch(from_8bit(greys))[:, 1] <= ACHROMATIC_CHROMA)
+    assert np.all(oklch_degrees(from_8bit(greys))[:, 1] <= ACHROMATIC_CHROMA)
     near = []
     for channel in range(3):
         for step in (-1, 1):
             c = greys.copy()
             c[:, channel] += step
             near.append(c[(c[:, channel] >= 0) & (c[:, channel] <= 255)])
-    assert np.all(linear_to_oklch(from_8bit(np.concatenate(near)))[:, 1] > ACHROMATIC_CHROMA)
+    assert np.all(oklch_degrees(from_8bit(np.concatenate(near)))[:, 1] > ACHROMATIC_CHROMA)

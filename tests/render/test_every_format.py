@@ -116,6 +116,12 @@ def _check(fmt: str, text: str) -> None:
         assert all(line.startswith("::") for line in text.splitlines())
     elif fmt == "table":
         assert "\x1b" not in text  # no colour unless asked
+    elif fmt == "gitlab":
+        issues = _strict_json(text)
+        assert isinstance(issues, list)
+        prints = [i["fingerprint"] for i in issues]
+        assert len(set(prints)) == len(prints)
+        assert all(not i["location"]["path"].startswith("/") for i in issues)
     else:  # pragma: no cover - a new format needs its parse check here
         raise AssertionError(f"no parse check for format {fmt!r}")
 

@@ -118,6 +118,18 @@ def test_unknown_choices_exit_2(bad: list[str]) -> None:
     assert result.exit_code == 2
 
 
+def test_table_prints_the_shared_worst_case_once() -> None:
+    """Both alphas' largest loss is the paper's (0, 0, 0.8125) on yellow: one line, not two."""
+    result = runner.invoke(
+        app, ["reproduce", "--only", "broad-grid", "--alpha", "1.1", "--alpha", "1.4"],
+        env={"COLUMNS": "200"},
+    )  # fmt: skip
+    assert result.exit_code == 0, result.output
+    assert result.stdout.count("largest loss") == 1
+    assert "alpha 1.1 and 1.4: largest loss (0,0,0.8125) on (1,1,0)" in result.stdout
+    assert "9.8118 (a=1.1) > 8.6379 (a=1.4)" in result.stdout
+
+
 def test_out_refuses_existing_files_unless_forced(tmp_path: Path) -> None:
     out = tmp_path / "out"
     out.mkdir()

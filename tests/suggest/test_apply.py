@@ -90,12 +90,12 @@ def test_cli_apply_and_no_write_without_it(tmp_path: Path, repo: Path) -> None:
     for fmt in ("table", "markdown"):
         res = runner.invoke(app, ["suggest", theme, str(target / "iconset.yaml"), "-f", fmt])
         assert res.exit_code == 0 and "1.226" in res.stdout
-    res = runner.invoke(app, ["suggest", theme, str(target / "iconset.yaml"), "--apply"])
+    res = runner.invoke(app, ["suggest", theme, str(target / "iconset.yaml"), "--apply", "set"])
     assert res.exit_code == 0, res.output
     edited = (target / "iconset.yaml").read_text()
-    assert edited == original.replace("alpha: 1.1 ", "alpha: 1.226 ").replace(
-        "alpha: 1.2}", "alpha: 1.226}"
-    )
+    # The explicit `alert: {alpha: 1.2}` is kept; the comment stays in its column.
+    assert edited == original.replace("alpha: 1.1   ", "alpha: 1.226 ")
+    assert "kept the explicit alpha of 1 icon (alert)" in res.stderr
 
 
 # --- robustness: the edited file means the same document with new alpha values ---------------

@@ -24,6 +24,7 @@ from alpha_audit.cli.options import (
     ThemeArgument,
     ThresholdOption,
     require_finite,
+    rules_flag,
 )
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.render import CheckFormat, RenderOptions
@@ -119,6 +120,7 @@ def check_command(
             "fixed-colour, not-audited, drift, lock, confusion, thin-strokes, cvd-collision, "
             "cvd-confusion. [default: loss, newly-failing, new-collision]",
             show_default=False,
+            callback=rules_flag("--fail-on"),
         ),
     ] = None,
     max_loss: MaxLossOption = None,
@@ -135,7 +137,7 @@ def check_command(
             "--format",
             "-f",
             metavar="FORMAT",
-            help="Report format (repeatable): table, json, junit, sarif, markdown, github.",
+            help=f"Report format (repeatable): {', '.join(CheckFormat)}.",
             case_sensitive=False,
             show_default=False,
         ),

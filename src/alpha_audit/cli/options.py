@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import difflib
 import math
+from collections.abc import Callable
 from pathlib import Path
 from typing import Annotated
 
@@ -49,24 +51,89 @@ ConfigOption = Annotated[
         "\\[tool.alpha-audit] in pyproject.toml, found from here upwards).",
     ),
 ]
+
+
+def _threshold_in_range(value: float | None) -> float | None:
+    """--threshold obeys the theme file's range (one line, exit 2, otherwise)."""
+    from alpha_audit.color import THRESHOLD_RANGE, THRESHOLD_WHAT
+    from alpha_audit.errors import UsageError
+
+    low, high = THRESHOLD_RANGE
+    if value is not None and not (math.isfinite(value) and low <= value <= high):
+        raise UsageError(f"--threshold {value:g} is out of range; expected {THRESHOLD_WHAT}")
+    return value
+
+
 ThresholdOption = Annotated[
     float | None,
-    typer.Option(help="Contrast threshold (default: the theme's, else 3.0 = WCAG 1.4.11)."),
+    typer.Option(
+        help="Contrast threshold (default: the theme's, else 3.0 = WCAG 1.4.11).",
+        callback=_threshold_in_range,
+    ),
 ]
+
+
+def at_least(flag: str, low: float) -> Callable[[float | None], float | None]:
+    """A typer callback refusing non-finite values and values below ``low``, naming ``flag``."""
+
+    def check(value: float | None) -> float | None:
+        from alpha_audit.errors import UsageError
+
+        if value is not None and not (math.isfinite(value) and value >= low):
+            raise UsageError(
+                f"{flag} {value:g} is out of range; expected a finite number >= {low:g}"
+            )
+        return value
+
+    return check
+
+
+def rules_flag(flag: str, refused: tuple[str, ...] = (), why: str = "") -> Callable:
+    """A typer callback parsing rule names, naming ``flag``; ``refused`` rules are errors."""
+
+    def check(values: list[str] | None) -> list[str] | None:
+        from alpha_audit.errors import UsageError
+        from alpha_audit.policy import Rule
+
+        allowed = [r.value for r in Rule if r.value not in refused]
+        for value in values or []:
+            name = value.strip().lower()
+            if name in refused:
+                raise UsageError(f"{flag} {value} is not allowed here: {why}")
+            if name not in allowed:
+                close = difflib.get_close_matches(name, allowed, n=1)
+                hint = f"did you mean {close[0]!r}? " if close else ""
+                raise UsageError(
+                    f"{flag}: unknown rule {value!r}; {hint}use one of: {', '.join(allowed)}"
+                )
+        return values
+
+    return check
+
+
 MaxLossOption = Annotated[
     float | None,
-    typer.Option("--max-loss", help="Contrast loss tolerated by the loss rule. [default: 0]"),
+    typer.Option(
+        "--max-loss",
+        help="Contrast loss tolerated by the loss rule. [default: 0]",
+        callback=at_least("--max-loss", 0.0),
+    ),
 ]
 MinDeltaEOption = Annotated[
     float | None,
     typer.Option(
         "--min-delta-e",
         help="Smallest CIEDE2000 for separation and confusion. [default: 10]",
+        callback=at_least("--min-delta-e", 0.0),
     ),
 ]
 MaxDriftOption = Annotated[
     float | None,
-    typer.Option("--max-drift", help="Largest CIEDE2000 colour drift for drift. [default: 10]"),
+    typer.Option(
+        "--max-drift",
+        help="Largest CIEDE2000 colour drift for drift. [default: 10]",
+        callback=at_least("--max-drift", 0.0),
+    ),
 ]
 MinSizeContrastOption = Annotated[
     float | None,

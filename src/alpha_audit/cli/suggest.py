@@ -16,7 +16,9 @@ from alpha_audit.cli.options import (
     MinDeltaEOption,
     ThemeArgument,
     ThresholdOption,
+    at_least,
     require_finite,
+    rules_flag,
 )
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.suggest.report import SuggestFormat
@@ -24,15 +26,48 @@ from alpha_audit.suggest.report import SuggestFormat
 __all__ = ["suggest_command"]
 
 
+def _scope(value: str | None) -> str | None:
+    """--apply's scope, checked here (the enum lives with the editor, imported lazily)."""
+    from alpha_audit.errors import UsageError
+    from alpha_audit.suggest.apply import ApplyScope
+
+    if value is None:
+        return None
+    scopes = [s.value for s in ApplyScope]
+    if value.strip().lower() not in scopes:
+        raise UsageError(f"--apply {value!r} is not a scope; use one of: {', '.join(scopes)}")
+    return value.strip().lower()
+
+
+def _precision(value: int) -> int:
+    """--precision within what suggest can round exactly (named as the flag)."""
+    from alpha_audit.errors import UsageError
+    from alpha_audit.suggest.engine import MAX_PRECISION
+
+    if not 0 <= value <= MAX_PRECISION:
+        raise UsageError(
+            f"--precision {value} is out of range; expected 0-{MAX_PRECISION} decimals"
+        )
+    return value
+
+
 def suggest_command(
     theme: ThemeArgument = None,
     iconset: IconsetArgument = None,
     config: ConfigOption = None,
     alpha_max: Annotated[
-        float, typer.Option("--alpha-max", help="Largest coefficient considered.")
+        float,
+        typer.Option(
+            "--alpha-max",
+            help="Largest coefficient considered.",
+            callback=at_least("--alpha-max", 1.0),
+        ),
     ] = 2.0,
     precision: Annotated[
-        int, typer.Option("--precision", help="Decimals; the answer is rounded down.")
+        int,
+        typer.Option(
+            "--precision", help="Decimals; the answer is rounded down.", callback=_precision
+        ),
     ] = 3,
     threshold: ThresholdOption = None,
     fail_on: Annotated[
@@ -44,6 +79,12 @@ def suggest_command(
             "newly-failing, collision, new-collision, separation. "
             "[default: the config's, else loss, newly-failing, new-collision]",
             show_default=False,
+            # suggest composites colours, it never renders an SVG.
+            callback=rules_flag(
+                "--fail-on",
+                refused=("unrenderable",),
+                why="suggest never renders SVGs; use it with check",
+            ),
         ),
     ] = None,
     max_loss: MaxLossOption = None,
@@ -57,10 +98,21 @@ def suggest_command(
     ] = None,
     force: ForceOption = False,
     apply: Annotated[
-        bool,
+        str | None,
         typer.Option(
             "--apply",
-            help="Write the set-wide alpha into the manifest (only the alpha values change).",
+            metavar="set|colour|icon",
+            help="Write the answer into the manifest: set (the set-wide alpha), colour or icon "
+            "(per-icon overrides); only alpha values change.",
+            show_default=False,
+            callback=_scope,
+        ),
+    ] = None,
+    replace_explicit: Annotated[
+        bool,
+        typer.Option(
+            "--replace-explicit",
+            help="With --apply, also replace alphas the manifest sets per icon.",
         ),
     ] = False,
 ) -> ExitStatus:
@@ -73,7 +125,7 @@ def suggest_command(
     written unless --apply is given.
 
     Example:
-    [bold]alpha-audit suggest themes/paper16.yaml examples/vibrant/iconset.yaml --apply[/]
+    [bold]alpha-audit suggest themes/paper16.yaml examples/vibrant/iconset.yaml --apply set[/]
     """
     from alpha_audit.bundled import iconset_source, theme_source
     from alpha_audit.errors import UsageError
@@ -83,7 +135,7 @@ def suggest_command(
     from alpha_audit.output import check_targets
     from alpha_audit.render.common import RenderOptions, check_suffix
     from alpha_audit.suggest import suggest
-    from alpha_audit.suggest.apply import apply_alpha, format_alpha
+    from alpha_audit.suggest.apply import apply_suggestion, describe_plan
 
     if output is not None:
         check_suffix(fmt.value, output)
@@ -102,7 +154,7 @@ def suggest_command(
             )
         theme, iconset = project.themes[0], project.iconsets[0]
     theme, source = theme_source(theme), iconset_source(iconset)
-    if apply and source != Path(iconset):
+    if apply is not None and source != Path(iconset):
         raise UsageError(
             f"--apply rewrites the manifest in place and {iconset} is the bundled example; "
             f"copy {source.parent} into your project and give its {source.name}"
@@ -112,9 +164,13 @@ def suggest_command(
         rules=fail_on, max_loss=max_loss, min_delta_e=min_delta_e
     )
 
+    loaded_theme, loaded_set = load_theme(theme), load_iconset(iconset)
+    policy.check_exemptions(
+        (c.name for c in loaded_theme.canvases), (i.name for i in loaded_set.icons)
+    )
     result = suggest(
-        load_theme(theme),
-        load_iconset(iconset),
+        loaded_theme,
+        loaded_set,
         policy,
         alpha_max=alpha_max,
         precision=precision,
@@ -122,10 +178,7 @@ def suggest_command(
     )
     options = stdout_options() if output is None else RenderOptions()
     emit(fmt.renderer()(result, options), output, force)
-    if apply:
-        if result.alpha is None:
-            raise UsageError("no safe alpha to apply: the policy already fails at alpha = 1")
-        changed = apply_alpha(iconset, result.alpha, precision)
-        note = "wrote" if changed else "already has"
-        typer.echo(f"{note} alpha {format_alpha(result.alpha, precision)} in {iconset}", err=True)
+    if apply is not None:
+        plan, changed = apply_suggestion(iconset, result, apply, replace_explicit=replace_explicit)
+        typer.echo(describe_plan(plan, iconset, changed, precision), err=True)
     return ExitStatus.OK

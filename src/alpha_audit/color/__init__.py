@@ -26,12 +26,14 @@ from alpha_audit.color.css import (
     parse_css_color,
 )
 from alpha_audit.color.cvd import DEFICIENCIES, Deficiency, cvd_matrix, simulate_cvd
-from alpha_audit.color.drift import ACHROMATIC_CHROMA, color_drift, hue_shift, linear_to_oklch
+from alpha_audit.color.drift import ACHROMATIC_CHROMA, color_drift, hue_shift, oklch_degrees
 from alpha_audit.color.metrics import (
     CONTRAST_TOLERANCE,
     DELTA_E_TOLERANCE,
     LUMINANCE_WEIGHTS,
     NON_TEXT_THRESHOLD,
+    THRESHOLD_RANGE,
+    THRESHOLD_WHAT,
     contrast_from_luminance,
     contrast_ratio,
     delta_e_2000,
@@ -39,6 +41,7 @@ from alpha_audit.color.metrics import (
     linear_to_lab,
     relative_luminance,
 )
+from alpha_audit.color.oklch import linear_to_oklch, oklch_to_linear
 from alpha_audit.color.srgb import (
     from_8bit,
     hex_to_linear,
@@ -59,6 +62,8 @@ __all__ = [
     "LUMINANCE_WEIGHTS",
     "NON_TEXT_THRESHOLD",
     "PIPELINES",
+    "THRESHOLD_RANGE",
+    "THRESHOLD_WHAT",
     "CoverageStats",
     "Deficiency",
     "GamutPolicy",
@@ -87,6 +92,8 @@ __all__ = [
     "linear_to_lab",
     "linear_to_oklch",
     "median_coverage",
+    "oklch_degrees",
+    "oklch_to_linear",
     "pack_8bit",
     "parse_color",
     "parse_css_color",

@@ -10,9 +10,10 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from alpha_audit.color.metrics import LINEAR_SRGB_TO_XYZ, _colour, delta_e_2000
+from alpha_audit.color.metrics import delta_e_2000
+from alpha_audit.color.oklch import linear_to_oklch
 
-__all__ = ["ACHROMATIC_CHROMA", "color_drift", "hue_shift", "linear_to_oklch"]
+__all__ = ["ACHROMATIC_CHROMA", "color_drift", "hue_shift", "oklch_degrees"]
 
 # At or below this OKLab chroma the hue is powerless (missing).  CSS Color 4's
 # sample code (conversions.js, OKLab_to_OKLCH) uses 0.000004 with its own
@@ -23,24 +24,22 @@ __all__ = ["ACHROMATIC_CHROMA", "color_drift", "hue_shift", "linear_to_oklch"]
 ACHROMATIC_CHROMA = 4e-4
 
 
-def linear_to_oklch(linear: ArrayLike) -> NDArray[np.float64]:
+def oklch_degrees(linear: ArrayLike) -> NDArray[np.float64]:
     """OKLCH ``(L, C, h in degrees [0, 360))`` of linear sRGB; ``h`` is NaN when achromatic.
 
-    OKLab from colour-science (Ottosson's XYZ -> LMS matrix), fed the same CSS
-    Color 4 XYZ matrix as CIELAB; CSS Color 4 lists sRGB red as
-    ``oklch(62.8% 0.2577 29.23)``, this gives hue 29.227 (Ottosson's matrix
-    was fitted to a slightly different XYZ; 0.007 degrees is far below any
-    hue difference the audit reports).
+    The conversion is :func:`alpha_audit.color.oklch.linear_to_oklch` (one home
+    for OKLab); here the hue is in degrees and powerless for greys (CSS Color 4).
+    CSS Color 4 lists sRGB red as ``oklch(62.8% 0.2577 29.23)``, this gives hue
+    29.227 (Ottosson's matrix was fitted to a slightly different XYZ; 0.007
+    degrees is far below any hue difference the audit reports).
 
-    >>> [round(float(v), 2) for v in linear_to_oklch([1.0, 0.0, 0.0])]
+    >>> [round(float(v), 2) for v in oklch_degrees([1.0, 0.0, 0.0])]
     [0.63, 0.26, 29.23]
     """
-    c = np.asarray(linear, dtype=np.float64)
-    lab = np.asarray(_colour().XYZ_to_Oklab(c @ LINEAR_SRGB_TO_XYZ.T), dtype=np.float64)
-    chroma = np.hypot(lab[..., 1], lab[..., 2])
-    hue = np.degrees(np.arctan2(lab[..., 2], lab[..., 1])) % 360.0
-    hue = np.where(chroma <= ACHROMATIC_CHROMA, np.nan, hue)
-    return np.stack([lab[..., 0], chroma, hue], axis=-1)
+    lch = linear_to_oklch(linear)
+    hue = np.degrees(lch[..., 2]) % 360.0
+    hue = np.where(lch[..., 1] <= ACHROMATIC_CHROMA, np.nan, hue)
+    return np.stack([lch[..., 0], lch[..., 1], hue], axis=-1)
 
 
 def hue_shift(source: ArrayLike, displayed: ArrayLike) -> NDArray[np.float64]:
@@ -53,8 +52,8 @@ def hue_shift(source: ArrayLike, displayed: ArrayLike) -> NDArray[np.float64]:
     >>> float(hue_shift([1.0, 0.0, 0.0], [1.0, 0.0, 0.0]))
     0.0
     """
-    h1 = linear_to_oklch(source)[..., 2]
-    h2 = linear_to_oklch(displayed)[..., 2]
+    h1 = oklch_degrees(source)[..., 2]
+    h2 = oklch_degrees(displayed)[..., 2]
     return (h2 - h1 + 180.0) % 360.0 - 180.0
 
 

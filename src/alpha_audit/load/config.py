@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 from typing import Any
 
-from alpha_audit.color import Pipeline
+from alpha_audit.color import THRESHOLD_RANGE, THRESHOLD_WHAT, Pipeline
 from alpha_audit.errors import InputError, UsageError
 from alpha_audit.load.fields import (
     check_keys,
@@ -28,7 +28,7 @@ from alpha_audit.load.fields import (
 from alpha_audit.load.files import read_text_capped
 from alpha_audit.load.paths import PathRefused, contain_argument, project_root
 from alpha_audit.load.tokens.themes import TokenConfig, token_config_from_mapping
-from alpha_audit.load.yamldoc import MAX_YAML_BYTES, KeyPath, YamlDoc, load_yaml
+from alpha_audit.load.yamldoc import MAX_YAML_BYTES, KeyPath, YamlDoc, format_key, load_yaml
 from alpha_audit.policy import DEFAULT_RULES, Exemption, Policy, Rule
 from alpha_audit.safe_text import is_safe, safe_text
 
@@ -232,7 +232,17 @@ def _exemptions(doc: YamlDoc, keys: KeyPath, value: Any) -> tuple[Exemption, ...
         rule = None
         if "rule" in item:
             rule = next(iter(_rules(doc, (*ikeys, "rule"), [item["rule"]])))
-        out.append(Exemption(reason=reason.strip(), canvas=canvas, icon=icon, rule=rule))
+        out.append(
+            Exemption(
+                reason=reason.strip(),
+                canvas=canvas,
+                icon=icon,
+                rule=rule,
+                path=doc.path,
+                line=doc.line(ikeys),
+                key=format_key(ikeys),
+            )
+        )
     return tuple(out)
 
 
@@ -264,9 +274,9 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
             doc,
             at("threshold"),
             data["threshold"],
-            low=1.0,
-            high=21.0,
-            what="a contrast ratio between 1 and 21",
+            low=THRESHOLD_RANGE[0],
+            high=THRESHOLD_RANGE[1],
+            what=THRESHOLD_WHAT,
         )
     rules = _rules(doc, at("fail-on"), data["fail-on"]) if "fail-on" in data else DEFAULT_RULES
     max_loss = 0.0

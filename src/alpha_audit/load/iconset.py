@@ -147,6 +147,14 @@ class _Manifest:
         except PathRefused as err:
             raise self.doc.error(keys, str(err)) from err
 
+    def existing_file(self, keys: KeyPath, relative: str) -> Path:
+        """A named icon file: inside the project root and present (a glob only finds real ones)."""
+        path = self.resolve_file(keys, relative)
+        if not path.is_file():
+            what = "is a folder, not a file" if path.is_dir() else "does not exist"
+            raise self.doc.error(keys, f"{relative!r} {what} (looked in {self.base})")
+        return path
+
     def glob(self, pattern: str) -> list[Path]:
         keys: KeyPath = ("icons",)
         try:
@@ -172,13 +180,13 @@ class _Manifest:
         for i, item in enumerate(raw):
             keys: KeyPath = ("icons", i)
             if isinstance(item, str):
-                out.append((keys, self.resolve_file(keys, item), {}))
+                out.append((keys, self.existing_file(keys, item), {}))
                 continue
             item = read_mapping(self.doc, keys, item, "an icon (a path or {file: ...})")
             check_keys(self.doc, keys, item, _ICON_KEYS)
             if not isinstance(item.get("file"), str):
                 raise self.doc.error((*keys, "file"), "each icon needs file: <path to .svg>")
-            out.append((keys, self.resolve_file((*keys, "file"), item["file"]), item))
+            out.append((keys, self.existing_file((*keys, "file"), item["file"]), item))
         return out
 
 
@@ -198,7 +206,11 @@ def iconset_from_doc(doc: YamlDoc, *, root: Path) -> IconSet:
     default = None if cycle or color_spec is None else m.color(("color",), color_spec)
     palette_cycle = itertools.cycle(m.palette.items())
 
-    overrides = read_mapping(doc, ("overrides",), data.get("overrides", {}), "overrides by icon")
+    # An empty `overrides:` (YAML null) means no overrides, as if the key were absent.
+    raw_overrides = data.get("overrides")
+    overrides = read_mapping(
+        doc, ("overrides",), {} if raw_overrides is None else raw_overrides, "overrides by icon"
+    )
     locked = set(_palette_locks(m))
     icons: list[Icon] = []
     seen: dict[str, str] = {}

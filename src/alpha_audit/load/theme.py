@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from alpha_audit.color import NON_TEXT_THRESHOLD
+from alpha_audit.color import NON_TEXT_THRESHOLD, THRESHOLD_RANGE, THRESHOLD_WHAT
 from alpha_audit.errors import InputError
 from alpha_audit.load.fields import (
     check_keys,
@@ -48,9 +48,9 @@ def theme_from_doc(doc: YamlDoc) -> Theme:
             doc,
             ("threshold",),
             data["threshold"],
-            low=1.0,
-            high=21.0,
-            what="a contrast ratio between 1 and 21",
+            low=THRESHOLD_RANGE[0],
+            high=THRESHOLD_RANGE[1],
+            what=THRESHOLD_WHAT,
         )
     raw = data.get("canvases")
     if not isinstance(raw, list) or not raw:

@@ -42,6 +42,7 @@ class CheckFormat(StrEnum):
     SARIF = "sarif"
     MARKDOWN = "markdown"
     GITHUB = "github"
+    GITLAB = "gitlab"
 
     def renderer(self) -> Renderer[CheckReport]:
         """The render function for this format (imported on first use)."""
@@ -69,6 +70,10 @@ class CheckFormat(StrEnum):
             from alpha_audit.render.github import render_report as github
 
             return github
+        if self is CheckFormat.GITLAB:
+            from alpha_audit.render.gitlab import render_report as gitlab
+
+            return gitlab
         assert_never(self)
 
 

@@ -181,15 +181,21 @@ _SCALARS = frozenset({str, int, float, bool, type(None)})
 
 
 def _flat(value: dict[Any, Any] | list[Any]) -> bool:
-    """A dict or list holding only scalars (and lists of scalars): written on one line."""
+    """A record written on one line: scalars, lists of scalars and records of those.
+
+    A list of objects or lists (rows, audits) is what gets indented; a row's
+    own small objects (a paint row's ``sizes``) stay on the row's line.
+    """
     items = list(value.values() if isinstance(value, dict) else value)
     if all(map(_SCALARS.__contains__, map(type, items))):  # the common case, at C speed
         return True
-    return all(
-        not isinstance(v, dict)
-        and (not isinstance(v, list) or all(not isinstance(x, dict | list) for x in v))
-        for v in items
-    )
+    for v in items:
+        if isinstance(v, list):
+            if not all(map(_SCALARS.__contains__, map(type, v))):
+                return False
+        elif isinstance(v, dict) and not _flat(v):
+            return False
+    return isinstance(value, dict)
 
 
 def _pretty(value: Any, level: int, out: list[str]) -> None:

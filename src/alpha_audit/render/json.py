@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from alpha_audit.audit import AuditResult
+from alpha_audit.fixes import fix_lookup, fix_to_dict, fixes_left_out, report_fixes
 from alpha_audit.gate import CheckReport, Finding, GateResult
 from alpha_audit.render.common import RenderOptions, display_path, dumps, records
 
@@ -190,6 +191,15 @@ def gate_to_dict(gate: GateResult, base: Path | None = None) -> dict[str, Any]:
 def report_to_dict(report: CheckReport, base: Path | None = None) -> dict[str, Any]:
     """The whole document: one audit flat at the top level, several under ``audits``."""
     gate = gate_to_dict(report.gate, base)
+    # A fix per failing (colour, canvas): docs/json.md, `gate.fixes`; each
+    # failure names its fixes by index there.
+    fixes = report_fixes(report)
+    gate["fixes"] = [fix_to_dict(f, lambda p: display_path(p, base)) for f in fixes]
+    gate["fixes_left_out"] = fixes_left_out(report)
+    position = {fix: n for n, fix in enumerate(fixes)}
+    fixes_of = fix_lookup(report, fixes)
+    for entry, finding in zip(gate["failures"], report.gate.failures, strict=True):
+        entry["fixes"] = [position[x] for x in fixes_of(finding)]
     if len(report.audits) == 1:
         return {**check_to_dict(report.audits[0]), "gate": gate}
     audits = []

@@ -41,6 +41,7 @@ __all__ = [
     "no_fix",
     "render_markdown",
     "render_report",
+    "report_fixes_hook",
     "safe_alpha_fixes",
 ]
 
@@ -358,7 +359,10 @@ def render_markdown(
         budget.force(*section.lines, "", "</details>")
 
     if gate.stale:
-        budget.add("", f"{len(gate.stale)} baseline entries no longer occur.")
+        n = len(gate.stale)
+        budget.add(
+            "", f"{n} baseline {'entry no longer occurs' if n == 1 else 'entries no longer occur'}."
+        )
     if gate.warnings:
         budget.add("", "### Icons that could not be rendered", "")
         for k, w in enumerate(gate.warnings):
@@ -395,6 +399,22 @@ def _groups_of_rows(
     return sorted(groups.values(), key=lambda g: order[g[0]])
 
 
+def report_fixes_hook(report: CheckReport) -> FixHook:
+    """Each group's fix from :mod:`alpha_audit.fixes` (largest safe alpha, smallest alpha
+    reaching the threshold, nearest passing colour); the largest safe set-wide alpha
+    (:func:`safe_alpha_fixes`) where no colour fix applies (collisions, separations)."""
+    from alpha_audit.fixes import describe_fix, fix_lookup
+
+    lookup = fix_lookup(report, report.fixes)
+    fallback = safe_alpha_fixes(report)
+
+    def hook(finding: Finding) -> str | None:
+        text = "; ".join(t for t in (describe_fix(f) for f in lookup(finding)) if t)
+        return text or fallback(finding)
+
+    return hook
+
+
 def render_report(report: CheckReport, options: RenderOptions) -> str:
-    """The comment with the largest safe alpha per colour as each group's fix."""
-    return render_markdown(report, options, fix=safe_alpha_fixes(report))
+    """The comment with each failing group's fix (:func:`report_fixes_hook`)."""
+    return render_markdown(report, options, fix=report_fixes_hook(report))

@@ -262,8 +262,9 @@ def gate_renderable(gate: GateResult) -> RenderableType:
     if gate.stale:
         out.append(
             Text(
-                f"  {len(gate.stale)} baseline entr{'y' if len(gate.stale) == 1 else 'ies'} "
-                "no longer occur; rewrite the baseline with --write-baseline",
+                f"  {len(gate.stale)} baseline "
+                f"{'entry no longer occurs' if len(gate.stale) == 1 else 'entries no longer occur'}"
+                "; rewrite the baseline with --write-baseline",
                 style="yellow",
             )
         )

@@ -13,28 +13,51 @@ the project).
 
 from __future__ import annotations
 
+import json
 import os
+import re
 import stat
-from pathlib import Path
-from typing import Any
+from dataclasses import dataclass, field, replace
+from enum import StrEnum
+from pathlib import Path, PurePosixPath
+from typing import TYPE_CHECKING, Any
 
 import yaml
 
-from alpha_audit.errors import InputError
+from alpha_audit.errors import InputError, UsageError
 from alpha_audit.load.files import read_text_capped
 from alpha_audit.load.yamldoc import MAX_YAML_BYTES
 from alpha_audit.output import write_bytes
 
-__all__ = ["alpha_spans", "apply_alpha", "format_alpha", "set_alpha"]
+if TYPE_CHECKING:
+    from alpha_audit.model import IconSet
+    from alpha_audit.suggest.engine import SuggestResult
+
+__all__ = [
+    "ApplyPlan",
+    "ApplyScope",
+    "alpha_spans",
+    "apply_alpha",
+    "apply_suggestion",
+    "describe_plan",
+    "edit_alphas",
+    "explicit_alpha_icons",
+    "format_alpha",
+    "plan_apply",
+    "set_alpha",
+]
 
 
 def format_alpha(alpha: float, precision: int) -> str:
     """A coefficient as YAML: at most ``precision`` decimals, no trailing zeros.
 
-    >>> format_alpha(1.25, 3), format_alpha(2.0, 3), format_alpha(1.0, 0)
-    ('1.25', '2.0', '1')
+    >>> format_alpha(1.25, 3), format_alpha(2.0, 3), format_alpha(1.0, 0), format_alpha(20.0, 0)
+    ('1.25', '2.0', '1', '20')
     """
-    text = f"{alpha:.{precision}f}".rstrip("0")
+    text = f"{alpha:.{precision}f}"
+    if "." not in text:  # precision 0: "20" must not lose its zero
+        return text
+    text = text.rstrip("0")
     return text + "0" if text.endswith(".") else text
 
 
@@ -126,7 +149,7 @@ def set_alpha(text: str, value: str, path: str | Path | None = None) -> str:
     out.append(text[pos:])
     edited = "".join(out)
     if not has_top:
-        eol = "\r\n" if text.count("\r\n") * 2 > text.count("\n") else "\n"  # the file's own
+        eol = _eol(text)
         newline = "" if edited.endswith("\n") or not edited else eol
         edited += f"{newline}alpha: {value}{eol}"
     _check_meaning(text, edited, float(value), path)
@@ -185,21 +208,464 @@ def apply_alpha(
     directory); otherwise the edit is refused.
     """
     given = Path(path)
-    target = given
-    if given.is_symlink():
-        try:
-            target = given.resolve(strict=True)
-        except (OSError, RuntimeError) as exc:  # dangling, or a loop of links
-            raise InputError("is a link that leads to no file; not editing it", path=given) from exc
-        base = Path(root if root is not None else Path.cwd()).resolve()
-        if not target.is_relative_to(base):
-            raise InputError(
-                f"is a link to {target}, outside the project {base}; not editing it", path=given
-            )
+    target = _edit_target(given, root)
     text = read_text_capped(target, MAX_YAML_BYTES, InputError, "an icon-set manifest")
-    edited = set_alpha(text, format_alpha(alpha, precision), given)
+    return _write_if_changed(target, text, set_alpha(text, format_alpha(alpha, precision), given))
+
+
+def _edit_target(given: Path, root: str | Path | None) -> Path:
+    """The file to edit: ``given``, or the file its link points at inside ``root``."""
+    if not given.is_symlink():
+        return given
+    try:
+        target = given.resolve(strict=True)
+    except (OSError, RuntimeError) as exc:  # dangling, or a loop of links
+        raise InputError("is a link that leads to no file; not editing it", path=given) from exc
+    base = Path(root if root is not None else Path.cwd()).resolve()
+    if not target.is_relative_to(base):
+        raise InputError(
+            f"is a link to {target}, outside the project {base}; not editing it", path=given
+        )
+    return target
+
+
+def _write_if_changed(target: Path, text: str, edited: str) -> bool:
+    """Replace ``target`` atomically with ``edited`` (mode kept) when it differs from ``text``."""
     if edited == text:
         return False
     mode = stat.S_IMODE(os.stat(target).st_mode)
     write_bytes(target, edited.encode("utf-8"), overwrite=True, mode=mode)
     return True
+
+
+# -- per colour and per icon ---------------------------------------------------
+
+_PLAIN_KEY = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.-]*")
+
+
+class ApplyScope(StrEnum):
+    """What ``suggest --apply`` writes: the set-wide value, or per colour / per icon overrides."""
+
+    SET = "set"
+    COLOUR = "colour"
+    ICON = "icon"
+
+
+@dataclass
+class _Manifest:
+    """Where the alpha values and overrides sit in a manifest's text."""
+
+    text: str
+    path: str | Path | None = None
+    top: yaml.ScalarNode | None = field(init=False, default=None)
+    explicit: dict[str, list[tuple[int, int]]] = field(init=False, default_factory=dict)
+    overrides_key: yaml.Node | None = field(init=False, default=None)
+    overrides: yaml.Node | None = field(init=False, default=None)
+    entries: dict[str, yaml.Node] = field(init=False, default_factory=dict)
+
+    def __post_init__(self) -> None:
+        alpha_spans(self.text, self.path)  # validates: a mapping, plain alpha values
+        root = yaml.compose(self.text, Loader=yaml.SafeLoader)
+        top = _value(root, "alpha")
+        self.top = top if isinstance(top, yaml.ScalarNode) else None
+        icons = _value(root, "icons")
+        if isinstance(icons, yaml.SequenceNode):
+            for item in icons.value:
+                if not isinstance(item, yaml.MappingNode):
+                    continue
+                alpha, name, file = (_value(item, k) for k in ("alpha", "name", "file"))
+                if alpha is None:
+                    continue
+                label = name.value if isinstance(name, yaml.ScalarNode) else None
+                if label is None and isinstance(file, yaml.ScalarNode):
+                    label = PurePosixPath(file.value.replace("\\", "/")).stem
+                if label is not None:
+                    self.explicit.setdefault(label, []).append(_span(alpha))
+        for key, node in root.value:
+            if isinstance(key, yaml.ScalarNode) and key.value == "overrides":
+                self.overrides_key, self.overrides = key, node
+        if isinstance(self.overrides, yaml.MappingNode):
+            for key, node in self.overrides.value:
+                if not isinstance(key, yaml.ScalarNode):
+                    continue
+                self.entries[key.value] = node
+                alpha = _value(node, "alpha") if isinstance(node, yaml.MappingNode) else None
+                if alpha is not None:
+                    self.explicit.setdefault(key.value, []).append(_span(alpha))
+
+
+def _span(node: yaml.Node) -> tuple[int, int]:
+    return node.start_mark.index, node.end_mark.index
+
+
+def explicit_alpha_icons(text: str, path: str | Path | None = None) -> frozenset[str]:
+    """Icons whose alpha the manifest sets one by one (an ``icons:`` entry or ``overrides:``).
+
+    >>> sorted(explicit_alpha_icons("icons:\\n  - {file: a.svg, alpha: 1}\\n  - b.svg\\n"
+    ...     "overrides:\\n  c: {alpha: 1.2}\\n  d: {color: red}\\n"))
+    ['a', 'c']
+    """
+    return frozenset(_Manifest(text, path).explicit)
+
+
+def _key(name: str) -> str:
+    """A mapping key as YAML: plain when safe, else a JSON (= YAML double-quoted) string."""
+    plain = _PLAIN_KEY.fullmatch(name) and name.lower() not in (
+        "true",
+        "false",
+        "null",
+        "yes",
+        "no",
+    )
+    return name if plain else json.dumps(name, ensure_ascii=False)
+
+
+def _eol(text: str) -> str:
+    """The file's own line ending (CRLF when most lines use it)."""
+    return "\r\n" if text.count("\r\n") * 2 > text.count("\n") else "\n"
+
+
+def _line_end(text: str, index: int) -> int:
+    end = text.find("\n", index)
+    end = len(text) if end < 0 else end
+    return end - 1 if end > 0 and text[end - 1] == "\r" else end  # before a CRLF
+
+
+def _replacement(text: str, start: int, end: int, value: str) -> tuple[int, int, str]:
+    """Replace ``text[start:end]`` by ``value``, keeping a following comment in its column."""
+    # The value may close flow collections before the comment: `{alpha: 1.2}   # why`.
+    match = re.match(r"([}\]]*)( +)#", text[end:])
+    if match is None:
+        return start, end, value
+    closing, gap = match.group(1), match.group(2)
+    spaces = len(gap) - (len(value) - (end - start))
+    return start, end + len(closing) + len(gap), value + closing + " " * max(1, spaces)
+
+
+def edit_alphas(
+    text: str,
+    *,
+    top: str | None = None,
+    icons: dict[str, str] | None = None,
+    path: str | Path | None = None,
+) -> str:
+    """``text`` with the top-level alpha set to ``top`` and each icon's alpha in ``icons`` set.
+
+    An icon whose alpha the manifest already sets (``icons:`` entry or
+    ``overrides:``) has that value replaced; otherwise its ``overrides:`` entry
+    gains an ``alpha`` (flow or block style, as written), or a new entry
+    ``name: {alpha: ...}`` is added after the last one, at the same indent
+    and with its value in the column the other entries use.  Comments, order,
+    quoting and everything else stay byte for byte; a comment after a
+    replaced value keeps its column.  ``None``/absent: left alone.
+
+    >>> text = ("alpha: 1.1   # default\\noverrides:\\n"
+    ...         "  alert:  {color: red}\\n  ok:     {alpha: 1}\\n")
+    >>> print(edit_alphas(text, top="1.25", icons={"alert": "1.3", "new": "1.4"}), end="")
+    alpha: 1.25  # default
+    overrides:
+      alert:  {color: red, alpha: 1.3}
+      ok:     {alpha: 1}
+      new:    {alpha: 1.4}
+    """
+    m = _Manifest(text, path)
+    eol = _eol(text)
+    edits: list[tuple[int, int, str]] = []
+    appended: list[str] = []
+    if top is not None:
+        if m.top is not None:
+            edits.append(_replacement(text, *_span(m.top), top))
+        else:
+            appended.append(f"alpha: {top}")
+    new_entries: list[tuple[str, str]] = []
+    for name, value in (icons or {}).items():
+        if name in m.explicit:
+            edits.extend(_replacement(text, s, e, value) for s, e in m.explicit[name])
+            continue
+        node = m.entries.get(name)
+        if node is None:
+            new_entries.append((name, value))
+        elif isinstance(node, yaml.MappingNode) and node.flow_style:
+            close = node.end_mark.index - 1  # the closing brace
+            edits.append((close, close, f"{', ' if node.value else ''}alpha: {value}"))
+        elif isinstance(node, yaml.MappingNode) and node.value:
+            indent = node.value[0][0].start_mark.column
+            at = _line_end(text, node.end_mark.index - 1)
+            edits.append((at, at, eol + " " * indent + f"alpha: {value}"))
+        else:  # `alert:` with nothing (or ~): becomes a flow mapping
+            start, end = _span(node)
+            edits.append((start, end, f"{'' if text[start - 1] == ' ' else ' '}{{alpha: {value}}}"))
+    if new_entries:
+        _add_entries(text, m, new_entries, edits, appended, eol)
+    out, pos = [], 0
+    for start, end, value in sorted(edits, key=lambda e: (e[0], e[1])):
+        out += [text[pos:start], value]
+        pos = max(pos, end)
+    out.append(text[pos:])
+    edited = "".join(out)
+    if appended:
+        newline = "" if edited.endswith("\n") or not edited else eol
+        edited += newline + eol.join(appended) + eol
+    return edited
+
+
+def _add_entries(
+    text: str,
+    m: _Manifest,
+    entries: list[tuple[str, str]],
+    edits: list[tuple[int, int, str]],
+    appended: list[str],
+    eol: str,
+) -> None:
+    """New ``overrides:`` entries, placed and aligned like the existing ones."""
+    node = m.overrides
+    if isinstance(node, yaml.MappingNode) and node.flow_style:
+        close = node.end_mark.index - 1
+        body = ", ".join(f"{_key(n)}: {{alpha: {v}}}" for n, v in entries)
+        edits.append((close, close, f"{', ' if node.value else ''}{body}"))
+        return
+    indent, column = 2, 0
+    if isinstance(node, yaml.MappingNode) and node.value:
+        first_key = node.value[0][0]
+        indent = first_key.start_mark.column
+        # Values aligned in one column (on their key's line) keep that column.
+        columns = {
+            v.start_mark.column
+            for k, v in node.value
+            if v.start_mark.line == k.start_mark.line and not isinstance(v, yaml.ScalarNode)
+        }
+        column = columns.pop() if len(columns) == 1 else 0
+        at = _line_end(text, node.value[-1][1].end_mark.index - 1)
+    elif m.overrides_key is not None:
+        assert node is not None
+        start, end = _span(node)
+        if end > start:  # `overrides: ~` or `null`: drop the scalar
+            edits.append((start, end, ""))
+        at = _line_end(text, m.overrides_key.end_mark.index)
+    else:
+        at = -1
+    lines = []
+    for name, value in entries:
+        head = " " * indent + f"{_key(name)}:"
+        lines.append(head + " " * max(1, column - len(head)) + f"{{alpha: {value}}}")
+    if at >= 0:
+        edits.append((at, at, "".join(eol + line for line in lines)))
+    else:
+        appended.append("overrides:")
+        appended.extend(lines)
+
+
+@dataclass(frozen=True)
+class ApplyPlan:
+    """What ``suggest --apply`` will write.
+
+    ``top`` is the new set-wide alpha (``None``: unchanged), ``icons`` the
+    per-icon alphas, ``kept`` the icons whose explicit choice is left alone
+    and ``skipped`` the colours or icons with no safe alpha at all.
+    """
+
+    scope: ApplyScope
+    top: float | None
+    icons: dict[str, float]
+    kept: tuple[str, ...] = ()
+    skipped: tuple[str, ...] = ()
+    passes: bool | None = None  # the gate on the planned alphas (None: not checked)
+
+
+def plan_apply(
+    result: SuggestResult,
+    scope: ApplyScope | str,
+    explicit: frozenset[str],
+    *,
+    replace_explicit: bool = False,
+) -> ApplyPlan:
+    """Turn a suggestion into edits, never touching an icon in ``explicit`` unless asked.
+
+    ``set``: the set-wide alpha; with explicit icons kept, it is recomputed
+    with those icons fixed at their own alpha (so it stays safe with them).
+    ``colour``/``icon``: each colour's (icon's) largest safe alpha, one after
+    the other, each with the colours (icons) before it at their new alpha, so
+    the answers hold together (each alone would assume the rest unchanged);
+    written per icon where it differs from what the icon has now.  The plan
+    then re-runs the gate on the result (``passes``).
+    """
+    from alpha_audit.suggest.engine import largest_safe_alpha
+
+    scope = ApplyScope(scope)
+    iconset = result.iconset
+    names = [i.name for i in iconset.icons]
+    kept = () if replace_explicit else tuple(n for n in names if n in explicit)
+    alphas = {i.name: i.alpha for i in iconset.icons}
+
+    def safe_for(movable: list[str]) -> float | None:
+        current = replace(
+            iconset, icons=tuple(replace(i, alpha=alphas[i.name]) for i in iconset.icons)
+        )
+        return largest_safe_alpha(
+            result.theme,
+            current,
+            result.policy,
+            icons=movable,
+            alpha_max=result.alpha_max,
+            precision=result.precision,
+            threshold=result.threshold,
+        ).alpha
+
+    top: float | None = None
+    skipped: list[str] = []
+    if scope is ApplyScope.SET:
+        movable = [n for n in names if n not in kept]
+        if movable:
+            top = result.alpha if len(movable) == len(names) else safe_for(movable)
+            if top is None:
+                skipped.append("the set")
+        for n in movable:
+            alphas[n] = top if top is not None else alphas[n]
+        wanted = {n: alphas[n] for n in names if n in explicit and n not in kept}
+    else:
+        groups = (
+            [(c.color, c.icons) for c in result.per_color]
+            if scope is ApplyScope.COLOUR
+            else [(i.icon, (i.icon,)) for i in result.per_icon]
+        )
+        for label, members in groups:
+            movable = [n for n in members if n not in kept]
+            if not movable:
+                continue
+            alpha = safe_for(movable)
+            if alpha is None:
+                skipped.append(label)
+                continue
+            alphas.update(dict.fromkeys(movable, alpha))
+        p = result.precision
+        original = {i.name: i.alpha for i in iconset.icons}
+        wanted = {
+            n: alphas[n]
+            for n in names
+            if format_alpha(alphas[n], p) != format_alpha(original[n], p)
+        }
+    final = replace(iconset, icons=tuple(replace(i, alpha=alphas[i.name]) for i in iconset.icons))
+    return ApplyPlan(scope, top, wanted, kept, tuple(skipped), _passes(result, final))
+
+
+def _passes(result: SuggestResult, iconset: IconSet) -> bool:
+    """Whether the gate passes with these alphas (one theme x icon set, the same policy)."""
+    from alpha_audit.audit import audit
+    from alpha_audit.gate import evaluate
+
+    checked = audit(result.theme, iconset, threshold=result.threshold)
+    return evaluate([checked], result.policy).passed
+
+
+def apply_suggestion(
+    path: str | Path,
+    result: SuggestResult,
+    scope: ApplyScope | str,
+    *,
+    replace_explicit: bool = False,
+    root: str | Path | None = None,
+) -> tuple[ApplyPlan, bool]:
+    """Plan (:func:`plan_apply`) and write a suggestion into the manifest at ``path``.
+
+    Returns the plan and whether the file changed.  The file is handled as
+    :func:`apply_alpha` handles it (capped read, a link edited at its target
+    inside ``root``, mode kept, atomic write), and the edit is parsed again
+    and must mean exactly the planned alphas.  Raises :class:`UsageError`
+    when there is nothing safe to write at all.
+    """
+    given = Path(path)
+    target = _edit_target(given, root)
+    text = read_text_capped(target, MAX_YAML_BYTES, InputError, "an icon-set manifest")
+    explicit = explicit_alpha_icons(text, given)
+    plan = plan_apply(result, scope, explicit, replace_explicit=replace_explicit)
+    if plan.top is None and not plan.icons and plan.skipped:
+        raise UsageError(
+            f"no safe alpha to apply for {', '.join(plan.skipped)}: "
+            "the policy already fails at alpha = 1"
+        )
+    top = None if plan.top is None else format_alpha(plan.top, result.precision)
+    icons = {n: format_alpha(a, result.precision) for n, a in plan.icons.items()}
+    edited = edit_alphas(text, top=top, icons=icons, path=given)
+    _check_edit(text, edited, top, icons, given)
+    return plan, _write_if_changed(target, text, edited)
+
+
+def _icon_entry_name(item: Any) -> str | None:
+    """The icon name an ``icons:`` mapping entry gives (``name:``, else the file's stem)."""
+    if not isinstance(item, dict):
+        return None
+    if isinstance(item.get("name"), str):
+        return item["name"]
+    file = item.get("file")
+    return PurePosixPath(file.replace("\\", "/")).stem if isinstance(file, str) else None
+
+
+def _check_edit(
+    before: str, after: str, top: str | None, icons: dict[str, str], path: str | Path | None
+) -> None:
+    """Refuse an edit that does not parse, or means more than the planned alpha values."""
+    data = yaml.safe_load(before)
+    expected = dict(data) if isinstance(data, dict) else data
+    if isinstance(expected, dict):
+        if top is not None:
+            expected["alpha"] = float(top)
+        entries = expected.get("icons")
+        listed: set[str] = set()
+        if isinstance(entries, list):
+            new_entries = []
+            for item in entries:
+                name = _icon_entry_name(item)
+                if name in icons and isinstance(item, dict) and "alpha" in item:
+                    item = dict(item, alpha=float(icons[name]))
+                    listed.add(name)
+                new_entries.append(item)
+            expected["icons"] = new_entries
+        overrides = dict(expected.get("overrides") or {})
+        for name, value in icons.items():
+            entry = overrides.get(name)
+            if name in listed and not (isinstance(entry, dict) and "alpha" in entry):
+                continue
+            overrides[name] = dict(entry or {}, alpha=float(value))
+        if overrides or "overrides" in expected:
+            expected["overrides"] = overrides
+    try:
+        got = yaml.safe_load(after)
+    except yaml.YAMLError as exc:
+        raise InputError(
+            "cannot edit this manifest safely: the edit would not be valid YAML; "
+            "set the alphas by hand",
+            path=path,
+        ) from exc
+    if got != expected:
+        raise InputError(
+            "cannot edit this manifest safely: the edit would change more than the alpha "
+            "values; set the alphas by hand",
+            path=path,
+        )
+
+
+def describe_plan(plan: ApplyPlan, path: str | Path, changed: bool, precision: int) -> str:
+    """One status line saying what ``--apply`` wrote, kept and skipped (plain text).
+
+    >>> describe_plan(ApplyPlan(ApplyScope.ICON, None, {"a": 1.25}, ("b",)), "m.yaml", True, 3)
+    'wrote alpha for 1 icon (a: 1.25) in m.yaml; kept the explicit alpha of 1 icon (b)'
+    """
+    parts = []
+    if plan.top is not None:
+        verb = "wrote" if changed else "already has"
+        parts.append(f"{verb} alpha {format_alpha(plan.top, precision)} in {path}")
+    if plan.icons:
+        shown = ", ".join(f"{n}: {format_alpha(a, precision)}" for n, a in plan.icons.items())
+        count = len(plan.icons)
+        parts.append(f"wrote alpha for {count} icon{'s' * (count != 1)} ({shown}) in {path}")
+    if not parts:
+        parts.append(f"nothing to change in {path}")
+    if plan.kept:
+        count = len(plan.kept)
+        names = ", ".join(plan.kept)
+        parts.append(f"kept the explicit alpha of {count} icon{'s' * (count != 1)} ({names})")
+    if plan.skipped:
+        parts.append(f"no safe alpha for {', '.join(plan.skipped)}")
+    if plan.passes is not None:
+        parts.append("the gate passes" if plan.passes else "the gate still fails (see check)")
+    return "; ".join(parts)

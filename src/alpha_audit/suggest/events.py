@@ -39,6 +39,7 @@ __all__ = [
     "first_below",
     "first_in_luminance_band",
     "luminance_band",
+    "luminance_band_pieces",
 ]
 
 # Linear value at which the 8-bit code steps from n to n + 1 (n = 0..254): the
@@ -94,6 +95,70 @@ def _luminance(channels: NDArray[np.float64]) -> NDArray[np.float64]:
     return wr * channels[..., 0] + wg * channels[..., 1] + wb * channels[..., 2]
 
 
+def _broadcast_band(
+    source: ArrayLike, background: ArrayLike, y_lo: ArrayLike, y_hi: ArrayLike
+) -> tuple[
+    NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], tuple
+]:
+    s = np.asarray(source, dtype=np.float64)
+    b = np.asarray(background, dtype=np.float64)
+    s, b = np.broadcast_arrays(s, b)
+    lo = np.asarray(y_lo, dtype=np.float64)
+    hi = np.asarray(y_hi, dtype=np.float64)
+    shape = np.broadcast_shapes(s.shape[:-1], lo.shape, hi.shape)
+    s = np.broadcast_to(s, (*shape, 3))
+    b = np.broadcast_to(b, (*shape, 3))
+    return s, b, np.broadcast_to(lo, shape), np.broadcast_to(hi, shape), shape
+
+
+def luminance_band_pieces(
+    source: ArrayLike,
+    background: ArrayLike,
+    y_lo: ArrayLike,
+    y_hi: ArrayLike,
+    a_lo: float,
+    a_hi: float,
+) -> list[tuple[NDArray[np.float64], ...]]:
+    """Where ``y_lo < Y(a) < y_hi`` on each linear piece of ``[a_lo, a_hi]``, exactly.
+
+    Returns four ``(p, q, lower, upper)`` tuples, one per piece ``[p, q]``
+    between consecutive clip breakpoints (a piece may be empty, ``p == q``):
+    on it ``Y`` is linear and lies inside the open band exactly for ``a`` in
+    the open interval ``(lower, upper)`` (``lower >= upper``: never).  So the
+    set ``{a in [a_lo, a_hi] : Y(a) in band}`` is the union over pieces of
+    ``(lower, upper)`` intersected with ``[p, q]``.  Shapes as in
+    :func:`first_in_luminance_band`.
+
+    >>> (p, q, lower, upper), *_ = luminance_band_pieces([0.5] * 3, [0.0] * 3, 0.0, 0.25, 0, 1)
+    >>> float(p), float(q), float(lower), float(upper)  # Y(a) = a / 2 on [0, 1]
+    (0.0, 1.0, 0.0, 0.5)
+    """
+    s, b, lo, hi, shape = _broadcast_band(source, background, y_lo, y_hi)
+    d = s - b
+    # Piece boundaries: a_lo, the (up to three) clip points inside, a_hi.
+    inner = np.clip(clip_breakpoints(s, b), a_lo, a_hi)
+    ends = np.concatenate(
+        [np.full((*shape, 1), a_lo), np.sort(inner, axis=-1), np.full((*shape, 1), a_hi)],
+        axis=-1,
+    )
+    pieces = []
+    for k in range(ends.shape[-1] - 1):  # four pieces, whatever the leading shape
+        p, q = ends[..., k], ends[..., k + 1]
+        mid = 0.5 * (p + q)
+        raw = b + mid[..., np.newaxis] * d
+        free = (raw > 0.0) & (raw < 1.0)
+        # On this piece Y(a) = c0 + c1 a: free channels move, clipped ones are 0 or 1.
+        c0 = _luminance(np.where(free, b, np.where(raw >= 1.0, 1.0, 0.0)))
+        c1 = _luminance(np.where(free, d, 0.0))
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            t_lo, t_hi = (lo - c0) / c1, (hi - c0) / c1
+        flat_in = (lo < c0) & (c0 < hi)
+        lower = np.where(c1 > 0, t_lo, np.where(c1 < 0, t_hi, np.where(flat_in, -np.inf, np.inf)))
+        upper = np.where(c1 > 0, t_hi, np.where(c1 < 0, t_lo, np.where(flat_in, np.inf, -np.inf)))
+        pieces.append((p, q, lower, upper))
+    return pieces
+
+
 def first_in_luminance_band(
     source: ArrayLike,
     background: ArrayLike,
@@ -118,37 +183,11 @@ def first_in_luminance_band(
     >>> round(float(start), 6), bool(attained)
     (1.0, False)
     """
-    s = np.asarray(source, dtype=np.float64)
-    b = np.asarray(background, dtype=np.float64)
-    s, b = np.broadcast_arrays(s, b)
-    lo = np.asarray(y_lo, dtype=np.float64)
-    hi = np.asarray(y_hi, dtype=np.float64)
-    shape = np.broadcast_shapes(s.shape[:-1], lo.shape, hi.shape)
-    s = np.broadcast_to(s, (*shape, 3))
-    b = np.broadcast_to(b, (*shape, 3))
-    lo, hi = np.broadcast_to(lo, shape), np.broadcast_to(hi, shape)
+    s, b, lo, hi, shape = _broadcast_band(source, background, y_lo, y_hi)
     d = s - b
-
-    # Piece boundaries: a_lo, the (up to three) clip points inside, a_hi.
-    inner = np.clip(clip_breakpoints(s, b), a_lo, a_hi)
-    ends = np.concatenate(
-        [np.full((*shape, 1), a_lo), np.sort(inner, axis=-1), np.full((*shape, 1), a_hi)],
-        axis=-1,
-    )
+    pieces = luminance_band_pieces(s, b, lo, hi, a_lo, a_hi)
     start = np.full(shape, np.inf)
-    for k in range(ends.shape[-1] - 1):  # four pieces, whatever the leading shape
-        p, q = ends[..., k], ends[..., k + 1]
-        mid = 0.5 * (p + q)
-        raw = b + mid[..., np.newaxis] * d
-        free = (raw > 0.0) & (raw < 1.0)
-        # On this piece Y(a) = c0 + c1 a: free channels move, clipped ones are 0 or 1.
-        c0 = _luminance(np.where(free, b, np.where(raw >= 1.0, 1.0, 0.0)))
-        c1 = _luminance(np.where(free, d, 0.0))
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            t_lo, t_hi = (lo - c0) / c1, (hi - c0) / c1
-        flat_in = (lo < c0) & (c0 < hi)
-        lower = np.where(c1 > 0, t_lo, np.where(c1 < 0, t_hi, np.where(flat_in, -np.inf, np.inf)))
-        upper = np.where(c1 > 0, t_hi, np.where(c1 < 0, t_lo, np.where(flat_in, np.inf, -np.inf)))
+    for p, q, lower, upper in pieces:
         hit = (q > p) & (lower < q) & (upper > p) & (lower < upper)
         start = np.where(hit, np.minimum(start, np.maximum(lower, p)), start)
 

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
+from PIL import ImageFont
 
 from alpha_audit.color import contrast_ratio
 from alpha_audit.model import Icon, IconSet
@@ -83,8 +84,11 @@ def grid_frame(
     gap = max(_MIN_GAP, size // 3)
     label_w = Fonts.width(fonts.small, "00.00")
     label_h = fonts.small_px + _LABEL_PAD
-    cell_w = max(size, label_w) + gap
-    cell_h = size + _LABEL_GAP + label_h + gap // 2 + _LABEL_GAP
+    # Each cell names its icon under the ratio; a long name is shortened with
+    # "..." to the cell (at most _NAME_CAP wide); the HTML page has every name whole.
+    widest = max((Fonts.width(fonts.small, i.name) for i in icons), default=0)
+    cell_w = max(size, label_w, min(widest, _NAME_CAP)) + gap
+    cell_h = size + _LABEL_GAP + 2 * label_h + gap // 2 + _LABEL_GAP
     cols = max(1, min(n, (max_width - 2 * MARGIN + gap) // cell_w))
     rows = max(1, math.ceil(n / cols))
 
@@ -118,6 +122,23 @@ def grid_frame(
     return GridFrame(
         width, height, cols, gap, cell_w, cell_h, block_h, fonts, header, sub, legend, tuple(blocks)
     )
+
+
+_NAME_CAP = 120  # px: the widest an icon name makes a grid cell
+
+
+def _fit(font: ImageFont.FreeTypeFont, text: str, width: int) -> str:
+    """``text``, or its longest prefix plus "..." that fits in ``width`` pixels."""
+    if Fonts.width(font, text) <= width:
+        return text
+    lo, hi = 0, len(text)
+    while lo < hi:  # the longest prefix that fits with the ellipsis
+        mid = (lo + hi + 1) // 2
+        if Fonts.width(font, text[:mid] + "...") <= width:
+            lo = mid
+        else:
+            hi = mid - 1
+    return text[:lo] + "..."
 
 
 def draw_grid(
@@ -172,5 +193,8 @@ def draw_grid(
             if value < threshold:
                 underline = ty + fonts.small_px + _UNDERLINE_DROP
                 out.rect((tx, underline, tx + tw, underline + 1), color)
+            name = _fit(fonts.small, icon.name, cell_w - gap)
+            nx = cx + (cell_w - gap - Fonts.width(fonts.small, name)) // 2
+            out.label((nx, ty + fonts.small_px + _LABEL_PAD), name, fonts.small, ink.muted, fill)
         y += frame.block_h
     return out.finish()

@@ -10,7 +10,6 @@ recompute pixel by pixel.
 from __future__ import annotations
 
 import functools
-import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
@@ -21,6 +20,7 @@ from PIL import Image, ImageDraw, ImageFont
 from alpha_audit.color import contrast_ratio, parse_color, srgb_decode, srgb_encode, to_8bit
 from alpha_audit.errors import UsageError
 from alpha_audit.model import Icon
+from alpha_audit.preview.fonts import draw_text, text_metrics, text_width
 from alpha_audit.preview.sheets.plan import SheetSpec
 
 __all__ = [
@@ -159,7 +159,8 @@ def _default_font(size: int) -> ImageFont.FreeTypeFont:
 @functools.lru_cache(maxsize=1 << 16)
 def _text_width(size: float, text: str) -> int:
     # Pages are planned by measuring the same labels many times; they are measured once.
-    return math.ceil(_default_font(int(size)).getlength(text))
+    # Non-ASCII names are measured as drawn: each character in a font that has it.
+    return text_width(_default_font(int(size)), text)
 
 
 class Fonts:
@@ -202,8 +203,7 @@ class Surface:
 
     def text(self, xy: tuple[int, int], text: str, font: ImageFont.FreeTypeFont, fill: RGB8) -> int:
         """Draw ``text`` with its top-left at ``xy``; return its width."""
-        self.draw.text(xy, text, font=font, fill=fill, anchor="la")
-        return Fonts.width(font, text)
+        return draw_text(self.draw, xy, text, font, fill)
 
     def label(
         self,
@@ -222,9 +222,9 @@ class Surface:
         patch = self.patches.get(key)
         if patch is None:
             width = Fonts.width(font, text)
-            ascent, descent = font.getmetrics()
+            ascent, descent = text_metrics(font, text)
             patch = Image.new("RGB", (width + 2, ascent + descent + 2), ground)
-            ImageDraw.Draw(patch).text((0, 0), text, font=font, fill=fill, anchor="la")
+            draw_text(ImageDraw.Draw(patch), (0, 0), text, font, fill)
             self.patches[key] = patch
         self.image.paste(patch, xy)
         return patch.size[0] - 2

@@ -1,0 +1,117 @@
+"""GitLab Code Quality (``-f gitlab``): a JSON array for ``artifacts:reports:codequality``.
+
+GitLab reads a subset of the Code Climate issue spec
+(https://docs.gitlab.com/ci/testing/code_quality/, "Code Quality report
+format"): ``description``, ``check_name``, ``fingerprint``, ``severity`` (one
+of info, minor, major, critical, blocker), ``location.path`` (relative to the
+repository root) and ``location.lines.begin``.  GitLab shows issues with the
+same fingerprint as one, and compares fingerprints between the merge request
+and its target branch to say what is new, so a fingerprint is built from what
+a baseline matches on (theme, icon set, rule, canvas, icons) -- never a line
+number -- and made unique within the report.
+
+Only what fails the gate is an issue: exempted and baselined findings are
+decisions already taken, and Code Quality has no "dismissed" state.  Icons
+that could not be rendered, when the ``unrenderable`` rule is off, are
+``info`` issues.  Where the report has a fix for the colour on that canvas,
+the description ends with it.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from pathlib import Path, PurePosixPath
+from typing import Any
+
+from alpha_audit.fixes import ColorFix, describe_fix, fix_lookup
+from alpha_audit.gate import CheckReport, Finding
+from alpha_audit.policy import Rule
+from alpha_audit.render.common import RenderOptions, display_path, dumps
+
+__all__ = ["SEVERITY", "render_report"]
+
+# Contrast that no longer meets the threshold is what the gate exists for;
+# collisions and separation make icons hard to tell apart, a lesser harm.
+SEVERITY: dict[Rule, str] = {
+    Rule.LOSS: "major",
+    Rule.BELOW_THRESHOLD: "major",
+    Rule.NEWLY_FAILING: "major",
+    Rule.COLLISION: "minor",
+    Rule.NEW_COLLISION: "minor",
+    Rule.SEPARATION: "minor",
+    Rule.UNRENDERABLE: "major",
+}
+_CHECK_PREFIX = "alpha-audit/"  # namespaced: several tools share one Code Quality widget
+
+
+def _relative(path: Path | None, base: Path | None) -> str:
+    """A repository-relative POSIX path; never an absolute one (outside ``base``: the name)."""
+    shown = display_path(path, base)
+    if not shown:
+        return "."
+    posix = PurePosixPath(shown)
+    if posix.is_absolute() or Path(shown).is_absolute():
+        return posix.name
+    return shown
+
+
+def _where(f: Finding, base: Path | None) -> tuple[str, int]:
+    """The manifest line that sets the colour or alpha, else the SVG's first line."""
+    if f.manifest is not None and f.lines:
+        return _relative(f.manifest, base), f.lines[0]
+    if f.files:
+        return _relative(f.files[0], base), 1
+    return _relative(f.manifest, base), 1
+
+
+def _fix_text(fixes: tuple[ColorFix, ...]) -> str:
+    parts = [text for text in map(describe_fix, fixes) if text]
+    return f" Fix: {'; '.join(parts)}." if parts else ""
+
+
+def _fingerprint(text: str) -> str:
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()[:32]
+
+
+def render_report(report: CheckReport, options: RenderOptions) -> str:
+    """Every failing finding as one GitLab Code Quality issue, in the gate's order."""
+    fixes_of = fix_lookup(report)
+    entries: list[tuple[Finding, str]] = [(f, SEVERITY[f.rule]) for f in report.gate.failures]
+    if Rule.UNRENDERABLE not in report.gate.policy.rules:
+        for audit in report.audits:
+            for p in audit.problems:
+                problem = Finding(
+                    Rule.UNRENDERABLE,
+                    audit.theme.name,
+                    audit.iconset.name,
+                    None,
+                    (p.icon,),
+                    p.message,
+                    files=(Path(p.file),),
+                )
+                entries.append((problem, "info"))
+    issues: list[dict[str, Any]] = []
+    seen: set[str] = set()
+    for f, severity in entries:
+        theme, iconset, rule, canvas, icons = f.key
+        identity = "\x1f".join([theme, iconset, rule, canvas or "", *icons])
+        fingerprint = _fingerprint(identity)
+        n = 1
+        while fingerprint in seen:  # an icon unrenderable in two themes, say
+            n += 1
+            fingerprint = _fingerprint(f"{identity}\x1e{n}")
+        seen.add(fingerprint)
+        where = f"{', '.join(f.icons)} on {f.canvas}" if f.canvas else ", ".join(f.icons)
+        path, line = _where(f, options.base)
+        issues.append(
+            {
+                "type": "issue",
+                "description": f"{where} ({f.theme} / {f.iconset}): {f.message}."
+                + _fix_text(fixes_of(f)),
+                "check_name": _CHECK_PREFIX + f.rule.value,
+                "fingerprint": fingerprint,
+                "severity": severity,
+                "location": {"path": path, "lines": {"begin": max(1, line)}},
+            }
+        )
+    return dumps(issues)

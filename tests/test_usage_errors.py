@@ -1,0 +1,66 @@
+"""Every usage error is one line on stderr, exit 2; help stays rich."""
+
+from __future__ import annotations
+
+import pytest
+from typer.testing import CliRunner
+
+from alpha_audit.cli import app
+
+CASES = [
+    (["check", "a.yaml", "b.yaml", "c.yaml"], "unexpected extra argument"),
+    (["chek"], "No such command 'chek'. Did you mean 'check'?"),
+    (["--bogus"], "No such option: --bogus"),
+    (["check", "-f", "nope"], "'nope' is not one of"),
+    (["suggest", "--alpha-max", "x"], "--alpha-max"),
+    (["suggest", "--apply", "everything"], "--apply"),
+    (["pair"], "Missing argument"),
+]
+
+
+@pytest.mark.parametrize(("args", "says"), CASES)
+def test_usage_errors_are_one_line(args: list[str], says: str) -> None:
+    res = CliRunner().invoke(app, args)
+    assert res.exit_code == 2, res.output
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1, res.stderr
+    assert lines[0].startswith("alpha-audit: error: ") and says in lines[0]
+    assert "╭" not in res.stderr and "Usage:" not in res.stderr
+    assert res.stdout == ""
+
+
+def test_help_is_still_rich() -> None:
+    res = CliRunner().invoke(app, ["check", "-h"])
+    assert res.exit_code == 0
+    assert "╭" in res.stdout and "Usage:" in res.stdout
+
+
+@pytest.mark.parametrize("command", ["check", "suggest", "preview"])
+@pytest.mark.parametrize("value", ["25", "0.5", "nan", "-inf"])
+def test_threshold_is_range_checked_like_the_themes(command: str, value: str) -> None:
+    res = CliRunner().invoke(app, [command, "--threshold", value])
+    assert res.exit_code == 2, res.output
+    assert res.stderr.strip().splitlines() == [
+        f"alpha-audit: error: --threshold {float(value):g} is out of range; "
+        "expected a contrast ratio between 1 and 21"
+    ]
+
+
+FLAG_ERRORS = [
+    (["check", "--min-delta-e", "-1"], "--min-delta-e -1 is out of range"),
+    (["suggest", "--min-delta-e", "nan"], "--min-delta-e nan is out of range"),
+    (["check", "--max-loss", "-0.5"], "--max-loss -0.5 is out of range"),
+    (["suggest", "--alpha-max", "0.5"], "--alpha-max 0.5 is out of range"),
+    (["suggest", "--precision", "12"], "--precision 12 is out of range"),
+    (["check", "--fail-on", "seperation"], "--fail-on: unknown rule 'seperation'; did you mean"),
+    (["suggest", "--fail-on", "unrenderable"], "--fail-on unrenderable is not allowed here"),
+]
+
+
+@pytest.mark.parametrize(("args", "says"), FLAG_ERRORS)
+def test_errors_name_flags_as_flags(args: list[str], says: str) -> None:
+    res = CliRunner().invoke(app, args)
+    assert res.exit_code == 2, res.output
+    (line,) = res.stderr.strip().splitlines()
+    assert says in line
+    assert "min_delta_e" not in line and "max_loss" not in line and "alpha_max" not in line
