@@ -88,7 +88,9 @@ def at_least(flag: str, low: float) -> Callable[[float | None], float | None]:
     return check
 
 
-def rules_flag(flag: str, refused: tuple[str, ...] = (), why: str = "") -> Callable:
+def rules_flag(
+    flag: str, refused: tuple[str, ...] = (), why: str = ""
+) -> Callable[[list[str] | None], list[str] | None]:
     """A typer callback parsing rule names, naming ``flag``; ``refused`` rules are errors."""
 
     def check(values: list[str] | None) -> list[str] | None:

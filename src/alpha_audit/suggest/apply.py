@@ -266,6 +266,7 @@ class _Manifest:
     def __post_init__(self) -> None:
         alpha_spans(self.text, self.path)  # validates: a mapping, plain alpha values
         root = yaml.compose(self.text, Loader=yaml.SafeLoader)
+        assert isinstance(root, yaml.MappingNode)  # alpha_spans refused anything else
         top = _value(root, "alpha")
         self.top = top if isinstance(top, yaml.ScalarNode) else None
         icons = _value(root, "icons")
@@ -594,8 +595,9 @@ def _icon_entry_name(item: Any) -> str | None:
     """The icon name an ``icons:`` mapping entry gives (``name:``, else the file's stem)."""
     if not isinstance(item, dict):
         return None
-    if isinstance(item.get("name"), str):
-        return item["name"]
+    name = item.get("name")
+    if isinstance(name, str):
+        return name
     file = item.get("file")
     return PurePosixPath(file.replace("\\", "/")).stem if isinstance(file, str) else None
 
