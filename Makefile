@@ -34,14 +34,15 @@ dist: $(STAMP)
 	$(BIN)/python -m build --quiet --outdir dist . >/dev/null
 	$(BIN)/twine check --strict dist/*
 
-## test: install, then lint, build and check the distributions, and run the whole test suite
-test: $(STAMP) browser dist
-	$(BIN)/ruff check src tests benchmarks tools
-	$(BIN)/ruff format --check src tests benchmarks tools
+## test: install, then lint (ruff and mypy), build and check the distributions, and run the whole test suite
+test: lint browser dist
 	$(BIN)/pytest
 
+## lint: ruff's lint and format checks, then mypy --strict on src/alpha_audit ([tool.mypy])
 lint: $(STAMP)
 	$(BIN)/ruff check src tests benchmarks tools
+	$(BIN)/ruff format --check src tests benchmarks tools
+	$(BIN)/mypy
 
 format: $(STAMP)
 	$(BIN)/ruff format src tests benchmarks tools
@@ -51,4 +52,4 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/run.py
 
 clean:
-	rm -rf $(VENV) build dist src/*.egg-info .pytest_cache .hypothesis .ruff_cache
+	rm -rf $(VENV) build dist src/*.egg-info .pytest_cache .hypothesis .ruff_cache .mypy_cache

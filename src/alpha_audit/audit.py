@@ -270,7 +270,10 @@ class AuditResult:
         total = gain.size
         losses = self.loss
         separations = [s.delta_e for s in self.separations]
-        pct = (lambda k: 100.0 * float(k) / total) if total else (lambda k: 0.0)
+
+        def pct(k: float) -> float:
+            return 100.0 * float(k) / total if total else 0.0
+
         n_inc, n_dec = int(self.increase.sum()), int(losses.sum())
         return Summary(
             combinations=int(total),

@@ -321,7 +321,7 @@ def nearest_passing_color(
         best = best_on_rays(np.array([0.0, math.pi]))
     else:
         step = 2.0 * math.pi / RAYS
-        theta = (np.arange(RAYS) + 0.5) * step - math.pi
+        theta = (np.arange(RAYS, dtype=np.float64) + 0.5) * step - math.pi
         best = best_on_rays(theta)
         for _ in range(REFINE_ROUNDS if best is not None else 0):
             assert best is not None
@@ -374,7 +374,8 @@ def _passing_code(
     if not ok.any():
         return None
     lin = lin[ok]
-    return lin[int(np.argmin(delta_e_2000(lin, point)))]
+    nearest: NDArray[np.float64] = lin[int(np.argmin(delta_e_2000(lin, point)))]
+    return nearest
 
 
 # Fixes cost about 0.1 s per failing colour (a suggest run and, for contrast

@@ -154,7 +154,8 @@ def _icon_refs(
     result: AuditResult, names: Sequence[str]
 ) -> tuple[tuple[Path, ...], tuple[int, ...]]:
     by_name = {i.name: i for i in result.iconset.icons}
-    files, lines = [], []
+    files: list[Path] = []
+    lines: list[int] = []
     for name in names:
         icon = by_name.get(name)
         if icon is None:

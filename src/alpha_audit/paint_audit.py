@@ -39,6 +39,7 @@ from alpha_audit.color import (
     DEFICIENCIES,
     DELTA_E_TOLERANCE,
     PIPELINES,
+    Deficiency,
     Pipeline,
     composite_paint,
     contrast_ratio,
@@ -92,7 +93,7 @@ def resolve_pipeline(*choices: str | None) -> Pipeline:
         name = choice.strip().lower()
         if name not in PIPELINES:
             raise UsageError(f"unknown pipeline {choice!r}; use one of: {', '.join(PIPELINES)}")
-        return name  # type: ignore[return-value]
+        return name
     return "linear"
 
 
@@ -522,7 +523,7 @@ def _styles(result: PaintAudit) -> list[int]:
 
 
 def _confusion(
-    result: PaintAudit, min_delta_e: float, deficiency: str | None
+    result: PaintAudit, min_delta_e: float, deficiency: Deficiency | None
 ) -> Iterator[PaintFinding]:
     """Roles distinct at alpha 1 (CIEDE2000 >= min_delta_e) but not at the icons' alpha."""
     reps = _styles(result)
@@ -548,8 +549,8 @@ def _confusion(
         for idx in (first, second)
     ]
     if deficiency is not None:
-        solid = [simulate_cvd(c, deficiency) for c in solid]  # type: ignore[arg-type]
-        shown = [simulate_cvd(c, deficiency) for c in shown]  # type: ignore[arg-type]
+        solid = [simulate_cvd(c, deficiency) for c in solid]
+        shown = [simulate_cvd(c, deficiency) for c in shown]
     de_ref = delta_e_2000(*solid)  # (q, m)
     de = delta_e_2000(*shown)
     confused = (de_ref >= min_delta_e) & (de < min_delta_e)
@@ -557,11 +558,12 @@ def _confusion(
     under = "" if deficiency is None else f" under simulated {deficiency}"
     for j, canvas in enumerate(result.theme.canvases):
         worst: dict[tuple[str, str], int] = {}
-        for q in np.flatnonzero(confused[:, j]):
-            a, b = result.entries[first[q]], result.entries[second[q]]
-            key = tuple(sorted((_role(a.icon), _role(b.icon))))
-            if key not in worst or de[q, j] < de[worst[key], j]:  # type: ignore[index]
-                worst[key] = int(q)  # type: ignore[index]
+        for hit in np.flatnonzero(confused[:, j]):
+            a, b = result.entries[first[hit]], result.entries[second[hit]]
+            role_a, role_b = sorted((_role(a.icon), _role(b.icon)))
+            key = (role_a, role_b)
+            if key not in worst or de[hit, j] < de[worst[key], j]:
+                worst[key] = int(hit)
         for (r1, r2), q in sorted(worst.items()):
             a, b = result.entries[first[q]], result.entries[second[q]]
             yield PaintFinding(
@@ -580,7 +582,7 @@ def _confusion(
             )
 
 
-def _cvd_collisions(result: PaintAudit, deficiency: str) -> Iterator[PaintFinding]:
+def _cvd_collisions(result: PaintAudit, deficiency: Deficiency) -> Iterator[PaintFinding]:
     """Distinct sources whose simulated displayed colours share an 8-bit code, new at alpha."""
     reps = _styles(result)
     if len(reps) < 2:
@@ -590,8 +592,8 @@ def _cvd_collisions(result: PaintAudit, deficiency: str) -> Iterator[PaintFindin
     src = result.sources[idx][:, None, :]
     shown = composite_paint(src, bg, result.alpha[idx][:, None], 1.0, result.pipeline)
     solid = composite_paint(src, bg, 1.0, 1.0, result.pipeline)
-    seen = to_8bit(simulate_cvd(shown, deficiency))  # type: ignore[arg-type]
-    ref = to_8bit(simulate_cvd(solid, deficiency))  # type: ignore[arg-type]
+    seen = to_8bit(simulate_cvd(shown, deficiency))
+    ref = to_8bit(simulate_cvd(solid, deficiency))
     sources = [result.entries[p].source for p in idx]
     for j, canvas in enumerate(result.theme.canvases):
         groups: dict[tuple[int, ...], list[int]] = {}

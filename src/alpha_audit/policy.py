@@ -146,18 +146,16 @@ class Policy:
         min_size_contrast: float | None = None,
     ) -> Policy:
         """This policy with command-line overrides applied (``None`` keeps a field)."""
-        changes: dict[str, object] = {}
-        if rules:
-            changes["rules"] = frozenset(Rule.parse(r) for r in rules)
-        if max_loss is not None:
-            changes["max_loss"] = max_loss
-        if min_delta_e is not None:
-            changes["min_delta_e"] = min_delta_e
-        if max_drift is not None:
-            changes["max_drift"] = max_drift
-        if min_size_contrast is not None:
-            changes["min_size_contrast"] = min_size_contrast
-        return replace(self, **changes)
+        return replace(
+            self,
+            rules=frozenset(Rule.parse(r) for r in rules) if rules else self.rules,
+            max_loss=self.max_loss if max_loss is None else max_loss,
+            min_delta_e=self.min_delta_e if min_delta_e is None else min_delta_e,
+            max_drift=self.max_drift if max_drift is None else max_drift,
+            min_size_contrast=(
+                self.min_size_contrast if min_size_contrast is None else min_size_contrast
+            ),
+        )
 
     def exempt(self, rule: Rule, canvas: str | None, icons: tuple[str, ...]) -> Exemption | None:
         """The first exemption covering this finding, if any."""

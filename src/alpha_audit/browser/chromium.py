@@ -152,7 +152,8 @@ class Chromium(Browser):
             if reply.get("id") == self._next_id:
                 if "error" in reply:
                     raise BrowserError(f"Chromium {method}: {reply['error'].get('message')}")
-                return reply["result"]
+                result: dict[str, Any] = reply["result"]
+                return result
         raise AssertionError("unreachable")
 
     def _navigate(self, url: str) -> None:
@@ -175,7 +176,8 @@ class Chromium(Browser):
             details = reply["exceptionDetails"]
             text = details.get("exception", {}).get("description") or details.get("text")
             raise BrowserError(f"script error in Chromium: {text}")
-        return reply["result"].get("value")
+        value: str = reply["result"].get("value")  # JSON text (evaluate() refuses anything else)
+        return value
 
     def _set_viewport(self, width: int, height: int) -> None:
         self._call(

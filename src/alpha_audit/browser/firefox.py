@@ -124,7 +124,8 @@ class Firefox(Browser):
                 continue  # events, which we never subscribe to
             if message.get("type") == "error":
                 raise BrowserError(f"Firefox {method}: {message.get('message')}")
-            return message["result"]
+            result: dict[str, Any] = message["result"]
+            return result
 
     def _navigate(self, url: str) -> None:
         self._call(
@@ -145,7 +146,8 @@ class Firefox(Browser):
         if reply.get("type") == "exception":
             details = reply.get("exceptionDetails", {})
             raise BrowserError(f"script error in Firefox: {details.get('text')}")
-        return reply["result"].get("value")
+        value: str = reply["result"].get("value")  # JSON text (evaluate() refuses anything else)
+        return value
 
     def _set_viewport(self, width: int, height: int) -> None:
         self._call(

@@ -239,9 +239,10 @@ class Browser(abc.ABC):
         self._check_open()
         text = self._evaluate_text(json_expression(expression), timeout or self.timeout)
         try:
-            return json.loads(text)
+            value: JSONValue = json.loads(text)
         except (TypeError, json.JSONDecodeError) as exc:
             raise BrowserError(f"{self.LABEL} returned no JSON for {expression[:60]!r}") from exc
+        return value
 
     def wait_for(self, expression: str, *, timeout: float | None = None) -> JSONValue:
         """Poll ``expression`` until it is truthy; return its value."""

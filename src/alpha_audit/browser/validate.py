@@ -14,6 +14,7 @@ import base64
 import json
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
+from typing import TypedDict
 
 import numpy as np
 from numpy.typing import NDArray
@@ -101,12 +102,22 @@ class PageValidation:
         return max((r.max_error_uncovered for r in self.results), default=0)
 
 
-def _batches(jobs: list[dict[str, object]], icons: int) -> list[list[dict[str, object]]]:
+class _Job(TypedDict):
+    """One page render request (``_c``: its configuration, kept out of the request)."""
+
+    canvas: int
+    size: int
+    blend: str
+    alpha: float
+    _c: Configuration
+
+
+def _batches(jobs: list[_Job], icons: int) -> list[list[_Job]]:
     """Consecutive jobs grouped so that each group's pixels stay under ``_BATCH_BYTES``."""
-    groups: list[list[dict[str, object]]] = []
+    groups: list[list[_Job]] = []
     size = 0
     for job in jobs:
-        nbytes = icons * int(job["size"]) ** 2 * 3  # type: ignore[call-overload]
+        nbytes = icons * job["size"] ** 2 * 3
         if not groups or size + nbytes > _BATCH_BYTES:
             groups.append([])
             size = 0
@@ -150,7 +161,7 @@ def validate_page(
     worst = {c: [0, 0, 0] for c in configurations}  # instances, covered, uncovered
     for j, canvas in enumerate(theme.canvases):
         background = np.array(canvas.linear)
-        jobs = [
+        jobs: list[_Job] = [
             {"canvas": j, "size": s, "blend": str(c.blend), "alpha": c.alpha, "_c": c}
             for s in sizes
             for c in configurations
@@ -161,7 +172,7 @@ def validate_page(
             pixels = np.frombuffer(base64.b64decode(str(raw)), dtype=np.uint8)
             offset = 0
             for job in batch:
-                s, config = int(job["size"]), job["_c"]  # type: ignore[call-overload]
+                s, config = job["size"], job["_c"]
                 count = n * s * s * 3
                 if offset + count > pixels.size:
                     raise BrowserError(f"{browser.LABEL}: the page returned too few pixels")

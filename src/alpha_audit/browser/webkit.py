@@ -182,7 +182,8 @@ class WebKit(Browser):
         if not isinstance(reply, dict) or "error" in reply:
             detail = reply.get("error") if isinstance(reply, dict) else reply
             raise BrowserError(f"script error in WebKitGTK: {detail}")
-        return reply["ok"]
+        value: str = reply["ok"]  # JSON text (evaluate() refuses anything else)
+        return value
 
     def _set_viewport(self, width: int, height: int) -> None:
         # WebDriver sizes the window, not the viewport (section 11.8.2): size it once, measure
@@ -193,8 +194,13 @@ class WebKit(Browser):
         outer = self._request("GET", path)
         if not (isinstance(inner, list) and isinstance(outer, dict)):
             raise BrowserError("WebKitWebDriver returned no window size")
-        extra_w = int(outer["width"]) - int(inner[0])
-        extra_h = int(outer["height"]) - int(inner[1])
+        sizes = (outer.get("width"), outer.get("height"), *inner[:2])
+        if not all(isinstance(v, int | float) for v in sizes):
+            raise BrowserError(
+                f"WebKitWebDriver returned a window size that is not numbers: {sizes}"
+            )
+        ow, oh, iw, ih = (int(v) for v in sizes)  # type: ignore[arg-type]  # checked just above
+        extra_w, extra_h = ow - iw, oh - ih
         if extra_w or extra_h:
             self._request("POST", path, {"width": width + extra_w, "height": height + extra_h})
 

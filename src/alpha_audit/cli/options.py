@@ -91,7 +91,9 @@ def at_least(flag: str, low: float) -> Callable[[float | None], float | None]:
     return check
 
 
-def rules_flag(flag: str, refused: tuple[str, ...] = (), why: str = "") -> Callable:
+def rules_flag(
+    flag: str, refused: tuple[str, ...] = (), why: str = ""
+) -> Callable[[list[str] | None], list[str] | None]:
     """A typer callback parsing rule names, naming ``flag``; ``refused`` rules are errors."""
 
     def check(values: list[str] | None) -> list[str] | None:
@@ -181,7 +183,7 @@ def read_gamut_option(value: str | None) -> GamutPolicy | None:
     if value not in GAMUT_POLICIES:
         allowed = ", ".join(GAMUT_POLICIES)
         raise UsageError(f"--gamut {value!r} is not a policy; use one of: {allowed}")
-    return value  # type: ignore[return-value]
+    return value
 
 
 def require_finite(value: float | None, option: str) -> float | None:
@@ -201,7 +203,7 @@ class OrderedOptionsCommand(TyperCommand):
     ``--output`` followed which ``--format``; the parser knows, so ask it once.
     """
 
-    def parse_args(self, ctx: typer.Context, args: list[str]) -> list[str]:  # type: ignore[override]
+    def parse_args(self, ctx: typer.Context, args: list[str]) -> list[str]:  # type: ignore[override]  # the base names typer's private click Context; typer.Context is its public subclass
         """Record ``[param name, ...]`` per option occurrence, then parse as usual."""
         _, _, order = self.make_parser(ctx).parse_args(args=list(args))
         ctx.meta[OPTION_ORDER] = [p.name for p in order]

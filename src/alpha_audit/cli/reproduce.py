@@ -8,12 +8,13 @@ once everything has been computed, so a failed run leaves no partial files.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 from typing import Annotated
 
 import typer
 from rich.console import Console
-from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+from rich.progress import BarColumn, Progress, TaskID, TextColumn, TimeElapsedColumn
 
 from alpha_audit.bundled import bundled_theme, theme_source
 from alpha_audit.cli.console import emit, stderr_note, stdout_options
@@ -30,8 +31,10 @@ DEFAULT_THEME = "paper16"
 """The bundled theme with the paper's sixteen canvases, used without ``--theme``."""
 
 
-def _run_with_progress(run_kwargs: dict, console: Console) -> Reproduction:
-    """``reproduce(**run_kwargs)`` with one progress bar per experiment on stderr."""
+def _run_with_progress(
+    run: Callable[[Callable[[Experiment, float], None]], Reproduction], console: Console
+) -> Reproduction:
+    """``run(progress)`` with one progress bar per experiment on stderr."""
     with Progress(
         TextColumn("{task.description:<12}"),
         BarColumn(),
@@ -40,14 +43,14 @@ def _run_with_progress(run_kwargs: dict, console: Console) -> Reproduction:
         transient=True,
         disable=not console.is_terminal,
     ) as bars:
-        tasks: dict[Experiment, int] = {}
+        tasks: dict[Experiment, TaskID] = {}
 
         def advance(experiment: Experiment, fraction: float) -> None:
             if experiment not in tasks:
                 tasks[experiment] = bars.add_task(experiment.value, total=1.0)
             bars.advance(tasks[experiment], fraction)
 
-        return reproduce(**run_kwargs, progress=advance)
+        return run(advance)
 
 
 def reproduce_command(
@@ -127,14 +130,15 @@ def reproduce_command(
         raise UsageError(f"theme file {theme_path} not found")
     loaded = load_theme(theme_path)
     run = _run_with_progress(
-        {
-            "theme": loaded,
-            "only": only or (),
-            "alphas": alphas or (1.1, 1.4),
-            "quick": quick,
-            "icons": icons,
-            "engines": engines or None,
-        },
+        lambda progress: reproduce(
+            loaded,
+            only or (),
+            alphas=alphas or (1.1, 1.4),
+            quick=quick,
+            icons=icons,
+            engines=engines or None,
+            progress=progress,
+        ),
         Console(stderr=True),
     )
     emit(output_format.renderer()(run, stdout_options()), None, False)

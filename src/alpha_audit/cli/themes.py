@@ -13,8 +13,7 @@ from alpha_audit.bundled import load_bundled_themes
 from alpha_audit.cli.console import emit, stdout_console
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.model import Theme
-from alpha_audit.render.common import fitted_table, name_column, number_column
-from alpha_audit.render.json import dumps
+from alpha_audit.render.common import dumps, fitted_table, name_column, number_column
 
 __all__ = ["ThemesFormat", "themes_command", "themes_document"]
 

@@ -40,7 +40,9 @@ Pipeline = Literal["linear", "css"]
 PIPELINES: tuple[Pipeline, ...] = ("linear", "css")
 
 
-def composite_raw(source: ArrayLike, background: ArrayLike, alpha: ArrayLike) -> NDArray:
+def composite_raw(
+    source: ArrayLike, background: ArrayLike, alpha: ArrayLike
+) -> NDArray[np.float64]:
     """Unclipped ``Cb + a (Cs - Cb)``; ``alpha`` broadcasts against the leading shape.
 
     >>> composite_raw([1.0, 0.5, 0.0], [0.5, 0.5, 0.5], 2.0).tolist()
@@ -52,7 +54,9 @@ def composite_raw(source: ArrayLike, background: ArrayLike, alpha: ArrayLike) ->
     return b + a * (s - b)
 
 
-def composite_extended(source: ArrayLike, background: ArrayLike, alpha: ArrayLike) -> NDArray:
+def composite_extended(
+    source: ArrayLike, background: ArrayLike, alpha: ArrayLike
+) -> NDArray[np.float64]:
     """``clip(Cb + a (Cs - Cb), 0, 1)`` per channel, the paper's displayed output.
 
     ``source`` and ``background`` are linear sRGB in [0, 1] with channels last;
@@ -66,7 +70,7 @@ def composite_extended(source: ArrayLike, background: ArrayLike, alpha: ArrayLik
 
 def composite_coverage(
     source: ArrayLike, background: ArrayLike, alpha: ArrayLike, coverage: ArrayLike
-) -> NDArray:
+) -> NDArray[np.float64]:
     """``q * clip(Cb + a (Cs - Cb)) + (1 - q) * Cb`` for an antialiased mask ``q``.
 
     ``coverage`` has the leading (pixel) shape; the coefficient scales the colour
@@ -87,7 +91,9 @@ def _check_css_alpha(alpha: NDArray[np.float64]) -> None:
         )
 
 
-def composite_css(source: ArrayLike, background: ArrayLike, alpha: ArrayLike) -> NDArray:
+def composite_css(
+    source: ArrayLike, background: ArrayLike, alpha: ArrayLike
+) -> NDArray[np.float64]:
     """What a browser shows for CSS ``opacity: a``: blend the encoded values, then 8-bit.
 
     ``source`` and ``background`` are linear sRGB (channels last), as everywhere
@@ -114,7 +120,7 @@ def composite_paint(
     alpha: ArrayLike,
     opacity: ArrayLike = 1.0,
     pipeline: Pipeline = "linear",
-) -> NDArray:
+) -> NDArray[np.float64]:
     """Displayed colour of a paint at opacity ``o`` (times coverage) under ``pipeline``.
 
     ``linear``: ``o * clip(Cb + a (Cs - Cb)) + (1 - o) * Cb`` in linear light
@@ -135,12 +141,12 @@ def composite_paint(
     raise ValueError(f"unknown pipeline {pipeline!r}; use one of {', '.join(PIPELINES)}")
 
 
-def difference_blend(source: ArrayLike, background: ArrayLike) -> NDArray:
+def difference_blend(source: ArrayLike, background: ArrayLike) -> NDArray[np.float64]:
     """W3C Compositing ``difference``: ``|Cs - Cb|`` (the paper's control)."""
     return np.abs(np.asarray(source, dtype=np.float64) - np.asarray(background, dtype=np.float64))
 
 
-def exclusion_blend(source: ArrayLike, background: ArrayLike) -> NDArray:
+def exclusion_blend(source: ArrayLike, background: ArrayLike) -> NDArray[np.float64]:
     """W3C Compositing ``exclusion``: ``Cs + Cb - 2 Cs Cb`` (the paper's control)."""
     s = np.asarray(source, dtype=np.float64)
     b = np.asarray(background, dtype=np.float64)

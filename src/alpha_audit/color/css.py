@@ -27,12 +27,15 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Literal, get_args
+from typing import TYPE_CHECKING, Literal, get_args
 
 import numpy as np
 from numpy.typing import NDArray
 
 from alpha_audit.errors import ColorSyntaxError
+
+if TYPE_CHECKING:  # coloraide is imported on first use (import alpha_audit.color stays light)
+    from coloraide import Color
 
 __all__ = [
     "CSS_SPACES",
@@ -46,7 +49,7 @@ __all__ = [
 ]
 
 GamutPolicy = Literal["clip", "map", "error"]
-GAMUT_POLICIES: tuple[str, ...] = get_args(GamutPolicy)
+GAMUT_POLICIES: tuple[GamutPolicy, ...] = get_args(GamutPolicy)
 
 # The colour spaces of CSS Color 4 (sections 8-10 and the predefined spaces of
 # 10.1-10.8), named as CSS and the DTCG Color Module 2025.10 name them; the
@@ -124,25 +127,32 @@ class ParsedColor:
         return np.array(self.encoded, dtype=np.float64)
 
 
-def _color_class() -> type:
+def _color_class() -> type[Color]:
     from coloraide import Color
 
     return Color
 
 
-def _resolve(color: object, text: str, space: str, *, gamut: str, allow_alpha: bool) -> ParsedColor:
+def _rgb(values: Sequence[float]) -> tuple[float, float, float]:
+    r, g, b = (float(v) for v in values)
+    return r, g, b
+
+
+def _resolve(
+    color: Color, text: str, space: str, *, gamut: GamutPolicy, allow_alpha: bool
+) -> ParsedColor:
     """Apply the alpha rule and the gamut policy to a coloraide colour."""
     if gamut not in GAMUT_POLICIES:
         raise ColorSyntaxError(
             f"gamut {gamut!r} is not a policy; use one of {', '.join(GAMUT_POLICIES)}"
         )
-    alpha = float(color.alpha(nans=False))  # type: ignore[attr-defined]
+    alpha = float(color.alpha(nans=False))
     if not math.isfinite(alpha):
         raise ColorSyntaxError(f"{text!r} has an alpha that is not a number")
     if alpha < 1.0 and not allow_alpha:
         raise ColorSyntaxError(f"{text!r} {_OWN_ALPHA}")
-    srgb = color.convert("srgb", norm=False)  # type: ignore[attr-defined]
-    unmapped = tuple(float(v) for v in srgb.coords(nans=False))
+    srgb = color.convert("srgb", norm=False)
+    unmapped = _rgb(srgb.coords(nans=False))
     if not all(math.isfinite(v) for v in unmapped):
         raise ColorSyntaxError(f"{text!r} has a channel that is not a finite number")
     in_gamut = bool(srgb.in_gamut(tolerance=_GAMUT_TOLERANCE))
@@ -151,7 +161,7 @@ def _resolve(color: object, text: str, space: str, *, gamut: str, allow_alpha: b
     elif gamut == "map":
         from alpha_audit.color.gamut import map_to_srgb
 
-        fitted = tuple(float(v) for v in map_to_srgb(unmapped))
+        fitted = _rgb(map_to_srgb(unmapped).tolist())
     else:
         shown = ", ".join(f"{v:.4f}" for v in unmapped)
         raise ColorSyntaxError(
@@ -159,15 +169,15 @@ def _resolve(color: object, text: str, space: str, *, gamut: str, allow_alpha: b
             "set gamut: clip or gamut: map (in this file, the config or its tokens: table, "
             "or `gamut`)"
         )
-    encoded = tuple(float(v) for v in np.clip(np.array(fitted, dtype=np.float64), 0.0, 1.0))
+    encoded = _rgb(np.clip(np.array(fitted, dtype=np.float64), 0.0, 1.0).tolist())
     return ParsedColor(
         text=text,
         space=space,
-        encoded=encoded,  # type: ignore[arg-type]
-        unmapped=unmapped,  # type: ignore[arg-type]
+        encoded=encoded,
+        unmapped=unmapped,
         alpha=alpha,
         in_gamut=in_gamut,
-        gamut=gamut,  # type: ignore[arg-type]
+        gamut=gamut,
     )
 
 

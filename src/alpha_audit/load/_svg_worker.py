@@ -23,6 +23,7 @@ from __future__ import annotations
 import os
 import struct
 import sys
+from typing import BinaryIO
 
 EMPTY_SVG = b'<svg xmlns="http://www.w3.org/2000/svg" width="1" height="1"/>'
 OK, FAILED = 0, 1
@@ -93,7 +94,7 @@ def install_sandbox(memory_bytes: int, cpu_seconds: int) -> None:
     try:
         import resource
     except ImportError:  # pragma: no cover - not POSIX; the time limit still applies
-        resource = None  # type: ignore[assignment]
+        resource = None  # type: ignore[assignment]  # no resource module off POSIX: None says so
     if resource is not None:
         for limit, value in (
             (resource.RLIMIT_AS, memory_bytes),
@@ -122,14 +123,14 @@ def install_sandbox(memory_bytes: int, cpu_seconds: int) -> None:
     sys.addaudithook(hook)
 
 
-def _read_exact(stream, n: int) -> bytes:
+def _read_exact(stream: BinaryIO, n: int) -> bytes:
     data = stream.read(n)
     if len(data) != n:
         raise EOFError
     return data
 
 
-def serve(stdin, stdout, memory_bytes: int | None = None) -> None:
+def serve(stdin: BinaryIO, stdout: BinaryIO, memory_bytes: int | None = None) -> None:
     """Answer render requests until a request with no sizes or end of input."""
     u32 = struct.Struct(">I")
     while True:

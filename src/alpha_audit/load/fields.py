@@ -169,8 +169,9 @@ def read_color(
 
 def read_pipeline(doc: YamlDoc, keys: KeyPath, value: Any) -> Pipeline:
     """``linear`` or ``css`` (docs/model.md, "Pipelines")."""
-    if not isinstance(value, str) or value.strip().lower() not in PIPELINES:
+    name = value.strip().lower() if isinstance(value, str) else None
+    if name not in PIPELINES:
         raise doc.error(
             keys, f"{describe(value)} is not a pipeline; use one of: {', '.join(PIPELINES)}"
         )
-    return value.strip().lower()  # type: ignore[return-value]
+    return name

@@ -194,9 +194,9 @@ class _Manifest:
             )
         if len(raw) > MAX_ICONS:
             raise self.doc.error(("icons",), f"{len(raw)} icons; at most {MAX_ICONS} are allowed")
-        out = []
+        out: list[tuple[KeyPath, Path, dict[str, Any]]] = []
         for i, item in enumerate(raw):
-            keys = ("icons", i)
+            keys: KeyPath = ("icons", i)
             if isinstance(item, str):
                 out.append((keys, self.existing_file(keys, item), {}))
                 continue
@@ -243,6 +243,7 @@ def iconset_from_doc(doc: YamlDoc, *, root: Path, gamut: GamutPolicy | None = No
             )
         seen[icon_name] = where
         color: str | None
+        color_name: str | None
         if cycle:
             pname, pcolor = next(palette_cycle)
             color, color_name = pcolor, pname

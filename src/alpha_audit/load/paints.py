@@ -36,7 +36,7 @@ import xml.etree.ElementTree as ET
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Literal
+from typing import Any, Literal, cast
 
 import cssselect2
 import defusedxml
@@ -221,8 +221,12 @@ def isolate_groups(
     svg: bytes, groups: Sequence[PaintGroup], *, path: str | Path | None = None
 ) -> list[bytes]:
     """One :func:`isolate_paints` SVG per paint group, from one parse and one cascade."""
-    keys = [g.key for g in groups]
-    return isolate_each(svg, [lambda p, k=k: (p.color, p.opacity) == k for k in keys], path=path)
+    return isolate_each(svg, [_in_group(g.key) for g in groups], path=path)
+
+
+def _in_group(key: tuple[str, float]) -> Callable[[Paint], bool]:
+    """Whether a paint belongs to the group with ``key`` (colour, opacity)."""
+    return lambda p: (p.color, p.opacity) == key
 
 
 def isolate_each(
@@ -289,7 +293,7 @@ def _parse(svg: bytes, path: str | Path | None) -> tuple[ET.Element, dict[int, i
     parser_box: list[defusedxml.ElementTree.DefusedXMLParser] = []
 
     class _LineBuilder(ET.TreeBuilder):
-        def start(self, tag, attrs):  # type: ignore[no-untyped-def]
+        def start(self, tag: Any, attrs: dict[Any, Any], /) -> ET.Element:
             if len(lines) >= MAX_ELEMENTS:
                 raise SvgError(
                     f"has more than {MAX_ELEMENTS} elements; refused (resource limit)", path=path
@@ -484,7 +488,7 @@ def _cascade(
     computed.update(dict.fromkeys(_MARKERS))
     inline_normal, inline_important = _declarations(node.get("style", ""))
     layers: list[list[tuple[str, str]]] = [
-        [(name, node.get(name)) for name in _PROPERTIES if node.get(name) is not None]  # type: ignore[misc]
+        [(name, node.get(name)) for name in _PROPERTIES if node.get(name) is not None]
     ]
     normal, important = matchers
     layers += [rule[-1] for rule in normal.match(wrapper)]
@@ -546,7 +550,7 @@ def _walk(svg: bytes, path: str | Path | None, unaudited: list[Unaudited]) -> It
         paints: tuple[Paint, ...] = ()
         if tag in _SHAPES:
             paints = tuple(_shape_paints(node, computed, opacity, line, ids, unaudited))
-            if any(computed[m] and computed[m].lower() != "none" for m in _MARKERS):  # type: ignore[union-attr]
+            if any(v and v.lower() != "none" for v in (computed[m] for m in _MARKERS)):
                 unaudited.append(Unaudited(_describe(node), line, "markers are not audited"))
         elif tag not in _CONTAINERS:
             continue  # unknown SVG element: drawn as nothing by the renderer
@@ -592,12 +596,13 @@ def _shape_paints(
         effective = opacity * (1.0 if kind_opacity is None else kind_opacity)
         if sort == "current":
             if computed["color"] is None:
-                yield Paint(CURRENT_COLOR, kind, effective, description, line)  # type: ignore[arg-type]
+                yield Paint(CURRENT_COLOR, kind, effective, description, line)
                 continue
             sort, detail = _color_value(computed["color"])
         if sort == "space":
             reason = f"{kind} is a {detail} colour, outside sRGB notation; not audited"
             unaudited.append(Unaudited(description, line, reason))
             continue
-        hex_color, colour_alpha = detail  # type: ignore[misc]
-        yield Paint(hex_color, kind, effective * colour_alpha, description, line)  # type: ignore[arg-type]
+        # what remains is _color_value's ("color", (hex, alpha))
+        hex_color, colour_alpha = cast(tuple[str, float], detail)
+        yield Paint(hex_color, kind, effective * colour_alpha, description, line)

@@ -176,8 +176,8 @@ class RenderPool:
         results: list[Outcome | None] = [None] * len(jobs)
         pending = deque(range(len(jobs)))
         selector = selectors.DefaultSelector()
-        for worker in self.workers:  # workers kept from an earlier map() call
-            selector.register(worker.stdout, selectors.EVENT_READ, worker)
+        for kept in self.workers:  # workers kept from an earlier map() call
+            selector.register(kept.stdout, selectors.EVENT_READ, kept)
         try:
             while pending or any(w.job is not None for w in self.workers):
                 while pending and (
@@ -228,8 +228,9 @@ class RenderPool:
                         selector.unregister(worker.stdout)
                         self._replace(worker)
                 now = time.monotonic()
-                for worker in [w for w in self.workers if w.job is not None and w.deadline <= now]:
-                    results[worker.job] = (
+                late = [(w, w.job) for w in self.workers if w.job is not None and w.deadline <= now]
+                for worker, late_job in late:
+                    results[late_job] = (
                         f"took longer than {self.limits.timeout:g} s to render; refused"
                     )
                     worker.job = None

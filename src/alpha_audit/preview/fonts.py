@@ -109,7 +109,8 @@ def _truetype(path: Path, size: int) -> ImageFont.FreeTypeFont:
     return ImageFont.truetype(str(path), size=size)
 
 
-Font = ImageFont.FreeTypeFont | ImageFont.ImageFont
+# Pillow's bundled font at a given size and installed TrueType fonts are both FreeType.
+Font = ImageFont.FreeTypeFont
 
 
 def runs(font: Font, text: str) -> list[tuple[Font, str]]:
@@ -155,7 +156,11 @@ def text_metrics(font: Font, text: str) -> tuple[int, int]:
 
 
 def draw_text(
-    draw: ImageDraw.ImageDraw, xy: tuple[int, int], text: str, font: Font, fill: object
+    draw: ImageDraw.ImageDraw,
+    xy: tuple[int, int],
+    text: str,
+    font: Font,
+    fill: str | tuple[int, ...],
 ) -> int:
     """Draw ``text`` with its top at ``xy`` (runs share one baseline); return its width."""
     ascent, _ = text_metrics(font, text)

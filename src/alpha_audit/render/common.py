@@ -465,7 +465,7 @@ def fitted_table(
     body = [[c if isinstance(c, Text) else Text(str(c)) for c in row] for row in rows]
     table_options.setdefault("padding", (0, 1, 0, 0))  # one space between columns
     table = _table_class()(**table_options)
-    table.shrink_first = [k for k, c in enumerate(columns) if c.shrink_first]  # type: ignore[attr-defined]
+    table.shrink_first = [k for k, c in enumerate(columns) if c.shrink_first]  # type: ignore[attr-defined]  # a FittedTable, local to _table_class (rich loads lazily)
     for k, column in enumerate(columns):
         if column.number:
             widest = max((cell_len(row[k].plain) for row in body if k < len(row)), default=1)

@@ -50,8 +50,8 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     """The report as a JUnit XML document (``<testsuites>``)."""
     by_cell: dict[tuple[str, str, str | None, str], list[Finding]] = defaultdict(list)
     for f in report.gate.findings:
-        for icon in f.icons:
-            by_cell[(f.theme, f.iconset, f.canvas, icon)].append(f)
+        for icon_name in f.icons:
+            by_cell[(f.theme, f.iconset, f.canvas, icon_name)].append(f)
     unrenderable_fails = report.gate.unrenderable_fails
 
     root = ET.Element("testsuites", {"name": "alpha-audit"})

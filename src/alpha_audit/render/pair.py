@@ -60,7 +60,7 @@ def render_table(report: PairReport, options: RenderOptions) -> str:
     backgrounds = len({r.background for r in rows})
     # Never rich markup; the title also says what the ΔE00 column measures.
     title = Text(f"{report.color} on {backgrounds} background(s); ΔE00 from {report.color}")
-    rows = [
+    cells = [
         (
             Text(r.background, style=f"on {r.background}"),
             f"{r.alpha:g}",
@@ -84,7 +84,7 @@ def render_table(report: PairReport, options: RenderOptions) -> str:
     ]
     table = fitted_table(
         columns,
-        rows,
+        cells,
         title=title,
         title_justify="left",
         box=box.SIMPLE_HEAD,

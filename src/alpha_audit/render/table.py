@@ -103,7 +103,9 @@ def _findings(result: AuditResult) -> list[RenderableType]:
     name_widths = {"colour": 9, "sources": 7, "output": 7}
     figures = {"α", "contrast", "contrast at α", "output"}
 
-    def section(title: str, style: str, header: tuple[str, ...], items: list[tuple]) -> None:
+    def section(
+        title: str, style: str, header: tuple[str, ...], items: list[tuple[str | Text, ...]]
+    ) -> None:
         """A titled table, one finding per row; names wrap, figures stay whole."""
         if not items:
             return
@@ -136,7 +138,9 @@ def _findings(result: AuditResult) -> list[RenderableType]:
 
     one_alpha = len({float(a) for a in result.alpha}) <= 1  # then α is in the heading
 
-    def grouped(selected: Iterable[Row], numbers: Callable[[Row], str]) -> list[tuple]:
+    def grouped(
+        selected: Iterable[Row], numbers: Callable[[Row], str]
+    ) -> list[tuple[str | Text, ...]]:
         return [
             (
                 colour(r),

@@ -45,13 +45,17 @@ class BroadCounts:
     worst: tuple[int, int, int, int, int, int]
 
 
-def _contrast(t: NDArray, cb: NDArray) -> NDArray:
+def _contrast(t: NDArray[np.float64], cb: NDArray[np.float64]) -> NDArray[np.float64]:
     """WCAG ratio from ``Y + 0.05`` values, as ``contrast_from_luminance`` rounds it."""
     return np.maximum(t, cb) / np.minimum(t, cb)
 
 
 def broad_counts(
-    source_levels: NDArray, background_levels: NDArray, alphas: NDArray, *, tol: float
+    source_levels: NDArray[np.float64],
+    background_levels: NDArray[np.float64],
+    alphas: NDArray[np.float64],
+    *,
+    tol: float,
 ) -> list[BroadCounts]:
     """Contrast changes of every source-grid colour on every background-grid colour.
 
@@ -78,7 +82,7 @@ def broad_counts(
 
     local = threading.local()
 
-    def block(jr: int, jg: int, rows: NDArray) -> NDArray:
+    def block(jr: int, jg: int, rows: NDArray[np.intp]) -> NDArray[np.float64]:
         """(n_alpha, 4): increase, decrease, big losses, min change."""
         shape = (rows.size, n_s, n_s, n_b)
         if getattr(local, "shape", None) != shape:  # per-thread buffers, reused

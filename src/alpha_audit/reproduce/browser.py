@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import hashlib
 import os
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -79,7 +79,7 @@ def select_icons(directory: Path, count: int = PAPER_ICONS) -> list[Path]:
 
 def load_validation_icons(
     directory: Path, sizes: Sequence[int], count: int = PAPER_ICONS
-) -> tuple[IconSet, dict[tuple[str, int], NDArray[np.float64]], int]:
+) -> tuple[IconSet, Mapping[tuple[str, int], NDArray[np.float64]], int]:
     """The selected icons coloured with Vibrant in turn, their masks, and how many failed.
 
     Icons that cannot be rasterised are left out (and counted), the rest keep

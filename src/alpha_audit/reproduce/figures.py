@@ -8,11 +8,12 @@ deterministic for a given result.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from pathlib import Path
 from typing import BinaryIO
 
 import numpy as np
+from numpy.typing import NDArray
 from PIL import Image, ImageDraw, ImageFont
 
 from alpha_audit.output import Output, write_files
@@ -54,8 +55,8 @@ def _panel(
     draw: ImageDraw.ImageDraw,
     origin: tuple[int, int],
     title: str,
-    alphas: np.ndarray,
-    series: dict[str, Sequence[float]],
+    alphas: NDArray[np.float64],
+    series: dict[str, NDArray[np.float64]],
     alpha_range: tuple[float, float],
 ) -> None:
     """One panel: axes, ticks, dotted alpha = 1 line, one polyline per group."""
@@ -109,7 +110,11 @@ def sweep_figure(result: SweepResult, alpha_range: tuple[float, float]) -> Image
     draw = ImageDraw.Draw(image)
     for i, (name, title) in enumerate(_PANELS):
         groups = getattr(result, name)
-        series = {g: np.asarray(groups[g])[keep] for g in ("light", "dark") if g in groups}
+        series = {
+            g: np.asarray(groups[g], dtype=np.float64)[keep]
+            for g in ("light", "dark")
+            if g in groups
+        }
         _panel(draw, (i * _PANEL_W, 0), title, alphas[keep], series, alpha_range)
     return image
 

@@ -8,7 +8,7 @@ random pairs use NumPy's default generator with seed 20260913.
 from __future__ import annotations
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
     "PAPER_SEED",
@@ -64,9 +64,7 @@ def random_source_pairs(n: int, seed: int = PAPER_SEED) -> NDArray[np.int64]:
     return kept[:n]
 
 
-def code_channels(codes: NDArray) -> NDArray[np.intp]:
+def code_channels(codes: ArrayLike) -> NDArray[np.intp]:
     """24-bit ``0xRRGGBB`` codes -> (..., 3) channel bytes."""
-    codes = np.asarray(codes, dtype=np.int64)
-    return np.stack([(codes >> 16) & 0xFF, (codes >> 8) & 0xFF, codes & 0xFF], axis=-1).astype(
-        np.intp
-    )
+    c = np.asarray(codes, dtype=np.int64)
+    return np.stack([(c >> 16) & 0xFF, (c >> 8) & 0xFF, c & 0xFF], axis=-1).astype(np.intp)

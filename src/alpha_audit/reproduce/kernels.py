@@ -63,7 +63,9 @@ _SERIES_TERMS = 48
 _BLOCK = 32768
 
 
-def channel_tables(levels: NDArray, backgrounds: NDArray, alphas: NDArray) -> NDArray:
+def channel_tables(
+    levels: NDArray[np.float64], backgrounds: NDArray[np.float64], alphas: NDArray[np.float64]
+) -> NDArray[np.float64]:
     """Clipped output per (problem, channel, level): shape ``(m, 3, C)``.
 
     ``levels`` are the linear source levels (C,), ``backgrounds`` (m, 3) and
@@ -74,7 +76,7 @@ def channel_tables(levels: NDArray, backgrounds: NDArray, alphas: NDArray) -> ND
     return np.clip(b + a * (levels[np.newaxis, np.newaxis, :] - b), 0.0, 1.0)
 
 
-def luminance_parts(tables: NDArray) -> tuple[NDArray, NDArray]:
+def luminance_parts(tables: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """``(P, Q)``: ``P[m, r*C + g] = wr T_R[r] + wg T_G[g]`` and ``Q[m, b] = wb T_B[b]``."""
     red = _WR * tables[:, 0, :]
     green = _WG * tables[:, 1, :]
@@ -82,14 +84,21 @@ def luminance_parts(tables: NDArray) -> tuple[NDArray, NDArray]:
     return p, _WB * tables[:, 2, :]
 
 
-def _take(table: NDArray, cols: NDArray) -> NDArray:
+def _take(table: NDArray[np.float64], cols: NDArray[np.intp]) -> NDArray[np.float64]:
     """``table[i, cols[i, r]]`` for a (m, n) table and (m, R) column indices."""
     offsets = (np.arange(table.shape[0]) * table.shape[1])[:, np.newaxis]
     # np.take: n-d fancy indexing is several times slower for the same gather.
-    return np.take(table.ravel(), cols + offsets)
+    gathered: NDArray[np.float64] = np.take(table.ravel(), cols + offsets)
+    return gathered
 
 
-def _bsearch(table: NDArray, p: NDArray | None, theta: NDArray, *, strict: bool) -> NDArray:
+def _bsearch(
+    table: NDArray[np.float64],
+    p: NDArray[np.float64] | None,
+    theta: NDArray[np.float64],
+    *,
+    strict: bool,
+) -> NDArray[np.intp]:
     """Per row, the first column ``c`` with ``fl(p + table[c]) >= theta`` (``>`` if strict).
 
     ``table`` (m, C) is non-decreasing per problem, ``p`` and ``theta`` are
@@ -118,7 +127,9 @@ def _bsearch(table: NDArray, p: NDArray | None, theta: NDArray, *, strict: bool)
     return found
 
 
-def first_at_or_above(p: NDArray, q: NDArray, theta: NDArray) -> NDArray:
+def first_at_or_above(
+    p: NDArray[np.float64], q: NDArray[np.float64], theta: NDArray[np.float64]
+) -> NDArray[np.intp]:
     """Per row, the first column where ``fl(P + Q[b]) >= theta`` (Q ascending per problem)."""
     return _bsearch(q, p, theta[:, np.newaxis], strict=False)
 
@@ -127,14 +138,14 @@ def first_at_or_above(p: NDArray, q: NDArray, theta: NDArray) -> NDArray:
 class _SumTables:
     """Per-problem column data for :func:`contrast_sums` (see the module docstring)."""
 
-    q: NDArray  # (m, C) ascending
-    suffix: NDArray  # (m, C + 1): sum of q[b] for b >= k
-    moments: NDArray  # (N, m, C + 1): sum over b < k of (q0 - q[b])**n
-    q0: NDArray  # (m, 1)
-    yb: NDArray  # (m,)
+    q: NDArray[np.float64]  # (m, C) ascending
+    suffix: NDArray[np.float64]  # (m, C + 1): sum of q[b] for b >= k
+    moments: NDArray[np.float64]  # (N, m, C + 1): sum over b < k of (q0 - q[b])**n
+    q0: NDArray[np.float64]  # (m, 1)
+    yb: NDArray[np.float64]  # (m,)
 
 
-def _sum_tables(q: NDArray, yb: NDArray) -> _SumTables:
+def _sum_tables(q: NDArray[np.float64], yb: NDArray[np.float64]) -> _SumTables:
     q = np.sort(q, axis=1)
     m, n_cols = q.shape
     suffix = np.zeros((m, n_cols + 1))
@@ -149,7 +160,7 @@ def _sum_tables(q: NDArray, yb: NDArray) -> _SumTables:
     return _SumTables(q, suffix, moments, q0, yb)
 
 
-def _sum_rows(t: _SumTables, problems: slice, p: NDArray) -> NDArray:
+def _sum_rows(t: _SumTables, problems: slice, p: NDArray[np.float64]) -> NDArray[np.float64]:
     """Per problem of ``problems``, the sum of CR over the rows ``p`` and all columns."""
     q, yb = t.q[problems], t.yb[problems]
     n_cols = q.shape[1]
@@ -164,7 +175,8 @@ def _sum_rows(t: _SumTables, problems: slice, p: NDArray) -> NDArray:
     weight = np.broadcast_to(cb[:, np.newaxis], k.shape)
     below = k > 0
     if not below.any():
-        return linear.sum(axis=1)
+        only_linear: NDArray[np.float64] = linear.sum(axis=1)
+        return only_linear
     u, flat_k, weight = u[below], flat_k[below], weight[below]
     spread = float(np.max(np.abs(t.q0[problems] - q)))
     ratio = spread / float(u.min())
@@ -182,10 +194,13 @@ def _sum_rows(t: _SumTables, problems: slice, p: NDArray) -> NDArray:
     series *= v * weight
     reciprocal = np.zeros(k.shape)
     reciprocal[below] = series  # summed pairwise per problem, like the straightforward sum
-    return linear.sum(axis=1) + reciprocal.sum(axis=1)
+    sums: NDArray[np.float64] = linear.sum(axis=1) + reciprocal.sum(axis=1)
+    return sums
 
 
-def contrast_sums(p: NDArray, q: NDArray, yb: NDArray) -> NDArray:
+def contrast_sums(
+    p: NDArray[np.float64], q: NDArray[np.float64], yb: NDArray[np.float64]
+) -> NDArray[np.float64]:
     """Per problem, the sum over rows and columns of ``CR(P + Q[b], Yb)``.
 
     ``p`` (m, R), ``q`` (m, C) in any order (the sum does not depend on it),
@@ -196,11 +211,15 @@ def contrast_sums(p: NDArray, q: NDArray, yb: NDArray) -> NDArray:
     return _over_blocks(p.shape, lambda pr, rows: _sum_rows(tables, pr, p[pr, rows]))
 
 
-def _float_bits(x: NDArray) -> NDArray:
+def _float_bits(x: NDArray[np.float64]) -> NDArray[np.int64]:
     return np.asarray(x, dtype=np.float64).view(np.int64)
 
 
-def _smallest_float(predicate: Callable[[NDArray], NDArray], lo: NDArray, hi: NDArray) -> NDArray:
+def _smallest_float(
+    predicate: Callable[[NDArray[np.float64]], NDArray[np.bool_]],
+    lo: NDArray[np.float64],
+    hi: NDArray[np.float64],
+) -> NDArray[np.float64]:
     """Per problem, the smallest float in ``[lo, hi]`` (>= 0) where a monotone predicate holds.
 
     Bisects on the bit patterns, which order non-negative floats; ``inf`` where
@@ -217,7 +236,9 @@ def _smallest_float(predicate: Callable[[NDArray], NDArray], lo: NDArray, hi: ND
     return np.where(holds_hi, hi_bits.view(np.float64), np.inf)
 
 
-def reach_thresholds(yb: NDArray, threshold: float) -> tuple[NDArray, NDArray]:
+def reach_thresholds(
+    yb: NDArray[np.float64], threshold: float
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Luminances ``(low, high)``: ``CR(Y, Yb) < threshold`` exactly when ``low <= Y < high``.
 
     Found on the float expression itself, so a luminance comparison decides
@@ -225,10 +246,10 @@ def reach_thresholds(yb: NDArray, threshold: float) -> tuple[NDArray, NDArray]:
     """
     yb = np.asarray(yb, dtype=np.float64)
 
-    def below_reaches(y: NDArray) -> NDArray:
+    def below_reaches(y: NDArray[np.float64]) -> NDArray[np.bool_]:
         return (y >= yb) | (contrast_from_luminance(y, yb) < threshold)
 
-    def above_fails(y: NDArray) -> NDArray:
+    def above_fails(y: NDArray[np.float64]) -> NDArray[np.bool_]:
         return (y >= yb) & (contrast_from_luminance(y, yb) >= threshold)
 
     low = _smallest_float(below_reaches, np.zeros_like(yb), yb)
@@ -240,13 +261,13 @@ def reach_thresholds(yb: NDArray, threshold: float) -> tuple[NDArray, NDArray]:
 class ChangeCounts:
     """Per-problem counts of contrast increases, decreases and newly reaching a threshold."""
 
-    increase: NDArray
-    decrease: NDArray
-    newly_reach: NDArray
+    increase: NDArray[np.int64]
+    decrease: NDArray[np.int64]
+    newly_reach: NDArray[np.int64]
     exact_evaluations: int
 
 
-def _rank_table(dq: NDArray) -> tuple[NDArray, NDArray]:
+def _rank_table(dq: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.intp]]:
     """Sorted ``dq`` and ``G[m, k, j] = #{b >= k : rank(b) >= j}``."""
     m, n_cols = dq.shape
     order = np.argsort(dq, axis=1, kind="stable")
@@ -260,22 +281,24 @@ def _rank_table(dq: NDArray) -> tuple[NDArray, NDArray]:
     return np.take_along_axis(dq, order, axis=1), counts
 
 
-def _searchsorted(sorted_rows: NDArray, values: NDArray, side: str) -> NDArray:
+def _searchsorted(
+    sorted_rows: NDArray[np.float64], values: NDArray[np.float64], side: str
+) -> NDArray[np.intp]:
     """``np.searchsorted`` per problem: (m, C) ascending rows, (m, R) values."""
     return _bsearch(sorted_rows, None, values, strict=side == "right")
 
 
 def _exact_changes(
-    ps: NDArray,
-    qs: NDArray,
-    po: NDArray,
-    qo: NDArray,
-    yb: NDArray,
+    ps: NDArray[np.float64],
+    qs: NDArray[np.float64],
+    po: NDArray[np.float64],
+    qo: NDArray[np.float64],
+    yb: NDArray[np.float64],
     tol: float,
-    problem: NDArray,
-    row: NDArray,
-    col: NDArray,
-) -> tuple[NDArray, NDArray]:
+    problem: NDArray[np.intp],
+    row: NDArray[np.intp],
+    col: NDArray[np.intp],
+) -> tuple[NDArray[np.intp], NDArray[np.intp]]:
     """Per-problem (increase, decrease) counts of listed combinations, straightforward floats."""
     y_b = yb[problem]
     cr_s = contrast_from_luminance(ps[problem, row] + qs[problem, col], y_b)
@@ -288,16 +311,16 @@ def _exact_changes(
 
 
 def _count_rows(
-    ps: NDArray,
-    qs: NDArray,
-    po: NDArray,
-    qo: NDArray,
-    yb: NDArray,
-    rank_tables: list[tuple[NDArray, NDArray]],
-    thresholds: tuple[NDArray, ...],
-    quiet: NDArray,
+    ps: NDArray[np.float64],
+    qs: NDArray[np.float64],
+    po: NDArray[np.float64],
+    qo: NDArray[np.float64],
+    yb: NDArray[np.float64],
+    rank_tables: list[tuple[NDArray[np.float64], NDArray[np.intp]]],
+    thresholds: tuple[NDArray[np.float64], ...],
+    quiet: NDArray[np.bool_],
     tol: float,
-) -> NDArray:
+) -> NDArray[np.int64]:
     """(4, A, m) counts for a block of rows: increase, decrease, newly reach, exact evaluations.
 
     ``ps`` (m, R) and ``qs`` (m, C) are the source parts of m canvases, ``po``
@@ -316,7 +339,9 @@ def _count_rows(
     ks = first_at_or_above(ps, qs, yb)
     if reach:
         s1, s2 = first_at_or_above(ps, qs, low), first_at_or_above(ps, qs, high)
-    keep: tuple[NDArray, NDArray] | None = None  # searched once some output sits at Yb
+    keep: tuple[NDArray[np.intp], NDArray[np.intp]] | None = (
+        None  # searched once some output sits at Yb
+    )
     above_yb = np.nextafter(yb, np.inf)
     side = n_cols + 1
     base = (np.arange(m) * side * side)[:, np.newaxis]
@@ -355,7 +380,7 @@ def _count_rows(
         inc_above = np.take(flat, hi_row + j_hi)
         dec_above = (n_cols - hi) - np.take(flat, hi_row + j_lo)
         # Output exactly at Yb: contrast 1, never an increase.
-        dec_equal = 0
+        dec_equal: int | NDArray[np.intp] = 0
         if keep is not None:
             sk1, sk2 = keep
             dec_equal = np.maximum(0, np.minimum(ko_eq, sk1) - ko) + np.maximum(
@@ -386,17 +411,19 @@ def _count_rows(
     return result
 
 
-def _keep_thresholds(yb: NDArray, tol: float) -> tuple[NDArray, NDArray]:
+def _keep_thresholds(
+    yb: NDArray[np.float64], tol: float
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Luminances ``(low, high)``: ``1 - CR(Y, Yb) < -tol`` iff ``Y < low`` or ``Y >= high``.
 
     The decision for an output exactly at ``Yb`` (contrast 1), on the float
     expression of the straightforward implementation.
     """
 
-    def below_keeps(y: NDArray) -> NDArray:
+    def below_keeps(y: NDArray[np.float64]) -> NDArray[np.bool_]:
         return (y >= yb) | (1.0 - contrast_from_luminance(y, yb) >= -tol)
 
-    def above_drops(y: NDArray) -> NDArray:
+    def above_drops(y: NDArray[np.float64]) -> NDArray[np.bool_]:
         return (y >= yb) & (1.0 - contrast_from_luminance(y, yb) < -tol)
 
     return (
@@ -411,11 +438,11 @@ _CR_LIPSCHITZ = 420.0
 
 
 def change_counts(
-    ps: NDArray,
-    qs: NDArray,
-    po: NDArray,
-    qo: NDArray,
-    yb: NDArray,
+    ps: NDArray[np.float64],
+    qs: NDArray[np.float64],
+    po: NDArray[np.float64],
+    qo: NDArray[np.float64],
+    yb: NDArray[np.float64],
     *,
     tol: float,
     threshold: float | None,
@@ -442,7 +469,7 @@ def change_counts(
     spread = np.abs(po - ps).max(axis=2) + np.abs(qo - qs).max(axis=2) + 1e-15
     quiet = _CR_LIPSCHITZ * spread + 1e-13 < tol
 
-    def block(pr: slice, rows: slice) -> NDArray:
+    def block(pr: slice, rows: slice) -> NDArray[np.int64]:
         ranks = [(sorted_dq[pr], table[pr]) for sorted_dq, table in rank_tables]
         return _count_rows(
             ps[pr, rows],
@@ -456,7 +483,7 @@ def change_counts(
             tol,
         )
 
-    totals = _over_blocks(ps.shape, block, lead=(4, po.shape[0]))
+    totals = _over_blocks(ps.shape, block, lead=(4, po.shape[0])).astype(np.int64)
     return ChangeCounts(
         increase=totals[0],
         decrease=totals[1],
@@ -465,7 +492,11 @@ def change_counts(
     )
 
 
-def _over_blocks(shape: tuple[int, int], block: Callable, lead: tuple[int, ...] = ()) -> NDArray:
+def _over_blocks(
+    shape: tuple[int, int],
+    block: Callable[[slice, slice], NDArray[np.float64] | NDArray[np.int64]],
+    lead: tuple[int, ...] = (),
+) -> NDArray[np.float64]:
     """Sum ``block(problem_slice, row_slice)`` over cache-sized blocks.
 
     Per-problem results of shape ``lead + (n,)`` are added into the totals.
@@ -479,15 +510,15 @@ def _over_blocks(shape: tuple[int, int], block: Callable, lead: tuple[int, ...] 
         pr = slice(p, min(p + problems_per, m))
         for r in range(0, n_rows, rows_per):
             totals[..., pr] += block(pr, slice(r, min(r + rows_per, n_rows)))
-    return totals.astype(np.int64) if lead else totals
+    return totals
 
 
 def change_counts_any_order(
-    ps: NDArray,
-    qs: NDArray,
-    po: NDArray,
-    qo: NDArray,
-    yb: NDArray,
+    ps: NDArray[np.float64],
+    qs: NDArray[np.float64],
+    po: NDArray[np.float64],
+    qo: NDArray[np.float64],
+    yb: NDArray[np.float64],
     *,
     tol: float,
     threshold: float,

@@ -28,7 +28,9 @@ __all__ = ["reference_broad_grid", "reference_full_gamut", "source_grid"]
 _CHUNK = 1 << 18
 
 
-def source_grid(encoded_levels: NDArray, start: int = 0, stop: int | None = None) -> NDArray:
+def source_grid(
+    encoded_levels: NDArray[np.float64], start: int = 0, stop: int | None = None
+) -> NDArray[np.float64]:
     """Encoded sources ``start:stop`` of the ``C**3`` grid of per-channel levels, B fastest."""
     levels = np.asarray(encoded_levels, dtype=np.float64)
     n = levels.size
@@ -37,14 +39,14 @@ def source_grid(encoded_levels: NDArray, start: int = 0, stop: int | None = None
 
 
 def reference_full_gamut(
-    encoded_levels: NDArray,
-    backgrounds: NDArray,
+    encoded_levels: NDArray[np.float64],
+    backgrounds: NDArray[np.float64],
     alpha: float,
     *,
     tol: float = CONTRAST_TOLERANCE,
     threshold: float = NON_TEXT_THRESHOLD,
     controls: bool = True,
-) -> dict[str, NDArray]:
+) -> dict[str, NDArray[np.int64] | NDArray[np.float64]]:
     """Per-canvas counts and sums over the product source grid of ``encoded_levels``.
 
     Returns arrays over canvases: ``increase``, ``decrease``, ``newly_reach``
@@ -53,6 +55,7 @@ def reference_full_gamut(
     """
     n_sources = np.asarray(encoded_levels).size ** 3
     n = backgrounds.shape[0]
+    out: dict[str, NDArray[np.int64] | NDArray[np.float64]]
     out = {key: np.zeros(n, dtype=np.int64) for key in ("increase", "decrease", "newly_reach")}
     out |= {key: np.zeros(n) for key in ("sum_change", "sum_difference", "sum_exclusion")}
     for i, background in enumerate(backgrounds):
@@ -79,8 +82,8 @@ def reference_full_gamut(
 
 
 def reference_broad_grid(
-    source_levels: NDArray,
-    background_levels: NDArray,
+    source_levels: NDArray[np.float64],
+    background_levels: NDArray[np.float64],
     alpha: float,
     *,
     tol: float = CONTRAST_TOLERANCE,
@@ -99,9 +102,9 @@ def reference_broad_grid(
         change = contrast_from_luminance(relative_luminance(output), yb) - contrast_from_luminance(
             y_source[np.newaxis], yb
         )
-        inc += np.count_nonzero(change > tol)
+        inc += int(np.count_nonzero(change > tol))
         decreased = change < -tol
-        dec += np.count_nonzero(decreased)
-        small += np.count_nonzero(decreased & (change >= -0.25))
+        dec += int(np.count_nonzero(decreased))
+        small += int(np.count_nonzero(decreased & (change >= -0.25)))
         max_loss = max(max_loss, float(-change.min()))
     return {"increase": inc, "decrease": dec, "loss_le_0_25": small, "max_loss": max_loss}

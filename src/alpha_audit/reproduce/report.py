@@ -133,14 +133,14 @@ def to_json_dict(run: Reproduction) -> dict[str, Any]:
     if run.full_gamut is not None:
         first_fg = run.full_gamut[0]
         fg: dict[str, Any] = {"levels": first_fg.levels, "threshold": first_fg.threshold}
-        for r in run.full_gamut:
-            fg[alpha_key(r.alpha)] = {
-                "all": _change(r.total),
-                "light": _change(r.group("light")),
-                "dark": _change(r.group("dark")),
+        for g in run.full_gamut:
+            fg[alpha_key(g.alpha)] = {
+                "all": _change(g.total),
+                "light": _change(g.group("light")),
+                "dark": _change(g.group("dark")),
                 "canvases": [
                     {"name": c.name, "color": c.color, "mode": c.mode} | c.change.as_dict()
-                    for c in r.canvases
+                    for c in g.canvases
                 ],
             }
         doc["full_gamut"] = fg
@@ -316,7 +316,9 @@ def _full_gamut_section(run: Reproduction) -> list[str]:
         "|---|---|---|---:|---:|---:|---:|---:|",
     ]
     for r in run.full_gamut:
-        rows = [(escape_markdown(c.name), c.mode, c.change) for c in r.canvases]
+        rows: list[tuple[str, str, ContrastChange | None]] = [
+            (escape_markdown(c.name), c.mode, c.change) for c in r.canvases
+        ]
         rows += [(f"*{m} group*", m, r.group(m)) for m in ("light", "dark") if r.group(m)]
         for name, mode, c in rows:
             assert c is not None

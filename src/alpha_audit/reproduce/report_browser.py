@@ -208,8 +208,7 @@ def browser_tables(
         )
         tables.append(t)
     if runtime is not None:
-        r = runtime
-        s = r.settings
+        s = runtime.settings
         t = table(f"Runtime, {len(s.alphas)} coefficients x {s.rounds} rounds (relative)")
         t.caption = (
             f"{s.frames}-frame blocks; on software GL absolute times are not the paper's; "
@@ -217,8 +216,12 @@ def browser_tables(
         )
         for col in ("engine", "median ms/frame", "outside/inside [0,1]", "worst/inside"):
             t.add_column(col, justify="left" if col == "engine" else "right", no_wrap=True)
-        for e in r.engines:
-            t.add_row(_label(e.engine), f"{min(e.median):.3f}-{max(e.median):.3f}",
-                      f"{e.outside_vs_inside:.3f}", f"{e.worst_vs_inside:.3f}")  # fmt: skip
+        for timing in runtime.engines:
+            t.add_row(
+                _label(timing.engine),
+                f"{min(timing.median):.3f}-{max(timing.median):.3f}",
+                f"{timing.outside_vs_inside:.3f}",
+                f"{timing.worst_vs_inside:.3f}",
+            )
         tables.append(t)
     return tables

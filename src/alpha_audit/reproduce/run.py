@@ -6,7 +6,7 @@ import enum
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import assert_never
+from typing import TypedDict, assert_never
 
 from alpha_audit.errors import UsageError
 from alpha_audit.model import Theme
@@ -91,6 +91,17 @@ class Reproduction:
     runtime: RuntimeResult | None = None
 
 
+class _Results(TypedDict, total=False):
+    """The experiments' results, keyed as :class:`Reproduction`'s fields."""
+
+    full_gamut: tuple[FullGamutResult, ...]
+    broad_grid: tuple[BroadGridResult, ...]
+    sweep: SweepResult
+    palette: PaletteResult
+    browser: BrowserValidationResult
+    runtime: RuntimeResult
+
+
 def reproduce(
     theme: Theme,
     only: Iterable[Experiment] = (),
@@ -116,7 +127,7 @@ def reproduce(
     if not alphas:
         raise UsageError("`alphas` is empty; give at least one coefficient")
     settings = Settings.quick() if quick else Settings.paper()
-    results: dict[str, object] = {}
+    results: _Results = {}
     for experiment in Experiment:
         if experiment not in selected:
             continue
@@ -164,4 +175,4 @@ def reproduce(
                 )
             case _:
                 assert_never(experiment)
-    return Reproduction(theme, settings, quick, alphas, **results)  # type: ignore[arg-type]
+    return Reproduction(theme, settings, quick, alphas, **results)

@@ -240,7 +240,7 @@ def _time_engine(browser: Browser, page: str, settings: RuntimeSettings,
         assert isinstance(means, list) and len(means) == len(order)
         row = [0.0] * len(alphas)
         for k, mean in zip(order, means, strict=True):
-            row[k] = float(mean)  # type: ignore[arg-type]
+            row[k] = float(mean)  # type: ignore[arg-type]  # page JSON; float() refuses non-numbers
         samples.append(tuple(row))
         step(1.0 / settings.rounds)
     return EngineTiming(browser.NAME, browser.version, str(info.get("renderer", "")),

@@ -62,6 +62,8 @@ def format_alpha(alpha: float, precision: int) -> str:
 
 
 def _value(node: yaml.MappingNode, key: str) -> yaml.Node | None:
+    k: yaml.Node
+    v: yaml.Node
     for k, v in node.value:
         if isinstance(k, yaml.ScalarNode) and k.value == key:
             return v
@@ -79,7 +81,7 @@ def alpha_spans(text: str, path: str | Path | None = None) -> tuple[list[tuple[i
         anchored = {
             e.start_mark.index
             for e in yaml.parse(text, Loader=yaml.SafeLoader)
-            if isinstance(e, yaml.NodeEvent) and e.anchor is not None
+            if isinstance(e, yaml.NodeEvent) and e.anchor is not None and e.start_mark is not None
         }
     except yaml.YAMLError as exc:
         raise InputError(f"cannot edit this manifest: {exc}", path=path) from exc
@@ -264,6 +266,7 @@ class _Manifest:
     def __post_init__(self) -> None:
         alpha_spans(self.text, self.path)  # validates: a mapping, plain alpha values
         root = yaml.compose(self.text, Loader=yaml.SafeLoader)
+        assert isinstance(root, yaml.MappingNode)  # alpha_spans refused anything else
         top = _value(root, "alpha")
         self.top = top if isinstance(top, yaml.ScalarNode) else None
         icons = _value(root, "icons")
@@ -592,8 +595,9 @@ def _icon_entry_name(item: Any) -> str | None:
     """The icon name an ``icons:`` mapping entry gives (``name:``, else the file's stem)."""
     if not isinstance(item, dict):
         return None
-    if isinstance(item.get("name"), str):
-        return item["name"]
+    name = item.get("name")
+    if isinstance(name, str):
+        return name
     file = item.get("file")
     return PurePosixPath(file.replace("\\", "/")).stem if isinstance(file, str) else None
 

@@ -98,7 +98,11 @@ def _luminance(channels: NDArray[np.float64]) -> NDArray[np.float64]:
 def _broadcast_band(
     source: ArrayLike, background: ArrayLike, y_lo: ArrayLike, y_hi: ArrayLike
 ) -> tuple[
-    NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], tuple
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    tuple[int, ...],
 ]:
     s = np.asarray(source, dtype=np.float64)
     b = np.asarray(background, dtype=np.float64)
@@ -141,7 +145,7 @@ def luminance_band_pieces(
         [np.full((*shape, 1), a_lo), np.sort(inner, axis=-1), np.full((*shape, 1), a_hi)],
         axis=-1,
     )
-    pieces = []
+    pieces: list[tuple[NDArray[np.float64], ...]] = []
     for k in range(ends.shape[-1] - 1):  # four pieces, whatever the leading shape
         p, q = ends[..., k], ends[..., k + 1]
         mid = 0.5 * (p + q)

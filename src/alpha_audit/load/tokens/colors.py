@@ -6,7 +6,7 @@ from typing import Any
 
 from alpha_audit.color.css import GamutPolicy, ParsedColor, color_from_components, parse_css_color
 from alpha_audit.errors import ColorSyntaxError
-from alpha_audit.load.tokens.model import Token, token_error
+from alpha_audit.load.tokens.model import Token, TokenPlace, token_error
 
 __all__ = ["token_color"]
 
@@ -23,7 +23,7 @@ def token_color(
     components decide) and any CSS Color 4 string, which many files in the
     wild still use.  Errors name the token's file, line and path.
     """
-    where = {"file": token.file, "line": token.line, "path": token.path}
+    where: TokenPlace = {"file": token.file, "line": token.line, "path": token.path}
     if token.type != "color":
         raise token_error(f"is a {token.type!r} token, not a color token", **where)
     value: Any = token.value

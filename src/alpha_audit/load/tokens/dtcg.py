@@ -25,7 +25,13 @@ from typing import Any
 
 from alpha_audit.errors import InputError
 from alpha_audit.load.tokens.jsondoc import JsonDoc, JsonPath
-from alpha_audit.load.tokens.model import MAX_ALIAS_CHAIN, MAX_TOKENS, Token, token_error
+from alpha_audit.load.tokens.model import (
+    MAX_ALIAS_CHAIN,
+    MAX_TOKENS,
+    Token,
+    TokenPlace,
+    token_error,
+)
 
 __all__ = ["ALIAS", "TokenTree"]
 
@@ -285,7 +291,7 @@ class TokenTree:
         self, raw: _Raw, pointer: Any, keys: JsonPath, stack: list[str]
     ) -> tuple[Any, Token | None]:
         """Follow a JSON Pointer ``#/a/b`` in the token's own document."""
-        where = {"file": raw.doc.path, "line": raw.doc.line(keys), "path": raw.path}
+        where: TokenPlace = {"file": raw.doc.path, "line": raw.doc.line(keys), "path": raw.path}
         if not isinstance(pointer, str) or not pointer.startswith("#"):
             raise token_error(
                 f"$ref {pointer!r} must be a JSON Pointer into this file, like "

@@ -17,7 +17,13 @@ from __future__ import annotations
 from typing import Any
 
 from alpha_audit.load.tokens.jsondoc import JsonDoc
-from alpha_audit.load.tokens.model import MAX_ALIAS_CHAIN, Token, TokenModes, token_error
+from alpha_audit.load.tokens.model import (
+    MAX_ALIAS_CHAIN,
+    Token,
+    TokenModes,
+    TokenPlace,
+    token_error,
+)
 
 __all__ = ["is_figma", "modes_from_figma"]
 
@@ -67,7 +73,7 @@ def modes_from_figma(doc: JsonDoc, *, collection: str | None = None) -> TokenMod
         main = by_name[collection]
     names = list(coll_modes(main))
 
-    def where(vid: str, mode_id: str | None = None) -> dict[str, Any]:
+    def where(vid: str, mode_id: str | None = None) -> TokenPlace:
         keys: tuple[str, ...] = ("meta", "variables", vid)
         if mode_id is not None:
             keys = (*keys, "valuesByMode", mode_id)
@@ -143,7 +149,7 @@ def _path(name: str) -> str:
     return ".".join(part.strip() for part in name.split("/"))
 
 
-def _color(value: Any, where: dict[str, Any]) -> dict[str, Any]:
+def _color(value: Any, where: TokenPlace) -> dict[str, Any]:
     """``{r, g, b, a}`` (sRGB, 0-1) to a DTCG colour object."""
     if not isinstance(value, dict) or not all(k in value for k in "rgb"):
         raise token_error(f"expected a colour {{r, g, b, a}}, got {value!r:.40}", **where)

@@ -113,7 +113,7 @@ class _Parser:
                 raise self.fail(pos, "expected a quoted key")
             key_pos = pos
             try:
-                key, pos = json.decoder.scanstring(self.text, pos + 1)
+                key, pos = json.decoder.scanstring(self.text, pos + 1)  # type: ignore[attr-defined]  # CPython defines json.decoder.scanstring; typeshed omits it
             except json.JSONDecodeError as exc:
                 raise self.fail(exc.pos, exc.msg) from exc
             if key in out:

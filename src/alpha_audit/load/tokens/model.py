@@ -4,11 +4,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, TypedDict
 
 from alpha_audit.errors import InputError
 
-__all__ = ["MAX_ALIAS_CHAIN", "MAX_TOKENS", "Token", "TokenModes", "token_error"]
+__all__ = ["MAX_ALIAS_CHAIN", "MAX_TOKENS", "Token", "TokenModes", "TokenPlace", "token_error"]
 
 MAX_TOKENS = 100_000  # a large design system has a few thousand tokens
 MAX_ALIAS_CHAIN = 64  # longer chains are a generator bug or an attack
@@ -50,6 +50,14 @@ class TokenModes:
     kind: str
     modes: dict[str, dict[str, Token]]
     default: str | None = None
+
+
+class TokenPlace(TypedDict):
+    """Where a token error points: :func:`token_error`'s keywords, to pass as ``**place``."""
+
+    file: Path | None
+    line: int | None
+    path: str | None
 
 
 def token_error(

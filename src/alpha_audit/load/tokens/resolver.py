@@ -95,7 +95,7 @@ class _Resolver:
         order = self.doc.data.get("resolutionOrder")
         if not isinstance(order, list) or not order:
             raise self.error(("resolutionOrder",), "expected a non-empty list")
-        out = []
+        out: list[tuple[str, Any, tuple[str | int, ...]]] = []
         for i, item in enumerate(order):
             keys: tuple[str | int, ...] = ("resolutionOrder", i)
             if isinstance(item, dict) and isinstance(item.get("$ref"), str):

@@ -226,7 +226,7 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
             )
         theme = Theme(name, tuple(canvases), path=source.source)
         modes.append(TokenMode(name, theme, colors))
-    delta_e = gamut_delta_e([p for _, _, p in adjusted]) if adjusted else []
+    delta_e = gamut_delta_e([p for _, _, p in adjusted]) if adjusted else np.zeros(0)
     notes = tuple(
         GamutAdjustment(
             mode=name,

@@ -68,12 +68,25 @@ def render_all(
     masks: Mapping[tuple[str, int], NDArray[np.float64]],
     *,
     on_sheet: Callable[[], None] | None = None,
-    **options: object,
+    alphas: Sequence[Alpha] | None = None,
+    threshold: float = NON_TEXT_THRESHOLD,
+    max_width: int = DEFAULT_MAX_WIDTH,
+    title: str | None = None,
 ) -> Iterator[Sheet]:
-    """Render ``specs`` one at a time (a sheet can be large; write each, then drop it)."""
+    """Render ``specs`` one at a time (a sheet can be large; write each, then drop it).
+
+    The keywords are :func:`render_sheet`'s, for every sheet.
+    """
     for spec in specs:
-        # options are render_sheet's keywords, passed through untyped
-        sheet = render_sheet(spec, iconset, masks, **options)  # type: ignore[arg-type]
+        sheet = render_sheet(
+            spec,
+            iconset,
+            masks,
+            alphas=alphas,
+            threshold=threshold,
+            max_width=max_width,
+            title=title,
+        )
         yield sheet
         if on_sheet is not None:
             on_sheet()

@@ -153,8 +153,7 @@ def ink_on(background: tuple[float, float, float]) -> Ink:
 
 @functools.lru_cache(maxsize=8)
 def _default_font(size: int) -> ImageFont.FreeTypeFont:
-    # load_default is typed to return either font class; given a size it is always FreeType.
-    return ImageFont.load_default(size=size)  # type: ignore[return-value]
+    return ImageFont.load_default(size=size)  # type: ignore[return-value]  # FreeType whenever a size is given
 
 
 @functools.lru_cache(maxsize=1 << 16)

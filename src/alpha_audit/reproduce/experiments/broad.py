@@ -79,8 +79,9 @@ def broad_grid(
     progress(0.9)
     results = []
     for a, c in zip(alphas, counts, strict=True):
-        source = tuple(float(src_enc[i]) for i in c.worst[:3])
-        background = tuple(float(bg_enc[j]) for j in c.worst[3:])
+        i_r, i_g, i_b, j_r, j_g, j_b = c.worst
+        source = (float(src_enc[i_r]), float(src_enc[i_g]), float(src_enc[i_b]))
+        background = (float(bg_enc[j_r]), float(bg_enc[j_g]), float(bg_enc[j_b]))
         s_lin, b_lin = srgb_decode(source), srgb_decode(background)
         worst = {1.0: float(contrast_ratio(s_lin, b_lin))}
         worst |= {
@@ -96,9 +97,8 @@ def broad_grid(
                 decrease=c.decrease,
                 loss_le_0_25=c.loss_le_limit,
                 max_loss=c.max_loss,
-                # three channels each, built from c.worst[:3] and c.worst[3:]
-                worst_source=source,  # type: ignore[arg-type]
-                worst_background=background,  # type: ignore[arg-type]
+                worst_source=source,
+                worst_background=background,
                 worst_contrast=worst,
             )
         )
