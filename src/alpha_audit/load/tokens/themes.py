@@ -203,7 +203,7 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
     adjusted: list[tuple[str, Token, ParsedColor]] = []
     by_mode: dict[str, list[tuple[str, str, Token, bool, bool]]] = {n: [] for n in source.modes}
     for name, *entry in selected:
-        by_mode[name].append(tuple(entry))  # type: ignore[arg-type]
+        by_mode[name].append(tuple(entry))  # type: ignore[arg-type]  # the 4 fields after name
     for name, entries in by_mode.items():
         canvases: list[Canvas] = []
         colors: dict[str, TokenColor] = {}
