@@ -160,3 +160,17 @@ def test_sarif_log_has_the_required_2_1_0_structure() -> None:
             physical = loc["physicalLocation"]
             assert physical["artifactLocation"]["uri"]
             assert isinstance(physical["region"]["startLine"], int)
+
+
+def test_sarif_failure_messages_end_with_their_fix() -> None:
+    from alpha_audit.bundled import bundled_iconset, bundled_theme
+    from alpha_audit.pipeline import check_project
+    from alpha_audit.policy import Policy
+
+    report = check_project(
+        [bundled_theme("paper16")], [bundled_iconset("vibrant")], policy=Policy(), alpha=1.5
+    )
+    assert report.gate.failures
+    doc = json.loads(CheckFormat.SARIF.renderer()(report, RenderOptions()))
+    failing = [r for r in doc["runs"][0]["results"] if "suppressions" not in r]
+    assert failing and all(". Fix: " in r["message"]["text"] for r in failing)

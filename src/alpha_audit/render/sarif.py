@@ -76,7 +76,9 @@ def _fingerprint(f: Finding) -> str:
     return hashlib.sha256(text.encode("utf-8")).hexdigest()[:32]
 
 
-def _result(f: Finding, index: int, base: Path | None, level: str = "error") -> dict[str, Any]:
+def _result(
+    f: Finding, index: int, base: Path | None, level: str = "error", fix: str | None = None
+) -> dict[str, Any]:
     where = f"{', '.join(f.icons)} on {f.canvas}" if f.canvas else ", ".join(f.icons)
     locations = [_location(p, base) for p in f.files]
     if f.manifest is not None:
@@ -89,7 +91,10 @@ def _result(f: Finding, index: int, base: Path | None, level: str = "error") -> 
         "ruleId": RULE_IDS[f.rule],
         "ruleIndex": index,
         "level": level,
-        "message": {"text": f"{where} ({f.theme} / {f.iconset}): {f.message}"},
+        "message": {
+            "text": f"{where} ({f.theme} / {f.iconset}): {f.message}"
+            + (f". Fix: {fix}" if fix else "")
+        },
         "locations": locations or ([_location(f.manifest, base)] if f.manifest else []),
         "partialFingerprints": {"alphaAuditFinding/v1": _fingerprint(f)},
         "properties": {
@@ -130,7 +135,15 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     rules = list(Rule)
     index = {r: i for i, r in enumerate(rules)}
     enabled = report.gate.policy.rules
-    results = [_result(f, index[f.rule], options.base) for f in report.gate.findings]
+    # Each failure's message ends with its fix, in the PR comment's words.
+    from alpha_audit.render.markdown import report_fixes_hook
+
+    failing = {id(f) for f in report.gate.failures}  # findings hold dicts: by identity
+    hook = report_fixes_hook(report) if failing else None
+    results = [
+        _result(f, index[f.rule], options.base, fix=hook(f) if hook and id(f) in failing else None)
+        for f in report.gate.findings
+    ]
     if Rule.UNRENDERABLE not in enabled:
         for audit in report.audits:
             for p in audit.problems:
