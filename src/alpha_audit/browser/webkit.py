@@ -185,24 +185,38 @@ class WebKit(Browser):
         value: str = reply["ok"]  # JSON text (evaluate() refuses anything else)
         return value
 
+    def _inner_size(self) -> tuple[int, int]:
+        """The viewport once it has settled: two reads 50 ms apart agree (at most ~2 s).
+
+        The X server resizes the window asynchronously, so a read right after
+        a resize can still show the old size.
+        """
+        last: tuple[int, int] | None = None
+        for _ in range(40):
+            got = self.evaluate("[innerWidth, innerHeight]")
+            if not (isinstance(got, list) and all(isinstance(v, int | float) for v in got[:2])):
+                raise BrowserError(f"WebKitGTK reported no viewport size: {got}")
+            size = (int(got[0]), int(got[1]))  # type: ignore[arg-type]  # numbers, checked
+            if size == last:
+                return size
+            last = size
+            time.sleep(0.05)
+        assert last is not None
+        return last
+
     def _set_viewport(self, width: int, height: int) -> None:
-        # WebDriver sizes the window, not the viewport (section 11.8.2): size it once, measure
-        # what the window's own frame takes, and size it again with that added.
+        # WebDriver sizes the window, not the viewport (section 11.8.2): size it, let it
+        # settle, measure what the window's own frame takes, and size it again with that
+        # added, until the viewport is what was asked (the frame is the same each time).
         path = self._session_path("window/rect")
-        self._request("POST", path, {"width": width, "height": height})
-        inner = self.evaluate("[innerWidth, innerHeight]")
-        outer = self._request("GET", path)
-        if not (isinstance(inner, list) and isinstance(outer, dict)):
-            raise BrowserError("WebKitWebDriver returned no window size")
-        sizes = (outer.get("width"), outer.get("height"), *inner[:2])
-        if not all(isinstance(v, int | float) for v in sizes):
-            raise BrowserError(
-                f"WebKitWebDriver returned a window size that is not numbers: {sizes}"
-            )
-        ow, oh, iw, ih = (int(v) for v in sizes)  # type: ignore[arg-type]  # checked just above
-        extra_w, extra_h = ow - iw, oh - ih
-        if extra_w or extra_h:
+        extra_w = extra_h = 0
+        for _ in range(4):
             self._request("POST", path, {"width": width + extra_w, "height": height + extra_h})
+            inner_w, inner_h = self._inner_size()
+            if (inner_w, inner_h) == (width, height):
+                return
+            extra_w = max(0, extra_w + width - inner_w)
+            extra_h = max(0, extra_h + height - inner_h)
 
     def _screenshot(self) -> bytes:
         data = self._request("GET", self._session_path("screenshot"))
