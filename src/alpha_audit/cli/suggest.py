@@ -40,9 +40,9 @@ def suggest_command(
         typer.Option(
             "--fail-on",
             metavar="RULE",
-            help="Rule that must hold (repeatable; replaces the policy): loss, below-threshold, "
-            "newly-failing, collision, new-collision, separation. "
-            "[default: the config's, else loss, newly-failing, new-collision]",
+            help="Rule that must hold (repeatable; replaces the policy): any rule of check "
+            "(docs/ci.md). "
+            "[default: the config's, else loss, newly-failing, new-collision, confusion]",
             show_default=False,
         ),
     ] = None,
@@ -81,6 +81,8 @@ def suggest_command(
     from alpha_audit.load.iconset import load_iconset
     from alpha_audit.load.theme import load_theme
     from alpha_audit.output import check_targets
+    from alpha_audit.paint_audit import resolve_pipeline
+    from alpha_audit.pipeline import render_paints
     from alpha_audit.render.common import RenderOptions, check_suffix
     from alpha_audit.suggest import suggest
     from alpha_audit.suggest.apply import apply_alpha, format_alpha
@@ -112,10 +114,15 @@ def suggest_command(
         rules=fail_on, max_loss=max_loss, min_delta_e=min_delta_e
     )
 
+    loaded_theme, loaded_set = load_theme(theme), load_iconset(iconset)
+    # The gate judges every paint of every SVG as drawn: suggest answers the same rows.
+    paints = render_paints(loaded_set, strict_svg=False, on_icon=None)
     result = suggest(
-        load_theme(theme),
-        load_iconset(iconset),
+        loaded_theme,
+        loaded_set,
         policy,
+        paints=paints,
+        pipeline=resolve_pipeline(None, loaded_set.pipeline, loaded_theme.pipeline),
         alpha_max=alpha_max,
         precision=precision,
         threshold=threshold if threshold is not None else project.threshold,
