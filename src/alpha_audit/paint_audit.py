@@ -37,7 +37,6 @@ from alpha_audit.audit import MAX_COMBINATIONS
 from alpha_audit.color import (
     CONTRAST_TOLERANCE,
     DEFICIENCIES,
-    DELTA_E_TOLERANCE,
     PIPELINES,
     Pipeline,
     composite_paint,

@@ -29,6 +29,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from alpha_audit.color import (
+    Pipeline,
     composite_extended,
     contrast_from_luminance,
     delta_e_2000,
@@ -44,12 +45,10 @@ from alpha_audit.color.nearest import (
     lightness_weight_max,
     pairs_below,
 )
-from alpha_audit.color import Pipeline
 from alpha_audit.errors import UsageError
 from alpha_audit.load.paint_masks import PaintSet
 from alpha_audit.model import IconSet, Theme
 from alpha_audit.policy import Policy, Rule, contrast_breaks, contrast_floor
-from alpha_audit.suggest.paint_rules import BRACKETED_RULES, GRID_STEP, PaintRules, PaintScenario
 from alpha_audit.suggest.events import (
     clip_breakpoints,
     code_timeline,
@@ -57,6 +56,7 @@ from alpha_audit.suggest.events import (
     first_in_luminance_band,
     luminance_band,
 )
+from alpha_audit.suggest.paint_rules import BRACKETED_RULES, GRID_STEP, PaintRules, PaintScenario
 
 __all__ = [
     "SEPARATION_GRID_STEP",
@@ -220,6 +220,7 @@ class _Suggester:
         threshold: float,
         alpha_max: float,
         paints: PaintSet | None = None,
+        pipeline: Pipeline = "linear",
     ) -> None:
         self.policy = policy
         self._timelines: dict[tuple[bytes, int], tuple[NDArray[np.float64], NDArray[np.int64]]] = {}
@@ -246,7 +247,7 @@ class _Suggester:
         # own colour and opacity): PaintRules answers those, exactly.
         self.contrast_rules = policy.contrast_rules if paints is None else ()
         self.paint_rules = PaintRules(
-            theme, iconset, paints, policy, threshold, alpha_max, exempt=self.exempt
+            theme, iconset, paints, policy, threshold, alpha_max, self.exempt, pipeline
         )
         self.collision_rule = policy.collision_rule
         self.separation = Rule.SEPARATION in policy.rules
@@ -514,7 +515,7 @@ class _Suggester:
     def unsafe_at(self, tracks: _Tracks, a: float) -> bool:
         """Direct check of one coefficient: composite, quantise, apply the rules."""
         moving, scenario = self.scenario(tracks)
-        if self.paint_rules.unsafe_at(moving, scenario, a):
+        if self.paint_rules.first_objection(moving, scenario, a) is not None:
             return True
         coef = np.where(tracks.moving, a, tracks.alpha)
         out = composite_extended(
@@ -689,7 +690,7 @@ def _engine(
         # CSS opacity cannot exceed 1 (CSS Color 4 clamps alpha): the only
         # coefficient above the reference is none, so the question is alpha 1.
         alpha_max = ALPHA_LO
-    return _Suggester(theme, iconset, policy or Policy(), t, float(alpha_max), paints)
+    return _Suggester(theme, iconset, policy or Policy(), t, float(alpha_max), paints, pipeline)
 
 
 def suggest(

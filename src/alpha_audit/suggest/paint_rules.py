@@ -41,8 +41,10 @@ from numpy.typing import NDArray
 
 from alpha_audit.color import (
     DEFICIENCIES,
+    Pipeline,
     composite_coverage,
     composite_extended,
+    composite_paint,
     contrast_ratio,
     delta_e_2000,
     delta_e_2000_lab,
@@ -137,8 +139,10 @@ class PaintRules:
         threshold: float,
         a_hi: float,
         exempt: Callable[[Rule, str, tuple[str, ...]], bool],
+        pipeline: Pipeline = "linear",
     ) -> None:
         self.policy, self.threshold, self.a_hi = policy, threshold, a_hi
+        self.pipeline = pipeline
         self.exempt = exempt
         self.names = tuple(i.name for i in iconset.icons)
         self.canvases = tuple(c.name for c in theme.canvases)
@@ -161,7 +165,7 @@ class PaintRules:
             self.sizes: tuple[int, ...] = ()
             self.current = np.ones(n, dtype=bool)
         else:
-            result = audit_paints(theme, iconset, paints, threshold=threshold)
+            result = audit_paints(theme, iconset, paints, threshold=threshold, pipeline=pipeline)
             self.icon = np.array([index[e.icon.name] for e in result.entries], dtype=np.intp)
             self.source = result.sources
             self.opacity = result.opacity
@@ -296,8 +300,14 @@ class PaintRules:
 
     # -- one question ----------------------------------------------------------
 
-    def limits(self, moving_icons: NDArray[np.bool_], tracks: PaintScenario, cap: float) -> list[Found]:
+    def limits(
+        self, moving_icons: NDArray[np.bool_], tracks: PaintScenario, cap: float
+    ) -> list[Found]:
         """Every paint-rule limit of one question at or below ``cap`` (earlier ones suffice)."""
+        if self.pipeline == "css":
+            # CSS cannot draw alpha above 1 (a_hi is 1): the question is alpha 1 itself.
+            first = self.first_objection(moving_icons, tracks, ALPHA_LO)
+            return [] if first is None else [first]
         found: list[Found] = []
         for rule, icons in self.static:
             if any(moving_icons[i] for i in icons):
@@ -336,11 +346,12 @@ class PaintRules:
     ) -> NDArray[np.float64]:
         """Tracks ``t`` on canvas ``j`` at coefficients ``a`` (moving) as (len(t), N, 3)."""
         coef = np.where(tracks.moving[t][:, np.newaxis], a, tracks.alpha[t][:, np.newaxis])
-        return composite_extended(tracks.source[t][:, np.newaxis, :], self.backgrounds[j], coef)
+        source = tracks.source[t][:, np.newaxis, :]
+        if self.pipeline == "css":
+            return composite_paint(source, self.backgrounds[j], coef, 1.0, "css")
+        return composite_extended(source, self.backgrounds[j], coef)
 
-    def _confusion(
-        self, tracks: PaintScenario, cap: float, deficiency: str | None
-    ) -> list[Found]:
+    def _confusion(self, tracks: PaintScenario, cap: float, deficiency: str | None) -> list[Found]:
         rule = Rule.CONFUSION if deficiency is None else Rule.CVD_CONFUSION
         part, labels = self._track_roles(tracks)
         idx = np.flatnonzero(part)
@@ -412,13 +423,21 @@ class PaintRules:
             for j in range(len(self.canvases)):
                 ref = to_8bit(simulate_cvd(self._shown(tracks, idx, one, j)[:, 0], deficiency))
 
-                def unsafe(a: float, j: int = j, ref: NDArray[np.int64] = ref, d: str = deficiency) -> tuple[int, ...] | None:
-                    seen = to_8bit(simulate_cvd(self._shown(tracks, idx, np.array([a]), j)[:, 0], d))  # type: ignore[arg-type]
+                def unsafe(
+                    a: float, j: int = j, ref: NDArray[np.int64] = ref, d: str = deficiency
+                ) -> tuple[int, ...] | None:
+                    seen = to_8bit(
+                        simulate_cvd(self._shown(tracks, idx, np.array([a]), j)[:, 0], d)
+                    )  # type: ignore[arg-type]
                     for _, members in cvd_collision_groups(seen, ref, sources):
                         if not any(tracks.moving[idx[r]] for r in members):
                             continue
                         icons = tuple(sorted(i for r in members for i in tracks.icons[idx[r]]))
-                        if not self.exempt(Rule.CVD_COLLISION, self.canvases[j], tuple(self.names[i] for i in icons)):
+                        if not self.exempt(
+                            Rule.CVD_COLLISION,
+                            self.canvases[j],
+                            tuple(self.names[i] for i in icons),
+                        ):
                             return icons
                     return None
 
@@ -443,17 +462,20 @@ class PaintRules:
 
     # -- direct check of one coefficient ----------------------------------------
 
-    def unsafe_at(self, moving_icons: NDArray[np.bool_], tracks: PaintScenario, a: float) -> bool:
-        """Whether a paint rule objects at exactly ``a`` (the re-check of a rounded answer)."""
-        if any(any(moving_icons[i] for i in icons) for _, icons in self.static):
-            return True
+    def first_objection(
+        self, moving_icons: NDArray[np.bool_], tracks: PaintScenario, a: float
+    ) -> Found | None:
+        """A paint rule's objection at exactly ``a`` (the re-check of a rounded answer)."""
+        for rule, icons in self.static:
+            if any(moving_icons[i] for i in icons):
+                return (rule, -1, icons, a, True)
         rows = np.flatnonzero(moving_icons[self.icon])
         bg = self.backgrounds[np.newaxis]
         if rows.size:
             s = self.source[rows][:, np.newaxis, :]
             o = self.opacity[rows][:, np.newaxis]
-            shown = composite_coverage(s, bg, a, o)
-            ref = composite_coverage(s, bg, 1.0, o)
+            shown = composite_paint(s, bg, a, o, self.pipeline)
+            ref = composite_paint(s, bg, 1.0, o, self.pipeline)
             c_ref, c_now = contrast_ratio(ref, bg), contrast_ratio(shown, bg)
             checks: list[tuple[Rule, NDArray[np.bool_]]] = [
                 (rule, c_now < contrast_floor(rule, self.policy, c_ref, self.threshold))
@@ -470,28 +492,30 @@ class PaintRules:
             if Rule.THIN_STROKES in rules and self.sizes:
                 limit = self.policy.min_size_contrast or self.threshold
                 q = (self.q50[rows] * self.opacity[rows][:, np.newaxis])[:, np.newaxis, :]
-                at = composite_coverage(s[:, :, np.newaxis], bg[..., np.newaxis, :], a, q)
+                at = composite_paint(s[:, :, None], bg[..., None, :], a, q, self.pipeline)
                 sc = contrast_ratio(at, bg[..., np.newaxis, :])
                 checks.append((Rule.THIN_STROKES, (sc < size_contrast_floor(limit)).any(axis=2)))
             for rule, broken in checks:
                 for r, j in zip(*np.nonzero(broken), strict=True):
-                    name = self.names[int(self.icon[rows[r]])]
-                    if not self.exempt(rule, self.canvases[j], (name,)):
-                        return True
-        if Rule.CONFUSION in self.policy.rules and self._confused_at(tracks, a, None):
-            return True
-        if Rule.CVD_CONFUSION in self.policy.rules:
-            if any(self._confused_at(tracks, a, d) for d in DEFICIENCIES):
-                return True
-        return Rule.CVD_COLLISION in self.policy.rules and self._cvd_collides_at(tracks, a)
+                    icon = int(self.icon[rows[r]])
+                    if not self.exempt(rule, self.canvases[j], (self.names[icon],)):
+                        return (rule, int(j), (icon,), a, True)
+        found = None
+        if Rule.CONFUSION in self.policy.rules:
+            found = self._confused_at(tracks, a, None)
+        for d in DEFICIENCIES if Rule.CVD_CONFUSION in self.policy.rules else ():
+            found = found or self._confused_at(tracks, a, d)
+        if Rule.CVD_COLLISION in self.policy.rules:
+            found = found or self._cvd_collides_at(tracks, a)
+        return found
 
-    def _confused_at(self, tracks: PaintScenario, a: float, deficiency: str | None) -> bool:
+    def _confused_at(self, tracks: PaintScenario, a: float, deficiency: str | None) -> Found | None:
         """Direct check at ``a``: the pruned pair search below ``min_delta_e``, then the rule."""
         rule = Rule.CONFUSION if deficiency is None else Rule.CVD_CONFUSION
         part, labels = self._track_roles(tracks)
         idx = np.flatnonzero(part)
         if idx.size < 2 or not tracks.moving[idx].any():
-            return False
+            return None
         level = self.policy.min_delta_e
 
         def view(c: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -511,16 +535,16 @@ class PaintRules:
             keep = confusion_possible(delta_e_2000_lab(lab_ref[first], lab_ref[second]), level)
             keep &= tracks.moving[idx[first]] | tracks.moving[idx[second]]
             for f, g in zip(first[keep].tolist(), second[keep].tolist(), strict=True):
-                icons = {*tracks.icons[idx[f]], *tracks.icons[idx[g]]}
-                if not self.exempt(rule, self.canvases[j], icon_names(self.names, tuple(icons))):
-                    return True
-        return False
+                icons = tuple(sorted({*tracks.icons[idx[f]], *tracks.icons[idx[g]]}))
+                if not self.exempt(rule, self.canvases[j], icon_names(self.names, icons)):
+                    return (rule, j, icons, a, True)
+        return None
 
-    def _cvd_collides_at(self, tracks: PaintScenario, a: float) -> bool:
+    def _cvd_collides_at(self, tracks: PaintScenario, a: float) -> Found | None:
         part, _ = self._track_roles(tracks)
         idx = np.flatnonzero(part)
         if idx.size < 2 or not tracks.moving[idx].any():
-            return False
+            return None
         sources = [tracks.source[t].tobytes().hex() for t in idx]
         for deficiency in DEFICIENCIES:
             for j in range(len(self.canvases)):
@@ -533,8 +557,8 @@ class PaintRules:
                     icons = tuple(i for r in members for i in tracks.icons[idx[r]])
                     names = icon_names(self.names, icons)
                     if not self.exempt(Rule.CVD_COLLISION, self.canvases[j], names):
-                        return True
-        return False
+                        return (Rule.CVD_COLLISION, j, tuple(sorted(icons)), a, True)
+        return None
 
 
 def icon_names(names: Sequence[str], icons: tuple[int, ...]) -> tuple[str, ...]:
