@@ -12,8 +12,10 @@ from alpha_audit.cli.options import (
     ConfigOption,
     ForceOption,
     IconsetArgument,
+    MaxDriftOption,
     MaxLossOption,
     MinDeltaEOption,
+    MinSizeContrastOption,
     ThemeArgument,
     ThresholdOption,
     require_finite,
@@ -48,6 +50,8 @@ def suggest_command(
     ] = None,
     max_loss: MaxLossOption = None,
     min_delta_e: MinDeltaEOption = None,
+    max_drift: MaxDriftOption = None,
+    min_size_contrast: MinSizeContrastOption = None,
     fmt: Annotated[
         SuggestFormat,
         typer.Option("--format", "-f", help="table, json or markdown.", case_sensitive=False),
@@ -110,8 +114,14 @@ def suggest_command(
             f"copy {source.parent} into your project and give its {source.name}"
         )
     iconset = source
+    require_finite(max_drift, "--max-drift")
+    require_finite(min_size_contrast, "--min-size-contrast")
     policy = project.policy.with_overrides(
-        rules=fail_on, max_loss=max_loss, min_delta_e=min_delta_e
+        rules=fail_on,
+        max_loss=max_loss,
+        min_delta_e=min_delta_e,
+        max_drift=max_drift,
+        min_size_contrast=min_size_contrast,
     )
 
     loaded_theme, loaded_set = load_theme(theme), load_iconset(iconset)
