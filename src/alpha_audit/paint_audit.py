@@ -589,6 +589,7 @@ def _confusion(
                 {
                     "delta_e_ref": float(de_ref[q, j]),
                     "delta_e": float(de[q, j]),
+                    "min_delta_e": min_delta_e,
                     "roles": f"{r1},{r2}",
                     **({"deficiency": deficiency} if deficiency else {}),
                 },

@@ -96,7 +96,7 @@ def test_cli_apply_and_no_write_without_it(tmp_path: Path, repo: Path) -> None:
     assert res.exit_code == 0, res.output
     edited = (target / "iconset.yaml").read_text()
     assert edited == original.replace("alpha: 1.1 ", "alpha: 1.192 ").replace(
-        "alpha: 1.2}", "alpha: 1.192}"
+        "alpha: 1.18}", "alpha: 1.192}"
     )
 
 
