@@ -500,11 +500,14 @@ class _Suggester:
             moving[list(tracks.icons[t])] = True
         return moving, PaintScenario(tracks.source, tracks.alpha, tracks.moving, tracks.icons)
 
-    def paint_limits(self, tracks: _Tracks, cap: float) -> list[list[Limit]]:
+    def paint_limits(
+        self, tracks: _Tracks, caps: NDArray[np.float64], shrink: bool
+    ) -> list[list[Limit]]:
         """Per canvas, the paint rules' limits (rules on every canvas go to each)."""
         out: list[list[Limit]] = [[] for _ in self.canvases]
         moving, scenario = self.scenario(tracks)
-        for rule, j, icons, at, attained in self.paint_rules.limits(moving, scenario, cap):
+        found = self.paint_rules.limits(moving, scenario, caps, shrink=shrink)
+        for rule, j, icons, at, attained in found:
             grid = GRID_STEP if rule in BRACKETED_RULES else None
             names = tuple(sorted(self.names[i] for i in icons))
             for k in range(len(self.canvases)) if j < 0 else (j,):
@@ -556,7 +559,9 @@ class _Suggester:
                         return True
         return False
 
-    def answer(self, moving: NDArray[np.bool_], precision: int) -> SafeAlpha:
+    def answer(
+        self, moving: NDArray[np.bool_], precision: int, per_canvas_needed: bool = True
+    ) -> SafeAlpha:
         """Largest safe alpha when the icons in ``moving`` share one coefficient."""
         tracks = self.tracks(moving)
         found = [
@@ -568,9 +573,13 @@ class _Suggester:
                 strict=True,
             )
         ]
-        exact = [lim for ls in found for lim in ls]
-        cap = min([self.a_hi, *(lim.at for lim in exact)])
-        found = [f + p for f, p in zip(found, self.paint_limits(tracks, cap), strict=True)]
+        # A canvas's first limit lies at or below its earliest exact one; when only
+        # the question's answer matters (not each canvas's), the earliest of all.
+        caps = np.array([min([self.a_hi, *(lim.at for lim in ls)]) for ls in found])
+        if not per_canvas_needed:
+            caps[:] = caps.min()
+        paint = self.paint_limits(tracks, caps, shrink=not per_canvas_needed)
+        found = [f + p for f, p in zip(found, paint, strict=True)]
         per_canvas_limit = [min(ls, key=_limit_order) if ls else None for ls in found]
         per_canvas = tuple(
             CanvasLimit(name, self.rounded(limit, precision), limit)
@@ -739,7 +748,7 @@ def suggest(
                 color=name,
                 source=iconset.icons[members[0]].color,
                 icons=tuple(engine.names[i] for i in members),
-                safe=engine.answer(moving, precision),
+                safe=engine.answer(moving, precision, per_canvas_needed=False),
             )
         )
 
@@ -756,7 +765,7 @@ def suggest(
         else:
             moving = np.zeros(n, dtype=bool)
             moving[i] = True
-            safe = engine.answer(moving, precision)
+            safe = engine.answer(moving, precision, per_canvas_needed=False)
             cache[style] = (icon.name, safe)
         per_icon.append(IconSuggestion(icon.name, icon.color, icon.alpha, safe))
     return SuggestResult(

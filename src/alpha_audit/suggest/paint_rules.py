@@ -301,9 +301,19 @@ class PaintRules:
     # -- one question ----------------------------------------------------------
 
     def limits(
-        self, moving_icons: NDArray[np.bool_], tracks: PaintScenario, cap: float
+        self,
+        moving_icons: NDArray[np.bool_],
+        tracks: PaintScenario,
+        cap: float | NDArray[np.float64],
+        *,
+        shrink: bool = False,
     ) -> list[Found]:
-        """Every paint-rule limit of one question at or below ``cap`` (earlier ones suffice)."""
+        """Every paint-rule limit of one question up to ``cap`` (per canvas, or one for all).
+
+        Nothing beyond a canvas's cap can be its first limit.  With ``shrink``
+        only the question's earliest limit matters (not each canvas's), so a
+        limit found on one canvas caps the search on the next.
+        """
         if self.pipeline == "css":
             # CSS cannot draw alpha above 1 (a_hi is 1): the question is alpha 1 itself.
             first = self.first_objection(moving_icons, tracks, ALPHA_LO)
@@ -313,17 +323,22 @@ class PaintRules:
             if any(moving_icons[i] for i in icons):
                 found.append((rule, -1, icons, ALPHA_LO, True))  # -1: on every canvas
         found += [f for f in self.per_paint() if moving_icons[f[2][0]]]
-        cap = min([cap, *(f[3] for f in found)])
-        if cap <= ALPHA_LO:
+        caps = np.broadcast_to(np.asarray(cap, dtype=np.float64), (len(self.canvases),)).copy()
+        for _, j, _, at, _ in found:
+            if j < 0 or shrink:
+                caps[:] = np.minimum(caps, at)
+            else:
+                caps[j] = min(caps[j], at)
+        if np.all(caps <= ALPHA_LO):
             return found
         rules = self.policy.rules
         if Rule.CONFUSION in rules:
-            found += self._confusion(tracks, cap, None)
+            found += self._confusion(tracks, caps, None, shrink)
         if Rule.CVD_CONFUSION in rules:
             for deficiency in DEFICIENCIES:
-                found += self._confusion(tracks, cap, deficiency)
+                found += self._confusion(tracks, caps, deficiency, shrink)
         if Rule.CVD_COLLISION in rules:
-            found += self._cvd_collision(tracks, cap)
+            found += self._cvd_collision(tracks, float(caps.max()))
         return found
 
     def _track_roles(self, tracks: PaintScenario) -> tuple[NDArray[np.bool_], NDArray[np.intp]]:
@@ -351,7 +366,23 @@ class PaintRules:
             return composite_paint(source, self.backgrounds[j], coef, 1.0, "css")
         return composite_extended(source, self.backgrounds[j], coef)
 
-    def _confusion(self, tracks: PaintScenario, cap: float, deficiency: str | None) -> list[Found]:
+    def _at(
+        self, tracks: PaintScenario, t: NDArray[np.intp], a: NDArray[np.float64], j: int
+    ) -> NDArray[np.float64]:
+        """Track ``t[k]`` at coefficient ``a[k]`` on canvas ``j``, elementwise: (K, 3)."""
+        coef = np.where(tracks.moving[t], a, tracks.alpha[t])
+        source = tracks.source[t]
+        if self.pipeline == "css":
+            return composite_paint(source, self.backgrounds[j], coef, 1.0, "css")
+        return composite_extended(source, self.backgrounds[j], coef)
+
+    def _confusion(
+        self,
+        tracks: PaintScenario,
+        caps: NDArray[np.float64],
+        deficiency: str | None,
+        shrink: bool,
+    ) -> list[Found]:
         rule = Rule.CONFUSION if deficiency is None else Rule.CVD_CONFUSION
         part, labels = self._track_roles(tracks)
         idx = np.flatnonzero(part)
@@ -361,8 +392,7 @@ class PaintRules:
         breaks = clip_breakpoints(
             tracks.source[idx][:, np.newaxis, :], self.backgrounds[np.newaxis]
         ).reshape(-1)
-        grid = _grid(ALPHA_LO, cap, breaks)
-        chunk = max(1, _CHUNK // grid.size)
+        full = _grid(ALPHA_LO, float(caps.max()), breaks)
 
         def view(c: NDArray[np.float64]) -> NDArray[np.float64]:
             return c if deficiency is None else simulate_cvd(c, deficiency)  # type: ignore[arg-type]
@@ -370,6 +400,10 @@ class PaintRules:
         out: list[Found] = []
         one = np.array([ALPHA_LO])
         for j in range(len(self.canvases)):
+            if caps[j] <= ALPHA_LO:
+                continue
+            grid = full[full <= caps[j]]
+            chunk = max(1, _CHUNK // grid.size)
             lab_ref = linear_to_lab(view(self._shown(tracks, idx, one, j)))[:, 0]  # (T', 3)
             lightness = linear_to_lab(view(self._shown(tracks, idx, grid, j)))[..., 0]
             s_l = lightness_weight_max(lightness)
@@ -381,9 +415,11 @@ class PaintRules:
                 if first.size == 0:
                     continue
                 # dE00 >= |dL| / S_L,max (alpha_audit.color.nearest): far pairs never drop.
-                gap = np.min(np.abs(lightness[first] - lightness[second]), axis=1) / s_l
-                near = gap < level * (1.0 + 1e-9)
-                first, second = first[near], second[near]
+                # Grid points where the bound cannot rule the pair out: only these
+                # are evaluated; elsewhere the distance is provably >= the level.
+                close = np.abs(lightness[first] - lightness[second]) / s_l < level * (1 + 1e-9)
+                near = close.any(axis=1)
+                first, second, close = first[near], second[near], close[near]
                 if first.size == 0:
                     continue
 
@@ -392,10 +428,17 @@ class PaintRules:
                     f: NDArray[np.intp] = idx[first],
                     g: NDArray[np.intp] = idx[second],
                     j: int = j,
+                    close: NDArray[np.bool_] = close,
                 ) -> NDArray[np.float64]:
-                    # a is (N,) on the grid, (pairs, 1) while bisecting: both broadcast.
-                    shown_f = view(self._shown(tracks, f, a, j))
-                    return delta_e_2000(shown_f, view(self._shown(tracks, g, a, j)))
+                    if a.ndim > 1:  # bisecting: (pairs, 1), every pair at its own point
+                        shown_f = view(self._shown(tracks, f, a, j))
+                        return delta_e_2000(shown_f, view(self._shown(tracks, g, a, j)))
+                    out = np.full(close.shape, np.inf)
+                    p, n = np.nonzero(close)
+                    out[p, n] = delta_e_2000(
+                        view(self._at(tracks, f[p], a[n], j)), view(self._at(tracks, g[p], a[n], j))
+                    )
+                    return out
 
                 _, unsafe = first_below(delta_e, grid, level)
                 for p in np.flatnonzero(np.isfinite(unsafe)):
@@ -405,6 +448,8 @@ class PaintRules:
                     names = tuple(self.names[i] for i in icons)
                     if not self.exempt(rule, self.canvases[j], names):
                         out.append((rule, j, icons, float(unsafe[p]), True))
+                        if shrink:
+                            caps = np.minimum(caps, float(unsafe[p]))
         return out
 
     def _cvd_collision(self, tracks: PaintScenario, cap: float) -> list[Found]:
