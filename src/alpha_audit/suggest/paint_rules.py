@@ -575,8 +575,23 @@ class PaintRules:
             ) -> NDArray[np.float64]:
                 return delta_e_2000_lab(lab[f], lab[g])
 
-            key = delta_e_2000_lightness_key(lab)
-            first, second, _ = pairs_below(key, distance, level, labels[idx])
+            mv = np.flatnonzero(tracks.moving[idx])
+            if mv.size * idx.size <= _CHUNK:
+                # Few moving tracks (per colour, per icon): only their pairs can object.
+                f, g = np.meshgrid(mv, np.arange(idx.size), indexing="ij")
+                f, g = f.reshape(-1), g.reshape(-1)
+                lo, hi = np.minimum(f, g), np.maximum(f, g)
+                pairs = np.unique(np.stack([lo, hi], axis=1)[lo != hi], axis=0).reshape(-1, 2)
+                lo, hi = pairs[:, 0], pairs[:, 1]
+                lo, hi = (
+                    lo[labels[idx][lo] != labels[idx][hi]],
+                    hi[labels[idx][lo] != labels[idx][hi]],
+                )
+                below = distance(lo, hi) < level
+                first, second = lo[below], hi[below]
+            else:
+                key = delta_e_2000_lightness_key(lab)
+                first, second, _ = pairs_below(key, distance, level, labels[idx])
             keep = confusion_possible(delta_e_2000_lab(lab_ref[first], lab_ref[second]), level)
             keep &= tracks.moving[idx[first]] | tracks.moving[idx[second]]
             for f, g in zip(first[keep].tolist(), second[keep].tolist(), strict=True):
