@@ -230,15 +230,6 @@ def test_end_to_end_with_rendered_masks(tmp_path: Path) -> None:
     assert rules == ["fixed-colour", "not-audited"]
 
 
-def test_suggest_refuses_paint_rules_it_cannot_honour() -> None:
-    from alpha_audit.suggest import suggest
-
-    theme = Theme("w", (Canvas("white", "#ffffff"),))
-    iconset = IconSet("s", (Icon("a", "a.svg", "#bc4c00", 1.15, color_name="severe"),))
-    with pytest.raises(UsageError, match="does not yet honour the paint rules confusion"):
-        suggest(theme, iconset, Policy(rules=frozenset({Rule.LOSS, Rule.CONFUSION})))
-
-
 def test_paint_audit_size_is_bounded(monkeypatch: pytest.MonkeyPatch) -> None:
     import alpha_audit.paint_audit as pa
 

@@ -37,7 +37,6 @@ from alpha_audit.audit import MAX_COMBINATIONS
 from alpha_audit.color import (
     CONTRAST_TOLERANCE,
     DEFICIENCIES,
-    DELTA_E_TOLERANCE,
     PIPELINES,
     Deficiency,
     Pipeline,
@@ -54,7 +53,14 @@ from alpha_audit.errors import InputError, UsageError
 from alpha_audit.load.paint_masks import PaintSet
 from alpha_audit.load.paints import CURRENT_COLOR
 from alpha_audit.model import Icon, IconSet, Theme
-from alpha_audit.policy import PAINT_RULES, Policy, Rule
+from alpha_audit.policy import (
+    PAINT_RULES,
+    Policy,
+    Rule,
+    confusion_breaks,
+    drift_breaks,
+    size_contrast_floor,
+)
 
 __all__ = [
     "LOCK_TOLERANCE",
@@ -399,15 +405,7 @@ def paint_findings(result: PaintAudit, policy: Policy) -> list[PaintFinding]:
         everything = np.ones(len(result.entries), dtype=bool)
         out += _drift(result, Rule.DRIFT, policy.max_drift, everything)
     if Rule.LOCK in rules:
-        names = result.iconset.locked
-        locked = np.array(
-            [
-                e.icon.name in names or (e.paint == CURRENT_COLOR and e.icon.color_name in names)
-                for e in result.entries
-            ],
-            dtype=bool,
-        )
-        out += _drift(result, Rule.LOCK, LOCK_TOLERANCE, locked)
+        out += _drift(result, Rule.LOCK, LOCK_TOLERANCE, locked_entries(result))
     if Rule.CONFUSION in rules:
         out += _confusion(result, policy.min_delta_e, None)
     if Rule.THIN_STROKES in rules:
@@ -420,6 +418,18 @@ def paint_findings(result: PaintAudit, policy: Policy) -> list[PaintFinding]:
         for deficiency in DEFICIENCIES:
             out += _confusion(result, policy.min_delta_e, deficiency)
     return out
+
+
+def locked_entries(result: PaintAudit) -> NDArray[np.bool_]:
+    """Which paint rows ``lock`` judges: a locked icon's, or a locked palette colour's."""
+    names = result.iconset.locked
+    return np.array(
+        [
+            e.icon.name in names or (e.paint == CURRENT_COLOR and e.icon.color_name in names)
+            for e in result.entries
+        ],
+        dtype=bool,
+    ).reshape(len(result.entries))
 
 
 def _role(icon: Icon) -> str:
@@ -471,7 +481,7 @@ def _not_audited(result: PaintAudit) -> Iterator[PaintFinding]:
 def _drift(
     result: PaintAudit, rule: Rule, limit: float, selected: NDArray[np.bool_]
 ) -> Iterator[PaintFinding]:
-    over = (result.drift > limit + DELTA_E_TOLERANCE) & selected[:, np.newaxis]
+    over = drift_breaks(result.drift, limit) & selected[:, np.newaxis]
     for j, canvas in enumerate(result.theme.canvases):
         for p in np.flatnonzero(over[:, j]):
             e = result.entries[int(p)]
@@ -490,7 +500,7 @@ def _drift(
 
 
 def _thin_strokes(result: PaintAudit, limit: float) -> Iterator[PaintFinding]:
-    below = result.size_contrast < limit - CONTRAST_TOLERANCE  # (p, m, k); NaN is never below
+    below = result.size_contrast < size_contrast_floor(limit)  # (p, m, k); NaN never is
     for j, canvas in enumerate(result.theme.canvases):
         for p in np.flatnonzero(below[:, j, :].any(axis=1)):
             e = result.entries[int(p)]
@@ -507,6 +517,11 @@ def _thin_strokes(result: PaintAudit, limit: float) -> Iterator[PaintFinding]:
                 {"size": size, "q50": float(result.q50[p, k]), "size_contrast": c},
                 paint=e.paint,
             )
+
+
+def role_of(icon: Icon) -> str:
+    """The palette role ``confusion`` compares: the palette name, else the colour itself."""
+    return _role(icon)
 
 
 def _styles(result: PaintAudit) -> list[int]:
@@ -553,7 +568,7 @@ def _confusion(
         shown = [simulate_cvd(c, deficiency) for c in shown]
     de_ref = delta_e_2000(*solid)  # (q, m)
     de = delta_e_2000(*shown)
-    confused = (de_ref >= min_delta_e) & (de < min_delta_e)
+    confused = confusion_breaks(de_ref, de, min_delta_e)
     rule = Rule.CONFUSION if deficiency is None else Rule.CVD_CONFUSION
     under = "" if deficiency is None else f" under simulated {deficiency}"
     for j, canvas in enumerate(result.theme.canvases):
@@ -576,10 +591,34 @@ def _confusion(
                 {
                     "delta_e_ref": float(de_ref[q, j]),
                     "delta_e": float(de[q, j]),
+                    "min_delta_e": min_delta_e,
                     "roles": f"{r1},{r2}",
                     **({"deficiency": deficiency} if deficiency else {}),
                 },
             )
+
+
+def cvd_collision_groups(
+    seen: NDArray[np.integer], ref: NDArray[np.integer], sources: list[str] | tuple[str, ...]
+) -> list[tuple[tuple[int, ...], list[int]]]:
+    """The one statement of ``cvd-collision`` on one canvas: (code, members) that object.
+
+    ``seen`` and ``ref`` are the simulated 8-bit codes ``(n, 3)`` at the icons'
+    alpha and at alpha 1.  A group of one simulated code objects when it holds
+    two distinct sources that did not already share a simulated code at alpha 1.
+    Sorted by code.
+    """
+    groups: dict[tuple[int, ...], list[int]] = {}
+    for r, code in enumerate(seen.tolist()):
+        groups.setdefault(tuple(code), []).append(r)
+    out = []
+    for code, members in sorted(groups.items()):
+        if len({sources[r] for r in members}) < 2:
+            continue
+        if len({tuple(ref[r].tolist()) for r in members}) == 1:
+            continue  # already one colour at alpha 1
+        out.append((code, members))
+    return out
 
 
 def _cvd_collisions(result: PaintAudit, deficiency: Deficiency) -> Iterator[PaintFinding]:
@@ -596,16 +635,8 @@ def _cvd_collisions(result: PaintAudit, deficiency: Deficiency) -> Iterator[Pain
     ref = to_8bit(simulate_cvd(solid, deficiency))
     sources = [result.entries[p].source for p in idx]
     for j, canvas in enumerate(result.theme.canvases):
-        groups: dict[tuple[int, ...], list[int]] = {}
-        for r in range(len(idx)):
-            groups.setdefault(tuple(int(c) for c in seen[r, j]), []).append(r)
-        for code, members in sorted(groups.items()):
+        for code, members in cvd_collision_groups(seen[:, j], ref[:, j], sources):
             colours = sorted({sources[r] for r in members})
-            if len(colours) < 2:
-                continue
-            already = len({tuple(int(c) for c in ref[r, j]) for r in members}) == 1
-            if already:
-                continue
             out = "#{:02x}{:02x}{:02x}".format(*code)
             yield PaintFinding(
                 Rule.CVD_COLLISION,

@@ -20,10 +20,10 @@ from alpha_audit.model import GamutAdjustment, IconSet, Theme
 from alpha_audit.paint_audit import audit_paints, check_pipeline, resolve_pipeline
 from alpha_audit.policy import Policy
 
-__all__ = ["check_files", "check_project"]
+__all__ = ["check_files", "check_project", "render_paints"]
 
 
-def _render(
+def render_paints(
     iconset: IconSet,
     *,
     strict_svg: bool,
@@ -101,7 +101,7 @@ def check_files(
     check_pipeline(iconset, chosen, alpha)
     if on_start is not None:
         on_start(len(iconset.icons))
-    paints = _render(iconset, strict_svg=strict_svg, on_icon=on_icon)
+    paints = render_paints(iconset, strict_svg=strict_svg, on_icon=on_icon)
     return _audit(theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=chosen)
 
 
@@ -177,7 +177,7 @@ def check_project(
         on_start(sum(len(s.icons) for s in loaded_sets))
     audits = []
     for iconset in loaded_sets:
-        paints = _render(iconset, strict_svg=strict_svg, on_icon=on_icon)
+        paints = render_paints(iconset, strict_svg=strict_svg, on_icon=on_icon)
         for theme in loaded_themes:
             kind = chosen[(theme.name, iconset.name)]
             audits.append(
@@ -235,7 +235,7 @@ def _check_with_tokens(
     audits = []
     for pairs in per_set:
         # The modes differ in colours only: the icons render once.
-        paints = _render(pairs[0][1], strict_svg=strict_svg, on_icon=on_icon)
+        paints = render_paints(pairs[0][1], strict_svg=strict_svg, on_icon=on_icon)
         for theme, iconset in pairs:
             kind = resolve_pipeline(pipeline, iconset.pipeline, theme.pipeline)
             audits.append(

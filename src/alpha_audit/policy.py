@@ -1,8 +1,10 @@
 """Gate policy: which findings fail a build, shared by ``check`` and ``suggest``.
 
-The rules are the CI-gate issue's; the default policy is no contrast loss, no
-icon newly failing the threshold, no collision that did not already exist at
-alpha = 1.
+The rules are the CI-gate issue's and the paint issue's; the default policy is
+no contrast loss, no icon newly failing the threshold, no collision that did
+not already exist at alpha = 1, and no two palette roles told apart at alpha 1
+but confused at the icons' alpha.  Each numeric rule is stated once here (the
+``*_breaks`` / ``*_floor`` functions) and used by the gate and by ``suggest``.
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from alpha_audit.color import CONTRAST_TOLERANCE
+from alpha_audit.color import CONTRAST_TOLERANCE, DELTA_E_TOLERANCE
 from alpha_audit.errors import InputError, UsageError
 
 __all__ = [
@@ -27,8 +29,13 @@ __all__ = [
     "Exemption",
     "Policy",
     "Rule",
+    "confusion_breaks",
+    "confusion_possible",
     "contrast_breaks",
     "contrast_floor",
+    "drift_breaks",
+    "drift_ceiling",
+    "size_contrast_floor",
 ]
 
 
@@ -70,9 +77,8 @@ def _did_you_mean(name: str, known: Iterable[str]) -> str:
     return f"did you mean {close[0]!r}? " if close else ""
 
 
-# `confusion` joins the default once `suggest` honours it (the issue's deliverable 6):
-# until then suggest would answer coefficients that a default check rejects.
-DEFAULT_RULES = frozenset({Rule.LOSS, Rule.NEWLY_FAILING, Rule.NEW_COLLISION})
+# Issue 11, deliverable 4: role separation is part of the default gate.
+DEFAULT_RULES = frozenset({Rule.LOSS, Rule.NEWLY_FAILING, Rule.NEW_COLLISION, Rule.CONFUSION})
 PAINT_RULES = frozenset(
     {
         Rule.FIXED_COLOUR,
@@ -261,3 +267,53 @@ def contrast_floor(
     if rule is Rule.NEWLY_FAILING:
         return np.where(ref >= threshold, threshold, 1.0)  # only icons passing at alpha = 1
     raise ValueError(f"{rule.value} is not a contrast rule")
+
+
+def drift_breaks(drift: ArrayLike, limit: float) -> NDArray[np.bool_]:
+    """Where ``drift`` (CIEDE2000 from the colour at alpha 1) objects: above ``limit``.
+
+    The one statement of ``drift`` (limit ``max_drift``) and ``lock`` (limit
+    one JND); drifts within the CIEDE2000 float tolerance of the limit pass.
+
+    >>> drift_breaks([9.0, 10.0, 10.5], 10.0).tolist()
+    [False, False, True]
+    """
+    return np.asarray(drift, dtype=np.float64) > drift_ceiling(limit)
+
+
+def drift_ceiling(limit: float) -> float:
+    """The largest drift :func:`drift_breaks` lets pass (``suggest`` brackets its crossing)."""
+    return limit + DELTA_E_TOLERANCE
+
+
+def size_contrast_floor(limit: float, tolerance: float = CONTRAST_TOLERANCE) -> float:
+    """The size contrast below which ``thin-strokes`` objects (NaN, no ink, never does).
+
+    >>> size_contrast_floor(3.0) < 3.0
+    True
+    """
+    return limit - tolerance
+
+
+def confusion_possible(delta_e_ref: ArrayLike, min_delta_e: float) -> NDArray[np.bool_]:
+    """Pairs of roles that ``confusion`` protects: told apart at alpha 1.
+
+    >>> confusion_possible([9.9, 10.0], 10.0).tolist()
+    [False, True]
+    """
+    return np.asarray(delta_e_ref, dtype=np.float64) >= min_delta_e
+
+
+def confusion_breaks(
+    delta_e_ref: ArrayLike, delta_e: ArrayLike, min_delta_e: float
+) -> NDArray[np.bool_]:
+    """Where ``confusion`` (and ``cvd-confusion``) object: apart at alpha 1, not at alpha.
+
+    ``suggest`` uses the two halves: :func:`confusion_possible`, then where
+    ``delta_e`` first drops below ``min_delta_e``.
+
+    >>> confusion_breaks([16.1, 8.0], [5.2, 5.2], 10.0).tolist()
+    [True, False]
+    """
+    de = np.asarray(delta_e, dtype=np.float64)
+    return confusion_possible(delta_e_ref, min_delta_e) & (de < min_delta_e)

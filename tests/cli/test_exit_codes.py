@@ -35,13 +35,15 @@ def test_exit_0_when_the_gate_passes() -> None:
 
 
 def test_exit_1_when_the_gate_fails() -> None:
-    result = runner.invoke(app, ["check", "github-primer", "vibrant", "--fail-on", "separation"])
+    args = ["check", "github-primer", "vibrant", "--fail-on", "separation", "--min-delta-e", "12"]
+    result = runner.invoke(app, args)
     assert result.exit_code == ExitStatus.GATE_FAILED, result.output
     assert "gate failed: 1 separation" in result.stderr
 
 
 def test_exit_zero_reports_but_exits_0() -> None:
-    args = ["check", "github-primer", "vibrant", "--fail-on", "separation", "--exit-zero"]
+    args = ["check", "github-primer", "vibrant", "--fail-on", "separation", "--min-delta-e", "12"]
+    args.append("--exit-zero")
     result = runner.invoke(app, args)
     assert result.exit_code == ExitStatus.OK
     assert "gate failed" in result.stderr

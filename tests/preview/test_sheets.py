@@ -124,7 +124,7 @@ def test_grid_rows_default_to_one_and_the_sets_own(example):
     (spec,) = plan_sheets(Layout.GRID, theme.canvases[:1], [24], "t")
     sheet = render_sheet(spec, iconset, masks)
     alphas = sorted({p.alpha for p in sheet.placements})
-    assert alphas == [1.0, 1.1, 1.2]
+    assert alphas == [1.0, 1.1, 1.18]
     assert len(sheet.placements) == 2 * len(iconset.icons)
 
 

@@ -101,7 +101,7 @@ def test_apply_per_colour_and_icon_passes_the_gate_and_keeps_alert(
     assert changed and plan.passes and plan.kept == ("alert",)
     after = load_iconset(manifest)
     by_name = {i.name: i.alpha for i in after.icons}
-    assert by_name["alert"] == 1.2  # the explicit choice is kept
+    assert by_name["alert"] == 1.18  # the explicit choice is kept
     assert {n: by_name[n] for n in plan.icons} == plan.icons
     # Independently: the gate passes on the manifest as written.
     assert evaluate([audit(theme, after)], Policy()).passed
@@ -116,7 +116,7 @@ def test_apply_replace_explicit_overwrites_alert(tmp_path: Path, repo: Path) -> 
         app, ["suggest", theme, str(manifest), "--apply", "set", "--replace-explicit"]
     )
     assert res.exit_code == 0, res.output
-    assert {i.alpha for i in load_iconset(manifest).icons} == {1.226}
+    assert {i.alpha for i in load_iconset(manifest).icons} == {1.192}
 
 
 def test_apply_unknown_scope_is_a_usage_error(tmp_path: Path, repo: Path) -> None:

@@ -13,8 +13,10 @@ from alpha_audit.cli.options import (
     ForceOption,
     GamutOption,
     IconsetArgument,
+    MaxDriftOption,
     MaxLossOption,
     MinDeltaEOption,
+    MinSizeContrastOption,
     ThemeArgument,
     ThresholdOption,
     at_least,
@@ -77,9 +79,9 @@ def suggest_command(
         typer.Option(
             "--fail-on",
             metavar="RULE",
-            help="Rule that must hold (repeatable; replaces the policy): loss, below-threshold, "
-            "newly-failing, collision, new-collision, separation. "
-            "[default: the config's, else loss, newly-failing, new-collision]",
+            help="Rule that must hold (repeatable; replaces the policy): any rule of check "
+            "(docs/ci.md). "
+            "[default: the config's, else loss, newly-failing, new-collision, confusion]",
             show_default=False,
             # suggest composites colours, it never renders an SVG.
             callback=rules_flag(
@@ -91,6 +93,8 @@ def suggest_command(
     ] = None,
     max_loss: MaxLossOption = None,
     min_delta_e: MinDeltaEOption = None,
+    max_drift: MaxDriftOption = None,
+    min_size_contrast: MinSizeContrastOption = None,
     fmt: Annotated[
         SuggestFormat,
         typer.Option("--format", "-f", help="table, json or markdown.", case_sensitive=False),
@@ -136,6 +140,8 @@ def suggest_command(
     from alpha_audit.load.iconset import load_iconset
     from alpha_audit.load.theme import load_theme
     from alpha_audit.output import check_targets
+    from alpha_audit.paint_audit import resolve_pipeline
+    from alpha_audit.pipeline import render_paints
     from alpha_audit.render.common import RenderOptions, check_suffix
     from alpha_audit.suggest import suggest
     from alpha_audit.suggest.apply import apply_suggestion, describe_plan
@@ -172,8 +178,14 @@ def suggest_command(
             f"copy {source.parent} into your project and give its {source.name}"
         )
     iconset = source
+    require_finite(max_drift, "--max-drift")
+    require_finite(min_size_contrast, "--min-size-contrast")
     policy = project.policy.with_overrides(
-        rules=fail_on, max_loss=max_loss, min_delta_e=min_delta_e
+        rules=fail_on,
+        max_loss=max_loss,
+        min_delta_e=min_delta_e,
+        max_drift=max_drift,
+        min_size_contrast=min_size_contrast,
     )
 
     loaded_theme = load_theme(theme, gamut=gamut_policy)
@@ -181,10 +193,14 @@ def suggest_command(
     policy.check_exemptions(
         (c.name for c in loaded_theme.canvases), (i.name for i in loaded_set.icons)
     )
+    # The gate judges every paint of every SVG as drawn: suggest answers the same rows.
+    paints = render_paints(loaded_set, strict_svg=False, on_icon=None)
     result = suggest(
         loaded_theme,
         loaded_set,
         policy,
+        paints=paints,
+        pipeline=resolve_pipeline(None, loaded_set.pipeline, loaded_theme.pipeline),
         alpha_max=alpha_max,
         precision=precision,
         threshold=threshold if threshold is not None else project.threshold,

@@ -29,6 +29,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from alpha_audit.color import (
+    Pipeline,
     composite_extended,
     contrast_from_luminance,
     delta_e_2000,
@@ -45,8 +46,9 @@ from alpha_audit.color.nearest import (
     pairs_below,
 )
 from alpha_audit.errors import UsageError
+from alpha_audit.load.paint_masks import PaintSet
 from alpha_audit.model import IconSet, Theme
-from alpha_audit.policy import PAINT_RULES, Policy, Rule, contrast_breaks, contrast_floor
+from alpha_audit.policy import Policy, Rule, contrast_breaks, contrast_floor
 from alpha_audit.suggest.events import (
     clip_breakpoints,
     code_timeline,
@@ -54,6 +56,7 @@ from alpha_audit.suggest.events import (
     first_in_luminance_band,
     luminance_band,
 )
+from alpha_audit.suggest.paint_rules import BRACKETED_RULES, GRID_STEP, PaintRules, PaintScenario
 
 __all__ = [
     "SEPARATION_GRID_STEP",
@@ -69,7 +72,7 @@ __all__ = [
 
 # CIEDE2000 has no closed form in a: its crossings are bracketed on this grid
 # (plus every clip breakpoint) and bisected to events.BISECTION_TOLERANCE.
-SEPARATION_GRID_STEP = 1e-3
+SEPARATION_GRID_STEP = GRID_STEP
 # Pair x grid-point evaluations held at once by the separation search (~10 MB
 # per float64 intermediate of colour-science's CIEDE2000).
 _SEPARATION_CHUNK = 1 << 20
@@ -94,6 +97,9 @@ class Limit:
     icons: tuple[str, ...]
     at: float
     attained: bool
+    # None: found exactly from events; else the bracketing grid step (then
+    # bisected to 1e-9): a dip narrower than this could be missed.
+    grid: float | None = None
 
 
 @dataclass(frozen=True)
@@ -207,7 +213,14 @@ class _Suggester:
     """Everything shared by the set-wide, per-colour and per-icon questions."""
 
     def __init__(
-        self, theme: Theme, iconset: IconSet, policy: Policy, threshold: float, alpha_max: float
+        self,
+        theme: Theme,
+        iconset: IconSet,
+        policy: Policy,
+        threshold: float,
+        alpha_max: float,
+        paints: PaintSet | None = None,
+        pipeline: Pipeline = "linear",
     ) -> None:
         self.policy = policy
         self._timelines: dict[tuple[bytes, int], tuple[NDArray[np.float64], NDArray[np.int64]]] = {}
@@ -230,7 +243,12 @@ class _Suggester:
         for k, r in zip(self.keys.tolist(), self.refs.tolist(), strict=True):
             groups.setdefault(r, set()).add(k)
         self.ref_groups = {frozenset(g) for g in groups.values() if len(g) > 1}
-        self.contrast_rules = policy.contrast_rules
+        # With the SVGs' paints read, the gate judges contrast per paint row (its
+        # own colour and opacity): PaintRules answers those, exactly.
+        self.contrast_rules = policy.contrast_rules if paints is None else ()
+        self.paint_rules = PaintRules(
+            theme, iconset, paints, policy, threshold, alpha_max, self.exempt, pipeline
+        )
         self.collision_rule = policy.collision_rule
         self.separation = Rule.SEPARATION in policy.rules
         # Exemptions or multi-source 8-bit classes need the group-by-group verdict.
@@ -462,14 +480,46 @@ class _Suggester:
                     icons = self.icon_names(tracks, [first[p], second[p]])
                     if not self.exempt(Rule.SEPARATION, self.canvases[j], icons):
                         out[j].append(
-                            Limit(Rule.SEPARATION, self.canvases[j], icons, float(unsafe[p]), True)
+                            Limit(
+                                Rule.SEPARATION,
+                                self.canvases[j],
+                                icons,
+                                float(unsafe[p]),
+                                True,
+                                SEPARATION_GRID_STEP,
+                            )
                         )
         return out
 
     # -- one question ----------------------------------------------------------
 
+    def scenario(self, tracks: _Tracks) -> tuple[NDArray[np.bool_], PaintScenario]:
+        """The question as the paint rules see it: moving icons, and the tracks."""
+        moving = np.zeros(len(self.names), dtype=bool)
+        for t in np.flatnonzero(tracks.moving):
+            moving[list(tracks.icons[t])] = True
+        return moving, PaintScenario(tracks.source, tracks.alpha, tracks.moving, tracks.icons)
+
+    def paint_limits(
+        self, tracks: _Tracks, caps: NDArray[np.float64], shrink: bool
+    ) -> list[list[Limit]]:
+        """Per canvas, the paint rules' limits (rules on every canvas go to each)."""
+        out: list[list[Limit]] = [[] for _ in self.canvases]
+        moving, scenario = self.scenario(tracks)
+        found = self.paint_rules.limits(moving, scenario, caps, shrink=shrink)
+        for rule, j, icons, at, attained in found:
+            grid = GRID_STEP if rule in BRACKETED_RULES else None
+            names = tuple(sorted(self.names[i] for i in icons))
+            for k in range(len(self.canvases)) if j < 0 else (j,):
+                canvas = "(every canvas)" if j < 0 else self.canvases[k]
+                out[k].append(Limit(rule, canvas, names, at, attained, grid))
+        return out
+
     def unsafe_at(self, tracks: _Tracks, a: float) -> bool:
         """Direct check of one coefficient: composite, quantise, apply the rules."""
+        moving, scenario = self.scenario(tracks)
+        if self.paint_rules.first_objection(moving, scenario, a) is not None:
+            return True
         coef = np.where(tracks.moving, a, tracks.alpha)
         out = composite_extended(
             tracks.source[:, np.newaxis, :], self.backgrounds[np.newaxis], coef[:, np.newaxis]
@@ -509,7 +559,9 @@ class _Suggester:
                         return True
         return False
 
-    def answer(self, moving: NDArray[np.bool_], precision: int) -> SafeAlpha:
+    def answer(
+        self, moving: NDArray[np.bool_], precision: int, per_canvas_needed: bool = True
+    ) -> SafeAlpha:
         """Largest safe alpha when the icons in ``moving`` share one coefficient."""
         tracks = self.tracks(moving)
         found = [
@@ -521,6 +573,13 @@ class _Suggester:
                 strict=True,
             )
         ]
+        # A canvas's first limit lies at or below its earliest exact one; when only
+        # the question's answer matters (not each canvas's), the earliest of all.
+        caps = np.array([min([self.a_hi, *(lim.at for lim in ls)]) for ls in found])
+        if not per_canvas_needed:
+            caps[:] = caps.min()
+        paint = self.paint_limits(tracks, caps, shrink=not per_canvas_needed)
+        found = [f + p for f, p in zip(found, paint, strict=True)]
         per_canvas_limit = [min(ls, key=_limit_order) if ls else None for ls in found]
         per_canvas = tuple(
             CanvasLimit(name, self.rounded(limit, precision), limit)
@@ -535,12 +594,12 @@ class _Suggester:
             stepped = _round_down(alpha - unit + unit / 2, precision)
             alpha = stepped if stepped >= ALPHA_LO else None
         if limit is None:
-            exact: float | None = self.a_hi
+            exact_at: float | None = self.a_hi
         elif limit.attained and limit.at <= ALPHA_LO:
-            exact = None
+            exact_at = None
         else:
-            exact = limit.at
-        return SafeAlpha(alpha=alpha, exact=exact, limit=limit, per_canvas=per_canvas)
+            exact_at = limit.at
+        return SafeAlpha(alpha=alpha, exact=exact_at, limit=limit, per_canvas=per_canvas)
 
     def rounded(self, limit: Limit | None, precision: int) -> float | None:
         """``limit.at`` (or alpha_max) rounded down, stepping off an unsafe point."""
@@ -586,6 +645,8 @@ def largest_safe_alpha(
     alpha_max: float = 2.0,
     precision: int = 3,
     threshold: float | None = None,
+    paints: PaintSet | None = None,
+    pipeline: Pipeline = "linear",
 ) -> SafeAlpha:
     """The largest safe alpha when ``icons`` (default: all) share one coefficient.
 
@@ -597,7 +658,7 @@ def largest_safe_alpha(
     >>> largest_safe_alpha(theme, dots, Policy()).limit.rule.value  # dark blue on yellow
     'loss'
     """
-    engine = _engine(theme, iconset, policy, alpha_max, precision, threshold)
+    engine = _engine(theme, iconset, policy, alpha_max, precision, threshold, paints, pipeline)
     moving = np.ones(len(iconset.icons), dtype=bool)
     if icons is not None:
         unknown = sorted(set(icons) - set(engine.names))
@@ -614,6 +675,8 @@ def _engine(
     alpha_max: float,
     precision: int,
     threshold: float | None,
+    paints: PaintSet | None = None,
+    pipeline: Pipeline = "linear",
 ) -> _Suggester:
     if not (math.isfinite(alpha_max) and alpha_max >= ALPHA_LO):
         raise UsageError(f"alpha_max must be a finite number >= 1, got {alpha_max}")
@@ -623,17 +686,20 @@ def _engine(
         raise UsageError(f"icon set {iconset.name!r} has no icons")
     if not theme.canvases:
         raise UsageError(f"theme {theme.name!r} has no canvases")
-    unsupported = sorted(r.value for r in policy.rules & PAINT_RULES)
-    if unsupported:
-        # Better no answer than an alpha that check then rejects (issue 11, deliverable 6).
-        raise UsageError(
-            f"suggest does not yet honour the paint rules {', '.join(unsupported)}; "
-            "leave them out of `rules` for suggest, or check a chosen alpha"
-        )
+    if paints is not None and paints.problems:
+        # As check does: icons that could not be rendered are left out of the audit.
+        broken = {p.icon for p in paints.problems}
+        iconset = replace(iconset, icons=tuple(i for i in iconset.icons if i.name not in broken))
+        if not iconset.icons:
+            raise UsageError(f"no icon of {iconset.name!r} could be rendered")
     t = theme.threshold if threshold is None else float(threshold)
     if not math.isfinite(t):
         raise UsageError(f"threshold must be a finite number, got {t}")
-    return _Suggester(theme, iconset, policy, t, float(alpha_max))
+    if pipeline == "css":
+        # CSS opacity cannot exceed 1 (CSS Color 4 clamps alpha): the only
+        # coefficient above the reference is none, so the question is alpha 1.
+        alpha_max = ALPHA_LO
+    return _Suggester(theme, iconset, policy, t, float(alpha_max), paints, pipeline)
 
 
 def suggest(
@@ -644,6 +710,8 @@ def suggest(
     alpha_max: float = 2.0,
     precision: int = 3,
     threshold: float | None = None,
+    paints: PaintSet | None = None,
+    pipeline: Pipeline = "linear",
 ) -> SuggestResult:
     """The largest safe alpha for the whole set, per palette colour and per icon.
 
@@ -663,7 +731,7 @@ def suggest(
     >>> alone.alpha, alone.limit.rule.value, alone.limit.icons, round(alone.limit.at, 6)
     (1.165, 'new-collision', ('o', 'x'), 1.165168)
     """
-    engine = _engine(theme, iconset, policy, alpha_max, precision, threshold)
+    engine = _engine(theme, iconset, policy, alpha_max, precision, threshold, paints, pipeline)
     n = len(iconset.icons)
     overall = engine.answer(np.ones(n, dtype=bool), precision)
 
@@ -681,7 +749,7 @@ def suggest(
                 color=name,
                 source=iconset.icons[members[0]].color,
                 icons=tuple(engine.names[i] for i in members),
-                safe=engine.answer(moving, precision),
+                safe=engine.answer(moving, precision, per_canvas_needed=False),
             )
         )
 
@@ -698,7 +766,7 @@ def suggest(
         else:
             moving = np.zeros(n, dtype=bool)
             moving[i] = True
-            safe = engine.answer(moving, precision)
+            safe = engine.answer(moving, precision, per_canvas_needed=False)
             cache[style] = (icon.name, safe)
         per_icon.append(IconSuggestion(icon.name, icon.color, icon.alpha, safe))
     return SuggestResult(

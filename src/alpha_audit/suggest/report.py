@@ -70,6 +70,8 @@ def _limit(limit: Limit | None) -> dict[str, Any] | None:
         "canvas": limit.canvas,
         "at": limit.at,
         "attained": limit.attained,
+        # null: found exactly from events; else bracketed on this grid, bisected to 1e-9.
+        "grid": limit.grid,
     }
 
 
@@ -88,6 +90,8 @@ def suggest_document(result: SuggestResult) -> dict[str, Any]:
             "rules": sorted(r.value for r in policy.rules),
             "max_loss": policy.max_loss,
             "min_delta_e": policy.min_delta_e,
+            "max_drift": policy.max_drift,
+            "min_size_contrast": policy.min_size_contrast,
         },
         "threshold": result.threshold,
         "alpha_max": result.alpha_max,
@@ -120,7 +124,10 @@ def _why(limit: Limit | None, alpha_max: float) -> str:
     if limit is None:
         return f"nothing breaks up to {alpha_max:g}"
     where = "at" if limit.attained else "just above"
-    return f"{limit.rule.value} on {limit.canvas} {where} {limit.at:.6f} ({_names(limit.icons)})"
+    how = "" if limit.grid is None else f", bracketed on a {limit.grid:g} grid, bisected to 1e-9"
+    return (
+        f"{limit.rule.value} on {limit.canvas} {where} {limit.at:.6f} ({_names(limit.icons)}{how})"
+    )
 
 
 def _headline(result: SuggestResult) -> str:
