@@ -23,8 +23,16 @@ def paints(body: str, root_attrs: str = "") -> list[tuple[str, str, float, str]]
     return [(p.color, p.kind, round(p.opacity, 12), p.element) for p in extract_paints(svg).paints]
 
 
-def test_default_paint_is_black_fill_no_stroke() -> None:
-    assert paints('<rect width="4" height="4"/>') == [("#000000", "fill", 1.0, "<rect>")]
+def test_an_unset_fill_is_the_hosts_the_manifest_colour_and_no_stroke() -> None:
+    # SVG's initial fill is black, but an icon that never sets one is painted by its
+    # host (inline SVG inherits CSS fill), which the manifest's colour stands for.
+    assert paints('<rect width="4" height="4"/>') == [(CURRENT_COLOR, "fill", 1.0, "<rect>")]
+
+
+def test_a_fill_the_svg_sets_to_black_stays_black() -> None:
+    assert paints('<rect width="4" height="4" fill="black"/>') == [
+        ("#000000", "fill", 1.0, "<rect>")
+    ]
 
 
 def test_lucide_style_root_inherits_currentcolor_stroke_and_no_fill() -> None:
@@ -47,7 +55,7 @@ def test_nested_group_opacity_multiplies_down() -> None:
 
 
 def test_thirty_percent_disc() -> None:
-    assert paints('<circle r="8" opacity="0.3"/>') == [("#000000", "fill", 0.3, "<circle>")]
+    assert paints('<circle r="8" opacity="0.3"/>') == [(CURRENT_COLOR, "fill", 0.3, "<circle>")]
 
 
 def test_fill_and_stroke_opacity_inherit_but_opacity_does_not() -> None:
@@ -74,7 +82,7 @@ def test_fill_none_strokes_and_lines_have_no_fill() -> None:
     assert got == [
         ("#ff0000", "stroke", 1.0, "<path>"),
         (CURRENT_COLOR, "stroke", 1.0, "<line>"),
-        ("#000000", "fill", 1.0, "<polyline>"),
+        (CURRENT_COLOR, "fill", 1.0, "<polyline>"),
     ]
 
 

@@ -12,8 +12,10 @@ inherited value, presentation attributes, ``<style>`` rules by specificity and
 order, the ``style`` attribute, then the same two with ``!important``.
 ``fill``, ``stroke``, ``color``, ``fill-opacity``, ``stroke-opacity``,
 ``stroke-width`` and ``visibility`` inherit; ``opacity`` and ``display`` do not
-(SVG 2, "Painting" and "Rendering Model").  Initial values: ``fill: black``,
-``stroke: none``, opacities 1 (SVG 2, section 13.2).  ``currentColor`` takes the
+(SVG 2, "Painting" and "Rendering Model").  Initial values: ``stroke: none``,
+opacities 1 (SVG 2, section 13.2) and ``fill: currentColor``: SVG's own initial
+fill is black, but a fill the SVG never sets is its host's (inline SVG inherits
+CSS ``fill``), for which the manifest's colour stands.  ``currentColor`` takes the
 element's ``color``; when the SVG never sets ``color`` that is the host page's
 colour -- the manifest's -- and the paint follows the theme.
 
@@ -107,7 +109,10 @@ _INHERITED = ("fill", "stroke", "color", "fill-opacity", "stroke-opacity", "stro
 _MARKERS = ("marker", "marker-start", "marker-mid", "marker-end")
 _PROPERTIES = frozenset((*_INHERITED, "opacity", "display", "visibility", "filter", *_MARKERS))
 _INITIAL = {
-    "fill": "black",
+    # SVG's initial fill is black, but an icon whose SVG never sets one is painted by
+    # its host (inline SVG inherits CSS `fill`: simple-icons, Material Symbols); the
+    # manifest's colour stands for the host's.  A fill the SVG sets stays its own.
+    "fill": "currentColor",
     "stroke": "none",
     "color": None,  # not set by the SVG: the host page's colour (the manifest's)
     "fill-opacity": "1",
