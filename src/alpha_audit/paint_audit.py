@@ -43,12 +43,15 @@ from alpha_audit.color import (
     composite_paint,
     contrast_ratio,
     delta_e_2000,
+    delta_e_2000_lab,
     hex_to_linear,
     hue_shift,
     linear_to_hex,
+    linear_to_lab,
     simulate_cvd,
     to_8bit,
 )
+from alpha_audit.color.nearest import delta_e_2000_lightness_key, pairs_below
 from alpha_audit.errors import InputError, UsageError
 from alpha_audit.load.paint_masks import PaintSet
 from alpha_audit.load.paints import CURRENT_COLOR
@@ -541,43 +544,54 @@ def _confusion(
     result: PaintAudit, min_delta_e: float, deficiency: Deficiency | None
 ) -> Iterator[PaintFinding]:
     """Roles distinct at alpha 1 (CIEDE2000 >= min_delta_e) but not at the icons' alpha."""
-    reps = _styles(result)
-    pairs = [
-        (a, b)
-        for i, a in enumerate(reps)
-        for b in reps[i + 1 :]
-        if _role(result.entries[a].icon) != _role(result.entries[b].icon)
-    ]
-    if not pairs:
+    reps = np.array(_styles(result), dtype=np.intp)
+    if reps.size < 2:
         return
-    first = np.array([a for a, _ in pairs], dtype=np.intp)
-    second = np.array([b for _, b in pairs], dtype=np.intp)
+    roles = np.unique(
+        np.array([_role(result.entries[r].icon) for r in reps], dtype=object), return_inverse=True
+    )[1].reshape(-1)
     bg = result.theme.backgrounds[np.newaxis, :, :]
-    solid = [
-        composite_paint(result.sources[idx][:, None, :], bg, 1.0, 1.0, result.pipeline)
-        for idx in (first, second)
-    ]
-    shown = [
-        composite_paint(
-            result.sources[idx][:, None, :], bg, result.alpha[idx][:, None], 1.0, result.pipeline
-        )
-        for idx in (first, second)
-    ]
+    solid = composite_paint(result.sources[reps][:, None, :], bg, 1.0, 1.0, result.pipeline)
+    shown = composite_paint(
+        result.sources[reps][:, None, :], bg, result.alpha[reps][:, None], 1.0, result.pipeline
+    )
     if deficiency is not None:
-        solid = [simulate_cvd(c, deficiency) for c in solid]
-        shown = [simulate_cvd(c, deficiency) for c in shown]
-    de_ref = delta_e_2000(*solid)  # (q, m)
-    de = delta_e_2000(*shown)
-    confused = confusion_breaks(de_ref, de, min_delta_e)
+        solid, shown = simulate_cvd(solid, deficiency), simulate_cvd(shown, deficiency)
+    # Only pairs closer than min_delta_e at alpha can be confused: found per canvas by
+    # the exact lightness-pruned search (dE00 >= |dL|/S_L), never all pairs at once.
+    hits_first, hits_second, hits_canvas, hits_de, hits_ref = [], [], [], [], []
+    for j in range(len(result.theme.canvases)):
+        lab = linear_to_lab(shown[:, j, :])
+
+        def distance(
+            x: NDArray[np.intp], y: NDArray[np.intp], lab: NDArray[np.float64] = lab
+        ) -> NDArray[np.float64]:
+            return delta_e_2000_lab(lab[x], lab[y])
+
+        i, k, de_j = pairs_below(delta_e_2000_lightness_key(lab), distance, min_delta_e, roles)
+        if i.size == 0:
+            continue
+        ref_j = delta_e_2000(solid[i, j, :], solid[k, j, :])
+        keep = confusion_breaks(ref_j, de_j, min_delta_e)
+        hits_first.append(i[keep])
+        hits_second.append(k[keep])
+        hits_canvas.append(np.full(int(keep.sum()), j))
+        hits_de.append(de_j[keep])
+        hits_ref.append(np.asarray(ref_j)[keep])
+    if not hits_first:
+        return
+    first, second = reps[np.concatenate(hits_first)], reps[np.concatenate(hits_second)]
+    canvas_of = np.concatenate(hits_canvas)
+    de_hit, ref_hit = np.concatenate(hits_de), np.concatenate(hits_ref)
     rule = Rule.CONFUSION if deficiency is None else Rule.CVD_CONFUSION
     under = "" if deficiency is None else f" under simulated {deficiency}"
     for j, canvas in enumerate(result.theme.canvases):
         worst: dict[tuple[str, str], int] = {}
-        for hit in np.flatnonzero(confused[:, j]):
+        for hit in np.flatnonzero(canvas_of == j):
             a, b = result.entries[first[hit]], result.entries[second[hit]]
             role_a, role_b = sorted((_role(a.icon), _role(b.icon)))
             key = (role_a, role_b)
-            if key not in worst or de[hit, j] < de[worst[key], j]:
+            if key not in worst or de_hit[hit] < de_hit[worst[key]]:
                 worst[key] = int(hit)
         for (r1, r2), q in sorted(worst.items()):
             a, b = result.entries[first[q]], result.entries[second[q]]
@@ -585,12 +599,12 @@ def _confusion(
                 rule,
                 canvas.name,
                 (a.icon.name, b.icon.name),
-                f"{r1} and {r2} are told apart at alpha 1 (CIEDE2000 {de_ref[q, j]:.1f}) but "
-                f"not at alpha {a.icon.alpha:g}/{b.icon.alpha:g} ({de[q, j]:.1f} < "
+                f"{r1} and {r2} are told apart at alpha 1 (CIEDE2000 {ref_hit[q]:.1f}) but "
+                f"not at alpha {a.icon.alpha:g}/{b.icon.alpha:g} ({de_hit[q]:.1f} < "
                 f"{min_delta_e:g}){under}",
                 {
-                    "delta_e_ref": float(de_ref[q, j]),
-                    "delta_e": float(de[q, j]),
+                    "delta_e_ref": float(ref_hit[q]),
+                    "delta_e": float(de_hit[q]),
                     "min_delta_e": min_delta_e,
                     "roles": f"{r1},{r2}",
                     **({"deficiency": deficiency} if deficiency else {}),
