@@ -20,7 +20,7 @@ from alpha_audit.audit import AuditResult
 from alpha_audit.errors import AlphaAuditError, InputError, UsageError
 from alpha_audit.load.files import read_text_capped
 from alpha_audit.load.paints import CURRENT_COLOR
-from alpha_audit.model import GamutAdjustment
+from alpha_audit.model import GamutAdjustment, Icon
 from alpha_audit.paint_audit import PaintAudit, paint_findings
 from alpha_audit.policy import PAINT_RULES, Exemption, Policy, Rule, contrast_breaks
 
@@ -151,9 +151,8 @@ class CheckReport:
 
 
 def _icon_refs(
-    result: AuditResult, names: Sequence[str]
+    by_name: Mapping[str, Icon], names: Sequence[str]
 ) -> tuple[tuple[Path, ...], tuple[int, ...]]:
-    by_name = {i.name: i for i in result.iconset.icons}
     files: list[Path] = []
     lines: list[int] = []
     for name in names:
@@ -166,10 +165,9 @@ def _icon_refs(
 
 
 def _token_sources(
-    result: AuditResult, names: Sequence[str], canvas: str | None
+    result: AuditResult, by_name: Mapping[str, Icon], names: Sequence[str], canvas: str | None
 ) -> tuple[tuple[Path, int], ...]:
     """(file, line) of the design tokens setting the icons' colours, then the canvas's."""
-    by_name = {i.name: i for i in result.iconset.icons}
     out: list[tuple[Path, int]] = []
     for name in names:
         icon = by_name.get(name)
@@ -223,6 +221,7 @@ def findings_for(result: AuditResult, policy: Policy) -> list[Finding]:
     theme, iconset = result.theme.name, result.iconset.name
     manifest = result.iconset.path
     out: list[Finding] = []
+    by_name = {i.name: i for i in result.iconset.icons}  # once: a brand set has thousands
 
     def add(
         rule: Rule,
@@ -231,7 +230,7 @@ def findings_for(result: AuditResult, policy: Policy) -> list[Finding]:
         message: str,
         numbers: dict[str, float | str],
     ) -> None:
-        files, lines = _icon_refs(result, icons)
+        files, lines = _icon_refs(by_name, icons)
         out.append(
             Finding(
                 rule=rule,
@@ -245,7 +244,7 @@ def findings_for(result: AuditResult, policy: Policy) -> list[Finding]:
                 manifest=manifest,
                 lines=lines,
                 exemption=policy.exempt(rule, canvas, icons),
-                sources=_token_sources(result, icons, canvas),
+                sources=_token_sources(result, by_name, icons, canvas),
             )
         )
 
