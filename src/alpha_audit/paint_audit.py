@@ -522,6 +522,14 @@ def _thin_strokes(result: PaintAudit, limit: float) -> Iterator[PaintFinding]:
             )
 
 
+def has_role(icon: Icon) -> bool:
+    """Whether the icon's colour is a palette role ``confusion`` compares (issue 11: "two
+    palette colours"): a colour the manifest names in its palette.  Unnamed colours (a
+    brand set where every logo has its own hex) are no roles, so thousands of brand
+    colours never turn into millions of pairs."""
+    return icon.color_name is not None
+
+
 def role_of(icon: Icon) -> str:
     """The palette role ``confusion`` compares: the palette name, else the colour itself."""
     return _role(icon)
@@ -535,7 +543,7 @@ def _styles(result: PaintAudit) -> list[int]:
     """
     seen: dict[tuple[str, str, float], int] = {}
     for p, e in enumerate(result.entries):
-        if e.paint == CURRENT_COLOR:
+        if e.paint == CURRENT_COLOR and has_role(e.icon):
             seen.setdefault((_role(e.icon), e.source, e.icon.alpha), p)
     return sorted(seen.values())
 

@@ -67,6 +67,7 @@ from alpha_audit.paint_audit import (
     LOCK_TOLERANCE,
     audit_paints,
     cvd_collision_groups,
+    has_role,
     locked_entries,
     paint_findings,
     role_of,
@@ -185,6 +186,7 @@ class PaintRules:
         # Icons taking part in confusion: those with a currentColor paint (the gate's styles).
         self.in_roles = np.zeros(len(self.names), dtype=bool)
         self.in_roles[self.icon[self.current]] = True
+        self.in_roles &= np.array([has_role(i) for i in iconset.icons], dtype=bool)
         self.roles = roles
         self._per_paint: list[Found] | None = None
 
