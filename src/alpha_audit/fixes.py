@@ -49,7 +49,7 @@ from alpha_audit.color import (
 )
 from alpha_audit.color.oklch import linear_to_oklch, oklch_to_linear
 from alpha_audit.gate import CheckReport, Finding
-from alpha_audit.policy import CONTRAST_RULES, PAINT_RULES, Policy, Rule, contrast_breaks
+from alpha_audit.policy import CONTRAST_RULES, Policy, Rule, contrast_breaks
 from alpha_audit.suggest import SafeAlpha, largest_safe_alpha
 from alpha_audit.suggest.events import luminance_band, luminance_band_pieces
 
@@ -459,9 +459,6 @@ def _audit_fixes(
     for i, icon in enumerate(iconset.icons):
         members.setdefault(key_of[icon.name], []).append(i)
     canvas_index = {c.name: j for j, c in enumerate(theme.canvases)}
-    # suggest does not answer the paint rules (drift, confusion, ...) yet: the
-    # largest safe alpha covers the other rules of the policy.
-    suggestable = replace(policy, rules=policy.rules - PAINT_RULES)
     failing: dict[tuple[str, int], set[Rule]] = {}
     for f in failures:
         j = canvas_index.get(f.canvas or "")
@@ -487,7 +484,7 @@ def _audit_fixes(
             safe_cache[color] = largest_safe_alpha(
                 theme,
                 iconset,
-                suggestable,
+                policy,
                 icons=[iconset.icons[i].name for i in idx],
                 alpha_max=alpha_max,
                 precision=precision,

@@ -161,7 +161,8 @@ def _groups(findings: Sequence[Finding], roles: dict[str, str]) -> list[_Group]:
         n = f.numbers
         source = str(n.get("source", n.get("sources", "")))
         role = roles.get(f.icons[0], "") if "source" in n else ""
-        colour = f"{role} {source}".strip()
+        # confusion names its two roles (the numbers' "roles", comma-separated)
+        colour = f"{role} {source}".strip() or str(n.get("roles", "")).replace(",", " / ")
         key = (f.rule, colour, f.canvas, n.get("alpha"), n.get("output"))
         if key not in groups:
             groups[key] = _Group(f.rule, colour, f.canvas or "", _numbers(f), f)
