@@ -89,8 +89,8 @@ _EXPORTS: dict[str, tuple[str, str]] = {
     "SuggestResult": ("alpha_audit.suggest", "SuggestResult"),
     "largest_safe_alpha": ("alpha_audit.suggest", "largest_safe_alpha"),
     "suggest": ("alpha_audit.suggest", "suggest"),
-    "SuggestFormat": ("alpha_audit.suggest.report", "SuggestFormat"),
-    "render_suggest": ("alpha_audit.suggest.report", "render_suggest"),
+    "SuggestFormat": ("alpha_audit.render", "SuggestFormat"),
+    "render_suggest": ("alpha_audit.render", "render_suggest"),
     "suggest_document": ("alpha_audit.suggest.report", "suggest_document"),
     "apply_alpha": ("alpha_audit.suggest.apply", "apply_alpha"),
     "PairRow": ("alpha_audit.pair", "PairRow"),
@@ -98,7 +98,7 @@ _EXPORTS: dict[str, tuple[str, str]] = {
     "PairReport": ("alpha_audit.pair", "PairReport"),
     "pair_report": ("alpha_audit.pair", "pair_report"),
     "PairFormat": ("alpha_audit.render.pair", "PairFormat"),
-    "ReproduceFormat": ("alpha_audit.reproduce.report", "ReproduceFormat"),
+    "ReproduceFormat": ("alpha_audit.render", "ReproduceFormat"),
     "PreviewResult": ("alpha_audit.preview.files", "PreviewResult"),
     "preview_files": ("alpha_audit.preview.files", "preview_files"),
     "Layout": ("alpha_audit.preview.sheets", "Layout"),
@@ -269,16 +269,22 @@ if TYPE_CHECKING:  # for type checkers only; at run time __getattr__ imports on 
     from alpha_audit.policy import DEFAULT_RULES, Exemption, Policy, Rule
     from alpha_audit.preview.files import PreviewResult, preview_files
     from alpha_audit.preview.sheets import Layout
-    from alpha_audit.render import CheckFormat, RenderOptions, render_check
+    from alpha_audit.render import (
+        CheckFormat,
+        RenderOptions,
+        ReproduceFormat,
+        SuggestFormat,
+        render_check,
+        render_suggest,
+    )
     from alpha_audit.render.pair import PairFormat
     from alpha_audit.reproduce.figures import write_figures
-    from alpha_audit.reproduce.report import ReproduceFormat
     from alpha_audit.reproduce.report import render_json as reproduction_json
     from alpha_audit.reproduce.report import render_markdown as reproduction_markdown
     from alpha_audit.reproduce.run import Experiment, Reproduction, reproduce
     from alpha_audit.suggest import SafeAlpha, SuggestResult, largest_safe_alpha, suggest
     from alpha_audit.suggest.apply import apply_alpha
-    from alpha_audit.suggest.report import SuggestFormat, render_suggest, suggest_document
+    from alpha_audit.suggest.report import suggest_document
 
 
 def __getattr__(name: str) -> Any:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -90,13 +91,41 @@ def test_render_pool_serves_several_map_calls() -> None:
     np.testing.assert_array_equal(first[0][0], second[1][0])
 
 
-def test_batches_of_one_job_give_the_same_figures(
-    icons: list[tuple[str, Path]], monkeypatch: pytest.MonkeyPatch
-) -> None:
-    """A tiny mask budget sends one job per pool.map call; nothing changes but memory."""
-    import alpha_audit.load.paint_masks as pm
+def test_stream_pulls_work_only_as_the_workers_need_it() -> None:
+    """The pool reads a lazy source a few jobs ahead, never all of it before rendering."""
+    from alpha_audit.load.sandbox import RenderPool
+    from alpha_audit.load.svg import RenderLimits
 
-    together = measure_paints(icons, [16, 48])
-    monkeypatch.setattr(pm, "_BATCH_BYTES", 1)
-    apart = measure_paints(icons, [16, 48])
-    assert together == apart
+    svg = LUCIDE_LIKE.encode()
+    pulled: list[int] = []
+
+    def source() -> Iterator[tuple[int, bytes, tuple[int, ...]]]:
+        for i in range(40):
+            pulled.append(i)
+            yield i, svg, (8,)
+
+    seen: list[tuple[int, int]] = []  # (tag, jobs pulled when its outcome arrived)
+    with RenderPool(RenderLimits(timeout=20.0), workers=2) as pool:
+        for tag, outcome in pool.stream(source(), ahead=3):
+            assert not isinstance(outcome, str)
+            seen.append((tag, len(pulled)))
+    assert sorted(t for t, _ in seen) == list(range(40))
+    # the first outcome came while at most 2 rendering + 3 read ahead (+1 being read) were out
+    assert seen[0][1] <= 2 + 3 + 1
+
+
+def test_read_ahead_changes_nothing_but_timing() -> None:
+    """Masks do not depend on how far the pool reads ahead or which worker drew them."""
+    from alpha_audit.load.sandbox import RenderPool
+    from alpha_audit.load.svg import RenderLimits
+
+    jobs = [(i, LUCIDE_LIKE.replace('r="10"', f'r="{3 + i}"').encode(), (8, 16)) for i in range(6)]
+    out = []
+    for workers, ahead in ((1, 0), (2, 8)):
+        with RenderPool(RenderLimits(timeout=20.0), workers=workers) as pool:
+            out.append(dict(pool.stream(iter(jobs), ahead=ahead)))
+    assert out[0].keys() == out[1].keys() == set(range(6))
+    for tag in range(6):
+        for a, b in zip(out[0][tag], out[1][tag], strict=True):
+            np.testing.assert_array_equal(a, b)
+    assert len({out[0][t][1].tobytes() for t in range(6)}) > 1  # the jobs really differ

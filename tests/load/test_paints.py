@@ -275,3 +275,67 @@ def test_isolating_many_paints_on_many_elements_is_bounded() -> None:
     groups = extract_paints(svg).groups() * 11
     with pytest.raises(SvgError, match="element renders; refused"):
         isolate_groups(svg, groups)
+
+
+def _force_everything(v: object, keep: object) -> dict[str, str]:
+    """The reference mask recipe: every property forced on every element, none skipped."""
+    from alpha_audit.load import paints as module
+
+    decls = {"opacity": "1", "filter": "none", **dict.fromkeys(module._MARKERS, "none")}
+    if v.hidden_kind:  # type: ignore[attr-defined]  # a _Visited, untyped in this test
+        decls["display"] = "none"
+    if module._local(v.node) in module._SHAPES:  # type: ignore[attr-defined]  # as above
+        for kind in ("fill", "stroke"):
+            paint = next((p for p in v.paints if p.kind == kind), None)  # type: ignore[attr-defined]  # as above
+            drawn = paint is not None and paint.opacity > 0.0 and keep(paint)  # type: ignore[operator]  # a predicate
+            decls[kind] = "#000000" if drawn else "none"
+            decls[f"{kind}-opacity"] = "1"
+    return decls
+
+
+TRICKY = [
+    # a stylesheet that would undo a skipped declaration, on a fixed opaque colour
+    '<style>.a { stroke: #0f0; opacity: .5 }</style><rect class="a" width="3" height="3" '
+    'fill="#ff0000" stroke-width="2"/><circle cx="6" cy="6" r="2" stroke="currentColor"/>',
+    # translucent hex and rgba paints, a group opacity, an invalid opacity
+    '<g opacity="0.4"><rect width="4" height="4" fill="#ff000080"/></g>'
+    '<rect x="4" width="4" height="4" fill="rgba(0,0,255,0.3)" opacity="x"/>',
+    # markers inherited from a group, a filter, text and <use>
+    '<defs><marker id="m" markerWidth="2" markerHeight="2"><rect width="2" height="2"/>'
+    '</marker><filter id="f"><feGaussianBlur stdDeviation="1"/></filter></defs>'
+    '<g marker-end="url(#m)"><path d="M1 1L7 7" stroke="#123456"/></g>'
+    '<rect filter="url(#f)" width="2" height="2" fill="#00ff00"/><text y="8">a</text>'
+    '<use href="#m"/>',
+    # gradients, visibility, inline styles with !important, stroke-opacity inherited
+    '<linearGradient id="g"><stop stop-color="#f00"/></linearGradient>'
+    '<g stroke-opacity=".5" style="fill: #abc !important"><rect width="3" height="3" '
+    'fill="url(#g)" stroke="#fff"/><rect x="3" width="3" height="3" visibility="hidden"/>'
+    '<circle cx="6" cy="2" r="1" style="stroke: red; fill: #00f"/></g>',
+    # mask and clipPath content inheriting from the root, a host-painted shape
+    '<mask id="k"><rect width="4" height="8" fill="#fff"/></mask><clipPath id="c">'
+    '<circle cx="4" cy="4" r="3"/></clipPath><rect width="8" height="8" mask="url(#k)" '
+    'fill="#ff8800"/><rect width="8" height="8" clip-path="url(#c)"/>',
+]
+
+
+@pytest.mark.parametrize("body", TRICKY)
+@pytest.mark.parametrize("root", ["", 'fill="none" stroke="currentColor"', 'opacity="0.5"'])
+def test_isolates_draw_what_forcing_every_declaration_draws(
+    body: str, root: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Skipping declarations that change nothing leaves every mask unchanged, pixel for pixel."""
+    import numpy as np
+
+    from alpha_audit.load import paints as module
+    from alpha_audit.load.paints import paints_and_isolates
+    from alpha_audit.load.svg import rasterize
+
+    svg = f'<svg {NS} viewBox="0 0 8 8" {root}>{body}</svg>'.encode()
+    found, lean = paints_and_isolates(svg)
+    monkeypatch.setattr(module, "_overrides", _force_everything)
+    _, forced = paints_and_isolates(svg)
+    assert len(lean) == len(forced) == len(found.groups()) > 0
+    for a, b in zip(lean, forced, strict=True):
+        for size in (8, 17, 24):
+            np.testing.assert_array_equal(rasterize(a, size), rasterize(b, size))
+    assert sum(len(v) for v in lean) < sum(len(v) for v in forced)  # it did skip some

@@ -25,13 +25,11 @@ from alpha_audit.load.svg import IconProblem
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
 from alpha_audit.pair import pair_report
 from alpha_audit.policy import Policy, Rule
-from alpha_audit.render import CheckFormat
+from alpha_audit.render import CheckFormat, ReproduceFormat, SuggestFormat
 from alpha_audit.render.common import RenderOptions
 from alpha_audit.render.pair import PairFormat
-from alpha_audit.reproduce.report import ReproduceFormat
 from alpha_audit.reproduce.run import Experiment, reproduce
 from alpha_audit.suggest import suggest
-from alpha_audit.suggest.report import SuggestFormat
 
 BASE = Path("/repo")
 HOSTILE = "evil|x <img src=x> @team https://evil.example `c` *b*\x07"

@@ -25,12 +25,12 @@ from alpha_audit.load.theme import load_theme
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
 from alpha_audit.pair import pair_report
 from alpha_audit.policy import Policy
-from alpha_audit.render import CheckFormat
+from alpha_audit.render import CheckFormat, SuggestFormat
 from alpha_audit.render.common import RenderOptions, wrap_name
 from alpha_audit.render.pair import PairFormat
 from alpha_audit.render.table import MAX_FINDINGS
 from alpha_audit.suggest import suggest
-from alpha_audit.suggest.report import SuggestFormat, suggest_document
+from alpha_audit.suggest.report import suggest_document
 
 ROOT = Path(__file__).resolve().parents[2]
 WIDTHS = (60, 80, 200)
@@ -205,7 +205,7 @@ def reproduction() -> Any:
 
 @pytest.mark.parametrize("width", WIDTHS)
 def test_reproduce_tables_keep_every_figure_whole(width: int) -> None:
-    from alpha_audit.reproduce.report import ReproduceFormat
+    from alpha_audit.render import ReproduceFormat
 
     run = reproduction()
     tokens: set[str] = set()

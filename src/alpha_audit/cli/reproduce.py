@@ -10,20 +10,20 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
-from rich.console import Console
-from rich.progress import BarColumn, Progress, TaskID, TextColumn, TimeElapsedColumn
 
-from alpha_audit.bundled import bundled_theme, theme_source
 from alpha_audit.cli.console import emit, stderr_note, stdout_options
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.errors import UsageError
-from alpha_audit.load.theme import load_theme
-from alpha_audit.reproduce.files import check_results_folder, write_results
-from alpha_audit.reproduce.report import ReproduceFormat
-from alpha_audit.reproduce.run import Experiment, Reproduction, reproduce
+from alpha_audit.render import ReproduceFormat
+from alpha_audit.reproduce.experiment import Experiment
+
+if TYPE_CHECKING:
+    from rich.console import Console
+
+    from alpha_audit.reproduce.run import Reproduction
 
 __all__ = ["DEFAULT_THEME", "ReproduceFormat", "reproduce_command"]
 
@@ -35,6 +35,8 @@ def _run_with_progress(
     run: Callable[[Callable[[Experiment, float], None]], Reproduction], console: Console
 ) -> Reproduction:
     """``run(progress)`` with one progress bar per experiment on stderr."""
+    from rich.progress import BarColumn, Progress, TaskID, TextColumn, TimeElapsedColumn
+
     with Progress(
         TextColumn("{task.description:<12}"),
         BarColumn(),
@@ -121,6 +123,13 @@ def reproduce_command(
     ] = None,
 ) -> ExitStatus:
     """Reproduce the paper's numerical evaluation (Section 4) exactly and fast."""
+    from rich.console import Console
+
+    from alpha_audit.bundled import bundled_theme, theme_source
+    from alpha_audit.load.theme import load_theme
+    from alpha_audit.reproduce.files import check_results_folder, write_results
+    from alpha_audit.reproduce.run import reproduce
+
     if out is not None and out.exists() and not out.is_dir():
         raise UsageError(f"--out {out} exists and is not a directory")
     if out is not None:

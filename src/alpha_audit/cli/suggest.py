@@ -25,7 +25,7 @@ from alpha_audit.cli.options import (
     rules_flag,
 )
 from alpha_audit.cli.status import ExitStatus
-from alpha_audit.suggest.report import SuggestFormat
+from alpha_audit.render import SuggestFormat
 
 __all__ = ["suggest_command"]
 

@@ -4,20 +4,21 @@ For every icon the paints are read (:mod:`alpha_audit.load.paints`) and grouped
 by colour and opacity; each group is rasterised alone, opaque, at every size
 (:func:`~alpha_audit.load.paints.isolate_paints`) by the same sandboxed
 worker pool as every other render, and its mask is reduced at once to
-:class:`~alpha_audit.color.coverage.CoverageStats`.  Masks are never kept:
-jobs go to the pool in batches, so memory stays bounded by the batch whatever
-the number of icons, paints and sizes.
+:class:`~alpha_audit.color.coverage.CoverageStats`.  Icons are read lazily,
+as the pool asks for work, so parsing runs while the workers render, and masks
+are never kept: memory stays bounded by the pool whatever the number of icons,
+paints and sizes.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
 from alpha_audit.color.coverage import CoverageStats, coverage_stats
 from alpha_audit.errors import SvgError
-from alpha_audit.load.paints import PaintGroup, SvgPaints, extract_paints, isolate_groups
+from alpha_audit.load.paints import PaintGroup, SvgPaints, paints_and_isolates
 from alpha_audit.load.svg import IconProblem, RenderLimits, read_svg
 
 __all__ = ["MAX_PAINT_GROUPS", "IconPaints", "PaintCoverage", "PaintSet", "measure_paints"]
@@ -26,11 +27,6 @@ __all__ = ["MAX_PAINT_GROUPS", "IconPaints", "PaintCoverage", "PaintSet", "measu
 # handful; an illustration with hundreds is not an icon this audit can judge
 # paint by paint, and one render per paint would be unbounded work.
 MAX_PAINT_GROUPS = 32
-# Masks held at once: the pool returns each job's masks as float64, so a batch
-# of jobs is sized to stay under this many bytes (at least one job: 1024 px x 3
-# sizes is 24 MiB).  Larger batches keep the workers busier.
-_BATCH_BYTES = 64 << 20
-_MAX_BATCH = 1024
 
 
 @dataclass(frozen=True)
@@ -76,54 +72,47 @@ def measure_paints(
 
     limits = limits or RenderLimits()
     sizes = tuple(int(s) for s in sizes)
+    icons = list(icons)
     problems: list[IconProblem] = []
     read: list[tuple[str, Path, SvgPaints, tuple[PaintGroup, ...]]] = []
-    jobs: list[tuple[int, int, bytes]] = []  # (icon index in read, group index, svg)
-    for name, file in icons:
-        path = Path(file)
-        try:
-            data = read_svg(path)
-            paints = extract_paints(data, path=path)
-            groups = paints.groups()
-            if len(groups) > MAX_PAINT_GROUPS:
-                raise SvgError(
-                    f"draws {len(groups)} distinct paints (colour and opacity); at most "
-                    f"{MAX_PAINT_GROUPS} are audited per icon",
-                    path=path,
-                )
-            variants = isolate_groups(data, groups, path=path)
-        except SvgError as exc:
-            problems.append(IconProblem(name, path, _with_line(exc)))
-            if progress is not None:
+    remaining: list[int] = []  # per icon in ``read``: paint groups not yet measured
+
+    def jobs() -> Iterator[tuple[tuple[int, int], bytes, tuple[int, ...]]]:
+        """Each icon read and split into paint groups only when the pool asks for work."""
+        for name, file in icons:
+            path = Path(file)
+            try:
+                data = read_svg(path)
+                paints, variants = paints_and_isolates(data, path=path, max_groups=MAX_PAINT_GROUPS)
+            except SvgError as exc:
+                problems.append(IconProblem(name, path, _with_line(exc)))
+                if progress is not None:
+                    progress()
+                continue
+            read.append((name, path, paints, paints.groups()))
+            remaining.append(len(variants))
+            if not variants and progress is not None:
                 progress()
-            continue
-        jobs += [(len(read), k, v) for k, v in enumerate(variants)]
-        read.append((name, path, paints, groups))
-        if not groups and progress is not None:
-            progress()
+            for k, variant in enumerate(variants):
+                yield (len(read) - 1, k), variant, sizes
+
     stats: dict[tuple[int, int], dict[int, CoverageStats]] = {}
     failed: dict[int, str] = {}
-    remaining = {i: len(groups) for i, (_, _, _, groups) in enumerate(read)}
-    with RenderPool(limits, workers=max(1, min(limits.workers, len(jobs)))) as pool:
-        per_job = 8 * sum(s * s for s in sizes)
-        step = max(1, min(_MAX_BATCH, _BATCH_BYTES // max(1, per_job)))
-        for start in range(0, len(jobs), step):
-            batch = jobs[start : start + step]
-            outcomes = pool.map([(svg, sizes) for _, _, svg in batch])
-            for (icon, group, _), outcome in zip(batch, outcomes, strict=True):
-                if isinstance(outcome, str):
-                    failed.setdefault(icon, outcome)
-                else:
-                    per_size: dict[int, CoverageStats] = {}
-                    for size, mask in zip(sizes, outcome, strict=True):
-                        if isinstance(mask, str):
-                            failed.setdefault(icon, mask)
-                        else:
-                            per_size[size] = coverage_stats(mask)
-                    stats[(icon, group)] = per_size
-                remaining[icon] -= 1
-                if remaining[icon] == 0 and progress is not None:
-                    progress()
+    with RenderPool(limits, workers=max(1, min(limits.workers, len(icons)))) as pool:
+        for (icon, group), outcome in pool.stream(jobs()):
+            if isinstance(outcome, str):
+                failed.setdefault(icon, outcome)
+            else:
+                per_size: dict[int, CoverageStats] = {}
+                for size, mask in zip(sizes, outcome, strict=True):
+                    if isinstance(mask, str):
+                        failed.setdefault(icon, mask)
+                    else:
+                        per_size[size] = coverage_stats(mask)  # the mask is dropped here
+                stats[(icon, group)] = per_size
+            remaining[icon] -= 1
+            if remaining[icon] == 0 and progress is not None:
+                progress()
     result: dict[str, IconPaints] = {}
     for i, (name, path, paints, groups) in enumerate(read):
         if i in failed:

@@ -34,8 +34,9 @@ approximation (the group is composited once, so overlaps are not doubled).
 
 from __future__ import annotations
 
+import re
 import xml.etree.ElementTree as ET
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Container, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Literal, cast
@@ -63,6 +64,7 @@ __all__ = [
     "isolate_each",
     "isolate_groups",
     "isolate_paints",
+    "paints_and_isolates",
 ]
 
 SVG_NS = "http://www.w3.org/2000/svg"
@@ -107,6 +109,10 @@ _UNAUDITED_ELEMENTS = {
 }
 _INHERITED = ("fill", "stroke", "color", "fill-opacity", "stroke-opacity", "stroke-width")
 _MARKERS = ("marker", "marker-start", "marker-mid", "marker-end")
+# What a mask overrides, and which of those cairosvg inherits (it inherits every
+# attribute but opacity, filter, display and a few geometric ones).
+_INHERITED_MASK = frozenset(("fill", "stroke", "fill-opacity", "stroke-opacity", *_MARKERS))
+_MASK_PROPERTIES = (*_INHERITED_MASK, "opacity", "filter")
 _PROPERTIES = frozenset((*_INHERITED, "opacity", "display", "visibility", "filter", *_MARKERS))
 _INITIAL = {
     # SVG's initial fill is black, but an icon whose SVG never sets one is painted by
@@ -195,15 +201,42 @@ def extract_paints(svg: bytes, *, path: str | Path | None = None) -> SvgPaints:
     >>> [(p.color, p.kind, p.opacity) for p in extract_paints(svg).paints]
     [('#ff0000', 'fill', 0.25), ('currentColor', 'stroke', 0.5)]
     """
-    paints: list[Paint] = []
     unaudited: list[Unaudited] = []
-    for element in _walk(svg, path, unaudited):
-        paints.extend(p for p in element.paints if p.opacity > 0.0)
+    return _paints_of(list(_walk(svg, path, unaudited)), unaudited)
+
+
+def _paints_of(visited: Sequence[_Visited], unaudited: list[Unaudited]) -> SvgPaints:
+    """The visible paints of walked elements, in document order."""
+    paints = [p for element in visited for p in element.paints if p.opacity > 0.0]
     return SvgPaints(tuple(paints), tuple(unaudited))
+
+
+def paints_and_isolates(
+    svg: bytes, *, path: str | Path | None = None, max_groups: int | None = None
+) -> tuple[SvgPaints, list[bytes]]:
+    """:func:`extract_paints` and one :func:`isolate_paints` SVG per paint group.
+
+    One parse and one cascade serve both (a check reads every icon this way);
+    the SVGs follow :meth:`SvgPaints.groups`.  More than ``max_groups`` groups
+    is an :class:`SvgError` raised before any SVG is written.
+    """
+    unaudited: list[Unaudited] = []
+    visited = list(_walk(svg, path, unaudited))
+    paints = _paints_of(visited, unaudited)
+    groups = paints.groups()
+    if max_groups is not None and len(groups) > max_groups:
+        raise SvgError(
+            f"draws {len(groups)} distinct paints (colour and opacity); at most "
+            f"{max_groups} are audited per icon",
+            path=path,
+        )
+    return paints, _isolate(visited, [_in_group(g.key) for g in groups], path)
 
 
 # A colour drawn at full strength in the masks :func:`isolate_paints` makes.
 _MASK_INK = "#000000"
+# A paint every renderer reads as one opaque colour: left as it is in a mask.
+_PLAIN_HEX = re.compile(r"#(?:[0-9a-fA-F]{3}){1,2}")
 
 
 def isolate_paints(
@@ -212,10 +245,11 @@ def isolate_paints(
     """``svg`` with only the paints ``keep`` accepts, drawn opaque; everything else unpainted.
 
     Rendering the result gives the geometric coverage of those paints (their
-    opacity is audited separately): every element and group gets
-    ``opacity: 1``, kept paints ``#000000`` at opacity 1, other fills and
-    strokes ``none``, and text, images, ``<use>``, markers and filters are not
-    drawn.  Declarations are appended to each ``style`` attribute with
+    opacity is audited separately): every element and group is drawn at
+    opacity 1, kept paints opaque (``#000000`` unless already an opaque hex
+    colour), other fills and strokes ``none``, and text, images, ``<use>``,
+    markers and filters are not drawn.  Only the declarations that change
+    something are appended to an element's ``style`` attribute, with
     ``!important``, the last word in the cascade, so ``<style>`` rules cannot
     undo them; geometry (``stroke-width``, transforms, clip paths) is untouched.
     """
@@ -239,35 +273,34 @@ def isolate_each(
 ) -> list[bytes]:
     """:func:`isolate_paints` for several predicates; the work is bounded by
     :data:`MAX_ISOLATE_WORK` (rendered elements x variants)."""
-    visited = list(_walk(svg, path, []))
+    return _isolate(list(_walk(svg, path, [])), keeps, path)
+
+
+def _isolate(
+    visited: list[_Visited], keeps: Sequence[Callable[[Paint], bool]], path: str | Path | None
+) -> list[bytes]:
+    """One SVG per predicate from walked elements (their tree is rewritten in place)."""
     if len(visited) * len(keeps) > MAX_ISOLATE_WORK:
         raise SvgError(
             f"{len(keeps)} paints on {len(visited)} elements need more than "
             f"{MAX_ISOLATE_WORK} element renders; refused (resource limit)",
             path=path,
         )
-    fixed = ["opacity: 1", "filter: none", *(f"{m}: none" for m in _MARKERS)]
-    ours = {d.split(":", 1)[0] for d in fixed} | {
-        "display",
-        "fill",
-        "stroke",
-        "fill-opacity",
-        "stroke-opacity",
-    }
-    kept = [_kept_declarations(v.node, ours) for v in visited]
+    original = [v.node.get("style") for v in visited]
     out = []
     for keep in keeps:
-        for v, own in zip(visited, kept, strict=True):
-            decls = list(fixed)
-            if v.hidden_kind:
-                decls.append("display: none")
-            # Paint only on shapes: a container's fill would be inherited by <mask>
-            # and <clipPath> content defined under it, changing the geometry.
-            for kind in ("fill", "stroke") if _local(v.node) in _SHAPES else ():
-                paint = next((p for p in v.paints if p.kind == kind), None)
-                drawn = paint is not None and paint.opacity > 0.0 and keep(paint)
-                decls += [f"{kind}: {_MASK_INK if drawn else 'none'}", f"{kind}-opacity: 1"]
-            v.node.set("style", "; ".join([*own, *(f"{d} !important" for d in decls)]))
+        for v, style in zip(visited, original, strict=True):
+            decls = _overrides(v, keep)
+            if not decls:  # renders as it is: left byte for byte (a third of the render cost)
+                if style is None:
+                    v.node.attrib.pop("style", None)
+                else:
+                    v.node.set("style", style)
+                continue
+            own = [] if style is None else _kept_declarations(style, decls)
+            v.node.set(
+                "style", "; ".join([*own, *(f"{k}: {d} !important" for k, d in decls.items())])
+            )
         # ElementTree writes the SVG namespace with a prefix (ns0:svg); the renderer
         # matches elements by namespace, not prefix, so the drawing is the same.
         out.append(ET.tostring(visited[0].node, encoding="utf-8"))
@@ -279,15 +312,49 @@ class _Visited:
     node: ET.Element
     paints: tuple[Paint, ...]
     hidden_kind: bool  # an element the audit does not judge (text, image, use ...)
+    rendered: dict[str, str | None]  # the renderer's view of what a mask overrides
 
 
-def _kept_declarations(node: ET.Element, ours: set[str]) -> list[str]:
-    """The element's valid inline declarations, minus the properties we override."""
+def _overrides(v: _Visited, keep: Callable[[Paint], bool]) -> dict[str, str]:
+    """What one element needs so that only ``keep``'s paints draw, opaque, and nothing else.
+
+    Only declarations that change the drawing: where the renderer already
+    sees the value wanted (no opacity, filter or marker declared, a paint
+    already ``none``, a kept paint already an opaque hex colour) nothing is
+    written, since every declaration costs the renderer a CSS parse per
+    render.  The test is on the renderer's own view (:func:`_cascade`), not
+    on the validated values, so an invalid or unusual declaration is always
+    overridden.
+    """
+    seen = v.rendered
+    decls: dict[str, str] = {}
+    if v.hidden_kind:
+        decls["display"] = "none"
+    for name in ("opacity", "filter", *_MARKERS):
+        if seen[name] is not None and not (name != "opacity" and seen[name] == "none"):
+            decls[name] = "1" if name == "opacity" else "none"
+    # Paint only on shapes: a container's fill would be inherited by <mask>
+    # and <clipPath> content defined under it, changing the geometry.
+    for kind in ("fill", "stroke") if _local(v.node) in _SHAPES else ():
+        paint = next((p for p in v.paints if p.kind == kind), None)
+        value, opacity = seen[kind], seen[f"{kind}-opacity"]
+        if paint is not None and paint.opacity > 0.0 and keep(paint):
+            # An opaque hex colour draws full coverage as it is; currentColor,
+            # translucency and the host's fill are made #000000 at opacity 1.
+            if paint.opacity != 1.0 or value is None or not _PLAIN_HEX.fullmatch(value):
+                decls[kind] = _MASK_INK
+            if opacity is not None:
+                decls[f"{kind}-opacity"] = "1"
+        elif value != "none":
+            decls[kind] = "none"
+    return decls
+
+
+def _kept_declarations(style: str, ours: Container[str]) -> list[str]:
+    """An inline ``style``'s valid declarations, minus the properties we override."""
     return [
         f"{d.name}: {tinycss2.serialize(d.value).strip()}{' !important' if d.important else ''}"
-        for d in tinycss2.parse_declaration_list(
-            node.get("style", ""), skip_comments=True, skip_whitespace=True
-        )
+        for d in tinycss2.parse_declaration_list(style, skip_comments=True, skip_whitespace=True)
         if d.type == "declaration" and d.lower_name not in ours
     ]
 
@@ -483,9 +550,16 @@ def _color_value(text: str) -> tuple[str, object]:
 def _cascade(
     wrapper: cssselect2.ElementWrapper,
     parent: dict[str, str | None],
+    parent_raw: dict[str, str | None],
     matchers: tuple[cssselect2.Matcher, cssselect2.Matcher],
-) -> dict[str, str | None]:
-    """Computed values of the properties this module reads."""
+) -> tuple[dict[str, str | None], dict[str, str | None]]:
+    """Computed values of the properties this module reads, and the renderer's view.
+
+    The second dict is what cairosvg itself will use for the properties a
+    mask overrides (:data:`_MASK_PROPERTIES`): the last value declared in the
+    same cascade order, valid or not (it does not validate), inherited the
+    same way, ``None`` where nothing is declared.
+    """
     node = wrapper.etree_element
     computed: dict[str, str | None] = {name: parent[name] for name in _INHERITED}
     computed["visibility"] = parent["visibility"]
@@ -500,8 +574,12 @@ def _cascade(
     layers.append(inline_normal)
     layers += [rule[-1] for rule in important.match(wrapper)]
     layers.append(inline_important)
+    raw = {name: parent_raw[name] if name in _INHERITED_MASK else None for name in parent_raw}
     for declarations in layers:
         for name, value in declarations:
+            if name in raw:
+                text = value.strip()
+                raw[name] = parent_raw[name] if text == "inherit" else text
             if not _valid(name, value):
                 continue
             if value.strip().lower() == "inherit":
@@ -510,7 +588,7 @@ def _cascade(
                 computed[name] = parent["color"]  # color: currentColor means inherit
             else:
                 computed[name] = value.strip()
-    return computed
+    return computed, raw
 
 
 def _walk(svg: bytes, path: str | Path | None, unaudited: list[Unaudited]) -> Iterator[_Visited]:
@@ -523,12 +601,21 @@ def _walk(svg: bytes, path: str | Path | None, unaudited: list[Unaudited]) -> It
     ids = {e.get("id"): e for e in root.iter() if e.get("id")}
     wrapper_root = cssselect2.ElementWrapper.from_xml_root(root)
     initial: dict[str, str | None] = {**_INITIAL, "opacity": "1"}
-    # (wrapper, parent computed values, product of ancestors' opacity, depth, filtered above)
-    stack: list[tuple[cssselect2.ElementWrapper, dict[str, str | None], float, int, bool]] = [
-        (wrapper_root, initial, 1.0, 0, False)
-    ]
+    nothing: dict[str, str | None] = dict.fromkeys(_MASK_PROPERTIES)
+    # (wrapper, parent computed values, the renderer's view of them, product of
+    # ancestors' opacity, depth, filtered above)
+    stack: list[
+        tuple[
+            cssselect2.ElementWrapper,
+            dict[str, str | None],
+            dict[str, str | None],
+            float,
+            int,
+            bool,
+        ]
+    ] = [(wrapper_root, initial, nothing, 1.0, 0, False)]
     while stack:
-        wrapper, parent, group_opacity, depth, filtered = stack.pop()
+        wrapper, parent, parent_raw, group_opacity, depth, filtered = stack.pop()
         node = wrapper.etree_element
         if depth > MAX_DEPTH:
             raise SvgError(
@@ -537,7 +624,7 @@ def _walk(svg: bytes, path: str | Path | None, unaudited: list[Unaudited]) -> It
         tag = _local(node)
         if not _in_svg_namespace(node) or tag in _NOT_RENDERED:
             continue
-        computed = _cascade(wrapper, parent, matchers)
+        computed, raw = _cascade(wrapper, parent, parent_raw, matchers)
         if (computed["display"] or "").lower() == "none":
             continue
         line = lines.get(id(node))
@@ -550,7 +637,7 @@ def _walk(svg: bytes, path: str | Path | None, unaudited: list[Unaudited]) -> It
             filtered = True
         if tag in _UNAUDITED_ELEMENTS:
             unaudited.append(Unaudited(_describe(node), line, _UNAUDITED_ELEMENTS[tag]))
-            yield _Visited(node, (), True)
+            yield _Visited(node, (), True, raw)
             continue
         paints: tuple[Paint, ...] = ()
         if tag in _SHAPES:
@@ -559,12 +646,12 @@ def _walk(svg: bytes, path: str | Path | None, unaudited: list[Unaudited]) -> It
                 unaudited.append(Unaudited(_describe(node), line, "markers are not audited"))
         elif tag not in _CONTAINERS:
             continue  # unknown SVG element: drawn as nothing by the renderer
-        yield _Visited(node, paints, False)
+        yield _Visited(node, paints, False, raw)
         children = list(wrapper.iter_children())
         if tag == "switch":
             children = children[:1]  # only the first child renders (cairosvg: no feature tests)
         for child in reversed(children):
-            stack.append((child, computed, opacity, depth + 1, filtered))
+            stack.append((child, computed, raw, opacity, depth + 1, filtered))
 
 
 def _shape_paints(

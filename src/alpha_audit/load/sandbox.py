@@ -21,10 +21,10 @@ import subprocess
 import sys
 import time
 from collections import deque
-from collections.abc import Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from pathlib import Path
 from types import TracebackType
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -33,6 +33,8 @@ if TYPE_CHECKING:  # svg imports this module to render: a run-time import back w
     from alpha_audit.load.svg import RenderLimits
 
 __all__ = ["Outcome", "RenderPool"]
+
+T = TypeVar("T")
 
 _WORKER = Path(__file__).with_name("_svg_worker.py")
 _HEADER = struct.Struct(">BI")
@@ -116,16 +118,6 @@ class _Worker:
             with contextlib.suppress(OSError):
                 stream.close()
 
-    def close(self) -> None:
-        """Ask the worker to stop; kill it if it does not within a second."""
-        try:
-            self.stdin.write(struct.pack(">I", 0))
-            self.stdin.close()
-            self.proc.wait(timeout=1.0)
-        except (OSError, subprocess.TimeoutExpired, ValueError):
-            pass
-        self.kill()
-
     def death_reason(self) -> str:
         """Why the worker ended mid-job, as a problem message."""
         code = self.proc.wait()
@@ -160,11 +152,10 @@ class RenderPool:
         exc: BaseException | None,
         tb: TracebackType | None,
     ) -> None:
+        # Idle workers hold nothing worth a clean exit (their interpreter's
+        # shutdown costs tens of ms each), and a busy one is abandoned anyway.
         for w in self.workers:
-            if exc_type is None:
-                w.close()
-            else:
-                w.kill()
+            w.kill()
         self.workers.clear()
 
     def _replace(self, worker: _Worker) -> None:
@@ -173,44 +164,95 @@ class RenderPool:
 
     def map(self, jobs: Sequence[tuple[bytes, tuple[int, ...]]]) -> list[Outcome]:
         """Render every ``(svg bytes, sizes)`` job; outcomes in job order."""
-        results: list[Outcome | None] = [None] * len(jobs)
-        pending = deque(range(len(jobs)))
+        results: list[Outcome] = ["not rendered"] * len(jobs)
+        for index, outcome in self.stream((i, svg, sizes) for i, (svg, sizes) in enumerate(jobs)):
+            results[index] = outcome
+        return results
+
+    def stream(
+        self, jobs: Iterable[tuple[T, bytes, tuple[int, ...]]], *, ahead: int | None = None
+    ) -> Iterator[tuple[T, Outcome]]:
+        """Render ``(tag, svg bytes, sizes)`` jobs; ``(tag, outcome)`` as each one finishes.
+
+        Jobs are pulled from ``jobs`` only when needed: one for each idle
+        worker, and up to ``ahead`` (default: twice the pool size) read ahead
+        while every worker is busy, so a lazy source (one that parses each
+        icon as it is asked for it) works in parallel with the renders.
+        Every worker is started first, so their start-up overlaps that work
+        too.  Outcomes are yielded in completion order and never kept: memory
+        is bounded by the pool, whatever the number of jobs.
+        """
+        source = iter(jobs)
+        exhausted = False
+        queued: deque[tuple[T, bytes, tuple[int, ...]]] = deque()
+        limit = 2 * self.size if ahead is None else max(0, ahead)
+        tags: dict[int, T] = {}
         selector = selectors.DefaultSelector()
-        for kept in self.workers:  # workers kept from an earlier map() call
+        for kept in self.workers:  # workers kept from an earlier call
             selector.register(kept.stdout, selectors.EVENT_READ, kept)
+
+        def pull() -> None:
+            nonlocal exhausted
+            try:
+                queued.append(next(source))
+            except StopIteration:
+                exhausted = True
+
+        def start() -> _Worker:
+            worker = _Worker(self.limits)
+            self.workers.append(worker)
+            selector.register(worker.stdout, selectors.EVENT_READ, worker)
+            return worker
+
+        def retire(worker: _Worker) -> None:
+            selector.unregister(worker.stdout)
+            self._replace(worker)
+
         try:
-            while pending or any(w.job is not None for w in self.workers):
-                while pending and (
-                    len(self.workers) < self.size or any(w.job is None for w in self.workers)
-                ):
-                    idle = next((w for w in self.workers if w.job is None), None)
-                    if idle is None:
-                        idle = _Worker(self.limits)
-                        self.workers.append(idle)
-                        selector.register(idle.stdout, selectors.EVENT_READ, idle)
-                    job = pending.popleft()
-                    svg, sizes = jobs[job]
+            pull()
+            while queued and len(self.workers) < self.size:
+                start()  # all at once: they start up while the source prepares more work
+            serial = 0
+            while True:
+                done: list[tuple[T, Outcome]] = []
+                idle = [w for w in self.workers if w.job is None]
+                missing = self.size - len(self.workers)
+                while not exhausted and len(queued) < len(idle) + missing:
+                    pull()
+                while missing > 0 and len(queued) > len(idle):
+                    idle.append(start())  # replaces a worker that died or was killed
+                    missing -= 1
+                for worker in idle:
+                    if not queued:
+                        break
+                    tag, svg, sizes = queued.popleft()
                     try:
-                        idle.send(job, svg, sizes, self.limits.timeout)
+                        worker.send(serial, svg, sizes, self.limits.timeout)
+                        tags[serial] = tag
                     except (BrokenPipeError, OSError):
-                        results[job] = idle.death_reason()
-                        selector.unregister(idle.stdout)
-                        self._replace(idle)
+                        done.append((tag, worker.death_reason()))
+                        retire(worker)
+                    serial += 1
                 busy = [w for w in self.workers if w.job is not None]
                 if not busy:
+                    yield from done
+                    if not queued and exhausted:
+                        return
                     continue
-                wait = max(0.0, min(w.deadline for w in busy) - time.monotonic())
+                if not exhausted and len(queued) < limit:
+                    pull()  # read ahead while the workers render
+                    wait = 0.0
+                else:
+                    wait = max(0.0, min(w.deadline for w in busy) - time.monotonic())
                 for key, _ in selector.select(timeout=wait):
-                    worker: _Worker = key.data
+                    worker = key.data
                     try:
                         chunk = os.read(worker.stdout.fileno(), 1 << 20)
                     except BlockingIOError:
                         continue
                     if worker.job is None:  # an idle worker only speaks to say it died
-                        selector.unregister(worker.stdout)
-                        self._replace(worker)
+                        retire(worker)
                         continue
-                    job = worker.job
                     outcome: Outcome | None
                     if not chunk:
                         outcome = worker.death_reason()
@@ -222,20 +264,17 @@ class RenderPool:
                             outcome = "renderer sent a malformed reply; refused"
                     if outcome is None:
                         continue
-                    results[job] = outcome
+                    done.append((tags.pop(worker.job), outcome))
                     worker.job = None
                     if isinstance(outcome, str):
-                        selector.unregister(worker.stdout)
-                        self._replace(worker)
+                        retire(worker)
                 now = time.monotonic()
-                late = [(w, w.job) for w in self.workers if w.job is not None and w.deadline <= now]
-                for worker, late_job in late:
-                    results[late_job] = (
-                        f"took longer than {self.limits.timeout:g} s to render; refused"
-                    )
-                    worker.job = None
-                    selector.unregister(worker.stdout)
-                    self._replace(worker)
+                for worker in [w for w in self.workers if w.job is not None]:
+                    if worker.deadline <= now and worker.job is not None:
+                        reason = f"took longer than {self.limits.timeout:g} s to render; refused"
+                        done.append((tags.pop(worker.job), reason))
+                        worker.job = None
+                        retire(worker)
+                yield from done
         finally:
             selector.close()
-        return [r if r is not None else "not rendered" for r in results]

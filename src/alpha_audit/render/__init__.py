@@ -29,8 +29,20 @@ from alpha_audit.render.common import SUFFIXES, Renderer, RenderOptions, display
 
 if TYPE_CHECKING:
     from alpha_audit.gate import CheckReport
+    from alpha_audit.reproduce.run import Reproduction
+    from alpha_audit.suggest.engine import SuggestResult
 
-__all__ = ["SUFFIXES", "CheckFormat", "RenderOptions", "Renderer", "display_path", "render_check"]
+__all__ = [
+    "SUFFIXES",
+    "CheckFormat",
+    "RenderOptions",
+    "Renderer",
+    "ReproduceFormat",
+    "SuggestFormat",
+    "display_path",
+    "render_check",
+    "render_suggest",
+]
 
 
 class CheckFormat(StrEnum):
@@ -77,6 +89,46 @@ class CheckFormat(StrEnum):
         assert_never(self)
 
 
+class SuggestFormat(StrEnum):
+    """Output formats of ``alpha-audit suggest``."""
+
+    TABLE = "table"
+    JSON = "json"
+    MARKDOWN = "markdown"
+
+    def renderer(self) -> Renderer[SuggestResult]:
+        """The render function for this format (:mod:`alpha_audit.suggest.report`)."""
+        from alpha_audit.suggest import report
+
+        if self is SuggestFormat.TABLE:
+            return report.render_table
+        if self is SuggestFormat.JSON:
+            return report.render_json
+        if self is SuggestFormat.MARKDOWN:
+            return report.render_markdown
+        assert_never(self)
+
+
+class ReproduceFormat(StrEnum):
+    """Output formats of ``alpha-audit reproduce`` (``--out`` writes JSON and Markdown)."""
+
+    TABLE = "table"
+    JSON = "json"
+    MARKDOWN = "markdown"
+
+    def renderer(self) -> Renderer[Reproduction]:
+        """The render function for this format (:mod:`alpha_audit.reproduce.report`)."""
+        from alpha_audit.reproduce import report
+
+        if self is ReproduceFormat.TABLE:
+            return report.render_table
+        if self is ReproduceFormat.JSON:
+            return report.render_json
+        if self is ReproduceFormat.MARKDOWN:
+            return report.render_markdown
+        assert_never(self)
+
+
 def render_check(report: CheckReport, fmt: CheckFormat | str, options: RenderOptions) -> str:
     """Render a gated report in ``fmt``.
 
@@ -86,3 +138,10 @@ def render_check(report: CheckReport, fmt: CheckFormat | str, options: RenderOpt
     :func:`alpha_audit.pipeline.check_project`).
     """
     return CheckFormat(fmt).renderer()(report, options)
+
+
+def render_suggest(
+    result: SuggestResult, fmt: SuggestFormat | str, options: RenderOptions | None = None
+) -> str:
+    """``result`` as text in ``fmt``."""
+    return SuggestFormat(fmt).renderer()(result, options or RenderOptions())

@@ -16,7 +16,7 @@ from alpha_audit.audit import AuditResult
 from alpha_audit.fixes import fix_lookup, fix_to_dict, fixes_left_out, report_fixes
 from alpha_audit.gate import CheckReport, Finding, GateResult
 from alpha_audit.model import GamutAdjustment
-from alpha_audit.render.common import RenderOptions, display_path, dumps, records
+from alpha_audit.render.common import Records, RenderOptions, display_path, dumps, records
 
 __all__ = [
     "CHECK_SCHEMA",
@@ -96,7 +96,7 @@ def _rows(result: AuditResult) -> list[dict[str, Any]]:
     """Per icon x canvas (manifest colours), or per icon x paint x canvas when paints were read."""
     if result.paints is None:
         return records(result.rows())
-    out = []
+    out = Records()
     for row in result.paints.rows():
         out.append(
             {

@@ -5,19 +5,25 @@ Library API: :func:`full_gamut`, :func:`broad_grid`, :func:`sweep` and
 work on any theme.  Never imported by the audit path.
 """
 
-from alpha_audit.reproduce.experiments import (
-    BroadGridResult,
-    CanvasChange,
-    ContrastChange,
-    FullGamutResult,
-    PaletteResult,
-    SweepResult,
-    broad_grid,
-    full_gamut,
-    palette_separation,
-    sweep,
-    sweep_alphas,
-)
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from alpha_audit.reproduce.experiments import (
+        BroadGridResult,
+        CanvasChange,
+        ContrastChange,
+        FullGamutResult,
+        PaletteResult,
+        SweepResult,
+        broad_grid,
+        full_gamut,
+        palette_separation,
+        sweep,
+        sweep_alphas,
+    )
 
 __all__ = [
     "BroadGridResult",
@@ -32,3 +38,11 @@ __all__ = [
     "sweep",
     "sweep_alphas",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    """The experiments on first use (PEP 562): the command line imports
+    :mod:`alpha_audit.reproduce.experiment` without loading them."""
+    if name in __all__:
+        return getattr(importlib.import_module("alpha_audit.reproduce.experiments"), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -10,16 +10,15 @@ whether ours matches to every printed digit.
 
 from __future__ import annotations
 
-from enum import StrEnum
 from importlib.metadata import PackageNotFoundError, version
-from typing import Any, assert_never
+from typing import Any
 
 from rich import box
 from rich.console import Group
 from rich.table import Table
 from rich.text import Text
 
-from alpha_audit.render.common import Renderer, RenderOptions, dumps, escape_markdown, to_text
+from alpha_audit.render.common import RenderOptions, dumps, escape_markdown, to_text
 from alpha_audit.reproduce.experiments import ContrastChange
 from alpha_audit.reproduce.paper import (
     PAPER,
@@ -39,7 +38,6 @@ from alpha_audit.reproduce.run import Reproduction
 
 __all__ = [
     "SCHEMA",
-    "ReproduceFormat",
     "alpha_key",
     "render_json",
     "render_markdown",
@@ -49,24 +47,6 @@ __all__ = [
 ]
 
 SCHEMA = "alpha-audit.reproduce/1"
-
-
-class ReproduceFormat(StrEnum):
-    """Output formats of ``alpha-audit reproduce`` (``--out`` writes JSON and Markdown)."""
-
-    TABLE = "table"
-    JSON = "json"
-    MARKDOWN = "markdown"
-
-    def renderer(self) -> Renderer[Reproduction]:
-        """The render function for this format."""
-        if self is ReproduceFormat.TABLE:
-            return render_table
-        if self is ReproduceFormat.JSON:
-            return render_json
-        if self is ReproduceFormat.MARKDOWN:
-            return render_markdown
-        assert_never(self)
 
 
 def alpha_key(alpha: float) -> str:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import enum
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
@@ -11,6 +10,7 @@ from typing import TypedDict, assert_never
 from alpha_audit.errors import UsageError
 from alpha_audit.model import Theme
 from alpha_audit.reproduce.browser import BrowserValidationResult, browser_validation
+from alpha_audit.reproduce.experiment import Experiment
 from alpha_audit.reproduce.experiments import (
     BroadGridResult,
     FullGamutResult,
@@ -32,17 +32,6 @@ __all__ = [
     "Settings",
     "reproduce",
 ]
-
-
-class Experiment(enum.StrEnum):
-    """The four numerical experiments, in the paper's order, then the two in browsers."""
-
-    FULL_GAMUT = "full-gamut"
-    BROAD_GRID = "broad-grid"
-    SWEEP = "sweep"
-    PALETTE = "palette"
-    BROWSER = "browser"
-    RUNTIME = "runtime"
 
 
 # Run when nothing is selected; the browser experiments need engines and icons, so they

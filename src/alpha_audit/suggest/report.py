@@ -8,8 +8,7 @@ icons in manifest order.
 
 from __future__ import annotations
 
-from enum import StrEnum
-from typing import Any, assert_never
+from typing import Any
 
 from rich import box
 from rich.console import Group, RenderableType
@@ -17,7 +16,6 @@ from rich.table import Table
 from rich.text import Text
 
 from alpha_audit.render.common import (
-    Renderer,
     RenderOptions,
     dumps,
     escape_markdown,
@@ -31,34 +29,14 @@ from alpha_audit.suggest.engine import Limit, SafeAlpha, SuggestResult
 
 __all__ = [
     "SCHEMA",
-    "SuggestFormat",
     "render_json",
     "render_markdown",
-    "render_suggest",
     "render_table",
     "suggest_document",
 ]
 
 SCHEMA = "alpha-audit.suggest/1"
 _MAX_NAMES = 3  # icon names shown per cell in table and markdown; JSON has all
-
-
-class SuggestFormat(StrEnum):
-    """Output formats of ``alpha-audit suggest``."""
-
-    TABLE = "table"
-    JSON = "json"
-    MARKDOWN = "markdown"
-
-    def renderer(self) -> Renderer[SuggestResult]:
-        """The render function for this format."""
-        if self is SuggestFormat.TABLE:
-            return render_table
-        if self is SuggestFormat.JSON:
-            return render_json
-        if self is SuggestFormat.MARKDOWN:
-            return render_markdown
-        assert_never(self)
 
 
 def _limit(limit: Limit | None) -> dict[str, Any] | None:
@@ -235,10 +213,3 @@ def render_markdown(result: SuggestResult, options: RenderOptions) -> str:
 def render_json(result: SuggestResult, options: RenderOptions) -> str:
     """The ``alpha-audit.suggest/1`` document (``options`` change nothing)."""
     return dumps(suggest_document(result))
-
-
-def render_suggest(
-    result: SuggestResult, fmt: SuggestFormat | str, options: RenderOptions | None = None
-) -> str:
-    """``result`` as text in ``fmt``."""
-    return SuggestFormat(fmt).renderer()(result, options or RenderOptions())
