@@ -8,6 +8,7 @@ from pathlib import Path
 
 from alpha_audit.audit import AuditResult, audit, check_combinations
 from alpha_audit.color import GamutPolicy, Pipeline
+from alpha_audit.color.metrics import preload_colour
 from alpha_audit.errors import SvgError, UsageError
 from alpha_audit.fixes import with_fixes
 from alpha_audit.gate import CheckReport, FindingKey, evaluate
@@ -30,6 +31,7 @@ def render_paints(
     on_icon: Callable[[], None] | None,
 ) -> PaintSet:
     """Every icon's paints, each measured at every size; empty icons become problems."""
+    preload_colour()  # the audit needs it next; the import runs while the workers render
     paints = measure_paints(
         [(i.name, i.file) for i in iconset.icons], iconset.sizes, progress=on_icon
     )

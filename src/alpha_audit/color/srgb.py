@@ -19,7 +19,6 @@ import re
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from PIL import ImageColor
 
 from alpha_audit.color.css import GamutPolicy, parse_css_color
 from alpha_audit.color.transfer import srgb_decode, srgb_encode
@@ -108,6 +107,8 @@ def _exact_srgb(value: str) -> NDArray[np.float64] | None:
         if not all(0.0 <= c <= 1.0 for c in channels):
             return None  # outside sRGB: the gamut policy decides
         return np.array(channels, dtype=np.float64)
+    from PIL import ImageColor  # here: only a named colour needs Pillow's table
+
     lowered = value.lower()
     if lowered != "transparent" and lowered in ImageColor.colormap:  # CSS Color 4 named colours
         named = ImageColor.colormap[lowered]  # Pillow caches looked-up names as tuples

@@ -39,13 +39,18 @@ T = TypeVar("T")
 _WORKER = Path(__file__).with_name("_svg_worker.py")
 _HEADER = struct.Struct(">BI")
 _MAX_MESSAGE_BYTES = 4096
+# Jobs sent to a worker before it answers the first: enough that it never waits
+# for this process between small jobs.  Their requests stay under a pipe's
+# capacity (64 KiB on Linux; 16 KiB is safe everywhere), so writing one never blocks.
+_PIPELINE_JOBS = 4
+_PIPELINE_BYTES = 16 << 10
 
 # Per job: a reason string when the whole icon failed, else one mask or reason per size.
 Outcome = str | list[NDArray[np.uint8] | str]  # 8-bit coverage codes, alpha x 255
 
 
 class _Worker:
-    """One render process and the job it is working on."""
+    """One render process and the jobs sent to it, oldest (the one it is on) first."""
 
     def __init__(self, limits: RenderLimits) -> None:
         self.limits = limits
@@ -71,23 +76,46 @@ class _Worker:
         assert self.proc.stdin is not None and self.proc.stdout is not None
         self.stdin, self.stdout = self.proc.stdin, self.proc.stdout
         os.set_blocking(self.stdout.fileno(), False)
-        self.job: int | None = None
-        self.sizes: tuple[int, ...] = ()
-        self.deadline = 0.0
+        # (job, sizes, request bytes) in the order sent; the worker answers in that order.
+        self.jobs: deque[tuple[int, tuple[int, ...], int]] = deque()
+        self.started = 0.0  # when the oldest job began: the reply before it came then
         self.buffer = bytearray()
 
-    def send(self, job: int, svg: bytes, sizes: tuple[int, ...], timeout: float) -> None:
-        self.job, self.sizes, self.buffer = job, sizes, bytearray()
+    @property
+    def pending_bytes(self) -> int:
+        return sum(n for _, _, n in self.jobs)
+
+    def deadline(self, timeout: float) -> float:
+        """When the job it is on runs out of time (each job gets ``timeout`` of its own)."""
+        return self.started + timeout
+
+    def send(self, job: int, svg: bytes, sizes: tuple[int, ...]) -> None:
         request = struct.pack(f">I{len(sizes)}II", len(sizes), *sizes, len(svg)) + svg
         self.stdin.write(request)
         self.stdin.flush()
-        self.deadline = time.monotonic() + timeout
+        if not self.jobs:
+            self.started = time.monotonic()
+        self.jobs.append((job, sizes, len(request)))
 
-    def parse(self) -> list[NDArray[np.uint8] | str] | None:
-        """The complete reply in the buffer, None if incomplete; ValueError if malformed."""
+    def replies(self) -> Iterator[tuple[int, list[NDArray[np.uint8] | str]]]:
+        """``(job, masks)`` for each complete reply in the buffer; ValueError if malformed."""
+        while self.jobs:
+            parsed = self._parse(self.jobs[0][1])
+            if parsed is None:
+                return
+            reply, used = parsed
+            del self.buffer[:used]
+            job, _, _ = self.jobs.popleft()
+            self.started = time.monotonic()  # the next job starts now
+            yield job, reply
+        if self.buffer:
+            raise ValueError("malformed reply")
+
+    def _parse(self, sizes: tuple[int, ...]) -> tuple[list[NDArray[np.uint8] | str], int] | None:
+        """The first reply in the buffer and its length, None if incomplete."""
         out: list[NDArray[np.uint8] | str] = []
         pos = 0
-        for size in self.sizes:
+        for size in sizes:
             if len(self.buffer) < pos + _HEADER.size:
                 return None
             status, n = _HEADER.unpack_from(self.buffer, pos)
@@ -106,9 +134,7 @@ class _Worker:
             else:
                 text = chunk.decode("utf-8", "replace")
                 out.append("".join(ch if ch.isprintable() else " " for ch in text))
-        if pos != len(self.buffer):
-            raise ValueError("malformed reply")
-        return out
+        return out, pos
 
     def kill(self) -> None:
         if self.proc.poll() is None:
@@ -174,19 +200,25 @@ class RenderPool:
     ) -> Iterator[tuple[T, Outcome]]:
         """Render ``(tag, svg bytes, sizes)`` jobs; ``(tag, outcome)`` as each one finishes.
 
-        Jobs are pulled from ``jobs`` only when needed: one for each idle
-        worker, and up to ``ahead`` (default: twice the pool size) read ahead
-        while every worker is busy, so a lazy source (one that parses each
-        icon as it is asked for it) works in parallel with the renders.
-        Every worker is started first, so their start-up overlaps that work
-        too.  Outcomes are yielded in completion order and never kept: memory
-        is bounded by the pool, whatever the number of jobs.
+        Jobs are pulled from ``jobs`` only when needed, so a lazy source (one
+        that parses each icon as it is asked for it) works while the workers
+        render, and up to ``ahead`` jobs (default: twice the pool size) wait
+        ready.  Every worker is started first, so their start-up overlaps that
+        work too.  Each worker is sent a few small jobs ahead
+        (:data:`_PIPELINE_JOBS`, at most :data:`_PIPELINE_BYTES` unread, which
+        the pipe holds without blocking), so it never waits for this process
+        between jobs; the time limit still counts per job, from the reply
+        before it.  A worker that dies or runs out of time fails only the job
+        it was on; the jobs queued behind it go to another worker.  Outcomes
+        are yielded in completion order and never kept: memory is bounded by
+        the pool, whatever the number of jobs.
         """
         source = iter(jobs)
         exhausted = False
         queued: deque[tuple[T, bytes, tuple[int, ...]]] = deque()
         limit = 2 * self.size if ahead is None else max(0, ahead)
-        tags: dict[int, T] = {}
+        timeout = self.limits.timeout
+        sent: dict[int, tuple[T, bytes, tuple[int, ...]]] = {}  # by serial, until answered
         selector = selectors.DefaultSelector()
         for kept in self.workers:  # workers kept from an earlier call
             selector.register(kept.stdout, selectors.EVENT_READ, kept)
@@ -204,9 +236,22 @@ class RenderPool:
             selector.register(worker.stdout, selectors.EVENT_READ, worker)
             return worker
 
-        def retire(worker: _Worker) -> None:
+        def fail(worker: _Worker, reason: str, done: list[tuple[T, Outcome]]) -> None:
+            """The job ``worker`` was on fails; those behind it go back to the queue."""
             selector.unregister(worker.stdout)
             self._replace(worker)
+            if worker.jobs:
+                head, *rest = worker.jobs
+                done.append((sent.pop(head[0])[0], reason))
+                queued.extendleft(sent.pop(job) for job, _, _ in reversed(rest))
+
+        def room(worker: _Worker, request: bytes) -> bool:
+            if not worker.jobs:
+                return True
+            return (
+                len(worker.jobs) < _PIPELINE_JOBS
+                and worker.pending_bytes + len(request) + 12 <= _PIPELINE_BYTES
+            )
 
         try:
             pull()
@@ -215,25 +260,29 @@ class RenderPool:
             serial = 0
             while True:
                 done: list[tuple[T, Outcome]] = []
-                idle = [w for w in self.workers if w.job is None]
                 missing = self.size - len(self.workers)
-                while not exhausted and len(queued) < len(idle) + missing:
+                idle = sum(not w.jobs for w in self.workers) + missing
+                while not exhausted and len(queued) < max(idle, 1):
                     pull()
-                while missing > 0 and len(queued) > len(idle):
-                    idle.append(start())  # replaces a worker that died or was killed
+                while missing > 0 and len(queued) > sum(not w.jobs for w in self.workers):
+                    start()  # replaces a worker that died or was killed
                     missing -= 1
-                for worker in idle:
-                    if not queued:
-                        break
-                    tag, svg, sizes = queued.popleft()
-                    try:
-                        worker.send(serial, svg, sizes, self.limits.timeout)
-                        tags[serial] = tag
-                    except (BrokenPipeError, OSError):
-                        done.append((tag, worker.death_reason()))
-                        retire(worker)
-                    serial += 1
-                busy = [w for w in self.workers if w.job is not None]
+                # Fill the least loaded workers first, while their pipes have room.
+                for worker in sorted(self.workers, key=lambda w: len(w.jobs)):
+                    while queued and worker in self.workers and room(worker, queued[0][1]):
+                        job = queued.popleft()
+                        try:
+                            worker.send(serial, job[1], job[2])
+                            sent[serial] = job
+                        except (BrokenPipeError, OSError):
+                            if worker.jobs:  # it died on an earlier job: seen when read
+                                queued.appendleft(job)
+                                break
+                            done.append((job[0], worker.death_reason()))
+                            selector.unregister(worker.stdout)
+                            self._replace(worker)
+                        serial += 1
+                busy = [w for w in self.workers if w.jobs]
                 if not busy:
                     yield from done
                     if not queued and exhausted:
@@ -243,38 +292,30 @@ class RenderPool:
                     pull()  # read ahead while the workers render
                     wait = 0.0
                 else:
-                    wait = max(0.0, min(w.deadline for w in busy) - time.monotonic())
+                    wait = max(0.0, min(w.deadline(timeout) for w in busy) - time.monotonic())
                 for key, _ in selector.select(timeout=wait):
                     worker = key.data
                     try:
                         chunk = os.read(worker.stdout.fileno(), 1 << 20)
                     except BlockingIOError:
                         continue
-                    if worker.job is None:  # an idle worker only speaks to say it died
-                        retire(worker)
+                    if not worker.jobs:  # an idle worker only speaks to say it died
+                        fail(worker, "renderer stopped unexpectedly", done)
                         continue
-                    outcome: Outcome | None
                     if not chunk:
-                        outcome = worker.death_reason()
-                    else:
-                        worker.buffer += chunk
-                        try:
-                            outcome = worker.parse()
-                        except ValueError:
-                            outcome = "renderer sent a malformed reply; refused"
-                    if outcome is None:
+                        fail(worker, worker.death_reason(), done)
                         continue
-                    done.append((tags.pop(worker.job), outcome))
-                    worker.job = None
-                    if isinstance(outcome, str):
-                        retire(worker)
+                    worker.buffer += chunk
+                    try:
+                        for job, reply in worker.replies():
+                            done.append((sent.pop(job)[0], reply))
+                    except ValueError:
+                        fail(worker, "renderer sent a malformed reply; refused", done)
                 now = time.monotonic()
-                for worker in [w for w in self.workers if w.job is not None]:
-                    if worker.deadline <= now and worker.job is not None:
-                        reason = f"took longer than {self.limits.timeout:g} s to render; refused"
-                        done.append((tags.pop(worker.job), reason))
-                        worker.job = None
-                        retire(worker)
+                for worker in [w for w in self.workers if w.jobs]:
+                    if worker.deadline(timeout) <= now:
+                        reason = f"took longer than {timeout:g} s to render; refused"
+                        fail(worker, reason, done)
                 yield from done
         finally:
             selector.close()
