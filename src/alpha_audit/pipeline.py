@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Sequence
+import contextlib
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import replace
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from alpha_audit.audit import AuditResult, audit, check_combinations
 from alpha_audit.color import GamutPolicy, Pipeline
@@ -14,14 +16,17 @@ from alpha_audit.fixes import with_fixes
 from alpha_audit.gate import CheckReport, FindingKey, evaluate
 from alpha_audit.load.iconset import load_iconset
 from alpha_audit.load.paint_masks import PaintSet, measure_paints
-from alpha_audit.load.svg import IconProblem
+from alpha_audit.load.svg import IconProblem, RenderLimits
 from alpha_audit.load.theme import load_theme
 from alpha_audit.load.tokens.themes import TokenConfig
 from alpha_audit.model import GamutAdjustment, IconSet, Theme
 from alpha_audit.paint_audit import audit_paints, check_pipeline, resolve_pipeline
 from alpha_audit.policy import Policy
 
-__all__ = ["check_files", "check_project", "render_paints"]
+if TYPE_CHECKING:
+    from alpha_audit.load.sandbox import RenderPool
+
+__all__ = ["check_files", "check_project", "render_paints", "render_pool"]
 
 
 def render_paints(
@@ -29,11 +34,15 @@ def render_paints(
     *,
     strict_svg: bool,
     on_icon: Callable[[], None] | None,
+    pool: RenderPool | None = None,
 ) -> PaintSet:
-    """Every icon's paints, each measured at every size; empty icons become problems."""
+    """Every icon's paints, each measured at every size; empty icons become problems.
+
+    ``pool``: render workers the caller started early (:func:`render_pool`).
+    """
     preload_colour()  # the audit needs it next; the import runs while the workers render
     paints = measure_paints(
-        [(i.name, i.file) for i in iconset.icons], iconset.sizes, progress=on_icon
+        [(i.name, i.file) for i in iconset.icons], iconset.sizes, progress=on_icon, pool=pool
     )
     empty = []
     for name, measured in paints.icons.items():
@@ -56,6 +65,20 @@ def render_paints(
         first = paints.problems[0]
         raise SvgError(first.message, path=first.file)
     return paints
+
+
+@contextlib.contextmanager
+def render_pool() -> Iterator[RenderPool]:
+    """Render workers started now, so they are ready once the inputs are read.
+
+    Each takes a few tenths of a second to start; a check starts them before
+    loading anything (an input error just stops them) and renders with them.
+    """
+    from alpha_audit.load.sandbox import RenderPool
+
+    limits = RenderLimits()
+    with RenderPool(limits, workers=limits.workers) as pool:
+        yield pool.prestart()
 
 
 def _audit(
@@ -97,13 +120,14 @@ def check_files(
     ``on_start(n)`` and ``on_icon()`` report progress; ``gamut`` is the
     project's policy for colours outside sRGB (else each file's ``gamut:``).
     """
-    theme = load_theme(theme_path, gamut=gamut)
-    iconset = load_iconset(iconset_path, gamut=gamut)
-    chosen = resolve_pipeline(pipeline, iconset.pipeline, theme.pipeline)
-    check_pipeline(iconset, chosen, alpha)
-    if on_start is not None:
-        on_start(len(iconset.icons))
-    paints = render_paints(iconset, strict_svg=strict_svg, on_icon=on_icon)
+    with render_pool() as pool:
+        theme = load_theme(theme_path, gamut=gamut)
+        iconset = load_iconset(iconset_path, gamut=gamut)
+        chosen = resolve_pipeline(pipeline, iconset.pipeline, theme.pipeline)
+        check_pipeline(iconset, chosen, alpha)
+        if on_start is not None:
+            on_start(len(iconset.icons))
+        paints = render_paints(iconset, strict_svg=strict_svg, on_icon=on_icon, pool=pool)
     return _audit(theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=chosen)
 
 
@@ -138,6 +162,41 @@ def check_project(
     config's) decides colours outside sRGB in every file, tokens included;
     the colours it moved are in ``report.gamut``.
     """
+    with render_pool() as pool:
+        return _check_project(
+            themes,
+            iconsets,
+            pool,
+            policy=policy,
+            alpha=alpha,
+            threshold=threshold,
+            baseline=baseline,
+            strict_svg=strict_svg,
+            pipeline=pipeline,
+            on_start=on_start,
+            on_icon=on_icon,
+            tokens=tokens,
+            gamut=gamut,
+        )
+
+
+def _check_project(
+    themes: Sequence[str | Path],
+    iconsets: Sequence[str | Path],
+    pool: RenderPool,
+    *,
+    policy: Policy,
+    alpha: float | None,
+    threshold: float | None,
+    baseline: Iterable[FindingKey] | None,
+    strict_svg: bool,
+    pipeline: str | None,
+    on_start: Callable[[int], None] | None,
+    on_icon: Callable[[], None] | None,
+    tokens: TokenConfig | None,
+    gamut: GamutPolicy | None,
+) -> CheckReport:
+    """:func:`check_project` with its render workers already starting."""
     if tokens is not None and gamut is not None:
         tokens = replace(tokens, gamut=gamut)
     if tokens is not None:
@@ -145,6 +204,7 @@ def check_project(
             themes,
             iconsets,
             tokens,
+            pool,
             policy=policy,
             alpha=alpha,
             threshold=threshold,
@@ -179,7 +239,7 @@ def check_project(
         on_start(sum(len(s.icons) for s in loaded_sets))
     audits = []
     for iconset in loaded_sets:
-        paints = render_paints(iconset, strict_svg=strict_svg, on_icon=on_icon)
+        paints = render_paints(iconset, strict_svg=strict_svg, on_icon=on_icon, pool=pool)
         for theme in loaded_themes:
             kind = chosen[(theme.name, iconset.name)]
             audits.append(
@@ -204,6 +264,7 @@ def _check_with_tokens(
     themes: Sequence[str | Path],
     iconsets: Sequence[str | Path],
     tokens: TokenConfig,
+    pool: RenderPool,
     *,
     policy: Policy,
     alpha: float | None,
@@ -237,7 +298,7 @@ def _check_with_tokens(
     audits = []
     for pairs in per_set:
         # The modes differ in colours only: the icons render once.
-        paints = render_paints(pairs[0][1], strict_svg=strict_svg, on_icon=on_icon)
+        paints = render_paints(pairs[0][1], strict_svg=strict_svg, on_icon=on_icon, pool=pool)
         for theme, iconset in pairs:
             kind = resolve_pipeline(pipeline, iconset.pipeline, theme.pipeline)
             audits.append(

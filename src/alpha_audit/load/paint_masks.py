@@ -12,14 +12,19 @@ paints and sizes.
 
 from __future__ import annotations
 
+import contextlib
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from alpha_audit.color.coverage import CoverageStats, coverage_stats
 from alpha_audit.errors import SvgError
 from alpha_audit.load.paints import PaintGroup, SvgPaints, paints_and_isolates
 from alpha_audit.load.svg import IconProblem, RenderLimits, read_svg
+
+if TYPE_CHECKING:
+    from alpha_audit.load.sandbox import RenderPool
 
 __all__ = ["MAX_PAINT_GROUPS", "IconPaints", "PaintCoverage", "PaintSet", "measure_paints"]
 
@@ -61,16 +66,19 @@ def measure_paints(
     *,
     progress: Callable[[], None] | None = None,
     limits: RenderLimits | None = None,
+    pool: RenderPool | None = None,
 ) -> PaintSet:
     """Read every (name, file)'s paints and measure each paint group at every size.
 
     A file that cannot be read, parsed or rendered, or that has more than
     :data:`MAX_PAINT_GROUPS` paint groups, is one problem; the rest go on.
-    ``progress`` is called once per icon.
+    ``progress`` is called once per icon.  ``pool`` is a render pool the
+    caller started early (:meth:`RenderPool.prestart`); it renders with that
+    pool's limits, and the caller closes it.
     """
     from alpha_audit.load.sandbox import RenderPool
 
-    limits = limits or RenderLimits()
+    limits = pool.limits if pool is not None else limits or RenderLimits()
     sizes = tuple(int(s) for s in sizes)
     icons = list(icons)
     problems: list[IconProblem] = []
@@ -98,8 +106,10 @@ def measure_paints(
 
     stats: dict[tuple[int, int], dict[int, CoverageStats]] = {}
     failed: dict[int, str] = {}
-    with RenderPool(limits, workers=max(1, min(limits.workers, len(icons)))) as pool:
-        for (icon, group), outcome in pool.stream(jobs()):
+    workers = max(1, min(limits.workers, len(icons)))
+    with contextlib.nullcontext(pool) if pool else RenderPool(limits, workers=workers) as used:
+        used.size = workers
+        for (icon, group), outcome in used.stream(jobs()):
             if isinstance(outcome, str):
                 failed.setdefault(icon, outcome)
             else:

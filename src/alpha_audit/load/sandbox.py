@@ -184,6 +184,17 @@ class RenderPool:
             w.kill()
         self.workers.clear()
 
+    def prestart(self) -> RenderPool:
+        """Start every worker now, without waiting for them.
+
+        A worker takes a few tenths of a second to start (the renderer's
+        import); a caller that starts them before reading its inputs has them
+        ready by the time it has work.
+        """
+        while len(self.workers) < self.size:
+            self.workers.append(_Worker(self.limits))
+        return self
+
     def _replace(self, worker: _Worker) -> None:
         worker.kill()
         self.workers.remove(worker)
