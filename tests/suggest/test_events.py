@@ -53,3 +53,47 @@ def test_luminance_band_start_matches_a_dense_scan(r, g, bl, br, bg, bb, limit) 
         if inside.any():
             assert grid[np.argmax(inside)] - start < 1e-4 + 1e-12
         assert bool(attained) == bool(start == 1.0 and inside[0])
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.lists(st.floats(0.05, 1.95), min_size=1, max_size=40),
+    st.floats(0.5, 40.0),
+    st.sampled_from([1, 4096]),
+)
+def test_first_below_brackets_each_items_crossing(crossings, slope, budget) -> None:
+    """Several points per step (few items) or plain bisection (budget 1): the same bracket.
+
+    Item i is ``slope * (c_i - a)`` -- it drops below 0 exactly at ``c_i`` -- and an item
+    that never drops; each bracket must hold its ``c_i`` and be within the tolerance.
+    """
+    import importlib
+
+    from alpha_audit.suggest.events import BISECTION_TOLERANCE, first_below
+
+    events = importlib.import_module("alpha_audit.suggest.events")  # the package name is shadowed
+    c = np.array([*crossings, 5.0])  # the last one never drops below on [0, 2]
+    calls = []
+
+    def f(a: np.ndarray) -> np.ndarray:
+        calls.append(a.shape)
+        points = np.broadcast_to(a, (c.size, a.shape[-1])) if a.ndim == 1 else a
+        return slope * (c[:, np.newaxis] - points)
+
+    old = events._REFINE_POINTS
+    events._REFINE_POINTS = budget
+    try:
+        safe, unsafe = first_below(f, np.linspace(0.0, 2.0, 2001), 0.0)
+    finally:
+        events._REFINE_POINTS = old
+    assert np.isnan(safe[-1]) and np.isnan(unsafe[-1])
+    ok = ~np.isnan(unsafe)
+    assert ok[:-1].all()
+    tol = BISECTION_TOLERANCE * (1 + 1e-6)
+    assert np.all(unsafe[ok] - safe[ok] <= tol)
+    assert np.all(safe[ok] <= c[ok] + 1e-12) and np.all(c[ok] <= unsafe[ok] + 1e-12)
+    assert np.all(slope * (c[ok] - unsafe[ok]) < 0) and np.all(slope * (c[ok] - safe[ok]) >= 0)
+    if budget == 1:
+        assert all(shape[-1] == 1 for shape in calls[1:])  # plain bisection
+    else:
+        assert len(calls) <= 1 + 5  # 1e-3 to 1e-9 in 16-fold steps

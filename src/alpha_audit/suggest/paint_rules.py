@@ -283,7 +283,7 @@ class PaintRules:
                 o: NDArray[np.float64] = o,
                 ref: NDArray[np.float64] = ref,
             ) -> NDArray[np.float64]:
-                a = a.reshape(1, 1, -1) if a.ndim == 1 else a.reshape(len(s), m, 1)
+                a = a.reshape(1, 1, -1) if a.ndim == 1 else a.reshape(len(s), m, -1)
                 return -delta_e_2000(ref, composite_coverage(s, bg, a, o))
 
             # drift_breaks(d, limit) is d > drift_ceiling(limit), i.e. -d < -ceiling.
