@@ -4,7 +4,8 @@ The standard ``json`` module returns plain data without positions.  Here the
 document's *structure* (objects, arrays, keys) is walked by a small loop and
 every string and scalar is decoded by ``json`` itself
 (``json.decoder.scanstring`` and ``JSONDecoder.raw_decode``), so the grammar
-stays the standard library's while each key path gets its line.  Duplicate
+stays the standard library's while each key path gets its line (and each
+string value its exact span, quotes included, for fixes that rewrite it).  Duplicate
 keys, ``NaN``/``Infinity`` and nesting deeper than :data:`MAX_JSON_DEPTH` are
 input errors, because a token file is untrusted.
 """
@@ -14,12 +15,14 @@ from __future__ import annotations
 import bisect
 import json
 import json.decoder
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from alpha_audit.errors import InputError
 from alpha_audit.load.files import read_capped
+from alpha_audit.load.spans import LineIndex
+from alpha_audit.model import Span
 
 __all__ = ["MAX_JSON_BYTES", "MAX_JSON_DEPTH", "JsonDoc", "JsonPath", "load_json", "parse_json"]
 
@@ -34,11 +37,12 @@ _WHITESPACE = " \t\n\r"
 
 @dataclass(frozen=True)
 class JsonDoc:
-    """Plain data from a JSON file plus the line of every key path."""
+    """Plain data from a JSON file plus the line of every key path and the span of every string."""
 
     path: Path
     data: Any
     lines: dict[JsonPath, int]
+    spans: dict[JsonPath, Span] = field(default_factory=dict)
 
     def line(self, keys: JsonPath) -> int | None:
         """Line of ``keys`` or of its nearest recorded parent."""
@@ -58,6 +62,8 @@ class _Parser:
         self.path = path
         self.newlines = [i for i, ch in enumerate(text) if ch == "\n"]
         self.lines: dict[JsonPath, int] = {}
+        self.spans: dict[JsonPath, Span] = {}
+        self.index = LineIndex(text, path, "json")
         self.count = 0
         self.decoder = json.JSONDecoder(parse_constant=_no_constant)
 
@@ -96,11 +102,14 @@ class _Parser:
         if char == "[":
             return self.array(pos + 1, keys)
         try:
-            return self.decoder.raw_decode(self.text, pos)
+            value, end = self.decoder.raw_decode(self.text, pos)
         except json.JSONDecodeError as exc:
             raise self.fail(exc.pos, exc.msg) from exc
         except ValueError as exc:  # NaN, Infinity, or an integer with too many digits
             raise self.fail(pos, str(exc)) from exc
+        if isinstance(value, str):
+            self.spans[keys] = self.index.span(pos, end)
+        return value, end
 
     def obj(self, pos: int, keys: JsonPath) -> tuple[dict[str, Any], int]:
         out: dict[str, Any] = {}
@@ -160,7 +169,7 @@ def parse_json(text: str, path: str | Path = "<string>") -> JsonDoc:
     end = parser.skip(end)
     if end != len(text):
         raise parser.fail(end, "extra data after the document")
-    return JsonDoc(p, data, parser.lines)
+    return JsonDoc(p, data, parser.lines, parser.spans)
 
 
 def load_json(path: str | Path, *, limit: int = MAX_JSON_BYTES) -> JsonDoc:
