@@ -107,7 +107,12 @@ def _fix(edit: FixEdit, base: Path | None) -> dict[str, Any]:
                 "artifactLocation": _artifact(edit.span.file, base),
                 "replacements": [
                     {
-                        "deletedRegion": _region(edit.span),
+                        # The snippet is the text replaced, so a consumer can
+                        # check the file has not changed since (3.30.13).
+                        "deletedRegion": {
+                            **_region(edit.span),
+                            "snippet": {"text": edit.span.text},
+                        },
                         "insertedContent": {"text": edit.inserted},
                     }
                 ],
