@@ -267,3 +267,105 @@ def test_fixes_have_the_schema_shape(failing: tuple[Path, dict[str, Any]]) -> No
                     region["startLine"],
                     region["startColumn"],
                 )
+
+
+# ------------------------------------------------------------------ token files
+
+TOKEN_MANIFEST = """name: s
+icons: [sun.svg]
+color: color.icon.warn
+sizes: [16]
+"""
+
+
+def _token_project(root: Path, file: str, text: str) -> Path:
+    root.mkdir(parents=True)
+    (root / ".git").mkdir()
+    (root / "sun.svg").write_text(SVG)
+    (root / file).write_bytes(text.encode())
+    (root / "set.yaml").write_text(TOKEN_MANIFEST)
+    (root / "alpha-audit.yaml").write_text(
+        f'tokens:\n  file: {file}\n  canvases: "color.bg.*"\n  colors: "color.icon.*"\n'
+        "  modes: {default: light}\niconset: set.yaml\n"
+    )
+    return root
+
+
+def _token_check(root: Path) -> Any:
+    from alpha_audit.load.config import load_config
+
+    project = load_config(root / "alpha-audit.yaml")
+    return check_project([], project.iconsets, policy=POLICY, tokens=project.tokens)
+
+
+@pytest.mark.parametrize(
+    ("file", "text"),
+    [
+        (
+            "tokens.json",
+            '{\r\n  "color": {\r\n    "$type": "color",\r\n'
+            '    "bg": {"canvas": {"$value": "#ffffff"}},\r\n'
+            '    "base": {"sun": {"$value": "#ffcc00"}},\r\n'
+            '    "icon": {"warn": {"$value": "{color.base.sun}"}}\r\n  }\r\n}\r\n',
+        ),
+        (
+            "theme.css",
+            "@theme {\n  --color-bg-canvas: #ffffff;\n  --color-base-sun:   #ffcc00;\n"
+            "  --color-icon-warn: var(--color-base-sun);\n}\n",
+        ),
+    ],
+)
+def test_a_token_colour_fix_edits_the_token_value(tmp_path: Path, file: str, text: str) -> None:
+    root = _token_project(tmp_path / "tokens", file, text)
+    report = _token_check(root)
+    before = {(f.rule.value, f.canvas, f.icons) for f in report.gate.failures}
+    assert before
+    doc = json.loads(CheckFormat.SARIF.renderer()(report, RenderOptions(base=root)))
+    pairs = [(r, fx) for r, fx in _fixed(doc) if fx["description"]["text"].startswith("use #")]
+    assert pairs
+    for k, (result, fx) in enumerate(pairs):
+        (change,) = fx["artifactChanges"]
+        assert change["artifactLocation"]["uri"] == file
+        (rep,) = change["replacements"]
+        edited, start, end = _apply(text, rep)
+        assert (
+            text[start:end]
+            == rep["deletedRegion"]["snippet"]["text"]
+            == "#ffcc00".join(['"', '"'] if file.endswith(".json") else ["", ""])
+        )
+        copy = tmp_path / f"edited{k}"
+        shutil.copytree(root, copy)
+        (copy / file).write_bytes(edited.encode())
+        finding = (
+            _rule_name(doc, result["ruleId"]),
+            result["properties"]["canvas"],
+            tuple(result["properties"]["icons"]),
+        )
+        assert finding in before
+        after = {(f.rule.value, f.canvas, f.icons) for f in _token_check(copy).gate.failures}
+        assert finding not in after
+
+
+def test_no_colour_fix_for_a_token_value_that_also_sets_a_canvas(tmp_path: Path) -> None:
+    text = (
+        '{"color": {"$type": "color", "base": {"sun": {"$value": "#ffcc00"}},\n'
+        ' "bg": {"canvas": {"$value": "{color.base.sun}"}, "paper": {"$value": "#ffffff"}},\n'
+        ' "icon": {"warn": {"$value": "{color.base.sun}"}}}}\n'
+    )
+    root = _token_project(tmp_path / "shared", "tokens.json", text)
+    report = _token_check(root)
+    assert report.gate.failures
+    doc = json.loads(CheckFormat.SARIF.renderer()(report, RenderOptions(base=root)))
+    assert not [fx for _, fx in _fixed(doc) if fx["description"]["text"].startswith("use #")]
+
+
+def test_a_locked_colour_gets_no_colour_fix(tmp_path: Path) -> None:
+    root = _project(
+        tmp_path / "locked", MANIFEST.replace("color: cycle\n", "color: cycle\nlock: [navy]\n")
+    )
+    wave = [
+        fx["description"]["text"]
+        for r, fx in _fixed(_sarif(root))
+        if r["properties"]["icons"] == ["wave"]
+    ]
+    assert wave and not any(t.startswith("use #") for t in wave)  # the alpha fix stays

@@ -145,10 +145,7 @@ def _collect(
                 continue
             name = ("p3" if mode == "default" else f"{mode}-p3") if p3 else mode
             layers.setdefault(name, {}).update(
-                {
-                    n: (v, line, sp)
-                    for n, v, line, sp in _declarations(rule, index, any_color=True)
-                }
+                {n: (v, line, sp) for n, v, line, sp in _declarations(rule, index, any_color=True)}
             )
 
 
