@@ -71,7 +71,7 @@ Syntax = Literal["yaml", "json", "css"]
 _QUOTES = ("'", '"')
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)  # one per token value: a large token file has many
 class Span:
     """Where one scalar value is written: its file, region and the text there.
 

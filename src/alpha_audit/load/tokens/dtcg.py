@@ -262,7 +262,7 @@ class TokenTree:
             alias_line=raw.line if target else None,
             # A literal string value is rewritten in place; an object, a list or
             # a $ref into a value has no single span (JsonDoc records strings only).
-            span=target.span if target else raw.doc.spans.get((*raw.keys, value_key)),
+            span=target.span if target else raw.doc.span((*raw.keys, value_key)),
         )
         self._cache[path] = token
         return token
