@@ -68,7 +68,18 @@ def manifests(draw: st.DrawFn) -> tuple[str, dict[str, str], dict[str, str]]:
     names = draw(st.lists(st.sampled_from(["ink", "sky", "warn", "mint"]), min_size=1, unique=True))
     entries = {n: draw(colour_text()) for n in names}
     flow_palette = draw(st.booleans())
-    lines = ["name: s", "icons: [a.svg, b.svg, c.svg]"]
+    lines = ["name: s"]
+    own: dict[str, str] = {}  # alphas written on the icons: entries
+    if draw(st.booleans()):
+        lines.append("icons: [a.svg, b.svg, c.svg]")
+    else:
+        lines.append("icons:")
+        for icon in ICONS:
+            if draw(st.booleans()):
+                own[icon] = draw(ALPHAS)
+                lines.append(f"  - {{file: {icon}.svg, alpha:{draw(GAP)}{own[icon]}}}")
+            else:
+                lines.append(f"  - file: '{icon}.svg'{draw(COMMENT)}")
     if flow_palette:
         body = ", ".join(f"{n}:{draw(GAP)}{t}" for n, (t, _) in entries.items())
         lines.append(f"palette: {{{body}}}{draw(COMMENT)}")
@@ -78,7 +89,7 @@ def manifests(draw: st.DrawFn) -> tuple[str, dict[str, str], dict[str, str]]:
     lines.append("color: cycle")
     set_alpha = draw(ALPHAS)
     lines.append(f"alpha:{draw(GAP)}{set_alpha}{draw(COMMENT)}")
-    alphas = dict.fromkeys(ICONS, set_alpha)
+    alphas = {icon: own.get(icon, set_alpha) for icon in ICONS}
     overridden = draw(st.lists(st.sampled_from(ICONS), unique=True))
     if overridden:
         lines.append("overrides:")
