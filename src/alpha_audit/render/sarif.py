@@ -28,6 +28,7 @@ from typing import TYPE_CHECKING, Any
 from urllib.parse import quote
 
 from alpha_audit.gate import CheckReport, Finding
+from alpha_audit.load.paints import CURRENT_COLOR
 from alpha_audit.model import Icon, Span
 from alpha_audit.policy import PAINT_RULES, Rule
 from alpha_audit.render.common import RenderOptions, dumps
@@ -148,7 +149,7 @@ def _colour_spans(f: Finding, icons: dict[str, Icon]) -> list[Span]:
     """Where each icon's colour is written, for findings about the icons' own colour."""
     if f.rule is Rule.UNRENDERABLE or f.rule in PAINT_RULES:
         return []
-    if f.numbers.get("paint", "currentColor") != "currentColor":  # a colour the SVG fixes
+    if f.numbers.get("paint", CURRENT_COLOR) != CURRENT_COLOR:  # a colour the SVG fixes
         return []
     spans = [icons[n].color_span for n in f.icons if n in icons]
     return list(dict.fromkeys(s for s in spans if s is not None))
