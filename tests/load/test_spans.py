@@ -243,3 +243,21 @@ def test_css_with_a_lone_cr_records_no_span(tmp_path: Path) -> None:
     path = tmp_path / "theme.css"
     path.write_bytes(b"@theme {\r  --color-a: #ff0000;\n}\n")
     assert modes_from_tailwind(path).modes["default"]["color.a"].span is None
+
+
+def test_tokens_studio_values_have_their_spans(tmp_path: Path) -> None:
+    from alpha_audit.load.tokens import load_token_modes
+
+    text = (
+        '{"core": {"warm": {"value": "#ee7733", "type": "color"},\n'
+        '          "alias": {"value": "{warm}", "type": "color"}},\n'
+        ' "$themes": [], "$metadata": {"tokenSetOrder": ["core"]}}\n'
+    )
+    path = tmp_path / "tokens.json"
+    path.write_text(text)
+    modes = load_token_modes(path)
+    assert modes.kind == "tokens-studio"
+    tokens = next(iter(modes.modes.values()))
+    span = tokens["warm"].span
+    assert span is not None and span.text == '"#ee7733"' and _at(text, span) == span.text
+    assert tokens["alias"].span == span
