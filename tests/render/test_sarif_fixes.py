@@ -346,6 +346,20 @@ def test_a_token_colour_fix_edits_the_token_value(tmp_path: Path, file: str, tex
         assert finding not in after
 
 
+def test_a_token_project_keeps_the_manifest_alpha_as_a_fix_target(tmp_path: Path) -> None:
+    text = '{"color": {"$type": "color", "bg": {"canvas": {"$value": "#ffff00"}},\n'
+    text += ' "icon": {"warn": {"$value": "#0000d0"}}}}\n'  # navy on yellow: loses above 1
+    root = _token_project(tmp_path / "alpha", "tokens.json", text)
+    (root / "set.yaml").write_text(TOKEN_MANIFEST + "alpha: 1.3\n")
+    report = _token_check(root)
+    doc = json.loads(CheckFormat.SARIF.renderer()(report, RenderOptions(base=root)))
+    alpha = [fx for _, fx in _fixed(doc) if fx["description"]["text"].startswith("set alpha")]
+    assert alpha
+    change = alpha[0]["artifactChanges"][0]
+    assert change["artifactLocation"]["uri"] == "set.yaml"
+    assert change["replacements"][0]["deletedRegion"]["snippet"]["text"] == "1.3"
+
+
 def test_no_colour_fix_for_a_token_value_that_also_sets_a_canvas(tmp_path: Path) -> None:
     text = (
         '{"color": {"$type": "color", "base": {"sun": {"$value": "#ffcc00"}},\n'

@@ -28,7 +28,7 @@ def _with_palette(doc: YamlDoc, palette: dict[str, str]) -> YamlDoc:
         return doc  # iconset_from_doc reports the bad document
     own = data.get("palette")
     merged = {**palette, **own} if isinstance(own, dict) else palette
-    return YamlDoc(doc.path, {**data, "palette": merged}, doc.lines)
+    return YamlDoc(doc.path, {**data, "palette": merged}, doc.lines, doc.spans)
 
 
 def _with_token(icon: Icon, color: TokenColor | None) -> Icon:
