@@ -23,7 +23,16 @@ from alpha_audit.color import (
     srgb_decode,
 )
 
-__all__ = ["Canvas", "GamutAdjustment", "Icon", "IconSet", "Mode", "Theme", "infer_mode"]
+__all__ = [
+    "Canvas",
+    "GamutAdjustment",
+    "Icon",
+    "IconSet",
+    "Mode",
+    "Span",
+    "Theme",
+    "infer_mode",
+]
 
 Mode = Literal["light", "dark"]
 
@@ -55,6 +64,51 @@ def _normalise(obj: object, color: str) -> None:
     object.__setattr__(obj, "exact", spec)
     object.__setattr__(obj, "color", f"#{r:02x}{g:02x}{b:02x}")
     object.__setattr__(obj, "linear", tuple(float(c) for c in srgb_decode(encoded)))
+
+
+# How a file writes the scalar a fix rewrites; see Span.replacement.
+Syntax = Literal["yaml", "json", "css"]
+_QUOTES = ("'", '"')
+
+
+@dataclass(frozen=True, slots=True)  # one per token value: a large token file has many
+class Span:
+    """Where one scalar value is written: its file, region and the text there.
+
+    The region follows SARIF 2.1.0 section 3.30: lines and columns 1-based,
+    columns counting Unicode code points (``run.columnKind``
+    ``unicodeCodePoints``, 3.14.27), lines ended by ``\\n`` or ``\\r\\n``
+    (the default ``newlineSequences``, 3.14.26), ``end_column`` the column
+    after the last character (3.30.8).  ``text`` is exactly what the file holds
+    there, quotes included; loaders record a span only where it is exact.
+    """
+
+    file: Path
+    start_line: int
+    start_column: int
+    end_line: int
+    end_column: int
+    text: str
+    syntax: Syntax
+
+    def replacement(self, value: str) -> str:
+        """``value`` written as the file writes this scalar: same quotes, else as needed.
+
+        A quoted original keeps its quote character; JSON strings are always
+        double-quoted; a YAML plain scalar that would start with ``#`` (a
+        comment there) is double-quoted; CSS and numbers go in bare.
+
+        >>> Span(Path("m.yaml"), 1, 8, 1, 17, "'#ee7733'", "yaml").replacement("#cc5511")
+        "'#cc5511'"
+        >>> Span(Path("m.yaml"), 1, 8, 1, 11, "red", "yaml").replacement("#cc5511")
+        '"#cc5511"'
+        """
+        text = self.text
+        if len(text) >= 2 and text[0] in _QUOTES and text[-1] == text[0]:
+            return f"{text[0]}{value}{text[0]}"
+        if self.syntax == "yaml" and value.startswith("#"):
+            return f'"{value}"'
+        return value
 
 
 @dataclass(frozen=True)
@@ -89,6 +143,8 @@ class Canvas:
     # set in another file of a Resolver document); None: the theme file.
     file: Path | None = field(default=None, compare=False)
     exact: str | None = field(default=None, compare=False, repr=False)
+    # Where the colour's value is written (a design token's), when exactly known.
+    span: Span | None = field(default=None, compare=False, repr=False)
     linear: tuple[float, float, float] = field(init=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -129,6 +185,13 @@ class Icon:
     # chain), so reports point at the line to edit, not only the manifest's.
     token_file: Path | None = field(default=None, compare=False)
     token_line: int | None = field(default=None, compare=False)
+    # The exact text a fix rewrites: the value that sets the colour (the palette
+    # entry, the colour written on the icon, or the design token's value) and the
+    # value that sets the alpha (the icon's own or override, else the set-wide
+    # ``alpha:``).  None where the value is not written in a file (a default, a
+    # token's coefficient, ``--alpha``) or its place is not exactly known.
+    color_span: Span | None = field(default=None, compare=False, repr=False)
+    alpha_span: Span | None = field(default=None, compare=False, repr=False)
     exact: str | None = field(default=None, compare=False, repr=False)
     linear: tuple[float, float, float] = field(init=False, compare=False)
 
@@ -161,5 +224,9 @@ class IconSet:
         return np.array([i.alpha for i in self.icons], dtype=np.float64)
 
     def with_alpha(self, alpha: float) -> IconSet:
-        """The same set with every icon's coefficient replaced (``--alpha``)."""
-        return replace(self, icons=tuple(replace(i, alpha=float(alpha)) for i in self.icons))
+        """The same set with every icon's coefficient replaced (``--alpha``).
+
+        The coefficient then comes from no file, so no icon keeps an ``alpha_span``.
+        """
+        icons = tuple(replace(i, alpha=float(alpha), alpha_span=None) for i in self.icons)
+        return replace(self, icons=icons)

@@ -22,7 +22,7 @@ from alpha_audit.load.fields import (
 )
 from alpha_audit.load.paths import PathRefused, contain, contain_argument, glob_contained
 from alpha_audit.load.yamldoc import KeyPath, YamlDoc, load_yaml
-from alpha_audit.model import GamutAdjustment, Icon, IconSet
+from alpha_audit.model import GamutAdjustment, Icon, IconSet, Span
 from alpha_audit.safe_text import safe_text
 
 __all__ = [
@@ -101,6 +101,7 @@ class _Manifest:
         self.gamut: GamutPolicy = gamut or read_gamut(doc, ("gamut",), own)
         self.adjusted: list[GamutAdjustment] = []
         self.owner = str(self.data.get("name", ""))
+        self.palette_spans: dict[str, Span] = {}  # where each palette entry's colour is written
         self.palette = self.read_palette()
 
     def read_color(self, keys: KeyPath, value: Any) -> str:
@@ -112,10 +113,14 @@ class _Manifest:
     def read_palette(self) -> dict[str, str]:
         raw = self.data.get("palette", {})
         raw = read_mapping(self.doc, ("palette",), raw, "a palette {name: colour}")
-        return {
-            read_name(self.doc, ("palette", k), k): self.read_color(("palette", k), v)
-            for k, v in raw.items()
-        }
+        palette = {}
+        for k, v in raw.items():
+            name = read_name(self.doc, ("palette", k), k)
+            palette[name] = self.read_color(("palette", k), v)
+            span = self.doc.spans.get(("palette", k))
+            if span is not None:
+                self.palette_spans[name] = span
+        return palette
 
     def color(self, keys: KeyPath, value: Any) -> tuple[str, str | None]:
         """A palette name or a colour string -> (colour, palette name or None)."""
@@ -288,6 +293,11 @@ def iconset_from_doc(doc: YamlDoc, *, root: Path, gamut: GamutPolicy | None = No
                 color_name,
                 color_line=_line_if_set(doc, color_keys),
                 alpha_line=_line_if_set(doc, alpha_keys),
+                # A palette colour is fixed at its palette entry, whoever names it.
+                color_span=m.palette_spans.get(color_name)
+                if color_name is not None
+                else doc.spans.get(color_keys),
+                alpha_span=doc.spans.get(alpha_keys),
             )
         )
     unknown = sorted(set(overrides) - set(seen))

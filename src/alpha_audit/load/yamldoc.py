@@ -3,13 +3,14 @@
 PyYAML's safe loader alone lets duplicate keys win silently, expands alias
 bombs, reads ``1e3`` as a string and loses line numbers.  Here the document is
 composed into nodes (never constructed with arbitrary tags), walked with a node
-budget, and converted to plain Python while recording each key path's line.
+budget, and converted to plain Python while recording each key path's line
+and, for single-line scalars, the exact span a fix may rewrite.
 """
 
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -18,6 +19,8 @@ from yaml.constructor import SafeConstructor
 
 from alpha_audit.errors import InputError
 from alpha_audit.load.files import read_text_capped
+from alpha_audit.load.spans import LineIndex
+from alpha_audit.model import Span
 
 __all__ = ["MAX_YAML_BYTES", "MAX_YAML_NODES", "KeyPath", "YamlDoc", "load_yaml", "parse_yaml"]
 
@@ -46,11 +49,17 @@ def format_key(keys: KeyPath) -> str:
 
 @dataclass(frozen=True)
 class YamlDoc:
-    """Plain data from a YAML file plus the line of every key path."""
+    """Plain data from a YAML file plus the line of every key path.
+
+    ``spans`` holds the exact span of each scalar value written on one line
+    as a plain or quoted scalar with no anchor or tag (what a fix can
+    replace without touching anything else).
+    """
 
     path: Path
     data: Any
     lines: dict[KeyPath, int]
+    spans: dict[KeyPath, Span] = field(default_factory=dict)
 
     def line(self, keys: KeyPath) -> int | None:
         """Line of ``keys`` or of its nearest recorded parent."""
@@ -64,10 +73,17 @@ class YamlDoc:
         return InputError(message, path=self.path, line=self.line(keys), key=format_key(keys))
 
 
+# Characters a span may not start with: an anchor, a tag or an alias would be
+# inside it, and replacing the span would drop them.
+_NOT_A_VALUE = ("&", "!", "*")
+
+
 class _Converter:
-    def __init__(self, path: Path) -> None:
+    def __init__(self, path: Path, text: str) -> None:
         self.path = path
+        self.index = LineIndex(text, path, "yaml")
         self.lines: dict[KeyPath, int] = {}
+        self.spans: dict[KeyPath, Span] = {}
         self.budget = MAX_YAML_NODES
         self.constructor = SafeConstructor()
         self.active: set[int] = set()
@@ -86,6 +102,7 @@ class _Converter:
         if id(node) in self.active:
             raise self.fail(node, "an alias refers to itself; recursive YAML is not allowed")
         if isinstance(node, yaml.ScalarNode):
+            self.record_span(node, keys)
             return self.scalar(node)
         self.active.add(id(node))
         try:
@@ -96,6 +113,21 @@ class _Converter:
         finally:
             self.active.discard(id(node))
         raise self.fail(node, f"unsupported YAML node {node.tag}")  # pragma: no cover
+
+    def record_span(self, node: yaml.ScalarNode, keys: KeyPath) -> None:
+        """Keep the scalar's span when replacing it is exact (see :class:`YamlDoc`)."""
+        if node.style not in (None, "'", '"') or keys in self.spans:
+            return
+        start, end = node.start_mark.index, node.end_mark.index
+        text = self.index.text[start:end]
+        if not text or "\n" in text or "\r" in text or text.startswith(_NOT_A_VALUE):
+            return
+        quoted = node.style is not None
+        if quoted and not (len(text) >= 2 and text[0] == text[-1] == node.style):
+            return
+        if not quoted and text != node.value:
+            return
+        self.spans[keys] = self.index.span(start, end)
 
     def mapping(self, node: yaml.MappingNode, keys: KeyPath) -> dict[str, Any]:
         out: dict[str, Any] = {}
@@ -160,12 +192,12 @@ def parse_yaml(text: str, path: Path) -> YamlDoc:
         raise InputError("YAML is nested too deeply", path=path) from exc
     if root is None:
         return YamlDoc(path, None, {})
-    converter = _Converter(path)
+    converter = _Converter(path, text)
     try:
         data = converter.convert(root, ())
     except RecursionError as exc:
         raise InputError("YAML is nested too deeply", path=path) from exc
-    return YamlDoc(path, data, converter.lines)
+    return YamlDoc(path, data, converter.lines, converter.spans)
 
 
 def load_yaml(path: str | Path) -> YamlDoc:

@@ -2,8 +2,9 @@
 
 Each finding is a result pointing first at the line of each design token
 that sets a colour of the finding (icon colour, then canvas), then at the
-manifest line that sets the icon's colour or alpha (where the fix goes), then
-at the icon's SVG file (line 1: a drawing has no better line).  URIs are
+value that sets each icon's colour (its palette entry or token value, with
+columns), then at the manifest line that sets the icon's colour or alpha,
+then at the icon's SVG file (line 1: a drawing has no better line).  URIs are
 relative to ``%SRCROOT%`` and percent-encoded (RFC 3986); no absolute path
 of the machine appears.  Rule ids are opaque (``AA001`` ...), names
 readable, and each rule has ``help.markdown``.
@@ -11,6 +12,11 @@ Exempted and baselined findings stay in the log with a ``suppressions`` entry
 (so dashboards show them as dismissed, with the reason), and every result has a
 ``partialFingerprints`` entry built from what a baseline matches on (theme,
 icon set, rule, canvas, icons), never from line numbers.
+A failing finding whose fix is an exact edit of a written value
+(:mod:`alpha_audit.fix_edits`: the icon's alpha, or the palette entry or token
+value of its colour) carries SARIF ``fixes`` (3.55): one fix per answer, each
+replacing that value's region with the new value, quoted as it was.
+Columns count Unicode code points (``run.columnKind``, 3.14.27).
 """
 
 from __future__ import annotations
@@ -18,13 +24,18 @@ from __future__ import annotations
 import hashlib
 import os
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 from urllib.parse import quote
 
 from alpha_audit.gate import CheckReport, Finding
-from alpha_audit.policy import Rule
+from alpha_audit.load.paints import CURRENT_COLOR
+from alpha_audit.model import Icon, Span
+from alpha_audit.policy import PAINT_RULES, Rule
 from alpha_audit.render.common import RenderOptions, dumps
 from alpha_audit.render.rules import RULE_FIX, RULE_HELP, RULE_IDS
+
+if TYPE_CHECKING:
+    from alpha_audit.fix_edits import FixEdit
 
 __all__ = [
     "SARIF_SCHEMA",
@@ -63,11 +74,69 @@ def relative_uri(path: Path | str, base: Path | None) -> str:
     return quote(text, safe=_URI_SAFE)
 
 
+def _artifact(path: Path | None, base: Path | None) -> dict[str, Any]:
+    return {"uri": relative_uri(path or "", base), "uriBaseId": SRCROOT}
+
+
 def _location(path: Path | None, base: Path | None, line: int | None = None) -> dict[str, Any]:
     """A physical location with a region: the given line, else line 1 of the file."""
-    artifact: dict[str, Any] = {"uri": relative_uri(path or "", base), "uriBaseId": SRCROOT}
     region = {"startLine": line or 1}
-    return {"physicalLocation": {"artifactLocation": artifact, "region": region}}
+    return {"physicalLocation": {"artifactLocation": _artifact(path, base), "region": region}}
+
+
+def _region(span: Span) -> dict[str, int]:
+    """A text region (3.30) with both ends: 1-based lines, code-point columns, end exclusive."""
+    return {
+        "startLine": span.start_line,
+        "startColumn": span.start_column,
+        "endLine": span.end_line,
+        "endColumn": span.end_column,
+    }
+
+
+def _span_location(span: Span, base: Path | None) -> dict[str, Any]:
+    artifact = _artifact(span.file, base)
+    return {"physicalLocation": {"artifactLocation": artifact, "region": _region(span)}}
+
+
+def _fix(edit: FixEdit, base: Path | None) -> dict[str, Any]:
+    """A SARIF fix (3.55): one artifactChange replacing the value's region (3.56, 3.57)."""
+    return {
+        "description": {"text": edit.description},
+        "artifactChanges": [
+            {
+                "artifactLocation": _artifact(edit.span.file, base),
+                "replacements": [
+                    {
+                        # The snippet is the text replaced, so a consumer can
+                        # check the file has not changed since (3.30.13).
+                        "deletedRegion": {
+                            **_region(edit.span),
+                            "snippet": {"text": edit.span.text},
+                        },
+                        "insertedContent": {"text": edit.inserted},
+                    }
+                ],
+            }
+        ],
+    }
+
+
+def _unique(locations: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """One location per (file, line), first kept; a later one with columns lends them."""
+    out: dict[tuple[str, int], dict[str, Any]] = {}
+    for loc in locations:
+        physical = loc["physicalLocation"]
+        key = (physical["artifactLocation"]["uri"], physical["region"]["startLine"])
+        if key not in out:
+            out[key] = loc
+        elif (
+            "startColumn" in physical["region"] and len(out[key]["physicalLocation"]["region"]) == 1
+        ):
+            out[key] = {
+                "physicalLocation": {**out[key]["physicalLocation"], "region": physical["region"]}
+            }
+    return list(out.values())
 
 
 def _fingerprint(f: Finding) -> str:
@@ -76,8 +145,24 @@ def _fingerprint(f: Finding) -> str:
     return hashlib.sha256(text.encode("utf-8")).hexdigest()[:32]
 
 
+def _colour_spans(f: Finding, icons: dict[str, Icon]) -> list[Span]:
+    """Where each icon's colour is written, for findings about the icons' own colour."""
+    if f.rule is Rule.UNRENDERABLE or f.rule in PAINT_RULES:
+        return []
+    if f.numbers.get("paint", CURRENT_COLOR) != CURRENT_COLOR:  # a colour the SVG fixes
+        return []
+    spans = [icons[n].color_span for n in f.icons if n in icons]
+    return list(dict.fromkeys(s for s in spans if s is not None))
+
+
 def _result(
-    f: Finding, index: int, base: Path | None, level: str = "error", fix: str | None = None
+    f: Finding,
+    index: int,
+    base: Path | None,
+    level: str = "error",
+    fix: str | None = None,
+    icons: dict[str, Icon] | None = None,
+    edits: tuple[FixEdit, ...] = (),
 ) -> dict[str, Any]:
     where = f"{', '.join(f.icons)} on {f.canvas}" if f.canvas else ", ".join(f.icons)
     locations = [_location(p, base) for p in f.files]
@@ -85,8 +170,11 @@ def _result(
         # The manifest lines that set the colour or alpha come first: that is
         # where a fix goes (the SVG file is line 1 of the drawing).
         locations = [_location(f.manifest, base, line) for line in f.lines] + locations
+    # The value that sets the colour (palette entry or token value) before those.
+    locations = [_span_location(s, base) for s in _colour_spans(f, icons or {})] + locations
     # A colour set by a design token is fixed at the token's line, before all else.
     locations = [_location(path, base, line) for path, line in f.sources] + locations
+    locations = _unique(locations)
     result: dict[str, Any] = {
         "ruleId": RULE_IDS[f.rule],
         "ruleIndex": index,
@@ -105,6 +193,8 @@ def _result(
             **dict(f.numbers),
         },
     }
+    if edits:
+        result["fixes"] = [_fix(e, base) for e in edits]
     if f.exemption is not None:
         result["suppressions"] = [{"kind": "external", "justification": f.exemption.reason}]
     elif f.baselined:
@@ -136,12 +226,24 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     index = {r: i for i, r in enumerate(rules)}
     enabled = report.gate.policy.rules
     # Each failure's message ends with its fix, in the PR comment's words.
+    from alpha_audit.fix_edits import edit_lookup
     from alpha_audit.render.markdown import report_fixes_hook
 
     failing = {id(f) for f in report.gate.failures}  # findings hold dicts: by identity
     hook = report_fixes_hook(report) if failing else None
+    edits = edit_lookup(report) if failing else None
+    icons = {
+        (a.theme.name, a.iconset.name): {i.name: i for i in a.iconset.icons} for a in report.audits
+    }
     results = [
-        _result(f, index[f.rule], options.base, fix=hook(f) if hook and id(f) in failing else None)
+        _result(
+            f,
+            index[f.rule],
+            options.base,
+            fix=hook(f) if hook and id(f) in failing else None,
+            icons=icons.get((f.theme, f.iconset)),
+            edits=edits(f) if edits and id(f) in failing else (),
+        )
         for f in report.gate.findings
     ]
     if Rule.UNRENDERABLE not in enabled:
@@ -167,6 +269,8 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
             }
         },
         "results": results,
+        # 3.14.27: required with results; Python counts code points, as our spans do.
+        "columnKind": "unicodeCodePoints",
     }
     run["originalUriBaseIds"] = {
         SRCROOT: {"description": {"text": "The folder alpha-audit ran in (the repository root)."}}

@@ -260,6 +260,9 @@ class TokenTree:
             chain=(target.path, *target.chain) if target else (),
             alias_file=raw.doc.path if target else None,
             alias_line=raw.line if target else None,
+            # A literal string value is rewritten in place; an object, a list or
+            # a $ref into a value has no single span (JsonDoc records strings only).
+            span=target.span if target else raw.doc.span((*raw.keys, value_key)),
         )
         self._cache[path] = token
         return token

@@ -4,7 +4,8 @@ The standard ``json`` module returns plain data without positions.  Here the
 document's *structure* (objects, arrays, keys) is walked by a small loop and
 every string and scalar is decoded by ``json`` itself
 (``json.decoder.scanstring`` and ``JSONDecoder.raw_decode``), so the grammar
-stays the standard library's while each key path gets its line.  Duplicate
+stays the standard library's while each key path gets its line (and each
+token's string value its exact place, quotes included, for fixes that rewrite it).  Duplicate
 keys, ``NaN``/``Infinity`` and nesting deeper than :data:`MAX_JSON_DEPTH` are
 input errors, because a token file is untrusted.
 """
@@ -14,12 +15,15 @@ from __future__ import annotations
 import bisect
 import json
 import json.decoder
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
 from typing import Any
 
 from alpha_audit.errors import InputError
 from alpha_audit.load.files import read_capped
+from alpha_audit.load.spans import LineIndex
+from alpha_audit.model import Span
 
 __all__ = ["MAX_JSON_BYTES", "MAX_JSON_DEPTH", "JsonDoc", "JsonPath", "load_json", "parse_json"]
 
@@ -30,15 +34,26 @@ MAX_JSON_VALUES = 1_000_000
 JsonPath = tuple[str | int, ...]
 
 _WHITESPACE = " \t\n\r"
+# The members whose string a fix may rewrite: a token's value (DTCG ``$value``,
+# Style Dictionary and Tokens Studio ``value``).  Only these get offsets, so a
+# large file's descriptions and names cost nothing.
+_VALUE_KEYS = frozenset({"$value", "value"})
 
 
 @dataclass(frozen=True)
 class JsonDoc:
-    """Plain data from a JSON file plus the line of every key path."""
+    """Plain data from a JSON file plus the line of every key path and the place of every string.
+
+    ``offsets`` holds the ``(start, end)`` in ``text`` of each string that is
+    a token's value (the member ``$value`` or ``value``), quotes included;
+    :meth:`span` makes the :class:`~alpha_audit.model.Span` on demand.
+    """
 
     path: Path
     data: Any
     lines: dict[JsonPath, int]
+    offsets: dict[JsonPath, tuple[int, int]] = field(default_factory=dict, repr=False)
+    text: str = field(default="", repr=False, compare=False)
 
     def line(self, keys: JsonPath) -> int | None:
         """Line of ``keys`` or of its nearest recorded parent."""
@@ -46,6 +61,15 @@ class JsonDoc:
             if keys[:n] in self.lines:
                 return self.lines[keys[:n]]
         return None
+
+    @cached_property
+    def _index(self) -> LineIndex:
+        return LineIndex(self.text, self.path, "json")
+
+    def span(self, keys: JsonPath) -> Span | None:
+        """The exact span of the string value at ``keys`` (``None``: not a string)."""
+        where = self.offsets.get(keys)
+        return None if where is None else self._index.span(*where)
 
 
 def _no_constant(name: str) -> Any:
@@ -58,6 +82,7 @@ class _Parser:
         self.path = path
         self.newlines = [i for i, ch in enumerate(text) if ch == "\n"]
         self.lines: dict[JsonPath, int] = {}
+        self.offsets: dict[JsonPath, tuple[int, int]] = {}
         self.count = 0
         self.decoder = json.JSONDecoder(parse_constant=_no_constant)
 
@@ -96,11 +121,14 @@ class _Parser:
         if char == "[":
             return self.array(pos + 1, keys)
         try:
-            return self.decoder.raw_decode(self.text, pos)
+            value, end = self.decoder.raw_decode(self.text, pos)
         except json.JSONDecodeError as exc:
             raise self.fail(exc.pos, exc.msg) from exc
         except ValueError as exc:  # NaN, Infinity, or an integer with too many digits
             raise self.fail(pos, str(exc)) from exc
+        if isinstance(value, str) and keys and keys[-1] in _VALUE_KEYS:
+            self.offsets[keys] = (pos, end)
+        return value, end
 
     def obj(self, pos: int, keys: JsonPath) -> tuple[dict[str, Any], int]:
         out: dict[str, Any] = {}
@@ -123,9 +151,10 @@ class _Parser:
                     line=self.line_of(key_pos),
                     key=".".join(str(k) for k in (*keys, key)),
                 )
-            self.lines[(*keys, key)] = self.line_of(key_pos)
+            child = (*keys, key)  # one tuple for lines and offsets alike
+            self.lines[child] = self.line_of(key_pos)
             pos = self.expect(pos, ":")
-            out[key], pos = self.value(pos, (*keys, key))
+            out[key], pos = self.value(pos, child)
             pos = self.skip(pos)
             if pos < len(self.text) and self.text[pos] == ",":
                 pos += 1
@@ -160,7 +189,7 @@ def parse_json(text: str, path: str | Path = "<string>") -> JsonDoc:
     end = parser.skip(end)
     if end != len(text):
         raise parser.fail(end, "extra data after the document")
-    return JsonDoc(p, data, parser.lines)
+    return JsonDoc(p, data, parser.lines, parser.offsets, text)
 
 
 def load_json(path: str | Path, *, limit: int = MAX_JSON_BYTES) -> JsonDoc:

@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import Any, TypedDict
 
 from alpha_audit.errors import InputError
+from alpha_audit.model import Span
 
 __all__ = ["MAX_ALIAS_CHAIN", "MAX_TOKENS", "Token", "TokenModes", "TokenPlace", "token_error"]
 
@@ -21,7 +22,9 @@ class Token:
     ``value`` is the resolved ``$value`` (plain JSON data); ``chain`` the
     token paths followed to reach it (empty for a literal value).  ``file``
     and ``line`` locate the token that *sets* the value: the end of the
-    chain, so a report points at the line to edit.
+    chain, so a report points at the line to edit; ``span`` is the exact
+    place of that token's value when it is a string written in the file (a
+    colour object, a ``$ref`` or a value the format does not locate has none).
     """
 
     path: str
@@ -35,6 +38,7 @@ class Token:
     chain: tuple[str, ...] = field(default=(), compare=False)
     alias_line: int | None = field(default=None, compare=False)
     alias_file: Path | None = field(default=None, compare=False)
+    span: Span | None = field(default=None, compare=False, repr=False)
 
 
 @dataclass(frozen=True)

@@ -28,17 +28,25 @@ def _with_palette(doc: YamlDoc, palette: dict[str, str]) -> YamlDoc:
         return doc  # iconset_from_doc reports the bad document
     own = data.get("palette")
     merged = {**palette, **own} if isinstance(own, dict) else palette
-    return YamlDoc(doc.path, {**data, "palette": merged}, doc.lines)
+    return YamlDoc(doc.path, {**data, "palette": merged}, doc.lines, doc.spans)
 
 
 def _with_token(icon: Icon, color: TokenColor | None) -> Icon:
-    """``icon`` with its token's location and (if the token has one) its coefficient."""
+    """``icon`` with its token's location and (if the token has one) its coefficient.
+
+    A colour the manifest's own palette sets keeps the palette entry's span;
+    otherwise the token's value is where a colour fix goes.  A coefficient
+    from the token is not the manifest's ``alpha:``, so no alpha span remains.
+    """
     if color is None:
         return icon
     token = color.token
     changes: dict[str, Any] = {"token_file": token.file, "token_line": token.line}
+    if icon.color_span is None:
+        changes["color_span"] = token.span
     if color.alpha is not None:
         changes["alpha"] = color.alpha
+        changes["alpha_span"] = None
     return replace(icon, **changes)
 
 

@@ -28,6 +28,7 @@ from typing import Any
 
 from alpha_audit.errors import InputError
 from alpha_audit.load.files import read_capped
+from alpha_audit.load.spans import LineIndex
 from alpha_audit.load.tokens.model import (
     MAX_ALIAS_CHAIN,
     MAX_TOKENS,
@@ -35,8 +36,12 @@ from alpha_audit.load.tokens.model import (
     TokenModes,
     token_error,
 )
+from alpha_audit.model import Span
 
 __all__ = ["MAX_CSS_BYTES", "modes_from_tailwind"]
+
+# (value, line, exact span of the value or None) of one custom property.
+_Prop = tuple[str, int, Span | None]
 
 MAX_CSS_BYTES = 4 << 20
 _VAR = re.compile(r"var\(\s*--([A-Za-z0-9_-]+)\s*\)")
@@ -48,6 +53,7 @@ _MODE_SELECTOR = re.compile(r"""\.([A-Za-z][\w-]*)|\[data-theme=["']?([\w-]+)["'
 _COLOR_FUNCTIONS = frozenset(
     {"rgb", "rgba", "hsl", "hsla", "hwb", "lab", "lch", "oklab", "oklch", "color", "var"}
 )
+_OTHER_NEWLINE = re.compile(r"\r(?!\n)|\f")
 _P3 = re.compile(r"display-p3|color-gamut\s*:\s*p3", re.IGNORECASE)
 
 
@@ -61,8 +67,28 @@ def _starts_as_color(node: Any) -> bool:
     return first.type == "function" and first.lower_name in _COLOR_FUNCTIONS
 
 
-def _declarations(rule: Any, *, any_color: bool = False) -> list[tuple[str, str, int]]:
-    """``(name without --, value, line)`` of the colour properties of a block.
+def _value_span(node: Any, value: str, index: LineIndex | None) -> Span | None:
+    """The value's span, when the source holds exactly the serialised value there.
+
+    tinycss2 gives where the value's first token starts (1-based line and
+    code-point column) but no end; the span is kept only when the text at
+    that start is the serialisation itself (no comment or escape inside).
+    """
+    if index is None:
+        return None
+    first = next((t for t in node.value if t.type not in ("whitespace", "comment")), None)
+    if first is None or first.source_line > len(index.starts):
+        return None
+    start = index.starts[first.source_line - 1] + first.source_column - 1
+    if index.text[start : start + len(value)] != value:
+        return None
+    return index.span(start, start + len(value))
+
+
+def _declarations(
+    rule: Any, index: LineIndex | None, *, any_color: bool = False
+) -> list[tuple[str, str, int, Span | None]]:
+    """``(name without --, value, line, span)`` of the colour properties of a block.
 
     ``any_color``: every custom property whose value starts as a colour
     (plain stylesheets), else only Tailwind's ``--color-*`` namespace.
@@ -78,7 +104,8 @@ def _declarations(rule: Any, *, any_color: bool = False) -> list[tuple[str, str,
         if node.name.startswith("--color-") or (any_color and _starts_as_color(node)):
             value = tinycss2.serialize(node.value).strip()
             if value != "initial":
-                out.append((node.name[2:], value, node.source_line))
+                span = _value_span(node, value, index)
+                out.append((node.name[2:], value, node.source_line, span))
     return out
 
 
@@ -94,7 +121,9 @@ def _rule_mode(selector: str) -> str | None:
     return None
 
 
-def _collect(rules: list[Any], layers: dict[str, dict[str, tuple[str, int]]], *, p3: bool) -> None:
+def _collect(
+    rules: list[Any], layers: dict[str, dict[str, _Prop]], index: LineIndex | None, *, p3: bool
+) -> None:
     """Add each rule's colour properties to its mode's layer (``<mode>-p3`` inside P3 blocks)."""
     import tinycss2
 
@@ -103,20 +132,20 @@ def _collect(rules: list[Any], layers: dict[str, dict[str, tuple[str, int]]], *,
             keyword = rule.lower_at_keyword
             if keyword == "theme" and not p3:
                 layers.setdefault("default", {}).update(
-                    {n: (v, line) for n, v, line in _declarations(rule)}
+                    {n: (v, line, sp) for n, v, line, sp in _declarations(rule, index)}
                 )
             elif keyword in ("supports", "media") and _P3.search(tinycss2.serialize(rule.prelude)):
                 inner = tinycss2.parse_rule_list(
                     rule.content, skip_comments=True, skip_whitespace=True
                 )
-                _collect(inner, layers, p3=True)
+                _collect(inner, layers, index, p3=True)
         elif rule.type == "qualified-rule" and rule.content:
             mode = _rule_mode(tinycss2.serialize(rule.prelude).strip())
             if mode is None:
                 continue
             name = ("p3" if mode == "default" else f"{mode}-p3") if p3 else mode
             layers.setdefault(name, {}).update(
-                {n: (v, line) for n, v, line in _declarations(rule, any_color=True)}
+                {n: (v, line, sp) for n, v, line, sp in _declarations(rule, index, any_color=True)}
             )
 
 
@@ -131,8 +160,11 @@ def modes_from_tailwind(path: str | Path) -> TokenModes:
     except UnicodeDecodeError as exc:
         raise InputError(f"not UTF-8 text (byte {exc.start})", path=p) from exc
     rules = tinycss2.parse_stylesheet(text, skip_comments=True, skip_whitespace=True)
-    layers: dict[str, dict[str, tuple[str, int]]] = {}
-    _collect(rules, layers, p3=False)
+    layers: dict[str, dict[str, _Prop]] = {}
+    # CSS Syntax 3.3 counts a lone CR or a form feed as a newline, SARIF does
+    # not (its default newlineSequences are LF and CRLF): lines would disagree.
+    index = None if _OTHER_NEWLINE.search(text) else LineIndex(text, p, "css")
+    _collect(rules, layers, index, p3=False)
     base = layers.get("default", {})
     if not base:
         raise InputError(
@@ -151,18 +183,18 @@ def modes_from_tailwind(path: str | Path) -> TokenModes:
         order = ["default", "p3", plain, f"{plain}-p3"] if plain != "default" else ["default", "p3"]
         if not mode.endswith("p3"):
             order = ["default", mode]
-        merged: dict[str, tuple[str, int]] = {}
+        merged: dict[str, _Prop] = {}
         for name in dict.fromkeys(order):
             merged.update(layers.get(name, {}))
         modes[mode] = _resolve(p, merged)
     return TokenModes(p, "tailwind", modes, "default")
 
 
-def _resolve(path: Path, props: dict[str, tuple[str, int]]) -> dict[str, Token]:
+def _resolve(path: Path, props: dict[str, _Prop]) -> dict[str, Token]:
     tokens = {}
-    for name, (value, line) in props.items():
+    for name, (value, line, span) in props.items():
         chain: list[str] = []
-        current, current_line = value, line
+        current, current_line, current_span = value, line, span
         while match := _VAR.fullmatch(current):
             target = match.group(1)
             if target in chain or target == name:
@@ -176,7 +208,7 @@ def _resolve(path: Path, props: dict[str, tuple[str, int]]) -> dict[str, Token]:
                     path=_dots(name),
                 )
             chain.append(target)
-            current, current_line = props[target]
+            current, current_line, current_span = props[target]
         tokens[_dots(name)] = Token(
             path=_dots(name),
             type="color",
@@ -186,6 +218,7 @@ def _resolve(path: Path, props: dict[str, tuple[str, int]]) -> dict[str, Token]:
             chain=tuple(_dots(c) for c in chain),
             alias_file=path if chain else None,
             alias_line=line if chain else None,
+            span=current_span,
         )
     return tokens
 

@@ -214,7 +214,12 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
             if is_canvas:
                 canvases.append(
                     Canvas(
-                        path, parsed.css, config.modes.get(name), line=token.line, file=token.file
+                        path,
+                        parsed.css,
+                        config.modes.get(name),
+                        line=token.line,
+                        file=token.file,
+                        span=token.span,
                     )
                 )
             if is_color:
