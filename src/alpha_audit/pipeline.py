@@ -145,6 +145,7 @@ def check_project(
     on_icon: Callable[[], None] | None = None,
     tokens: TokenConfig | None = None,
     gamut: GamutPolicy | None = None,
+    pool: RenderPool | None = None,
 ) -> CheckReport:
     """Audit every icon set on every theme and apply the gate ``policy``.
 
@@ -160,13 +161,14 @@ def check_project(
     ``--pipeline`` or the config) overrides each icon set's, then each
     theme's; ``linear`` when none says.  ``gamut`` (``--gamut``, else the
     config's) decides colours outside sRGB in every file, tokens included;
-    the colours it moved are in ``report.gamut``.
+    the colours it moved are in ``report.gamut``.  ``pool``: render workers
+    the caller started early (:func:`render_pool`), else started here.
     """
-    with render_pool() as pool:
+    with contextlib.nullcontext(pool) if pool else render_pool() as used:
         return _check_project(
             themes,
             iconsets,
-            pool,
+            used,
             policy=policy,
             alpha=alpha,
             threshold=threshold,

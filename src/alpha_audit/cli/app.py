@@ -74,6 +74,8 @@ def _memory_limit() -> str:
     return f"the address-space limit of {soft / (1 << 20):.0f} MiB"
 
 
+_HELP_ASKED = "alpha_audit.help_asked"  # ctx.meta key: the command was asked for --help
+
 MAX_REASON = 200
 """Characters of an unexpected exception's text kept in its one-line report."""
 
@@ -120,6 +122,8 @@ class _Group(TyperGroup):
             _usage_error(exc)
 
     def invoke(self, ctx: Any) -> Any:
+        # The command's own arguments, seen here before the group hands them on.
+        ctx.meta[_HELP_ASKED] = bool({"-h", "--help"} & set(ctx.args))
         try:
             status = super().invoke(ctx)
             if not isinstance(status, ExitStatus):
@@ -159,8 +163,14 @@ def _version(value: bool) -> None:
         raise typer.Exit()
 
 
+# Commands that render icons: their render workers start as soon as the command
+# is known, before its options are parsed and its inputs read.
+_RENDERING = frozenset({"check", "suggest"})
+
+
 @app.callback()
 def _root(
+    ctx: typer.Context,
     version: Annotated[
         bool,
         typer.Option("--version", callback=_version, is_eager=True, help="Show the version."),
@@ -176,6 +186,12 @@ def _root(
     ] = False,
 ) -> None:
     """Audit icon sets across light and dark themes with extended-alpha compositing."""
+    if ctx.invoked_subcommand in _RENDERING and not ctx.meta.get(_HELP_ASKED):
+        from alpha_audit.pipeline import render_pool
+
+        # The workers take a few tenths of a second to start; the command finds
+        # them in ctx.obj and they stop with the command (or its usage error).
+        ctx.obj = ctx.with_resource(render_pool())
 
 
 app.command("check", cls=OrderedOptionsCommand)(check_command)

@@ -231,6 +231,7 @@ def check_command(
             on_icon=on_icon,
             tokens=None if cli_themes or cli_sets else project.tokens,
             gamut=gamut_policy if gamut_policy is not None else project.gamut,
+            pool=ctx.obj,
         )
     base = Path.cwd().resolve()
     outputs, stdout_text = [], None

@@ -56,6 +56,7 @@ def _precision(value: int) -> int:
 
 
 def suggest_command(
+    ctx: typer.Context,
     theme: ThemeArgument = None,
     iconset: IconsetArgument = None,
     config: ConfigOption = None,
@@ -194,7 +195,7 @@ def suggest_command(
         (c.name for c in loaded_theme.canvases), (i.name for i in loaded_set.icons)
     )
     # The gate judges every paint of every SVG as drawn: suggest answers the same rows.
-    paints = render_paints(loaded_set, strict_svg=False, on_icon=None)
+    paints = render_paints(loaded_set, strict_svg=False, on_icon=None, pool=ctx.obj)
     result = suggest(
         loaded_theme,
         loaded_set,
