@@ -58,3 +58,12 @@ def test_an_input_error_stops_the_workers_started_early(started: list[int]) -> N
 
     mine = [line for line in ps.splitlines() if line.split()[0] == str(os.getpid())]
     assert not any("_svg_worker.py" in line and "<defunct>" not in line for line in mine)
+
+
+@pytest.mark.parametrize("command", [[], ["check"], ["suggest"], ["export"], ["reproduce"]])
+def test_help_shows_flags_without_a_value_type(command: list[str]) -> None:
+    """typer would print ``--force <bool>``, as if the flag took a value."""
+    result = runner.invoke(app, [*command, "--help"], env={"COLUMNS": "120"})
+    assert result.exit_code == 0
+    assert "<bool>" not in result.output
+    assert "--help" in result.output

@@ -29,7 +29,7 @@ from alpha_audit.cli.check import check_command
 from alpha_audit.cli.console import stderr_console
 from alpha_audit.cli.export import export_command
 from alpha_audit.cli.flags import cli_message
-from alpha_audit.cli.options import OrderedOptionsCommand
+from alpha_audit.cli.options import Command, OrderedOptionsCommand, hide_flag_types
 from alpha_audit.cli.pair import pair_command
 from alpha_audit.cli.preview import preview_command
 from alpha_audit.cli.reproduce import reproduce_command
@@ -115,6 +115,9 @@ def _exit_code(exc: Exception, *, debug: bool) -> ExitStatus:
 class _Group(TyperGroup):
     """The single boundary where results and exceptions become exit codes."""
 
+    def get_params(self, ctx: Any) -> list[Any]:
+        return hide_flag_types(super().get_params(ctx))
+
     def parse_args(self, ctx: Any, args: list[str]) -> list[str]:
         try:
             return super().parse_args(ctx, args)
@@ -195,12 +198,12 @@ def _root(
 
 
 app.command("check", cls=OrderedOptionsCommand)(check_command)
-app.command("suggest")(suggest_command)
-app.command("preview")(preview_command)
-app.command("pair")(pair_command)
-app.command("reproduce")(reproduce_command)
-app.command("themes")(themes_command)
-app.command("export")(export_command)
+app.command("suggest", cls=Command)(suggest_command)
+app.command("preview", cls=Command)(preview_command)
+app.command("pair", cls=Command)(pair_command)
+app.command("reproduce", cls=Command)(reproduce_command)
+app.command("themes", cls=Command)(themes_command)
+app.command("export", cls=Command)(export_command)
 
 
 def main(argv: Sequence[str] | None = None) -> None:

@@ -6,7 +6,7 @@ import difflib
 import math
 from collections.abc import Callable
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 from typer.core import TyperCommand
@@ -196,7 +196,26 @@ def require_finite(value: float | None, option: str) -> float | None:
 OPTION_ORDER = "alpha_audit.option_order"
 
 
-class OrderedOptionsCommand(TyperCommand):
+def hide_flag_types(params: list[Any]) -> list[Any]:
+    """``params`` with no type shown after a flag.
+
+    typer's rich help prints ``<bool>`` after every flag (``--force <bool>``),
+    which reads as if it took a value; a flag shows no type, as in click.
+    """
+    for param in params:
+        if getattr(param, "is_flag", False) and param.metavar is None:
+            param.metavar = ""
+    return params
+
+
+class Command(TyperCommand):
+    """Every alpha-audit command: typer's, with flags shown as flags in its help."""
+
+    def get_params(self, ctx: Any) -> list[Any]:
+        return hide_flag_types(super().get_params(ctx))
+
+
+class OrderedOptionsCommand(Command):
     """A command that records the order its options were given in (``ctx.meta``).
 
     Click hands each repeatable option over as one list, which loses which
