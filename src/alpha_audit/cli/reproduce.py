@@ -18,9 +18,11 @@ from rich.progress import BarColumn, Progress, TaskID, TextColumn, TimeElapsedCo
 
 from alpha_audit.bundled import bundled_theme, theme_source
 from alpha_audit.cli.console import emit, stderr_note, stdout_options
+from alpha_audit.cli.options import in_range
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.errors import UsageError
 from alpha_audit.load.theme import load_theme
+from alpha_audit.ranges import ALPHA
 from alpha_audit.reproduce.files import check_results_folder, write_results
 from alpha_audit.reproduce.report import ReproduceFormat
 from alpha_audit.reproduce.run import Experiment, Reproduction, reproduce
@@ -80,6 +82,7 @@ def reproduce_command(
             help="Coefficient for full gamut, broad grid and palette (repeatable; default 1.1 "
             "and 1.4).",
             show_default=False,
+            callback=in_range("--alpha", ALPHA),
         ),
     ] = None,
     out: Annotated[
