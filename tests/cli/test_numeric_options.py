@@ -16,20 +16,23 @@ from alpha_audit.cli import app
 CONTRAST = (1, 21, "a contrast ratio between 1 and 21")
 DELTA_E = (0, 200, "a CIEDE2000 difference between 0 and 200")
 ALPHA = (-100, 100, "a finite coefficient between -100 and 100")
+# The gate policy's limits, which check and suggest both take.
+POLICY = {
+    "--threshold": CONTRAST,
+    "--max-loss": (0, 21, "a contrast loss between 0 and 21"),
+    "--min-delta-e": DELTA_E,
+    "--max-drift": DELTA_E,
+    "--min-size-contrast": CONTRAST,
+}
 EXPECTED = {
+    **{
+        (command, flag): allowed
+        for command in ("check", "suggest")
+        for flag, allowed in POLICY.items()
+    },
     ("check", "--alpha"): ALPHA,
-    ("check", "--threshold"): CONTRAST,
-    ("check", "--max-loss"): (0, 21, "a contrast loss between 0 and 21"),
-    ("check", "--min-delta-e"): DELTA_E,
-    ("check", "--max-drift"): DELTA_E,
-    ("check", "--min-size-contrast"): CONTRAST,
     ("suggest", "--alpha-max"): (1, 100, "a coefficient between 1 and 100"),
     ("suggest", "--precision"): (0, 9, "0-9 decimals"),
-    ("suggest", "--threshold"): CONTRAST,
-    ("suggest", "--max-loss"): (0, 21, "a contrast loss between 0 and 21"),
-    ("suggest", "--min-delta-e"): DELTA_E,
-    ("suggest", "--max-drift"): DELTA_E,
-    ("suggest", "--min-size-contrast"): CONTRAST,
     ("preview", "--alpha"): ALPHA,
     ("preview", "--size"): (1, 1024, "whole pixels 1-1024"),
     ("preview", "--threshold"): CONTRAST,
