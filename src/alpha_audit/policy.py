@@ -10,7 +10,6 @@ but confused at the icons' alpha.  Each numeric rule is stated once here (the
 from __future__ import annotations
 
 import difflib
-import math
 from collections.abc import Iterable
 from dataclasses import dataclass, field, replace
 from enum import StrEnum
@@ -21,6 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from alpha_audit.color import CONTRAST_TOLERANCE, DELTA_E_TOLERANCE
 from alpha_audit.errors import InputError, UsageError
+from alpha_audit.ranges import CONTRAST_LOSS, CONTRAST_RATIO, DELTA_E
 
 __all__ = [
     "CONTRAST_RULES",
@@ -127,18 +127,16 @@ class Policy:
     min_size_contrast: float | None = None  # Rule.THIN_STROKES; None: the threshold
 
     def __post_init__(self) -> None:
-        if not (math.isfinite(self.max_loss) and self.max_loss >= 0):
-            raise UsageError(f"max_loss must be a finite number >= 0, got {self.max_loss}")
-        if not (math.isfinite(self.min_delta_e) and self.min_delta_e >= 0):
-            raise UsageError(f"min_delta_e must be a finite number >= 0, got {self.min_delta_e}")
-        if not (math.isfinite(self.max_drift) and self.max_drift >= 0):
-            raise UsageError(f"max_drift must be a finite number >= 0, got {self.max_drift}")
-        if self.min_size_contrast is not None and not (
-            math.isfinite(self.min_size_contrast) and 1.0 <= self.min_size_contrast <= 21.0
-        ):
-            raise UsageError(
-                f"min_size_contrast must be a contrast ratio 1-21, got {self.min_size_contrast}"
-            )
+        # The ranges the config keys and the flags of the same names obey.
+        limits = [
+            ("max_loss", self.max_loss, CONTRAST_LOSS),
+            ("min_delta_e", self.min_delta_e, DELTA_E),
+            ("max_drift", self.max_drift, DELTA_E),
+            ("min_size_contrast", self.min_size_contrast, CONTRAST_RATIO),
+        ]
+        for name, value, allowed in limits:
+            if value is not None and not allowed.allows(value):
+                raise UsageError(allowed.refusal(f"{name} {value:g}"))
         if any(not e.reason.strip() for e in self.exemptions):
             raise UsageError("every exemption needs a reason")
 

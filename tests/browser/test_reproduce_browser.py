@@ -6,6 +6,7 @@ import hashlib
 import json
 import subprocess
 import sys
+from importlib import resources
 from pathlib import Path
 
 import numpy as np
@@ -14,14 +15,15 @@ from PIL import Image
 
 from alpha_audit.browser import ENGINES, installed_engines
 from alpha_audit.errors import UsageError
+from alpha_audit.preview.html import page_script
 from alpha_audit.reproduce.browser import select_icons
 from alpha_audit.reproduce.runtime import (
     EngineTiming,
     RuntimeResult,
     RuntimeSettings,
     _round_orders,
-    preview_shaders,
     runtime_figure,
+    runtime_script,
 )
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -143,10 +145,17 @@ def test_round_orders_are_seeded_permutations():
     assert len({tuple(o) for o in orders}) == 25
 
 
-def test_timing_is_the_preview_pages_shader():
-    vertex, fragment = preview_shaders()
-    assert vertex.startswith("#version 300 es") and fragment.startswith("#version 300 es")
-    assert "u_alpha * (s - b)" in fragment  # the paper's expression, Appendix A.2
+def test_timing_is_the_preview_pages_renderer():
+    # Timing the very code people see: the preview's renderer is inlined as shipped, and
+    # the runtime loop only drives it (no WebGL context, program or shader of its own).
+    renderer = resources.files("alpha_audit.preview").joinpath("page_shader.js").read_text()
+    loop = resources.files("alpha_audit.reproduce").joinpath("runtime.js").read_text()
+    script = runtime_script()
+    assert renderer in script and renderer in page_script()
+    for setup in ("getContext", "createProgram", "createShader", "#version", "texImage2D"):
+        assert setup not in loop, setup
+        assert script.count(setup) == renderer.count(setup) >= 1, setup
+    assert "u_alpha * (s - b)" in script  # the paper's expression, Appendix A.2
 
 
 def _timing(samples) -> EngineTiming:

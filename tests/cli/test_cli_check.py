@@ -58,7 +58,10 @@ def test_check_writes_output_but_never_over_a_file(tmp_path: Path, paths: tuple[
     ("args", "message"),
     [
         (["check", "missing.yaml", "x.yaml"], "missing.yaml: file not found"),
-        (["check", "{theme}", "{icons}", "--alpha", "nan"], "--alpha must be a finite number"),
+        (
+            ["check", "{theme}", "{icons}", "--alpha", "nan"],
+            "--alpha nan is out of range; expected a finite coefficient between -100 and 100",
+        ),
         (["check", "{theme}", "{icons}", "--format", "xml"], "xml"),
         (["pair", "blurple", "--on", "white"], "'blurple' is not a colour"),
     ],

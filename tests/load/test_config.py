@@ -64,7 +64,7 @@ BAD = [
     ("themse: [t.yaml]\n", "did you mean 'theme"),
     ("fail-on: [los]\n", "unknown rule 'los'"),
     ("max-loss: .nan\n", "out of range"),
-    ("max-loss: '0.1'\n", "expected a finite number"),
+    ("max-loss: '0.1'\n", "expected a contrast loss between 0 and 21"),
     ("themes: [/etc/passwd]\n", "absolute"),
     ("themes: [../outside.yaml]\n", "outside"),
     ("baseline: ../../b.json\n", "outside"),

@@ -62,8 +62,11 @@ def test_existing_files_are_not_replaced_without_force(tmp_path):
     ("args", "message"),
     [
         ([], "nothing to write"),
-        (["-o", "OUT", "-a", "nan"], "--alpha must be a finite number"),
-        (["-o", "OUT", "-s", "0"], "every value in --size must be between 1 and"),
+        (
+            ["-o", "OUT", "-a", "nan"],
+            "--alpha nan is out of range; expected a finite coefficient between -100 and 100",
+        ),
+        (["-o", "OUT", "-s", "0"], "--size 0 is out of range; expected whole pixels 1-1024"),
         (["-o", "OUT", "-l", "mosaic"], "mosaic"),
         (["--html", "missing/page.html"], "does not exist"),
     ],

@@ -32,10 +32,11 @@ overrides:
 
 def test_only_alpha_values_change() -> None:
     edited = set_alpha(MANIFEST, "1.226")
+    # A comment after a value keeps its column: the longer value takes the gap's spaces.
     expected = (
-        MANIFEST.replace("alpha: 1.05}", "alpha: 1.226}")
+        MANIFEST.replace("alpha: 1.05}   #", "alpha: 1.226}  #")
         .replace('alpha: "1.3"', "alpha: 1.226")
-        .replace("alpha:   1.1 ", "alpha:   1.226 ")
+        .replace("alpha:   1.1    #", "alpha:   1.226  #")
         .replace("alpha: 1.2}", "alpha: 1.226}")
     )
     assert edited == expected

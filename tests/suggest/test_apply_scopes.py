@@ -41,6 +41,11 @@ EDITS = [
         {"a": "1.3"},
         "overrides:\n  a:\n    color: red  # block\n    alpha: 1.3\nname: x\n",
     ),
+    (  # a block entry followed by a sibling: its alpha goes under it, not under the sibling
+        "overrides:\n  a:\n    color: red\n  b: {color: red}\n",
+        {"a": "1.3"},
+        "overrides:\n  a:\n    color: red\n    alpha: 1.3\n  b: {color: red}\n",
+    ),
     ("overrides:\n  a:\n", {"a": "1.3"}, "overrides:\n  a: {alpha: 1.3}\n"),
     ("overrides: {}\n", {"a": "1.3"}, "overrides: {a: {alpha: 1.3}}\n"),
     ("overrides:  # none yet\n", {"a": "1.3"}, "overrides:  # none yet\n  a: {alpha: 1.3}\n"),

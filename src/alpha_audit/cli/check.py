@@ -24,11 +24,12 @@ from alpha_audit.cli.options import (
     StrictSvgOption,
     ThemeArgument,
     ThresholdOption,
+    in_range,
     read_gamut_option,
-    require_finite,
     rules_flag,
 )
 from alpha_audit.cli.status import ExitStatus
+from alpha_audit.ranges import ALPHA
 from alpha_audit.render import CheckFormat, RenderOptions
 from alpha_audit.render.common import check_suffix
 
@@ -109,7 +110,12 @@ def check_command(
     config: ConfigOption = None,
     alpha: Annotated[
         float | None,
-        typer.Option("--alpha", "-a", help="Coefficient for every icon (overrides the manifest)."),
+        typer.Option(
+            "--alpha",
+            "-a",
+            help="Coefficient for every icon (overrides the manifest).",
+            callback=in_range("--alpha", ALPHA),
+        ),
     ] = None,
     threshold: ThresholdOption = None,
     fail_on: Annotated[
@@ -189,10 +195,6 @@ def check_command(
     from alpha_audit.pipeline import check_project
     from alpha_audit.render.common import dumps
 
-    require_finite(alpha, "--alpha")
-    require_finite(threshold, "--threshold")
-    require_finite(max_drift, "--max-drift")
-    require_finite(min_size_contrast, "--min-size-contrast")
     gamut_policy = read_gamut_option(gamut)
     given = ctx.meta.get(OPTION_ORDER)
     order = None if given is None else ["format" if n == "fmt" else n for n in given]

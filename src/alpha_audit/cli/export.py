@@ -12,10 +12,11 @@ from alpha_audit.cli.options import (
     ConfigOption,
     ForceOption,
     GamutOption,
+    in_range,
     read_gamut_option,
-    require_finite,
 )
 from alpha_audit.cli.status import ExitStatus
+from alpha_audit.ranges import ALPHA
 
 __all__ = ["export_command"]
 
@@ -45,7 +46,11 @@ def export_command(
         ),
     ] = None,
     alpha: Annotated[
-        float | None, typer.Option(help="Coefficient for every colour (overrides the tokens).")
+        float | None,
+        typer.Option(
+            help="Coefficient for every colour (overrides the tokens).",
+            callback=in_range("--alpha", ALPHA),
+        ),
     ] = None,
     gamut: GamutOption = None,
     config: ConfigOption = None,
@@ -64,7 +69,6 @@ def export_command(
     if fmt not in formats:
         raise UsageError(f"--format {fmt!r} is not one of {', '.join(formats)}")
     gamut_policy = read_gamut_option(gamut)
-    require_finite(alpha, "--alpha")
     table = table_from_config(project_config(config, Path.cwd()), alpha=alpha, gamut=gamut_policy)
     for a in table.adjusted:
         stderr_note(

@@ -3,14 +3,14 @@
 from __future__ import annotations
 
 import difflib
-import math
 from collections.abc import Callable
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Annotated, Any, TypeVar
 
 import typer
 from typer.core import TyperCommand
 
+from alpha_audit import ranges
 from alpha_audit.color.css import GAMUT_POLICIES, GamutPolicy
 from alpha_audit.errors import UsageError
 
@@ -29,8 +29,8 @@ __all__ = [
     "StrictSvgOption",
     "ThemeArgument",
     "ThresholdOption",
+    "in_range",
     "read_gamut_option",
-    "require_finite",
 ]
 
 ThemeArgument = Annotated[
@@ -56,39 +56,33 @@ ConfigOption = Annotated[
 ]
 
 
-def _threshold_in_range(value: float | None) -> float | None:
-    """--threshold obeys the theme file's range (one line, exit 2, otherwise)."""
-    from alpha_audit.color import THRESHOLD_RANGE, THRESHOLD_WHAT
-    from alpha_audit.errors import UsageError
+# A flag's value: one number, a repeatable flag's list of them, or not given.
+Given = TypeVar("Given", bound=float | list[int] | list[float] | None)
 
-    low, high = THRESHOLD_RANGE
-    if value is not None and not (math.isfinite(value) and low <= value <= high):
-        raise UsageError(f"--threshold {value:g} is out of range; expected {THRESHOLD_WHAT}")
-    return value
+
+def in_range(flag: str, allowed: ranges.NumberRange) -> Callable[[Given], Given]:
+    """A typer callback refusing a value of ``flag`` outside ``allowed`` (each, if repeatable).
+
+    The range is the one the theme or config key of the same meaning obeys
+    (:mod:`alpha_audit.ranges`), so the flag and the file refuse alike.
+    """
+
+    def check(value: Given) -> Given:
+        for number in value if isinstance(value, list) else () if value is None else (value,):
+            if not allowed.allows(number):
+                raise UsageError(allowed.refusal(f"{flag} {number:g}"))
+        return value
+
+    return check
 
 
 ThresholdOption = Annotated[
     float | None,
     typer.Option(
         help="Contrast threshold (default: the theme's, else 3.0 = WCAG 1.4.11).",
-        callback=_threshold_in_range,
+        callback=in_range("--threshold", ranges.CONTRAST_RATIO),
     ),
 ]
-
-
-def at_least(flag: str, low: float) -> Callable[[float | None], float | None]:
-    """A typer callback refusing non-finite values and values below ``low``, naming ``flag``."""
-
-    def check(value: float | None) -> float | None:
-        from alpha_audit.errors import UsageError
-
-        if value is not None and not (math.isfinite(value) and value >= low):
-            raise UsageError(
-                f"{flag} {value:g} is out of range; expected a finite number >= {low:g}"
-            )
-        return value
-
-    return check
 
 
 def rules_flag(
@@ -121,7 +115,7 @@ MaxLossOption = Annotated[
     typer.Option(
         "--max-loss",
         help="Contrast loss tolerated by the loss rule. [default: 0]",
-        callback=at_least("--max-loss", 0.0),
+        callback=in_range("--max-loss", ranges.CONTRAST_LOSS),
     ),
 ]
 MinDeltaEOption = Annotated[
@@ -129,7 +123,7 @@ MinDeltaEOption = Annotated[
     typer.Option(
         "--min-delta-e",
         help="Smallest CIEDE2000 for separation and confusion. [default: 10]",
-        callback=at_least("--min-delta-e", 0.0),
+        callback=in_range("--min-delta-e", ranges.DELTA_E),
     ),
 ]
 MaxDriftOption = Annotated[
@@ -137,7 +131,7 @@ MaxDriftOption = Annotated[
     typer.Option(
         "--max-drift",
         help="Largest CIEDE2000 colour drift for drift. [default: 10]",
-        callback=at_least("--max-drift", 0.0),
+        callback=in_range("--max-drift", ranges.DELTA_E),
     ),
 ]
 MinSizeContrastOption = Annotated[
@@ -145,6 +139,7 @@ MinSizeContrastOption = Annotated[
     typer.Option(
         "--min-size-contrast",
         help="Smallest size contrast for thin-strokes. [default: the threshold]",
+        callback=in_range("--min-size-contrast", ranges.CONTRAST_RATIO),
     ),
 ]
 PipelineOption = Annotated[
@@ -183,13 +178,6 @@ def read_gamut_option(value: str | None) -> GamutPolicy | None:
     if value not in GAMUT_POLICIES:
         allowed = ", ".join(GAMUT_POLICIES)
         raise UsageError(f"--gamut {value!r} is not a policy; use one of: {allowed}")
-    return value
-
-
-def require_finite(value: float | None, option: str) -> float | None:
-    """``value`` unchanged, or a usage error naming ``option`` if it is NaN or infinite."""
-    if value is not None and not math.isfinite(value):
-        raise UsageError(f"{option} must be a finite number, got {value}")
     return value
 
 

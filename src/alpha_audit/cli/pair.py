@@ -7,8 +7,9 @@ from typing import Annotated
 import typer
 
 from alpha_audit.cli.console import emit, stdout_options
-from alpha_audit.cli.options import require_finite
+from alpha_audit.cli.options import in_range
 from alpha_audit.cli.status import ExitStatus
+from alpha_audit.ranges import ALPHA
 from alpha_audit.render.pair import PairFormat
 
 __all__ = ["pair_command"]
@@ -27,7 +28,11 @@ def pair_command(
     alpha: Annotated[
         list[float] | None,
         typer.Option(
-            "--alpha", "-a", metavar="A", help="Coefficient (repeatable). [default: 1, 1.1, 1.4]"
+            "--alpha",
+            "-a",
+            metavar="A",
+            help="Coefficient (repeatable). [default: 1, 1.1, 1.4]",
+            callback=in_range("--alpha", ALPHA),
         ),
     ] = None,
     fmt: Annotated[
@@ -43,9 +48,6 @@ def pair_command(
     """
     from alpha_audit.pair import pair_report
 
-    alphas = alpha or [1.0, 1.1, 1.4]
-    for a in alphas:
-        require_finite(a, "--alpha")
-    report = pair_report(color, on, alphas)
+    report = pair_report(color, on, alpha or [1.0, 1.1, 1.4])
     emit(PairFormat(fmt).renderer()(report, stdout_options()), None, False)
     return ExitStatus.OK

@@ -13,11 +13,12 @@ from alpha_audit.cli.options import (
     GamutOption,
     StrictSvgOption,
     ThresholdOption,
+    in_range,
     read_gamut_option,
-    require_finite,
 )
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.preview.sheets import Layout
+from alpha_audit.ranges import ALPHA, ICON_SIZE
 
 __all__ = ["preview_command"]
 
@@ -41,8 +42,9 @@ def preview_command(
             "--alpha",
             "-a",
             metavar="A",
-            help="Coefficient row, any real value (repeatable). "
+            help="Coefficient row, any real value in [-100, 100] (repeatable). "
             "[default: 1 and the set's own; swatches: 0.6 1 1.1 1.2 1.4 2]",
+            callback=in_range("--alpha", ALPHA),
         ),
     ] = None,
     size: Annotated[
@@ -52,6 +54,7 @@ def preview_command(
             "-s",
             metavar="PX",
             help="Icon size in px (repeatable). [default: 48; page: set's + 48]",
+            callback=in_range("--size", ICON_SIZE),
         ),
     ] = None,
     layout: Annotated[
@@ -89,9 +92,6 @@ def preview_command(
     from alpha_audit.bundled import iconset_source, theme_source
     from alpha_audit.preview.files import preview_files
 
-    for a in alpha or ():
-        require_finite(a, "--alpha")
-    require_finite(threshold, "--threshold")
     gamut_policy = read_gamut_option(gamut)
     with progress_bar("Rendering previews") as (on_start, on_step):
         result = preview_files(

@@ -15,8 +15,10 @@ from typing import TYPE_CHECKING, Annotated
 import typer
 
 from alpha_audit.cli.console import emit, stderr_note, stdout_options
+from alpha_audit.cli.options import in_range
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.errors import UsageError
+from alpha_audit.ranges import ALPHA
 from alpha_audit.render import ReproduceFormat
 from alpha_audit.reproduce.experiment import Experiment
 
@@ -82,6 +84,7 @@ def reproduce_command(
             help="Coefficient for full gamut, broad grid and palette (repeatable; default 1.1 "
             "and 1.4).",
             show_default=False,
+            callback=in_range("--alpha", ALPHA),
         ),
     ] = None,
     out: Annotated[

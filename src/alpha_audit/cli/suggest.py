@@ -19,12 +19,12 @@ from alpha_audit.cli.options import (
     MinSizeContrastOption,
     ThemeArgument,
     ThresholdOption,
-    at_least,
+    in_range,
     read_gamut_option,
-    require_finite,
     rules_flag,
 )
 from alpha_audit.cli.status import ExitStatus
+from alpha_audit.ranges import ALPHA_MAX, PRECISION
 from alpha_audit.render import SuggestFormat
 
 __all__ = ["suggest_command"]
@@ -43,18 +43,6 @@ def _scope(value: str | None) -> str | None:
     return value.strip().lower()
 
 
-def _precision(value: int) -> int:
-    """--precision within what suggest can round exactly (named as the flag)."""
-    from alpha_audit.errors import UsageError
-    from alpha_audit.suggest.engine import MAX_PRECISION
-
-    if not 0 <= value <= MAX_PRECISION:
-        raise UsageError(
-            f"--precision {value} is out of range; expected 0-{MAX_PRECISION} decimals"
-        )
-    return value
-
-
 def suggest_command(
     ctx: typer.Context,
     theme: ThemeArgument = None,
@@ -65,13 +53,15 @@ def suggest_command(
         typer.Option(
             "--alpha-max",
             help="Largest coefficient considered.",
-            callback=at_least("--alpha-max", 1.0),
+            callback=in_range("--alpha-max", ALPHA_MAX),
         ),
     ] = 2.0,
     precision: Annotated[
         int,
         typer.Option(
-            "--precision", help="Decimals; the answer is rounded down.", callback=_precision
+            "--precision",
+            help="Decimals; the answer is rounded down.",
+            callback=in_range("--precision", PRECISION),
         ),
     ] = 3,
     threshold: ThresholdOption = None,
@@ -150,8 +140,6 @@ def suggest_command(
     if output is not None:
         check_suffix(fmt.value, output)
         check_targets([output], overwrite=force)  # before the work, not after
-    require_finite(alpha_max, "--alpha-max")
-    require_finite(threshold, "--threshold")
     gamut_policy = read_gamut_option(gamut)
     if (theme is None) != (iconset is None):
         raise UsageError("give both THEME and ICONSET, or neither (to use the project config)")
@@ -179,8 +167,6 @@ def suggest_command(
             f"copy {source.parent} into your project and give its {source.name}"
         )
     iconset = source
-    require_finite(max_drift, "--max-drift")
-    require_finite(min_size_contrast, "--min-size-contrast")
     policy = project.policy.with_overrides(
         rules=fail_on,
         max_loss=max_loss,

@@ -15,7 +15,8 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path, PurePosixPath
 from typing import Any
 
-from alpha_audit.color import THRESHOLD_RANGE, THRESHOLD_WHAT, GamutPolicy, Pipeline
+from alpha_audit import ranges
+from alpha_audit.color import GamutPolicy, Pipeline
 from alpha_audit.errors import InputError, UsageError
 from alpha_audit.load.fields import (
     check_keys,
@@ -271,36 +272,31 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
         found[plural] = _paths(doc, at(key), data[key], base) if key in data else []
     alpha = threshold = None
     if "alpha" in data:
-        alpha = read_number(doc, at("alpha"), data["alpha"], low=-100, high=100)
+        alpha = read_number(doc, at("alpha"), data["alpha"], allowed=ranges.ALPHA)
     if "threshold" in data:
         threshold = read_number(
-            doc,
-            at("threshold"),
-            data["threshold"],
-            low=THRESHOLD_RANGE[0],
-            high=THRESHOLD_RANGE[1],
-            what=THRESHOLD_WHAT,
+            doc, at("threshold"), data["threshold"], allowed=ranges.CONTRAST_RATIO
         )
     rules = _rules(doc, at("fail-on"), data["fail-on"]) if "fail-on" in data else DEFAULT_RULES
     max_loss = 0.0
     if "max-loss" in data:
-        max_loss = read_number(doc, at("max-loss"), data["max-loss"], low=0.0, high=21.0)
+        max_loss = read_number(doc, at("max-loss"), data["max-loss"], allowed=ranges.CONTRAST_LOSS)
     min_delta_e = 10.0
     if "min-delta-e" in data:
-        min_delta_e = read_number(doc, at("min-delta-e"), data["min-delta-e"], low=0.0, high=200.0)
+        min_delta_e = read_number(
+            doc, at("min-delta-e"), data["min-delta-e"], allowed=ranges.DELTA_E
+        )
     exemptions = _exemptions(doc, at("exempt"), data["exempt"]) if "exempt" in data else ()
     max_drift = 10.0
     if "max-drift" in data:
-        max_drift = read_number(doc, at("max-drift"), data["max-drift"], low=0.0, high=200.0)
+        max_drift = read_number(doc, at("max-drift"), data["max-drift"], allowed=ranges.DELTA_E)
     min_size_contrast = None
     if "min-size-contrast" in data:
         min_size_contrast = read_number(
             doc,
             at("min-size-contrast"),
             data["min-size-contrast"],
-            low=1.0,
-            high=21.0,
-            what="a contrast ratio between 1 and 21",
+            allowed=ranges.CONTRAST_RATIO,
         )
     pipeline = read_pipeline(doc, at("pipeline"), data["pipeline"]) if "pipeline" in data else None
     baseline = _path(doc, at("baseline"), data["baseline"], base) if "baseline" in data else None

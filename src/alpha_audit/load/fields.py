@@ -14,6 +14,7 @@ from alpha_audit.color.css import GAMUT_POLICIES, parse_css_color
 from alpha_audit.errors import ColorSyntaxError
 from alpha_audit.load.yamldoc import KeyPath, YamlDoc, format_key
 from alpha_audit.model import GamutAdjustment
+from alpha_audit.ranges import NumberRange
 from alpha_audit.safe_text import is_safe, safe_text
 
 __all__ = [
@@ -93,15 +94,20 @@ def read_number(
     low: float = -math.inf,
     high: float = math.inf,
     what: str = "a finite number",
+    allowed: NumberRange | None = None,
 ) -> float:
-    """A finite real in ``[low, high]``; booleans, strings and NaN are refused."""
+    """A finite real in ``allowed`` (else ``[low, high]``); booleans, strings and NaN are refused.
+
+    ``allowed`` is the range a key shares with its command-line flag
+    (:mod:`alpha_audit.ranges`), refused in the same words.
+    """
+    allowed = allowed or NumberRange(low, high, what)
     if isinstance(value, bool) or not isinstance(value, int | float):
         hint = " (quote-free, e.g. 1.1)" if isinstance(value, str) else ""
-        raise doc.error(keys, f"expected {what}{hint}, got {describe(value)}")
-    number = float(value)
-    if not math.isfinite(number) or not low <= number <= high:
-        raise doc.error(keys, f"{value!r} is out of range; expected {what}")
-    return number
+        raise doc.error(keys, f"expected {allowed.what}{hint}, got {describe(value)}")
+    if not allowed.allows(float(value)):
+        raise doc.error(keys, allowed.refusal(repr(value)))
+    return float(value)
 
 
 def read_gamut(doc: YamlDoc, keys: KeyPath, value: Any) -> GamutPolicy:

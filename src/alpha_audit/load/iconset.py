@@ -23,6 +23,7 @@ from alpha_audit.load.fields import (
 from alpha_audit.load.paths import PathRefused, contain, contain_argument, glob_contained
 from alpha_audit.load.yamldoc import KeyPath, YamlDoc, load_yaml
 from alpha_audit.model import GamutAdjustment, Icon, IconSet, Span
+from alpha_audit.ranges import ALPHA, ICON_SIZE, MAX_ICON_SIZE
 from alpha_audit.safe_text import safe_text
 
 __all__ = [
@@ -35,8 +36,8 @@ __all__ = [
 ]
 
 MAX_ICONS = 10_000
-MAX_SIZE = 1024  # px; rasters are size x size float64
-ALPHA_LIMIT = 100.0  # any finite real is valid maths; beyond this it is a typo
+MAX_SIZE = MAX_ICON_SIZE  # px (alpha_audit.ranges says why)
+ALPHA_LIMIT = ALPHA.high  # any finite real is valid maths; beyond this it is a typo
 _ROOT_MARKERS = (".git", "pyproject.toml", "alpha-audit.yaml", ".alpha-audit.yaml")
 _MANIFEST_KEYS = (
     "name",
@@ -139,14 +140,7 @@ class _Manifest:
         return self.read_color(keys, value), None
 
     def alpha(self, keys: KeyPath, value: Any) -> float:
-        return read_number(
-            self.doc,
-            keys,
-            value,
-            low=-ALPHA_LIMIT,
-            high=ALPHA_LIMIT,
-            what=f"a finite coefficient between -{ALPHA_LIMIT:g} and {ALPHA_LIMIT:g}",
-        )
+        return read_number(self.doc, keys, value, allowed=ALPHA)
 
     def sizes(self) -> tuple[int, ...]:
         raw = self.data.get("sizes", [24])
@@ -156,9 +150,9 @@ class _Manifest:
             raise self.doc.error(("sizes",), f"expected a list of pixel sizes, got {describe(raw)}")
         sizes = []
         for i, value in enumerate(raw):
-            if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= MAX_SIZE:
+            if isinstance(value, bool) or not isinstance(value, int) or value not in ICON_SIZE:
                 raise self.doc.error(
-                    ("sizes", i), f"{describe(value)} is not a size; use whole pixels 1-{MAX_SIZE}"
+                    ("sizes", i), f"{describe(value)} is not a size; use {ICON_SIZE.what}"
                 )
             sizes.append(value)
         return tuple(sorted(set(sizes)))

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from alpha_audit.color import NON_TEXT_THRESHOLD, THRESHOLD_RANGE, THRESHOLD_WHAT, GamutPolicy
+from alpha_audit import ranges
+from alpha_audit.color import NON_TEXT_THRESHOLD, GamutPolicy
 from alpha_audit.errors import InputError
 from alpha_audit.load.fields import (
     check_keys,
@@ -53,12 +54,7 @@ def theme_from_doc(doc: YamlDoc, *, gamut: GamutPolicy | None = None) -> Theme:
     threshold = NON_TEXT_THRESHOLD
     if "threshold" in data:
         threshold = read_number(
-            doc,
-            ("threshold",),
-            data["threshold"],
-            low=THRESHOLD_RANGE[0],
-            high=THRESHOLD_RANGE[1],
-            what=THRESHOLD_WHAT,
+            doc, ("threshold",), data["threshold"], allowed=ranges.CONTRAST_RATIO
         )
     raw = data.get("canvases")
     if not isinstance(raw, list) or not raw:

@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 
 from alpha_audit.color import GamutPolicy
 from alpha_audit.errors import SvgError, UsageError
-from alpha_audit.load.iconset import MAX_SIZE, load_iconset
+from alpha_audit.load.iconset import load_iconset
 from alpha_audit.load.svg import IconProblem, rasterize_icons
 from alpha_audit.load.theme import load_theme
 from alpha_audit.model import Canvas, IconSet, Theme
@@ -26,6 +25,7 @@ from alpha_audit.preview.sheets import (
     render_all,
     write_sheet,
 )
+from alpha_audit.ranges import ALPHA, ICON_SIZE
 
 __all__ = ["DEFAULT_SIZE", "PreviewResult", "preview_canvases", "preview_files"]
 
@@ -49,12 +49,11 @@ def preview_canvases(theme: Theme, iconset: IconSet, near_source: bool) -> tuple
 
 
 def _check_options(alphas: Sequence[float], sizes: Sequence[int]) -> None:
-    for a in alphas:
-        if not math.isfinite(a):
-            raise UsageError(f"every value in `alphas` must be finite, got {a}")
-    for s in sizes:
-        if not 1 <= s <= MAX_SIZE:
-            raise UsageError(f"every value in `sizes` must be between 1 and {MAX_SIZE} px, got {s}")
+    # The ranges the command line's --alpha and --size obey, in the same words.
+    for name, values, allowed in (("alphas", alphas, ALPHA), ("sizes", sizes, ICON_SIZE)):
+        for value in values:
+            if value not in allowed:
+                raise UsageError(allowed.refusal(f"`{name}` {value:g}"))
 
 
 def preview_files(

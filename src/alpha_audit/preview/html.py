@@ -29,11 +29,15 @@ from alpha_audit.model import IconSet, Theme
 
 __all__ = [
     "ATLAS_MAX_WIDTH",
+    "RENDERER_ASSET",
     "SCRIPT_ASSETS",
+    "asset",
+    "atlas_data",
     "mask_atlas",
     "page_script",
     "preview_data",
     "preview_html",
+    "scoped_script",
 ]
 
 # WebGL2 guarantees MAX_TEXTURE_SIZE >= 2048 (OpenGL ES 3.0, table 6.28);
@@ -41,23 +45,23 @@ __all__ = [
 ATLAS_MAX_WIDTH = 2048
 _PLACEHOLDERS = ("__ALPHA_AUDIT_TITLE__", "__ALPHA_AUDIT_DATA__", "__ALPHA_AUDIT_SCRIPT__")
 
+# The WebGL2 shader and its renderer (context, program, atlas textures, draw calls): the
+# one copy, shipped in this page and in reproduce's runtime page, which times it.
+RENDERER_ASSET = "page_shader.js"
 # The page's script, in the order it runs: one function scope, one file each per concern.
 SCRIPT_ASSETS = (
     "page_data.js",  # the embedded data and the page's fixed choices
     "page_colour.js",  # float64 colour maths for labels and contrast
-    "page_shader.js",  # the WebGL2 shader and renderer
+    RENDERER_ASSET,  # the WebGL2 shader and renderer
     "page_layout.js",  # state, layout and drawing
     "page_ui.js",  # tooltip and controls
     "page_start.js",  # the validation hook and start-up
 )
-_SCRIPT_HEAD = """\
+_PAGE_HEADING = """\
 // alpha-audit preview page: the paper's compositing expression in a WebGL2 fragment shader.
 // Pixel = encode(q * clip(Cb + a (Cs - Cb), 0, 1) + (1 - q) * Cb) in linear sRGB
 // ("Opacity Is Not Just Opacity", Appendix A.2). No network, no external files.
-"use strict";
-(() => {
 """
-_SCRIPT_TAIL = "})();\n"
 
 
 def mask_atlas(masks: Sequence[NDArray[np.float64]], size: int) -> tuple[int, NDArray[np.uint8]]:
@@ -80,6 +84,17 @@ def mask_atlas(masks: Sequence[NDArray[np.float64]], size: int) -> tuple[int, ND
     return cols, atlas
 
 
+def atlas_data(masks: Sequence[NDArray[np.float64]], size: int) -> dict[str, object]:
+    """One size's :func:`mask_atlas` as the page's renderer reads it (``DATA.atlases[size]``)."""
+    cols, atlas = mask_atlas(masks, size)
+    return {
+        "columns": cols,
+        "width": int(atlas.shape[1]),
+        "height": int(atlas.shape[0]),
+        "data": base64.b64encode(atlas.tobytes()).decode("ascii"),
+    }
+
+
 def _hex(linear: tuple[float, float, float]) -> str:
     """``#rrggbb`` of a linear colour: the page's own notation, whatever the input wrote."""
     return "#" + "".join(f"{int(v):02x}" for v in to_8bit(linear))
@@ -96,15 +111,9 @@ def preview_data(
     """Everything the page needs, as JSON-ready data (icons lacking a mask are left out)."""
     sizes = sorted({int(s) for s in sizes})
     icons = [i for i in iconset.icons if all((i.name, s) in masks for s in sizes)]
-    atlases = {}
-    for size in sizes:
-        cols, atlas = mask_atlas([masks[(i.name, size)] for i in icons], size)
-        atlases[str(size)] = {
-            "columns": cols,
-            "width": int(atlas.shape[1]),
-            "height": int(atlas.shape[0]),
-            "data": base64.b64encode(atlas.tobytes()).decode("ascii"),
-        }
+    atlases = {
+        str(size): atlas_data([masks[(i.name, size)] for i in icons], size) for size in sizes
+    }
     alphas = [i.alpha for i in icons]
     usual = max(sorted(set(alphas)), key=alphas.count) if alphas else 1.0  # the set's usual one
     own = [s for s in iconset.sizes if s in sizes]  # the page opens at the set's own size
@@ -128,16 +137,27 @@ def preview_data(
     }
 
 
-def _asset(name: str) -> str:
-    return resources.files("alpha_audit.preview").joinpath(name).read_text(encoding="utf-8")
+def asset(name: str, package: str = "alpha_audit.preview") -> str:
+    """The text of a script or page asset shipped in ``package``."""
+    return resources.files(package).joinpath(name).read_text(encoding="utf-8")
+
+
+def scoped_script(heading: str, parts: Sequence[str]) -> str:
+    """``parts`` (asset texts) joined inside one strict function scope, ``heading`` first.
+
+    One scope, so later parts use what earlier ones declare (``Renderer``)
+    and nothing leaks onto ``window`` but what a part puts there; inlined in
+    a ``<script>`` element, so a closing script tag is refused.
+    """
+    script = heading + '"use strict";\n(() => {\n' + "".join(parts) + "})();\n"
+    if "</script" in script.lower():
+        raise AssertionError("an inlined script must not contain a closing script tag")
+    return script
 
 
 def page_script() -> str:
     """The page's script: :data:`SCRIPT_ASSETS` joined inside one strict function scope."""
-    script = _SCRIPT_HEAD + "".join(_asset(name) for name in SCRIPT_ASSETS) + _SCRIPT_TAIL
-    if "</script" in script.lower():
-        raise AssertionError("the page's script must not contain a closing script tag")
-    return script
+    return scoped_script(_PAGE_HEADING, [asset(name) for name in SCRIPT_ASSETS])
 
 
 def preview_html(
@@ -153,7 +173,7 @@ def preview_html(
     # Inside <script> only "</" could end the element early; \u003c is the same JSON string.
     payload = json.dumps(data, separators=(",", ":"), allow_nan=False).replace("<", "\\u003c")
     script = page_script()
-    page = _asset("page.html")
+    page = asset("page.html")
     for marker in _PLACEHOLDERS:
         if marker not in page:
             raise AssertionError(f"page.html must contain {marker}")

@@ -17,14 +17,11 @@ outside [0, 1] compared with the conventional transparency interval.
 
 from __future__ import annotations
 
-import base64
 import html
 import json
 import random
-import re
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
-from importlib import resources
 from pathlib import Path
 
 import numpy as np
@@ -34,7 +31,7 @@ from alpha_audit.browser import ENGINES, Browser
 from alpha_audit.browser.interface import BrowserError
 from alpha_audit.color.srgb import srgb_decode
 from alpha_audit.output import Output
-from alpha_audit.preview.html import mask_atlas
+from alpha_audit.preview.html import RENDERER_ASSET, asset, atlas_data, scoped_script
 from alpha_audit.reproduce.browser import PAPER_ICONS, load_validation_icons, run_engines
 from alpha_audit.reproduce.experiments import sweep_alphas
 from alpha_audit.reproduce.figures import _FONT, _SMALL, _label, _nice_ticks
@@ -46,10 +43,10 @@ __all__ = [
     "EngineTiming",
     "RuntimeResult",
     "RuntimeSettings",
-    "preview_shaders",
     "runtime",
     "runtime_figure",
     "runtime_figure_output",
+    "runtime_script",
 ]
 
 # The paper's backgrounds are "warm light" and "cool dark" without values; these are ours
@@ -58,7 +55,10 @@ BACKGROUNDS = {"warm light": "#faf3e0", "cool dark": "#1c2633"}
 CANVAS = (1280, 960)  # Appendix A.3
 RUNTIME_FIGURE = "runtime.png"  # what ``reproduce --out`` calls the figure
 ICON_SIZE = 48  # Appendix A.3
-_TEMPLATE = re.compile(r"const (VERTEX|FRAGMENT) = `(#version 300 es.*?)`;", re.DOTALL)
+_HEADING = """\
+// alpha-audit runtime page: the preview's own renderer and shader, timed (paper, Section 4.4,
+// Appendix A.3). No network, no external files.
+"""
 
 
 @dataclass(frozen=True)
@@ -144,54 +144,45 @@ class RuntimeResult:
     missing: tuple[str, ...]
 
 
-def preview_shaders() -> tuple[str, str]:
-    """The preview page's vertex and fragment shader sources, read from its script.
+def runtime_script() -> str:
+    """The timing page's script: the preview page's renderer, then the timing loop.
 
-    Timing the very shader people see, not a copy: the sources are taken from
-    ``alpha_audit/preview/*.js`` where they are written as ``const VERTEX =``
-    and ``const FRAGMENT =`` template literals.
+    Timing the very code people see, not a copy: :data:`RENDERER_ASSET` (the
+    preview's WebGL2 set-up, shader and draw calls) is inlined as shipped,
+    and ``runtime.js`` only drives it.
     """
-    found: dict[str, str] = {}
-    folder = resources.files("alpha_audit.preview")
-    for entry in sorted(folder.iterdir(), key=lambda e: e.name):
-        if entry.name.endswith(".js"):
-            for name, source in _TEMPLATE.findall(entry.read_text(encoding="utf-8")):
-                found.setdefault(name, source)
-    if set(found) != {"VERTEX", "FRAGMENT"}:
-        raise AssertionError("the preview script must define VERTEX and FRAGMENT shaders")
-    return found["VERTEX"], found["FRAGMENT"]
+    return scoped_script(
+        _HEADING, [asset(RENDERER_ASSET), asset("runtime.js", "alpha_audit.reproduce")]
+    )
 
 
 def _page(icons_dir: Path, settings: RuntimeSettings) -> tuple[str, int, int]:
     """The timing page as HTML, the number of draws per frame and of distinct icons."""
     iconset, masks, _ = load_validation_icons(icons_dir, (ICON_SIZE,), settings.icons)
-    n = len(iconset.icons)
-    columns, atlas = mask_atlas([masks[(i.name, ICON_SIZE)] for i in iconset.icons], ICON_SIZE)
-    vertex, fragment = preview_shaders()
+    icons = iconset.icons
+    n = len(icons)
     backgrounds = []
     for hex_colour in BACKGROUNDS.values():
         codes = [int(hex_colour[i : i + 2], 16) for i in (1, 3, 5)]
         linear = [float(v) for v in srgb_decode(np.array(codes) / 255.0)]
         backgrounds.append({"codes": codes, "linear": linear})
+    # The fields the preview's Renderer reads (``atlases``, ``icons``), as html.py writes them.
     data = {
-        "vertex": vertex,
-        "fragment": fragment,
         "width": CANVAS[0],
         "height": CANVAS[1],
         "size": ICON_SIZE,
-        "atlas": {
-            "columns": columns,
-            "width": int(atlas.shape[1]),
-            "height": int(atlas.shape[0]),
-            "data": base64.b64encode(atlas.tobytes()).decode("ascii"),
+        "atlases": {
+            str(ICON_SIZE): atlas_data(
+                [masks[(i.name, ICON_SIZE)] for i in iconset.icons], ICON_SIZE
+            )
         },
-        "sources": [list(i.linear) for i in iconset.icons],
+        "icons": [{"linear": list(i.linear)} for i in icons],
         # Fewer distinct icons than draws: cycle them, so each frame still draws the design's 300.
         "draws": [k % n for k in range(settings.icons)],
         "backgrounds": backgrounds,
     }
     payload = json.dumps(data, separators=(",", ":")).replace("<", "\\u003c")
-    script = resources.files("alpha_audit.reproduce").joinpath("runtime.js").read_text("utf-8")
+    script = runtime_script()
     page = (
         "<!doctype html><html><head><meta charset='utf-8'>"
         "<meta http-equiv='Content-Security-Policy' content=\"default-src 'none'; "

@@ -76,125 +76,27 @@ def alpha_spans(text: str, path: str | Path | None = None) -> tuple[list[tuple[i
     >>> alpha_spans("name: x\\nalpha: 1.1  # comment\\n")
     ([(15, 18)], True)
     """
-    try:
-        root = yaml.compose(text, Loader=yaml.SafeLoader)
-        anchored = {
-            e.start_mark.index
-            for e in yaml.parse(text, Loader=yaml.SafeLoader)
-            if isinstance(e, yaml.NodeEvent) and e.anchor is not None and e.start_mark is not None
-        }
-    except yaml.YAMLError as exc:
-        raise InputError(f"cannot edit this manifest: {exc}", path=path) from exc
-    if not isinstance(root, yaml.MappingNode):
-        raise InputError("cannot edit this manifest: not a mapping", path=path)
-    nodes: list[yaml.Node] = []
-    top = _value(root, "alpha")
-    if top is not None:
-        nodes.append(top)
-    icons = _value(root, "icons")
-    if isinstance(icons, yaml.SequenceNode):
-        nodes.extend(
-            v
-            for item in icons.value
-            if isinstance(item, yaml.MappingNode)
-            for v in [_value(item, "alpha")]
-            if v is not None
-        )
-    overrides = _value(root, "overrides")
-    if isinstance(overrides, yaml.MappingNode):
-        nodes.extend(
-            v
-            for _, item in overrides.value
-            if isinstance(item, yaml.MappingNode)
-            for v in [_value(item, "alpha")]
-            if v is not None
-        )
-    for node in nodes:
-        if not isinstance(node, yaml.ScalarNode):
-            raise InputError(
-                f"cannot edit this manifest: alpha on line {node.start_mark.line + 1} "
-                "is not a plain number",
-                path=path,
-            )
-        if node.start_mark.index in anchored:
-            raise InputError(
-                f"cannot edit this manifest: alpha on line {node.start_mark.line + 1} carries "
-                "an anchor that other values may follow; write the number itself there",
-                path=path,
-            )
-    spans = sorted({(n.start_mark.index, n.end_mark.index) for n in nodes})
-    return spans, top is not None
+    m = _Manifest(text, path)
+    return sorted(set(m.spans)), m.top is not None
 
 
 def set_alpha(text: str, value: str, path: str | Path | None = None) -> str:
     """``text`` with every alpha value replaced by ``value`` (and a top-level one added).
 
     Without a top-level ``alpha:`` the icons that use the default would keep
-    1.0, so one is appended at the end of the document.
+    1.0, so one is appended at the end of the document.  The set-wide case of
+    :func:`edit_alphas`: the top level and every icon the manifest gives an
+    alpha of its own.
 
     >>> print(set_alpha("# demo\\nalpha: 1.1  # was\\noverrides:\\n  a: {alpha: 1.3}\\n", "1.25"))
     # demo
-    alpha: 1.25  # was
+    alpha: 1.25 # was
     overrides:
       a: {alpha: 1.25}
     <BLANKLINE>
     """
-    spans, has_top = alpha_spans(text, path)
-    out = []
-    pos = 0
-    for start, end in spans:
-        out.append(text[pos:start])
-        out.append(value)
-        pos = end
-    out.append(text[pos:])
-    edited = "".join(out)
-    if not has_top:
-        eol = _eol(text)
-        newline = "" if edited.endswith("\n") or not edited else eol
-        edited += f"{newline}alpha: {value}{eol}"
-    _check_meaning(text, edited, float(value), path)
-    return edited
-
-
-def _with_alpha(data: Any, alpha: float) -> Any:
-    """``data`` (a parsed manifest) as it should read after the edit."""
-    if not isinstance(data, dict):
-        return data
-    out = dict(data, alpha=alpha)
-    if isinstance(out.get("icons"), list):
-        out["icons"] = [
-            dict(i, alpha=alpha) if isinstance(i, dict) and "alpha" in i else i
-            for i in out["icons"]
-        ]
-    if isinstance(out.get("overrides"), dict):
-        out["overrides"] = {
-            k: dict(v, alpha=alpha) if isinstance(v, dict) and "alpha" in v else v
-            for k, v in out["overrides"].items()
-        }
-    return out
-
-
-def _check_meaning(before: str, after: str, alpha: float, path: str | Path | None) -> None:
-    """Refuse an edit whose text does not parse, or means more than new alpha values."""
-    try:
-        expected = _with_alpha(yaml.safe_load(before), alpha)
-        got = yaml.safe_load(after)
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        where = f" at line {mark.line + 1}" if mark is not None else ""
-        problem = getattr(exc, "problem", None) or "a syntax error"
-        raise InputError(
-            "cannot edit this manifest safely: with alpha added the text would not be valid "
-            f"YAML ({problem}{where}); set alpha by hand",
-            path=path,
-        ) from exc
-    if got != expected:
-        raise InputError(
-            "cannot edit this manifest safely: the edit would change more than the alpha "
-            "values (flow style, an indented top level or a document end marker?); "
-            f"set alpha: {alpha:g} by hand",
-            path=path,
-        )
+    explicit = explicit_alpha_icons(text, path)
+    return edit_alphas(text, top=value, icons=dict.fromkeys(sorted(explicit), value), path=path)
 
 
 def apply_alpha(
@@ -207,10 +109,19 @@ def apply_alpha(
     (the link stays) when that file lies inside ``root`` (default: the working
     directory); otherwise the edit is refused.
     """
+    given, target, text = _read_manifest(path, root)
+    return _write_if_changed(target, text, set_alpha(text, format_alpha(alpha, precision), given))
+
+
+def _read_manifest(path: str | Path, root: str | Path | None) -> tuple[Path, Path, str]:
+    """The manifest as given, the file to edit (:func:`_edit_target`) and its text (capped)."""
     given = Path(path)
     target = _edit_target(given, root)
-    text = read_text_capped(target, MAX_YAML_BYTES, InputError, "an icon-set manifest")
-    return _write_if_changed(target, text, set_alpha(text, format_alpha(alpha, precision), given))
+    return (
+        given,
+        target,
+        read_text_capped(target, MAX_YAML_BYTES, InputError, "an icon-set manifest"),
+    )
 
 
 def _edit_target(given: Path, root: str | Path | None) -> Path:
@@ -253,22 +164,36 @@ class ApplyScope(StrEnum):
 
 @dataclass
 class _Manifest:
-    """Where the alpha values and overrides sit in a manifest's text."""
+    """Where the alpha values and overrides sit in a manifest's text (composed once).
+
+    Every ``alpha`` value (top level, ``icons:`` entries, ``overrides:``) must be
+    a plain scalar without an anchor, or the manifest is not edited at all.
+    """
 
     text: str
     path: str | Path | None = None
     top: yaml.ScalarNode | None = field(init=False, default=None)
+    spans: list[tuple[int, int]] = field(init=False, default_factory=list)
     explicit: dict[str, list[tuple[int, int]]] = field(init=False, default_factory=dict)
     overrides_key: yaml.Node | None = field(init=False, default=None)
     overrides: yaml.Node | None = field(init=False, default=None)
     entries: dict[str, yaml.Node] = field(init=False, default_factory=dict)
 
     def __post_init__(self) -> None:
-        alpha_spans(self.text, self.path)  # validates: a mapping, plain alpha values
-        root = yaml.compose(self.text, Loader=yaml.SafeLoader)
-        assert isinstance(root, yaml.MappingNode)  # alpha_spans refused anything else
+        try:
+            root = yaml.compose(self.text, Loader=yaml.SafeLoader)
+            events = list(yaml.parse(self.text, Loader=yaml.SafeLoader))
+        except yaml.YAMLError as exc:
+            raise InputError(f"cannot edit this manifest: {exc}", path=self.path) from exc
+        if not isinstance(root, yaml.MappingNode):
+            raise InputError("cannot edit this manifest: not a mapping", path=self.path)
+        anchored = {
+            e.start_mark.index
+            for e in events
+            if isinstance(e, yaml.NodeEvent) and e.anchor is not None and e.start_mark is not None
+        }
         top = _value(root, "alpha")
-        self.top = top if isinstance(top, yaml.ScalarNode) else None
+        self.top = self._checked(top, anchored) if top is not None else None
         icons = _value(root, "icons")
         if isinstance(icons, yaml.SequenceNode):
             for item in icons.value:
@@ -277,11 +202,12 @@ class _Manifest:
                 alpha, name, file = (_value(item, k) for k in ("alpha", "name", "file"))
                 if alpha is None:
                     continue
+                span = _span(self._checked(alpha, anchored))
                 label = name.value if isinstance(name, yaml.ScalarNode) else None
                 if label is None and isinstance(file, yaml.ScalarNode):
                     label = PurePosixPath(file.value.replace("\\", "/")).stem
                 if label is not None:
-                    self.explicit.setdefault(label, []).append(_span(alpha))
+                    self.explicit.setdefault(label, []).append(span)
         for key, node in root.value:
             if isinstance(key, yaml.ScalarNode) and key.value == "overrides":
                 self.overrides_key, self.overrides = key, node
@@ -292,7 +218,26 @@ class _Manifest:
                 self.entries[key.value] = node
                 alpha = _value(node, "alpha") if isinstance(node, yaml.MappingNode) else None
                 if alpha is not None:
-                    self.explicit.setdefault(key.value, []).append(_span(alpha))
+                    span = _span(self._checked(alpha, anchored))
+                    self.explicit.setdefault(key.value, []).append(span)
+        self.spans.sort()
+
+    def _checked(self, node: yaml.Node, anchored: set[int]) -> yaml.ScalarNode:
+        """``node`` as an editable alpha value (recorded in :attr:`spans`), or why not."""
+        line = node.start_mark.line + 1
+        if not isinstance(node, yaml.ScalarNode):
+            raise InputError(
+                f"cannot edit this manifest: alpha on line {line} is not a plain number",
+                path=self.path,
+            )
+        if node.start_mark.index in anchored:
+            raise InputError(
+                f"cannot edit this manifest: alpha on line {line} carries an anchor that "
+                "other values may follow; write the number itself there",
+                path=self.path,
+            )
+        self.spans.append(_span(node))
+        return node
 
 
 def _span(node: yaml.Node) -> tuple[int, int]:
@@ -332,6 +277,23 @@ def _line_end(text: str, index: int) -> int:
     return end - 1 if end > 0 and text[end - 1] == "\r" else end  # before a CRLF
 
 
+def _content_end(node: yaml.Node) -> int:
+    """Where ``node``'s own text ends.
+
+    A block collection's end mark is the *next* token, which for a nested
+    entry sits on its sibling's line (``  b: ...``): the end is that of its
+    last value instead, recursively.
+    """
+    while (
+        isinstance(node, yaml.MappingNode | yaml.SequenceNode)
+        and node.value
+        and not (node.flow_style)
+    ):
+        last = node.value[-1]
+        node = last[1] if isinstance(node, yaml.MappingNode) else last
+    return int(node.end_mark.index)
+
+
 def _replacement(text: str, start: int, end: int, value: str) -> tuple[int, int, str]:
     """Replace ``text[start:end]`` by ``value``, keeping a following comment in its column."""
     # The value may close flow collections before the comment: `{alpha: 1.2}   # why`.
@@ -358,7 +320,10 @@ def edit_alphas(
     ``name: {alpha: ...}`` is added after the last one, at the same indent
     and with its value in the column the other entries use.  Comments, order,
     quoting and everything else stay byte for byte; a comment after a
-    replaced value keeps its column.  ``None``/absent: left alone.
+    replaced value keeps its column.  ``None``/absent: left alone.  This is
+    the only editor of manifests (:func:`set_alpha` is its set-wide case):
+    the edited text is parsed again and must mean exactly the requested
+    alphas, or :class:`InputError` says to edit by hand.
 
     >>> text = ("alpha: 1.1   # default\\noverrides:\\n"
     ...         "  alert:  {color: red}\\n  ok:     {alpha: 1}\\n")
@@ -391,7 +356,7 @@ def edit_alphas(
             edits.append((close, close, f"{', ' if node.value else ''}alpha: {value}"))
         elif isinstance(node, yaml.MappingNode) and node.value:
             indent = node.value[0][0].start_mark.column
-            at = _line_end(text, node.end_mark.index - 1)
+            at = _line_end(text, _content_end(node) - 1)
             edits.append((at, at, eol + " " * indent + f"alpha: {value}"))
         else:  # `alert:` with nothing (or ~): becomes a flow mapping
             start, end = _span(node)
@@ -407,6 +372,7 @@ def edit_alphas(
     if appended:
         newline = "" if edited.endswith("\n") or not edited else eol
         edited += newline + eol.join(appended) + eol
+    _check_edit(text, edited, top, icons or {}, path)
     return edited
 
 
@@ -436,7 +402,7 @@ def _add_entries(
             if v.start_mark.line == k.start_mark.line and not isinstance(v, yaml.ScalarNode)
         }
         column = columns.pop() if len(columns) == 1 else 0
-        at = _line_end(text, node.value[-1][1].end_mark.index - 1)
+        at = _line_end(text, _content_end(node) - 1)
     elif m.overrides_key is not None:
         assert node is not None
         start, end = _span(node)
@@ -574,9 +540,7 @@ def apply_suggestion(
     and must mean exactly the planned alphas.  Raises :class:`UsageError`
     when there is nothing safe to write at all.
     """
-    given = Path(path)
-    target = _edit_target(given, root)
-    text = read_text_capped(target, MAX_YAML_BYTES, InputError, "an icon-set manifest")
+    given, target, text = _read_manifest(path, root)
     explicit = explicit_alpha_icons(text, given)
     plan = plan_apply(result, scope, explicit, replace_explicit=replace_explicit)
     if plan.top is None and not plan.icons and plan.skipped:
@@ -587,7 +551,6 @@ def apply_suggestion(
     top = None if plan.top is None else format_alpha(plan.top, result.precision)
     icons = {n: format_alpha(a, result.precision) for n, a in plan.icons.items()}
     edited = edit_alphas(text, top=top, icons=icons, path=given)
-    _check_edit(text, edited, top, icons, given)
     return plan, _write_if_changed(target, text, edited)
 
 
@@ -633,15 +596,19 @@ def _check_edit(
     try:
         got = yaml.safe_load(after)
     except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        where = f" at line {mark.line + 1}" if mark is not None else ""
+        problem = getattr(exc, "problem", None) or "a syntax error"
         raise InputError(
-            "cannot edit this manifest safely: the edit would not be valid YAML; "
-            "set the alphas by hand",
+            "cannot edit this manifest safely: the edit would not be valid YAML "
+            f"({problem}{where}); set the alphas by hand",
             path=path,
         ) from exc
     if got != expected:
         raise InputError(
             "cannot edit this manifest safely: the edit would change more than the alpha "
-            "values; set the alphas by hand",
+            "values (flow style, an indented top level or a document end marker?); "
+            "set the alphas by hand",
             path=path,
         )
 

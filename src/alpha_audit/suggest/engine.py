@@ -49,6 +49,7 @@ from alpha_audit.errors import UsageError
 from alpha_audit.load.paint_masks import PaintSet
 from alpha_audit.model import IconSet, Theme
 from alpha_audit.policy import Policy, Rule, contrast_breaks, contrast_floor
+from alpha_audit.ranges import ALPHA_MAX, PRECISION
 from alpha_audit.suggest.events import (
     clip_breakpoints,
     code_timeline,
@@ -79,7 +80,6 @@ _SEPARATION_CHUNK = 1 << 20
 # Code timelines kept between questions (a few KB per colour and canvas).
 _TIMELINE_CACHE_BYTES = 64 << 20
 ALPHA_LO = 1.0  # the reference coefficient; the safe interval starts here
-MAX_PRECISION = 9
 _RULE_ORDER = {rule: k for k, rule in enumerate(Rule)}
 
 
@@ -678,10 +678,10 @@ def _engine(
     paints: PaintSet | None = None,
     pipeline: Pipeline = "linear",
 ) -> _Suggester:
-    if not (math.isfinite(alpha_max) and alpha_max >= ALPHA_LO):
-        raise UsageError(f"alpha_max must be a finite number >= 1, got {alpha_max}")
-    if isinstance(precision, bool) or not (0 <= precision <= MAX_PRECISION):
-        raise UsageError(f"precision must be a whole number of decimals 0-{MAX_PRECISION}")
+    if not ALPHA_MAX.allows(alpha_max):
+        raise UsageError(ALPHA_MAX.refusal(f"alpha_max {alpha_max:g}"))
+    if isinstance(precision, bool) or not isinstance(precision, int) or precision not in PRECISION:
+        raise UsageError(PRECISION.refusal(f"precision {precision!r}"))
     if not iconset.icons:
         raise UsageError(f"icon set {iconset.name!r} has no icons")
     if not theme.canvases:

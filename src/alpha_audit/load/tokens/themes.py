@@ -43,6 +43,7 @@ from alpha_audit.errors import InputError
 from alpha_audit.load.tokens import load_token_modes, token_color
 from alpha_audit.load.tokens.model import Token, TokenModes, token_error
 from alpha_audit.model import Canvas, GamutAdjustment, Mode, Theme
+from alpha_audit.ranges import ALPHA
 
 __all__ = [
     "DEFAULT_ALPHA_EXTENSION",
@@ -159,9 +160,9 @@ def _alpha(token: Token, key: str) -> float | None:
             line=token.alias_line or token.line,
             path=token.path,
         )
-    if abs(raw) > 100:
+    if not ALPHA.allows(raw):
         raise token_error(
-            f"$extensions {key} alpha {raw} is out of range; expected -100 to 100",
+            ALPHA.refusal(f"$extensions {key} alpha {raw}"),
             file=token.alias_file or token.file,
             line=token.alias_line or token.line,
             path=token.path,
