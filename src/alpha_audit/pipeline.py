@@ -164,93 +164,61 @@ def check_project(
     the colours it moved are in ``report.gamut``.  ``pool``: render workers
     the caller started early (:func:`render_pool`), else started here.
     """
-    with contextlib.nullcontext(pool) if pool else render_pool() as used:
-        return _check_project(
-            themes,
-            iconsets,
-            used,
-            policy=policy,
-            alpha=alpha,
-            threshold=threshold,
-            baseline=baseline,
-            strict_svg=strict_svg,
-            pipeline=pipeline,
-            on_start=on_start,
-            on_icon=on_icon,
-            tokens=tokens,
-            gamut=gamut,
-        )
-
-
-def _check_project(
-    themes: Sequence[str | Path],
-    iconsets: Sequence[str | Path],
-    pool: RenderPool,
-    *,
-    policy: Policy,
-    alpha: float | None,
-    threshold: float | None,
-    baseline: Iterable[FindingKey] | None,
-    strict_svg: bool,
-    pipeline: str | None,
-    on_start: Callable[[int], None] | None,
-    on_icon: Callable[[], None] | None,
-    tokens: TokenConfig | None,
-    gamut: GamutPolicy | None,
-) -> CheckReport:
-    """:func:`check_project` with its render workers already starting."""
-    if tokens is not None and gamut is not None:
-        tokens = replace(tokens, gamut=gamut)
-    if tokens is not None:
-        return _check_with_tokens(
-            themes,
-            iconsets,
-            tokens,
-            pool,
-            policy=policy,
-            alpha=alpha,
-            threshold=threshold,
-            baseline=baseline,
-            strict_svg=strict_svg,
-            pipeline=pipeline,
-            on_start=on_start,
-            on_icon=on_icon,
-            gamut=gamut,
-        )
-    if not themes or not iconsets:
-        raise UsageError(
-            "nothing to audit: give THEME ICONSET, or name themes and iconsets in "
-            "alpha-audit.yaml or [tool.alpha-audit] in pyproject.toml"
-        )
-    loaded_themes = [load_theme(t, gamut=gamut) for t in _unique(themes)]
-    loaded_sets = [load_iconset(s, gamut=gamut) for s in _unique(iconsets)]
-    policy.check_exemptions(
-        (c.name for t in loaded_themes for c in t.canvases),
-        (i.name for s in loaded_sets for i in s.icons),
-    )
-    check_combinations(loaded_themes, loaded_sets)  # before any icon is rendered
-    chosen = {
-        (t.name, s.name): resolve_pipeline(pipeline, s.pipeline, t.pipeline)
-        for s in loaded_sets
-        for t in loaded_themes
-    }
-    for s in loaded_sets:
-        for t in loaded_themes:
-            check_pipeline(s, chosen[(t.name, s.name)], alpha)
-    if on_start is not None:
-        on_start(sum(len(s.icons) for s in loaded_sets))
-    audits = []
-    for iconset in loaded_sets:
-        paints = render_paints(iconset, strict_svg=strict_svg, on_icon=on_icon, pool=pool)
-        for theme in loaded_themes:
-            kind = chosen[(theme.name, iconset.name)]
-            audits.append(
-                _audit(theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=kind)
+    with contextlib.ExitStack() as stack:
+        if pool is None:
+            pool = stack.enter_context(render_pool())
+        if tokens is not None and gamut is not None:
+            tokens = replace(tokens, gamut=gamut)
+        if tokens is not None:
+            return _check_with_tokens(
+                themes,
+                iconsets,
+                tokens,
+                pool,
+                policy=policy,
+                alpha=alpha,
+                threshold=threshold,
+                baseline=baseline,
+                strict_svg=strict_svg,
+                pipeline=pipeline,
+                on_start=on_start,
+                on_icon=on_icon,
+                gamut=gamut,
             )
-    gate = evaluate(audits, policy, baseline=baseline)
-    moved = _gamut_notes([*loaded_themes, *loaded_sets])
-    # Every renderer shows the fix for each failing colour: computed once, here.
-    return with_fixes(CheckReport(audits=tuple(audits), gate=gate, gamut=moved))
+        if not themes or not iconsets:
+            raise UsageError(
+                "nothing to audit: give THEME ICONSET, or name themes and iconsets in "
+                "alpha-audit.yaml or [tool.alpha-audit] in pyproject.toml"
+            )
+        loaded_themes = [load_theme(t, gamut=gamut) for t in _unique(themes)]
+        loaded_sets = [load_iconset(s, gamut=gamut) for s in _unique(iconsets)]
+        policy.check_exemptions(
+            (c.name for t in loaded_themes for c in t.canvases),
+            (i.name for s in loaded_sets for i in s.icons),
+        )
+        check_combinations(loaded_themes, loaded_sets)  # before any icon is rendered
+        chosen = {
+            (t.name, s.name): resolve_pipeline(pipeline, s.pipeline, t.pipeline)
+            for s in loaded_sets
+            for t in loaded_themes
+        }
+        for s in loaded_sets:
+            for t in loaded_themes:
+                check_pipeline(s, chosen[(t.name, s.name)], alpha)
+        if on_start is not None:
+            on_start(sum(len(s.icons) for s in loaded_sets))
+        audits = []
+        for iconset in loaded_sets:
+            paints = render_paints(iconset, strict_svg=strict_svg, on_icon=on_icon, pool=pool)
+            for theme in loaded_themes:
+                kind = chosen[(theme.name, iconset.name)]
+                audits.append(
+                    _audit(theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=kind)
+                )
+        gate = evaluate(audits, policy, baseline=baseline)
+        moved = _gamut_notes([*loaded_themes, *loaded_sets])
+        # Every renderer shows the fix for each failing colour: computed once, here.
+        return with_fixes(CheckReport(audits=tuple(audits), gate=gate, gamut=moved))
 
 
 def _gamut_notes(
