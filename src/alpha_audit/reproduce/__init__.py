@@ -7,8 +7,9 @@ work on any theme.  Never imported by the audit path.
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from alpha_audit.lazy import lazy_exports
 
 if TYPE_CHECKING:
     from alpha_audit.reproduce.experiments import (
@@ -39,10 +40,20 @@ __all__ = [
     "sweep_alphas",
 ]
 
-
-def __getattr__(name: str) -> Any:
-    """The experiments on first use (PEP 562): the command line imports
-    :mod:`alpha_audit.reproduce.experiment` without loading them."""
-    if name in __all__:
-        return getattr(importlib.import_module("alpha_audit.reproduce.experiments"), name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+# The experiments load on first use: the CLI imports reproduce.experiment without them.
+__getattr__ = lazy_exports(
+    __name__,
+    {
+        "BroadGridResult": "alpha_audit.reproduce.experiments",
+        "CanvasChange": "alpha_audit.reproduce.experiments",
+        "ContrastChange": "alpha_audit.reproduce.experiments",
+        "FullGamutResult": "alpha_audit.reproduce.experiments",
+        "PaletteResult": "alpha_audit.reproduce.experiments",
+        "SweepResult": "alpha_audit.reproduce.experiments",
+        "broad_grid": "alpha_audit.reproduce.experiments",
+        "full_gamut": "alpha_audit.reproduce.experiments",
+        "palette_separation": "alpha_audit.reproduce.experiments",
+        "sweep": "alpha_audit.reproduce.experiments",
+        "sweep_alphas": "alpha_audit.reproduce.experiments",
+    },
+)

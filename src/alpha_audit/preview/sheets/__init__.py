@@ -15,20 +15,27 @@
   :mod:`~alpha_audit.preview.sheets.write` writes the files.
 """
 
-from alpha_audit.preview.sheets.pages import paginate
-from alpha_audit.preview.sheets.plan import (
-    ICON_ALPHA,
-    SWATCH_ALPHAS,
-    Alpha,
-    Layout,
-    Page,
-    SheetSpec,
-    default_alphas,
-    plan_sheets,
-)
-from alpha_audit.preview.sheets.render import render_all, render_sheet
-from alpha_audit.preview.sheets.surface import PIXEL_BUDGET, Placement, Sheet
-from alpha_audit.preview.sheets.write import check_writable, write_sheet
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from alpha_audit.lazy import lazy_exports
+
+if TYPE_CHECKING:
+    from alpha_audit.preview.sheets.pages import paginate
+    from alpha_audit.preview.sheets.plan import (
+        ICON_ALPHA,
+        SWATCH_ALPHAS,
+        Alpha,
+        Layout,
+        Page,
+        SheetSpec,
+        default_alphas,
+        plan_sheets,
+    )
+    from alpha_audit.preview.sheets.render import render_all, render_sheet
+    from alpha_audit.preview.sheets.surface import PIXEL_BUDGET, Placement, Sheet
+    from alpha_audit.preview.sheets.write import check_writable, write_sheet
 
 __all__ = [
     "ICON_ALPHA",
@@ -48,3 +55,26 @@ __all__ = [
     "render_sheet",
     "write_sheet",
 ]
+
+# Names load on first use: the CLI imports Layout at start-up without Pillow.
+__getattr__ = lazy_exports(
+    __name__,
+    {
+        "paginate": "alpha_audit.preview.sheets.pages",
+        "ICON_ALPHA": "alpha_audit.preview.sheets.plan",
+        "SWATCH_ALPHAS": "alpha_audit.preview.sheets.plan",
+        "Alpha": "alpha_audit.preview.sheets.plan",
+        "Layout": "alpha_audit.preview.sheets.plan",
+        "Page": "alpha_audit.preview.sheets.plan",
+        "SheetSpec": "alpha_audit.preview.sheets.plan",
+        "default_alphas": "alpha_audit.preview.sheets.plan",
+        "plan_sheets": "alpha_audit.preview.sheets.plan",
+        "render_all": "alpha_audit.preview.sheets.render",
+        "render_sheet": "alpha_audit.preview.sheets.render",
+        "PIXEL_BUDGET": "alpha_audit.preview.sheets.surface",
+        "Placement": "alpha_audit.preview.sheets.surface",
+        "Sheet": "alpha_audit.preview.sheets.surface",
+        "check_writable": "alpha_audit.preview.sheets.write",
+        "write_sheet": "alpha_audit.preview.sheets.write",
+    },
+)
