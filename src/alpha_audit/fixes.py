@@ -63,6 +63,7 @@ __all__ = [
     "describe_fix",
     "fix_lookup",
     "fix_to_dict",
+    "fixes_capped",
     "fixes_for",
     "nearest_passing_color",
     "passes_everywhere",
@@ -442,6 +443,12 @@ def fixes_left_out(report: CheckReport) -> int:
     """Failing colours without a computed fix (beyond :data:`MAX_FIXED_COLORS`)."""
     fixed = {(f.theme, f.iconset, f.color) for f in report_fixes(report)}
     return failing_colors(report) - len(fixed)
+
+
+def fixes_capped(report: CheckReport) -> bool:
+    """Whether :data:`MAX_FIXED_COLORS` stopped the fixes: some failing colours have none."""
+    fixed = {(f.theme, f.iconset, f.color) for f in report_fixes(report)}
+    return len(fixed) >= MAX_FIXED_COLORS and failing_colors(report) > len(fixed)
 
 
 def _audit_fixes(

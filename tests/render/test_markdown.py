@@ -149,3 +149,44 @@ def test_a_huge_failing_run_fits_githubs_comment_limit_and_says_what_was_left_ou
     groups = {(f.theme, f.canvas, f.numbers["source"]) for f in gate.failures}
     assert shown > 0 and shown + left_out == len(groups)
     assert "65,536-character comment limit" in text
+
+
+def test_fallback_fix_is_the_colours_largest_safe_alpha_as_suggest_gives_it() -> None:
+    """No computed fixes on the report: the hook asks the one colour's question, same answer."""
+    from alpha_audit.render.markdown import safe_alpha_fixes
+    from alpha_audit.suggest import suggest
+
+    rep = report()
+    assert rep.fixes is None or rep.fixes == ()
+    hook = safe_alpha_fixes(replace(rep, fixes=()))
+    result = rep.audits[0]
+    policy = replace(rep.gate.policy, rules=frozenset({Rule.LOSS}))
+    per_color = {
+        c.color: c.safe.alpha for c in suggest(result.theme, result.iconset, policy).per_color
+    }
+    for finding in rep.gate.failures:
+        if finding.theme != result.theme.name:
+            continue
+        role = finding.icons[0].split("-")[0]
+        expected = per_color[role]
+        assert hook(finding) == f"{role}: largest safe alpha {expected:.3f}"
+
+
+def test_fallback_computes_nothing_once_the_reports_fixes_were_capped(monkeypatch) -> None:
+    """A brand set fails thousands of colours: past the cap the hook points at suggest."""
+    import importlib
+
+    import alpha_audit.fixes as fixes
+    from alpha_audit.render.markdown import safe_alpha_fixes
+
+    suggest_package = importlib.import_module("alpha_audit.suggest")  # the name is shadowed
+
+    monkeypatch.setattr(fixes, "MAX_FIXED_COLORS", 1)
+    rep = fixes.with_fixes(report())
+    assert fixes.fixes_left_out(rep) > 0 and fixes.fixes_capped(rep)
+    asked: list[object] = []
+    monkeypatch.setattr(suggest_package, "largest_safe_alpha", lambda *a, **k: asked.append(a))
+    hook = safe_alpha_fixes(rep)
+    texts = [hook(f) for f in rep.gate.failures]
+    assert asked == []
+    assert texts and all("alpha-audit suggest" in (t or "") for t in texts)

@@ -11,7 +11,7 @@ reader is pointed at the full report.
 
 The fix text comes from a hook (:data:`FixHook`: a finding in, an optional
 sentence out).  :func:`safe_alpha_fixes` fills in the largest safe alpha for
-the finding's colour from :func:`alpha_audit.suggest.suggest`; a richer hook
+the finding's colour from :func:`alpha_audit.suggest.largest_safe_alpha`; a richer hook
 (smallest alpha reaching the threshold, nearest passing colour) plugs in via
 :func:`render_markdown`'s ``fix`` argument.
 
@@ -33,7 +33,7 @@ from alpha_audit.render.rules import RULE_FIX
 
 if TYPE_CHECKING:
     from alpha_audit.audit import AuditResult
-    from alpha_audit.suggest.engine import SuggestResult
+    from alpha_audit.suggest.engine import SafeAlpha
 
 __all__ = [
     "COMMENT_LIMIT",
@@ -71,20 +71,33 @@ _CONTRAST_RULES = frozenset({Rule.LOSS, Rule.BELOW_THRESHOLD, Rule.NEWLY_FAILING
 def safe_alpha_fixes(report: CheckReport) -> FixHook:
     """A hook naming the largest safe alpha for the finding's colour.
 
-    One :func:`~alpha_audit.suggest.suggest` run per audit and rule that has a
-    failing finding, computed on first use, at the alphas and threshold of that
+    One :func:`~alpha_audit.suggest.largest_safe_alpha` question per audit,
+    rule and colour that has a failing finding (the whole set for collisions
+    and separations), asked on first use at the alphas and threshold of that
     audit, with the gate's policy narrowed to the finding's rule (so a colour
     that fails the threshold at every alpha does not hide the answer for a
-    collision).  Collisions and separations get the largest safe set-wide alpha.
+    collision).  Bounded like the report's own fixes: when those were left out
+    for some colours (:data:`~alpha_audit.fixes.MAX_FIXED_COLORS`), nothing
+    more is computed here and the text points at ``alpha-audit suggest``.
     """
-    audits = {(r.theme.name, r.iconset.name): r for r in report.audits}
-    cache: dict[tuple[str, str, Rule], SuggestResult | None] = {}
+    from alpha_audit.fixes import fixes_capped
 
-    def answer(finding: Finding) -> SuggestResult | None:
-        key = (finding.theme, finding.iconset, finding.rule)
+    audits = {(r.theme.name, r.iconset.name): r for r in report.audits}
+    too_many = fixes_capped(report)
+    cache: dict[tuple[str, str, Rule, str | None], tuple[str, SafeAlpha] | None] = {}
+
+    def answer(finding: Finding, per_colour: bool) -> tuple[str, SafeAlpha] | None:
+        result = audits.get((finding.theme, finding.iconset))
+        if result is None:
+            return None
+        colour_of = {i.name: i.color_name or i.color for i in result.iconset.icons}
+        colour = next((colour_of[n] for n in finding.icons if n in colour_of), None)
+        if per_colour and colour is None:
+            return None
+        key = (finding.theme, finding.iconset, finding.rule, colour if per_colour else None)
         if key not in cache:
-            result = audits.get(key[:2])
-            cache[key] = None if result is None else _suggest(result, report, finding.rule)
+            icons = [n for n, c in colour_of.items() if c == colour] if per_colour else None
+            cache[key] = (colour or "", _largest_safe(result, report, finding.rule, icons))
         return cache[key]
 
     def fix(finding: Finding) -> str | None:
@@ -92,36 +105,44 @@ def safe_alpha_fixes(report: CheckReport) -> FixHook:
             return "fix the SVG file or remove the icon"
         if finding.rule in PAINT_RULES:  # suggest does not answer these (yet): the rule's advice
             return RULE_FIX[finding.rule].replace("`", "")
-        suggested = answer(finding)
-        if suggested is None:
+        if too_many:
+            return "run alpha-audit suggest for the safe alphas (too many failing colours here)"
+        found = answer(finding, per_colour=finding.rule in _CONTRAST_RULES)
+        if found is None:
             return None
-        p = suggested.precision
+        colour, safe = found
         if finding.rule in _CONTRAST_RULES:
-            icons = set(finding.icons)
-            for c in suggested.per_color:
-                if icons & set(c.icons):
-                    if c.safe.alpha is None:
-                        rule = finding.rule.value
-                        return f"not even α=1 passes {rule} for {c.color}: change the colour"
-                    return f"{c.color}: largest safe alpha {c.safe.alpha:.{p}f}"
-            return None
-        overall = suggested.overall.alpha
-        if overall is None:
+            if safe.alpha is None:
+                return f"not even α=1 passes {finding.rule.value} for {colour}: change the colour"
+            return f"{colour}: largest safe alpha {safe.alpha:.{_PRECISION}f}"
+        if safe.alpha is None:
             return "not even α=1 is safe: move the colours apart"
-        return f"largest safe set-wide alpha {overall:.{p}f}, or move the colours apart"
+        return f"largest safe set-wide alpha {safe.alpha:.{_PRECISION}f}, or move the colours apart"
 
     return fix
 
 
-def _suggest(result: AuditResult, report: CheckReport, rule: Rule) -> SuggestResult:
+_PRECISION = 3  # decimals of the alphas the fallback names (suggest's default)
+
+
+def _largest_safe(
+    result: AuditResult, report: CheckReport, rule: Rule, icons: list[str] | None
+) -> SafeAlpha:
     from dataclasses import replace
 
-    from alpha_audit.suggest import suggest
+    from alpha_audit.suggest import largest_safe_alpha
 
     # The audit's icon set already carries a command-line alpha and leaves out
     # icons that did not render: the answer is for the set as audited.
     policy = replace(report.gate.policy, rules=frozenset({rule}))
-    return suggest(result.theme, result.iconset, policy, threshold=result.threshold)
+    return largest_safe_alpha(
+        result.theme,
+        result.iconset,
+        policy,
+        icons=icons,
+        precision=_PRECISION,
+        threshold=result.threshold,
+    )
 
 
 # ------------------------------------------------------------------ grouping
