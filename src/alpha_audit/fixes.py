@@ -588,10 +588,16 @@ def describe_fix(fix: ColorFix) -> str:
     """
     contrast = any(r in CONTRAST_RULES for r in fix.rules)
     options = []
-    if fix.largest_safe.alpha is not None:
-        options.append(f"alpha at most {fix.largest_safe.alpha:g}")
-    if contrast and fix.reach.alpha is not None:
-        options.append(f"alpha {fix.reach.alpha:g} or above (every {fix.mode} canvas)")
+    safe = fix.largest_safe.alpha
+    # The largest safe alpha holds for every coefficient in [1, safe], not below 1:
+    # "at most" would send a colour failing at 0.9 nowhere ("at most 2").
+    if safe is not None:
+        span = f"alpha {ALPHA_LO:g}" if safe <= ALPHA_LO else f"alpha {ALPHA_LO:g} to {safe:g}"
+        options.append(span)
+    # Reaching the threshold at 1 itself is already inside that range.
+    reach = fix.reach.alpha
+    if contrast and reach is not None and not (safe is not None and reach <= ALPHA_LO):
+        options.append(f"alpha {reach:g} or above (every {fix.mode} canvas)")
     if contrast and fix.nearest is not None and fix.nearest.delta_e > 0:
         near = fix.nearest
         options.append(f"colour {near.color} (CIEDE2000 {near.delta_e:.2f} away)")

@@ -87,9 +87,10 @@ def test_each_failing_group_names_a_largest_safe_alpha_that_holds() -> None:
     for colour, hexcode in LOSING.items():
         fixes = {r[5] for r in _rows(text, "| colour | canvas | rule |") if r[0].startswith(colour)}
         (fix,) = fixes  # one answer per colour, on every canvas and audit
-        found = re.match(rf"{colour}: alpha at most (\d+(?:\.\d+)?)", fix)
+        # Safe on [1, a*]: "alpha 1 to a*", or "alpha 1" when a* is 1.
+        found = re.match(rf"{colour}: alpha 1(?: to (\d+(?:\.\d+)?))?(?: |;|$)", fix)
         assert found, fix
-        alpha = float(found.group(1))
+        alpha = float(found.group(1) or 1)
         # Checked by compositing again: safe at the value, a loss just above it.
         for a, loses in ((alpha, False), (alpha + 0.002, True)):
             icons = tuple(
