@@ -67,6 +67,7 @@ __all__ = [
     "nearest_passing_color",
     "passes_everywhere",
     "report_fixes",
+    "safe_span",
     "smallest_alpha_reaching",
     "with_fixes",
 ]
@@ -571,6 +572,17 @@ def fix_lookup(
     return lookup
 
 
+def safe_span(alpha: float) -> str:
+    """A largest safe alpha as the range it guarantees, ``[1, alpha]``.
+
+    Not "at most": a colour failing at 0.9 would be sent nowhere ("at most 2").
+
+    >>> safe_span(1.178), safe_span(1.0)
+    ('alpha 1 to 1.178', 'alpha 1')
+    """
+    return f"alpha {ALPHA_LO:g}" if alpha <= ALPHA_LO else f"alpha {ALPHA_LO:g} to {alpha:g}"
+
+
 def describe_fix(fix: ColorFix) -> str:
     """The fix in one plain line (no markup), alternatives joined by "or"; "" when none.
 
@@ -589,11 +601,8 @@ def describe_fix(fix: ColorFix) -> str:
     contrast = any(r in CONTRAST_RULES for r in fix.rules)
     options = []
     safe = fix.largest_safe.alpha
-    # The largest safe alpha holds for every coefficient in [1, safe], not below 1:
-    # "at most" would send a colour failing at 0.9 nowhere ("at most 2").
     if safe is not None:
-        span = f"alpha {ALPHA_LO:g}" if safe <= ALPHA_LO else f"alpha {ALPHA_LO:g} to {safe:g}"
-        options.append(span)
+        options.append(safe_span(safe))
     # Reaching the threshold at 1 itself is already inside that range.
     reach = fix.reach.alpha
     if contrast and reach is not None and not (safe is not None and reach <= ALPHA_LO):

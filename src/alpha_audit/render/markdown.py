@@ -103,7 +103,9 @@ def safe_alpha_fixes(report: CheckReport) -> FixHook:
                     if c.safe.alpha is None:
                         rule = finding.rule.value
                         return f"not even α=1 passes {rule} for {c.color}: change the colour"
-                    return f"{c.color}: largest safe alpha {c.safe.alpha:.{p}f}"
+                    from alpha_audit.fixes import safe_span  # describe_fix's words
+
+                    return f"{c.color}: {safe_span(round(c.safe.alpha, p))}"
             return None
         overall = suggested.overall.alpha
         if overall is None:
