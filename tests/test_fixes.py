@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import warnings
 
 import numpy as np
@@ -333,3 +334,26 @@ def test_with_fixes_carries_them_and_renderers_use_them() -> None:
 
     doc = json.loads(render_report(dc_replace(carried, fixes=()), RenderOptions()))
     assert doc["gate"]["fixes"] == [] and all(f["fixes"] == [] for f in doc["gate"]["failures"])
+
+
+def test_described_fix_of_a_colour_below_alpha_1_is_a_range_from_1() -> None:
+    # A muted grey at 0.9 loses contrast on white (a < 1 moves it towards the
+    # canvas). The largest safe alpha holds on [1, a*], so the fix is a range
+    # starting at 1, never "alpha at most 2" (which 0.9 already is).
+    from alpha_audit.fixes import describe_fix
+
+    theme = Theme("t", (Canvas("white", "#ffffff"),))
+    icons = IconSet("s", (Icon("m", "m.svg", "#737373", 0.9, color_name="muted"),))
+    result = audit(theme, icons)
+    policy = Policy(rules=frozenset({Rule.LOSS}))
+    report = CheckReport(audits=(result,), gate=evaluate([result], policy))
+    (fix,) = fixes_for(report)
+    text = describe_fix(fix)
+    found = re.fullmatch(r"muted: alpha 1 to (\d+(?:\.\d+)?)", text)
+    assert found, text
+    top = float(found.group(1))
+    s, b = from_hex("#737373"), from_hex("#ffffff")
+    ref = contrast(s, b)
+    assert contrast(over(s, b, 0.9), b) < ref  # the current alpha does lose
+    for a in np.linspace(1.0, top, 41):  # the whole range keeps the gate
+        assert contrast(over(s, b, a), b) >= ref - 1e-10, a

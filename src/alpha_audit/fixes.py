@@ -68,6 +68,7 @@ __all__ = [
     "nearest_passing_color",
     "passes_everywhere",
     "report_fixes",
+    "safe_span",
     "smallest_alpha_reaching",
     "with_fixes",
 ]
@@ -578,6 +579,17 @@ def fix_lookup(
     return lookup
 
 
+def safe_span(alpha: float) -> str:
+    """A largest safe alpha as the range it guarantees, ``[1, alpha]``.
+
+    Not "at most": a colour failing at 0.9 would be sent nowhere ("at most 2").
+
+    >>> safe_span(1.178), safe_span(1.0)
+    ('alpha 1 to 1.178', 'alpha 1')
+    """
+    return f"alpha {ALPHA_LO:g}" if alpha <= ALPHA_LO else f"alpha {ALPHA_LO:g} to {alpha:g}"
+
+
 def describe_fix(fix: ColorFix) -> str:
     """The fix in one plain line (no markup), alternatives joined by "or"; "" when none.
 
@@ -595,10 +607,13 @@ def describe_fix(fix: ColorFix) -> str:
     """
     contrast = any(r in CONTRAST_RULES for r in fix.rules)
     options = []
-    if fix.largest_safe.alpha is not None:
-        options.append(f"alpha at most {fix.largest_safe.alpha:g}")
-    if contrast and fix.reach.alpha is not None:
-        options.append(f"alpha {fix.reach.alpha:g} or above (every {fix.mode} canvas)")
+    safe = fix.largest_safe.alpha
+    if safe is not None:
+        options.append(safe_span(safe))
+    # Reaching the threshold at 1 itself is already inside that range.
+    reach = fix.reach.alpha
+    if contrast and reach is not None and not (safe is not None and reach <= ALPHA_LO):
+        options.append(f"alpha {reach:g} or above (every {fix.mode} canvas)")
     if contrast and fix.nearest is not None and fix.nearest.delta_e > 0:
         near = fix.nearest
         options.append(f"colour {near.color} (CIEDE2000 {near.delta_e:.2f} away)")

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import shutil
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -261,3 +262,27 @@ def test_replace_keeps_exact_colours_and_takes_new_ones() -> None:
     icon = Icon("i", Path("i.svg"), "oklch(0.55 0.16 255)", 1.0)
     assert replace(icon, alpha=1.2).linear == icon.linear
     assert replace(icon, color="#ff0000").linear == (1.0, 0.0, 0.0)
+
+
+def test_cli_export_without_a_project_config_says_none_was_found(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # In a folder with no config, "the project config has no tokens: table" sent a
+    # new user looking for a config that does not exist.
+    (tmp_path / ".git").mkdir()  # the project root: discovery stops here
+    monkeypatch.chdir(tmp_path)
+    result = CliRunner().invoke(app, ["export"])
+    assert result.exit_code == 2
+    (line,) = result.output.strip().splitlines()
+    assert "no project config found" in line and "alpha-audit.yaml" in line
+    assert "tokens:" in line
+
+
+def test_css_header_names_the_token_file_as_written() -> None:
+    # A CSS comment does not interpret escapes: "system\2e resolver\2e json" is
+    # what a reader saw. The name stays readable; only "*/" could end the comment.
+    table = export_table(_example_themes())
+    first = render_css(table).splitlines()[0]
+    assert first.startswith("/* alpha-audit export from system.resolver.json ")
+    hostile = render_css(replace(table, source="a*/b{}.json")).splitlines()[0]
+    assert hostile.count("*/") == 1 and hostile.endswith("*/")

@@ -87,9 +87,10 @@ def test_each_failing_group_names_a_largest_safe_alpha_that_holds() -> None:
     for colour, hexcode in LOSING.items():
         fixes = {r[5] for r in _rows(text, "| colour | canvas | rule |") if r[0].startswith(colour)}
         (fix,) = fixes  # one answer per colour, on every canvas and audit
-        found = re.match(rf"{colour}: alpha at most (\d+(?:\.\d+)?)", fix)
+        # Safe on [1, a*]: "alpha 1 to a*", or "alpha 1" when a* is 1.
+        found = re.match(rf"{colour}: alpha 1(?: to (\d+(?:\.\d+)?))?(?: |;|$)", fix)
         assert found, fix
-        alpha = float(found.group(1))
+        alpha = float(found.group(1) or 1)
         # Checked by compositing again: safe at the value, a loss just above it.
         for a, loses in ((alpha, False), (alpha + 0.002, True)):
             icons = tuple(
@@ -153,6 +154,7 @@ def test_a_huge_failing_run_fits_githubs_comment_limit_and_says_what_was_left_ou
 
 def test_fallback_fix_is_the_colours_largest_safe_alpha_as_suggest_gives_it() -> None:
     """No computed fixes on the report: the hook asks the one colour's question, same answer."""
+    from alpha_audit.fixes import safe_span
     from alpha_audit.render.markdown import safe_alpha_fixes
     from alpha_audit.suggest import suggest
 
@@ -169,7 +171,7 @@ def test_fallback_fix_is_the_colours_largest_safe_alpha_as_suggest_gives_it() ->
             continue
         role = finding.icons[0].split("-")[0]
         expected = per_color[role]
-        assert hook(finding) == f"{role}: largest safe alpha {expected:.3f}"
+        assert hook(finding) == f"{role}: {safe_span(round(expected, 3))}"
 
 
 def test_fallback_computes_nothing_once_the_reports_fixes_were_capped(monkeypatch) -> None:

@@ -105,8 +105,15 @@ def table_from_config(
     from alpha_audit.load.tokens.themes import load_token_themes
 
     if config.tokens is None:
-        where = f" ({config.path})" if config.path else ""
-        raise UsageError(f"the project config{where} has no tokens: table; export reads tokens")
+        if config.path is None:
+            raise UsageError(
+                "no project config found (alpha-audit.yaml, .alpha-audit.yaml or "
+                "[tool.alpha-audit] in pyproject.toml, from here up to the project root); "
+                "export reads the design tokens its tokens: table names"
+            )
+        raise UsageError(
+            f"the project config ({config.path}) has no tokens: table; export reads tokens"
+        )
     tokens = config.tokens if gamut is None else replace(config.tokens, gamut=gamut)
     themes = load_token_themes(tokens)
     return export_table(themes, alpha=alpha, default_alpha=config.alpha)

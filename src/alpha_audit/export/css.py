@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from alpha_audit.export.escape import css_ident, css_string
+from alpha_audit.export.escape import css_comment, css_ident, css_string
 from alpha_audit.export.table import ExportMode, ExportTable, exported_path
 
 __all__ = ["DEFAULT_SELECTOR", "mode_properties", "render_css"]
@@ -35,7 +35,7 @@ def render_css(table: ExportTable, *, selector: str = DEFAULT_SELECTOR) -> str:
     ``light-dark(<light>, <dark>)`` values and ``color-scheme: light dark``
     follows (CSS Color 5, ``light-dark()``).
     """
-    lines = [f"/* alpha-audit export from {css_ident(table.source)} (gamut: {table.gamut}) */"]
+    lines = [f"/* alpha-audit export from {css_comment(table.source)} (gamut: {table.gamut}) */"]
     for mode in table.modes:
         lines.append(f"{_selector(selector, mode.name)} {{")
         lines.extend(f"  {prop}: {value};" for prop, value in mode_properties(mode))

@@ -12,7 +12,7 @@ from __future__ import annotations
 import re
 from xml.sax.saxutils import quoteattr
 
-__all__ = ["css_ident", "css_string", "xml_attr", "xml_id"]
+__all__ = ["css_comment", "css_ident", "css_string", "xml_attr", "xml_id"]
 
 _IDENT_SAFE = re.compile(r"[A-Za-z0-9_-]")
 
@@ -26,6 +26,24 @@ def css_ident(name: str) -> str:
     'a\\\\3b \\\\7d b'
     """
     return "".join(ch if _IDENT_SAFE.fullmatch(ch) else f"\\{ord(ch):x} " for ch in name)
+
+
+def css_comment(text: str) -> str:
+    """``text`` for the inside of a CSS comment, kept readable.
+
+    A comment interprets no escapes (CSS Syntax Level 3, section 4.3.2), so
+    :func:`css_ident` would show ``a\\2e json``; only ``*/`` can end it, and
+    control or other unprintable characters become ``?``.
+
+    >>> css_comment("system.resolver.json")
+    'system.resolver.json'
+    >>> css_comment("a*/b\\n")
+    'a* /b?'
+    """
+    shown = "".join(ch if ch.isprintable() else "?" for ch in text)
+    while "*/" in shown:
+        shown = shown.replace("*/", "* /")
+    return shown
 
 
 def css_string(text: str) -> str:

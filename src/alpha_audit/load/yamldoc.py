@@ -88,8 +88,9 @@ class _Converter:
         self.constructor = SafeConstructor()
         self.active: set[int] = set()
 
-    def fail(self, node: yaml.Node, message: str) -> InputError:
-        return InputError(message, path=self.path, line=node.start_mark.line + 1)
+    def fail(self, node: yaml.Node, message: str, keys: KeyPath | None = None) -> InputError:
+        key = format_key(keys) if keys else None
+        return InputError(message, path=self.path, line=node.start_mark.line + 1, key=key)
 
     def convert(self, node: yaml.Node, keys: KeyPath) -> Any:
         self.budget -= 1
@@ -103,7 +104,7 @@ class _Converter:
             raise self.fail(node, "an alias refers to itself; recursive YAML is not allowed")
         if isinstance(node, yaml.ScalarNode):
             self.record_span(node, keys)
-            return self.scalar(node)
+            return self.scalar(node, keys)
         self.active.add(id(node))
         try:
             if isinstance(node, yaml.SequenceNode):
@@ -149,7 +150,7 @@ class _Converter:
             out[key] = self.convert(value_node, (*keys, key))
         return out
 
-    def scalar(self, node: yaml.ScalarNode) -> Any:
+    def scalar(self, node: yaml.ScalarNode, keys: KeyPath = ()) -> Any:
         if (
             node.tag == "tag:yaml.org,2002:str"
             and node.style is None
@@ -170,8 +171,12 @@ class _Converter:
             AttributeError,
             TypeError,
         ) as exc:
+            tag = node.tag.rsplit(":", 1)[-1]
             raise self.fail(
-                node, f"cannot read value {node.value[:40]!r} as {node.tag.rsplit(':', 1)[-1]}"
+                node,
+                f"cannot read value {node.value[:40]!r} as {tag}; write a plain value "
+                f"without the !!{tag} tag",
+                keys,
             ) from exc
 
 

@@ -87,6 +87,7 @@ SUFFIXES: Mapping[str, tuple[str, ...]] = {
     "sarif": (".sarif", ".json"),  # SARIF 2.1.0 3.2: ".sarif", sometimes ".sarif.json"
     "markdown": (".md", ".markdown"),
     "github": (".txt", ".log"),
+    "gitlab": (".json",),  # GitLab's artifact is gl-code-quality-report.json
 }
 
 

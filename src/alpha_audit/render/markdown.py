@@ -114,7 +114,9 @@ def safe_alpha_fixes(report: CheckReport) -> FixHook:
         if finding.rule in _CONTRAST_RULES:
             if safe.alpha is None:
                 return f"not even α=1 passes {finding.rule.value} for {colour}: change the colour"
-            return f"{colour}: largest safe alpha {safe.alpha:.{_PRECISION}f}"
+            from alpha_audit.fixes import safe_span  # describe_fix's words
+
+            return f"{colour}: {safe_span(round(safe.alpha, _PRECISION))}"
         if safe.alpha is None:
             return "not even α=1 is safe: move the colours apart"
         return f"largest safe set-wide alpha {safe.alpha:.{_PRECISION}f}, or move the colours apart"

@@ -183,7 +183,7 @@ def render_json(run: Reproduction, options: RenderOptions | None = None) -> str:
 
 
 def _fmt(value: float, decimals: int) -> str:
-    return f"{value:,.{decimals}f}"
+    return f"{value:z,.{decimals}f}"
 
 
 def _row(label: str, ours: float | None, printed: PaperValue | None, decimals: int = 4) -> str:
@@ -253,7 +253,7 @@ def _broad_section(run: Reproduction) -> list[str]:
             ("the same as" if same else "NOT the same as") if paper_grid else "on a grid unlike"
         )
         contrasts = " -> ".join(
-            f"{cr:.4f} (alpha {alpha_key(a)})" for a, cr in r.worst_contrast.items()
+            f"{cr:z.4f} (alpha {alpha_key(a)})" for a, cr in r.worst_contrast.items()
         )
         lines.append(
             f"- alpha {alpha_key(r.alpha)}: largest loss for source sRGB {r.worst_source} on "
@@ -303,9 +303,9 @@ def _full_gamut_section(run: Reproduction) -> list[str]:
         for name, mode, c in rows:
             assert c is not None
             lines.append(
-                f"| {alpha_key(r.alpha)} | {name} | {mode} | {c.increase_pct:.4f} | "
-                f"{c.decrease_pct:.4f} | {c.unchanged_pct:.4f} | {c.mean_change:.4f} | "
-                f"{c.newly_reach_pct:.4f} |"
+                f"| {alpha_key(r.alpha)} | {name} | {mode} | {c.increase_pct:z.4f} | "
+                f"{c.decrease_pct:z.4f} | {c.unchanged_pct:z.4f} | {c.mean_change:z.4f} | "
+                f"{c.newly_reach_pct:z.4f} |"
             )
     return [*lines, ""]
 
@@ -337,7 +337,7 @@ def _sweep_section(run: Reproduction) -> list[str]:
             s.collision_rate.get("light"),
             s.collision_rate.get("dark"),
         ]
-        shown = " | ".join("—" if c is None else f"{c[i]:.4f}" for c in cells)
+        shown = " | ".join("—" if c is None else f"{c[i]:z.4f}" for c in cells)
         lines.append(f"| {a:g} | {shown} |")
     return [*lines, ""]
 
@@ -457,7 +457,7 @@ def tables(run: Reproduction) -> list[Table]:
                 ours = getattr(r, name)
                 paper = printed.get(name)
                 if paper is None:
-                    t.add_row(alpha_key(r.alpha), label, "—", f"{ours:.4f}", "—")
+                    t.add_row(alpha_key(r.alpha), label, "—", f"{ours:z.4f}", "—")
                     continue
                 ok = matches_printed(ours, paper)
                 t.add_row(
@@ -467,7 +467,9 @@ def tables(run: Reproduction) -> list[Table]:
                     f"{ours:.{paper.decimals}f}",
                     Text("yes", style="green") if ok else Text("NO", style="bold red"),
                 )
-            worst = " > ".join(f"{cr:.4f} (a={alpha_key(a)})" for a, cr in r.worst_contrast.items())
+            worst = " > ".join(
+                f"{cr:z.4f} (a={alpha_key(a)})" for a, cr in r.worst_contrast.items()
+            )
             src, bg = (",".join(f"{v:g}" for v in c) for c in (r.worst_source, r.worst_background))
             case = f"largest loss ({src}) on ({bg}), CR {worst}"
             worst_cases.setdefault(case, []).append(alpha_key(r.alpha))
@@ -498,7 +500,7 @@ def tables(run: Reproduction) -> list[Table]:
                         else (c.mean_change, c.newly_reach_pct, c.mean_difference_change,
                               c.mean_exclusion_change)
                     )  # fmt: skip
-                    t.add_row(alpha_key(fg.alpha), name, *(f"{v:.4f}" for v in figures))
+                    t.add_row(alpha_key(fg.alpha), name, *(f"{v:z.4f}" for v in figures))
             tables.append(t)
     if run.sweep is not None:
         s = run.sweep
@@ -510,7 +512,7 @@ def tables(run: Reproduction) -> list[Table]:
                 continue
 
             def pair(series: dict[str, tuple[float, ...]], i: int = i) -> str:
-                return " / ".join(f"{series[g][i]:.4f}" for g in ("light", "dark") if g in series)
+                return " / ".join(f"{series[g][i]:z.4f}" for g in ("light", "dark") if g in series)
 
             t.add_row(f"{a:g}", pair(s.mean_change), pair(s.decrease_share),
                       pair(s.collision_rate))  # fmt: skip
