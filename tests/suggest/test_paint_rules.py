@@ -12,6 +12,7 @@ unsafe alpha is unsafe and lies within one rounding unit above the answer.
 from __future__ import annotations
 
 import warnings
+from dataclasses import replace
 from pathlib import Path
 
 import colour
@@ -219,3 +220,51 @@ def test_thin_strokes_is_exact_at_q50() -> None:
     assert size_contrast(safe.alpha) >= limit - 1e-10
     assert size_contrast(safe.limit.at + 1e-9) < limit
     assert abs(size_contrast(safe.limit.at) - limit) < 1e-9  # the crossing itself
+
+
+def _confused(
+    linear: np.ndarray,
+    roles: list[str],
+    bg: np.ndarray,
+    alphas: np.ndarray,
+    level: float,
+    moving: int,
+) -> bool:
+    """The gate's confusion rule written out, for the pairs of icon ``moving``: roles apart
+    with every icon at alpha 1, not at ``alphas``."""
+    shown = np.clip(bg[None] + alphas[:, None, None] * (linear[:, None, :] - bg[None]), 0, 1)
+    for i in range(len(roles)):
+        for j in range(i + 1, len(roles)):
+            if roles[i] != roles[j] and moving in (i, j):
+                d_ref = _de(*(np.broadcast_to(linear[x], bg.shape) for x in (i, j)))
+                if ((d_ref >= level) & (_de(shown[i], shown[j]) < level - TOL_DE)).any():
+                    return True
+    return False
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_one_colour_moving_is_judged_against_every_role_at_alpha_1(seed: int) -> None:
+    """The others held at their own alpha (not 1): a pair they already confuse at a = 1 counts.
+
+    (The reference was once the others at their alpha, so a colour whose partner was
+    pushed into it was told it was safe up to 2.)
+    """
+    rng = np.random.default_rng(100 + seed)
+    theme, iconset, linear = _random_case(seed)
+    held = rng.uniform(1.0, 1.6, len(iconset.icons))
+    icons = tuple(replace(i, alpha=float(a)) for i, a in zip(iconset.icons, held, strict=True))
+    iconset = IconSet("s", icons)
+    roles = [i.color_name or i.color for i in iconset.icons]
+    policy = Policy(rules=frozenset({Rule.CONFUSION}), min_delta_e=20.0)
+    for k, icon in enumerate(iconset.icons):
+        safe = largest_safe_alpha(theme, iconset, policy, icons=[icon.name], precision=3)
+        level = policy.min_delta_e
+        if safe.alpha is None:
+            alphas = held.copy()
+            alphas[k] = 1.0
+            assert _confused(linear, roles, theme.backgrounds, alphas, level + TOL_DE, k)
+            continue
+        for a in np.append(np.arange(1.0, safe.alpha, 5e-3), safe.alpha):
+            alphas = held.copy()
+            alphas[k] = a
+            assert not _confused(linear, roles, theme.backgrounds, alphas, level, k), (k, a)

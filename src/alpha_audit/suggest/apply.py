@@ -484,6 +484,15 @@ def plan_apply(
         movable = [n for n in names if n not in kept]
         if movable:
             top = result.alpha if len(movable) == len(names) else safe_for(movable)
+            if top is None and result.alpha is not None:
+                # [1, a] is not all safe with the explicit icons held (a pair of one
+                # held icon and a moving one can be confused at a = 1), but the
+                # set-wide answer itself may be: take it when the gate says so.
+                trial = {**alphas, **dict.fromkeys(movable, result.alpha)}
+                held = replace(
+                    iconset, icons=tuple(replace(i, alpha=trial[i.name]) for i in iconset.icons)
+                )
+                top = result.alpha if _passes(result, held) else None
             if top is None:
                 skipped.append("the set")
         for n in movable:

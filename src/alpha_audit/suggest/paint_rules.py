@@ -401,13 +401,18 @@ class PaintRules:
             return c if deficiency is None else simulate_cvd(c, deficiency)  # type: ignore[arg-type]  # a name from DEFICIENCIES
 
         out: list[Found] = []
-        one = np.array([ALPHA_LO])
         for j in range(len(self.canvases)):
             if caps[j] <= ALPHA_LO:
                 continue
             grid = full[full <= caps[j]]
             chunk = max(1, _CHUNK // grid.size)
-            lab_ref = linear_to_lab(view(self._shown(tracks, idx, one, j)))[:, 0]  # (T', 3)
+            # The rule's reference is every role at alpha 1, as the gate has it
+            # (paint_audit._confusion), not the others at their configured alpha: a
+            # pair the others already confuse is this colour's problem too.
+            solid = composite_paint(
+                tracks.source[idx], self.backgrounds[j], 1.0, 1.0, self.pipeline
+            )
+            lab_ref = linear_to_lab(view(solid))  # (T', 3)
             lightness = linear_to_lab(view(self._shown(tracks, idx, grid, j)))[..., 0]
             s_l = lightness_weight_max(lightness)
             for first, second in iter_pairs(idx.size, labels[idx], chunk=chunk):
