@@ -113,3 +113,28 @@ def test_pairing_refuses(formats, outputs, order, words) -> None:
         pair_outputs([CheckFormat(f) for f in formats], [Path(o) for o in outputs], order)
     for word in words:
         assert word in str(err.value)
+
+
+def test_reports_name_files_relative_to_the_folder_they_ran_in(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A JSON or table uploaded from CI names no folder of the machine (problems included)."""
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "svg").mkdir()
+    ns = 'xmlns="http://www.w3.org/2000/svg"'
+    (tmp_path / "svg" / "ok.svg").write_text(f'<svg {ns} viewBox="0 0 8 8"><rect width="8"/></svg>')
+    (tmp_path / "svg" / "broken.svg").write_text("<svg")
+    (tmp_path / "set.yaml").write_text("name: s\nicons: svg/*.svg\ncolor: '#0077bb'\nsizes: [16]\n")
+    monkeypatch.chdir(tmp_path)
+    from typer.testing import CliRunner
+
+    from alpha_audit.cli import app
+
+    for fmt in ("json", "table"):
+        result = CliRunner().invoke(app, ["check", "paper16", "set.yaml", "-f", fmt])
+        assert result.exit_code in (0, 1), result.output
+        assert "broken" in result.output
+        assert str(tmp_path) not in result.output and str(tmp_path.resolve()) not in result.output
+    doc = json.loads(CliRunner().invoke(app, ["check", "paper16", "set.yaml", "-f", "json"]).stdout)
+    assert doc["problems"][0]["file"] == "svg/broken.svg"
+    assert doc["iconset"]["path"] == "set.yaml"

@@ -31,21 +31,25 @@ __all__ = [
 CHECK_SCHEMA = "alpha-audit.check/2"
 
 
-def check_to_dict(result: AuditResult) -> dict[str, Any]:
-    """The JSON document as plain data (documented in docs/json.md)."""
+def check_to_dict(result: AuditResult, base: Path | None = None) -> dict[str, Any]:
+    """The JSON document as plain data (documented in docs/json.md).
+
+    File paths are relative to ``base`` where they are inside it (a report
+    uploaded from CI names no folder of the machine that wrote it).
+    """
     theme, iconset = result.theme, result.iconset
     return {
         "schema": CHECK_SCHEMA,
         "theme": {
             "name": theme.name,
-            "path": str(theme.path) if theme.path else None,
+            "path": display_path(theme.path, base) if theme.path else None,
             "canvases": [
                 {"name": c.name, "color": c.color, "mode": c.mode} for c in theme.canvases
             ],
         },
         "iconset": {
             "name": iconset.name,
-            "path": str(iconset.path) if iconset.path else None,
+            "path": display_path(iconset.path, base) if iconset.path else None,
             "icons": len(iconset.icons),
             "sizes": list(iconset.sizes),
         },
@@ -75,7 +79,8 @@ def check_to_dict(result: AuditResult) -> dict[str, Any]:
             for s in result.separations
         ],
         "problems": [
-            {"icon": p.icon, "file": str(p.file), "message": p.message} for p in result.problems
+            {"icon": p.icon, "file": display_path(p.file, base), "message": p.message}
+            for p in result.problems
         ],
         "summary": {**asdict(result.summary), **_drift_summary(result)},
         "drift": [
@@ -221,10 +226,10 @@ def report_to_dict(report: CheckReport, base: Path | None = None) -> dict[str, A
         entry["fixes"] = [position[x] for x in fixes_of(finding)]
     gamut = [gamut_to_dict(a, base) for a in report.gamut]
     if len(report.audits) == 1:
-        return {**check_to_dict(report.audits[0]), "gamut": gamut, "gate": gate}
+        return {**check_to_dict(report.audits[0], base), "gamut": gamut, "gate": gate}
     audits = []
     for result in report.audits:
-        doc = check_to_dict(result)
+        doc = check_to_dict(result, base)
         del doc["schema"]
         audits.append(doc)
     return {"schema": CHECK_SCHEMA, "audits": audits, "gamut": gamut, "gate": gate}

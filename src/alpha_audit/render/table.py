@@ -7,6 +7,7 @@ function of the result; the CLI decides width and colour.
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable
+from pathlib import Path
 
 from rich import box
 from rich.console import Group, RenderableType
@@ -18,6 +19,7 @@ from alpha_audit.audit import AuditResult, Row
 from alpha_audit.gate import CheckReport, GateResult
 from alpha_audit.render.common import (
     RenderOptions,
+    display_path,
     fitted_table,
     gamut_line,
     name_column,
@@ -93,7 +95,7 @@ def _grouped(result: AuditResult, rows: Iterable[Row]) -> list[tuple[Row, list[s
     return list(groups.values())
 
 
-def _findings(result: AuditResult) -> list[RenderableType]:
+def _findings(result: AuditResult, base: Path | None = None) -> list[RenderableType]:
     out: list[RenderableType] = []
     rows = list(result.rows())
     palette_names = {i.name: i.color_name for i in result.iconset.icons}
@@ -199,7 +201,8 @@ def _findings(result: AuditResult) -> list[RenderableType]:
             Text(f"Icons that could not be rendered ({len(result.problems)})", style="bold yellow")
         )
         for p in result.problems[:MAX_FINDINGS]:
-            out.append(Text(safe_text(f"  {p.icon} ({p.file}): {p.message}")))
+            shown = display_path(p.file, base)
+            out.append(Text(safe_text(f"  {p.icon} ({shown}): {p.message}")))
         if len(result.problems) > MAX_FINDINGS:
             out.append(
                 Text(f"  … and {len(result.problems) - MAX_FINDINGS} more (see --format json)")
@@ -207,7 +210,7 @@ def _findings(result: AuditResult) -> list[RenderableType]:
     return out
 
 
-def check_renderable(result: AuditResult) -> RenderableType:
+def check_renderable(result: AuditResult, base: Path | None = None) -> RenderableType:
     """The whole report as one rich renderable."""
     s = result.summary
     theme, iconset = result.theme, result.iconset
@@ -224,7 +227,7 @@ def check_renderable(result: AuditResult) -> RenderableType:
         f"({s.new_collisions} new)" + _drift_note(result),
         style="bold",
     )
-    return Group(head, _summary_table(result), *_findings(result), Text(""), foot)
+    return Group(head, _summary_table(result), *_findings(result, base), Text(""), foot)
 
 
 def _drift_note(result: AuditResult) -> str:
@@ -300,7 +303,7 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     """Every audit of the report, then the gate and how to fix it, at ``options.width``."""
     parts: list[RenderableType] = []
     for result in report.audits:
-        parts += [check_renderable(result), Text("")]
+        parts += [check_renderable(result, options.base), Text("")]
     if report.gamut:
         parts += [gamut_renderable(report, options), Text("")]
     parts.append(gate_renderable(report.gate))
