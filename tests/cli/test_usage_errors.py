@@ -64,3 +64,22 @@ def test_errors_name_flags_as_flags(args: list[str], says: str) -> None:
     (line,) = res.stderr.strip().splitlines()
     assert says in line
     assert "min_delta_e" not in line and "max_loss" not in line and "alpha_max" not in line
+
+
+@pytest.mark.parametrize(
+    ("args", "says"),
+    [
+        (["check", "paper16", "vibrant", "-a", "abc"], "'--alpha' / '-a': 'abc' is not a number"),
+        (["check", "paper16", "vibrant", "--alpha=x1"], "'x1' is not a number"),
+        (["check", "paper16", "vibrant", "--threshold", "high"], "'high' is not a number"),
+        (["preview", "paper16", "vibrant", "--size", "1.5"], "'1.5' is not a whole number"),
+        (["check", "paper16", "vibrant", "-f", "xml"], "'--format' / '-f': 'xml' is not one of"),
+    ],
+)
+def test_a_value_that_does_not_parse_is_named_in_plain_words(args: list[str], says: str) -> None:
+    """typer passes pydantic's wording on ("Input should be a valid number"), without the value."""
+    result = CliRunner().invoke(app, args)
+    assert result.exit_code == 2
+    lines = result.output.strip().splitlines()
+    assert len(lines) == 1 and says in lines[0], result.output
+    assert "Input should" not in lines[0] and "Value error" not in lines[0]

@@ -16,6 +16,7 @@ Command modules never import this module (they import :mod:`.console`,
 
 from __future__ import annotations
 
+import re
 import traceback
 from collections.abc import Sequence
 from typing import Annotated, Any, NoReturn
@@ -58,8 +59,43 @@ def _usage_error(exc: typer.TyperException) -> NoReturn:
         raise exc
     ctx = getattr(exc, "ctx", None)
     path = ctx.command_path if ctx is not None else "alpha-audit"
-    _error_line(f"{exc.format_message().rstrip('.')} (see '{path} --help')")
+    message = exc.format_message().rstrip(".")
+    param = getattr(exc, "param", None)
+    if ctx is not None and param is not None:
+        value = _given_value(ctx.meta.get(_ARGS, []), getattr(param, "opts", []))
+        message = _plain_words(message, value)
+    _error_line(f"{message} (see '{path} --help')")
     raise typer.Exit(ExitStatus.INPUT_ERROR)
+
+
+# typer 0.29 coerces values with pydantic and passes its wording on; say it plainly.
+_PYDANTIC_WORDS = (
+    (re.compile(r"Input should be a valid number[^;]*"), "{value} is not a number"),
+    (re.compile(r"Input should be a valid integer[^;]*"), "{value} is not a whole number"),
+    (re.compile(r"Value error, "), ""),
+)
+
+
+def _plain_words(message: str, value: str | None) -> str:
+    """``message`` without pydantic's phrasing, naming the value given where it is known."""
+    shown = repr(value) if value is not None else "the value given"
+    for pattern, words in _PYDANTIC_WORDS:
+        message = pattern.sub(words.format(value=shown), message)
+    return message
+
+
+def _given_value(args: Sequence[str], opts: Sequence[str]) -> str | None:
+    """The last value given on the command line to an option named ``opts``."""
+    found = None
+    for k, arg in enumerate(args):
+        for opt in opts:
+            if arg == opt and k + 1 < len(args):
+                found = args[k + 1]
+            elif opt.startswith("--") and arg.startswith(opt + "="):
+                found = arg[len(opt) + 1 :]
+            elif not opt.startswith("--") and arg.startswith(opt) and len(arg) > len(opt):
+                found = arg[len(opt) :]  # -a1.2
+    return found
 
 
 def _memory_limit() -> str:
@@ -75,6 +111,7 @@ def _memory_limit() -> str:
 
 
 _HELP_ASKED = "alpha_audit.help_asked"  # ctx.meta key: the command was asked for --help
+_ARGS = "alpha_audit.args"  # ctx.meta key: the command's arguments as given
 
 MAX_REASON = 200
 """Characters of an unexpected exception's text kept in its one-line report."""
@@ -127,6 +164,7 @@ class _Group(TyperGroup):
     def invoke(self, ctx: Any) -> Any:
         # The command's own arguments, seen here before the group hands them on.
         ctx.meta[_HELP_ASKED] = bool({"-h", "--help"} & set(ctx.args))
+        ctx.meta[_ARGS] = list(ctx.args)  # to name a bad value in a usage error
         try:
             status = super().invoke(ctx)
             if not isinstance(status, ExitStatus):
