@@ -411,7 +411,7 @@ def render_markdown(
             "",
             f"**{left_out[0]} row(s) left out** to stay within GitHub's "
             f"{COMMENT_LIMIT:,}-character comment limit; every finding is in the JSON "
-            "(`--format json`) and SARIF reports and in the workflow run's job summary.",
+            "(`--format json`) and SARIF reports.",
         ]
     return "\n".join(lines) + "\n"
 
