@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -138,3 +139,28 @@ def test_reports_name_files_relative_to_the_folder_they_ran_in(
     doc = json.loads(CliRunner().invoke(app, ["check", "paper16", "set.yaml", "-f", "json"]).stdout)
     assert doc["problems"][0]["file"] == "svg/broken.svg"
     assert doc["iconset"]["path"] == "set.yaml"
+
+
+def test_ci_formats_name_files_from_the_repository_root_when_run_in_a_subfolder(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """GitHub annotations and SARIF's %SRCROOT% want paths from the checkout, not the cwd."""
+    import shutil
+
+    from typer.testing import CliRunner
+
+    from alpha_audit.cli import app
+
+    root = Path(__file__).resolve().parents[2]
+    (tmp_path / ".git").mkdir()
+    shutil.copytree(root / "examples" / "vibrant", tmp_path / "design" / "vibrant")
+    (tmp_path / "ci").mkdir()
+    monkeypatch.chdir(tmp_path / "ci")
+    manifest = "../design/vibrant/iconset.yaml"
+    github = CliRunner().invoke(app, ["check", "paper16", manifest, "-a", "1.3", "-f", "github"])
+    files = re.findall(r"file=([^,]+),", github.stdout)
+    assert files and all(f.startswith("design/vibrant/") for f in files), github.stdout
+    assert "../" not in github.stdout
+    sarif = CliRunner().invoke(app, ["check", "paper16", manifest, "-a", "1.3", "-f", "sarif"])
+    uris = re.findall(r'"uri": "([^"]+)"', sarif.stdout)
+    assert uris and all(u.startswith("design/vibrant/") for u in uris), uris[:5]

@@ -29,6 +29,7 @@ from alpha_audit.cli.options import (
     rules_flag,
 )
 from alpha_audit.cli.status import ExitStatus
+from alpha_audit.load.paths import project_root
 from alpha_audit.ranges import ALPHA
 from alpha_audit.render import CheckFormat, RenderOptions
 from alpha_audit.render.common import check_suffix
@@ -235,7 +236,9 @@ def check_command(
             gamut=gamut_policy if gamut_policy is not None else project.gamut,
             pool=ctx.obj,
         )
-    base = Path.cwd().resolve()
+    # Paths in reports are relative to the repository (the folder with .git): what
+    # GitHub annotations, SARIF's %SRCROOT% and GitLab expect, from any subfolder.
+    base = project_root(Path.cwd())
     outputs, stdout_text = [], None
     for kind, out in pairs:
         if out is None:

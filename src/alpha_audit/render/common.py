@@ -19,6 +19,7 @@ from __future__ import annotations
 import dataclasses
 import html
 import json
+import os
 import re
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
@@ -138,9 +139,12 @@ def display_path(path: Path | str | None, base: Path | None) -> str | None:
     if path is None:
         return None
     p = Path(path)
-    if base is not None and p.is_absolute():
+    if base is not None:
+        # A relative path is relative to where the files were opened from, this
+        # process's folder; base may be above it (the repository root).
+        full = p if p.is_absolute() else Path(os.path.abspath(p))
         try:
-            return p.relative_to(base).as_posix()
+            return full.relative_to(base).as_posix()
         except ValueError:
             pass
     return p.as_posix()

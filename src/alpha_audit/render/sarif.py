@@ -67,6 +67,8 @@ def relative_uri(path: Path | str, base: Path | None) -> str:
     'icons/a%20%231%25.svg'
     """
     p = Path(path)
+    if base is not None and not p.is_absolute():
+        p = Path(os.path.abspath(p))  # relative to where it was opened from, this process's folder
     if p.is_absolute():
         text = Path(os.path.relpath(p, base)).as_posix() if base is not None else p.name
     else:
