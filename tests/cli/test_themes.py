@@ -127,3 +127,16 @@ def test_preview_accepts_bundled_names(tmp_path: Path) -> None:
     assert result.exit_code == ExitStatus.OK, result.output
     assert sorted(p.suffix for p in tmp_path.iterdir()) == [".png"] * len(list(tmp_path.iterdir()))
     assert any(tmp_path.iterdir())
+
+
+def test_no_color_means_no_escape_codes_even_on_a_terminal() -> None:
+    """Like every report: NO_COLOR drops bold too (a forced terminal stands in for a TTY)."""
+    import os
+    import subprocess
+    import sys
+
+    env = {**os.environ, "FORCE_COLOR": "1", "NO_COLOR": "1", "COLUMNS": "100"}
+    out = subprocess.run(
+        [sys.executable, "-m", "alpha_audit", "themes"], capture_output=True, text=True, env=env
+    ).stdout
+    assert "paper16" in out and "\x1b" not in out

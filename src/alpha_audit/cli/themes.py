@@ -10,10 +10,10 @@ from rich import box
 from rich.table import Table
 
 from alpha_audit.bundled import load_bundled_themes
-from alpha_audit.cli.console import emit, stdout_console
+from alpha_audit.cli.console import emit, stdout_options
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.model import Theme
-from alpha_audit.render.common import dumps, fitted_table, name_column, number_column
+from alpha_audit.render.common import dumps, fitted_table, name_column, number_column, to_text
 
 __all__ = ["ThemesFormat", "themes_command", "themes_document"]
 
@@ -85,7 +85,8 @@ def themes_command(
     themes = load_bundled_themes()
     match fmt:
         case ThemesFormat.TABLE:
-            stdout_console().print(_table(themes))
+            # Rendered like every report: no escape codes with NO_COLOR or off a terminal.
+            emit(to_text(_table(themes), stdout_options()), None, False)
         case ThemesFormat.JSON:
             emit(dumps(themes_document(themes)), None, False)
         case _:
