@@ -274,7 +274,8 @@ def findings_for(result: AuditResult, policy: Policy) -> list[Finding]:
     for c in result.collisions:
         if collision_rule is None or (collision_rule is Rule.NEW_COLLISION and not c.new):
             continue
-        message = f"distinct colours {', '.join(c.sources)} all give {c.output}" + (
+        give = "both give" if len(c.sources) == 2 else "all give"
+        message = f"distinct colours {', '.join(c.sources)} {give} {c.output}" + (
             "" if c.new else " (already at alpha 1)"
         )
         numbers = {"output": c.output, "sources": ", ".join(c.sources), "new": str(c.new).lower()}

@@ -135,3 +135,17 @@ def test_findings_split_once_into_failures_exempted_and_baselined() -> None:
     assert gate.failures == () and gate.passed
     split = [*gate.exempted, *gate.baselined, *gate.failures]
     assert len(split) == len(gate.findings) and all(f in gate.findings for f in split)
+
+
+def test_two_colliding_colours_both_give_one_output_and_one_canvas_is_one_canvas() -> None:
+    """Wording: 'both give' for two colours, '(1 canvas)' in the table's head."""
+    from alpha_audit.gate import CheckReport
+    from alpha_audit.render.common import RenderOptions
+    from alpha_audit.render.table import render_report
+
+    icons = (Icon("a", Path("a.svg"), "#ee7733", 1.3), Icon("b", Path("b.svg"), "#ee3377", 1.3))
+    result = audit(Theme("t", (Canvas("white", "#ffffff"),)), IconSet("s", icons))
+    report = CheckReport(audits=(result,), gate=evaluate([result], Policy()))
+    (collision,) = [f for f in report.gate.failures if f.rule.value == "new-collision"]
+    assert "#ee3377, #ee7733 both give #" in collision.message
+    assert "(1 canvas)" in render_report(report, RenderOptions(width=100))

@@ -97,7 +97,9 @@ def export_table(
             if a is None:
                 raise UsageError(
                     f"icon colour {path} (mode {mode.name}) has no coefficient: add "
-                    f"$extensions {{com.alpha-audit: {{alpha: ...}}}} to the token or pass `alpha`"
+                    f"$extensions {{com.alpha-audit: {{alpha: ...}}}} to the token, alpha: to the "
+                    "project config (an icon manifest's alpha: is per icon, not per colour) "
+                    "or pass `alpha`"
                 )
             source = srgb_decode(color.parsed.array)
             output = composite_extended(source[np.newaxis, :], backgrounds, a)

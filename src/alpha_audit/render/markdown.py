@@ -173,7 +173,8 @@ def _numbers(f: Finding) -> str:
         under = f" ({n['deficiency']})" if "deficiency" in n else ""
         return f"ΔE00 {n['delta_e']:.2f} (α=1: {n['delta_e_ref']:.2f}){floor}{under}"
     if "output" in n and "sources" in n:  # the colours are in the colour column already
-        return f"all give {n['output']}" + ("" if n.get("new") != "false" else " (also at α=1)")
+        give = "both give" if len(str(n["sources"]).split(", ")) == 2 else "all give"
+        return f"{give} {n['output']}" + ("" if n.get("new") != "false" else " (also at α=1)")
     return f.message
 
 

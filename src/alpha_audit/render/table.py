@@ -217,7 +217,8 @@ def check_renderable(result: AuditResult, base: Path | None = None) -> Renderabl
     head = Text.assemble(
         ("alpha-audit check", "bold"),
         f"  {iconset.name} ({len(iconset.icons)} icons) on {theme.name} "
-        f"({len(theme.canvases)} canvases), α={_fmt_alpha(result)}",
+        f"({len(theme.canvases)} canvas{'' if len(theme.canvases) == 1 else 'es'}), "
+        f"α={_fmt_alpha(result)}",
     )
     foot = Text(
         f"{s.combinations} icon×canvas: contrast up {s.increase_pct:.1f}%, "
