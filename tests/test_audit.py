@@ -175,3 +175,36 @@ def test_json_has_no_nan_and_full_precision() -> None:
     text = dumps(check_to_dict(audit(theme, icons)))
     assert "NaN" not in text and "3.4733853122940994" in text
     assert math.isclose(json.loads(text)["summary"]["mean_gain"], 0.6053016619100036)
+
+
+def test_the_sets_minimum_at_alpha_1_is_its_own_closest_pair() -> None:
+    """The table's left min ΔE, not the pair closest at alpha: brute force over the sources.
+
+    CIELAB as the project pins it (CSS Color 4 matrix, D65); the distances and the
+    minimum by colour-science over every pair, against the pruned search.
+    """
+    import itertools
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        import colour
+    from alpha_audit.color import hex_to_linear, linear_to_lab
+    from alpha_audit.model import Canvas, Icon, IconSet, Theme
+    from alpha_audit.render.json import check_to_dict
+
+    hexes = ["#ee7733", "#0077bb", "#33bbee", "#ee3377", "#cc3311", "#009988", "#bbbbbb"]
+    icons = tuple(Icon(f"i{k}", Path(f"i{k}.svg"), h, 1.6) for k, h in enumerate(hexes))
+    theme = Theme("t", (Canvas("white", "#ffffff"), Canvas("ink", "#101010")))
+    result = audit(theme, IconSet("s", icons))
+    lab = {h: linear_to_lab(hex_to_linear(h)) for h in hexes}
+    brute = min(
+        float(colour.delta_E(lab[a], lab[b], method="CIE 2000"))
+        for a, b in itertools.combinations(hexes, 2)
+    )
+    closest_at_alpha_at_1 = {s.delta_e_ref for s in result.separations}
+    assert any(abs(v - brute) > 1.0 for v in closest_at_alpha_at_1)  # the two really differ here
+    for s in result.separations:
+        assert abs(s.set_delta_e_ref - brute) < 1e-9
+    doc = check_to_dict(result)
+    assert all(abs(s["set_min_delta_e_ref"] - brute) < 1e-9 for s in doc["separation"])

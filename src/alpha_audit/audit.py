@@ -6,6 +6,7 @@ and findings; it never prints.  Shapes: ``n`` icons x ``m`` canvases.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, replace
 from functools import cached_property
@@ -93,6 +94,9 @@ class Separation:
     # Pairs whose CIEDE2000 is smaller than at alpha = 1; None above DECREASES_BUDGET.
     decreases: int | None
     pairs: int
+    # The set's own closest pair at alpha = 1 (the sources; the same on every
+    # canvas), which need not be the pair closest at alpha.
+    set_delta_e_ref: float = math.nan
 
 
 @dataclass(frozen=True)
@@ -394,6 +398,8 @@ def _separations(
         ]
     else:
         closest = [closest_pair_delta_e_2000(lab_out[:, j], labels) for j in range(m)]
+    at_one = closest_pair_delta_e_2000(lab_ref, labels)  # canvas-independent: the sources
+    set_ref = math.nan if at_one is None else at_one.distance
     result = []
     for j, canvas in enumerate(theme.canvases):
         pair = closest[j]
@@ -409,6 +415,7 @@ def _separations(
                 sources=(icons[a].color, icons[b].color),
                 decreases=decreases[j],
                 pairs=pairs,
+                set_delta_e_ref=set_ref,
             )
         )
     return result

@@ -99,7 +99,7 @@ def _check_tokens(report: CheckReport) -> set[str]:
     for c in doc["collisions"]:
         tokens |= {c["output"], *c["sources"]}
     for s in doc["separation"]:
-        tokens.add(f"{s['min_delta_e_ref']:.1f}→{s['min_delta_e']:.1f}")
+        tokens.add(f"{s['set_min_delta_e_ref']:.1f}→{s['min_delta_e']:.1f}")
     summary = doc["summary"]
     tokens |= {f"{summary['mean_gain']:+.3f}", f"{summary['max_loss']:.4f}"}
     return tokens

@@ -71,6 +71,7 @@ def check_to_dict(result: AuditResult, base: Path | None = None) -> dict[str, An
                 "canvas": s.canvas,
                 "min_delta_e": s.delta_e,
                 "min_delta_e_ref": s.delta_e_ref,
+                "set_min_delta_e_ref": _finite(s.set_delta_e_ref),
                 "icons": list(s.icons),
                 "sources": list(s.sources),
                 "decreases": s.decreases,

@@ -51,7 +51,8 @@ def _summary_table(result: AuditResult) -> Table:
         loss = Text(f"{cs.losses} (-{cs.max_loss:.2f})", style="red") if cs.losses else Text("0")
         coll = Text(str(cs.collisions), style="red") if cs.collisions else Text("0")
         sep = cs.separation
-        de = "-" if sep is None else f"{sep.delta_e_ref:.1f}→{sep.delta_e:.1f}"
+        # The set's minimum at alpha 1 (its own closest pair) -> at alpha.
+        de = "-" if sep is None else f"{sep.set_delta_e_ref:.1f}→{sep.delta_e:.1f}"
         rows.append(
             (
                 Text(cs.canvas),
