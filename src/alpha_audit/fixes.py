@@ -60,6 +60,7 @@ __all__ = [
     "ColorFix",
     "NearestColor",
     "ReachAlpha",
+    "color_key",
     "describe_fix",
     "fix_lookup",
     "fix_to_dict",
@@ -388,7 +389,8 @@ def _passing_code(
 MAX_FIXED_COLORS = 50
 
 
-def _color_key(result: AuditResult) -> dict[str, str]:
+def color_key(result: AuditResult) -> dict[str, str]:
+    """Each icon's colour as fixes name it: its palette name, else its colour."""
     return {i.name: i.color_name or i.color for i in result.iconset.icons}
 
 
@@ -426,7 +428,7 @@ def failing_colors(report: CheckReport) -> int:
     """How many (audit, colour) pairs fail the gate on some canvas."""
     total = 0
     for result in report.audits:
-        key_of = _color_key(result)
+        key_of = color_key(result)
         names = {
             key_of[n]
             for f in report.gate.failures
@@ -440,16 +442,19 @@ def failing_colors(report: CheckReport) -> int:
     return total
 
 
+def _fixed_colors(report: CheckReport) -> int:
+    """How many (audit, colour) pairs have a computed fix."""
+    return len({(f.theme, f.iconset, f.color) for f in report_fixes(report)})
+
+
 def fixes_left_out(report: CheckReport) -> int:
     """Failing colours without a computed fix (beyond :data:`MAX_FIXED_COLORS`)."""
-    fixed = {(f.theme, f.iconset, f.color) for f in report_fixes(report)}
-    return failing_colors(report) - len(fixed)
+    return failing_colors(report) - _fixed_colors(report)
 
 
 def fixes_capped(report: CheckReport) -> bool:
     """Whether :data:`MAX_FIXED_COLORS` stopped the fixes: some failing colours have none."""
-    fixed = {(f.theme, f.iconset, f.color) for f in report_fixes(report)}
-    return len(fixed) >= MAX_FIXED_COLORS and failing_colors(report) > len(fixed)
+    return _fixed_colors(report) >= MAX_FIXED_COLORS and fixes_left_out(report) > 0
 
 
 def _audit_fixes(
@@ -462,7 +467,7 @@ def _audit_fixes(
 ) -> list[ColorFix]:
     """The fixes of one audit; ``budget[0]`` counts the colours still allowed a fix."""
     theme, iconset = result.theme, result.iconset
-    key_of = _color_key(result)
+    key_of = color_key(result)
     members: dict[str, list[int]] = {}
     for i, icon in enumerate(iconset.icons):
         members.setdefault(key_of[icon.name], []).append(i)

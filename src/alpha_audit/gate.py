@@ -38,6 +38,7 @@ __all__ = [
     "findings_for",
     "parse_baseline",
     "read_baseline",
+    "unjudged_problems",
 ]
 
 # (theme, icon set, rule, canvas, icons): what a baseline matches on.  Never a
@@ -326,6 +327,30 @@ def _problem_findings(result: AuditResult, policy: Policy) -> list[Finding]:
             exemption=policy.exempt(Rule.UNRENDERABLE, None, (p.icon,)),
         )
         for p in result.problems
+    ]
+
+
+def unjudged_problems(report: CheckReport) -> list[Finding]:
+    """Icons that could not be rendered, as findings, when the gate does not judge them.
+
+    With ``unrenderable`` off they fail nothing, but CI formats still list them
+    (as information) so a broken file is not silent.  Empty when the rule is on:
+    then they are among the gate's own findings.
+    """
+    if Rule.UNRENDERABLE in report.gate.policy.rules:
+        return []
+    return [
+        Finding(
+            Rule.UNRENDERABLE,
+            audit.theme.name,
+            audit.iconset.name,
+            None,
+            (p.icon,),
+            p.message,
+            files=(Path(p.file),),
+        )
+        for audit in report.audits
+        for p in audit.problems
     ]
 
 

@@ -110,7 +110,6 @@ def _memory_limit() -> str:
     return f"the address-space limit of {soft / (1 << 20):.0f} MiB"
 
 
-_HELP_ASKED = "alpha_audit.help_asked"  # ctx.meta key: the command was asked for --help
 _ARGS = "alpha_audit.args"  # ctx.meta key: the command's arguments as given
 
 MAX_REASON = 200
@@ -163,8 +162,8 @@ class _Group(TyperGroup):
 
     def invoke(self, ctx: Any) -> Any:
         # The command's own arguments, seen here before the group hands them on.
-        ctx.meta[_HELP_ASKED] = bool({"-h", "--help"} & set(ctx.args))
-        ctx.meta[_ARGS] = list(ctx.args)  # to name a bad value in a usage error
+        # To name a bad value in a usage error, and to see --help before workers start.
+        ctx.meta[_ARGS] = list(ctx.args)
         try:
             status = super().invoke(ctx)
             if not isinstance(status, ExitStatus):
@@ -227,7 +226,8 @@ def _root(
     ] = False,
 ) -> None:
     """Audit icon sets across light and dark themes with extended-alpha compositing."""
-    if ctx.invoked_subcommand in _RENDERING and not ctx.meta.get(_HELP_ASKED):
+    wants_help = {"-h", "--help"} & set(ctx.meta.get(_ARGS, ()))
+    if ctx.invoked_subcommand in _RENDERING and not wants_help:
         from alpha_audit.pipeline import render_pool
 
         # The workers take a few tenths of a second to start; the command finds

@@ -24,8 +24,7 @@ from pathlib import Path, PurePosixPath
 from typing import Any
 
 from alpha_audit.fixes import ColorFix, describe_fix, fix_lookup
-from alpha_audit.gate import CheckReport, Finding
-from alpha_audit.policy import Rule
+from alpha_audit.gate import CheckReport, Finding, unjudged_problems
 from alpha_audit.render.common import RenderOptions, display_path, dumps
 from alpha_audit.render.rules import SEVERITY
 
@@ -67,19 +66,7 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     """Every failing finding as one GitLab Code Quality issue, in the gate's order."""
     fixes_of = fix_lookup(report)
     entries: list[tuple[Finding, str]] = [(f, SEVERITY[f.rule]) for f in report.gate.failures]
-    if Rule.UNRENDERABLE not in report.gate.policy.rules:
-        for audit in report.audits:
-            for p in audit.problems:
-                problem = Finding(
-                    Rule.UNRENDERABLE,
-                    audit.theme.name,
-                    audit.iconset.name,
-                    None,
-                    (p.icon,),
-                    p.message,
-                    files=(Path(p.file),),
-                )
-                entries.append((problem, "info"))
+    entries += [(problem, "info") for problem in unjudged_problems(report)]
     issues: list[dict[str, Any]] = []
     seen: set[str] = set()
     for f, severity in entries:

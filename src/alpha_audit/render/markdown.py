@@ -80,17 +80,20 @@ def safe_alpha_fixes(report: CheckReport) -> FixHook:
     for some colours (:data:`~alpha_audit.fixes.MAX_FIXED_COLORS`), nothing
     more is computed here and the text points at ``alpha-audit suggest``.
     """
-    from alpha_audit.fixes import fixes_capped
+    from alpha_audit.fixes import color_key, fixes_capped
 
     audits = {(r.theme.name, r.iconset.name): r for r in report.audits}
     too_many = fixes_capped(report)
     cache: dict[tuple[str, str, Rule, str | None], tuple[str, SafeAlpha] | None] = {}
+    colours: dict[tuple[str, str], dict[str, str]] = {}  # per audit, made on first use
 
     def answer(finding: Finding, per_colour: bool) -> tuple[str, SafeAlpha] | None:
         result = audits.get((finding.theme, finding.iconset))
         if result is None:
             return None
-        colour_of = {i.name: i.color_name or i.color for i in result.iconset.icons}
+        if (finding.theme, finding.iconset) not in colours:
+            colours[finding.theme, finding.iconset] = color_key(result)
+        colour_of = colours[finding.theme, finding.iconset]
         colour = next((colour_of[n] for n in finding.icons if n in colour_of), None)
         if per_colour and colour is None:
             return None

@@ -27,7 +27,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 from urllib.parse import quote
 
-from alpha_audit.gate import CheckReport, Finding
+from alpha_audit.gate import CheckReport, Finding, unjudged_problems
 from alpha_audit.load.paints import CURRENT_COLOR
 from alpha_audit.model import Icon, Span
 from alpha_audit.policy import PAINT_RULES, Rule
@@ -248,19 +248,8 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
         )
         for f in report.gate.findings
     ]
-    if Rule.UNRENDERABLE not in enabled:
-        for audit in report.audits:
-            for p in audit.problems:
-                f = Finding(
-                    Rule.UNRENDERABLE,
-                    audit.theme.name,
-                    audit.iconset.name,
-                    None,
-                    (p.icon,),
-                    p.message,
-                    files=(Path(p.file),),
-                )
-                results.append(_result(f, index[Rule.UNRENDERABLE], options.base, "warning"))
+    for f in unjudged_problems(report):
+        results.append(_result(f, index[Rule.UNRENDERABLE], options.base, "warning"))
     run: dict[str, Any] = {
         "tool": {
             "driver": {

@@ -41,19 +41,4 @@ __all__ = [
 ]
 
 # The experiments load on first use: the CLI imports reproduce.experiment without them.
-__getattr__ = lazy_exports(
-    __name__,
-    {
-        "BroadGridResult": "alpha_audit.reproduce.experiments",
-        "CanvasChange": "alpha_audit.reproduce.experiments",
-        "ContrastChange": "alpha_audit.reproduce.experiments",
-        "FullGamutResult": "alpha_audit.reproduce.experiments",
-        "PaletteResult": "alpha_audit.reproduce.experiments",
-        "SweepResult": "alpha_audit.reproduce.experiments",
-        "broad_grid": "alpha_audit.reproduce.experiments",
-        "full_gamut": "alpha_audit.reproduce.experiments",
-        "palette_separation": "alpha_audit.reproduce.experiments",
-        "sweep": "alpha_audit.reproduce.experiments",
-        "sweep_alphas": "alpha_audit.reproduce.experiments",
-    },
-)
+__getattr__ = lazy_exports(__name__, dict.fromkeys(__all__, "alpha_audit.reproduce.experiments"))
