@@ -109,7 +109,8 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
         if len(shown) < len(errors):
             verdict += (
                 f"; {len(errors) - len(shown)} more finding(s) not annotated "
-                "(GitHub shows 10 per step): see the job summary"
+                "(GitHub shows 10 per step): see the job summary, and the JSON or SARIF "
+                "report for every finding"
             )
         lines += shown
         lines.append(_command("error", verdict, file=None, line=None, title="alpha-audit"))
