@@ -19,14 +19,16 @@ from pathlib import Path
 
 import numpy as np
 
-from alpha_audit.audit import audit
 from alpha_audit.color import composite_extended, contrast_ratio, delta_e_2000, linear_to_hex
 from alpha_audit.color.oklch import linear_to_oklch, oklch_to_linear
 from alpha_audit.fixes import fixes_for, passes_everywhere
-from alpha_audit.gate import CheckReport, evaluate
+from alpha_audit.gate import evaluate
 from alpha_audit.load.theme import load_theme
 from alpha_audit.model import Icon, IconSet
-from alpha_audit.policy import Policy, Rule
+from alpha_audit.policy import Policy
+from alpha_audit.results import CheckReport
+from alpha_audit.rows import audit
+from alpha_audit.rules import Rule
 
 ROOT = Path(__file__).resolve().parents[1]
 POLICY = Policy(rules=frozenset({Rule.BELOW_THRESHOLD, Rule.LOSS}))

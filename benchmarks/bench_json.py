@@ -16,13 +16,14 @@ import time
 from dataclasses import asdict
 from pathlib import Path
 
-from alpha_audit.audit import audit
-from alpha_audit.gate import CheckReport, evaluate
+from alpha_audit.gate import evaluate
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
 from alpha_audit.policy import Policy
 from alpha_audit.render import json as render_json
 from alpha_audit.render.common import RenderOptions
 from alpha_audit.render.json import render_report, report_to_dict
+from alpha_audit.results import CheckReport
+from alpha_audit.rows import audit
 
 
 def report(icons: int = 300, canvases: int = 17) -> CheckReport:

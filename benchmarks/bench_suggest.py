@@ -16,11 +16,11 @@ from pathlib import Path
 
 import numpy as np
 
-from alpha_audit.audit import audit
 from alpha_audit.gate import evaluate
 from alpha_audit.load.theme import load_theme
 from alpha_audit.model import Icon, IconSet
 from alpha_audit.policy import Policy
+from alpha_audit.rows import audit
 from alpha_audit.suggest import suggest
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -64,9 +64,9 @@ def main() -> None:
     theme = load_theme(ROOT / "themes" / "paper16.yaml")
     icons = iconset()
     policy = Policy()
-    suggest(theme, icons, policy)  # warm imports and caches
+    suggest(audit(theme, icons), policy)  # warm imports and caches
     t0 = time.perf_counter()
-    result = suggest(theme, icons, policy)
+    result = suggest(audit(theme, icons), policy)
     exact = time.perf_counter() - t0
     size = f"{len(icons.icons)} icons x {len(theme.canvases)} canvases x 7 colours"
     print(f"suggest (set-wide + per colour + per icon), {size}: {exact:.3f} s")

@@ -93,7 +93,7 @@ def find_cycle(graph: dict[str, set[str]]) -> list[str] | None:
 
 def test_the_graph_sees_imports_inside_functions() -> None:
     graph = import_graph()
-    assert "alpha_audit.cli.app" in graph["alpha_audit.cli"]
+    assert "alpha_audit.cli.root" in graph["alpha_audit.cli"]
     assert "alpha_audit.output" in graph["alpha_audit.cli.console"]
     # check_command imports the pipeline inside its body
     assert "alpha_audit.pipeline" in graph["alpha_audit.cli.check"]
@@ -110,7 +110,7 @@ def test_no_import_cycle_in_the_package() -> None:
 
 def test_command_modules_never_import_the_app() -> None:
     graph = import_graph()
-    importers = {m for m, targets in graph.items() if targets & {"alpha_audit.cli.app"}}
+    importers = {m for m, targets in graph.items() if targets & {"alpha_audit.cli.root"}}
     assert importers == {"alpha_audit.cli"}
 
 
@@ -177,10 +177,10 @@ def test_unknown_names_raise_attribute_error() -> None:
 def test_every_command_is_reachable_from_the_public_api() -> None:
     commands = {
         "check": ("check_project", "Policy", "CheckFormat", "render_check", "read_baseline"),
-        "suggest": ("suggest", "render_suggest", "apply_alpha"),
+        "suggest": ("largest_safe_alpha", "render_suggest", "apply_alpha"),
         "pair": ("pair_table", "pair_report", "PairFormat"),
         "preview": ("preview_files", "Layout"),
-        "reproduce": ("reproduce", "reproduction_json", "write_figures"),
+        "reproduce": ("Reproduction", "reproduction_json", "write_figures"),
         "themes": ("bundled_themes", "load_bundled_themes"),
     }
     for command, names in commands.items():
@@ -195,14 +195,22 @@ def test_one_version_source() -> None:
     assert 'dynamic = ["version"]' in pyproject and "\nversion =" not in pyproject.split("[tool")[0]
 
 
-def test_public_functions_win_over_submodules_of_the_same_name() -> None:
+def test_no_public_name_shadows_a_submodule_and_every_attribute_path_works() -> None:
+    """After importing any submodule, ``alpha_audit.x.y`` is that module (issue 18)."""
+    modules = sorted(
+        ".".join(("alpha_audit", *p.relative_to(SRC).with_suffix("").parts)).removesuffix(
+            ".__init__"
+        )
+        for p in SRC.rglob("*.py")
+        if p.name != "__main__.py" and "bundled" not in p.parts
+    )
+    top = {m.split(".")[1] for m in modules if m.count(".") >= 1}
+    assert not top & set(alpha_audit.__all__), "a public name hides a submodule"
     code = (
-        "import alpha_audit.audit, alpha_audit.suggest, alpha_audit.reproduce.run, sys, types\n"
-        "from alpha_audit import audit, reproduce, suggest\n"
-        "from alpha_audit.audit import audit as same\n"
-        "assert sys.modules['alpha_audit.audit'].audit is audit is same\n"
-        "for f in (audit, reproduce, suggest):\n"
-        "    assert callable(f) and not isinstance(f, types.ModuleType), f\n"
-        "assert alpha_audit.audit is audit\n"
+        "import importlib, functools, alpha_audit\n"
+        f"for name in {modules!r}:\n"
+        "    importlib.import_module(name)\n"
+        "    parts = name.split('.')\n"
+        "    assert functools.reduce(getattr, parts[1:], alpha_audit).__name__ == name, name\n"
     )
     subprocess.run([sys.executable, "-c", code], check=True)

@@ -5,7 +5,8 @@ from __future__ import annotations
 import pytest
 
 from alpha_audit.errors import UsageError
-from alpha_audit.policy import DEFAULT_RULES, Policy, Rule
+from alpha_audit.policy import Policy
+from alpha_audit.rules import DEFAULT_RULES, Rule
 
 
 def test_overrides_replace_only_what_is_given() -> None:

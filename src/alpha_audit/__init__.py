@@ -16,8 +16,6 @@ the loaders nor the command line.
 from __future__ import annotations
 
 import importlib
-import sys
-import types
 from typing import TYPE_CHECKING, Any
 
 __version__ = "0.1.0"
@@ -61,50 +59,51 @@ _EXPORTS: dict[str, tuple[str, str]] = {
     "iconset_source": ("alpha_audit.bundled", "iconset_source"),
     "load_bundled_themes": ("alpha_audit.bundled", "load_bundled_themes"),
     "theme_source": ("alpha_audit.bundled", "theme_source"),
-    "AuditResult": ("alpha_audit.audit", "AuditResult"),
-    "CanvasSummary": ("alpha_audit.audit", "CanvasSummary"),
-    "Collision": ("alpha_audit.audit", "Collision"),
-    "Row": ("alpha_audit.audit", "Row"),
-    "Separation": ("alpha_audit.audit", "Separation"),
-    "Summary": ("alpha_audit.audit", "Summary"),
-    "audit": ("alpha_audit.audit", "audit"),
-    "DEFAULT_RULES": ("alpha_audit.policy", "DEFAULT_RULES"),
+    "AuditResult": ("alpha_audit.rows", "AuditResult"),
+    "CanvasSummary": ("alpha_audit.rows", "CanvasSummary"),
+    "Collision": ("alpha_audit.rows", "Collision"),
+    "Row": ("alpha_audit.rows", "Row"),
+    "Separation": ("alpha_audit.rows", "Separation"),
+    "Summary": ("alpha_audit.rows", "Summary"),
+    "audit": ("alpha_audit.rows", "audit"),
+    "DEFAULT_RULES": ("alpha_audit.rules", "DEFAULT_RULES"),
+    "RULES": ("alpha_audit.rules", "RULES"),
+    "Rule": ("alpha_audit.rules", "Rule"),
     "Exemption": ("alpha_audit.policy", "Exemption"),
     "Policy": ("alpha_audit.policy", "Policy"),
-    "Rule": ("alpha_audit.policy", "Rule"),
-    "CheckReport": ("alpha_audit.gate", "CheckReport"),
-    "Finding": ("alpha_audit.gate", "Finding"),
-    "FindingKey": ("alpha_audit.gate", "FindingKey"),
+    "CheckReport": ("alpha_audit.results", "CheckReport"),
+    "Finding": ("alpha_audit.findings", "Finding"),
+    "FindingKey": ("alpha_audit.findings", "FindingKey"),
+    "findings_for": ("alpha_audit.findings", "findings_for"),
     "GateResult": ("alpha_audit.gate", "GateResult"),
     "baseline_document": ("alpha_audit.gate", "baseline_document"),
     "evaluate": ("alpha_audit.gate", "evaluate"),
-    "parse_baseline": ("alpha_audit.gate", "parse_baseline"),
-    "read_baseline": ("alpha_audit.gate", "read_baseline"),
+    "parse_baseline": ("alpha_audit.load.baseline", "parse_baseline"),
+    "read_baseline": ("alpha_audit.load.baseline", "read_baseline"),
+    "with_fixes": ("alpha_audit.fixes", "with_fixes"),
     "check_files": ("alpha_audit.pipeline", "check_files"),
     "check_project": ("alpha_audit.pipeline", "check_project"),
     "CheckFormat": ("alpha_audit.render", "CheckFormat"),
     "RenderOptions": ("alpha_audit.render", "RenderOptions"),
     "render_check": ("alpha_audit.render", "render_check"),
-    "SafeAlpha": ("alpha_audit.suggest", "SafeAlpha"),
-    "SuggestResult": ("alpha_audit.suggest", "SuggestResult"),
-    "largest_safe_alpha": ("alpha_audit.suggest", "largest_safe_alpha"),
-    "suggest": ("alpha_audit.suggest", "suggest"),
+    "SafeAlpha": ("alpha_audit.results", "SafeAlpha"),
+    "SuggestResult": ("alpha_audit.results", "SuggestResult"),
+    "largest_safe_alpha": ("alpha_audit.suggest.engine", "largest_safe_alpha"),
     "SuggestFormat": ("alpha_audit.render", "SuggestFormat"),
     "render_suggest": ("alpha_audit.render", "render_suggest"),
-    "suggest_document": ("alpha_audit.suggest.report", "suggest_document"),
+    "suggest_document": ("alpha_audit.render.suggest", "suggest_document"),
     "apply_alpha": ("alpha_audit.suggest.apply", "apply_alpha"),
     "PairRow": ("alpha_audit.pair", "PairRow"),
     "pair_table": ("alpha_audit.pair", "pair_table"),
     "PairReport": ("alpha_audit.pair", "PairReport"),
     "pair_report": ("alpha_audit.pair", "pair_report"),
-    "PairFormat": ("alpha_audit.render.pair", "PairFormat"),
+    "PairFormat": ("alpha_audit.render", "PairFormat"),
     "ReproduceFormat": ("alpha_audit.render", "ReproduceFormat"),
     "PreviewResult": ("alpha_audit.preview.files", "PreviewResult"),
     "preview_files": ("alpha_audit.preview.files", "preview_files"),
     "Layout": ("alpha_audit.preview.sheets", "Layout"),
     "Experiment": ("alpha_audit.reproduce.run", "Experiment"),
     "Reproduction": ("alpha_audit.reproduce.run", "Reproduction"),
-    "reproduce": ("alpha_audit.reproduce.run", "reproduce"),
     "write_figures": ("alpha_audit.reproduce.figures", "write_figures"),
     "write_text": ("alpha_audit.output", "write_text"),
     "reproduction_json": ("alpha_audit.reproduce.report", "render_json"),
@@ -117,6 +116,7 @@ _EXPORTS: dict[str, tuple[str, str]] = {
 
 __all__ = [
     "DEFAULT_RULES",
+    "RULES",
     "AlphaAuditError",
     "AuditResult",
     "Canvas",
@@ -171,6 +171,7 @@ __all__ = [
     "delta_e_2000",
     "evaluate",
     "export_table",
+    "findings_for",
     "hex_to_linear",
     "iconset_source",
     "largest_safe_alpha",
@@ -194,29 +195,19 @@ __all__ = [
     "render_check",
     "render_export",
     "render_suggest",
-    "reproduce",
     "reproduction_json",
     "reproduction_markdown",
     "srgb_decode",
     "srgb_encode",
-    "suggest",
     "suggest_document",
     "theme_source",
     "to_8bit",
+    "with_fixes",
     "write_figures",
     "write_text",
 ]
 
 if TYPE_CHECKING:  # for type checkers only; at run time __getattr__ imports on demand
-    from alpha_audit.audit import (
-        AuditResult,
-        CanvasSummary,
-        Collision,
-        Row,
-        Separation,
-        Summary,
-        audit,
-    )
     from alpha_audit.bundled import (
         bundled_iconset,
         bundled_iconsets,
@@ -245,46 +236,131 @@ if TYPE_CHECKING:  # for type checkers only; at run time __getattr__ imports on 
         SvgError,
         UsageError,
     )
-    from alpha_audit.export import export_table, render_export
-    from alpha_audit.gate import (
-        CheckReport,
+    from alpha_audit.export import (
+        export_table,
+        render_export,
+    )
+    from alpha_audit.findings import (
         Finding,
         FindingKey,
+        findings_for,
+    )
+    from alpha_audit.fixes import (
+        with_fixes,
+    )
+    from alpha_audit.gate import (
         GateResult,
         baseline_document,
         evaluate,
+    )
+    from alpha_audit.load.baseline import (
         parse_baseline,
         read_baseline,
     )
-    from alpha_audit.load.config import ProjectConfig, load_config, project_config
-    from alpha_audit.load.iconset import load_iconset
-    from alpha_audit.load.svg import IconProblem, MaskSet, RenderLimits, rasterize, rasterize_icons
-    from alpha_audit.load.theme import load_theme
-    from alpha_audit.load.tokens import load_token_modes
-    from alpha_audit.load.tokens.themes import load_token_themes
-    from alpha_audit.model import Canvas, Icon, IconSet, Theme
-    from alpha_audit.output import write_text
-    from alpha_audit.pair import PairReport, PairRow, pair_report, pair_table
-    from alpha_audit.pipeline import check_files, check_project
-    from alpha_audit.policy import DEFAULT_RULES, Exemption, Policy, Rule
-    from alpha_audit.preview.files import PreviewResult, preview_files
-    from alpha_audit.preview.sheets import Layout
+    from alpha_audit.load.config import (
+        ProjectConfig,
+        load_config,
+        project_config,
+    )
+    from alpha_audit.load.iconset import (
+        load_iconset,
+    )
+    from alpha_audit.load.svg import (
+        IconProblem,
+        MaskSet,
+        RenderLimits,
+        rasterize,
+        rasterize_icons,
+    )
+    from alpha_audit.load.theme import (
+        load_theme,
+    )
+    from alpha_audit.load.tokens import (
+        load_token_modes,
+    )
+    from alpha_audit.load.tokens.themes import (
+        load_token_themes,
+    )
+    from alpha_audit.model import (
+        Canvas,
+        Icon,
+        IconSet,
+        Theme,
+    )
+    from alpha_audit.output import (
+        write_text,
+    )
+    from alpha_audit.pair import (
+        PairReport,
+        PairRow,
+        pair_report,
+        pair_table,
+    )
+    from alpha_audit.pipeline import (
+        check_files,
+        check_project,
+    )
+    from alpha_audit.policy import (
+        Exemption,
+        Policy,
+    )
+    from alpha_audit.preview.files import (
+        PreviewResult,
+        preview_files,
+    )
+    from alpha_audit.preview.sheets import (
+        Layout,
+    )
     from alpha_audit.render import (
         CheckFormat,
+        PairFormat,
         RenderOptions,
         ReproduceFormat,
         SuggestFormat,
         render_check,
         render_suggest,
     )
-    from alpha_audit.render.pair import PairFormat
-    from alpha_audit.reproduce.figures import write_figures
-    from alpha_audit.reproduce.report import render_json as reproduction_json
-    from alpha_audit.reproduce.report import render_markdown as reproduction_markdown
-    from alpha_audit.reproduce.run import Experiment, Reproduction, reproduce
-    from alpha_audit.suggest import SafeAlpha, SuggestResult, largest_safe_alpha, suggest
-    from alpha_audit.suggest.apply import apply_alpha
-    from alpha_audit.suggest.report import suggest_document
+    from alpha_audit.render.suggest import (
+        suggest_document,
+    )
+    from alpha_audit.reproduce.figures import (
+        write_figures,
+    )
+    from alpha_audit.reproduce.report import (
+        render_json as reproduction_json,
+    )
+    from alpha_audit.reproduce.report import (
+        render_markdown as reproduction_markdown,
+    )
+    from alpha_audit.reproduce.run import (
+        Experiment,
+        Reproduction,
+    )
+    from alpha_audit.results import (
+        CheckReport,
+        SafeAlpha,
+        SuggestResult,
+    )
+    from alpha_audit.rows import (
+        AuditResult,
+        CanvasSummary,
+        Collision,
+        Row,
+        Separation,
+        Summary,
+        audit,
+    )
+    from alpha_audit.rules import (
+        DEFAULT_RULES,
+        RULES,
+        Rule,
+    )
+    from alpha_audit.suggest.apply import (
+        apply_alpha,
+    )
+    from alpha_audit.suggest.engine import (
+        largest_safe_alpha,
+    )
 
 
 def __getattr__(name: str) -> Any:
@@ -300,27 +376,3 @@ def __getattr__(name: str) -> Any:
 
 def __dir__() -> list[str]:
     return sorted({*globals(), *_EXPORTS})
-
-
-class _PublicNamesFirst(types.ModuleType):
-    """This package's module type: ``audit``, ``suggest`` and ``reproduce`` stay functions.
-
-    Importing a submodule binds it on its parent (``alpha_audit.audit = <module>``),
-    which would hide the public function of the same name from ``__getattr__``.
-    The binding is skipped for those names, as the eager ``from alpha_audit.audit
-    import audit`` used to overwrite it; the submodule stays in ``sys.modules``,
-    so ``from alpha_audit.audit import ...`` works as usual (but, as before,
-    ``import alpha_audit.audit as m`` gives the function).
-    """
-
-    def __setattr__(self, name: str, value: Any) -> None:
-        if (
-            name in _EXPORTS
-            and isinstance(value, types.ModuleType)
-            and value.__name__ == f"{__name__}.{name}"
-        ):
-            return
-        super().__setattr__(name, value)
-
-
-sys.modules[__name__].__class__ = _PublicNamesFirst

@@ -2,7 +2,7 @@
 
 Every error says *where* (file and line or key), *what* (the bad value) and
 *what is allowed*, so the CLI can print it on one line and exit 2.  Only
-:mod:`alpha_audit.cli.app` turns these into exit codes.  A message names a
+:mod:`alpha_audit.cli.root` turns these into exit codes.  A message names a
 keyword parameter in backticks (```overwrite=True```), which the command line
 rewords as its flag (:mod:`alpha_audit.cli.flags`).
 """

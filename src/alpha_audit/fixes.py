@@ -1,27 +1,29 @@
-"""A fix for every failing (colour, canvas): three answers a reviewer can act on.
+"""A fix for every failing finding, computed once in the pipeline for every renderer.
 
-For each palette colour that fails a gate rule on a canvas:
+For a colour failing a rule of one paint on a canvas (contrast, drift, lock,
+thin strokes) a :class:`~alpha_audit.results.ColorFix` gives three answers a
+reviewer can act on:
 
-1. **the largest safe alpha** for that colour (its icons moving together), which
-   is :func:`alpha_audit.suggest.largest_safe_alpha` -- reused, not restated
-   (over the policy's rules but the paint rules, which suggest does not answer yet);
+1. **the largest safe alpha** for that colour, its icons moving together
+   (:class:`~alpha_audit.suggest.engine.SafeAlphas`, the one suggest engine);
 2. **the smallest alpha at or above 1 that reaches the threshold on every
    canvas of the failing canvas's mode** -- exact, from events: on ``[1,
-   alpha_max]`` each canvas's luminance ``Y(a)`` of ``clip(b + a (s - b))`` is
-   piecewise linear (:func:`alpha_audit.suggest.events.luminance_band_pieces`), so the
-   set where contrast is below the threshold is a union of open intervals
-   known in closed form, and the answer is the smallest point of ``[1,
-   alpha_max]`` outside all of them.  It is reported rounded *up* to
-   ``precision`` decimals and re-checked there by direct compositing;
+   alpha_max]`` each canvas's displayed luminance is piecewise linear in the
+   coefficient (:func:`~alpha_audit.suggest.events.luminance_band_pieces`), so
+   the set where contrast is below the threshold is a union of open intervals
+   known in closed form, and the answer is the smallest point outside all of
+   them, rounded *up* to ``precision`` decimals and re-checked there;
 3. **the nearest passing source colour**: the colour closest in CIEDE2000 to
    the source, at the source's OKLCH hue and inside the sRGB gamut, whose
-   output passes on every canvas of the theme at the set's alpha(s).  "Passes"
-   means contrast at least the threshold and, when the policy has the ``loss``
-   rule, no loss beyond ``max_loss`` (the rules of one colour against its
-   canvases; collisions and separation depend on the other colours and are
-   left to re-running the gate).  See :func:`nearest_passing_color` for the
-   search and its precision.
+   output passes every contrast rule of the policy on every canvas of the
+   theme at the colour's alphas and opacities (:func:`nearest_passing_color`).
 
+A finding between several colours (collision, separation, confusion, CVD)
+gets a :class:`~alpha_audit.results.GroupFix`: the largest safe alpha for its
+rule alone, of the two roles together for a confusion (the joint answer), else
+of the whole set.  Where an answer is an exact edit of a value the loaders
+located (:class:`~alpha_audit.model.Span`), the finding carries it
+(:attr:`~alpha_audit.findings.Finding.edits`); see :func:`_edits` for when.
 Pure computation: nothing is printed.
 """
 
@@ -31,15 +33,12 @@ import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from decimal import ROUND_CEILING, Decimal
-from pathlib import Path
-from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from alpha_audit.audit import AuditResult
 from alpha_audit.color import (
-    composite_extended,
+    composite_coverage,
     contrast_ratio,
     delta_e_2000,
     from_8bit,
@@ -48,28 +47,29 @@ from alpha_audit.color import (
     to_8bit,
 )
 from alpha_audit.color.oklch import linear_to_oklch, oklch_to_linear
-from alpha_audit.gate import CheckReport, Finding
-from alpha_audit.policy import CONTRAST_RULES, Policy, Rule, contrast_breaks
-from alpha_audit.suggest import SafeAlpha, largest_safe_alpha
+from alpha_audit.findings import Finding
+from alpha_audit.model import Edit, Icon
+from alpha_audit.policy import CONTRAST_RULES, Policy, contrast_breaks
+from alpha_audit.results import (
+    CheckReport,
+    ColorFix,
+    Fix,
+    GroupFix,
+    NearestColor,
+    ReachAlpha,
+    SafeAlpha,
+)
+from alpha_audit.rows import AuditResult
+from alpha_audit.rules import Rule
+from alpha_audit.suggest.engine import SafeAlphas
 from alpha_audit.suggest.events import luminance_band, luminance_band_pieces
 
 __all__ = [
     "ACHROMATIC_CHROMA",
-    "RAYS",
-    "RAY_SAMPLES",
-    "ColorFix",
-    "NearestColor",
-    "ReachAlpha",
-    "color_key",
-    "describe_fix",
-    "fix_lookup",
-    "fix_to_dict",
-    "fixes_capped",
-    "fixes_for",
+    "MAX_FIXED_COLORS",
+    "format_alpha",
     "nearest_passing_color",
     "passes_everywhere",
-    "report_fixes",
-    "safe_span",
     "smallest_alpha_reaching",
     "with_fixes",
 ]
@@ -86,56 +86,29 @@ REFINE_ROUNDS = 4
 REFINE_RAYS = 24
 BISECTION_STEPS = 48  # along a ray of length <= ~1.2: 1.2 / 2**48 < 1e-14
 _CHUNK = 1 << 15  # colours per vectorised evaluation (bounded memory)
-
-
-@dataclass(frozen=True)
-class ReachAlpha:
-    """The smallest alpha >= 1 at which a colour reaches the threshold on every canvas of a mode.
-
-    ``alpha`` is rounded up to the precision and re-checked (``None``: no
-    alpha up to ``alpha_max`` reaches it); ``exact`` is the infimum itself.
-    """
-
-    mode: str
-    canvases: tuple[str, ...]
-    threshold: float
-    alpha: float | None
-    exact: float | None
-
-
-@dataclass(frozen=True)
-class NearestColor:
-    """The nearest passing colour at the source's OKLCH hue.
-
-    ``color`` is the 8-bit hex to write (checked to pass); ``delta_e`` is its
-    CIEDE2000 from the source.  ``lightness``/``chroma``/``hue`` are the OKLCH
-    of the continuous optimum the hex rounds (hue in degrees).
-    """
-
-    color: str
-    delta_e: float
-    lightness: float
-    chroma: float
-    hue: float
-
-
-@dataclass(frozen=True)
-class ColorFix:
-    """How to fix one palette colour failing on one canvas."""
-
-    theme: str
-    iconset: str
-    color: str  # palette name, or the hex when the colour has none
-    source: str
-    canvas: str
-    mode: str
-    icons: tuple[str, ...]  # every icon of the colour
-    rules: tuple[Rule, ...]  # the rules it fails on this canvas
-    largest_safe: SafeAlpha
-    reach: ReachAlpha
-    nearest: NearestColor | None
-    manifest: Path | None = None
-    line: int | None = None  # manifest line that sets the colour (first icon), if known
+# Fixes cost about 0.1 s per failing colour (a suggest question and, for contrast
+# failures, a nearest-colour search).  A brand set can fail thousands of colours at
+# once; the first MAX_FIXED_COLORS per check (audits in order, colours in row order)
+# get one, the rest are counted and answered by ``alpha-audit suggest``.
+MAX_FIXED_COLORS = 50
+# The rules of one paint that a colour fix answers; the reaching alpha and the
+# nearest colour answer only the contrast rules.
+_PER_PAINT = frozenset({*CONTRAST_RULES, Rule.DRIFT, Rule.LOCK, Rule.THIN_STROKES})
+_GROUP = frozenset(
+    {
+        Rule.COLLISION,
+        Rule.NEW_COLLISION,
+        Rule.SEPARATION,
+        Rule.CONFUSION,
+        Rule.CVD_COLLISION,
+        Rule.CVD_CONFUSION,
+    }
+)
+_PAIR = frozenset({Rule.CONFUSION, Rule.CVD_CONFUSION})
+# The rules at whose finding the smallest reaching alpha is an exact fix: both
+# mean "contrast below the threshold", which that alpha lifts on every canvas of
+# the mode.  A loss can remain above 1 (contrast lower than at alpha 1).
+_REACH_RULES = frozenset({Rule.BELOW_THRESHOLD, Rule.NEWLY_FAILING})
 
 
 def _round_up(value: float, precision: int) -> float:
@@ -143,11 +116,14 @@ def _round_up(value: float, precision: int) -> float:
     return float(Decimal(repr(value)).quantize(step, rounding=ROUND_CEILING))
 
 
-def _reaches(
-    source: NDArray[np.float64], backgrounds: NDArray[np.float64], a: float, t: float
-) -> bool:
-    out = composite_extended(source, backgrounds, a)
-    return bool(np.all(contrast_ratio(out, backgrounds) >= t))
+def format_alpha(alpha: float) -> str:
+    """The shortest text that reads back as ``alpha``.
+
+    >>> format_alpha(1.042), format_alpha(1.0), format_alpha(0.1 + 0.2)
+    ('1.042', '1', '0.30000000000000004')
+    """
+    short = f"{alpha:g}"
+    return short if float(short) == alpha else repr(alpha)
 
 
 def smallest_alpha_reaching(
@@ -155,18 +131,20 @@ def smallest_alpha_reaching(
     backgrounds: ArrayLike,
     threshold: float,
     *,
+    opacities: ArrayLike = 1.0,
     alpha_max: float = 2.0,
     precision: int = 3,
 ) -> tuple[float | None, float | None]:
     """``(rounded, exact)``: the smallest ``a >= 1`` reaching the threshold on every canvas.
 
     ``source`` is one linear colour ``(3,)``, ``backgrounds`` the canvases
-    ``(m, 3)``.  Exact: the bad set (contrast below the threshold on some
-    canvas) is a finite union of open intervals, one per canvas and linear
-    piece; the infimum of its complement is ``1`` or a right end of one of
-    them, so only those candidates are tested.  ``rounded`` is ``exact``
-    rounded up to ``precision`` decimals, stepped up until a direct composite
-    passes everywhere; both are ``None`` when nothing up to ``alpha_max`` does.
+    ``(m, 3)``, ``opacities`` the paint's opacities (each must reach it).
+    Exact: the bad set (contrast below the threshold somewhere) is a finite
+    union of open intervals, one per canvas, opacity and linear piece; the
+    infimum of its complement is ``1`` or a right end of one of them, so only
+    those candidates are tested.  ``rounded`` is ``exact`` rounded up to
+    ``precision`` decimals, stepped up until a direct composite passes
+    everywhere; both are ``None`` when nothing up to ``alpha_max`` does.
 
     >>> # Linear grey 0.4 on white: 2.33:1 at alpha 1; darker with a > 1 (moved away from white).
     >>> rounded, exact = smallest_alpha_reaching([0.4] * 3, [[1.0, 1.0, 1.0]], 3.0)
@@ -175,24 +153,37 @@ def smallest_alpha_reaching(
     """
     s = np.asarray(source, dtype=np.float64).reshape(3)
     bgs = np.asarray(backgrounds, dtype=np.float64).reshape(-1, 3)
+    o = np.asarray(opacities, dtype=np.float64).reshape(-1)
     t = float(threshold)
-    lo, hi = luminance_band(t, relative_luminance(bgs))
-    pieces = luminance_band_pieces(s[np.newaxis, :], bgs, lo, hi, ALPHA_LO, alpha_max)
-    p = np.stack([pc[0] for pc in pieces])  # (4, m)
-    q = np.stack([pc[1] for pc in pieces])
+    bg = np.repeat(bgs, o.size, axis=0)  # every (canvas, opacity)
+    q = np.tile(o, bgs.shape[0])
+    y_bg = relative_luminance(bg)
+    lo, hi = luminance_band(t, y_bg)
+    # Displayed luminance o Y(clip) + (1 - o) Yb: the band on Y(clip) itself.
+    with np.errstate(divide="ignore", invalid="ignore"):
+        lo = np.where(q > 0, (lo - (1.0 - q) * y_bg) / q, np.inf)
+        hi = np.where(q > 0, (hi - (1.0 - q) * y_bg) / q, -np.inf)
+    pieces = luminance_band_pieces(s[np.newaxis, :], bg, lo, hi, ALPHA_LO, alpha_max)
+    p = np.stack([pc[0] for pc in pieces])  # (4, combos)
+    qq = np.stack([pc[1] for pc in pieces])
     lower = np.stack([pc[2] for pc in pieces])
     upper = np.stack([pc[3] for pc in pieces])
-    ends = np.concatenate([[ALPHA_LO], upper.ravel(), q.ravel()])
+    ends = np.concatenate([[ALPHA_LO], upper.ravel(), qq.ravel()])
     candidates = np.unique(ends[np.isfinite(ends) & (ends >= ALPHA_LO) & (ends <= alpha_max)])
     c = candidates[:, np.newaxis, np.newaxis]
-    bad = np.any((p <= c) & (c <= q) & (lower < c) & (c < upper), axis=(1, 2))
+    bad = np.any((p <= c) & (c <= qq) & (lower < c) & (c < upper), axis=(1, 2))
     good = candidates[~bad]
     if good.size == 0:
         return None, None
     exact = float(good[0])
     unit = 10.0**-precision
+
+    def reaches(a: float) -> bool:
+        out = composite_coverage(s, bg, a, q)
+        return bool(np.all(contrast_ratio(out, bg) >= t))
+
     rounded = _round_up(exact, precision)
-    while rounded <= alpha_max + unit / 2 and not _reaches(s, bgs, rounded, t):
+    while rounded <= alpha_max + unit / 2 and not reaches(rounded):
         # A later bad interval, or float noise exactly at the crossing.
         rounded = _round_up(rounded + unit / 2, precision)
     if rounded > alpha_max + unit / 2:
@@ -203,39 +194,40 @@ def smallest_alpha_reaching(
 def passes_everywhere(
     colors: ArrayLike,
     backgrounds: ArrayLike,
-    alphas: ArrayLike,
+    styles: ArrayLike,
     threshold: float,
     policy: Policy | None = None,
 ) -> NDArray[np.bool_]:
-    """Which linear colours ``(..., 3)`` pass on every canvas at every alpha.
+    """Which linear colours ``(..., 3)`` pass on every canvas in every style.
 
-    In gamut (every channel in [0, 1]), contrast at least ``threshold`` at
-    each alpha, and no contrast loss beyond ``max_loss`` when the policy has
-    the ``loss`` rule (the gate's own test: a gain below ``-max(max_loss,
-    1e-10)`` is a loss).  Evaluated in chunks, so memory stays bounded.
+    ``styles`` are ``(alpha, opacity)`` pairs ``(k, 2)`` (a plain list of
+    alphas means opacity 1).  Passing: in gamut (every channel in [0, 1]),
+    contrast at least ``threshold``, and every contrast rule of the policy
+    satisfied (:func:`~alpha_audit.policy.contrast_breaks`, their one
+    statement), against the same paint at alpha 1.  Evaluated in chunks, so
+    memory stays bounded.
     """
     col = np.asarray(colors, dtype=np.float64)
     shape = col.shape[:-1]
     flat = col.reshape(-1, 3)
     bgs = np.asarray(backgrounds, dtype=np.float64).reshape(-1, 3)
-    a = np.asarray(alphas, dtype=np.float64).reshape(-1)
+    st = np.asarray(styles, dtype=np.float64)
+    st = np.stack([st, np.ones_like(st)], axis=-1) if st.ndim == 1 else st.reshape(-1, 2)
+    a, o = st[:, 0], st[:, 1]
     pol = policy or Policy()
-    # "Passes": the threshold always, plus every contrast rule the policy enables
-    # (policy.contrast_breaks is their one statement).
     rules = {Rule.BELOW_THRESHOLD, *pol.contrast_rules}
     out = np.empty(flat.shape[0], dtype=bool)
     step = max(1, _CHUNK // max(1, bgs.shape[0] * a.size))
+    b = bgs[np.newaxis, np.newaxis]  # (1, 1, m, 3)
     for start in range(0, flat.shape[0], step):
         chunk = flat[start : start + step]
         ok = np.all((chunk >= 0.0) & (chunk <= 1.0), axis=-1)
         src = np.clip(chunk, 0.0, 1.0)[:, np.newaxis, np.newaxis, :]
-        composite = composite_extended(
-            src, bgs[np.newaxis, np.newaxis], a[np.newaxis, :, np.newaxis]
-        )
-        contrast = contrast_ratio(composite, bgs[np.newaxis, np.newaxis])  # (N, k, m)
-        ref = contrast_ratio(src[:, 0], bgs[np.newaxis])[:, np.newaxis, :]  # (N, 1, m)
+        shown = composite_coverage(src, b, a[None, :, None], o[None, :, None])
+        ref = composite_coverage(src, b, 1.0, o[None, :, None])
+        contrast, c_ref = contrast_ratio(shown, b), contrast_ratio(ref, b)  # (N, k, m)
         for rule in rules:
-            ok &= ~np.any(contrast_breaks(rule, pol, ref, contrast, threshold), axis=(1, 2))
+            ok &= ~np.any(contrast_breaks(rule, pol, c_ref, contrast, threshold), axis=(1, 2))
         out[start : start + step] = ok
     return out.reshape(shape)
 
@@ -252,7 +244,7 @@ def _ray_ends(l0: float, c0: float, theta: NDArray[np.float64]) -> NDArray[np.fl
 def nearest_passing_color(
     source: ArrayLike,
     backgrounds: ArrayLike,
-    alphas: ArrayLike,
+    styles: ArrayLike,
     threshold: float,
     policy: Policy | None = None,
 ) -> NearestColor | None:
@@ -263,14 +255,13 @@ def nearest_passing_color(
     points; on every ray the first passing sample is bisected against the one
     before it down to ~1e-14 in OKLab, giving the nearest passing point along
     that ray.  The best ray's neighbourhood is then searched again with finer
-    rays (:data:`REFINE_ROUNDS` rounds of :data:`REFINE_RAYS`), so the angle
-    is resolved to about ``2 pi / 180 / 12**4``.  A passing region thinner
-    than a sample step (``1/200`` of a ray: at most 0.006 OKLab, about 0.6
-    CIEDE2000) can be missed.  The optimum is finally written as 8-bit hex:
-    of the passing codes within +-3 steps per channel of it, the one nearest
-    (CIEDE2000) to the optimum, so the hue drifts only by rounding.
-    An achromatic source (chroma below :data:`ACHROMATIC_CHROMA`) only moves
-    in lightness.  ``None`` when nothing of that hue passes.
+    rays (:data:`REFINE_ROUNDS` rounds of :data:`REFINE_RAYS`).  A passing
+    region thinner than a sample step (``1/200`` of a ray: at most 0.006
+    OKLab, about 0.6 CIEDE2000) can be missed.  The optimum is finally written
+    as 8-bit hex: of the passing codes within +-3 steps per channel of it, the
+    one nearest (CIEDE2000) to the optimum.  An achromatic source (chroma
+    below :data:`ACHROMATIC_CHROMA`) only moves in lightness.  ``None`` when
+    nothing of that hue passes.  ``styles`` as :func:`passes_everywhere`.
 
     >>> white = [[1.0, 1.0, 1.0]]
     >>> fix = nearest_passing_color([0.4, 0.4, 0.4], white, [1.0], 3.0)  # 2.33:1 -> 3:1
@@ -279,10 +270,9 @@ def nearest_passing_color(
     """
     src = np.asarray(source, dtype=np.float64).reshape(3)
     bgs = np.asarray(backgrounds, dtype=np.float64).reshape(-1, 3)
-    a = np.asarray(alphas, dtype=np.float64).reshape(-1)
 
     def passing(lin: NDArray[np.float64]) -> NDArray[np.bool_]:
-        return passes_everywhere(lin, bgs, a, threshold, policy)
+        return passes_everywhere(lin, bgs, styles, threshold, policy)
 
     l0, c0, hue = (float(v) for v in linear_to_oklch(src))
     achromatic = c0 < ACHROMATIC_CHROMA
@@ -381,299 +371,259 @@ def _passing_code(
     return nearest
 
 
-# Fixes cost about 0.1 s per failing colour (a suggest run and, for contrast
-# failures, a nearest-colour search).  A brand set can fail thousands of colours
-# at once; the first MAX_FIXED_COLORS per check (audits in order, colours in icon
-# order) get one, the rest are counted (:func:`fixes_left_out`) and answered by
-# ``alpha-audit suggest``.  No report shows more than a few dozen groups anyway.
-MAX_FIXED_COLORS = 50
+# ------------------------------------------------------------------ per audit
 
 
-def color_key(result: AuditResult) -> dict[str, str]:
-    """Each icon's colour as fixes name it: its palette name, else its colour."""
-    return {i.name: i.color_name or i.color for i in result.iconset.icons}
+@dataclass
+class _Audit:
+    """The fixes of one audit, each question asked once."""
 
+    result: AuditResult
+    policy: Policy
+    alpha_max: float
+    precision: int
 
-def fixes_for(
-    report: CheckReport,
-    *,
-    alpha_max: float = 2.0,
-    precision: int = 3,
-) -> tuple[ColorFix, ...]:
-    """One :class:`ColorFix` per failing (colour, canvas) of every audit in ``report``.
+    def __post_init__(self) -> None:
+        r = self.result
+        self.by_name = {i.name: i for i in r.iconset.icons}
+        # Which icons draw each colour, and the (alpha, opacity) styles it is drawn in.
+        self.members: dict[str, list[str]] = {}
+        self.styles: dict[str, set[tuple[float, float]]] = {}
+        self.linear: dict[str, NDArray[np.float64]] = {}
+        for p, e in enumerate(r.entries):
+            self.members.setdefault(e.role, [])
+            if e.icon.name not in self.members[e.role]:
+                self.members[e.role].append(e.icon.name)
+            self.styles.setdefault(e.role, set()).add((float(r.alpha[p]), e.opacity))
+            self.linear.setdefault(e.role, r.sources[p])
+        self.answers: dict[Rule | None, SafeAlphas] = {}
+        self.safe: dict[tuple[Rule | None, tuple[str, ...]], SafeAlpha] = {}
+        self.nearest: dict[str, NearestColor | None] = {}
+        self.reach: dict[tuple[str, str], ReachAlpha] = {}
 
-    Failing means a finding that fails the gate (not exempt, not baselined)
-    on a canvas; each icon it names puts its colour on that canvas.  Order is
-    stable: audits in order, then colours in icon order, then canvases in
-    theme order.  Each colour's largest safe alpha and nearest colour are
-    computed once; the smallest reaching alpha once per mode.
-    """
-    policy = report.gate.policy
-    out: list[ColorFix] = []
-    budget = [MAX_FIXED_COLORS]
-    for result in report.audits:
-        failures = [
-            f
-            for f in report.gate.failures
-            if f.theme == result.theme.name
-            and f.iconset == result.iconset.name
-            and f.canvas is not None
-        ]
-        if failures:
-            out.extend(_audit_fixes(result, failures, policy, alpha_max, precision, budget))
-    return tuple(out)
+    def largest_safe(self, rule: Rule | None, colors: Sequence[str]) -> SafeAlpha:
+        """The largest safe alpha of the icons drawing ``colors`` (all: none given)."""
+        key = (rule, tuple(colors))
+        if key not in self.safe:
+            if rule not in self.answers:
+                policy = (
+                    self.policy if rule is None else replace(self.policy, rules=frozenset({rule}))
+                )
+                self.answers[rule] = SafeAlphas(
+                    self.result, policy, alpha_max=self.alpha_max, precision=self.precision
+                )
+            icons = None if not colors else [n for c in colors for n in self.members.get(c, [])]
+            self.safe[key] = self.answers[rule](icons)
+        return self.safe[key]
 
-
-def failing_colors(report: CheckReport) -> int:
-    """How many (audit, colour) pairs fail the gate on some canvas."""
-    total = 0
-    for result in report.audits:
-        key_of = color_key(result)
-        names = {
-            key_of[n]
-            for f in report.gate.failures
-            if f.theme == result.theme.name
-            and f.iconset == result.iconset.name
-            and f.canvas is not None
-            for n in f.icons
-            if n in key_of
-        }
-        total += len(names)
-    return total
-
-
-def _fixed_colors(report: CheckReport) -> int:
-    """How many (audit, colour) pairs have a computed fix."""
-    return len({(f.theme, f.iconset, f.color) for f in report_fixes(report)})
-
-
-def fixes_left_out(report: CheckReport) -> int:
-    """Failing colours without a computed fix (beyond :data:`MAX_FIXED_COLORS`)."""
-    return failing_colors(report) - _fixed_colors(report)
-
-
-def fixes_capped(report: CheckReport) -> bool:
-    """Whether :data:`MAX_FIXED_COLORS` stopped the fixes: some failing colours have none."""
-    return _fixed_colors(report) >= MAX_FIXED_COLORS and fixes_left_out(report) > 0
-
-
-def _audit_fixes(
-    result: AuditResult,
-    failures: Sequence[Finding],
-    policy: Policy,
-    alpha_max: float,
-    precision: int,
-    budget: list[int],
-) -> list[ColorFix]:
-    """The fixes of one audit; ``budget[0]`` counts the colours still allowed a fix."""
-    theme, iconset = result.theme, result.iconset
-    key_of = color_key(result)
-    members: dict[str, list[int]] = {}
-    for i, icon in enumerate(iconset.icons):
-        members.setdefault(key_of[icon.name], []).append(i)
-    canvas_index = {c.name: j for j, c in enumerate(theme.canvases)}
-    failing: dict[tuple[str, int], set[Rule]] = {}
-    for f in failures:
-        j = canvas_index.get(f.canvas or "")
-        if j is None:
-            continue
-        for name in f.icons:
-            if name in key_of:
-                failing.setdefault((key_of[name], j), set()).add(f.rule)
-    order = {k: n for n, k in enumerate(members)}
-    backgrounds = theme.backgrounds
-    safe_cache: dict[str, SafeAlpha] = {}
-    near_cache: dict[str, NearestColor | None] = {}
-    reach_cache: dict[tuple[str, str], ReachAlpha] = {}
-    out = []
-    for color, j in sorted(failing, key=lambda cj: (order[cj[0]], cj[1])):
-        idx = members[color]
-        first = iconset.icons[idx[0]]
-        src = np.array(first.linear)
-        if color not in safe_cache:
-            if budget[0] <= 0:
-                continue
-            budget[0] -= 1
-            safe_cache[color] = largest_safe_alpha(
-                theme,
-                iconset,
-                policy,
-                icons=[iconset.icons[i].name for i in idx],
-                alpha_max=alpha_max,
-                precision=precision,
-                threshold=result.threshold,
-            )
-            alphas = np.unique(iconset.alphas[idx])
-            # The nearest colour answers contrast failures only (describe_fix).
-            contrast = any(
-                r in CONTRAST_RULES for (c, _), rs in failing.items() if c == color for r in rs
-            )
-            near_cache[color] = (
-                nearest_passing_color(src, backgrounds, alphas, result.threshold, policy)
+    def color_fix(self, role: str, canvas: int, rules: set[Rule]) -> ColorFix:
+        r = self.result
+        theme = r.theme
+        mode = str(theme.canvases[canvas].mode)
+        icons = self.members[role]
+        first = self.by_name[icons[0]]
+        styles = sorted(self.styles[role])
+        contrast = bool(rules & set(CONTRAST_RULES))
+        if role not in self.nearest:
+            self.nearest[role] = (
+                nearest_passing_color(
+                    self.linear[role], theme.backgrounds, styles, r.threshold, self.policy
+                )
                 if contrast
                 else None
             )
-        mode = str(theme.canvases[j].mode)
-        if (color, mode) not in reach_cache:
+        if (role, mode) not in self.reach:
             same = [k for k, c in enumerate(theme.canvases) if c.mode == mode]
             rounded, exact = smallest_alpha_reaching(
-                src, backgrounds[same], result.threshold, alpha_max=alpha_max, precision=precision
+                self.linear[role],
+                theme.backgrounds[same],
+                r.threshold,
+                opacities=sorted({o for _, o in styles}),
+                alpha_max=self.alpha_max,
+                precision=self.precision,
             )
-            reach_cache[color, mode] = ReachAlpha(
+            self.reach[role, mode] = ReachAlpha(
                 mode=mode,
                 canvases=tuple(theme.canvases[k].name for k in same),
-                threshold=result.threshold,
+                threshold=r.threshold,
                 alpha=rounded,
                 exact=exact,
             )
-        out.append(
-            ColorFix(
-                theme=theme.name,
-                iconset=iconset.name,
-                color=color,
-                source=first.color,
-                canvas=theme.canvases[j].name,
-                mode=mode,
-                icons=tuple(iconset.icons[i].name for i in idx),
-                rules=tuple(sorted(failing[color, j], key=list(Rule).index)),
-                largest_safe=safe_cache[color],
-                reach=reach_cache[color, mode],
-                nearest=near_cache[color],
-                manifest=iconset.path,
-                line=first.color_line,
-            )
+        fixed = role.startswith("#") and first.color_name != role and first.color != role
+        return ColorFix(
+            theme=theme.name,
+            iconset=r.iconset.name,
+            color=role,
+            source=role if fixed else first.color,
+            canvas=theme.canvases[canvas].name,
+            mode=mode,
+            icons=tuple(icons),
+            rules=tuple(sorted(rules, key=list(Rule).index)),
+            largest_safe=self.largest_safe(None, [role]),
+            reach=self.reach[role, mode],
+            nearest=self.nearest[role],
+            manifest=r.iconset.path,
+            line=None if fixed else first.color_line,
         )
-    return out
+
+
+def _role_of(finding: Finding, by_name: dict[str, Icon]) -> str | None:
+    """The colour a per-paint finding is about: its palette name, else its colour."""
+    icon = by_name.get(finding.icons[0]) if finding.icons else None
+    if icon is None:
+        return None
+    paint = finding.numbers.get("paint", "currentColor")
+    if paint != "currentColor":
+        return str(finding.numbers.get("source", paint))
+    return icon.color_name or icon.color
 
 
 def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 3) -> CheckReport:
-    """``report`` carrying its fixes (:func:`fixes_for`), computed once for every renderer."""
-    return replace(report, fixes=fixes_for(report, alpha_max=alpha_max, precision=precision))
+    """``report`` with its fixes: each failing finding names the fixes that answer it.
 
-
-def report_fixes(report: CheckReport) -> tuple[ColorFix, ...]:
-    """The report's fixes: as carried (:func:`with_fixes`), else computed now (defaults)."""
-    return report.fixes if report.fixes is not None else fixes_for(report)
-
-
-def fix_lookup(
-    report: CheckReport, fixes: Sequence[ColorFix] | None = None
-) -> Callable[[Finding], tuple[ColorFix, ...]]:
-    """A function giving the fixes of one finding: those of its icons' colours on its canvas.
-
-    Renderers use it to put each fix next to the finding it answers;
-    ``fixes`` defaults to :func:`report_fixes`.
+    Order is stable: audits in order, then colours in finding order.  Each
+    colour's largest safe alpha and nearest colour are computed once; the
+    smallest reaching alpha once per mode; a group rule's answer once per
+    rule and roles.  At most :data:`MAX_FIXED_COLORS` colours get a fix (the
+    rest are counted in ``fixes_left_out``).
     """
-    known = report_fixes(report) if fixes is None else fixes
-    by_key = {(f.theme, f.iconset, f.color, f.canvas): f for f in known}
-    colors = {
-        (a.theme.name, a.iconset.name, i.name): i.color_name or i.color
-        for a in report.audits
-        for i in a.iconset.icons
+    gate = report.gate
+    policy = gate.policy
+    audits = {
+        (r.theme.name, r.iconset.name): _Audit(r, policy, alpha_max, precision)
+        for r in report.audits
     }
+    fixes: list[Fix] = []
+    index: dict[object, int] = {}
+    budget = MAX_FIXED_COLORS
+    wanted: dict[tuple[str, str, str, int], set[Rule]] = {}  # colour fixes, in order
+    left_out: set[tuple[str, str, str]] = set()
+    # First pass: which colours fail which per-paint rules on which canvas.
+    for f in gate.failures:
+        a = audits.get((f.theme, f.iconset))
+        if a is None or f.canvas is None or f.rule not in _PER_PAINT:
+            continue
+        role = _role_of(f, a.by_name)
+        j = next((k for k, c in enumerate(a.result.theme.canvases) if c.name == f.canvas), None)
+        if role is None or j is None:
+            continue
+        wanted.setdefault((f.theme, f.iconset, role, j), set()).add(f.rule)
+    colors_fixed: set[tuple[str, str, str]] = set()
+    findings = []
+    for f in gate.findings:
+        if not f.fails or f.canvas is None:
+            findings.append(f)
+            continue
+        a = audits.get((f.theme, f.iconset))
+        found: list[int] = []
+        if a is not None and f.rule in _PER_PAINT:
+            role = _role_of(f, a.by_name)
+            j = next((k for k, c in enumerate(a.result.theme.canvases) if c.name == f.canvas), None)
+            if role is not None and j is not None:
+                color = (f.theme, f.iconset, role)
+                key: object = ("colour", f.theme, f.iconset, role, j)
+                if key not in index and (color in colors_fixed or budget > 0):
+                    if color not in colors_fixed:
+                        budget -= 1
+                        colors_fixed.add(color)
+                    index[key] = len(fixes)
+                    fixes.append(a.color_fix(role, j, wanted[f.theme, f.iconset, role, j]))
+                if key in index:
+                    found.append(index[key])
+                else:
+                    left_out.add(color)
+        elif a is not None and f.rule in _GROUP:
+            roles: tuple[str, ...] = ()
+            if f.rule in _PAIR and "roles" in f.numbers:
+                roles = tuple(sorted(str(f.numbers["roles"]).split(",", 1)))
+            key = ("group", f.theme, f.iconset, f.rule, roles)
+            if key not in index and len(index) < 2 * MAX_FIXED_COLORS:
+                index[key] = len(fixes)
+                fixes.append(
+                    GroupFix(f.theme, f.iconset, f.rule, roles, a.largest_safe(f.rule, roles))
+                )
+            if key in index:
+                found.append(index[key])
+        edits = _edits(f, [fixes[k] for k in found], a.result if a else None)
+        findings.append(replace(f, fixes=tuple(found), edits=edits))
+    gate = replace(gate, findings=tuple(findings))
+    return replace(report, gate=gate, fixes=tuple(fixes), fixes_left_out=len(left_out))
 
-    def lookup(finding: Finding) -> tuple[ColorFix, ...]:
-        found: list[ColorFix] = []
-        for icon in finding.icons:
-            color = colors.get((finding.theme, finding.iconset, icon))
-            fix = by_key.get((finding.theme, finding.iconset, color or "", finding.canvas or ""))
-            if fix is not None and fix not in found:
-                found.append(fix)
-        return tuple(found)
 
-    return lookup
+def _edits(finding: Finding, fixes: Sequence[Fix], result: AuditResult | None) -> tuple[Edit, ...]:
+    """The fixes of ``finding`` as text edits, where applying one is known to clear it.
 
-
-def safe_span(alpha: float) -> str:
-    """A largest safe alpha as the range it guarantees, ``[1, alpha]``.
-
-    Not "at most": a colour failing at 0.9 would be sent nowhere ("at most 2").
-
-    >>> safe_span(1.178), safe_span(1.0)
-    ('alpha 1 to 1.178', 'alpha 1')
+    Offered only for one icon's contrast on one canvas, judged on its own
+    colour (``currentColor`` at opacity 1: the paint the manifest sets) in the
+    ``linear`` pipeline, where the fixes' compositing is the audit's: the
+    largest safe alpha answers all three contrast rules; the smallest reaching
+    alpha ``below-threshold`` and ``newly-failing`` (not ``loss``: contrast can
+    stay lower than at 1); the nearest colour all three.  A colour edit is not
+    offered for a locked colour, nor for a token value that also sets a canvas
+    (the edit would move the canvas).  The value must be written in a file: a
+    default alpha, ``--alpha`` or a DTCG colour object give no edit.
     """
-    return f"alpha {ALPHA_LO:g}" if alpha <= ALPHA_LO else f"alpha {ALPHA_LO:g} to {alpha:g}"
-
-
-def describe_fix(fix: ColorFix) -> str:
-    """The fix in one plain line (no markup), alternatives joined by "or"; "" when none.
-
-    The smallest reaching alpha and the nearest colour answer a contrast
-    failure, so they are offered only when the colour fails a contrast rule
-    there; the largest safe alpha answers every rule.
-
-    >>> from alpha_audit.suggest import SafeAlpha
-    >>> fix = ColorFix("t", "s", "warn", "#ffcc00", "white", "light", ("a",),
-    ...     (Rule.BELOW_THRESHOLD,), SafeAlpha(None, None, None, ()),
-    ...     ReachAlpha("light", ("white",), 3.0, 1.25, 1.2491),
-    ...     NearestColor("#c9a000", 12.33, 0.7, 0.14, 90.0))
-    >>> describe_fix(fix)
-    'warn: alpha 1.25 or above (every light canvas) or colour #c9a000 (CIEDE2000 12.33 away)'
-    """
-    contrast = any(r in CONTRAST_RULES for r in fix.rules)
-    options = []
-    safe = fix.largest_safe.alpha
-    if safe is not None:
-        options.append(safe_span(safe))
-    # Reaching the threshold at 1 itself is already inside that range.
-    reach = fix.reach.alpha
-    if contrast and reach is not None and not (safe is not None and reach <= ALPHA_LO):
-        options.append(f"alpha {reach:g} or above (every {fix.mode} canvas)")
-    if contrast and fix.nearest is not None and fix.nearest.delta_e > 0:
+    if result is None or finding.rule not in CONTRAST_RULES or len(finding.icons) != 1:
+        return ()
+    icon = next((i for i in result.iconset.icons if i.name == finding.icons[0]), None)
+    n = finding.numbers
+    if (
+        icon is None
+        or result.pipeline != "linear"
+        or n.get("paint") != "currentColor"
+        or float(n.get("opacity", 1.0)) != 1.0
+        or n.get("source") != icon.color
+    ):
+        return ()
+    out: list[Edit] = []
+    for fix in fixes:
+        if not isinstance(fix, ColorFix):
+            continue
+        alpha_span = icon.alpha_span
+        safe = fix.largest_safe.alpha
+        if alpha_span is not None and safe is not None and safe != icon.alpha:
+            out.append(
+                Edit(
+                    "largest-safe-alpha",
+                    f"set alpha to {format_alpha(safe)}, the largest safe alpha for {fix.color}",
+                    alpha_span,
+                    format_alpha(safe),
+                )
+            )
+        reach = fix.reach.alpha
+        if (
+            alpha_span is not None
+            and reach is not None
+            and reach not in (icon.alpha, safe)
+            and finding.rule in _REACH_RULES
+        ):
+            out.append(
+                Edit(
+                    "smallest-alpha-reaching",
+                    f"set alpha to {format_alpha(reach)}, the smallest alpha from 1 reaching "
+                    f"{fix.reach.threshold:g}:1 on every {fix.mode} canvas",
+                    alpha_span,
+                    format_alpha(reach),
+                )
+            )
         near = fix.nearest
-        options.append(f"colour {near.color} (CIEDE2000 {near.delta_e:.2f} away)")
-    return f"{fix.color}: {' or '.join(options)}" if options else ""
-
-
-def fix_to_dict(
-    fix: ColorFix, display: Callable[[Path | None], str | None] | None = None
-) -> dict[str, Any]:
-    """One fix as plain JSON data (finite floats only; ``None`` where there is no answer).
-
-    ``display`` shows the manifest path (renderers pass their relative-path
-    helper); by default it is written in POSIX form as stored.
-    """
-    show = display or (lambda p: None if p is None else p.as_posix())
-
-    safe = fix.largest_safe
-    limit = safe.limit
-    near = fix.nearest
-    return {
-        "theme": fix.theme,
-        "iconset": fix.iconset,
-        "color": fix.color,
-        "source": fix.source,
-        "canvas": fix.canvas,
-        "mode": fix.mode,
-        "icons": list(fix.icons),
-        "rules": [r.value for r in fix.rules],
-        "largest_safe_alpha": {
-            "alpha": safe.alpha,
-            "exact": safe.exact,
-            "limit": None
-            if limit is None
-            else {
-                "rule": limit.rule.value,
-                "canvas": limit.canvas,
-                "icons": list(limit.icons),
-                "at": limit.at,
-                "attained": limit.attained,
-            },
-        },
-        "smallest_alpha_reaching": {
-            "alpha": fix.reach.alpha,
-            "exact": fix.reach.exact,
-            "threshold": fix.reach.threshold,
-            "mode": fix.reach.mode,
-            "canvases": list(fix.reach.canvases),
-        },
-        "nearest_color": None
-        if near is None
-        else {
-            "color": near.color,
-            "delta_e": near.delta_e,
-            "oklch": {"l": near.lightness, "c": near.chroma, "h": near.hue},
-        },
-        "manifest": show(fix.manifest),
-        "line": fix.line,
-    }
+        color_span = icon.color_span
+        locked = result.iconset.locked
+        if (
+            near is not None
+            and near.delta_e > 0
+            and color_span is not None
+            and icon.name not in locked
+            and (icon.color_name or "") not in locked
+            and all(c.span != color_span for c in result.theme.canvases if c.span is not None)
+        ):
+            out.append(
+                Edit(
+                    "nearest-color",
+                    f"use {near.color} for {fix.color}, the nearest passing colour of the same "
+                    f"OKLCH hue (CIEDE2000 {near.delta_e:.2f} away)",
+                    color_span,
+                    near.color,
+                )
+            )
+    return tuple(out)

@@ -7,6 +7,7 @@ user wrote, normalised) plus linear-light float64 triples for the maths.
 
 from __future__ import annotations
 
+from collections.abc import Container
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Literal
@@ -25,6 +26,7 @@ from alpha_audit.color import (
 
 __all__ = [
     "Canvas",
+    "Edit",
     "GamutAdjustment",
     "Icon",
     "IconSet",
@@ -109,6 +111,25 @@ class Span:
         if self.syntax == "yaml" and value.startswith("#"):
             return f'"{value}"'
         return value
+
+
+@dataclass(frozen=True)
+class Edit:
+    """Replace the text at ``span`` by ``value`` (written as the file writes it).
+
+    ``kind`` says which fix it applies (``largest-safe-alpha``,
+    ``smallest-alpha-reaching``, ``nearest-color``), ``description`` in words.
+    """
+
+    kind: str
+    description: str
+    span: Span
+    value: str
+
+    @property
+    def inserted(self) -> str:
+        """The replacement text, quoted as the original was (:meth:`Span.replacement`)."""
+        return self.span.replacement(self.value)
 
 
 @dataclass(frozen=True)
@@ -230,3 +251,7 @@ class IconSet:
         """
         icons = tuple(replace(i, alpha=float(alpha), alpha_span=None) for i in self.icons)
         return replace(self, icons=icons)
+
+    def without(self, names: Container[str]) -> IconSet:
+        """The same set without the icons named (those that could not be rendered)."""
+        return replace(self, icons=tuple(i for i in self.icons if i.name not in names))

@@ -8,20 +8,27 @@ from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from alpha_audit.audit import AuditResult, audit, check_combinations
 from alpha_audit.color import GamutPolicy, Pipeline
 from alpha_audit.color.metrics import preload_colour
 from alpha_audit.errors import SvgError, UsageError
+from alpha_audit.findings import FindingKey
 from alpha_audit.fixes import with_fixes
-from alpha_audit.gate import CheckReport, FindingKey, evaluate
+from alpha_audit.gate import evaluate
 from alpha_audit.load.iconset import load_iconset
 from alpha_audit.load.paint_masks import PaintSet, measure_paints
 from alpha_audit.load.svg import IconProblem, RenderLimits
 from alpha_audit.load.theme import load_theme
 from alpha_audit.load.tokens.themes import TokenConfig
 from alpha_audit.model import GamutAdjustment, IconSet, Theme
-from alpha_audit.paint_audit import audit_paints, check_pipeline, resolve_pipeline
 from alpha_audit.policy import Policy
+from alpha_audit.results import CheckReport
+from alpha_audit.rows import (
+    AuditResult,
+    audit,
+    check_combinations,
+    check_pipeline,
+    resolve_pipeline,
+)
 
 if TYPE_CHECKING:
     from alpha_audit.load.sandbox import RenderPool
@@ -90,12 +97,15 @@ def _audit(
     threshold: float | None,
     pipeline: Pipeline,
 ) -> AuditResult:
-    """The manifest-colour audit with the per-paint audit attached."""
-    result = audit(theme, iconset, alpha=alpha, threshold=threshold, problems=paints.problems)
-    by_paint = audit_paints(
-        theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=pipeline
-    )
-    return replace(result, paints=by_paint)
+    return audit(theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=pipeline)
+
+
+def _check_sizes(themes: Sequence[Theme], iconsets: Sequence[IconSet]) -> None:
+    """Refuse a check over the bounds before any icon is rendered (each icon draws a paint)."""
+    icons = sum(len(s.icons) for s in iconsets)
+    canvases = sum(len(t.canvases) for t in themes)
+    path = themes[0].path if len(themes) == 1 else None
+    check_combinations(icons, canvases, 1, path)
 
 
 def check_files(
@@ -196,7 +206,7 @@ def check_project(
             (c.name for t in loaded_themes for c in t.canvases),
             (i.name for s in loaded_sets for i in s.icons),
         )
-        check_combinations(loaded_themes, loaded_sets)  # before any icon is rendered
+        _check_sizes(loaded_themes, loaded_sets)  # before any icon is rendered
         chosen = {
             (t.name, s.name): resolve_pipeline(pipeline, s.pipeline, t.pipeline)
             for s in loaded_sets
@@ -258,7 +268,7 @@ def _check_with_tokens(
     # YAML themes get the first mode's icon colours.
     per_set = [pairs + [(t, pairs[0][1]) for t in loaded_themes] for pairs in per_set]
     for pairs in per_set:  # before any icon is rendered
-        check_combinations([t for t, _ in pairs], [pairs[0][1]])
+        _check_sizes([t for t, _ in pairs], [pairs[0][1]])
         for theme, iconset in pairs:
             check_pipeline(
                 iconset, resolve_pipeline(pipeline, iconset.pipeline, theme.pipeline), alpha

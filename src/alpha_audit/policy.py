@@ -1,18 +1,17 @@
-"""Gate policy: which findings fail a build, shared by ``check`` and ``suggest``.
+"""Gate policy: which rules fail a build or are reported, shared by ``check`` and ``suggest``.
 
-The rules are the CI-gate issue's and the paint issue's; the default policy is
-no contrast loss, no icon newly failing the threshold, no collision that did
-not already exist at alpha = 1, and no two palette roles told apart at alpha 1
-but confused at the icons' alpha.  Each numeric rule is stated once here (the
+The rules and their defaults are :data:`alpha_audit.rules.RULES`: no contrast
+loss, no paint newly failing the threshold, no collision that did not already
+exist at alpha = 1, and no two palette roles told apart at alpha 1 but confused
+at the icons' alpha fail by default; icons that cannot be rendered and
+hard-coded paints are reported.  Each numeric rule is stated once here (the
 ``*_breaks`` / ``*_floor`` functions) and used by the gate and by ``suggest``.
 """
 
 from __future__ import annotations
 
-import difflib
 from collections.abc import Iterable
 from dataclasses import dataclass, field, replace
-from enum import StrEnum
 from pathlib import Path
 
 import numpy as np
@@ -21,14 +20,12 @@ from numpy.typing import ArrayLike, NDArray
 from alpha_audit.color import CONTRAST_TOLERANCE, DELTA_E_TOLERANCE
 from alpha_audit.errors import InputError, UsageError
 from alpha_audit.ranges import CONTRAST_LOSS, CONTRAST_RATIO, DELTA_E
+from alpha_audit.rules import DEFAULT_RULES, DEFAULT_WARNINGS, Level, Rule, did_you_mean
 
 __all__ = [
     "CONTRAST_RULES",
-    "DEFAULT_RULES",
-    "PAINT_RULES",
     "Exemption",
     "Policy",
-    "Rule",
     "confusion_breaks",
     "confusion_possible",
     "contrast_breaks",
@@ -39,58 +36,8 @@ __all__ = [
 ]
 
 
-class Rule(StrEnum):
-    """A kind of finding that can fail the gate."""
-
-    LOSS = "loss"  # contrast decrease beyond max_loss
-    BELOW_THRESHOLD = "below-threshold"  # under the threshold at the icon's alpha
-    NEWLY_FAILING = "newly-failing"  # passed at alpha = 1, fails at alpha
-    COLLISION = "collision"  # distinct sources, same 8-bit output
-    NEW_COLLISION = "new-collision"  # ... and not already colliding at alpha = 1
-    SEPARATION = "separation"  # smallest CIEDE2000 between outputs below min_delta_e
-    UNRENDERABLE = "unrenderable"  # an icon's SVG could not be rendered (opt-in)
-    # Paint rules (alpha_audit.paint_audit, docs/model.md); all opt-in for now.
-    FIXED_COLOUR = "fixed-colour"  # a hard-coded paint that will not follow the theme
-    NOT_AUDITED = "not-audited"  # gradient, pattern, text, image ... the audit cannot judge
-    DRIFT = "drift"  # CIEDE2000 between the colour at alpha 1 and at alpha above max_drift
-    LOCK = "lock"  # a locked (brand) colour drifts by more than one JND
-    CONFUSION = "confusion"  # roles told apart at alpha 1 but not at alpha (min_delta_e)
-    THIN_STROKES = "thin-strokes"  # size contrast below min_size_contrast at some size
-    CVD_COLLISION = "cvd-collision"  # new 8-bit collision under simulated CVD
-    CVD_CONFUSION = "cvd-confusion"  # confusion under simulated CVD
-
-    @classmethod
-    def parse(cls, text: str) -> Rule:
-        """A rule by name; unknown names raise :class:`UsageError` listing the valid ones."""
-        try:
-            return cls(text.strip().lower())
-        except ValueError:
-            names = [r.value for r in cls]
-            raise UsageError(
-                f"unknown rule {text!r}; {_did_you_mean(text.strip().lower(), names)}"
-                f"use one of: {', '.join(names)}"
-            ) from None
-
-
-def _did_you_mean(name: str, known: Iterable[str]) -> str:
-    close = difflib.get_close_matches(name, list(known), n=1)
-    return f"did you mean {close[0]!r}? " if close else ""
-
-
-# Issue 11, deliverable 4: role separation is part of the default gate.
-DEFAULT_RULES = frozenset({Rule.LOSS, Rule.NEWLY_FAILING, Rule.NEW_COLLISION, Rule.CONFUSION})
-PAINT_RULES = frozenset(
-    {
-        Rule.FIXED_COLOUR,
-        Rule.NOT_AUDITED,
-        Rule.DRIFT,
-        Rule.LOCK,
-        Rule.CONFUSION,
-        Rule.THIN_STROKES,
-        Rule.CVD_COLLISION,
-        Rule.CVD_CONFUSION,
-    }
-)
+# The per paint x canvas contrast rules, in the order the gate reports them.
+CONTRAST_RULES = (Rule.LOSS, Rule.NEWLY_FAILING, Rule.BELOW_THRESHOLD)
 
 
 @dataclass(frozen=True)
@@ -117,7 +64,11 @@ class Exemption:
 
 @dataclass(frozen=True)
 class Policy:
-    """Which rules fail the gate, with their limits and exemptions."""
+    """Which rules fail the gate and which are reported, with their limits and exemptions.
+
+    ``rules`` fail the gate; ``warnings`` are reported without failing it (a
+    rule in both fails).
+    """
 
     rules: frozenset[Rule] = DEFAULT_RULES
     max_loss: float = 0.0  # contrast-ratio units; losses up to this are tolerated
@@ -125,6 +76,7 @@ class Policy:
     exemptions: tuple[Exemption, ...] = ()
     max_drift: float = 10.0  # CIEDE2000; Rule.DRIFT
     min_size_contrast: float | None = None  # Rule.THIN_STROKES; None: the threshold
+    warnings: frozenset[Rule] = DEFAULT_WARNINGS
 
     def __post_init__(self) -> None:
         # The ranges the config keys and the flags of the same names obey.
@@ -153,6 +105,7 @@ class Policy:
         return replace(
             self,
             rules=frozenset(Rule.parse(r) for r in rules) if rules else self.rules,
+            warnings=self.warnings,
             max_loss=self.max_loss if max_loss is None else max_loss,
             min_delta_e=self.min_delta_e if min_delta_e is None else min_delta_e,
             max_drift=self.max_drift if max_drift is None else max_drift,
@@ -160,6 +113,17 @@ class Policy:
                 self.min_size_contrast if min_size_contrast is None else min_size_contrast
             ),
         )
+
+    def level(self, rule: Rule) -> Level:
+        """What the gate does with ``rule``'s findings."""
+        if rule in self.rules:
+            return Level.FAIL
+        return Level.WARN if rule in self.warnings else Level.OFF
+
+    @property
+    def reported(self) -> frozenset[Rule]:
+        """Rules whose findings are computed: the failing ones and the reported ones."""
+        return self.rules | self.warnings
 
     def exempt(self, rule: Rule, canvas: str | None, icons: tuple[str, ...]) -> Exemption | None:
         """The first exemption covering this finding, if any."""
@@ -181,7 +145,7 @@ class Policy:
                 key = f"{e.key}.{what}" if e.key else None
                 raise InputError(
                     f"exemption names {what} {name!r}, which no {where} has; "
-                    f"{_did_you_mean(name, known[what])}check the spelling",
+                    f"{did_you_mean(name, known[what])}check the spelling",
                     path=e.path,
                     line=e.line,
                     key=key,
@@ -211,10 +175,6 @@ class Policy:
         if Rule.NEW_COLLISION in self.rules:
             return Rule.NEW_COLLISION
         return None
-
-
-# The per icon x canvas rules, in the order the gate reports them.
-CONTRAST_RULES = (Rule.LOSS, Rule.NEWLY_FAILING, Rule.BELOW_THRESHOLD)
 
 
 def contrast_breaks(

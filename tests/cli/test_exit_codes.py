@@ -1,4 +1,4 @@
-"""One test per exit code, and the boundary's one-line messages (``alpha_audit.cli.app``)."""
+"""One test per exit code, and the boundary's one-line messages (``alpha_audit.cli.root``)."""
 
 from __future__ import annotations
 
@@ -175,7 +175,7 @@ def test_no_arguments_shows_the_help_not_an_error() -> None:
 def test_a_command_must_return_an_exit_status() -> None:
     # The boundary enforces the contract: a command returning None is a bug (exit 3), so every
     # command's own tests (exit 0 or 1 expected) also check that it returns its status.
-    from alpha_audit.cli.app import _Group
+    from alpha_audit.cli.root import _Group
 
     probe = typer.Typer(cls=_Group)
     probe.command("ok")(lambda: ExitStatus.GATE_FAILED)

@@ -101,7 +101,7 @@ def test_iter_pairs_covers_triu_once_in_order() -> None:
 def test_audit_separation_is_the_same_pruned_or_brute_force(monkeypatch) -> None:
     import importlib
 
-    audit_module = importlib.import_module("alpha_audit.audit")
+    audit_module = importlib.import_module("alpha_audit.rows")
     from alpha_audit.model import Canvas, Icon, IconSet, Theme
 
     rng = np.random.default_rng(3)

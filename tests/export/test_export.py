@@ -13,7 +13,6 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from typer.testing import CliRunner
 
-from alpha_audit.audit import audit
 from alpha_audit.cli import app
 from alpha_audit.color import srgb_decode, to_8bit
 from alpha_audit.errors import InputError, UsageError
@@ -24,6 +23,7 @@ from alpha_audit.load.tokens import load_token_modes, parse_json, token_color, t
 from alpha_audit.load.tokens.model import TokenModes
 from alpha_audit.load.tokens.themes import TokenConfig, load_token_themes, token_themes
 from alpha_audit.model import Icon, IconSet
+from alpha_audit.rows import audit
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLE = REPO / "examples/tokens"

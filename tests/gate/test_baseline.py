@@ -9,12 +9,13 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from alpha_audit.audit import audit
 from alpha_audit.cli import app
 from alpha_audit.errors import InputError
-from alpha_audit.gate import baseline_document, evaluate, parse_baseline
+from alpha_audit.gate import baseline_document, evaluate
+from alpha_audit.load.baseline import parse_baseline
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
 from alpha_audit.policy import Policy
+from alpha_audit.rows import audit
 
 # fill="currentColor": the manifest colour is audited (an unfilled rect is SVG's default black).
 SVG = (
@@ -84,8 +85,8 @@ def test_cli_write_then_use_baseline(tmp_path: Path) -> None:
 
 @pytest.mark.parametrize("fmt", ["table", "markdown"])
 def test_stale_count_is_grammatical(fmt: str) -> None:
-    from alpha_audit.gate import CheckReport
     from alpha_audit.render import RenderOptions, render_check
+    from alpha_audit.results import CheckReport
 
     result = _audit(("deep", "#ee7733"))
     one = (("t", "s", "loss", "sun", ("deep",)),)

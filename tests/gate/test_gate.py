@@ -14,14 +14,15 @@ import pytest
 import yaml
 from typer.testing import CliRunner
 
-from alpha_audit.audit import audit
 from alpha_audit.cli import ExitStatus, app
 from alpha_audit.cli.check import pair_outputs
 from alpha_audit.errors import UsageError
 from alpha_audit.gate import evaluate
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
-from alpha_audit.policy import Exemption, Policy, Rule
+from alpha_audit.policy import Exemption, Policy
 from alpha_audit.render import CheckFormat
+from alpha_audit.rows import audit
+from alpha_audit.rules import Rule
 
 REPO = Path(__file__).resolve().parents[2]
 SVG = (

@@ -13,7 +13,6 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from alpha_audit.audit import audit
 from alpha_audit.color import CONTRAST_TOLERANCE, pack_8bit
 from alpha_audit.gate import evaluate
 from alpha_audit.load.svg import IconProblem
@@ -26,7 +25,9 @@ from alpha_audit.policy import (
     contrast_breaks,
     contrast_floor,
 )
+from alpha_audit.rows import audit
 from alpha_audit.suggest import largest_safe_alpha
+from helpers import solid_paints
 
 contrast = st.floats(1.0, 21.0)
 
@@ -93,7 +94,7 @@ def test_gate_and_suggest_draw_the_loss_line_in_the_same_place() -> None:
     theme = Theme("t", (Canvas("yellow", "#ffff00"),))
     icons = IconSet("s", (Icon("dot", "dot.svg", "#0000d0", 1.0),))
     policy = Policy(rules=frozenset({Rule.LOSS}), max_loss=0.05)
-    safe = largest_safe_alpha(theme, icons, policy, precision=6)
+    safe = largest_safe_alpha(audit(theme, icons), policy, precision=6)
     assert safe.limit is not None and safe.limit.rule is Rule.LOSS
     below = evaluate([audit(theme, icons.with_alpha(safe.alpha))], policy)
     above = evaluate([audit(theme, icons.with_alpha(safe.limit.at + 1e-6))], policy)
@@ -107,7 +108,7 @@ def _gated(rules: set[Rule], exemptions: tuple[Exemption, ...] = (), baseline=No
         (Icon("dot", "dot.svg", "#0000d0", 1.4), Icon("ok", "ok.svg", "#000000", 1.4)),
     )
     broken = (IconProblem("gone", Path("gone.svg"), "not an SVG"),)
-    result = audit(theme, icons, problems=broken)
+    result = audit(theme, icons, solid_paints(icons, broken))
     return evaluate(
         [result, result], Policy(frozenset(rules), exemptions=exemptions), baseline=baseline
     )
@@ -117,9 +118,9 @@ def test_unrenderable_icons_are_warnings_unless_the_rule_is_on() -> None:
     off = _gated({Rule.LOSS})
     assert [w.icons for w in off.warnings] == [("gone",)]  # once, not once per audit
     assert all(f.rule is not Rule.UNRENDERABLE for f in off.findings)
-    assert not off.unrenderable_fails
+    assert off.policy.level(Rule.UNRENDERABLE).value == "warn"
     on = _gated({Rule.LOSS, Rule.UNRENDERABLE})
-    assert on.warnings == () and on.unrenderable_fails
+    assert on.warnings == () and on.policy.level(Rule.UNRENDERABLE).value == "fail"
     assert [f.icons for f in on.failures if f.rule is Rule.UNRENDERABLE] == [("gone",)]
 
 
@@ -139,9 +140,9 @@ def test_findings_split_once_into_failures_exempted_and_baselined() -> None:
 
 def test_two_colliding_colours_both_give_one_output_and_one_canvas_is_one_canvas() -> None:
     """Wording: 'both give' for two colours, '(1 canvas)' in the table's head."""
-    from alpha_audit.gate import CheckReport
     from alpha_audit.render.common import RenderOptions
     from alpha_audit.render.table import render_report
+    from alpha_audit.results import CheckReport
 
     icons = (Icon("a", Path("a.svg"), "#ee7733", 1.3), Icon("b", Path("b.svg"), "#ee3377", 1.3))
     result = audit(Theme("t", (Canvas("white", "#ffffff"),)), IconSet("s", icons))

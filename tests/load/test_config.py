@@ -8,7 +8,7 @@ import pytest
 
 from alpha_audit.errors import InputError, UsageError
 from alpha_audit.load.config import find_config, load_config
-from alpha_audit.policy import DEFAULT_RULES, Rule
+from alpha_audit.rules import DEFAULT_RULES, Rule
 
 
 def write(path: Path, text: str) -> Path:

@@ -11,16 +11,18 @@ from urllib.parse import unquote
 
 import pytest
 
-from alpha_audit.audit import audit
-from alpha_audit.gate import CheckReport, evaluate
+from alpha_audit.gate import evaluate
 from alpha_audit.load.svg import IconProblem
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
-from alpha_audit.policy import Policy, Rule
+from alpha_audit.policy import Policy
 from alpha_audit.render import CheckFormat
 from alpha_audit.render.common import RenderOptions
 from alpha_audit.render.github import MAX_ANNOTATIONS
-from alpha_audit.render.rules import RULE_IDS
 from alpha_audit.render.sarif import relative_uri
+from alpha_audit.results import CheckReport
+from alpha_audit.rows import audit
+from alpha_audit.rules import RULES, Rule
+from helpers import solid_paints
 
 BASE = Path("/home/runner/work/design")
 # A file name with every character a URI must encode: space, "#", "%", "?", a
@@ -45,7 +47,7 @@ def _many(n: int, *, color_line: int = 3, problems: int = 0) -> CheckReport:
     broken = tuple(
         IconProblem(f"broken-{k}", BASE / f"b{k}.svg", "not an SVG") for k in range(problems)
     )
-    result = audit(theme, iconset, problems=broken)
+    result = audit(theme, iconset, solid_paints(iconset, broken))
     policy = Policy(rules=frozenset({Rule.LOSS}))
     return CheckReport(audits=(result,), gate=evaluate([result], policy))
 
@@ -70,7 +72,7 @@ def test_github_errors_never_exceed_what_github_shows(n: int) -> None:
     else:
         assert annotated == MAX_ANNOTATIONS - 1
         assert f"{n - annotated} more finding(s) not annotated" in verdict
-    assert "5 more icon(s) could not be rendered" in text  # 14 - 9
+    assert "5 more note(s): icons that could not be rendered" in text  # 14 - 9
 
 
 def _strings(value: Any) -> Iterator[str]:
@@ -126,7 +128,7 @@ def test_every_sarif_location_has_a_region_at_the_line_that_sets_the_colour() ->
 
 def test_sarif_rule_ids_are_opaque_and_every_rule_says_how_to_fix() -> None:
     rules = _sarif(_many(1))["runs"][0]["tool"]["driver"]["rules"]
-    assert [r["id"] for r in rules] == [RULE_IDS[r] for r in Rule]
+    assert [r["id"] for r in rules] == [RULES[r].sarif_id for r in Rule]
     assert len({r["id"] for r in rules}) == len(Rule)
     for r in rules:
         assert re.fullmatch(r"AA\d{3}", r["id"]) and r["id"] != r["name"]

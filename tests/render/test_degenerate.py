@@ -8,12 +8,13 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from alpha_audit.audit import audit
 from alpha_audit.cli import app
 from alpha_audit.gate import VACUOUS, evaluate
 from alpha_audit.load.svg import IconProblem
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
 from alpha_audit.policy import Policy
+from alpha_audit.rows import audit
+from helpers import solid_paints
 
 FORMATS = ["table", "json", "markdown", "github", "sarif", "junit"]
 THEME = "name: t\ncanvases:\n  - {name: paper, color: '#ffffff'}\n"
@@ -22,7 +23,7 @@ THEME = "name: t\ncanvases:\n  - {name: paper, color: '#ffffff'}\n"
 def test_gate_over_zero_audited_icons_fails_and_says_why() -> None:
     theme = Theme("t", (Canvas("paper", "#ffffff"),))
     icons = IconSet("s", (Icon("a", Path("a.svg"), "#ee7733", 1.1),))
-    result = audit(theme, icons, problems=(IconProblem("a", Path("a.svg"), "broken"),))
+    result = audit(theme, icons, solid_paints(icons, (IconProblem("a", Path("a.svg"), "broken"),)))
     gate = evaluate([result], Policy())
     assert gate.failures == () and not gate.passed and gate.vacuous
     assert gate.counts() == {VACUOUS: 1}

@@ -19,17 +19,19 @@ from typing import Any
 import pytest
 from markdown_it import MarkdownIt
 
-from alpha_audit.audit import audit
-from alpha_audit.gate import CheckReport, evaluate
+from alpha_audit.gate import evaluate
 from alpha_audit.load.svg import IconProblem
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
 from alpha_audit.pair import pair_report
-from alpha_audit.policy import Policy, Rule
-from alpha_audit.render import CheckFormat, ReproduceFormat, SuggestFormat
+from alpha_audit.policy import Policy
+from alpha_audit.render import CheckFormat, PairFormat, ReproduceFormat, SuggestFormat
 from alpha_audit.render.common import RenderOptions
-from alpha_audit.render.pair import PairFormat
 from alpha_audit.reproduce.run import Experiment, reproduce
+from alpha_audit.results import CheckReport
+from alpha_audit.rows import audit
+from alpha_audit.rules import Rule
 from alpha_audit.suggest import suggest
+from helpers import solid_paints
 
 BASE = Path("/repo")
 HOSTILE = "evil|x <img src=x> @team https://evil.example `c` *b*\x07"
@@ -60,7 +62,7 @@ def check_report() -> CheckReport:
 
 @cache
 def suggest_result() -> Any:
-    return suggest(_theme(), _iconset(), Policy())
+    return suggest(audit(_theme(), _iconset()), Policy())
 
 
 @cache
@@ -137,7 +139,7 @@ def test_every_result_type_renders_every_format(fmt: StrEnum, make: Callable[[],
 def test_a_report_where_no_icon_rendered_is_still_a_report(fmt: CheckFormat) -> None:
     iconset = _iconset()
     broken = tuple(IconProblem(i.name, Path(i.file), "not an SVG") for i in iconset.icons)
-    result = audit(_theme(), iconset, problems=broken)
+    result = audit(_theme(), iconset, solid_paints(iconset, broken))
     report = CheckReport(audits=(result,), gate=evaluate([result], Policy()))
     _check(fmt.value, fmt.renderer()(report, OPTIONS))
 
@@ -172,11 +174,11 @@ def test_the_pipeline_with_every_rule_on_makes_findings_of_many_rules() -> None:
 
 
 def test_every_rule_has_an_id_help_fix_and_severity() -> None:
-    from alpha_audit.render.rules import RULE_FIX, RULE_HELP, RULE_IDS, SEVERITY
+    from alpha_audit.rules import RULES
 
-    for table in (RULE_FIX, RULE_HELP, RULE_IDS, SEVERITY):
-        assert set(table) == set(Rule)
-    assert len(set(RULE_IDS.values())) == len(Rule)
+    assert set(RULES) == set(Rule)
+    assert all(s.help and s.fix and s.sarif_id and s.severity for s in RULES.values())
+    assert len({s.sarif_id for s in RULES.values()}) == len(Rule)
 
 
 @pytest.mark.parametrize("fmt", list(CheckFormat))

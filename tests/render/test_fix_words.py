@@ -1,21 +1,22 @@
-"""One set of words for a colour's largest safe alpha, whichever path computed it.
+"""One set of words for a fix, whichever rule it answers.
 
-Beyond the colours :mod:`alpha_audit.fixes` answers, the table and the PR comment
-fall back to :func:`~alpha_audit.render.markdown.safe_alpha_fixes`; on 3,470
-simple-icons logos one "How to fix" list mixed "#dd0700: alpha at most 1" with
-"#ff000f: largest safe alpha 1.000" for the same kind of answer.
+On 3,470 simple-icons logos one "How to fix" list once mixed "#dd0700: alpha at
+most 1" with "#ff000f: largest safe alpha 1.000" for the same kind of answer;
+every fix is now computed once in the pipeline and worded by one function.
 """
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from alpha_audit.audit import audit
-from alpha_audit.fixes import describe_fix, fixes_for
-from alpha_audit.gate import CheckReport, evaluate
+from alpha_audit.fixes import with_fixes
+from alpha_audit.gate import evaluate
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
-from alpha_audit.policy import Policy, Rule
-from alpha_audit.render.markdown import safe_alpha_fixes
+from alpha_audit.policy import Policy
+from alpha_audit.render.common import finding_fix, fix_text
+from alpha_audit.results import CheckReport, ColorFix, GroupFix
+from alpha_audit.rows import audit
+from alpha_audit.rules import Rule
 
 # Blue at 1.6 loses contrast on mid grey (clipping in linear sRGB).
 THEME = Theme("grey", (Canvas("mid", "#777777"),))
@@ -26,15 +27,48 @@ ICONS = IconSet(
 )
 
 
-def test_fallback_and_computed_fix_use_the_same_words() -> None:
-    result = audit(THEME, ICONS)
-    report = CheckReport(
-        audits=(result,), gate=evaluate([result], Policy(rules=frozenset({Rule.LOSS})))
+def _fixed(iconset: IconSet, policy: Policy) -> CheckReport:
+    result = audit(THEME, iconset)
+    return with_fixes(CheckReport(audits=(result,), gate=evaluate([result], policy)))
+
+
+def test_a_loss_names_the_colours_safe_span() -> None:
+    report = _fixed(ICONS, Policy(rules=frozenset({Rule.LOSS})))
+    finding = report.gate.failures[0]
+    (fix,) = (report.fixes[k] for k in finding.fixes)
+    assert isinstance(fix, ColorFix) and fix.color == "blue"
+    text = finding_fix(finding, report)
+    assert text == fix_text(fix) and text.startswith("blue: alpha 1")
+    assert "largest safe alpha" not in text
+
+
+def test_two_confused_roles_get_their_joint_answer() -> None:
+    white = Theme("w", (Canvas("white", "#ffffff"),))
+    icons = IconSet(
+        "set",
+        (
+            Icon("alert", Path("a.svg"), "#bc4c00", 1.15, color_name="severe"),
+            Icon("stop", Path("s.svg"), "#d1242f", 1.15, color_name="danger"),
+        ),
+        palette={"severe": "#bc4c00", "danger": "#d1242f"},
+    )
+    result = audit(white, icons)
+    report = with_fixes(
+        CheckReport(
+            audits=(result,), gate=evaluate([result], Policy(rules=frozenset({Rule.CONFUSION})))
+        )
     )
     finding = report.gate.failures[0]
-    fallback = safe_alpha_fixes(report)(finding)
-    computed = [describe_fix(f) for f in fixes_for(report)]
-    assert fallback is not None and fallback.startswith("blue: alpha 1")
-    assert "largest safe alpha" not in fallback
-    # The fallback's span is the computed fix's first option.
-    assert all(text.startswith(fallback) for text in computed), (fallback, computed)
+    (fix,) = (report.fixes[k] for k in finding.fixes)
+    assert isinstance(fix, GroupFix) and fix.colors == ("danger", "severe")
+    assert fix.safe.alpha is not None and 1.0 <= fix.safe.alpha < 1.15
+    assert finding_fix(finding, report).startswith("danger and severe together: alpha 1 to ")
+    # The joint answer passes the gate; just above it fails.
+    both = {"alert": fix.safe.alpha, "stop": fix.safe.alpha}
+    from alpha_audit.rows import with_alphas
+
+    policy = report.gate.policy
+    assert evaluate([with_alphas(result, both)], policy).passed
+    assert fix.safe.limit is not None
+    above = {k: fix.safe.limit.at + 1e-6 for k in both}
+    assert not evaluate([with_alphas(result, above)], policy).passed

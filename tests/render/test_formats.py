@@ -9,13 +9,15 @@ from pathlib import Path
 
 import pytest
 
-from alpha_audit.audit import audit
-from alpha_audit.gate import CheckReport, evaluate
+from alpha_audit.gate import evaluate
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
-from alpha_audit.policy import Exemption, Policy, Rule
+from alpha_audit.policy import Exemption, Policy
 from alpha_audit.render import CheckFormat, RenderOptions, render_check
 from alpha_audit.render.common import escape_markdown as escape_cell
 from alpha_audit.render.github import escape_property
+from alpha_audit.results import CheckReport
+from alpha_audit.rows import audit
+from alpha_audit.rules import Rule
 
 BASE = Path("/repo")
 HOSTILE = "evil|name\x07<b>@team\n::error::x%0A*"
@@ -47,7 +49,7 @@ def test_every_format_renders_deterministically(fmt: CheckFormat) -> None:
 
 def test_json_gate_section() -> None:
     doc = json.loads(render_check(_report(), "json", OPTIONS))
-    assert doc["schema"] == "alpha-audit.check/2"
+    assert doc["schema"] == "alpha-audit.check/3"
     gate = doc["gate"]
     assert gate["passed"] is False and gate["counts"] == {"loss": 1, "new-collision": 1}
     loss, collision = gate["failures"]

@@ -9,12 +9,15 @@ from pathlib import Path
 
 from markdown_it import MarkdownIt
 
-from alpha_audit.audit import audit
-from alpha_audit.gate import CheckReport, evaluate
+from alpha_audit.fixes import with_fixes
+from alpha_audit.gate import evaluate
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
-from alpha_audit.policy import Exemption, Policy, Rule
-from alpha_audit.render.common import RenderOptions
+from alpha_audit.policy import Exemption, Policy
+from alpha_audit.render.common import RenderOptions, escape_markdown
 from alpha_audit.render.markdown import COMMENT_LIMIT, MARKER, render_markdown, render_report
+from alpha_audit.results import CheckReport
+from alpha_audit.rows import audit
+from alpha_audit.rules import Rule
 
 OPTIONS = RenderOptions(base=Path("/repo"))
 # Blue at alpha 1.6 loses contrast on mid grey (clipping in linear sRGB); red
@@ -39,7 +42,7 @@ def _iconset(per_colour: int = 10) -> IconSet:
 def report() -> CheckReport:
     audits = tuple(audit(_theme(name), _iconset()) for name in ("grey", "warm grey"))
     policy = Policy(rules=frozenset({Rule.LOSS}))
-    return CheckReport(audits=audits, gate=evaluate(list(audits), policy))
+    return with_fixes(CheckReport(audits=audits, gate=evaluate(list(audits), policy)))
 
 
 def _rows(text: str, header: str) -> list[list[str]]:
@@ -101,11 +104,14 @@ def test_each_failing_group_names_a_largest_safe_alpha_that_holds() -> None:
             assert bool(lost) is loses, (colour, a)
 
 
-def test_the_fix_hook_fills_the_fix_column() -> None:
-    text = render_markdown(report(), OPTIONS, fix=lambda f: f"lower {f.icons[0]}")
-    rows = _rows(text, "| colour | canvas | rule |")
-    assert all(r[5].startswith("lower ") for r in rows)
-    assert all(r[5] == "" for r in _rows(render_markdown(report(), OPTIONS), "| colour |"))
+def test_without_computed_fixes_the_fix_column_gives_the_rules_advice() -> None:
+    from alpha_audit.rules import RULES
+
+    bare = replace(report(), fixes=(), gate=evaluate(list(report().audits), report().gate.policy))
+    rows = _rows(render_markdown(bare, OPTIONS), "| colour | canvas | rule |")
+    assert rows and all(
+        r[5] == escape_markdown(RULES[Rule.LOSS].fix.replace("`", "")) for r in rows
+    )
 
 
 def test_newly_passing_groups_are_listed_as_improved() -> None:
@@ -152,43 +158,31 @@ def test_a_huge_failing_run_fits_githubs_comment_limit_and_says_what_was_left_ou
     assert "65,536-character comment limit" in text
 
 
-def test_fallback_fix_is_the_colours_largest_safe_alpha_as_suggest_gives_it() -> None:
-    """No computed fixes on the report: the hook asks the one colour's question, same answer."""
-    from alpha_audit.fixes import safe_span
-    from alpha_audit.render.markdown import safe_alpha_fixes
+def test_the_fix_is_the_colours_largest_safe_alpha_as_suggest_gives_it() -> None:
+    """The report's fix for a colour is suggest's per-colour answer, in the same words."""
+    from alpha_audit.render.common import finding_fix, safe_span
     from alpha_audit.suggest import suggest
 
     rep = report()
-    assert rep.fixes is None or rep.fixes == ()
-    hook = safe_alpha_fixes(replace(rep, fixes=()))
     result = rep.audits[0]
-    policy = replace(rep.gate.policy, rules=frozenset({Rule.LOSS}))
-    per_color = {
-        c.color: c.safe.alpha for c in suggest(result.theme, result.iconset, policy).per_color
-    }
+    per_color = {c.color: c.safe.alpha for c in suggest(result, rep.gate.policy).per_color}
     for finding in rep.gate.failures:
         if finding.theme != result.theme.name:
             continue
         role = finding.icons[0].split("-")[0]
-        expected = per_color[role]
-        assert hook(finding) == f"{role}: {safe_span(round(expected, 3))}"
+        assert finding_fix(finding, rep).startswith(f"{role}: {safe_span(per_color[role])}")
 
 
-def test_fallback_computes_nothing_once_the_reports_fixes_were_capped(monkeypatch) -> None:
-    """A brand set fails thousands of colours: past the cap the hook points at suggest."""
-    import importlib
-
+def test_past_the_fix_budget_the_comment_points_at_suggest(monkeypatch) -> None:
+    """A brand set fails thousands of colours: past the budget the fix says run suggest."""
     import alpha_audit.fixes as fixes
-    from alpha_audit.render.markdown import safe_alpha_fixes
-
-    suggest_package = importlib.import_module("alpha_audit.suggest")  # the name is shadowed
+    from alpha_audit.render.common import finding_fix
 
     monkeypatch.setattr(fixes, "MAX_FIXED_COLORS", 1)
-    rep = fixes.with_fixes(report())
-    assert fixes.fixes_left_out(rep) > 0 and fixes.fixes_capped(rep)
-    asked: list[object] = []
-    monkeypatch.setattr(suggest_package, "largest_safe_alpha", lambda *a, **k: asked.append(a))
-    hook = safe_alpha_fixes(rep)
-    texts = [hook(f) for f in rep.gate.failures]
-    assert asked == []
-    assert texts and all("alpha-audit suggest" in (t or "") for t in texts)
+    bare = report()
+    rep = fixes.with_fixes(
+        replace(bare, fixes=(), gate=evaluate(list(bare.audits), bare.gate.policy))
+    )
+    assert rep.fixes_left_out > 0
+    texts = [finding_fix(f, rep) for f in rep.gate.failures if not f.fixes]
+    assert texts and all("alpha-audit suggest" in t for t in texts)

@@ -15,8 +15,9 @@ from typing import Any
 import pytest
 
 from alpha_audit.pipeline import check_project
-from alpha_audit.policy import Policy, Rule
+from alpha_audit.policy import Policy
 from alpha_audit.render import CheckFormat, RenderOptions
+from alpha_audit.rules import Rule
 
 SVG = (
     '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 24 24">'

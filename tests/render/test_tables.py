@@ -18,19 +18,19 @@ from typing import Any
 
 import pytest
 
-from alpha_audit.audit import audit
-from alpha_audit.gate import CheckReport, evaluate
+from alpha_audit.gate import evaluate
 from alpha_audit.load.iconset import load_iconset
 from alpha_audit.load.theme import load_theme
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
 from alpha_audit.pair import pair_report
 from alpha_audit.policy import Policy
-from alpha_audit.render import CheckFormat, SuggestFormat
+from alpha_audit.render import CheckFormat, PairFormat, SuggestFormat
 from alpha_audit.render.common import RenderOptions, wrap_name
-from alpha_audit.render.pair import PairFormat
+from alpha_audit.render.suggest import suggest_document
 from alpha_audit.render.table import MAX_FINDINGS
+from alpha_audit.results import CheckReport
+from alpha_audit.rows import audit
 from alpha_audit.suggest import suggest
-from alpha_audit.suggest.report import suggest_document
 
 ROOT = Path(__file__).resolve().parents[2]
 WIDTHS = (60, 80, 200)
@@ -133,7 +133,7 @@ def test_at_80_columns_every_check_column_stays() -> None:
 def test_suggest_table_keeps_every_alpha_whole(width: int) -> None:
     theme = load_theme(ROOT / "themes" / "material3.yaml")
     iconset = load_iconset(ROOT / "examples" / "vibrant" / "iconset.yaml", root=ROOT)
-    result = suggest(theme, iconset, Policy())
+    result = suggest(audit(theme, iconset), Policy())
     doc = suggest_document(result)
     p = doc["precision"]
     tokens = {f"{c['alpha']:.{p}f}" for c in doc["per_canvas"] if c["alpha"] is not None}
@@ -166,8 +166,8 @@ def test_pair_table_keeps_every_figure_whole(width: int) -> None:
 @pytest.mark.parametrize("width", WIDTHS)
 def test_themes_table_keeps_every_hex_whole(width: int) -> None:
     from alpha_audit.bundled import load_bundled_themes
-    from alpha_audit.cli.themes import _table
     from alpha_audit.render.common import to_text
+    from alpha_audit.render.themes import _table
 
     themes = load_bundled_themes()
     text = to_text(_table(themes), RenderOptions(width=width))

@@ -7,8 +7,9 @@ from pathlib import Path
 
 from alpha_audit.load.config import load_config
 from alpha_audit.pipeline import check_project
-from alpha_audit.policy import Policy, Rule
+from alpha_audit.policy import Policy
 from alpha_audit.render import CheckFormat, RenderOptions
+from alpha_audit.rules import Rule
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLE = REPO / "examples/tokens"

@@ -9,12 +9,12 @@ import pytest
 import yaml
 from typer.testing import CliRunner
 
-from alpha_audit.audit import audit
 from alpha_audit.cli import app
 from alpha_audit.gate import evaluate
 from alpha_audit.load.iconset import load_iconset
 from alpha_audit.load.theme import load_theme
 from alpha_audit.policy import Policy
+from alpha_audit.rows import audit
 from alpha_audit.suggest import suggest
 from alpha_audit.suggest.apply import (
     apply_suggestion,
@@ -101,7 +101,7 @@ def test_apply_per_colour_and_icon_passes_the_gate_and_keeps_alert(
     manifest, theme_path = _project(tmp_path, repo)
     original = manifest.read_text()
     theme, before = load_theme(theme_path), load_iconset(manifest)
-    result = suggest(theme, before, Policy())
+    result = suggest(audit(theme, before), Policy())
     plan, changed = apply_suggestion(manifest, result, scope)
     assert changed and plan.passes and plan.kept == ("alert",)
     after = load_iconset(manifest)
@@ -149,13 +149,16 @@ def test_apply_icon_replace_explicit_rewrites_list_entries_too(tmp_path: Path) -
         "alpha: 1.1\n"
     )
     theme = load_theme(Path(__file__).parents[2] / "themes" / "paper16.yaml")
-    result = suggest(theme, load_iconset(manifest), Policy())
+    result = suggest(audit(theme, load_iconset(manifest)), Policy())
     kept, _ = apply_suggestion(manifest, result, "icon")
     assert kept.kept == ("alert",) and "alert" not in kept.icons
     text = manifest.read_text()
     assert "{file: svg/alert.svg, alpha: 1.05}   # explicit" in text
     plan, _ = apply_suggestion(
-        manifest, suggest(theme, load_iconset(manifest), Policy()), "icon", replace_explicit=True
+        manifest,
+        suggest(audit(theme, load_iconset(manifest)), Policy()),
+        "icon",
+        replace_explicit=True,
     )
     assert plan.kept == () and "alert" in plan.icons
     after = {i.name: i.alpha for i in load_iconset(manifest).icons}

@@ -13,7 +13,6 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from alpha_audit.audit import audit
 from alpha_audit.color import (
     contrast_from_luminance,
     delta_e_2000,
@@ -24,7 +23,9 @@ from alpha_audit.color import (
 from alpha_audit.errors import UsageError
 from alpha_audit.gate import evaluate
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
-from alpha_audit.policy import Exemption, Policy, Rule
+from alpha_audit.policy import Exemption, Policy
+from alpha_audit.rows import audit
+from alpha_audit.rules import Rule
 from alpha_audit.suggest import largest_safe_alpha, suggest
 
 RULE_SETS = [
@@ -141,7 +142,7 @@ def judge(theme: Theme, iconset: IconSet, policy: Policy, moving: np.ndarray, sa
 def test_random_sets_agree_with_independent_judges(seed: int) -> None:
     theme, iconset = random_case(seed)
     policy = Policy(rules=RULE_SETS[seed % len(RULE_SETS)])
-    result = suggest(theme, iconset, policy)
+    result = suggest(audit(theme, iconset), policy)
     n = len(iconset.icons)
     judge(theme, iconset, policy, np.ones(n, dtype=bool), result.overall)
     color = result.per_color[seed % len(result.per_color)]
@@ -156,7 +157,7 @@ def test_exact_answer_is_never_above_a_fine_sweep(seed: int) -> None:
     """The first unsafe point of a 1e-4 sweep is never below the exact one."""
     theme, iconset = random_case(seed)
     policy = Policy(rules=frozenset({Rule.COLLISION, Rule.LOSS, Rule.NEWLY_FAILING}))
-    safe = suggest(theme, iconset, policy).overall
+    safe = suggest(audit(theme, iconset), policy).overall
     grid = np.arange(1.0, 2.0 + 5e-5, 1e-4)
     bad = broken_at(theme, iconset, policy, np.ones(len(iconset.icons), bool), grid)
     if safe.limit is None:
@@ -193,7 +194,7 @@ def test_a_1e3_sweep_misses_a_collision_window_that_the_exact_method_finds() -> 
     theme, iconset, lo, hi = _narrow_window_case()
     policy = Policy(rules=frozenset({Rule.COLLISION}))
     moving = np.array([True, False])
-    safe = largest_safe_alpha(theme, iconset, policy, icons=["mover"])
+    safe = largest_safe_alpha(audit(theme, iconset), policy, icons=["mover"])
     assert safe.limit is not None and safe.limit.rule is Rule.COLLISION
     assert safe.limit.at == pytest.approx(lo, abs=1e-12) and not safe.limit.attained
     assert safe.limit.icons == ("fixed", "mover")
@@ -204,7 +205,7 @@ def test_a_1e3_sweep_misses_a_collision_window_that_the_exact_method_finds() -> 
     assert gate_fails_at(theme, iconset, policy, moving, 0.5 * (lo + hi))
     assert safe.alpha == np.floor(lo * 1000) / 1000
     # suggest() reports the same per icon.
-    per_icon = {s.icon: s.safe for s in suggest(theme, iconset, policy).per_icon}
+    per_icon = {s.icon: s.safe for s in suggest(audit(theme, iconset), policy).per_icon}
     assert per_icon["mover"].limit == safe.limit
 
 
@@ -212,12 +213,12 @@ def test_paper_worst_case_loses_contrast_immediately() -> None:
     # Paper, Section 4: sRGB (0, 0, 0.8125) on (1, 1, 0); 0.8125 * 255 = 207.1875.
     theme = Theme("t", (Canvas("yellow", "#ffff00"),))
     iconset = IconSet("s", (Icon("dot", "dot.svg", "rgb(0 0 207.1875)", 1.0),))
-    safe = largest_safe_alpha(theme, iconset, Policy(rules=frozenset({Rule.LOSS})))
+    safe = largest_safe_alpha(audit(theme, iconset), Policy(rules=frozenset({Rule.LOSS})))
     assert safe.alpha == 1.0 and safe.limit is not None
     assert safe.limit.rule is Rule.LOSS and safe.limit.at == pytest.approx(1.0, abs=1e-8)
     # Allowing the paper's loss at 1.1 (10.2773 -> 9.8118) moves the limit to 1.1.
     allowed = Policy(rules=frozenset({Rule.LOSS}), max_loss=10.277324 - 9.811806)
-    assert largest_safe_alpha(theme, iconset, allowed).alpha == pytest.approx(1.1, abs=2e-3)
+    assert largest_safe_alpha(audit(theme, iconset), allowed).alpha == pytest.approx(1.1, abs=2e-3)
 
 
 def test_black_and_white_canvases_never_lose_contrast() -> None:
@@ -228,14 +229,18 @@ def test_black_and_white_canvases_never_lose_contrast() -> None:
         Icon(f"i{k}", "x.svg", "#" + "".join(f"{v:02x}" for v in rng.integers(0, 256, 3)), 1.0)
         for k in range(40)
     )
-    safe = largest_safe_alpha(theme, IconSet("s", icons), Policy(rules=frozenset({Rule.LOSS})))
+    safe = largest_safe_alpha(
+        audit(theme, IconSet("s", icons)), Policy(rules=frozenset({Rule.LOSS}))
+    )
     assert safe.alpha == 2.0 and safe.limit is None
 
 
 def test_rounding_is_down_and_an_unsafe_point_is_stepped_off() -> None:
     theme, iconset = random_case(3)
     for precision in (0, 1, 2, 4):
-        safe = suggest(theme, iconset, Policy(rules=RULE_SETS[1]), precision=precision).overall
+        safe = suggest(
+            audit(theme, iconset), Policy(rules=RULE_SETS[1]), precision=precision
+        ).overall
         if safe.alpha is not None and safe.limit is not None:
             assert safe.alpha <= safe.limit.at
             assert round(safe.alpha, precision) == safe.alpha
@@ -247,11 +252,11 @@ def test_exemptions_are_honoured() -> None:
         rules=frozenset({Rule.COLLISION}),
         exemptions=(Exemption(reason="known", icon="fixed"),),
     )
-    assert largest_safe_alpha(theme, iconset, policy, icons=["mover"]).limit is None
+    assert largest_safe_alpha(audit(theme, iconset), policy, icons=["mover"]).limit is None
     by_canvas = Policy(
         rules=frozenset({Rule.COLLISION}), exemptions=(Exemption(reason="x", canvas="paper"),)
     )
-    limit = largest_safe_alpha(theme, iconset, by_canvas, icons=["mover"]).limit
+    limit = largest_safe_alpha(audit(theme, iconset), by_canvas, icons=["mover"]).limit
     assert limit is not None and limit.at == pytest.approx(lo, abs=1e-12)
 
 
@@ -259,7 +264,7 @@ def test_separation_is_bracketed_and_bisected() -> None:
     theme = Theme("t", (Canvas("paper", "#ffffff"), Canvas("ink", "#0d1117")))
     icons = (Icon("o", "o.svg", "#ee7733", 1.0), Icon("m", "m.svg", "#ee3377", 1.0))
     policy = Policy(rules=frozenset({Rule.SEPARATION}), min_delta_e=20.0)
-    safe = largest_safe_alpha(theme, IconSet("s", icons), policy)
+    safe = largest_safe_alpha(audit(theme, IconSet("s", icons)), policy)
     assert safe.limit is not None and safe.limit.rule is Rule.SEPARATION
     at = safe.limit.at
     moving = np.ones(2, dtype=bool)
@@ -281,10 +286,10 @@ def test_separation_is_bracketed_and_bisected() -> None:
 def test_bad_arguments(kwargs: dict, message: str) -> None:
     theme, iconset = random_case(1)
     with pytest.raises(UsageError, match=message):
-        suggest(theme, iconset, Policy(), **kwargs)
+        suggest(audit(theme, iconset), Policy(), **kwargs)
 
 
 def test_unknown_icon() -> None:
     theme, iconset = random_case(1)
     with pytest.raises(UsageError, match="no icon named 'nope'"):
-        largest_safe_alpha(theme, iconset, Policy(), icons=["nope"])
+        largest_safe_alpha(audit(theme, iconset), Policy(), icons=["nope"])

@@ -23,7 +23,9 @@ from alpha_audit.color.coverage import CoverageStats
 from alpha_audit.load.paint_masks import IconPaints, PaintCoverage, PaintSet
 from alpha_audit.load.paints import CURRENT_COLOR, Paint, PaintGroup, SvgPaints
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
-from alpha_audit.policy import Policy, Rule
+from alpha_audit.policy import Policy
+from alpha_audit.rows import audit
+from alpha_audit.rules import Rule
 from alpha_audit.suggest import largest_safe_alpha
 
 TOL_DE = 1e-9  # the CIEDE2000 tolerance (alpha_audit.color.DELTA_E_TOLERANCE), a float margin
@@ -131,7 +133,7 @@ def test_answer_is_safe_and_just_above_is_not(seed: int, policy: Policy) -> None
     theme, iconset, linear = _random_case(seed)
     roles = [i.color_name or i.color for i in iconset.icons]
     ones = np.ones(len(roles))
-    safe = largest_safe_alpha(theme, iconset, policy, precision=3)
+    safe = largest_safe_alpha(audit(theme, iconset), policy, precision=3)
     if safe.alpha is None:
         assert judge_unsafe(linear, roles, ones, theme.backgrounds, policy, 1.0)
         return
@@ -157,7 +159,7 @@ def test_cvd_confusion_against_colour_science_machado() -> None:
         Icon(f"i{k}", f"i{k}.svg", h, 1.0, color_name=f"r{k}") for k, h in enumerate(hexes)
     )
     policy = Policy(rules=frozenset({Rule.CVD_CONFUSION}), min_delta_e=10.0)
-    safe = largest_safe_alpha(theme, IconSet("s", icons), policy, precision=3)
+    safe = largest_safe_alpha(audit(theme, IconSet("s", icons)), policy, precision=3)
     linear, roles = _linear(hexes), [f"r{k}" for k in range(3)]
     judge = Policy(rules=frozenset({Rule.CVD_CONFUSION}), min_delta_e=10.0)
     ones = np.ones(3)
@@ -188,7 +190,7 @@ def test_drift_of_a_translucent_paint_uses_the_coverage_form(opacity: float) -> 
     icons = [Icon("a", "a.svg", "#64748b", 1.0), Icon("b", "b.svg", "#ee7733", 1.0)]
     iconset, paints = _painted(icons, opacity, 1.0)
     policy = Policy(rules=frozenset({Rule.DRIFT}), max_drift=6.0)
-    safe = largest_safe_alpha(theme, iconset, policy, paints=paints, precision=4)
+    safe = largest_safe_alpha(audit(theme, iconset, paints), policy, precision=4)
     linear = _linear([i.color for i in icons])
     o = np.full(2, opacity)
     assert safe.alpha is not None and safe.limit is not None
@@ -214,7 +216,7 @@ def test_thin_strokes_is_exact_at_q50() -> None:
     theme = Theme("t", (Canvas("yellow", "#ffff00"),))
     iconset, paints = _painted([Icon("a", "a.svg", "#0000d0", 1.0)], 1.0, 0.5)
     policy = Policy(rules=frozenset({Rule.THIN_STROKES}), min_size_contrast=limit)
-    safe = largest_safe_alpha(theme, iconset, policy, paints=paints, precision=6)
+    safe = largest_safe_alpha(audit(theme, iconset, paints), policy, precision=6)
     assert safe.alpha is not None and safe.limit is not None
     assert safe.limit.rule is Rule.THIN_STROKES and safe.limit.grid is None  # exact
     assert size_contrast(safe.alpha) >= limit - 1e-10
@@ -257,7 +259,7 @@ def test_one_colour_moving_is_judged_against_every_role_at_alpha_1(seed: int) ->
     roles = [i.color_name or i.color for i in iconset.icons]
     policy = Policy(rules=frozenset({Rule.CONFUSION}), min_delta_e=20.0)
     for k, icon in enumerate(iconset.icons):
-        safe = largest_safe_alpha(theme, iconset, policy, icons=[icon.name], precision=3)
+        safe = largest_safe_alpha(audit(theme, iconset), policy, icons=[icon.name], precision=3)
         level = policy.min_delta_e
         if safe.alpha is None:
             alphas = held.copy()

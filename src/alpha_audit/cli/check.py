@@ -190,7 +190,8 @@ def check_command(
     """
     from alpha_audit.bundled import iconset_source, theme_source
     from alpha_audit.errors import UsageError
-    from alpha_audit.gate import baseline_document, read_baseline
+    from alpha_audit.gate import baseline_document
+    from alpha_audit.load.baseline import read_baseline
     from alpha_audit.load.config import project_config
     from alpha_audit.output import Output, check_targets, write_files
     from alpha_audit.pipeline import check_project

@@ -92,7 +92,7 @@ def rules_flag(
 
     def check(values: list[str] | None) -> list[str] | None:
         from alpha_audit.errors import UsageError
-        from alpha_audit.policy import Rule
+        from alpha_audit.rules import Rule
 
         allowed = [r.value for r in Rule if r.value not in refused]
         for value in values or []:

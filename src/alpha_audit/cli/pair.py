@@ -10,7 +10,7 @@ from alpha_audit.cli.console import emit, stdout_options
 from alpha_audit.cli.options import in_range
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.ranges import ALPHA
-from alpha_audit.render.pair import PairFormat
+from alpha_audit.render import PairFormat
 
 __all__ = ["pair_command"]
 

@@ -131,11 +131,11 @@ def suggest_command(
     from alpha_audit.load.iconset import load_iconset
     from alpha_audit.load.theme import load_theme
     from alpha_audit.output import check_targets
-    from alpha_audit.paint_audit import resolve_pipeline
     from alpha_audit.pipeline import render_paints
     from alpha_audit.render.common import RenderOptions, check_suffix
-    from alpha_audit.suggest import suggest
+    from alpha_audit.rows import audit, resolve_pipeline
     from alpha_audit.suggest.apply import apply_suggestion, describe_plan
+    from alpha_audit.suggest.engine import suggest
 
     if output is not None:
         check_suffix(fmt.value, output)
@@ -182,16 +182,14 @@ def suggest_command(
     )
     # The gate judges every paint of every SVG as drawn: suggest answers the same rows.
     paints = render_paints(loaded_set, strict_svg=False, on_icon=None, pool=ctx.obj)
-    result = suggest(
+    rows = audit(
         loaded_theme,
         loaded_set,
-        policy,
-        paints=paints,
-        pipeline=resolve_pipeline(None, loaded_set.pipeline, loaded_theme.pipeline),
-        alpha_max=alpha_max,
-        precision=precision,
+        paints,
         threshold=threshold if threshold is not None else project.threshold,
+        pipeline=resolve_pipeline(project.pipeline, loaded_set.pipeline, loaded_theme.pipeline),
     )
+    result = suggest(rows, policy, alpha_max=alpha_max, precision=precision)
     options = stdout_options() if output is None else RenderOptions()
     emit(fmt.renderer()(result, options), output, force)
     if apply is not None:

@@ -31,7 +31,8 @@ from alpha_audit.load.files import read_text_capped
 from alpha_audit.load.paths import PathRefused, contain_argument, project_root
 from alpha_audit.load.tokens.themes import TokenConfig, token_config_from_mapping
 from alpha_audit.load.yamldoc import MAX_YAML_BYTES, KeyPath, YamlDoc, format_key, load_yaml
-from alpha_audit.policy import DEFAULT_RULES, Exemption, Policy, Rule
+from alpha_audit.policy import Exemption, Policy
+from alpha_audit.rules import DEFAULT_RULES, Rule
 from alpha_audit.safe_text import is_safe, safe_text
 
 __all__ = [
@@ -320,7 +321,14 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
         iconsets=tuple(found["iconsets"]),
         alpha=alpha,
         threshold=threshold,
-        policy=Policy(rules, max_loss, min_delta_e, exemptions, max_drift, min_size_contrast),
+        policy=Policy(
+            rules=rules,
+            max_loss=max_loss,
+            min_delta_e=min_delta_e,
+            exemptions=exemptions,
+            max_drift=max_drift,
+            min_size_contrast=min_size_contrast,
+        ),
         baseline=baseline,
         strict_svg=strict_svg,
         tokens=tokens,

@@ -1,51 +1,64 @@
 """Renderers: pure functions from a result to text, chosen by a format enum.
 
-Every result type has the same frame: an enum of its formats whose
-``renderer()`` returns one :class:`~alpha_audit.render.common.Renderer` per
-format (dispatch ending in ``assert_never``), so a new format is one module and
-one line.  The result types and their enums:
+Every result type has the same frame: a :class:`Format` enum of its formats
+whose :meth:`Format.renderer` loads one
+:class:`~alpha_audit.render.common.Renderer` from :data:`RENDERERS`, so a new
+format is one module and one line.  The result types and their enums:
 
-=================  ==========================================  =====================
-result             formats                                     enum
-=================  ==========================================  =====================
-``CheckReport``    table, json, junit, sarif, markdown, github  :class:`CheckFormat`
-``SuggestResult``  table, json, markdown                        ``SuggestFormat``
-``PairReport``     table, json                                  ``PairFormat``
-``Reproduction``   table, json, markdown                        ``ReproduceFormat``
-=================  ==========================================  =====================
+=================  =================================================  ======================
+result             formats                                            enum
+=================  =================================================  ======================
+``CheckReport``    table, json, junit, sarif, markdown, github, gitlab  :class:`CheckFormat`
+``SuggestResult``  table, json, markdown                               :class:`SuggestFormat`
+``PairReport``     table, json                                         :class:`PairFormat`
+``Reproduction``   table, json, markdown                               :class:`ReproduceFormat`
+bundled themes     table, json                                         :class:`ThemesFormat`
+=================  =================================================  ======================
 
-(:mod:`alpha_audit.suggest.report`, :mod:`alpha_audit.render.pair`,
-:mod:`alpha_audit.reproduce.report`.)  Shared helpers (escaping, JSON, text)
-live once in :mod:`alpha_audit.render.common`.  A renderer never probes its
-destination (no ``isatty``, no clock) and its output order is stable.
+Shared helpers (escaping, JSON, text, fix wording) live once in
+:mod:`alpha_audit.render.common`.  A renderer never probes its destination (no
+``isatty``, no clock) and its output order is stable.
 """
 
 from __future__ import annotations
 
+import importlib
 from enum import StrEnum
-from typing import TYPE_CHECKING, assert_never
+from typing import TYPE_CHECKING, Any
 
 from alpha_audit.render.common import SUFFIXES, Renderer, RenderOptions, display_path
 
 if TYPE_CHECKING:
-    from alpha_audit.gate import CheckReport
-    from alpha_audit.reproduce.run import Reproduction
-    from alpha_audit.suggest.engine import SuggestResult
+    from alpha_audit.results import CheckReport, SuggestResult
 
 __all__ = [
+    "RENDERERS",
     "SUFFIXES",
     "CheckFormat",
+    "Format",
+    "PairFormat",
     "RenderOptions",
     "Renderer",
     "ReproduceFormat",
     "SuggestFormat",
+    "ThemesFormat",
     "display_path",
     "render_check",
     "render_suggest",
 ]
 
 
-class CheckFormat(StrEnum):
+class Format(StrEnum):
+    """The formats of one result type; each member names its renderer in :data:`RENDERERS`."""
+
+    def renderer(self) -> Renderer[Any]:
+        """The render function for this format (its module imported on first use)."""
+        module, name = RENDERERS[type(self)][self.value].split(":")
+        renderer: Renderer[Any] = getattr(importlib.import_module(module), name)
+        return renderer
+
+
+class CheckFormat(Format):
     """Output formats of ``alpha-audit check``."""
 
     TABLE = "table"
@@ -56,87 +69,72 @@ class CheckFormat(StrEnum):
     GITHUB = "github"
     GITLAB = "gitlab"
 
-    def renderer(self) -> Renderer[CheckReport]:
-        """The render function for this format (imported on first use)."""
-        if self is CheckFormat.TABLE:
-            from alpha_audit.render.table import render_report as table
 
-            return table
-        if self is CheckFormat.JSON:
-            from alpha_audit.render.json import render_report as as_json
-
-            return as_json
-        if self is CheckFormat.JUNIT:
-            from alpha_audit.render.junit import render_report as junit
-
-            return junit
-        if self is CheckFormat.SARIF:
-            from alpha_audit.render.sarif import render_report as sarif
-
-            return sarif
-        if self is CheckFormat.MARKDOWN:
-            from alpha_audit.render.markdown import render_report as markdown
-
-            return markdown
-        if self is CheckFormat.GITHUB:
-            from alpha_audit.render.github import render_report as github
-
-            return github
-        if self is CheckFormat.GITLAB:
-            from alpha_audit.render.gitlab import render_report as gitlab
-
-            return gitlab
-        assert_never(self)
-
-
-class SuggestFormat(StrEnum):
+class SuggestFormat(Format):
     """Output formats of ``alpha-audit suggest``."""
 
     TABLE = "table"
     JSON = "json"
     MARKDOWN = "markdown"
 
-    def renderer(self) -> Renderer[SuggestResult]:
-        """The render function for this format (:mod:`alpha_audit.suggest.report`)."""
-        from alpha_audit.suggest import report
 
-        if self is SuggestFormat.TABLE:
-            return report.render_table
-        if self is SuggestFormat.JSON:
-            return report.render_json
-        if self is SuggestFormat.MARKDOWN:
-            return report.render_markdown
-        assert_never(self)
+class PairFormat(Format):
+    """Output formats of ``alpha-audit pair``."""
+
+    TABLE = "table"
+    JSON = "json"
 
 
-class ReproduceFormat(StrEnum):
+class ReproduceFormat(Format):
     """Output formats of ``alpha-audit reproduce`` (``--out`` writes JSON and Markdown)."""
 
     TABLE = "table"
     JSON = "json"
     MARKDOWN = "markdown"
 
-    def renderer(self) -> Renderer[Reproduction]:
-        """The render function for this format (:mod:`alpha_audit.reproduce.report`)."""
-        from alpha_audit.reproduce import report
 
-        if self is ReproduceFormat.TABLE:
-            return report.render_table
-        if self is ReproduceFormat.JSON:
-            return report.render_json
-        if self is ReproduceFormat.MARKDOWN:
-            return report.render_markdown
-        assert_never(self)
+class ThemesFormat(Format):
+    """Output formats of ``alpha-audit themes``."""
+
+    TABLE = "table"
+    JSON = "json"
+
+
+# Every format of every result type: "module:function" (a test loads each one).  Keyed by
+# class first: the members are strings, so CheckFormat.TABLE == ThemesFormat.TABLE.
+RENDERERS: dict[type[Format], dict[str, str]] = {
+    CheckFormat: {
+        "table": "alpha_audit.render.table:render_report",
+        "json": "alpha_audit.render.json:render_report",
+        "junit": "alpha_audit.render.junit:render_report",
+        "sarif": "alpha_audit.render.sarif:render_report",
+        "markdown": "alpha_audit.render.markdown:render_report",
+        "github": "alpha_audit.render.github:render_report",
+        "gitlab": "alpha_audit.render.gitlab:render_report",
+    },
+    SuggestFormat: {
+        "table": "alpha_audit.render.suggest:render_table",
+        "json": "alpha_audit.render.suggest:render_json",
+        "markdown": "alpha_audit.render.suggest:render_markdown",
+    },
+    PairFormat: {
+        "table": "alpha_audit.render.pair:render_table",
+        "json": "alpha_audit.render.pair:render_json",
+    },
+    ReproduceFormat: {
+        "table": "alpha_audit.reproduce.report:render_table",
+        "json": "alpha_audit.reproduce.report:render_json",
+        "markdown": "alpha_audit.reproduce.report:render_markdown",
+    },
+    ThemesFormat: {
+        "table": "alpha_audit.render.themes:render_table",
+        "json": "alpha_audit.render.themes:render_json",
+    },
+}
 
 
 def render_check(report: CheckReport, fmt: CheckFormat | str, options: RenderOptions) -> str:
-    """Render a gated report in ``fmt``.
-
-    An :class:`~alpha_audit.audit.AuditResult` alone has no verdict: gate it
-    with :func:`alpha_audit.gate.evaluate` and the policy you mean, and wrap
-    it in a :class:`~alpha_audit.gate.CheckReport` (or use
-    :func:`alpha_audit.pipeline.check_project`).
-    """
+    """Render a gated report (:func:`alpha_audit.pipeline.check_project`) in ``fmt``."""
     return CheckFormat(fmt).renderer()(report, options)
 
 

@@ -31,7 +31,9 @@ if TYPE_CHECKING:
     from rich.console import RenderableType
     from rich.table import Table
 
+    from alpha_audit.findings import Finding
     from alpha_audit.model import GamutAdjustment
+    from alpha_audit.results import CheckReport, ColorFix, Fix, SafeAlpha
 
 __all__ = [
     "SUFFIXES",
@@ -43,11 +45,15 @@ __all__ = [
     "dumps",
     "escape_html",
     "escape_markdown",
+    "finding_fix",
     "fitted_table",
+    "fix_text",
+    "fix_to_dict",
     "gamut_line",
     "name_column",
     "number_column",
     "records",
+    "safe_span",
     "shorten_names",
     "to_text",
     "wrap_name",
@@ -512,3 +518,133 @@ def fitted_table(
             end_section=n in section_ends,
         )
     return table
+
+
+# ------------------------------------------------------------------ fixes in words
+
+
+def safe_span(alpha: float) -> str:
+    """A largest safe alpha as the range it guarantees, ``[1, alpha]``.
+
+    Not "at most": a colour failing at 0.9 would be sent nowhere ("at most 2").
+
+    >>> safe_span(1.178), safe_span(1.0)
+    ('alpha 1 to 1.178', 'alpha 1')
+    """
+    return "alpha 1" if alpha <= 1.0 else f"alpha 1 to {alpha:g}"
+
+
+def _color_fix_text(fix: ColorFix) -> str:
+    from alpha_audit.policy import CONTRAST_RULES
+
+    contrast = any(r in CONTRAST_RULES for r in fix.rules)
+    options = []
+    safe = fix.largest_safe.alpha
+    if safe is not None:
+        options.append(safe_span(safe))
+    # Reaching the threshold at 1 itself is already inside that range.
+    reach = fix.reach.alpha
+    if contrast and reach is not None and not (safe is not None and reach <= 1.0):
+        options.append(f"alpha {reach:g} or above (every {fix.mode} canvas)")
+    if contrast and fix.nearest is not None and fix.nearest.delta_e > 0:
+        near = fix.nearest
+        options.append(f"colour {near.color} (CIEDE2000 {near.delta_e:.2f} away)")
+    if not options:
+        return f"{fix.color}: not even alpha 1 passes; change the colour"
+    return f"{fix.color}: {' or '.join(options)}"
+
+
+def fix_text(fix: Fix) -> str:
+    """A fix in one plain line (no markup), alternatives joined by "or".
+
+    A colour's largest safe alpha answers every rule; the smallest alpha
+    reaching the threshold and the nearest colour answer a contrast failure,
+    so they are offered only when the colour fails a contrast rule there.  A
+    group's fix is the largest safe alpha of its colours moving together (a
+    confusion's two roles: the joint answer), else of the whole set.
+    """
+    from alpha_audit.results import ColorFix
+
+    if isinstance(fix, ColorFix):
+        return _color_fix_text(fix)
+    who = " and ".join(fix.colors) + " together" if fix.colors else "the whole set"
+    if fix.safe.alpha is None:
+        return f"{who}: not even alpha 1 is safe; move the colours apart"
+    return f"{who}: {safe_span(fix.safe.alpha)}, or move the colours apart"
+
+
+def finding_fix(finding: Finding, report: CheckReport) -> str:
+    """How to fix one finding, in words: its computed fixes, else the rule's advice.
+
+    A failing colour beyond the report's fix budget points at ``alpha-audit suggest``.
+    """
+    from alpha_audit.rules import RULES
+
+    if finding.fixes:
+        return "; ".join(fix_text(report.fixes[k]) for k in finding.fixes)
+    if finding.fails and report.fixes_left_out and finding.canvas is not None:
+        return "run alpha-audit suggest for the safe alphas (too many failing colours here)"
+    return RULES[finding.rule].fix.replace("`", "")
+
+
+def _safe_to_dict(safe: SafeAlpha) -> dict[str, Any]:
+    limit = safe.limit
+    return {
+        "alpha": safe.alpha,
+        "exact": safe.exact,
+        "limit": None
+        if limit is None
+        else {
+            "rule": limit.rule.value,
+            "canvas": limit.canvas,
+            "icons": list(limit.icons),
+            "at": limit.at,
+            "attained": limit.attained,
+        },
+    }
+
+
+def fix_to_dict(fix: Fix, base: Path | None = None) -> dict[str, Any]:
+    """One fix as plain JSON data (finite floats only; ``None`` where there is no answer)."""
+    from alpha_audit.results import ColorFix
+
+    if not isinstance(fix, ColorFix):
+        return {
+            "kind": "group",
+            "theme": fix.theme,
+            "iconset": fix.iconset,
+            "rule": fix.rule.value,
+            "colors": list(fix.colors),
+            "largest_safe_alpha": _safe_to_dict(fix.safe),
+            "text": fix_text(fix),
+        }
+    near = fix.nearest
+    return {
+        "kind": "colour",
+        "theme": fix.theme,
+        "iconset": fix.iconset,
+        "color": fix.color,
+        "source": fix.source,
+        "canvas": fix.canvas,
+        "mode": fix.mode,
+        "icons": list(fix.icons),
+        "rules": [r.value for r in fix.rules],
+        "largest_safe_alpha": _safe_to_dict(fix.largest_safe),
+        "smallest_alpha_reaching": {
+            "alpha": fix.reach.alpha,
+            "exact": fix.reach.exact,
+            "threshold": fix.reach.threshold,
+            "mode": fix.reach.mode,
+            "canvases": list(fix.reach.canvases),
+        },
+        "nearest_color": None
+        if near is None
+        else {
+            "color": near.color,
+            "delta_e": near.delta_e,
+            "oklch": {"l": near.lightness, "c": near.chroma, "h": near.hue},
+        },
+        "manifest": display_path(fix.manifest, base),
+        "line": fix.line,
+        "text": fix_text(fix),
+    }

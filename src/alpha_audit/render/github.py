@@ -10,8 +10,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from alpha_audit.gate import CheckReport, Finding
+from alpha_audit.findings import Finding
 from alpha_audit.render.common import RenderOptions, display_path
+from alpha_audit.results import CheckReport
+from alpha_audit.rules import RULES, Rule
 from alpha_audit.safe_text import safe_text
 
 __all__ = ["MAX_ANNOTATIONS", "escape_data", "escape_property", "render_report"]
@@ -89,11 +91,11 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     errors = [_annotation(f, options.base) for f in gate.failures]
     warnings = [
         _command(
-            "warning",
+            "warning" if w.rule is Rule.UNRENDERABLE else "notice",
             f"{', '.join(w.icons)}: {w.message}",
             file=display_path(w.files[0], options.base) if w.files else None,
             line=None,
-            title="alpha-audit could not render this icon",
+            title=f"alpha-audit {w.rule.value}: {RULES[w.rule].help}",
         )
         for w in gate.warnings
     ]
@@ -118,8 +120,8 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
         _capped(
             "warning",
             warnings,
-            "{n} more icon(s) could not be rendered (GitHub shows 10 warnings per step): "
-            "see the job summary",
+            "{n} more note(s): icons that could not be rendered or hard-coded paints "
+            "(GitHub shows 10 per step): see the job summary",
         )
         + lines
     )

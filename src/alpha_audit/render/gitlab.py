@@ -11,10 +11,9 @@ a baseline matches on (theme, icon set, rule, canvas, icons) -- never a line
 number -- and made unique within the report.
 
 Only what fails the gate is an issue: exempted and baselined findings are
-decisions already taken, and Code Quality has no "dismissed" state.  Icons
-that could not be rendered, when the ``unrenderable`` rule is off, are
-``info`` issues.  Where the report has a fix for the colour on that canvas,
-the description ends with it.
+decisions already taken, and Code Quality has no "dismissed" state.  The
+gate's warnings (reported rules: icons that could not be rendered, hard-coded
+paints) are ``info`` issues.  The description ends with the finding's fix.
 """
 
 from __future__ import annotations
@@ -23,10 +22,10 @@ import hashlib
 from pathlib import Path, PurePosixPath
 from typing import Any
 
-from alpha_audit.fixes import ColorFix, describe_fix, fix_lookup
-from alpha_audit.gate import CheckReport, Finding, unjudged_problems
-from alpha_audit.render.common import RenderOptions, display_path, dumps
-from alpha_audit.render.rules import SEVERITY
+from alpha_audit.findings import Finding
+from alpha_audit.render.common import RenderOptions, display_path, dumps, finding_fix
+from alpha_audit.results import CheckReport
+from alpha_audit.rules import RULES
 
 __all__ = ["render_report"]
 
@@ -53,20 +52,14 @@ def _where(f: Finding, base: Path | None) -> tuple[str, int]:
     return _relative(f.manifest, base), 1
 
 
-def _fix_text(fixes: tuple[ColorFix, ...]) -> str:
-    parts = [text for text in map(describe_fix, fixes) if text]
-    return f" Fix: {'; '.join(parts)}." if parts else ""
-
-
 def _fingerprint(text: str) -> str:
     return hashlib.sha256(text.encode("utf-8")).hexdigest()[:32]
 
 
 def render_report(report: CheckReport, options: RenderOptions) -> str:
     """Every failing finding as one GitLab Code Quality issue, in the gate's order."""
-    fixes_of = fix_lookup(report)
-    entries: list[tuple[Finding, str]] = [(f, SEVERITY[f.rule]) for f in report.gate.failures]
-    entries += [(problem, "info") for problem in unjudged_problems(report)]
+    entries: list[tuple[Finding, str]] = [(f, RULES[f.rule].severity) for f in report.gate.failures]
+    entries += [(note, "info") for note in report.gate.warnings]
     issues: list[dict[str, Any]] = []
     seen: set[str] = set()
     for f, severity in entries:
@@ -83,8 +76,8 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
         issues.append(
             {
                 "type": "issue",
-                "description": f"{where} ({f.theme} / {f.iconset}): {f.message}."
-                + _fix_text(fixes_of(f)),
+                "description": f"{where} ({f.theme} / {f.iconset}): {f.message}. "
+                f"Fix: {finding_fix(f, report)}.",
                 "check_name": _CHECK_PREFIX + f.rule.value,
                 "fingerprint": fingerprint,
                 "severity": severity,

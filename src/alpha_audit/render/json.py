@@ -1,4 +1,4 @@
-"""``alpha-audit.check/2`` JSON: every number at full float precision.
+"""``alpha-audit.check/3`` JSON: every number at full float precision.
 
 One audit: the audit's fields at the top level plus ``gate``.  Several
 audits (themes x icon sets): ``audits`` lists each audit's fields, and
@@ -12,11 +12,12 @@ from dataclasses import asdict
 from pathlib import Path
 from typing import Any
 
-from alpha_audit.audit import AuditResult
-from alpha_audit.fixes import fix_lookup, fix_to_dict, fixes_left_out, report_fixes
-from alpha_audit.gate import CheckReport, Finding, GateResult
+from alpha_audit.findings import Finding
+from alpha_audit.gate import GateResult
 from alpha_audit.model import GamutAdjustment
-from alpha_audit.render.common import Records, RenderOptions, display_path, dumps, records
+from alpha_audit.render.common import Records, RenderOptions, display_path, dumps, fix_to_dict
+from alpha_audit.results import CheckReport
+from alpha_audit.rows import AuditResult
 
 __all__ = [
     "CHECK_SCHEMA",
@@ -26,9 +27,9 @@ __all__ = [
     "report_to_dict",
 ]
 
-# /2: rows per (icon, paint, canvas) when the icons' paints were read (docs/json.md);
-# every /1 field is kept with its meaning, so a single-paint icon reads as before.
-CHECK_SCHEMA = "alpha-audit.check/2"
+# /3: every figure from the paint rows (summary, collisions and separation under the
+# audit's pipeline), warnings (reported rules) and group fixes (docs/json.md).
+CHECK_SCHEMA = "alpha-audit.check/3"
 
 
 def check_to_dict(result: AuditResult, base: Path | None = None) -> dict[str, Any]:
@@ -54,7 +55,7 @@ def check_to_dict(result: AuditResult, base: Path | None = None) -> dict[str, An
             "sizes": list(iconset.sizes),
         },
         "threshold": result.threshold,
-        "pipeline": result.paints.pipeline if result.paints is not None else "linear",
+        "pipeline": result.pipeline,
         "rows": _rows(result),
         "collisions": [
             {
@@ -83,13 +84,7 @@ def check_to_dict(result: AuditResult, base: Path | None = None) -> dict[str, An
             {"icon": p.icon, "file": display_path(p.file, base), "message": p.message}
             for p in result.problems
         ],
-        "summary": {**asdict(result.summary), **_drift_summary(result)},
-        "drift": [
-            {"canvas": canvas, "max_drift": d, "icon": icon, "paint": paint}
-            for canvas, (d, icon, paint) in (
-                result.paints.worst_drift.items() if result.paints is not None else ()
-            )
-        ],
+        "summary": asdict(result.summary),
     }
 
 
@@ -99,11 +94,9 @@ def _finite(value: float) -> float | None:
 
 
 def _rows(result: AuditResult) -> list[dict[str, Any]]:
-    """Per icon x canvas (manifest colours), or per icon x paint x canvas when paints were read."""
-    if result.paints is None:
-        return records(result.rows())
+    """Per paint x canvas, in :meth:`~alpha_audit.rows.AuditResult.rows` order."""
     out = Records()
-    for row in result.paints.rows():
+    for row in result.rows():
         out.append(
             {
                 "icon": row.icon,
@@ -139,11 +132,6 @@ def _rows(result: AuditResult) -> list[dict[str, Any]]:
     return out
 
 
-def _drift_summary(result: AuditResult) -> dict[str, Any]:
-    worst = result.paints.worst_drift if result.paints is not None else {}
-    return {"max_drift": max((d for d, _, _ in worst.values()), default=None)}
-
-
 def finding_to_dict(finding: Finding, base: Path | None = None) -> dict[str, Any]:
     """One gate finding: rule, where, what, and the numbers behind it."""
     return {
@@ -160,6 +148,18 @@ def finding_to_dict(finding: Finding, base: Path | None = None) -> dict[str, Any
         "sources": [{"file": display_path(p, base), "line": n} for p, n in finding.sources],
         "exemption": None if finding.exemption is None else finding.exemption.reason,
         "baselined": finding.baselined,
+        "level": finding.level.value,
+        "fixes": list(finding.fixes),
+        "edits": [
+            {
+                "kind": e.kind,
+                "description": e.description,
+                "file": display_path(e.span.file, base),
+                "line": e.span.start_line,
+                "value": e.value,
+            }
+            for e in finding.edits
+        ],
     }
 
 
@@ -170,6 +170,7 @@ def gate_to_dict(gate: GateResult, base: Path | None = None) -> dict[str, Any]:
         "passed": gate.passed,
         "policy": {
             "rules": sorted(r.value for r in policy.rules),
+            "warnings": sorted(r.value for r in policy.warnings - policy.rules),
             "max_loss": policy.max_loss,
             "min_delta_e": policy.min_delta_e,
             "max_drift": policy.max_drift,
@@ -216,15 +217,10 @@ def report_to_dict(report: CheckReport, base: Path | None = None) -> dict[str, A
     ``gamut`` lists every input colour outside sRGB that the gamut policy moved.
     """
     gate = gate_to_dict(report.gate, base)
-    # A fix per failing (colour, canvas): docs/json.md, `gate.fixes`; each
-    # failure names its fixes by index there.
-    fixes = report_fixes(report)
-    gate["fixes"] = [fix_to_dict(f, lambda p: display_path(p, base)) for f in fixes]
-    gate["fixes_left_out"] = fixes_left_out(report)
-    position = {fix: n for n, fix in enumerate(fixes)}
-    fixes_of = fix_lookup(report, fixes)
-    for entry, finding in zip(gate["failures"], report.gate.failures, strict=True):
-        entry["fixes"] = [position[x] for x in fixes_of(finding)]
+    # The fixes of the failures: docs/json.md, `gate.fixes`; each failure names its
+    # fixes by index there.
+    gate["fixes"] = [fix_to_dict(f, base) for f in report.fixes]
+    gate["fixes_left_out"] = report.fixes_left_out
     gamut = [gamut_to_dict(a, base) for a in report.gamut]
     if len(report.audits) == 1:
         return {**check_to_dict(report.audits[0], base), "gamut": gamut, "gate": gate}
@@ -237,5 +233,5 @@ def report_to_dict(report: CheckReport, base: Path | None = None) -> dict[str, A
 
 
 def render_report(report: CheckReport, options: RenderOptions) -> str:
-    """Render a report as ``alpha-audit.check/2`` JSON."""
+    """Render a report as ``alpha-audit.check/3`` JSON."""
     return dumps(report_to_dict(report, options.base))

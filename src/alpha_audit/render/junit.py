@@ -14,8 +14,10 @@ import re
 import xml.etree.ElementTree as ET
 from collections import defaultdict
 
-from alpha_audit.gate import CheckReport, Finding
+from alpha_audit.findings import Finding
 from alpha_audit.render.common import RenderOptions, display_path
+from alpha_audit.results import CheckReport
+from alpha_audit.rules import Level, Rule
 
 __all__ = ["render_report", "xml_safe"]
 
@@ -52,7 +54,7 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     for f in report.gate.findings:
         for icon_name in f.icons:
             by_cell[(f.theme, f.iconset, f.canvas, icon_name)].append(f)
-    unrenderable_fails = report.gate.unrenderable_fails
+    unrenderable_fails = report.gate.policy.level(Rule.UNRENDERABLE) is Level.FAIL
 
     root = ET.Element("testsuites", {"name": "alpha-audit"})
     totals = {"tests": 0, "failures": 0, "errors": 0, "skipped": 0}

@@ -4,16 +4,12 @@ Layout: a hidden marker (:data:`MARKER`, so a bot updates one sticky comment),
 a headline verdict, one summary row per audit, then per audit (theme x icon
 set) a ``<details>`` section with the failing groups, each a colour (role) on
 a canvas under one rule, its icons shortened to a count and the first names,
-and its fix; then what improved (newly passing), exemptions, the baseline and
-icons that could not be rendered.  The whole text stays within GitHub's
-comment limit (:data:`COMMENT_LIMIT`); what is left out is counted and the
-reader is pointed at the full report.
-
-The fix text comes from a hook (:data:`FixHook`: a finding in, an optional
-sentence out).  :func:`safe_alpha_fixes` fills in the largest safe alpha for
-the finding's colour from :func:`alpha_audit.suggest.largest_safe_alpha`; a richer hook
-(smallest alpha reaching the threshold, nearest passing colour) plugs in via
-:func:`render_markdown`'s ``fix`` argument.
+and its fix (computed in the pipeline, :mod:`alpha_audit.fixes`, worded by
+:func:`~alpha_audit.render.common.finding_fix`); then what improved (newly
+passing), exemptions, the baseline, and the notes (hard-coded paints, icons that
+could not be rendered).  The whole text stays within GitHub's comment limit
+(:data:`COMMENT_LIMIT`); what is left out is counted and the reader is pointed
+at the full report.
 
 Every name comes from files a pull request can change, so it is escaped
 (:func:`~alpha_audit.render.common.escape_markdown`).
@@ -22,29 +18,22 @@ Every name comes from files a pull request can change, so it is escaped
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
 
-from alpha_audit.gate import CheckReport, Finding
-from alpha_audit.policy import PAINT_RULES, Rule
-from alpha_audit.render.common import RenderOptions, escape_markdown, gamut_line, shorten_names
-from alpha_audit.render.rules import RULE_FIX
+from alpha_audit.findings import Finding
+from alpha_audit.render.common import (
+    RenderOptions,
+    escape_markdown,
+    finding_fix,
+    gamut_line,
+    shorten_names,
+)
+from alpha_audit.results import CheckReport
+from alpha_audit.rows import AuditResult
+from alpha_audit.rules import Rule
 
-if TYPE_CHECKING:
-    from alpha_audit.audit import AuditResult
-    from alpha_audit.suggest.engine import SafeAlpha
-
-__all__ = [
-    "COMMENT_LIMIT",
-    "MARKER",
-    "FixHook",
-    "no_fix",
-    "render_markdown",
-    "render_report",
-    "report_fixes_hook",
-    "safe_alpha_fixes",
-]
+__all__ = ["COMMENT_LIMIT", "MARKER", "render_markdown", "render_report"]
 
 # GitHub refuses issue and pull-request comments longer than 65,536 characters
 # (REST API "Create an issue comment": "body is too long (maximum is 65536
@@ -55,99 +44,6 @@ _NAMES = 3  # icon names shown per group; the JSON report has them all
 _NAME = 100  # characters of a theme or icon-set name in a <details> summary
 _RESERVE = 1_000  # room kept for the closing lines and the "left out" note
 _FRAME = 600  # room kept per audit for its <details> lines and summary (names are capped)
-
-FixHook = Callable[[Finding], "str | None"]
-"""A finding in, a sentence saying how to fix it out (``None``: nothing to suggest)."""
-
-
-def no_fix(finding: Finding) -> str | None:
-    """The hook that suggests nothing."""
-    return None
-
-
-_CONTRAST_RULES = frozenset({Rule.LOSS, Rule.BELOW_THRESHOLD, Rule.NEWLY_FAILING})
-
-
-def safe_alpha_fixes(report: CheckReport) -> FixHook:
-    """A hook naming the largest safe alpha for the finding's colour.
-
-    One :func:`~alpha_audit.suggest.largest_safe_alpha` question per audit,
-    rule and colour that has a failing finding (the whole set for collisions
-    and separations), asked on first use at the alphas and threshold of that
-    audit, with the gate's policy narrowed to the finding's rule (so a colour
-    that fails the threshold at every alpha does not hide the answer for a
-    collision).  Bounded like the report's own fixes: when those were left out
-    for some colours (:data:`~alpha_audit.fixes.MAX_FIXED_COLORS`), nothing
-    more is computed here and the text points at ``alpha-audit suggest``.
-    """
-    from alpha_audit.fixes import color_key, fixes_capped
-
-    audits = {(r.theme.name, r.iconset.name): r for r in report.audits}
-    too_many = fixes_capped(report)
-    cache: dict[tuple[str, str, Rule, str | None], tuple[str, SafeAlpha] | None] = {}
-    colours: dict[tuple[str, str], dict[str, str]] = {}  # per audit, made on first use
-
-    def answer(finding: Finding, per_colour: bool) -> tuple[str, SafeAlpha] | None:
-        result = audits.get((finding.theme, finding.iconset))
-        if result is None:
-            return None
-        if (finding.theme, finding.iconset) not in colours:
-            colours[finding.theme, finding.iconset] = color_key(result)
-        colour_of = colours[finding.theme, finding.iconset]
-        colour = next((colour_of[n] for n in finding.icons if n in colour_of), None)
-        if per_colour and colour is None:
-            return None
-        key = (finding.theme, finding.iconset, finding.rule, colour if per_colour else None)
-        if key not in cache:
-            icons = [n for n, c in colour_of.items() if c == colour] if per_colour else None
-            cache[key] = (colour or "", _largest_safe(result, report, finding.rule, icons))
-        return cache[key]
-
-    def fix(finding: Finding) -> str | None:
-        if finding.rule is Rule.UNRENDERABLE:
-            return "fix the SVG file or remove the icon"
-        if finding.rule in PAINT_RULES:  # suggest does not answer these (yet): the rule's advice
-            return RULE_FIX[finding.rule].replace("`", "")
-        if too_many:
-            return "run alpha-audit suggest for the safe alphas (too many failing colours here)"
-        found = answer(finding, per_colour=finding.rule in _CONTRAST_RULES)
-        if found is None:
-            return None
-        colour, safe = found
-        if finding.rule in _CONTRAST_RULES:
-            if safe.alpha is None:
-                return f"not even α=1 passes {finding.rule.value} for {colour}: change the colour"
-            from alpha_audit.fixes import safe_span  # describe_fix's words
-
-            return f"{colour}: {safe_span(round(safe.alpha, _PRECISION))}"
-        if safe.alpha is None:
-            return "not even α=1 is safe: move the colours apart"
-        return f"largest safe set-wide alpha {safe.alpha:.{_PRECISION}f}, or move the colours apart"
-
-    return fix
-
-
-_PRECISION = 3  # decimals of the alphas the fallback names (suggest's default)
-
-
-def _largest_safe(
-    result: AuditResult, report: CheckReport, rule: Rule, icons: list[str] | None
-) -> SafeAlpha:
-    from dataclasses import replace
-
-    from alpha_audit.suggest import largest_safe_alpha
-
-    # The audit's icon set already carries a command-line alpha and leaves out
-    # icons that did not render: the answer is for the set as audited.
-    policy = replace(report.gate.policy, rules=frozenset({rule}))
-    return largest_safe_alpha(
-        result.theme,
-        result.iconset,
-        policy,
-        icons=icons,
-        precision=_PRECISION,
-        threshold=result.threshold,
-    )
 
 
 # ------------------------------------------------------------------ grouping
@@ -253,13 +149,9 @@ def _table(
 
 
 def render_markdown(
-    report: CheckReport,
-    options: RenderOptions,
-    *,
-    fix: FixHook = no_fix,
-    limit: int = COMMENT_LIMIT,
+    report: CheckReport, options: RenderOptions, *, limit: int = COMMENT_LIMIT
 ) -> str:
-    """The comment, at most ``limit`` characters, with ``fix`` giving each failing group's fix."""
+    """The comment, at most ``limit`` characters, each failing group with its fix."""
     gate = report.gate
     audits = report.audits
     failing_audits = {(f.theme, f.iconset) for f in gate.failures}
@@ -279,7 +171,7 @@ def render_markdown(
     if gate.passed:
         improved = sum(s.summary.newly_pass for s in audits)
         head = f"## ✅ alpha-audit: gate passed ({len(audits)} audit(s)"
-        head += f"; {improved} icon×canvas newly reach the threshold)" if improved else ")"
+        head += f"; {improved} paint×canvas newly reach the threshold)" if improved else ")"
     else:
         counts = ", ".join(f"{n} {escape_markdown(rule)}" for rule, n in gate.counts().items())
         head = (
@@ -289,7 +181,7 @@ def render_markdown(
         )
     budget.add(MARKER, head, "", f"Rules: {rules}; max loss {gate.policy.max_loss:g}.", "")
     budget.add(
-        "| theme | icon set | icons | α | verdict | failing groups | newly passing icon×canvas "
+        "| theme | icon set | icons | α | verdict | failing groups | newly passing paint×canvas "
         "| collisions | unrendered |",
         "|---|---|--:|--:|---|--:|--:|--:|--:|",
     )
@@ -330,7 +222,7 @@ def render_markdown(
         section = _Budget((budget.limit - budget.size - _FRAME * remaining) // remaining)
         rows = []
         for g in groups:
-            text = fix(g.first)
+            text = finding_fix(g.first, report)
             rows.append(
                 "| "
                 + " | ".join(
@@ -402,12 +294,18 @@ def render_markdown(
         budget.add(
             "", f"{n} baseline {'entry no longer occurs' if n == 1 else 'entries no longer occur'}."
         )
-    if gate.warnings:
-        budget.add("", "### Icons that could not be rendered", "")
-        for k, w in enumerate(gate.warnings):
+    for rule, title in (
+        (Rule.UNRENDERABLE, "Icons that could not be rendered"),
+        (Rule.FIXED_COLOUR, "Hard-coded paints (they will not follow the theme)"),
+    ):
+        notes = [w for w in gate.warnings if w.rule is rule]
+        if not notes:
+            continue
+        budget.add("", f"### {title} ({len(notes)})", "")
+        for k, w in enumerate(notes):
             line = f"- {escape_markdown(', '.join(w.icons))}: {escape_markdown(w.message)}"
             if not budget.add(line):
-                left_out[0] += len(gate.warnings) - k
+                left_out[0] += len(notes) - k
                 break
     lines = budget.lines
     if left_out[0]:
@@ -438,22 +336,6 @@ def _groups_of_rows(
     return sorted(groups.values(), key=lambda g: order[g[0]])
 
 
-def report_fixes_hook(report: CheckReport) -> FixHook:
-    """Each group's fix from :mod:`alpha_audit.fixes` (largest safe alpha, smallest alpha
-    reaching the threshold, nearest passing colour); the largest safe set-wide alpha
-    (:func:`safe_alpha_fixes`) where no colour fix applies (collisions, separations)."""
-    from alpha_audit.fixes import describe_fix, fix_lookup
-
-    lookup = fix_lookup(report, report.fixes)
-    fallback = safe_alpha_fixes(report)
-
-    def hook(finding: Finding) -> str | None:
-        text = "; ".join(t for t in (describe_fix(f) for f in lookup(finding)) if t)
-        return text or fallback(finding)
-
-    return hook
-
-
 def render_report(report: CheckReport, options: RenderOptions) -> str:
-    """The comment with each failing group's fix (:func:`report_fixes_hook`)."""
-    return render_markdown(report, options, fix=report_fixes_hook(report))
+    """The pull-request comment (:func:`render_markdown`)."""
+    return render_markdown(report, options)

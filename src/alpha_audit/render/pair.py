@@ -2,15 +2,13 @@
 
 from __future__ import annotations
 
-from enum import StrEnum
-from typing import Any, assert_never
+from typing import Any
 
 from rich import box
 from rich.text import Text
 
 from alpha_audit.pair import PairReport
 from alpha_audit.render.common import (
-    Renderer,
     RenderOptions,
     dumps,
     fitted_table,
@@ -19,24 +17,9 @@ from alpha_audit.render.common import (
     to_text,
 )
 
-__all__ = ["PAIR_SCHEMA", "PairFormat", "pair_document", "render_json", "render_table"]
+__all__ = ["PAIR_SCHEMA", "pair_document", "render_json", "render_table"]
 
 PAIR_SCHEMA = "alpha-audit.pair/1"
-
-
-class PairFormat(StrEnum):
-    """Output formats of ``alpha-audit pair``."""
-
-    TABLE = "table"
-    JSON = "json"
-
-    def renderer(self) -> Renderer[PairReport]:
-        """The render function for this format."""
-        if self is PairFormat.TABLE:
-            return render_table
-        if self is PairFormat.JSON:
-            return render_json
-        assert_never(self)
 
 
 def pair_document(report: PairReport) -> dict[str, Any]:

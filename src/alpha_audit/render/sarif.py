@@ -12,10 +12,12 @@ Exempted and baselined findings stay in the log with a ``suppressions`` entry
 (so dashboards show them as dismissed, with the reason), and every result has a
 ``partialFingerprints`` entry built from what a baseline matches on (theme,
 icon set, rule, canvas, icons), never from line numbers.
-A failing finding whose fix is an exact edit of a written value
-(:mod:`alpha_audit.fix_edits`: the icon's alpha, or the palette entry or token
-value of its colour) carries SARIF ``fixes`` (3.55): one fix per answer, each
-replacing that value's region with the new value, quoted as it was.
+Reported rules (hard-coded paints, icons that could not be rendered) are
+results of level ``note`` and ``warning``.  A failing finding whose fix is an
+exact edit of a written value (:attr:`~alpha_audit.findings.Finding.edits`: the
+icon's alpha, or the palette entry or token value of its colour) carries SARIF
+``fixes`` (3.55): one fix per answer, each replacing that value's region with
+the new value, quoted as it was.
 Columns count Unicode code points (``run.columnKind``, 3.14.27).
 """
 
@@ -24,18 +26,14 @@ from __future__ import annotations
 import hashlib
 import os
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 from urllib.parse import quote
 
-from alpha_audit.gate import CheckReport, Finding, unjudged_problems
-from alpha_audit.load.paints import CURRENT_COLOR
-from alpha_audit.model import Icon, Span
-from alpha_audit.policy import PAINT_RULES, Rule
-from alpha_audit.render.common import RenderOptions, dumps
-from alpha_audit.render.rules import RULE_FIX, RULE_HELP, RULE_IDS
-
-if TYPE_CHECKING:
-    from alpha_audit.fix_edits import FixEdit
+from alpha_audit.findings import Finding
+from alpha_audit.model import Edit, Icon, Span
+from alpha_audit.render.common import RenderOptions, dumps, finding_fix
+from alpha_audit.results import CheckReport
+from alpha_audit.rules import RULES, Level, Rule
 
 __all__ = [
     "SARIF_SCHEMA",
@@ -101,7 +99,7 @@ def _span_location(span: Span, base: Path | None) -> dict[str, Any]:
     return {"physicalLocation": {"artifactLocation": artifact, "region": _region(span)}}
 
 
-def _fix(edit: FixEdit, base: Path | None) -> dict[str, Any]:
+def _fix(edit: Edit, base: Path | None) -> dict[str, Any]:
     """A SARIF fix (3.55): one artifactChange replacing the value's region (3.56, 3.57)."""
     return {
         "description": {"text": edit.description},
@@ -141,6 +139,19 @@ def _unique(locations: list[dict[str, Any]]) -> list[dict[str, Any]]:
     return list(out.values())
 
 
+# Rules judging the manifest colours themselves (their value is where a fix goes).
+_OWN_COLOUR_RULES = frozenset(
+    {
+        Rule.LOSS,
+        Rule.BELOW_THRESHOLD,
+        Rule.NEWLY_FAILING,
+        Rule.COLLISION,
+        Rule.NEW_COLLISION,
+        Rule.SEPARATION,
+    }
+)
+
+
 def _fingerprint(f: Finding) -> str:
     theme, iconset, rule, canvas, icons = f.key
     text = "\x1f".join([theme, iconset, rule, canvas or "", *icons])
@@ -149,9 +160,9 @@ def _fingerprint(f: Finding) -> str:
 
 def _colour_spans(f: Finding, icons: dict[str, Icon]) -> list[Span]:
     """Where each icon's colour is written, for findings about the icons' own colour."""
-    if f.rule is Rule.UNRENDERABLE or f.rule in PAINT_RULES:
+    if f.rule not in _OWN_COLOUR_RULES:
         return []
-    if f.numbers.get("paint", CURRENT_COLOR) != CURRENT_COLOR:  # a colour the SVG fixes
+    if f.numbers.get("paint", "currentColor") != "currentColor":  # a colour the SVG fixes
         return []
     spans = [icons[n].color_span for n in f.icons if n in icons]
     return list(dict.fromkeys(s for s in spans if s is not None))
@@ -164,7 +175,7 @@ def _result(
     level: str = "error",
     fix: str | None = None,
     icons: dict[str, Icon] | None = None,
-    edits: tuple[FixEdit, ...] = (),
+    edits: tuple[Edit, ...] = (),
 ) -> dict[str, Any]:
     where = f"{', '.join(f.icons)} on {f.canvas}" if f.canvas else ", ".join(f.icons)
     locations = [_location(p, base) for p in f.files]
@@ -178,7 +189,7 @@ def _result(
     locations = [_location(path, base, line) for path, line in f.sources] + locations
     locations = _unique(locations)
     result: dict[str, Any] = {
-        "ruleId": RULE_IDS[f.rule],
+        "ruleId": RULES[f.rule].sarif_id,
         "ruleIndex": index,
         "level": level,
         "message": {
@@ -204,20 +215,25 @@ def _result(
     return result
 
 
-def _rule(rule: Rule, enabled: bool) -> dict[str, Any]:
+def _rule(rule: Rule, level: str) -> dict[str, Any]:
     """A reportingDescriptor: opaque id, readable name, what it means and how to fix it."""
-    help_text = f"{RULE_HELP[rule]} {RULE_FIX[rule]}"
+    spec = RULES[rule]
+    help_text = f"{spec.help} {spec.fix}"
     return {
-        "id": RULE_IDS[rule],
+        "id": spec.sarif_id,
         "name": rule.name.title().replace("_", ""),
-        "shortDescription": {"text": RULE_HELP[rule]},
+        "shortDescription": {"text": spec.help},
         "help": {
             "text": help_text.replace("`", ""),
-            "markdown": f"**{rule.value}**: {RULE_HELP[rule]}\n\n**Fix:** {RULE_FIX[rule]}",
+            "markdown": f"**{rule.value}**: {spec.help}\n\n**Fix:** {spec.fix}",
         },
-        "defaultConfiguration": {"level": "error" if enabled else "none"},
+        "defaultConfiguration": {"level": level},
         "properties": {"alphaAuditRule": rule.value},
     }
+
+
+# SARIF 2.1.0 3.27.10: a rule's default level ("none" for one the policy turns off).
+_LEVELS = {Level.FAIL: "error", Level.WARN: "note", Level.OFF: "none"}
 
 
 def render_report(report: CheckReport, options: RenderOptions) -> str:
@@ -226,14 +242,7 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
 
     rules = list(Rule)
     index = {r: i for i, r in enumerate(rules)}
-    enabled = report.gate.policy.rules
-    # Each failure's message ends with its fix, in the PR comment's words.
-    from alpha_audit.fix_edits import edit_lookup
-    from alpha_audit.render.markdown import report_fixes_hook
-
-    failing = {id(f) for f in report.gate.failures}  # findings hold dicts: by identity
-    hook = report_fixes_hook(report) if failing else None
-    edits = edit_lookup(report) if failing else None
+    policy = report.gate.policy
     icons = {
         (a.theme.name, a.iconset.name): {i.name: i for i in a.iconset.icons} for a in report.audits
     }
@@ -242,21 +251,23 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
             f,
             index[f.rule],
             options.base,
-            fix=hook(f) if hook and id(f) in failing else None,
+            # Each failure's message ends with its fix, in the PR comment's words.
+            fix=finding_fix(f, report) if f.fails else None,
             icons=icons.get((f.theme, f.iconset)),
-            edits=edits(f) if edits and id(f) in failing else (),
+            edits=f.edits if f.fails else (),
         )
         for f in report.gate.findings
     ]
-    for f in unjudged_problems(report):
-        results.append(_result(f, index[Rule.UNRENDERABLE], options.base, "warning"))
+    for f in report.gate.warnings:
+        level = "warning" if f.rule is Rule.UNRENDERABLE else "note"
+        results.append(_result(f, index[f.rule], options.base, level))
     run: dict[str, Any] = {
         "tool": {
             "driver": {
                 "name": "alpha-audit",
                 "version": __version__,
                 "informationUri": "https://github.com/alpha-audit/alpha-audit",
-                "rules": [_rule(r, r in enabled) for r in rules],
+                "rules": [_rule(r, _LEVELS[policy.level(r)]) for r in rules],
             }
         },
         "results": results,

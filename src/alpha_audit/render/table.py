@@ -15,11 +15,11 @@ from rich.padding import Padding
 from rich.table import Table
 from rich.text import Text
 
-from alpha_audit.audit import AuditResult, Row
-from alpha_audit.gate import CheckReport, GateResult
+from alpha_audit.gate import GateResult
 from alpha_audit.render.common import (
     RenderOptions,
     display_path,
+    finding_fix,
     fitted_table,
     gamut_line,
     name_column,
@@ -27,6 +27,9 @@ from alpha_audit.render.common import (
     to_text,
 )
 from alpha_audit.render.common import shorten_names as icons_label
+from alpha_audit.results import CheckReport
+from alpha_audit.rows import AuditResult, Row
+from alpha_audit.rules import Rule
 from alpha_audit.safe_text import safe_text
 
 __all__ = ["MAX_FINDINGS", "check_renderable", "gate_renderable", "render_report"]
@@ -47,7 +50,7 @@ def _summary_table(result: AuditResult) -> Table:
     t = result.threshold
     rows = []
     for cs in result.canvas_summaries():
-        passing = f"{cs.passing_ref}→{cs.passing}/{cs.icons}"
+        passing = f"{cs.passing_ref}→{cs.passing}/{cs.rows}"
         loss = Text(f"{cs.losses} (-{cs.max_loss:.2f})", style="red") if cs.losses else Text("0")
         coll = Text(str(cs.collisions), style="red") if cs.collisions else Text("0")
         sep = cs.separation
@@ -81,16 +84,17 @@ def _summary_table(result: AuditResult) -> Table:
 
 
 def _grouped(result: AuditResult, rows: Iterable[Row]) -> list[tuple[Row, list[str]]]:
-    """Rows that differ only by icon (same canvas, source and alpha) merged, first-seen order.
+    """Rows that differ only by icon (same canvas, paint, opacity and alpha) merged, in order.
 
-    Icons sharing a colour and coefficient get identical numbers on a canvas, so a
+    Icons sharing a paint and coefficient get identical numbers on a canvas, so a
     set of 300 icons in 7 colours reports 7 lines per canvas, not 300.
     """
-    groups: dict[tuple[str, str, float], tuple[Row, list[str]]] = {}
+    groups: dict[tuple[str, str, float, float], tuple[Row, list[str]]] = {}
     for row in rows:
-        key = (row.canvas, row.source, row.alpha)
+        key = (row.canvas, row.source, row.opacity, row.alpha)
         if key in groups:
-            groups[key][1].append(row.icon)
+            if row.icon not in groups[key][1]:
+                groups[key][1].append(row.icon)
         else:
             groups[key] = (row, [row.icon])
     return list(groups.values())
@@ -132,9 +136,12 @@ def _findings(result: AuditResult, base: Path | None = None) -> list[RenderableT
             out.append(Text(f"  … and {len(items) - MAX_FINDINGS} more (see --format json)"))
 
     def colour(row: Row) -> Text:
-        name = palette_names.get(row.icon)
+        name = None if row.fixed else palette_names.get(row.icon)
         swatch = Text("■ ", style=row.source)
-        return swatch + Text(f"{name} {row.source}" if name else row.source)
+        label = f"{name} {row.source}" if name else row.source
+        if row.opacity != 1.0:
+            label += f" @{row.opacity:g}"
+        return swatch + Text(label)
 
     def change(row: Row) -> str:
         return f"{row.contrast_ref:.3f} → {row.contrast:.3f}"
@@ -222,7 +229,7 @@ def check_renderable(result: AuditResult, base: Path | None = None) -> Renderabl
         f"α={_fmt_alpha(result)}",
     )
     foot = Text(
-        f"{s.combinations} icon×canvas: contrast up {s.increase_pct:.1f}%, "
+        f"{s.combinations} paint×canvas: contrast up {s.increase_pct:.1f}%, "
         f"down {s.decrease_pct:.1f}%, mean {s.mean_gain:+.3f}; "
         f"{s.newly_pass} newly reach {result.threshold:g}:1, {s.newly_fail} newly fail; "
         f"{s.losses} losses (max {s.max_loss:.4f}); {s.collisions} collisions "
@@ -233,13 +240,14 @@ def check_renderable(result: AuditResult, base: Path | None = None) -> Renderabl
 
 
 def _drift_note(result: AuditResult) -> str:
-    """The worst colour drift over the canvases (docs/model.md), when paints were read."""
-    worst = result.paints.worst_drift if result.paints is not None else {}
-    if not worst:
+    """The worst colour drift over the rows (docs/model.md)."""
+    if not result.drift.size:
         return ""
-    canvas, (drift, icon, paint) = max(worst.items(), key=lambda item: item[1][0])
-    where = icon if paint == "currentColor" else f"{icon} {paint}"
-    return f"; colour drift up to {drift:.1f} CIEDE2000 ({where} on {canvas})"
+    p, j = divmod(int(result.drift.argmax()), result.drift.shape[1])
+    e = result.entries[p]
+    where = e.icon.name if not e.fixed else f"{e.icon.name} {e.paint}"
+    canvas = result.theme.canvases[j].name
+    return f"; colour drift up to {result.drift[p, j]:.1f} CIEDE2000 ({where} on {canvas})"
 
 
 def gate_renderable(gate: GateResult) -> RenderableType:
@@ -265,6 +273,15 @@ def gate_renderable(gate: GateResult) -> RenderableType:
         out.append(Text(f"  {len(exempt)} exempted finding(s), e.g. {reason}"))
     if baselined:
         out.append(Text(f"  {len(baselined)} finding(s) already in the baseline"))
+    # Unrenderable icons are listed with their audit; the other warnings here.
+    notes = [f for f in gate.warnings if f.rule is not Rule.UNRENDERABLE]
+    if notes:
+        out.append(Text(f"Notes ({len(notes)}), reported without failing the gate:"))
+        for f in notes[:MAX_FINDINGS]:
+            out.append(Text(f"  {f.rule.value}: {icons_label(f.icons)}: {f.message}"))
+        if len(notes) > MAX_FINDINGS:
+            more = len(notes) - MAX_FINDINGS
+            out.append(Text(f"  … and {more} more (see --format json)"))
     if gate.stale:
         out.append(
             Text(
@@ -280,18 +297,14 @@ def gate_renderable(gate: GateResult) -> RenderableType:
 def fixes_renderable(report: CheckReport) -> RenderableType | None:
     """How to fix the failures: each distinct fix once, in the failures' order.
 
-    The same texts as the pull-request comment
-    (:func:`alpha_audit.render.markdown.report_fixes_hook`).
+    The same texts as the pull-request comment (:func:`~alpha_audit.render.common.finding_fix`).
     """
-    from alpha_audit.render.markdown import report_fixes_hook
-
     failures = report.gate.failures
     if not failures:
         return None
-    hook = report_fixes_hook(report)
     seen: dict[str, None] = {}
     for f in failures:
-        text = hook(f)
+        text = finding_fix(f, report)
         if text:
             seen.setdefault(text)
         if len(seen) >= MAX_FINDINGS:

@@ -1,33 +1,17 @@
-"""``suggest``: the exact largest safe coefficient, its reports and ``--apply``.
+"""``suggest``: the exact largest safe coefficient over the audit's paint rows.
 
 :mod:`~alpha_audit.suggest.engine` answers the question from *events*
-(:mod:`~alpha_audit.suggest.events`), :mod:`~alpha_audit.suggest.report`
-renders the answer and :mod:`~alpha_audit.suggest.apply` writes it into a
-manifest.  Importing the package loads only the engine.
+(:mod:`~alpha_audit.suggest.events`) and :mod:`~alpha_audit.suggest.apply`
+writes an answer into a manifest.
 """
 
 from __future__ import annotations
 
-from alpha_audit.suggest.engine import (
-    SEPARATION_GRID_STEP,
-    CanvasLimit,
-    ColorSuggestion,
-    IconSuggestion,
-    Limit,
-    SafeAlpha,
-    SuggestResult,
-    largest_safe_alpha,
-    suggest,
-)
+from alpha_audit.lazy import lazy_exports
 
-__all__ = [
-    "SEPARATION_GRID_STEP",
-    "CanvasLimit",
-    "ColorSuggestion",
-    "IconSuggestion",
-    "Limit",
-    "SafeAlpha",
-    "SuggestResult",
-    "largest_safe_alpha",
-    "suggest",
-]
+__all__ = ["largest_safe_alpha", "suggest"]
+
+__getattr__ = lazy_exports(
+    __name__,
+    {"largest_safe_alpha": "alpha_audit.suggest.engine", "suggest": "alpha_audit.suggest.engine"},
+)

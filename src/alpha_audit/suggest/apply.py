@@ -17,7 +17,7 @@ import json
 import os
 import re
 import stat
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from enum import StrEnum
 from pathlib import Path, PurePosixPath
 from typing import TYPE_CHECKING, Any
@@ -28,10 +28,10 @@ from alpha_audit.errors import InputError, UsageError
 from alpha_audit.load.files import read_text_capped
 from alpha_audit.load.yamldoc import MAX_YAML_BYTES
 from alpha_audit.output import write_bytes
+from alpha_audit.rows import with_alphas
 
 if TYPE_CHECKING:
-    from alpha_audit.model import IconSet
-    from alpha_audit.suggest.engine import SuggestResult
+    from alpha_audit.results import SuggestResult
 
 __all__ = [
     "ApplyPlan",
@@ -465,17 +465,12 @@ def plan_apply(
     alphas = {i.name: i.alpha for i in iconset.icons}
 
     def safe_for(movable: list[str]) -> float | None:
-        current = replace(
-            iconset, icons=tuple(replace(i, alpha=alphas[i.name]) for i in iconset.icons)
-        )
         return largest_safe_alpha(
-            result.theme,
-            current,
+            with_alphas(result.audit, alphas),
             result.policy,
             icons=movable,
             alpha_max=result.alpha_max,
             precision=result.precision,
-            threshold=result.threshold,
         ).alpha
 
     top: float | None = None
@@ -489,10 +484,7 @@ def plan_apply(
                 # held icon and a moving one can be confused at a = 1), but the
                 # set-wide answer itself may be: take it when the gate says so.
                 trial = {**alphas, **dict.fromkeys(movable, result.alpha)}
-                held = replace(
-                    iconset, icons=tuple(replace(i, alpha=trial[i.name]) for i in iconset.icons)
-                )
-                top = result.alpha if _passes(result, held) else None
+                top = result.alpha if _passes(result, trial) else None
             if top is None:
                 skipped.append("the set")
         for n in movable:
@@ -520,17 +512,14 @@ def plan_apply(
             for n in names
             if format_alpha(alphas[n], p) != format_alpha(original[n], p)
         }
-    final = replace(iconset, icons=tuple(replace(i, alpha=alphas[i.name]) for i in iconset.icons))
-    return ApplyPlan(scope, top, wanted, kept, tuple(skipped), _passes(result, final))
+    return ApplyPlan(scope, top, wanted, kept, tuple(skipped), _passes(result, alphas))
 
 
-def _passes(result: SuggestResult, iconset: IconSet) -> bool:
-    """Whether the gate passes with these alphas (one theme x icon set, the same policy)."""
-    from alpha_audit.audit import audit
+def _passes(result: SuggestResult, alphas: dict[str, float]) -> bool:
+    """Whether the gate passes on the same rows with these alphas (the same policy)."""
     from alpha_audit.gate import evaluate
 
-    checked = audit(result.theme, iconset, threshold=result.threshold)
-    return evaluate([checked], result.policy).passed
+    return evaluate([with_alphas(result.audit, alphas)], result.policy).passed
 
 
 def apply_suggestion(

@@ -1,27 +1,41 @@
-"""The largest safe coefficient, exactly: set-wide, per palette colour and per icon.
+"""The largest safe coefficient, exactly, over the audit's paint rows.
 
-For a gate :class:`~alpha_audit.policy.Policy` ``P`` the largest safe alpha is
+For a gate :class:`~alpha_audit.policy.Policy` ``P`` and an audit's rows the
+largest safe alpha of a set of icons is
 
     a* = sup { a <= a_max : every a' in [1, a] satisfies P }
 
-(issue 4).  It is computed from *events*, not a sweep (see
-:mod:`alpha_audit.suggest.events`): contrast rules cross their thresholds at
-closed-form points of a piecewise-linear luminance, 8-bit collisions live on
-intervals between code changes known exactly, and only CIEDE2000 separation
-is bracketed and bisected to 1e-9.  The reported value is ``a*`` rounded
-*down* to ``precision`` decimals and re-checked at that point by direct
-compositing.
+when those icons share the coefficient ``a'`` and every other icon keeps its
+own; only objections involving a moved icon count (the others do not depend
+on the coefficient being chosen).  The rows are the gate's: each paint of each
+icon at its opacity under the audit's pipeline, so every rule means what
+:mod:`alpha_audit.findings` means by it.
 
-Rules mean what :mod:`alpha_audit.gate` means by them on an
-:func:`~alpha_audit.audit.audit` result.  Per colour and per icon, the chosen
-icons move together while every other icon keeps its configured alpha, and
-only findings involving a moved icon count (the others do not depend on the
-coefficient being chosen).  Pure computation: nothing is printed.
+Exact, from events (:mod:`alpha_audit.suggest.events`):
+
+* the contrast rules and ``thin-strokes`` per row: a paint's displayed
+  luminance is ``o Y(clip(...)) + (1 - o) Yb`` (``q50 o`` at a size), so a
+  contrast band on it is a luminance band on the clipped composite, piecewise
+  linear in ``a``;
+* 8-bit collisions: every track's codes are step functions of ``a`` known
+  exactly (:func:`~alpha_audit.suggest.events.code_timeline`).
+
+Bracketed on a grid of :data:`GRID_STEP` (plus every clip breakpoint), bisected
+to :data:`~alpha_audit.suggest.events.BISECTION_TOLERANCE` and re-checked
+(CIEDE2000 and the CVD simulation have no closed form in ``a``): separation,
+drift and lock, confusion and cvd-confusion (pruned by the lightness bound of
+:mod:`alpha_audit.color.nearest`), cvd-collision.  ``fixed-colour`` and
+``not-audited`` do not depend on alpha: when one fails, not even 1 is safe.
+
+The answer is ``a*`` rounded *down* to ``precision`` decimals and re-checked
+there by direct compositing.  Under the ``css`` pipeline no coefficient above 1
+can be drawn, so the question is alpha 1 itself.  Pure computation.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
 from decimal import ROUND_FLOOR, Decimal
 
@@ -29,14 +43,16 @@ import numpy as np
 from numpy.typing import NDArray
 
 from alpha_audit.color import (
-    Pipeline,
-    composite_extended,
-    contrast_from_luminance,
+    DEFICIENCIES,
+    Deficiency,
+    composite_paint,
+    contrast_ratio,
     delta_e_2000,
     delta_e_2000_lab,
     linear_to_lab,
     pack_8bit,
     relative_luminance,
+    simulate_cvd,
     to_8bit,
 )
 from alpha_audit.color.nearest import (
@@ -46,10 +62,33 @@ from alpha_audit.color.nearest import (
     pairs_below,
 )
 from alpha_audit.errors import UsageError
-from alpha_audit.load.paint_masks import PaintSet
-from alpha_audit.model import IconSet, Theme
-from alpha_audit.policy import Policy, Rule, contrast_breaks, contrast_floor
+from alpha_audit.findings import (
+    LOCK_TOLERANCE,
+    cvd_collision_groups,
+    findings_for,
+    locked_rows,
+)
+from alpha_audit.policy import (
+    Policy,
+    confusion_possible,
+    contrast_breaks,
+    contrast_floor,
+    drift_breaks,
+    drift_ceiling,
+    size_contrast_floor,
+)
 from alpha_audit.ranges import ALPHA_MAX, PRECISION
+from alpha_audit.results import (
+    CanvasLimit,
+    ColorSuggestion,
+    IconSuggestion,
+    Limit,
+    PairSuggestion,
+    SafeAlpha,
+    SuggestResult,
+)
+from alpha_audit.rows import AuditResult, find_collisions
+from alpha_audit.rules import Rule
 from alpha_audit.suggest.events import (
     clip_breakpoints,
     code_timeline,
@@ -57,126 +96,58 @@ from alpha_audit.suggest.events import (
     first_in_luminance_band,
     luminance_band,
 )
-from alpha_audit.suggest.paint_rules import BRACKETED_RULES, GRID_STEP, PaintRules, PaintScenario
 
 __all__ = [
-    "SEPARATION_GRID_STEP",
-    "CanvasLimit",
-    "ColorSuggestion",
-    "IconSuggestion",
-    "Limit",
-    "SafeAlpha",
-    "SuggestResult",
+    "GRID_STEP",
+    "SCOPES",
+    "SafeAlphas",
     "largest_safe_alpha",
     "suggest",
 ]
 
-# CIEDE2000 has no closed form in a: its crossings are bracketed on this grid
-# (plus every clip breakpoint) and bisected to events.BISECTION_TOLERANCE.
-SEPARATION_GRID_STEP = GRID_STEP
-# Pair x grid-point evaluations held at once by the separation search (~10 MB
-# per float64 intermediate of colour-science's CIEDE2000).
-_SEPARATION_CHUNK = 1 << 20
-# Code timelines kept between questions (a few KB per colour and canvas).
+# The bracketing grid for rules without a closed form in alpha; a dip below a
+# limit narrower than this can be missed (the answer is re-checked directly).
+GRID_STEP = 1e-3
+BRACKETED_RULES = frozenset(
+    {Rule.SEPARATION, Rule.DRIFT, Rule.LOCK, Rule.CONFUSION, Rule.CVD_CONFUSION, Rule.CVD_COLLISION}
+)
+_STATIC_RULES = frozenset({Rule.FIXED_COLOUR, Rule.NOT_AUDITED})
+# Item x grid-point evaluations held at once (~8 MB per float64 intermediate).
+_CHUNK = 1 << 20
+# Code timelines kept between questions (a few KB per paint and canvas).
 _TIMELINE_CACHE_BYTES = 64 << 20
 ALPHA_LO = 1.0  # the reference coefficient; the safe interval starts here
 _RULE_ORDER = {rule: k for k, rule in enumerate(Rule)}
+# What suggest answers: one coefficient for the set, per colour, per pair of roles, per icon.
+SCOPES = ("set", "colour", "pair", "icon")
 
-
-@dataclass(frozen=True)
-class Limit:
-    """What stops a coefficient: a rule broken on a canvas by some icons.
-
-    ``at`` is the first unsafe alpha, the infimum of the unsafe coefficients.
-    When ``attained`` it is itself unsafe; otherwise it is the last safe one
-    and every coefficient just above it is unsafe.
-    """
-
-    rule: Rule
-    canvas: str
-    icons: tuple[str, ...]
-    at: float
-    attained: bool
-    # None: found exactly from events; else the bracketing grid step (then
-    # bisected to 1e-9): a dip narrower than this could be missed.
-    grid: float | None = None
-
-
-@dataclass(frozen=True)
-class CanvasLimit:
-    """The largest safe alpha if this canvas were the only one."""
-
-    canvas: str
-    alpha: float | None
-    limit: Limit | None
-
-
-@dataclass(frozen=True)
-class SafeAlpha:
-    """A largest safe alpha with what limits it.
-
-    ``alpha`` is rounded down to the precision and re-checked (``None``: not
-    even alpha = 1 is safe); ``exact`` is the unrounded supremum; ``limit``
-    is ``None`` when nothing breaks up to ``alpha_max``.
-    """
-
-    alpha: float | None
-    exact: float | None
-    limit: Limit | None
-    per_canvas: tuple[CanvasLimit, ...]
-
-
-@dataclass(frozen=True)
-class ColorSuggestion:
-    """Every icon of one palette colour moving together."""
-
-    color: str  # palette name (or the colour itself when it has none)
-    source: str
-    icons: tuple[str, ...]
-    safe: SafeAlpha
-
-
-@dataclass(frozen=True)
-class IconSuggestion:
-    """One icon moving alone."""
-
-    icon: str
-    color: str
-    configured: float
-    safe: SafeAlpha
-
-
-@dataclass(frozen=True)
-class SuggestResult:
-    """Set-wide, per-colour and per-icon largest safe alphas; see :func:`suggest`."""
-
-    theme: Theme
-    iconset: IconSet
-    policy: Policy
-    threshold: float
-    alpha_max: float
-    precision: int
-    overall: SafeAlpha
-    per_color: tuple[ColorSuggestion, ...]
-    per_icon: tuple[IconSuggestion, ...]
-
-    @property
-    def alpha(self) -> float | None:
-        """The set-wide suggestion (one coefficient for every icon)."""
-        return self.overall.alpha
+# A limit found: (rule, canvas index or -1 for every canvas, icon indices, first unsafe alpha,
+# attained).
+Found = tuple[Rule, int, tuple[int, ...], float, bool]
 
 
 @dataclass(frozen=True)
 class _Tracks:
-    """Icons grouped by what they show: moving ones by source, fixed ones by (source, alpha)."""
+    """Rows grouped by what they show: moving ones by paint, fixed ones by (paint, alpha)."""
 
     source: NDArray[np.float64]  # (T, 3) linear
+    opacity: NDArray[np.float64]  # (T,)
     alpha: NDArray[np.float64]  # (T,) nan when moving
-    moving: NDArray[np.bool_]  # (T,), moving tracks first
-    key: NDArray[np.intp]  # (T,) distinct source at full precision
-    ref: NDArray[np.intp]  # (T,) 8-bit class of the source (alpha = 1)
-    color: tuple[str, ...]  # (T,) hex, as audit's separation compares colours
-    icons: tuple[tuple[int, ...], ...]
+    moving: NDArray[np.bool_]  # (T,)
+    label: NDArray[np.intp]  # (T,) equal labels are never a pair (one paint, or one role)
+    icons: tuple[tuple[int, ...], ...]  # icon indices per track
+
+
+def _round_down(value: float, precision: int) -> float:
+    """``value`` rounded towards minus infinity to ``precision`` decimals, exactly."""
+    step = Decimal(1).scaleb(-precision)
+    return float(Decimal(repr(value)).quantize(step, rounding=ROUND_FLOOR))
+
+
+def _grid(a_lo: float, a_hi: float, breaks: NDArray[np.float64]) -> NDArray[np.float64]:
+    steps = max(1, math.ceil((a_hi - a_lo) / GRID_STEP))
+    inner = breaks[(breaks > a_lo) & (breaks < a_hi)]
+    return np.unique(np.concatenate([np.linspace(a_lo, a_hi, steps + 1), inner]))
 
 
 def _shared_code_starts(
@@ -197,157 +168,268 @@ def _shared_code_starts(
     order = np.lexsort((pos, codes))
     pos, delta, codes = pos[order], delta[order], codes[order]
     active = np.cumsum(delta)  # codes are contiguous and each returns to 0
-    # The count after the last event at each (code, element).
     last_at = np.r_[(pos[1:] != pos[:-1]) | (codes[1:] != codes[:-1]), True]
     shared = last_at & (active >= 2)
     return np.unique(pos[shared])
 
 
-def _round_down(value: float, precision: int) -> float:
-    """``value`` rounded towards minus infinity to ``precision`` decimals, exactly."""
-    step = Decimal(1).scaleb(-precision)
-    return float(Decimal(repr(value)).quantize(step, rounding=ROUND_FLOOR))
+class _Engine:
+    """Everything shared by the questions of one audit: per-row limits, timelines, exemptions."""
 
-
-class _Suggester:
-    """Everything shared by the set-wide, per-colour and per-icon questions."""
-
-    def __init__(
-        self,
-        theme: Theme,
-        iconset: IconSet,
-        policy: Policy,
-        threshold: float,
-        alpha_max: float,
-        paints: PaintSet | None = None,
-        pipeline: Pipeline = "linear",
-    ) -> None:
-        self.policy = policy
+    def __init__(self, result: AuditResult, policy: Policy, alpha_max: float) -> None:
+        r = result
+        self.result, self.policy = r, policy
+        self.threshold = r.threshold
+        self.pipeline = r.pipeline
+        # CSS opacity cannot exceed 1 (CSS Color 4 clamps alpha): the only
+        # coefficient above the reference is none, so the question is alpha 1.
+        self.a_hi = ALPHA_LO if r.pipeline == "css" else float(alpha_max)
+        self.names = tuple(i.name for i in r.iconset.icons)
+        index = {name: n for n, name in enumerate(self.names)}
+        self.row_icon = np.array([index[e.icon.name] for e in r.entries], dtype=np.intp)
+        self.canvases = tuple(c.name for c in r.theme.canvases)
+        self.backgrounds = r.theme.backgrounds
+        self.y_bg = relative_luminance(self.backgrounds)
+        self.keys = r.paint_keys
+        self.locked = locked_rows(r)
+        rules = policy.rules
+        self.collision_rule = (
+            Rule.COLLISION
+            if Rule.COLLISION in rules
+            else Rule.NEW_COLLISION
+            if Rule.NEW_COLLISION in rules
+            else None
+        )
+        # Paints already colliding at alpha 1, per canvas (a new-collision is not one of these).
+        self.ref_groups: list[set[frozenset[int]]] = [set() for _ in self.canvases]
+        if self.collision_rule is Rule.NEW_COLLISION:
+            for j, _, group in find_collisions(to_8bit(r.reference), self.keys):
+                self.ref_groups[j].add(frozenset(self.keys[group].tolist()))
+        static = rules & _STATIC_RULES
+        self.static: list[tuple[Rule, tuple[int, ...]]] = []
+        if static:
+            only = Policy(
+                rules=frozenset(static), warnings=frozenset(), exemptions=policy.exemptions
+            )
+            for f in findings_for(r, only):
+                if f.exemption is None:
+                    self.static.append((f.rule, tuple(index[i] for i in f.icons if i in index)))
+        # Palette roles: currentColor paints of named colours, compared as solid colours.
+        roles = [e.role for e in r.entries]
+        self.role_row = np.array(
+            [not e.fixed and e.icon.color_name is not None for e in r.entries], dtype=bool
+        ).reshape(-1)
+        self.role_label = np.unique(np.array(roles or [""], dtype=object), return_inverse=True)[1]
+        self.role_label = self.role_label.reshape(-1)[: len(roles)]
+        self._per_row: list[Found] | None = None
         self._timelines: dict[tuple[bytes, int], tuple[NDArray[np.float64], NDArray[np.int64]]] = {}
         self._timeline_bytes = 0
-        self.threshold = threshold
-        self.a_hi = alpha_max
-        self.names = tuple(i.name for i in iconset.icons)
-        self.canvases = tuple(c.name for c in theme.canvases)
-        self.colors = tuple(i.color for i in iconset.icons)
-        self.sources = iconset.sources
-        self.alphas = iconset.alphas
-        self.backgrounds = theme.backgrounds
-        self.y_bg = relative_luminance(self.backgrounds)
-        n = len(self.names)
-        self.keys = np.unique(self.sources, axis=0, return_inverse=True)[1].reshape(n)
-        ref_codes = pack_8bit(to_8bit(self.sources))
-        self.refs = np.unique(ref_codes, return_inverse=True)[1].reshape(n)
-        # audit.py: collisions already present at alpha = 1 (source keys sharing a code).
-        groups: dict[int, set[int]] = {}
-        for k, r in zip(self.keys.tolist(), self.refs.tolist(), strict=True):
-            groups.setdefault(r, set()).add(k)
-        self.ref_groups = {frozenset(g) for g in groups.values() if len(g) > 1}
-        # With the SVGs' paints read, the gate judges contrast per paint row (its
-        # own colour and opacity): PaintRules answers those, exactly.
-        self.contrast_rules = policy.contrast_rules if paints is None else ()
-        self.paint_rules = PaintRules(
-            theme, iconset, paints, policy, threshold, alpha_max, self.exempt, pipeline
-        )
-        self.collision_rule = policy.collision_rule
-        self.separation = Rule.SEPARATION in policy.rules
-        # Exemptions or multi-source 8-bit classes need the group-by-group verdict.
-        self.slow_collisions = bool(policy.exemptions) or (
-            self.collision_rule is Rule.NEW_COLLISION and bool(self.ref_groups)
-        )
 
-    # -- scenario set-up --------------------------------------------------
+    # -- helpers -----------------------------------------------------------------
 
-    def tracks(self, moving: NDArray[np.bool_]) -> _Tracks:
-        """Group icons: moving ones by source key, fixed ones by (source key, alpha)."""
-        groups: dict[tuple[int, float], list[int]] = {}
-        for i in range(len(self.names)):
-            # Moving icons all take the same alpha, so the source alone decides.
-            alpha = -math.inf if moving[i] else float(self.alphas[i])
-            groups.setdefault((int(self.keys[i]), alpha), []).append(i)
-        labels = sorted(groups, key=lambda lab: (lab[1] != -math.inf, groups[lab][0]))
-        first = [groups[lab][0] for lab in labels]
-        is_moving = np.array([lab[1] == -math.inf for lab in labels], dtype=bool)
+    def exempt(self, rule: Rule, canvas: str, icons: tuple[int, ...]) -> bool:
+        names = tuple(sorted(self.names[i] for i in icons))
+        return self.policy.exempt(rule, canvas, names) is not None
+
+    def icon_names(self, icons: Iterable[int]) -> tuple[str, ...]:
+        return tuple(sorted({self.names[i] for i in icons}))
+
+    def tracks(
+        self, moving_icons: NDArray[np.bool_], rows: NDArray[np.intp] | None = None
+    ) -> _Tracks:
+        """Rows grouped: moving rows by paint, fixed rows by (paint, alpha); moving first.
+
+        ``rows`` (default: every row) are the roles' rows for the role rules,
+        grouped by role as well, drawn solid.
+        """
+        r = self.result
+        roles = rows is not None
+        chosen = np.arange(len(r.entries)) if rows is None else rows
+        groups: dict[tuple[int, int, float], list[int]] = {}
+        for p in chosen.tolist():
+            moving = bool(moving_icons[self.row_icon[p]])
+            alpha = -math.inf if moving else float(r.alpha[p])
+            role = int(self.role_label[p]) if roles else -1
+            groups.setdefault((role, int(self.keys[p]), alpha), []).append(p)
+        labels = sorted(groups, key=lambda g: (g[2] != -math.inf, groups[g][0]))
+        first = np.array([groups[g][0] for g in labels], dtype=np.intp)
+        is_moving = np.array([g[2] == -math.inf for g in labels], dtype=bool)
+        label = [g[0] if roles else g[1] for g in labels]
         return _Tracks(
-            source=self.sources[first],
-            alpha=np.where(is_moving, math.nan, [lab[1] for lab in labels]),
+            source=r.sources[first].reshape(-1, 3),
+            opacity=np.ones(first.size) if roles else r.opacity[first],
+            alpha=np.where(is_moving, math.nan, [g[2] for g in labels]),
             moving=is_moving,
-            key=self.keys[first],
-            ref=self.refs[first],
-            color=tuple(self.colors[i] for i in first),
-            icons=tuple(tuple(groups[lab]) for lab in labels),
+            label=np.array(label, dtype=np.intp).reshape(-1),
+            icons=tuple(tuple(sorted({int(self.row_icon[p]) for p in groups[g]})) for g in labels),
         )
 
-    def icon_names(self, tracks: _Tracks, members: list[int] | NDArray[np.intp]) -> tuple[str, ...]:
-        return tuple(sorted(self.names[i] for t in members for i in tracks.icons[int(t)]))
+    def shown(
+        self, tracks: _Tracks, t: NDArray[np.intp], a: NDArray[np.float64], j: int
+    ) -> NDArray[np.float64]:
+        """Tracks ``t`` on canvas ``j`` at coefficients ``a`` (moving ones) as (len(t), N, 3)."""
+        coef = np.where(tracks.moving[t][:, np.newaxis], a, tracks.alpha[t][:, np.newaxis])
+        return composite_paint(
+            tracks.source[t][:, np.newaxis, :],
+            self.backgrounds[j],
+            coef,
+            tracks.opacity[t][:, np.newaxis],
+            self.pipeline,
+        )
 
-    def exempt(self, rule: Rule, canvas: str, icons: tuple[str, ...]) -> bool:
-        return self.policy.exempt(rule, canvas, icons) is not None
+    def shown_at(
+        self, tracks: _Tracks, t: NDArray[np.intp], a: NDArray[np.float64], j: int
+    ) -> NDArray[np.float64]:
+        """Track ``t[k]`` at coefficient ``a[k]`` on canvas ``j``, elementwise: (K, 3)."""
+        coef = np.where(tracks.moving[t], a, tracks.alpha[t])
+        return composite_paint(
+            tracks.source[t], self.backgrounds[j], coef, tracks.opacity[t], self.pipeline
+        )
 
-    def unexempt_icons(self, rule: Rule, canvas: str, icons: tuple[str, ...]) -> tuple[str, ...]:
-        """Icons of a per-icon finding that no exemption covers."""
-        if not self.policy.exemptions:
-            return icons
-        return tuple(name for name in icons if not self.exempt(rule, canvas, (name,)))
+    # -- per row: independent of every other icon, computed once ----------------
 
-    # -- the three kinds of event ------------------------------------------
+    def per_row(self) -> list[Found]:
+        """First unsafe alpha of every per-row rule, each row moving from 1 to ``a_hi``."""
+        if self._per_row is None:
+            found: list[Found] = []
+            if self.a_hi > ALPHA_LO and len(self.row_icon):
+                found += self._contrast()
+                rules = self.policy.rules
+                if Rule.THIN_STROKES in rules:
+                    found += self._thin_strokes()
+                if Rule.DRIFT in rules:
+                    every = np.ones(len(self.row_icon), dtype=bool)
+                    found += self._drift(Rule.DRIFT, self.policy.max_drift, every)
+                if Rule.LOCK in rules:
+                    found += self._drift(Rule.LOCK, LOCK_TOLERANCE, self.locked)
+            self._per_row = found
+        return self._per_row
 
-    def contrast_limits(self, tracks: _Tracks) -> list[list[Limit]]:
-        """Per canvas, the first unsafe alpha of each contrast rule and moving track."""
-        out: list[list[Limit]] = [[] for _ in self.canvases]
-        mv = np.flatnonzero(tracks.moving)
-        if not self.contrast_rules or mv.size == 0:
-            return out
-        s = tracks.source[mv]
-        y_src = relative_luminance(s)
-        c_ref = contrast_from_luminance(y_src[:, np.newaxis], self.y_bg[np.newaxis, :])
-        for rule in self.contrast_rules:
-            limit = contrast_floor(rule, self.policy, c_ref, self.threshold)
-            lo, hi = luminance_band(limit, self.y_bg[np.newaxis, :])
-            start, attained = first_in_luminance_band(
-                s[:, np.newaxis, :], self.backgrounds[np.newaxis, :, :], lo, hi, ALPHA_LO, self.a_hi
-            )
-            for r, j in zip(*np.nonzero(np.isfinite(start)), strict=True):
-                canvas = self.canvases[j]
-                icons = self.unexempt_icons(rule, canvas, self.icon_names(tracks, [mv[r]]))
-                if icons:
-                    out[j].append(
-                        Limit(rule, canvas, icons, float(start[r, j]), bool(attained[r, j]))
-                    )
+    def _band_starts(
+        self, floor: NDArray[np.float64], coverage: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        """Where the displayed contrast first drops below ``floor``, (p, m[, k]).
+
+        Displayed luminance is ``o Y(clip) + (1 - o) Yb``; solving the band for
+        ``Y(clip)`` leaves :func:`first_in_luminance_band`'s exact problem.
+        """
+        extra = floor.ndim - 2
+        y_bg = self.y_bg.reshape(1, -1, *([1] * extra))
+        lo, hi = luminance_band(floor, y_bg)
+        o = coverage
+        with np.errstate(divide="ignore", invalid="ignore"):
+            lo_c = np.where(o > 0, (lo - (1.0 - o) * y_bg) / o, np.inf)
+            hi_c = np.where(o > 0, (hi - (1.0 - o) * y_bg) / o, -np.inf)
+        p, m = len(self.row_icon), len(self.canvases)
+        shape = (p, m, *([1] * extra), 3)
+        s = np.broadcast_to(self.result.sources.reshape(p, 1, *([1] * extra), 3), shape)
+        b = np.broadcast_to(self.backgrounds.reshape(1, m, *([1] * extra), 3), shape)
+        return first_in_luminance_band(s, b, lo_c, hi_c, ALPHA_LO, self.a_hi)
+
+    def _contrast(self) -> list[Found]:
+        out: list[Found] = []
+        r = self.result
+        o = np.broadcast_to(r.opacity[:, np.newaxis], r.contrast_ref.shape)
+        for rule in self.policy.contrast_rules:
+            floor = contrast_floor(rule, self.policy, r.contrast_ref, self.threshold)
+            start, attained = self._band_starts(floor, o)
+            out += self._collect(rule, start, attained)
         return out
+
+    def _thin_strokes(self) -> list[Found]:
+        r = self.result
+        if not r.sizes:
+            return []
+        limit = self.threshold
+        if self.policy.min_size_contrast is not None:
+            limit = self.policy.min_size_contrast
+        p, m, k = len(self.row_icon), len(self.canvases), len(r.sizes)
+        coverage = (np.nan_to_num(r.q50, nan=0.0) * r.opacity[:, np.newaxis])[:, None, :]
+        floor = np.full((p, m, k), size_contrast_floor(limit))
+        start, attained = self._band_starts(floor, np.broadcast_to(coverage, (p, m, k)))
+        start = np.where(np.isnan(r.q50)[:, np.newaxis, :], np.nan, start)  # no ink
+        first = np.nanmin(np.where(np.isnan(start), np.inf, start), axis=2)
+        hit = np.isfinite(first)
+        att = np.any(attained & (start == first[..., np.newaxis]), axis=2)
+        return self._collect(Rule.THIN_STROKES, np.where(hit, first, np.nan), att)
+
+    def _drift(self, rule: Rule, limit: float, selected: NDArray[np.bool_]) -> list[Found]:
+        r = self.result
+        rows = np.flatnonzero(selected)
+        m = len(self.canvases)
+        start = np.full((len(self.row_icon), m), np.nan)
+        if rows.size == 0:
+            return []
+        breaks = clip_breakpoints(
+            r.sources[rows][:, np.newaxis, :], self.backgrounds[np.newaxis]
+        ).reshape(-1)
+        grid = _grid(ALPHA_LO, self.a_hi, breaks)
+        per = max(1, _CHUNK // (grid.size * m))
+        bg = self.backgrounds[np.newaxis, :, np.newaxis, :]
+        for lo in range(0, rows.size, per):
+            sel = rows[lo : lo + per]
+            s = r.sources[sel][:, np.newaxis, np.newaxis, :]
+            o = r.opacity[sel][:, np.newaxis, np.newaxis]
+            ref = composite_paint(s, bg, 1.0, o, self.pipeline)  # (q, m, 1, 3)
+
+            def minus_drift(
+                a: NDArray[np.float64],
+                s: NDArray[np.float64] = s,
+                o: NDArray[np.float64] = o,
+                ref: NDArray[np.float64] = ref,
+            ) -> NDArray[np.float64]:
+                a = a.reshape(1, 1, -1) if a.ndim == 1 else a.reshape(len(s), m, -1)
+                return -delta_e_2000(ref, composite_paint(s, bg, a, o, self.pipeline))
+
+            # drift_breaks(d, limit) is d > drift_ceiling(limit), i.e. -d < -ceiling.
+            _, unsafe = first_below(minus_drift, grid, -drift_ceiling(limit))
+            start[sel] = unsafe
+        return self._collect(rule, start, np.isfinite(start))
+
+    def _collect(
+        self, rule: Rule, start: NDArray[np.float64], attained: NDArray[np.bool_]
+    ) -> list[Found]:
+        out: list[Found] = []
+        for p, j in zip(*np.nonzero(np.isfinite(start)), strict=True):
+            icon = (int(self.row_icon[p]),)
+            if not self.exempt(rule, self.canvases[j], icon):
+                out.append((rule, int(j), icon, float(start[p, j]), bool(attained[p, j])))
+        return out
+
+    # -- 8-bit collisions, exactly ----------------------------------------------
 
     def collision_group(
         self, tracks: _Tracks, codes: NDArray[np.int64], j: int
-    ) -> tuple[str, ...] | None:
+    ) -> tuple[int, ...] | None:
         """Icons of the first unsafe collision group (holding a moving track), if any.
 
         ``codes`` are every track's packed 8-bit outputs on canvas ``j`` at one
-        coefficient; the verdict is audit.py's and gate.py's, group by group.
+        coefficient; the verdict is :mod:`alpha_audit.findings`', group by group.
         """
         rule = self.collision_rule
         assert rule is not None
         for t in np.flatnonzero(tracks.moving):
             members = np.flatnonzero(codes == codes[t])
-            keys = frozenset(tracks.key[members].tolist())
-            if len(keys) < 2 or (rule is Rule.NEW_COLLISION and keys in self.ref_groups):
+            keys = frozenset(tracks.label[members].tolist())
+            if len(keys) < 2 or (rule is Rule.NEW_COLLISION and keys in self.ref_groups[j]):
                 continue
-            icons = self.icon_names(tracks, members)
+            icons = tuple(sorted({i for m in members for i in tracks.icons[m]}))
             if not self.exempt(rule, self.canvases[j], icons):
                 return icons
         return None
 
     def track_segments(
-        self, source: NDArray[np.float64], j: int
+        self, source: NDArray[np.float64], opacity: float, j: int
     ) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
-        """One moving source's own timeline on canvas ``j``: (points, packed element codes).
+        """One moving paint's own timeline on canvas ``j``: (points, packed element codes).
 
-        Cached per (source, canvas): the set-wide, per-colour and per-icon
-        questions move the same sources again and again.
+        Cached per (paint, canvas): the set-wide, per-colour and per-icon
+        questions move the same paints again and again.
         """
-        key = (source.tobytes(), j)
+        key = (source.tobytes() + np.float64(opacity).tobytes(), j)
         found = self._timelines.get(key)
         if found is None:
-            timeline = code_timeline(source, self.backgrounds[j], ALPHA_LO, self.a_hi)
+            timeline = code_timeline(source, self.backgrounds[j], ALPHA_LO, self.a_hi, opacity)
             codes = timeline.elements()[2]  # (3, 2K + 1)
             found = (timeline.points, pack_8bit(codes.T))
             size = found[0].nbytes + found[1].nbytes
@@ -358,35 +440,36 @@ class _Suggester:
             self._timeline_bytes += size
         return found
 
-    def collision_limits(self, tracks: _Tracks) -> list[list[Limit]]:
+    def collision_limits(self, tracks: _Tracks) -> list[Found]:
         """Per canvas, where the first unsafe 8-bit collision starts (exact).
 
-        Each track's code is a step function of alpha: a list of segments
-        (a point or an open gap, each one code).  A collision needs two
-        segments with one code overlapping, so one sort of all segments by
-        code finds every place where two or more share a code; only those
-        places are judged, in order, by :meth:`collision_group`.  Cost and
-        memory are linear in the number of segments (about 2 x 3 x 255 per
-        moving track at most), never tracks x tracks x events.
+        Each track's code is a step function of alpha: a list of segments (a
+        point or an open gap, each one code).  A collision needs two segments
+        with one code overlapping, so one sort of all segments by code finds
+        every place where two or more share a code; only those places are
+        judged, in order, by :meth:`collision_group`.  Cost and memory are linear
+        in the number of segments, never tracks x tracks x events.
         """
-        out: list[list[Limit]] = [[] for _ in self.canvases]
+        out: list[Found] = []
         rule = self.collision_rule
         mv = np.flatnonzero(tracks.moving)
-        if rule is None or mv.size == 0 or len(tracks.key) < 2:
+        if rule is None or mv.size == 0 or len(tracks.label) < 2 or self.a_hi <= ALPHA_LO:
             return out
         fixed = np.flatnonzero(~tracks.moving)
         fixed_codes = pack_8bit(
             to_8bit(
-                composite_extended(
+                composite_paint(
                     tracks.source[fixed, np.newaxis, :],
                     self.backgrounds[np.newaxis, :, :],
                     tracks.alpha[fixed, np.newaxis],
+                    tracks.opacity[fixed, np.newaxis],
+                    self.pipeline,
                 )
             )
         )  # (F, m)
-        n_tracks = len(tracks.key)
+        n_tracks = len(tracks.label)
         for j in range(len(self.canvases)):
-            own = [self.track_segments(tracks.source[t], j) for t in mv]
+            own = [self.track_segments(tracks.source[t], float(tracks.opacity[t]), j) for t in mv]
             points = np.unique(np.concatenate([p for p, _ in own]))  # every event of canvas j
             last = 2 * (points.size - 1)  # global elements 0..last: point, gap, point, ...
             seg_track, seg_lo, seg_hi, seg_code = [], [], [], []
@@ -418,53 +501,44 @@ class _Suggester:
                 icons = self.collision_group(tracks, code[at], j)
                 if icons is not None:
                     start, is_point = float(points[e // 2]), e % 2 == 0
-                    out[j].append(Limit(rule, self.canvases[j], icons, start, is_point))
+                    out.append((rule, j, icons, start, is_point))
                     break
         return out
 
-    def separation_limits(self, tracks: _Tracks) -> list[list[Limit]]:
-        """Per canvas, where CIEDE2000 between two colours first drops below the minimum.
+    # -- pairs: separation and the role rules, bracketed --------------------------
+
+    def separation_limits(self, tracks: _Tracks, caps: NDArray[np.float64]) -> list[Found]:
+        """Per canvas, where CIEDE2000 between two paints first drops below the minimum.
 
         Canvas by canvas and a chunk of pairs at a time (bounded memory for any
         number of colours).  A pair whose lightness bound (``dE00 >= |dL| /
-        S_L,max``, :mod:`alpha_audit.color.nearest`) keeps it at or above the
-        minimum at every grid point cannot be found below it by the grid
-        search either, so it is skipped without changing the answer.
+        S_L,max``) keeps it at or above the minimum at every grid point cannot
+        be found below it by the grid search either, so it is skipped.
         """
-        out: list[list[Limit]] = [[] for _ in self.canvases]
-        if not self.separation or len(tracks.key) < 2:
+        out: list[Found] = []
+        if Rule.SEPARATION not in self.policy.rules or len(tracks.label) < 2:
             return out
-        labels = np.unique(np.array(tracks.color, dtype=object), return_inverse=True)[1]
-        labels = labels.reshape(-1)
         level = self.policy.min_delta_e
-        steps = max(1, math.ceil((self.a_hi - ALPHA_LO) / SEPARATION_GRID_STEP))
+        moving = np.flatnonzero(tracks.moving)
+        if moving.size == 0:
+            return out
         breaks = clip_breakpoints(
-            tracks.source[tracks.moving][:, np.newaxis, :], self.backgrounds[np.newaxis]
+            tracks.source[moving][:, np.newaxis, :], self.backgrounds[np.newaxis]
         ).reshape(-1)
-        breaks = breaks[(breaks > ALPHA_LO) & (breaks < self.a_hi)]
-        grid = np.unique(np.concatenate([np.linspace(ALPHA_LO, self.a_hi, steps + 1), breaks]))
-        n_grid = grid.size
-        every = np.arange(len(tracks.key))
-        chunk = max(1, _SEPARATION_CHUNK // n_grid)
-        for j, background in enumerate(self.backgrounds):
-
-            def output(
-                t: NDArray[np.intp], a: NDArray[np.float64], bg: NDArray[np.float64] = background
-            ) -> NDArray[np.float64]:
-                coef = np.where(tracks.moving[t][:, np.newaxis], a, tracks.alpha[t][:, np.newaxis])
-                src = tracks.source[t][:, np.newaxis, :]
-                return np.clip(bg + coef[..., np.newaxis] * (src - bg), 0.0, 1.0)
-
-            lightness = linear_to_lab(output(every, grid))[..., 0]  # (T, N)
+        every = np.arange(len(tracks.label))
+        for j in range(len(self.canvases)):
+            if caps[j] <= ALPHA_LO:
+                continue
+            grid = _grid(ALPHA_LO, float(caps[j]), breaks)
+            lightness = linear_to_lab(self.shown(tracks, every, grid, j))[..., 0]  # (T, N)
             s_l = lightness_weight_max(lightness)
-            for first, second in iter_pairs(len(tracks.key), labels, chunk=chunk):
+            chunk = max(1, _CHUNK // grid.size)
+            for first, second in iter_pairs(len(tracks.label), tracks.label, chunk=chunk):
                 moved = tracks.moving[first] | tracks.moving[second]
                 first, second = first[moved], second[moved]
-                if first.size == 0:
-                    continue
-                gap = np.min(np.abs(lightness[first] - lightness[second]), axis=1) / s_l
-                near = gap < level * (1.0 + 1e-9)
-                first, second = first[near], second[near]
+                near = np.min(np.abs(lightness[first] - lightness[second]), axis=1) / s_l
+                keep = near < level * (1.0 + 1e-9)
+                first, second = first[keep], second[keep]
                 if first.size == 0:
                     continue
 
@@ -472,134 +546,336 @@ class _Suggester:
                     a: NDArray[np.float64],
                     f: NDArray[np.intp] = first,
                     g: NDArray[np.intp] = second,
+                    j: int = j,
                 ) -> NDArray[np.float64]:
-                    return delta_e_2000(output(f, a), output(g, a))  # (p, N)
+                    if a.ndim > 1:  # bisecting: every pair at its own points
+                        fa = self.shown_at(tracks, np.repeat(f, a.shape[1]), a.reshape(-1), j)
+                        ga = self.shown_at(tracks, np.repeat(g, a.shape[1]), a.reshape(-1), j)
+                        return delta_e_2000(fa, ga).reshape(a.shape)
+                    return delta_e_2000(self.shown(tracks, f, a, j), self.shown(tracks, g, a, j))
 
                 _, unsafe = first_below(delta_e, grid, level)
-                for p in np.flatnonzero(np.isfinite(unsafe)):
-                    icons = self.icon_names(tracks, [first[p], second[p]])
+                for p in np.flatnonzero(np.isfinite(unsafe)).tolist():
+                    icons = tuple(sorted({*tracks.icons[first[p]], *tracks.icons[second[p]]}))
                     if not self.exempt(Rule.SEPARATION, self.canvases[j], icons):
-                        out[j].append(
-                            Limit(
-                                Rule.SEPARATION,
-                                self.canvases[j],
-                                icons,
-                                float(unsafe[p]),
-                                True,
-                                SEPARATION_GRID_STEP,
-                            )
-                        )
+                        out.append((Rule.SEPARATION, j, icons, float(unsafe[p]), True))
         return out
 
-    # -- one question ----------------------------------------------------------
+    def confusion_limits(
+        self,
+        roles: _Tracks,
+        caps: NDArray[np.float64],
+        deficiency: Deficiency | None,
+        shrink: bool,
+    ) -> list[Found]:
+        """Per canvas, where two roles told apart at alpha 1 first drop below the minimum."""
+        rule = Rule.CONFUSION if deficiency is None else Rule.CVD_CONFUSION
+        n = len(roles.label)
+        if n < 2 or not roles.moving.any():
+            return []
+        level = self.policy.min_delta_e
+        breaks = clip_breakpoints(
+            roles.source[:, np.newaxis, :], self.backgrounds[np.newaxis]
+        ).reshape(-1)
+        full = _grid(ALPHA_LO, float(caps.max()), breaks)
 
-    def scenario(self, tracks: _Tracks) -> tuple[NDArray[np.bool_], PaintScenario]:
-        """The question as the paint rules see it: moving icons, and the tracks."""
-        moving = np.zeros(len(self.names), dtype=bool)
-        for t in np.flatnonzero(tracks.moving):
-            moving[list(tracks.icons[t])] = True
-        return moving, PaintScenario(tracks.source, tracks.alpha, tracks.moving, tracks.icons)
+        def view(c: NDArray[np.float64]) -> NDArray[np.float64]:
+            return c if deficiency is None else simulate_cvd(c, deficiency)
 
-    def paint_limits(
-        self, tracks: _Tracks, caps: NDArray[np.float64], shrink: bool
-    ) -> list[list[Limit]]:
-        """Per canvas, the paint rules' limits (rules on every canvas go to each)."""
-        out: list[list[Limit]] = [[] for _ in self.canvases]
-        moving, scenario = self.scenario(tracks)
-        found = self.paint_rules.limits(moving, scenario, caps, shrink=shrink)
-        for rule, j, icons, at, attained in found:
-            grid = GRID_STEP if rule in BRACKETED_RULES else None
-            names = tuple(sorted(self.names[i] for i in icons))
-            for k in range(len(self.canvases)) if j < 0 else (j,):
-                canvas = "(every canvas)" if j < 0 else self.canvases[k]
-                out[k].append(Limit(rule, canvas, names, at, attained, grid))
-        return out
+        every = np.arange(n)
+        out: list[Found] = []
+        for j in range(len(self.canvases)):
+            if caps[j] <= ALPHA_LO:
+                continue
+            grid = full[full <= caps[j]]
+            chunk = max(1, _CHUNK // grid.size)
+            # The rule's reference is every role at alpha 1, as the gate has it, not the
+            # others at their configured alpha: a pair the others confuse is this one's too.
+            solid = composite_paint(roles.source, self.backgrounds[j], 1.0, 1.0, self.pipeline)
+            lab_ref = linear_to_lab(view(solid))
+            lightness = linear_to_lab(view(self.shown(roles, every, grid, j)))[..., 0]
+            s_l = lightness_weight_max(lightness)
+            for first, second in iter_pairs(n, roles.label, chunk=chunk):
+                moved = roles.moving[first] | roles.moving[second]
+                first, second = first[moved], second[moved]
+                keep = confusion_possible(delta_e_2000_lab(lab_ref[first], lab_ref[second]), level)
+                first, second = first[keep], second[keep]
+                if first.size == 0:
+                    continue
+                # dE00 >= |dL| / S_L,max: only grid points where the bound cannot rule
+                # the pair out are evaluated; elsewhere the distance is >= the level.
+                close = np.abs(lightness[first] - lightness[second]) / s_l < level * (1 + 1e-9)
+                near = close.any(axis=1)
+                first, second, close = first[near], second[near], close[near]
+                if first.size == 0:
+                    continue
 
-    def unsafe_at(self, tracks: _Tracks, a: float) -> bool:
-        """Direct check of one coefficient: composite, quantise, apply the rules."""
-        moving, scenario = self.scenario(tracks)
-        if self.paint_rules.first_objection(moving, scenario, a) is not None:
-            return True
-        coef = np.where(tracks.moving, a, tracks.alpha)
-        out = composite_extended(
-            tracks.source[:, np.newaxis, :], self.backgrounds[np.newaxis], coef[:, np.newaxis]
-        )  # (T, m, 3)
-        mv = np.flatnonzero(tracks.moving)
-        y_bg = self.y_bg[np.newaxis, :]
-        c_ref = contrast_from_luminance(relative_luminance(tracks.source[mv])[:, np.newaxis], y_bg)
-        contrast = contrast_from_luminance(relative_luminance(out[mv]), y_bg)
-        for rule in self.contrast_rules:
-            broken = contrast_breaks(rule, self.policy, c_ref, contrast, self.threshold)
-            for r, j in zip(*np.nonzero(broken), strict=True):
-                names = self.icon_names(tracks, [mv[r]])
-                if self.unexempt_icons(rule, self.canvases[j], names):
-                    return True
-        if self.collision_rule is not None:
-            codes = pack_8bit(to_8bit(out))
-            for j in range(len(self.canvases)):
-                if self.collision_group(tracks, codes[:, j], j) is not None:
-                    return True
-        if self.separation and len(tracks.key) > 1:
-            labels = np.unique(np.array(tracks.color, dtype=object), return_inverse=True)[1]
-            for j in range(len(self.canvases)):
-                lab = linear_to_lab(out[:, j])
-
-                def distance(
-                    f: NDArray[np.intp], g: NDArray[np.intp], lab: NDArray[np.float64] = lab
+                def delta_e(
+                    a: NDArray[np.float64],
+                    f: NDArray[np.intp] = first,
+                    g: NDArray[np.intp] = second,
+                    j: int = j,
+                    close: NDArray[np.bool_] = close,
                 ) -> NDArray[np.float64]:
-                    return delta_e_2000_lab(lab[f], lab[g])
+                    if a.ndim > 1:  # bisecting: every pair at its own points
+                        ff, gg = np.repeat(f, a.shape[1]), np.repeat(g, a.shape[1])
+                        fa = view(self.shown_at(roles, ff, a.reshape(-1), j))
+                        ga = view(self.shown_at(roles, gg, a.reshape(-1), j))
+                        return delta_e_2000(fa, ga).reshape(a.shape)
+                    values = np.full(close.shape, np.inf)
+                    p, k = np.nonzero(close)
+                    values[p, k] = delta_e_2000(
+                        view(self.shown_at(roles, f[p], a[k], j)),
+                        view(self.shown_at(roles, g[p], a[k], j)),
+                    )
+                    return values
 
-                key = delta_e_2000_lightness_key(lab)
-                first, second, _ = pairs_below(key, distance, self.policy.min_delta_e, labels)
-                for a_i, b_i in zip(first.tolist(), second.tolist(), strict=True):
-                    if not (tracks.moving[a_i] or tracks.moving[b_i]):
+                _, unsafe = first_below(delta_e, grid, level)
+                for p in np.flatnonzero(np.isfinite(unsafe)).tolist():
+                    icons = tuple(sorted({*roles.icons[first[p]], *roles.icons[second[p]]}))
+                    if not self.exempt(rule, self.canvases[j], icons):
+                        out.append((rule, j, icons, float(unsafe[p]), True))
+                        if shrink:
+                            caps = np.minimum(caps, float(unsafe[p]))
+        return out
+
+    def cvd_collision_limits(self, roles: _Tracks, cap: float) -> list[Found]:
+        n = len(roles.label)
+        if n < 2 or not roles.moving.any():
+            return []
+        sources = [roles.source[t].tobytes().hex() for t in range(n)]
+        breaks = clip_breakpoints(
+            roles.source[:, np.newaxis, :], self.backgrounds[np.newaxis]
+        ).reshape(-1)
+        grid = _grid(ALPHA_LO, cap, breaks)
+        every = np.arange(n)
+        out: list[Found] = []
+        for deficiency in DEFICIENCIES:
+            for j in range(len(self.canvases)):
+                ref = to_8bit(
+                    simulate_cvd(
+                        self.shown(roles, every, np.array([ALPHA_LO]), j)[:, 0], deficiency
+                    )
+                )
+
+                def unsafe(
+                    a: float, j: int = j, ref: NDArray[np.uint8] = ref, d: Deficiency = deficiency
+                ) -> tuple[int, ...] | None:
+                    seen = to_8bit(
+                        simulate_cvd(self.shown(roles, every, np.array([a]), j)[:, 0], d)
+                    )
+                    return self._cvd_group(roles, seen, ref, sources, j)
+
+                codes = to_8bit(simulate_cvd(self.shown(roles, every, grid, j), deficiency))
+                packed = pack_8bit(codes)  # (T, N)
+                ordered = np.sort(packed, axis=0)
+                shared = np.flatnonzero((ordered[1:] == ordered[:-1]).any(axis=0))
+                for k in shared.tolist():
+                    icons = unsafe(float(grid[k]))
+                    if icons is None:
                         continue
-                    names = self.icon_names(tracks, [a_i, b_i])
-                    if not self.exempt(Rule.SEPARATION, self.canvases[j], names):
-                        return True
-        return False
+                    lo, hi = (float(grid[k - 1]), float(grid[k])) if k > 0 else (ALPHA_LO, ALPHA_LO)
+                    while hi - lo > 1e-9:
+                        mid = 0.5 * (lo + hi)
+                        if unsafe(mid) is None:
+                            lo = mid
+                        else:
+                            hi = mid
+                    out.append((Rule.CVD_COLLISION, j, icons, hi, True))
+                    break
+        return out
+
+    def _cvd_group(
+        self,
+        roles: _Tracks,
+        seen: NDArray[np.uint8],
+        ref: NDArray[np.uint8],
+        sources: Sequence[str],
+        j: int,
+    ) -> tuple[int, ...] | None:
+        for _, members in cvd_collision_groups(seen, ref, sources):
+            if not any(roles.moving[m] for m in members):
+                continue
+            icons = tuple(sorted({i for m in members for i in roles.icons[m]}))
+            if not self.exempt(Rule.CVD_COLLISION, self.canvases[j], icons):
+                return icons
+        return None
+
+    # -- the direct check of one coefficient -------------------------------------
+
+    def objection_at(self, moving_icons: NDArray[np.bool_], a: float) -> Found | None:
+        """An objection at exactly ``a`` involving a moving icon (the re-check of an answer)."""
+        for rule, icons in self.static:
+            if any(moving_icons[i] for i in icons):
+                return (rule, -1, icons, a, True)
+        r, rules = self.result, self.policy.rules
+        rows = np.flatnonzero(moving_icons[self.row_icon])
+        bg = self.backgrounds[np.newaxis]
+        if rows.size:
+            s = r.sources[rows][:, np.newaxis, :]
+            o = r.opacity[rows][:, np.newaxis]
+            shown = composite_paint(s, bg, a, o, self.pipeline)
+            c_now = contrast_ratio(shown, bg)
+            checks: list[tuple[Rule, NDArray[np.bool_]]] = [
+                (
+                    rule,
+                    contrast_breaks(rule, self.policy, r.contrast_ref[rows], c_now, self.threshold),
+                )
+                for rule in self.policy.contrast_rules
+            ]
+            if Rule.DRIFT in rules or Rule.LOCK in rules:
+                d = delta_e_2000(r.reference[rows], shown)
+                if Rule.DRIFT in rules:
+                    checks.append((Rule.DRIFT, drift_breaks(d, self.policy.max_drift)))
+                if Rule.LOCK in rules:
+                    lock = drift_breaks(d, LOCK_TOLERANCE) & self.locked[rows][:, np.newaxis]
+                    checks.append((Rule.LOCK, lock))
+            if Rule.THIN_STROKES in rules and r.sizes:
+                limit = self.policy.min_size_contrast or self.threshold
+                q = (np.nan_to_num(r.q50[rows]) * r.opacity[rows][:, np.newaxis])[:, np.newaxis, :]
+                at = composite_paint(s[:, :, None], bg[..., None, :], a, q, self.pipeline)
+                sc = contrast_ratio(at, bg[..., np.newaxis, :])
+                sc = np.where(np.isnan(r.q50[rows])[:, np.newaxis, :], np.nan, sc)
+                thin = np.asarray((sc < size_contrast_floor(limit)).any(axis=2))
+                checks.append((Rule.THIN_STROKES, thin))
+            for rule, broken in checks:
+                for k, j in zip(*np.nonzero(broken), strict=True):
+                    icon = (int(self.row_icon[rows[k]]),)
+                    if not self.exempt(rule, self.canvases[j], icon):
+                        return (rule, int(j), icon, a, True)
+        tracks = self.tracks(moving_icons)
+        if self.collision_rule is not None and tracks.moving.any():
+            every = np.arange(len(tracks.label))
+            for j in range(len(self.canvases)):
+                codes = pack_8bit(to_8bit(self.shown(tracks, every, np.array([a]), j)[:, 0]))
+                group = self.collision_group(tracks, codes, j)
+                if group is not None:
+                    return (self.collision_rule, j, group, a, True)
+        if Rule.SEPARATION in rules:
+            found = self._pairs_below_at(tracks, a, None, Rule.SEPARATION)
+            if found is not None:
+                return found
+        roles = self.tracks(moving_icons, np.flatnonzero(self.role_row))
+        if Rule.CONFUSION in rules:
+            found = self._pairs_below_at(roles, a, None, Rule.CONFUSION)
+            if found is not None:
+                return found
+        if Rule.CVD_CONFUSION in rules:
+            for deficiency in DEFICIENCIES:
+                found = self._pairs_below_at(roles, a, deficiency, Rule.CVD_CONFUSION)
+                if found is not None:
+                    return found
+        if Rule.CVD_COLLISION in rules and len(roles.label) > 1 and roles.moving.any():
+            sources = [roles.source[t].tobytes().hex() for t in range(len(roles.label))]
+            every = np.arange(len(roles.label))
+            for deficiency in DEFICIENCIES:
+                for j in range(len(self.canvases)):
+                    shown = self.shown(roles, every, np.array([a, ALPHA_LO]), j)
+                    seen = to_8bit(simulate_cvd(shown[:, 0], deficiency))
+                    ref = to_8bit(simulate_cvd(shown[:, 1], deficiency))
+                    cvd = self._cvd_group(roles, seen, ref, sources, j)
+                    if cvd is not None:
+                        return (Rule.CVD_COLLISION, j, cvd, a, True)
+        return None
+
+    def _pairs_below_at(
+        self, tracks: _Tracks, a: float, deficiency: Deficiency | None, rule: Rule
+    ) -> Found | None:
+        """A pair involving a moving track below ``min_delta_e`` at ``a`` (confusion: and
+        told apart at alpha 1), found by the pruned pair search."""
+        n = len(tracks.label)
+        if n < 2 or not tracks.moving.any():
+            return None
+        level = self.policy.min_delta_e
+        every = np.arange(n)
+
+        def view(c: NDArray[np.float64]) -> NDArray[np.float64]:
+            return c if deficiency is None else simulate_cvd(c, deficiency)
+
+        for j in range(len(self.canvases)):
+            both = self.shown(tracks, every, np.array([a, ALPHA_LO]), j)
+            lab = linear_to_lab(view(both[:, 0]))
+
+            def distance(
+                f: NDArray[np.intp], g: NDArray[np.intp], lab: NDArray[np.float64] = lab
+            ) -> NDArray[np.float64]:
+                return delta_e_2000_lab(lab[f], lab[g])
+
+            first, second, _ = pairs_below(
+                delta_e_2000_lightness_key(lab), distance, level, tracks.label
+            )
+            keep = tracks.moving[first] | tracks.moving[second]
+            if rule is not Rule.SEPARATION:
+                solid = composite_paint(tracks.source, self.backgrounds[j], 1.0, 1.0, self.pipeline)
+                lab_ref = linear_to_lab(view(solid))
+                keep &= confusion_possible(delta_e_2000_lab(lab_ref[first], lab_ref[second]), level)
+            for f, g in zip(first[keep].tolist(), second[keep].tolist(), strict=True):
+                icons = tuple(sorted({*tracks.icons[f], *tracks.icons[g]}))
+                if not self.exempt(rule, self.canvases[j], icons):
+                    return (rule, j, icons, a, True)
+        return None
+
+    # -- one question ------------------------------------------------------------
 
     def answer(
-        self, moving: NDArray[np.bool_], precision: int, per_canvas_needed: bool = True
+        self, moving_icons: NDArray[np.bool_], precision: int, per_canvas_needed: bool = True
     ) -> SafeAlpha:
-        """Largest safe alpha when the icons in ``moving`` share one coefficient."""
-        tracks = self.tracks(moving)
-        found = [
-            c + k + s
-            for c, k, s in zip(
-                self.contrast_limits(tracks),
-                self.collision_limits(tracks),
-                self.separation_limits(tracks),
-                strict=True,
-            )
-        ]
-        # A canvas's first limit lies at or below its earliest exact one; when only
-        # the question's answer matters (not each canvas's), the earliest of all.
-        caps = np.array([min([self.a_hi, *(lim.at for lim in ls)]) for ls in found])
-        if not per_canvas_needed:
-            caps[:] = caps.min()
-        paint = self.paint_limits(tracks, caps, shrink=not per_canvas_needed)
-        found = [f + p for f, p in zip(found, paint, strict=True)]
-        per_canvas_limit = [min(ls, key=_limit_order) if ls else None for ls in found]
+        """Largest safe alpha when the icons in ``moving_icons`` share one coefficient."""
+        m = len(self.canvases)
+        found: list[Found] = []
+        for rule, icons in self.static:
+            if any(moving_icons[i] for i in icons):
+                found.append((rule, -1, icons, ALPHA_LO, True))
+        found += [f for f in self.per_row() if moving_icons[f[2][0]]]
+        tracks = self.tracks(moving_icons)
+        found += self.collision_limits(tracks)
+        caps = np.full(m, self.a_hi)
+        for _, j, _, at, _ in found:
+            if j < 0 or not per_canvas_needed:
+                caps = np.minimum(caps, at)
+            else:
+                caps[j] = min(caps[j], at)
+        rules = self.policy.rules
+        if self.a_hi > ALPHA_LO:
+            found += self.separation_limits(tracks, caps)
+            roles = self.tracks(moving_icons, np.flatnonzero(self.role_row))
+            shrink = not per_canvas_needed
+            if Rule.CONFUSION in rules:
+                found += self.confusion_limits(roles, caps, None, shrink)
+            if Rule.CVD_CONFUSION in rules:
+                for deficiency in DEFICIENCIES:
+                    found += self.confusion_limits(roles, caps, deficiency, shrink)
+            if Rule.CVD_COLLISION in rules:
+                found += self.cvd_collision_limits(roles, float(caps.max()))
+        limits = [self._limit(f) for f in found]
+        per_canvas_limit: list[Limit | None] = []
+        for j in range(len(self.canvases)):
+            here = [lim for f, lim in zip(found, limits, strict=True) if f[1] in (j, -1)]
+            per_canvas_limit.append(min(here, key=_limit_order) if here else None)
         per_canvas = tuple(
             CanvasLimit(name, self.rounded(limit, precision), limit)
             for name, limit in zip(self.canvases, per_canvas_limit, strict=True)
         )
-        limits = [lim for lim in per_canvas_limit if lim is not None]
         limit = min(limits, key=_limit_order) if limits else None
         alpha = self.rounded(limit, precision)
         unit = 10.0**-precision
-        while alpha is not None and self.unsafe_at(tracks, alpha):
+        while alpha is not None and self.objection_at(moving_icons, alpha) is not None:
             # Only a float disagreement exactly at the rounded point gets here.
             stepped = _round_down(alpha - unit + unit / 2, precision)
             alpha = stepped if stepped >= ALPHA_LO else None
         if limit is None:
-            exact_at: float | None = self.a_hi
+            exact: float | None = self.a_hi
         elif limit.attained and limit.at <= ALPHA_LO:
-            exact_at = None
+            exact = None
         else:
-            exact_at = limit.at
-        return SafeAlpha(alpha=alpha, exact=exact_at, limit=limit, per_canvas=per_canvas)
+            exact = limit.at
+        return SafeAlpha(alpha=alpha, exact=exact, limit=limit, per_canvas=per_canvas)
+
+    def _limit(self, found: Found) -> Limit:
+        rule, j, icons, at, attained = found
+        canvas = "(every canvas)" if j < 0 else self.canvases[j]
+        grid = GRID_STEP if rule in BRACKETED_RULES else None
+        return Limit(rule, canvas, self.icon_names(icons), at, attained, grid)
 
     def rounded(self, limit: Limit | None, precision: int) -> float | None:
         """``limit.at`` (or alpha_max) rounded down, stepping off an unsafe point."""
@@ -636,110 +912,118 @@ def _swap_names(safe: SafeAlpha, old: str, new: str) -> SafeAlpha:
     )
 
 
-def largest_safe_alpha(
-    theme: Theme,
-    iconset: IconSet,
-    policy: Policy,
-    *,
-    icons: list[str] | None = None,
-    alpha_max: float = 2.0,
-    precision: int = 3,
-    threshold: float | None = None,
-    paints: PaintSet | None = None,
-    pipeline: Pipeline = "linear",
-) -> SafeAlpha:
-    """The largest safe alpha when ``icons`` (default: all) share one coefficient.
-
-    The other icons keep their configured alpha.
-
-    >>> from alpha_audit.model import Canvas, Icon, IconSet, Theme
-    >>> theme = Theme("t", (Canvas("yellow", "#ffff00"),))
-    >>> dots = IconSet("s", (Icon("dot", "dot.svg", "#0000d0", 1.0),))
-    >>> largest_safe_alpha(theme, dots, Policy()).limit.rule.value  # dark blue on yellow
-    'loss'
-    """
-    engine = _engine(theme, iconset, policy, alpha_max, precision, threshold, paints, pipeline)
-    moving = np.ones(len(iconset.icons), dtype=bool)
-    if icons is not None:
-        unknown = sorted(set(icons) - set(engine.names))
-        if unknown:
-            raise UsageError(f"no icon named {unknown[0]!r} in {iconset.name}")
-        moving = np.isin(np.array(engine.names), icons)
-    return engine.answer(moving, precision)
-
-
-def _engine(
-    theme: Theme,
-    iconset: IconSet,
-    policy: Policy,
-    alpha_max: float,
-    precision: int,
-    threshold: float | None,
-    paints: PaintSet | None = None,
-    pipeline: Pipeline = "linear",
-) -> _Suggester:
+def _engine(result: AuditResult, policy: Policy, alpha_max: float, precision: int) -> _Engine:
     if not ALPHA_MAX.allows(alpha_max):
         raise UsageError(ALPHA_MAX.refusal(f"alpha_max {alpha_max:g}"))
     if isinstance(precision, bool) or not isinstance(precision, int) or precision not in PRECISION:
         raise UsageError(PRECISION.refusal(f"precision {precision!r}"))
-    if not iconset.icons:
-        raise UsageError(f"icon set {iconset.name!r} has no icons")
-    if not theme.canvases:
-        raise UsageError(f"theme {theme.name!r} has no canvases")
-    if paints is not None and paints.problems:
-        # As check does: icons that could not be rendered are left out of the audit.
-        broken = {p.icon for p in paints.problems}
-        iconset = replace(iconset, icons=tuple(i for i in iconset.icons if i.name not in broken))
-        if not iconset.icons:
-            raise UsageError(f"no icon of {iconset.name!r} could be rendered")
-    t = theme.threshold if threshold is None else float(threshold)
-    if not math.isfinite(t):
-        raise UsageError(f"threshold must be a finite number, got {t}")
-    if pipeline == "css":
-        # CSS opacity cannot exceed 1 (CSS Color 4 clamps alpha): the only
-        # coefficient above the reference is none, so the question is alpha 1.
-        alpha_max = ALPHA_LO
-    return _Suggester(theme, iconset, policy, t, float(alpha_max), paints, pipeline)
+    if not result.iconset.icons:
+        why = "could be rendered" if result.problems else "is in it"
+        raise UsageError(f"no icon of {result.iconset.name!r} {why}: nothing to suggest for")
+    if not result.theme.canvases:
+        raise UsageError(f"theme {result.theme.name!r} has no canvases")
+    return _Engine(result, policy, alpha_max)
+
+
+class SafeAlphas:
+    """Largest-safe-alpha questions on one audit, sharing their work (per-row limits, timelines).
+
+    ``answers(icons)`` is :func:`largest_safe_alpha` for those icons (all when ``None``).
+    """
+
+    def __init__(
+        self, result: AuditResult, policy: Policy, *, alpha_max: float = 2.0, precision: int = 3
+    ) -> None:
+        self._engine = _engine(result, policy, alpha_max, precision)
+        self._precision = precision
+
+    def __call__(self, icons: Iterable[str] | None = None) -> SafeAlpha:
+        per_canvas = icons is None
+        moving = _moving(self._engine, icons)
+        return self._engine.answer(moving, self._precision, per_canvas_needed=per_canvas)
+
+
+def largest_safe_alpha(
+    result: AuditResult,
+    policy: Policy,
+    *,
+    icons: Sequence[str] | None = None,
+    alpha_max: float = 2.0,
+    precision: int = 3,
+) -> SafeAlpha:
+    """The largest safe alpha when ``icons`` (default: all) share one coefficient.
+
+    The other icons keep their alpha in ``result``.
+
+    >>> from alpha_audit.model import Canvas, Icon, IconSet, Theme
+    >>> from alpha_audit.rows import audit
+    >>> theme = Theme("t", (Canvas("yellow", "#ffff00"),))
+    >>> dots = IconSet("s", (Icon("dot", "dot.svg", "#0000d0", 1.0),))
+    >>> largest_safe_alpha(audit(theme, dots), Policy()).limit.rule.value  # dark blue on yellow
+    'loss'
+    """
+    engine = _engine(result, policy, alpha_max, precision)
+    return engine.answer(_moving(engine, icons), precision)
+
+
+def _moving(engine: _Engine, icons: Iterable[str] | None) -> NDArray[np.bool_]:
+    if icons is None:
+        return np.ones(len(engine.names), dtype=bool)
+    wanted = set(icons)
+    unknown = sorted(wanted - set(engine.names))
+    if unknown:
+        raise UsageError(f"no icon named {unknown[0]!r} in {engine.result.iconset.name}")
+    return np.isin(np.array(engine.names), sorted(wanted)).reshape(-1)
 
 
 def suggest(
-    theme: Theme,
-    iconset: IconSet,
+    result: AuditResult,
     policy: Policy,
     *,
     alpha_max: float = 2.0,
     precision: int = 3,
-    threshold: float | None = None,
-    paints: PaintSet | None = None,
-    pipeline: Pipeline = "linear",
+    scopes: Iterable[str] = SCOPES,
+    pairs: Iterable[tuple[str, str]] = (),
+    progress: Callable[[int], None] | None = None,
 ) -> SuggestResult:
-    """The largest safe alpha for the whole set, per palette colour and per icon.
+    """The largest safe alpha for the whole set, per colour, per pair of roles and per icon.
 
     Set-wide, every icon takes the same coefficient; per colour, the icons of
-    that palette colour move together; per icon, one icon moves.  Others keep
-    their configured alpha.  ``policy`` is the gate's (required, so no default
-    is applied silently; ``Policy()`` is the gate's default: no loss, no newly
-    failing icon, no new collision).
+    that colour (palette name, else the colour) move together; per pair, the
+    icons of two roles that confuse each other at their configured alphas move
+    together (``pairs`` adds more), the joint answer when neither can move
+    alone; per icon, one icon moves.  Others keep their alpha.  ``policy`` is
+    the gate's.  Icons that could not be rendered are left out, as ``check``
+    leaves them out (``left_out``).  ``progress(n)`` is called as questions
+    are answered.
 
     >>> from alpha_audit.model import Canvas, Icon, IconSet, Theme
+    >>> from alpha_audit.rows import audit
     >>> theme = Theme("t", (Canvas("ink", "#0d1117"),))
     >>> orange, other = Icon("o", "o.svg", "#ee7733", 1.0), Icon("x", "x.svg", "#ff7f36", 1.0)
-    >>> result = suggest(theme, IconSet("s", (orange, other)), Policy())
+    >>> result = suggest(audit(theme, IconSet("s", (orange, other))), Policy())
     >>> result.alpha  # together, the two never share an 8-bit output up to 2
     2.0
     >>> alone = result.per_icon[0].safe  # orange alone passes through #ff7f36
     >>> alone.alpha, alone.limit.rule.value, alone.limit.icons, round(alone.limit.at, 6)
     (1.165, 'new-collision', ('o', 'x'), 1.165168)
     """
-    engine = _engine(theme, iconset, policy, alpha_max, precision, threshold, paints, pipeline)
-    n = len(iconset.icons)
-    overall = engine.answer(np.ones(n, dtype=bool), precision)
+    engine = _engine(result, policy, alpha_max, precision)
+    wanted = set(scopes)
+    unknown = wanted - set(SCOPES)
+    if unknown:
+        raise UsageError(f"unknown scope {sorted(unknown)[0]!r}; use one of: {', '.join(SCOPES)}")
+    iconset = result.iconset
+    n = len(engine.names)
+    tick = progress or (lambda k: None)
+    overall = engine.answer(np.ones(n, dtype=bool), precision) if "set" in wanted else None
+    tick(1)
 
     groups: dict[str, list[int]] = {name: [] for name in iconset.palette}
     for i, icon in enumerate(iconset.icons):
         groups.setdefault(icon.color_name or icon.color, []).append(i)
     per_color = []
-    for name, members in groups.items():
+    for name, members in groups.items() if "colour" in wanted else ():
         if not members:
             continue
         moving = np.zeros(n, dtype=bool)
@@ -752,14 +1036,46 @@ def suggest(
                 safe=engine.answer(moving, precision, per_canvas_needed=False),
             )
         )
+        tick(1)
 
-    # Icons of one style (source, configured alpha) get the same answer, unless
-    # an exemption names an icon; then every icon is asked on its own.
-    share = not any(e.icon is not None for e in engine.policy.exemptions)
-    cache: dict[tuple[int, float], tuple[str, SafeAlpha]] = {}
+    per_pair = []
+    if "pair" in wanted:
+        asked = {tuple(sorted(p)) for p in pairs}
+        if Rule.CONFUSION in policy.rules or Rule.CVD_CONFUSION in policy.rules:
+            only = Policy(
+                rules=policy.rules & {Rule.CONFUSION, Rule.CVD_CONFUSION},
+                warnings=frozenset(),
+                min_delta_e=policy.min_delta_e,
+                exemptions=policy.exemptions,
+            )
+            for f in findings_for(result, only):
+                if f.exemption is None and "roles" in f.numbers:
+                    asked.add(tuple(sorted(str(f.numbers["roles"]).split(",", 1))))
+        for a, b in sorted(asked):
+            members = groups.get(a, []) + groups.get(b, [])
+            if not members:
+                continue
+            moving = np.zeros(n, dtype=bool)
+            moving[members] = True
+            per_pair.append(
+                PairSuggestion(
+                    colors=(a, b),
+                    icons=tuple(engine.names[i] for i in sorted(members)),
+                    safe=engine.answer(moving, precision, per_canvas_needed=False),
+                )
+            )
+            tick(1)
+
+    # Icons of one style (the same paints at the same alpha) get the same answer,
+    # unless an exemption names an icon; then every icon is asked on its own.
+    share = not any(e.icon is not None for e in policy.exemptions)
+    styles: dict[int, list[tuple[int, float]]] = {}
+    for p, i in enumerate(engine.row_icon.tolist()):
+        styles.setdefault(i, []).append((int(engine.keys[p]), float(result.alpha[p])))
+    cache: dict[tuple[tuple[int, float], ...], tuple[str, SafeAlpha]] = {}
     per_icon = []
-    for i, icon in enumerate(iconset.icons):
-        style = (int(engine.keys[i]), float(engine.alphas[i]))
+    for i, icon in enumerate(iconset.icons if "icon" in wanted else ()):
+        style = tuple(sorted(styles.get(i, [])))
         if share and style in cache:
             rep, safe = cache[style]
             safe = _swap_names(safe, rep, icon.name)
@@ -768,15 +1084,17 @@ def suggest(
             moving[i] = True
             safe = engine.answer(moving, precision, per_canvas_needed=False)
             cache[style] = (icon.name, safe)
-        per_icon.append(IconSuggestion(icon.name, icon.color, icon.alpha, safe))
+        per_icon.append(IconSuggestion(icon.name, icon.color_name or icon.color, icon.alpha, safe))
+        tick(1)
+    empty = SafeAlpha(None, None, None, ())
     return SuggestResult(
-        theme=theme,
-        iconset=iconset,
-        policy=engine.policy,
-        threshold=engine.threshold,
+        audit=result,
+        policy=policy,
         alpha_max=engine.a_hi,
         precision=precision,
-        overall=overall,
+        overall=overall if overall is not None else empty,
         per_color=tuple(per_color),
         per_icon=tuple(per_icon),
+        per_pair=tuple(per_pair),
+        left_out=tuple(p.icon for p in result.problems),
     )

@@ -205,12 +205,19 @@ def first_in_luminance_band(
     return np.where(np.isinf(start), np.nan, start), at_lo
 
 
-def code_crossings(source: ArrayLike, background: ArrayLike) -> NDArray[np.float64]:
-    """Coefficients at which a channel's linear value crosses each code threshold.
+def code_crossings(
+    source: ArrayLike, background: ArrayLike, opacity: ArrayLike = 1.0
+) -> NDArray[np.float64]:
+    """Coefficients at which a channel's displayed value crosses each code threshold.
 
-    Returns shape ``(..., 255)`` for scalar channels ``source``/``background``
-    (any matching shape): entry ``n`` is ``(decode((n + 0.5)/255) - b) / (s - b)``,
-    ``nan`` where ``s == b`` (the channel never moves).
+    The displayed channel is ``b + o (clip(b + a (s - b)) - b)`` (a paint at
+    opacity ``o``, :func:`~alpha_audit.color.composite.composite_coverage`):
+    linear in ``a`` with slope ``o (s - b)`` until the raw value clips, then
+    constant.  Returns shape ``(..., 255)`` for scalar channels (any matching
+    shape): entry ``n`` is ``(decode((n + 0.5)/255) - b) / (o (s - b))``;
+    ``nan`` where the channel never moves (``s == b`` or ``o == 0``), ``inf``
+    for a threshold the channel never reaches because it clips (or saturates
+    at ``b + o (1 - b)`` / ``(1 - o) b``) first.
 
     >>> a = code_crossings(0.5, 0.0)
     >>> bool(np.all(np.diff(a) > 0))
@@ -218,9 +225,13 @@ def code_crossings(source: ArrayLike, background: ArrayLike) -> NDArray[np.float
     """
     s = np.asarray(source, dtype=np.float64)[..., np.newaxis]
     b = np.asarray(background, dtype=np.float64)[..., np.newaxis]
-    d = s - b
+    o = np.asarray(opacity, dtype=np.float64)[..., np.newaxis]
+    d = o * (s - b)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # subnormal d -> inf
-        return np.where(d != 0, (CODE_THRESHOLDS - b) / d, np.nan)
+        at = np.where(d != 0, (CODE_THRESHOLDS - b) / d, np.nan)
+        # Past the clip point the channel stops: thresholds beyond it are never crossed.
+        clip = np.where(s > b, (1.0 - b) / (s - b), np.where(s < b, -b / (s - b), np.inf))
+    return np.where(np.isfinite(at) & (at > clip), np.inf, at)
 
 
 @dataclass(frozen=True)
@@ -253,15 +264,19 @@ class CodeTimeline:
 
 
 def code_timeline(
-    source: ArrayLike, background: ArrayLike, a_lo: float, a_hi: float
+    source: ArrayLike,
+    background: ArrayLike,
+    a_lo: float,
+    a_hi: float,
+    opacity: ArrayLike = 1.0,
 ) -> CodeTimeline:
-    """Exact 8-bit codes of channels ``clip(b + a (s - b))`` for ``a`` in ``[a_lo, a_hi]``.
+    """Exact 8-bit codes of the channels ``b + o (clip(b + a (s - b)) - b)``, ``a_lo <= a <= a_hi``.
 
-    ``source`` and ``background`` are flat arrays of single channels ``(R,)``.
-    Channel codes are monotone step functions of ``a``; they change only at
-    :func:`code_crossings`, so between consecutive events (of all ``R``
-    channels together) every code is constant.  At an event the encoded value
-    is exactly half-way, and the code is the even neighbour, as ``np.rint``.
+    ``source``, ``background`` (and ``opacity``) are flat arrays of single
+    channels ``(R,)``.  Channel codes are monotone step functions of ``a``; they
+    change only at :func:`code_crossings`, so between consecutive events (of all
+    ``R`` channels together) every code is constant.  At an event the encoded
+    value is exactly half-way, and the code is the even neighbour, as ``np.rint``.
 
     >>> t = code_timeline([0.5], [0.0], 1.0, 1.02)  # one step, 188 -> 189, at a = 1.0118
     >>> t.at_points[0].tolist(), t.between[0].tolist()
@@ -269,8 +284,9 @@ def code_timeline(
     """
     s = np.asarray(source, dtype=np.float64).reshape(-1)
     b = np.asarray(background, dtype=np.float64).reshape(-1)
-    crossings = code_crossings(s, b)  # (R, 255)
-    d = (s - b)[:, np.newaxis]
+    o = np.broadcast_to(np.asarray(opacity, dtype=np.float64), s.shape)
+    crossings = code_crossings(s, b, o)  # (R, 255)
+    d = (o * (s - b))[:, np.newaxis]
     inside = (crossings >= a_lo) & (crossings <= a_hi)
     points = np.unique(np.concatenate([crossings[inside], [a_lo, a_hi]]))
     rows, cols = np.nonzero(inside)
@@ -282,11 +298,12 @@ def code_timeline(
     with np.errstate(invalid="ignore"):
         below = np.sum(crossings < a_lo, axis=1, keepdims=True)  # thresholds passed before a_lo
         above = np.sum(crossings > a_hi, axis=1, keepdims=True)  # ... not yet passed at a_hi
-    # Rising: code(a) = #{crossings < a}.  Falling: code(a) = #{crossings > a}.
+    # Rising: code(a) = #{crossings < a}.  Falling: code(a) = #{crossings > a} (a threshold
+    # never reached, inf, stays below the value).
     strictly_before = np.where(rising, below + upto - events, above + total - upto)
     between = np.where(rising, below + upto[:, :-1], above + total - upto[:, :-1])
     at_points = np.where(events > 0, strictly_before + strictly_before % 2, strictly_before)
-    still = to_8bit(b).astype(np.int64)[:, np.newaxis]  # s == b: the code never changes
+    still = to_8bit(b).astype(np.int64)[:, np.newaxis]  # the code never changes
     at_points = np.where(rising | falling, at_points, still)
     between = np.where(rising | falling, between, still)
     return CodeTimeline(points=points, at_points=at_points, between=between)

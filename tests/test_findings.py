@@ -16,21 +16,19 @@ from alpha_audit.color import (
 )
 from alpha_audit.color.coverage import CoverageStats
 from alpha_audit.errors import InputError, UsageError
+from alpha_audit.findings import findings_for
 from alpha_audit.load.paint_masks import IconPaints, PaintCoverage, PaintSet, measure_paints
 from alpha_audit.load.paints import CURRENT_COLOR, Paint, PaintGroup, SvgPaints
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
-from alpha_audit.paint_audit import (
-    audit_paints,
-    check_pipeline,
-    paint_findings,
-    resolve_pipeline,
-)
-from alpha_audit.policy import Policy, Rule
+from alpha_audit.policy import Policy
+from alpha_audit.rows import audit, check_pipeline, resolve_pipeline
+from alpha_audit.rules import Rule
 
 
 def find(result, rules, **limits):  # type: ignore[no-untyped-def]
     """Findings of the named rules with the policy's limits."""
-    return paint_findings(result, Policy(rules=frozenset(Rule(r) for r in rules), **limits))
+    policy = Policy(rules=frozenset(Rule(r) for r in rules), warnings=frozenset(), **limits)
+    return findings_for(result, policy)
 
 
 LIGHT = Theme("primer", (Canvas("light-default", "#ffffff"), Canvas("light-muted", "#f6f8fa")))
@@ -68,7 +66,7 @@ def test_primer_severe_and_danger_confuse_at_1_15() -> None:
         Icon("stop", "s.svg", "#d1242f", 1.15, color_name="danger"),
     ]
     iconset, paints = painted(icons)
-    result = audit_paints(LIGHT, iconset, paints)
+    result = audit(LIGHT, iconset, paints)
     found = find(result, {"confusion"})
     assert [(f.rule, f.canvas) for f in found] == [
         ("confusion", "light-default"),
@@ -81,12 +79,12 @@ def test_primer_severe_and_danger_confuse_at_1_15() -> None:
     assert set(first.icons) == {"alert", "stop"}
     # at alpha 1 they are told apart: no finding
     iconset1, paints1 = painted([Icon(i.name, i.file, i.color, 1.0, i.color_name) for i in icons])
-    assert find(audit_paints(LIGHT, iconset1, paints1), {"confusion"}) == []
+    assert find(audit(LIGHT, iconset1, paints1), {"confusion"}) == []
 
 
 def test_slate_500_drifts_29_5_at_1_2_on_white() -> None:
     iconset, paints = painted([Icon("muted", "m.svg", "#64748b", 1.2)])
-    result = audit_paints(Theme("w", (Canvas("white", "#ffffff"),)), iconset, paints)
+    result = audit(Theme("w", (Canvas("white", "#ffffff"),)), iconset, paints)
     (row,) = result.rows()
     assert row.output == "#00195d"
     assert row.drift == pytest.approx(29.5, abs=0.05)
@@ -107,7 +105,7 @@ def test_slate_500_drifts_29_5_at_1_2_on_white() -> None:
     assert find(result, {"drift"}, max_drift=30) == []
     assert find(result, {"lock"}) == []
     locked_set = replace(iconset, locked=frozenset({"muted"}))
-    locked = find(audit_paints(result.theme, locked_set, paints), {"lock"})
+    locked = find(audit(result.theme, locked_set, paints), {"lock"})
     assert [f.rule for f in locked] == [Rule.LOCK]
 
 
@@ -116,7 +114,7 @@ def test_fixed_colour_is_audited_as_itself_with_a_finding() -> None:
         [Icon("stop", "s.svg", "#0969da", 1.0)],
         groups={"stop": [(CURRENT_COLOR, 1.0), ("#ff0000", 1.0)]},
     )
-    result = audit_paints(Theme("w", (Canvas("white", "#ffffff"),)), iconset, paints)
+    result = audit(Theme("w", (Canvas("white", "#ffffff"),)), iconset, paints)
     rows = list(result.rows())
     assert [(r.paint, r.source, r.fixed) for r in rows] == [
         (CURRENT_COLOR, "#0969da", False),
@@ -126,7 +124,8 @@ def test_fixed_colour_is_audited_as_itself_with_a_finding() -> None:
         float(contrast_ratio(hex_to_linear("#ff0000"), np.ones(3)))
     )
     (finding,) = find(result, {"fixed-colour"})
-    assert finding.paint == "#ff0000" and finding.line == 3 and "will not follow" in finding.message
+    assert finding.numbers["paint"] == "#ff0000" and "(line 3)" in finding.numbers["element"]
+    assert "will not follow" in finding.message
 
 
 def test_thirty_percent_disc_uses_the_coverage_form() -> None:
@@ -134,7 +133,7 @@ def test_thirty_percent_disc_uses_the_coverage_form() -> None:
         [Icon("disc", "d.svg", "#000000", 1.2)], groups={"disc": [("#000000", 0.3)]}
     )
     canvas = hex_to_linear("#ffffff")
-    result = audit_paints(Theme("w", (Canvas("white", "#ffffff"),)), iconset, paints)
+    result = audit(Theme("w", (Canvas("white", "#ffffff"),)), iconset, paints)
     (row,) = result.rows()
     by_hand = 0.3 * np.clip(canvas + 1.2 * (np.zeros(3) - canvas), 0, 1) + 0.7 * canvas
     assert row.contrast == pytest.approx(float(contrast_ratio(by_hand, canvas)), rel=1e-12)
@@ -145,12 +144,12 @@ def test_thirty_percent_disc_uses_the_coverage_form() -> None:
 def test_css_pipeline_at_0_6_is_the_gamma_blend_and_refuses_1_2(tmp_path: Path) -> None:
     iconset, paints = painted([Icon("a", "a.svg", "#ee7733", 0.6)])
     white = Theme("w", (Canvas("white", "#ffffff"),))
-    css = next(audit_paints(white, iconset, paints, pipeline="css").rows())
-    linear = next(audit_paints(white, iconset, paints).rows())
+    css = next(audit(white, iconset, paints, pipeline="css").rows())
+    linear = next(audit(white, iconset, paints).rows())
     assert (css.output, css.pipeline) == ("#f5ad85", "css")
     assert (linear.output, linear.pipeline) == ("#f5bdad", "linear")
     with pytest.raises(UsageError, match=r"`alpha` 1.2 cannot be drawn by pipeline css"):
-        audit_paints(white, iconset, paints, alpha=1.2, pipeline="css")
+        audit(white, iconset, paints, alpha=1.2, pipeline="css")
     with pytest.raises(InputError, match=r"'a' has alpha 1.2, which pipeline css.*export per-the"):
         check_pipeline(iconset.with_alpha(1.2), "css")
     check_pipeline(iconset.with_alpha(1.2), "linear")  # fine in linear light
@@ -166,7 +165,7 @@ def test_resolve_pipeline_precedence_and_unknown_names() -> None:
 def test_thin_strokes_and_size_contrast() -> None:
     iconset, paints = painted([Icon("x", "x.svg", "#57606a", 1.0)], coverage=THIN, sizes=(16, 48))
     white = Theme("w", (Canvas("white", "#ffffff"),))
-    result = audit_paints(white, iconset, paints)
+    result = audit(white, iconset, paints)
     (row,) = result.rows()
     canvas = hex_to_linear("#ffffff")
     expected = float(
@@ -186,7 +185,7 @@ def test_cvd_confusion_finds_red_green_only_under_protanopia() -> None:
         Icon("ok", "o.svg", "#1a7f37", 1.2, color_name="success"),
     ]
     iconset, paints = painted(icons)
-    result = audit_paints(Theme("w", (Canvas("white", "#ffffff"),)), iconset, paints)
+    result = audit(Theme("w", (Canvas("white", "#ffffff"),)), iconset, paints)
     assert find(result, {"confusion"}) == []
     found = find(result, {"cvd-confusion"})
     assert [f.numbers["deficiency"] for f in found] == ["protanopia"]
@@ -194,7 +193,7 @@ def test_cvd_confusion_finds_red_green_only_under_protanopia() -> None:
     assert found[0].numbers["delta_e"] == pytest.approx(4.9, abs=0.05)
     # at alpha 1 nothing changes, so neither CVD rule objects
     same = painted([Icon(i.name, i.file, i.color, 1.0, i.color_name) for i in icons])
-    assert find(audit_paints(result.theme, *same), {"cvd-confusion", "cvd-collision"}) == []
+    assert find(audit(result.theme, *same), {"cvd-confusion", "cvd-collision"}) == []
 
 
 def test_cvd_collision_is_new_at_alpha() -> None:
@@ -203,7 +202,7 @@ def test_cvd_collision_is_new_at_alpha() -> None:
         Icon("a", "a.svg", "#550000", 3.0, color_name="r"),
         Icon("b", "b.svg", "#005500", 3.0, color_name="g"),
     ]
-    result = audit_paints(Theme("w", (Canvas("white", "#ffffff"),)), *painted(icons))
+    result = audit(Theme("w", (Canvas("white", "#ffffff"),)), *painted(icons))
     found = find(result, {"cvd-collision"})
     assert {f.numbers["deficiency"] for f in found} == {"protanopia", "deuteranopia", "tritanopia"}
     assert all(f.numbers["output"] == "#000000" and set(f.icons) == {"a", "b"} for f in found)
@@ -220,7 +219,7 @@ def test_end_to_end_with_rendered_masks(tmp_path: Path) -> None:
     icon = Icon("stop", tmp_path / "stop.svg", "#0969da", 1.0)
     iconset = IconSet("set", (icon,), sizes=(16, 48))
     paints = measure_paints([("stop", icon.file)], iconset.sizes)
-    result = audit_paints(Theme("w", (Canvas("white", "#ffffff"),)), iconset, paints)
+    result = audit(Theme("w", (Canvas("white", "#ffffff"),)), iconset, paints)
     rows = list(result.rows())
     assert [r.paint for r in rows] == ["#ff0000", CURRENT_COLOR]
     for r in rows:
@@ -231,7 +230,7 @@ def test_end_to_end_with_rendered_masks(tmp_path: Path) -> None:
 
 
 def test_paint_audit_size_is_bounded(monkeypatch: pytest.MonkeyPatch) -> None:
-    import alpha_audit.paint_audit as pa
+    import alpha_audit.rows as pa
 
     iconset, paints = painted(
         [Icon(f"i{n}", f"{n}.svg", "#0969da", 1.0) for n in range(4)], sizes=(16, 24, 48)
@@ -239,6 +238,6 @@ def test_paint_audit_size_is_bounded(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(pa, "MAX_SIZE_CELLS", 4 * 2 * 3 - 1)
     two = Theme("t", (Canvas("a", "#ffffff"), Canvas("b", "#000000")))
     with pytest.raises(InputError, match="4 paints x 2 canvases x 3 sizes is more than"):
-        audit_paints(two, iconset, paints)
+        audit(two, iconset, paints)
     monkeypatch.setattr(pa, "MAX_SIZE_CELLS", 4 * 2 * 3)
-    assert len(list(audit_paints(two, iconset, paints).rows())) == 8
+    assert len(list(audit(two, iconset, paints).rows())) == 8

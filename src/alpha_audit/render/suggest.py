@@ -1,6 +1,6 @@
 """Reports for ``alpha-audit suggest``: pure functions of a :class:`SuggestResult`.
 
-``table`` (rich, fixed width), ``json`` (schema ``alpha-audit.suggest/1``,
+``table`` (rich, fixed width), ``json`` (schema ``alpha-audit.suggest/2``,
 documented in ``docs/suggest.md``) and ``markdown`` (a pull-request comment).
 Output order is stable: canvases in theme order, colours in palette order,
 icons in manifest order.
@@ -25,7 +25,7 @@ from alpha_audit.render.common import (
     shorten_names,
     to_text,
 )
-from alpha_audit.suggest.engine import Limit, SafeAlpha, SuggestResult
+from alpha_audit.results import Limit, SafeAlpha, SuggestResult
 
 __all__ = [
     "SCHEMA",
@@ -35,7 +35,7 @@ __all__ = [
     "suggest_document",
 ]
 
-SCHEMA = "alpha-audit.suggest/1"
+SCHEMA = "alpha-audit.suggest/2"
 _MAX_NAMES = 3  # icon names shown per cell in table and markdown; JSON has all
 
 
@@ -58,7 +58,7 @@ def _safe(safe: SafeAlpha) -> dict[str, Any]:
 
 
 def suggest_document(result: SuggestResult) -> dict[str, Any]:
-    """The JSON document (``alpha-audit.suggest/1``) as plain data."""
+    """The JSON document (``alpha-audit.suggest/2``) as plain data."""
     policy = result.policy
     return {
         "schema": SCHEMA,
@@ -83,10 +83,15 @@ def suggest_document(result: SuggestResult) -> dict[str, Any]:
             {"color": c.color, "source": c.source, "icons": list(c.icons), **_safe(c.safe)}
             for c in result.per_color
         ],
+        "per_pair": [
+            {"colors": list(c.colors), "icons": list(c.icons), **_safe(c.safe)}
+            for c in result.per_pair
+        ],
         "per_icon": [
             {"icon": i.icon, "color": i.color, "configured": i.configured, **_safe(i.safe)}
             for i in result.per_icon
         ],
+        "left_out": list(result.left_out),
     }
 
 
@@ -176,13 +181,32 @@ def render_table(result: SuggestResult, options: RenderOptions) -> str:
         [[f"{c.color} {c.source}", _alpha(c.safe.alpha, p), *cells(c.safe.limit)]
          for c in result.per_color],
     )  # fmt: skip
+    pairs = table(
+        "Per pair of roles that pull each other together (both move)",
+        "colours",
+        [[" and ".join(c.colors), _alpha(c.safe.alpha, p), *cells(c.safe.limit)]
+         for c in result.per_pair],
+    )  # fmt: skip
     icons = table(
         "Per icon (the others keep their alpha)",
         "icon",
         [[i.icon, _alpha(i.safe.alpha, p), *cells(i.safe.limit)] for i in result.per_icon],
     )
-    parts += [canvases, colors, icons]
+    if result.overall.per_canvas:
+        parts.append(canvases)
+    parts += [t for t, rows in ((colors, result.per_color), (pairs, result.per_pair),
+                               (icons, result.per_icon)) if rows]  # fmt: skip
+    if result.left_out:
+        parts.append(Text(_left_out(result)))
     return to_text(Group(*parts), options)
+
+
+def _left_out(result: SuggestResult) -> str:
+    n = len(result.left_out)
+    return (
+        f"{n} icon{'s' if n != 1 else ''} could not be rendered and are left out, as check "
+        f"leaves them out: {_names(result.left_out)}"
+    )
 
 
 def render_markdown(result: SuggestResult, options: RenderOptions) -> str:
@@ -195,6 +219,8 @@ def render_markdown(result: SuggestResult, options: RenderOptions) -> str:
     ]
 
     def section(title: str, first: str, rows: list[tuple[str, float | None, Limit | None]]) -> None:
+        if not rows:
+            return
         lines.extend(["", f"**{title}**", "", f"| {first} | alpha | limited by |", "|---|--:|---|"])
         for name, alpha, limit in rows:
             why = escape_markdown(_why(limit, a_max))
@@ -206,10 +232,17 @@ def render_markdown(result: SuggestResult, options: RenderOptions) -> str:
     section(
         "Per colour", "colour", [(c.color, c.safe.alpha, c.safe.limit) for c in result.per_color]
     )
+    section(
+        "Per pair of roles (both move)",
+        "colours",
+        [(" and ".join(c.colors), c.safe.alpha, c.safe.limit) for c in result.per_pair],
+    )
     section("Per icon", "icon", [(i.icon, i.safe.alpha, i.safe.limit) for i in result.per_icon])
+    if result.left_out:
+        lines += ["", escape_markdown(_left_out(result))]
     return "\n".join(lines) + "\n"
 
 
 def render_json(result: SuggestResult, options: RenderOptions) -> str:
-    """The ``alpha-audit.suggest/1`` document (``options`` change nothing)."""
+    """The ``alpha-audit.suggest/2`` document (``options`` change nothing)."""
     return dumps(suggest_document(result))

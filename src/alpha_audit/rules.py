@@ -1,0 +1,250 @@
+"""Every gate rule, once: its name, report ids, default, help and fix wording.
+
+One :class:`RuleSpec` per :class:`Rule` drives everything about it: the
+``--fail-on`` choices and their help, the default policy, SARIF rule ids
+(opaque and stable), GitLab Code Quality severities, the docs table
+(``docs/rules.md``, checked by a test) and the advice every report prints.
+What a rule *objects to* is stated in :mod:`alpha_audit.policy` (numbers) and
+:mod:`alpha_audit.findings` (findings); this module only names and words it.
+"""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Iterable
+from dataclasses import dataclass
+from enum import StrEnum
+from typing import Literal
+
+from alpha_audit.errors import UsageError
+
+__all__ = [
+    "DEFAULT_RULES",
+    "DEFAULT_WARNINGS",
+    "RULES",
+    "Level",
+    "Rule",
+    "RuleSpec",
+    "did_you_mean",
+    "rules_table",
+]
+
+
+class Rule(StrEnum):
+    """A kind of finding the gate can fail on (or report)."""
+
+    LOSS = "loss"
+    BELOW_THRESHOLD = "below-threshold"
+    NEWLY_FAILING = "newly-failing"
+    COLLISION = "collision"
+    NEW_COLLISION = "new-collision"
+    SEPARATION = "separation"
+    UNRENDERABLE = "unrenderable"
+    FIXED_COLOUR = "fixed-colour"
+    NOT_AUDITED = "not-audited"
+    DRIFT = "drift"
+    LOCK = "lock"
+    CONFUSION = "confusion"
+    THIN_STROKES = "thin-strokes"
+    CVD_COLLISION = "cvd-collision"
+    CVD_CONFUSION = "cvd-confusion"
+
+    @classmethod
+    def parse(cls, text: str, flag: str | None = None) -> Rule:
+        """A rule by name; unknown names raise :class:`UsageError` listing the valid ones."""
+        name = text.strip().lower()
+        try:
+            return cls(name)
+        except ValueError:
+            names = [r.value for r in cls]
+            where = f"{flag}: " if flag else ""
+            raise UsageError(
+                f"{where}unknown rule {text!r}; {did_you_mean(name, names)}"
+                f"use one of: {', '.join(names)}"
+            ) from None
+
+
+class Level(StrEnum):
+    """What the gate does with a rule's findings: nothing, report them, or fail on them."""
+
+    OFF = "off"
+    WARN = "warn"
+    FAIL = "fail"
+
+
+Severity = Literal["info", "minor", "major"]
+
+
+@dataclass(frozen=True)
+class RuleSpec:
+    """Everything said about one rule.
+
+    ``sarif_id`` is opaque and stable (SARIF 2.1.0, 3.49.3: ``ruleId`` should
+    not be the readable name, which lives in ``name``): never renumber,
+    dashboards key on it.  ``severity`` is GitLab Code Quality's; ``default``
+    what the gate does without a policy; ``help`` one line for ``--help`` and
+    code-scanning dashboards; ``fix`` what to do about a finding.
+    """
+
+    rule: Rule
+    sarif_id: str
+    severity: Severity
+    default: Level
+    help: str
+    fix: str
+
+
+# Contrast that no longer meets the threshold is what the gate exists for;
+# collisions and separation make icons hard to tell apart, a lesser harm.
+_SPECS = (
+    RuleSpec(
+        Rule.LOSS,
+        "AA001",
+        "major",
+        Level.FAIL,
+        "The paint's WCAG contrast on this canvas is lower at its alpha than at alpha 1.",
+        "Lower the icon's `alpha` (`alpha-audit suggest` gives the largest safe value per "
+        "colour), or exempt the canvas with a reason.",
+    ),
+    RuleSpec(
+        Rule.BELOW_THRESHOLD,
+        "AA002",
+        "major",
+        Level.OFF,
+        "The paint is below the contrast threshold on this canvas at its alpha.",
+        "Raise the icon's `alpha` above 1 where that helps, or pick a source colour with "
+        "more contrast on this canvas.",
+    ),
+    RuleSpec(
+        Rule.NEWLY_FAILING,
+        "AA003",
+        "major",
+        Level.FAIL,
+        "The paint meets the threshold at alpha 1 but not at its alpha.",
+        "Lower the icon's `alpha` back towards 1 (`alpha-audit suggest` gives the largest "
+        "value that still passes).",
+    ),
+    RuleSpec(
+        Rule.COLLISION,
+        "AA004",
+        "minor",
+        Level.OFF,
+        "Distinct colours give the same 8-bit output on this canvas.",
+        "Move one of the colliding colours apart, or lower the set's `alpha`.",
+    ),
+    RuleSpec(
+        Rule.NEW_COLLISION,
+        "AA005",
+        "minor",
+        Level.FAIL,
+        "Distinct colours collide at their alpha but not at alpha 1.",
+        "Lower the set's `alpha` below the value `alpha-audit suggest` reports, or move one "
+        "of the colours apart.",
+    ),
+    RuleSpec(
+        Rule.SEPARATION,
+        "AA006",
+        "minor",
+        Level.OFF,
+        "Two of the set's colours are closer than the minimum CIEDE2000.",
+        "Move the two closest colours apart, or lower the `alpha` that pulls them together.",
+    ),
+    RuleSpec(
+        Rule.UNRENDERABLE,
+        "AA007",
+        "major",
+        Level.WARN,
+        "The icon's SVG could not be rendered.",
+        "Fix the SVG file (the message names the problem) or remove the icon.",
+    ),
+    RuleSpec(
+        Rule.FIXED_COLOUR,
+        "AA008",
+        "minor",
+        Level.WARN,
+        "The SVG hard-codes a paint colour that will not follow the theme.",
+        "Paint with `currentColor` (or a theme token) instead of the fixed colour, or exempt "
+        "the icon with a reason if the colour is meant to stay.",
+    ),
+    RuleSpec(
+        Rule.NOT_AUDITED,
+        "AA009",
+        "info",
+        Level.OFF,
+        "The SVG draws something the audit cannot judge (gradient, text, image).",
+        "Audit the element by hand, or draw it with plain fills and strokes the audit can read.",
+    ),
+    RuleSpec(
+        Rule.DRIFT,
+        "AA010",
+        "minor",
+        Level.OFF,
+        "The paint's colour moves further than max-drift (CIEDE2000) at its alpha.",
+        "Lower the icon's `alpha` towards 1 (drift is zero at 1), or raise `max-drift` if the "
+        "shift is acceptable.",
+    ),
+    RuleSpec(
+        Rule.LOCK,
+        "AA011",
+        "major",
+        Level.OFF,
+        "A locked brand colour changes by more than one just-noticeable difference.",
+        "Keep locked brand colours at `alpha: 1`, or remove the lock.",
+    ),
+    RuleSpec(
+        Rule.CONFUSION,
+        "AA012",
+        "major",
+        Level.FAIL,
+        "Two palette roles told apart at alpha 1 are no longer told apart.",
+        "Lower the `alpha` that pulls the two roles together, or move one role's colour "
+        "further from the other.",
+    ),
+    RuleSpec(
+        Rule.THIN_STROKES,
+        "AA013",
+        "minor",
+        Level.OFF,
+        "At a raster size the antialiased paint falls below min-size-contrast.",
+        "Use a heavier stroke or a larger size, or a source colour with more contrast.",
+    ),
+    RuleSpec(
+        Rule.CVD_COLLISION,
+        "AA014",
+        "minor",
+        Level.OFF,
+        "Distinct colours newly look identical under simulated colour blindness.",
+        "Move the two colours apart in lightness, not only in hue.",
+    ),
+    RuleSpec(
+        Rule.CVD_CONFUSION,
+        "AA015",
+        "minor",
+        Level.OFF,
+        "Two roles are no longer told apart under simulated colour blindness.",
+        "Separate the two roles in lightness (CVD keeps lightness), or lower the `alpha`.",
+    ),
+)
+RULES: dict[Rule, RuleSpec] = {spec.rule: spec for spec in _SPECS}
+DEFAULT_RULES = frozenset(r for r, s in RULES.items() if s.default is Level.FAIL)
+DEFAULT_WARNINGS = frozenset(r for r, s in RULES.items() if s.default is Level.WARN)
+
+
+def did_you_mean(name: str, known: Iterable[str]) -> str:
+    """``"did you mean 'x'? "`` for the closest known name, else ``""``."""
+    close = difflib.get_close_matches(name, list(known), n=1)
+    return f"did you mean {close[0]!r}? " if close else ""
+
+
+def rules_table() -> str:
+    """The Markdown table of every rule (``docs/rules.md`` holds it; a test compares)."""
+    lines = [
+        "| rule | SARIF id | default | GitLab severity | what it objects to | the fix |",
+        "| --- | --- | --- | --- | --- | --- |",
+    ]
+    for s in _SPECS:
+        lines.append(
+            f"| `{s.rule.value}` | {s.sarif_id} | {s.default.value} | {s.severity} | "
+            f"{s.help} | {s.fix} |"
+        )
+    return "\n".join(lines) + "\n"
