@@ -116,7 +116,7 @@ def test_figma_translucent_colour_is_an_error_where_alpha_is_not_an_opacity(tmp_
 
 def test_tailwind_theme_with_none_hue_and_dark_override() -> None:
     modes = load_token_modes(REPO / "examples/tokens/tailwind/theme.css")
-    assert modes.kind == "tailwind" and list(modes.modes) == ["default", "dark"]
+    assert modes.kind == "css" and list(modes.modes) == ["default", "dark"]
     tokens = modes.modes["default"]
     grey = token_color(tokens["color.neutral.400"])
     assert grey.encoded[0] == pytest.approx(grey.encoded[1]) == pytest.approx(grey.encoded[2])
@@ -134,8 +134,10 @@ def test_tailwind_theme_with_none_hue_and_dark_override() -> None:
 def test_tailwind_var_to_unknown_property(tmp_path: Path) -> None:
     css = tmp_path / "t.css"
     css.write_text("@theme {\n  --color-a: var(--color-nope);\n}\n")
-    with pytest.raises(InputError, match=r"t\.css:2: color\.a: var\(--color-nope\)"):
-        load_token_modes(css)
+    css.write_text("@theme {\n  --color-a: var(--color-nope);\n  --color-b: red;\n}\n")
+    token = load_token_modes(css).modes["default"]["color.a"]  # loads: nothing selects it yet
+    with pytest.raises(InputError, match=r"t\.css:2: color\.a: var\(--color-nope\) names"):
+        token_color(token)
 
 
 def test_tokens_studio_single_file_themes(tmp_path: Path) -> None:

@@ -1,5 +1,5 @@
 """Design tokens as input: DTCG 2025.10 (with the Resolver Module), Tokens Studio,
-Style Dictionary, Figma Variables and Tailwind v4 ``@theme`` CSS.
+Style Dictionary, Figma Variables and CSS (Tailwind v4 ``@theme``, palette and theme sheets).
 
 :func:`load_token_modes` detects the format from the file and returns
 :class:`TokenModes`: resolved tokens per mode, each remembering the file and
@@ -19,7 +19,7 @@ from alpha_audit.load.tokens.jsondoc import JsonDoc, load_json, parse_json
 from alpha_audit.load.tokens.model import Token, TokenModes
 from alpha_audit.load.tokens.resolver import is_resolver, modes_from_resolver
 from alpha_audit.load.tokens.studio import is_studio_file, modes_from_studio
-from alpha_audit.load.tokens.tailwind import modes_from_tailwind
+from alpha_audit.load.tokens.stylesheet import modes_from_stylesheet
 
 __all__ = [
     "TOKEN_FORMATS",
@@ -41,7 +41,8 @@ TOKEN_FORMATS = (
     "tokens-studio",
     "style-dictionary",
     "figma",
-    "tailwind",
+    "css",
+    "tailwind",  # the CSS reader, under the name it had first
 )
 
 
@@ -77,8 +78,8 @@ def load_token_modes(
     """
     p = Path(path)
     bound = Path(root).resolve() if root is not None else p.resolve().parent
-    if format == "tailwind" or (format == "auto" and p.suffix.lower() == ".css"):
-        return modes_from_tailwind(p)
+    if format in ("css", "tailwind") or (format == "auto" and p.suffix.lower() == ".css"):
+        return modes_from_stylesheet(p)
     doc = load_json(p)
     kind = detect_format(doc) if format == "auto" else format
     if kind == "figma":
