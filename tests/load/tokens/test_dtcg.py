@@ -72,7 +72,10 @@ def test_ref_cycle_is_an_error() -> None:
 
 
 def test_token_without_type_is_an_error_where_selected_with_file_line_and_path() -> None:
-    text = '{\n  "size": {\n    "small": { "$value": "4px" }\n  },\n  "c": {"$type": "color", "$value": "#fff"}\n}'
+    text = (
+        '{\n  "size": {\n    "small": { "$value": "4px" }\n  },\n'
+        '  "c": {"$type": "color", "$value": "#fff"}\n}'
+    )
     tokens = _tokens(text)  # an untyped radius nobody selects does not stop the load
     assert token_color(tokens["c"]).encoded == (1.0, 1.0, 1.0)
     with pytest.raises(InputError, match=r"no \$type") as info:

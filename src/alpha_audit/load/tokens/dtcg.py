@@ -441,7 +441,7 @@ class TokenTree:
         return value, None, size
 
 
-class _Unresolved(Exception):  # noqa: N818 - a signal inside the resolver, never raised out
+class _Unresolved(Exception):
     """A reference this file cannot resolve: the token becomes a :attr:`Token.problem`."""
 
     def __init__(self, problem: str, line: int | None) -> None:

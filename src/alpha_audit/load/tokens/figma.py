@@ -53,7 +53,7 @@ def is_figma(data: Any) -> bool:
     return _meta(data) is not None
 
 
-class _Missing(Exception):  # noqa: N818 - a signal inside the resolver
+class _Missing(Exception):
     def __init__(self, problem: str, place: TokenPlace) -> None:
         super().__init__(problem)
         self.problem = problem
