@@ -263,7 +263,10 @@ def _match(value: str, depth: int) -> Color:
     if depth < _MAX_NESTING and "(" in value:
         import tinycss2
 
-        node = tinycss2.parse_one_component_value(value)
+        try:
+            node = tinycss2.parse_one_component_value(value)
+        except RecursionError as exc:
+            raise ColorSyntaxError(f"{value[:40]!r} is nested too deeply; {_ALLOWED}") from exc
         if node.type == "function":
             args = [t for t in node.arguments if t.type not in ("whitespace", "comment")]
             if node.lower_name == "color-mix":
@@ -418,7 +421,7 @@ def color_from_components(
     (0.0, 1.0, 0.0)
     """
     shown = text or f"{space} {list(components)}"
-    if space not in CSS_SPACES or space == "xyz":
+    if not isinstance(space, str) or space not in CSS_SPACES or space == "xyz":
         allowed = ", ".join(s for s in CSS_SPACES if s != "xyz")
         raise ColorSyntaxError(f"colorSpace {space!r} is not one of {allowed}")
     if len(components) != 3:

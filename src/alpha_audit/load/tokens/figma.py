@@ -83,7 +83,24 @@ def modes_from_figma(doc: JsonDoc, *, collection: str | None = None) -> TokenMod
                 line=doc.line((*top, "variableCollections")),
                 path=None,
             )
-        return {str(m["name"]): str(m["modeId"]) for m in c["modes"] if isinstance(m, dict)}
+        modes = {}
+        for m in c["modes"]:
+            if not isinstance(m, dict) or not isinstance(m.get("name"), str) or "modeId" not in m:
+                raise token_error(
+                    f"collection {cid!r} has a mode without a name and a modeId",
+                    file=doc.path,
+                    line=doc.line((*top, "variableCollections", cid)),
+                    path=None,
+                )
+            modes[m["name"]] = str(m["modeId"])
+        if not modes:
+            raise token_error(
+                f"collection {cid!r} has no modes",
+                file=doc.path,
+                line=doc.line((*top, "variableCollections", cid)),
+                path=None,
+            )
+        return modes
 
     if collection is None:
         main = max(collections, key=lambda cid: len(coll_modes(cid)))
@@ -106,12 +123,16 @@ def modes_from_figma(doc: JsonDoc, *, collection: str | None = None) -> TokenMod
         keys: JsonPath = (*top, "variables", vid)
         if mode_id is not None:
             keys = (*keys, "valuesByMode", mode_id)
-        name = variables.get(vid, {}).get("name") if isinstance(variables.get(vid), dict) else None
-        return {"file": doc.path, "line": doc.line(keys), "path": _path(name) if name else vid}
+        var = variables.get(vid)
+        name = var.get("name") if isinstance(var, dict) else None
+        shown = _path(name) if isinstance(name, str) and name else str(vid)
+        return {"file": doc.path, "line": doc.line(keys), "path": shown}
 
     def mode_for(vid: str, mode_name: str) -> str:
         var = variables[vid]
         cid = var.get("variableCollectionId")
+        if not isinstance(cid, str) or cid not in collections:
+            raise _Missing(f"names no known variableCollectionId ({cid!r:.40})", where(vid))
         modes = coll_modes(cid)
         if mode_name in modes:
             return modes[mode_name]
@@ -126,12 +147,13 @@ def modes_from_figma(doc: JsonDoc, *, collection: str | None = None) -> TokenMod
                 where(stack[-1]),
             )
         if vid in stack:
-            chain = " -> ".join(_path(variables[v]["name"]) for v in [*stack, vid])
+            chain = " -> ".join(str(where(v)["path"]) for v in [*stack, vid])
             raise token_error(f"alias cycle: {chain}", **where(stack[0]))
         if len(stack) > MAX_ALIAS_CHAIN:
             raise token_error(f"alias chain longer than {MAX_ALIAS_CHAIN}", **where(stack[0]))
         mode_id = mode_for(vid, mode_name)
-        value = variables[vid].get("valuesByMode", {}).get(mode_id)
+        by_mode = variables[vid].get("valuesByMode")
+        value = by_mode.get(mode_id) if isinstance(by_mode, dict) else None
         if isinstance(value, dict) and value.get("type") == "VARIABLE_ALIAS":
             return resolve(str(value.get("id")), mode_name, [*stack, vid])
         if value is None:
@@ -179,9 +201,9 @@ def modes_from_figma(doc: JsonDoc, *, collection: str | None = None) -> TokenMod
                 file=doc.path,
                 line=loc["line"],
                 description=var.get("description") or None,
-                chain=(_path(variables[origin]["name"]),) if origin != vid else (),
+                chain=(str(where(origin)["path"]),) if origin != vid else (),
                 alias_file=doc.path if origin != vid else None,
-                alias_line=where(vid, mode_for(vid, mode_name))["line"] if origin != vid else None,
+                alias_line=where(vid)["line"] if origin != vid else None,
             )
         modes[mode_name] = tokens
     default_id = collections[main].get("defaultModeId")

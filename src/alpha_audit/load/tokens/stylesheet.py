@@ -632,9 +632,16 @@ def _is_color(text: str) -> bool:
 
 def modes_from_stylesheet(path: str | Path) -> TokenModes:
     """Tokens per mode from a Tailwind v4 stylesheet, a palette sheet or a theme sheet."""
+    p = Path(path)
+    try:
+        return _modes(p)
+    except RecursionError as exc:  # blocks or functions nested thousands deep
+        raise InputError("CSS nested too deeply", path=p) from exc
+
+
+def _modes(p: Path) -> TokenModes:
     import tinycss2
 
-    p = Path(path)
     raw = read_capped(p, MAX_CSS_BYTES, InputError, "a stylesheet")
     try:
         text = raw.decode("utf-8-sig")
@@ -644,11 +651,8 @@ def modes_from_stylesheet(path: str | Path) -> TokenModes:
     # not (its default newlineSequences are LF and CRLF): lines would disagree.
     lf_only = "\r" not in text.replace("\r\n", "\n") and "\f" not in text
     sheet = _Sheet(p, LineIndex(text, p, "css") if lf_only else None)
-    try:
-        rules = tinycss2.parse_stylesheet(text, skip_comments=True, skip_whitespace=True)
-        _walk(sheet, rules, layers=(), scheme=None, p3=False, skip=None, depth=0)
-    except RecursionError as exc:
-        raise InputError("CSS nested too deeply", path=p) from exc
+    rules = tinycss2.parse_stylesheet(text, skip_comments=True, skip_whitespace=True)
+    _walk(sheet, rules, layers=(), scheme=None, p3=False, skip=None, depth=0)
     sheet.finish()
     names: set[str] = {d.name for part in sheet.parts for d in part.decls}
     if not any(part.mode == "default" for part in sheet.parts):
