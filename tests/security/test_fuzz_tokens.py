@@ -114,7 +114,8 @@ SOURCES: dict[str, str] = {
         ":root { --blue: oklch(55% 0.15 250); --space: 4px; --gap: var(--space); }\n"
         '[data-theme="dark"] { --color-bg: light-dark(#fff, #111); }\n'
         "@media (prefers-color-scheme: dark) { :root { --color-icon-fg: #9cf; } }\n"
-        "@supports (color: color(display-p3 1 1 1)) { :root { --blue: color(display-p3 0 .4 .8); } }\n"
+        "@supports (color: color(display-p3 1 1 1)) {\n"
+        "  :root { --blue: color(display-p3 0 .4 .8); }\n}\n"
         ".card .x { --color-bg: color-mix(in oklab, var(--blue) 8%, transparent); }\n"
     ),
 }
