@@ -165,6 +165,8 @@ def _simple_kind(simple: Any) -> tuple[str, str | None]:
     if isinstance(simple, sel.ClassSelector):
         return "mode", str(simple.class_name)
     if isinstance(simple, sel.AttributeSelector):
+        if not str(simple.lower_name).startswith("data-"):
+            return "no", None  # [role=search], [type=checkbox]: elements, not modes
         if simple.value is None or simple.operator not in ("=", "~="):
             return "filter", None  # [data-color-scheme] alone: present in every mode
         return "mode", str(simple.value)
@@ -471,7 +473,9 @@ def _applies(part: _Contribution, mode: str) -> bool:
 
 
 def _mode_names(sheet: _Sheet) -> list[str]:
-    names: dict[str, None] = {"default": None}
+    # A sheet of one theme (Primer's dark.css, Radix's blue-dark.css) has no root rule.
+    has_root = any(part.mode == "default" for part in sheet.parts) or sheet.light_dark
+    names: dict[str, None] = {"default": None} if has_root else {}
     for part in sheet.parts:
         if not part.p3:
             names.setdefault(part.mode, None)
@@ -496,6 +500,7 @@ class _Resolver:
         self.budget = budget  # shared across modes: [steps left]
         self.done: dict[str, tuple[list[Any] | None, tuple[str, ...]]] = {}
         self.active: list[str] = []
+        self.cycles: dict[str, str] = {}
 
     def count(self, n: int, name: str) -> None:
         self.budget[0] -= n
@@ -514,14 +519,12 @@ class _Resolver:
         if name in self.done:
             return self.done[name]
         if name in self.active:
-            cycle = " -> ".join(_dots(n) for n in [*self.active[self.active.index(name) :], name])
-            decl = self.props[self.active[0]]
-            raise token_error(
-                f"var() cycle: {cycle}",
-                file=self.sheet.path,
-                line=decl.line,
-                path=_dots(self.active[0]),
-            )
+            # CSS Variables 1, 2.3: every property in a cycle is invalid at
+            # computed-value time (not an error of the sheet).
+            loop = [*self.active[self.active.index(name) :], name]
+            for n in loop[:-1]:
+                self.cycles.setdefault(n, " -> ".join(_dots(x) for x in loop))
+            return None, ()
         self.active.append(name)
         try:
             decl = self.props[name]
@@ -549,6 +552,8 @@ class _Resolver:
                 line=self.props[name].line,
                 path=_dots(name),
             )
+        if name in self.cycles:
+            out = None
         self.done[name] = (out, chain)
         return out, chain
 
@@ -655,10 +660,10 @@ def _modes(p: Path) -> TokenModes:
     _walk(sheet, rules, layers=(), scheme=None, p3=False, skip=None, depth=0)
     sheet.finish()
     names: set[str] = {d.name for part in sheet.parts for d in part.decls}
-    if not any(part.mode == "default" for part in sheet.parts):
+    if not sheet.parts:
         raise InputError(
             "has no @theme block and no rule for the root element (:root, html, "
-            ":where(html)) with custom properties",
+            ":where(html)) or a theme ([data-theme=dark], .dark) with custom properties",
             path=p,
         )
     if len(names) > MAX_TOKENS:
@@ -675,7 +680,9 @@ def _modes(p: Path) -> TokenModes:
     for mode in modes:
         check_name(mode, path=p, what="mode name")
         plain = "default" if mode == "p3" else mode.removesuffix("-p3")
-        candidates = by_mode["default"] + (by_mode.get(plain, []) if plain != "default" else [])
+        candidates = by_mode.get("default", []) + (
+            by_mode.get(plain, []) if plain != "default" else []
+        )
         applied = [part for part in candidates if _applies(part, mode)]
         decls = sorted((d for part in applied for d in part.decls), key=lambda d: d.order)
         props = {d.name: d for d in decls}  # the last in cascade order wins
@@ -691,7 +698,7 @@ def _modes(p: Path) -> TokenModes:
             path=p,
         )
     skipped = {paths.get(n, _dots(n)): why for n, why in sheet.skipped.items()}
-    return TokenModes(p, "css", out, "default", notes=tuple(notes), skipped=skipped)
+    return TokenModes(p, "css", out, next(iter(out)), notes=tuple(notes), skipped=skipped)
 
 
 def _token_paths(sheet: _Sheet, names: set[str]) -> dict[str, str]:
@@ -726,7 +733,9 @@ def _token(sheet: _Sheet, resolver: _Resolver, name: str) -> Token:
     text = tinycss2.serialize(value).strip() if value is not None else ""
     path = _dots(name)
     problem = None
-    if value is None:
+    if name in resolver.cycles:
+        problem = f"var() cycle: {resolver.cycles[name]} (every property in it is invalid)"
+    elif value is None:
         problem = (
             f"{tinycss2.serialize(decl.value).strip()[:60]} names a custom property this "
             "sheet does not set (and gives no fallback)"
