@@ -63,7 +63,8 @@ PACKAGES: list[tuple[str, str, str, dict[str, list[str]]]] = [
         "dist/css/functional/themes/dark.css",
         {
             "dark": [
-                '[data-color-mode="dark"][data-dark-theme="dark"], [data-color-mode="auto"][data-light-theme="dark"]'
+                '[data-color-mode="dark"][data-dark-theme="dark"], '
+                '[data-color-mode="auto"][data-light-theme="dark"]'
             ]
         },
     ),
@@ -224,7 +225,9 @@ def main() -> int:
             flat = json_colours(json.loads(path.read_text()))
             theirs = {(m, p): v for m in modes.modes for p, v in flat.items()}
         common = [k for k in theirs if k in ours]
-        same = sum(all(abs(a - b) <= 1e-9 for a, b in zip(ours[k], theirs[k])) for k in common)
+        same = sum(
+            all(abs(a - b) <= 1e-9 for a, b in zip(ours[k], theirs[k], strict=True)) for k in common
+        )
         total += len(common)
         matched += same
         print(
@@ -232,7 +235,7 @@ def main() -> int:
             f"{len(ours)} colours loaded, {len(common)} compared, {same} match"
         )
         for k in common:
-            if not all(abs(a - b) <= 1e-9 for a, b in zip(ours[k], theirs[k])):
+            if not all(abs(a - b) <= 1e-9 for a, b in zip(ours[k], theirs[k], strict=True)):
                 print("   differs:", k, ours[k], theirs[k])
                 break
     print(f"total: {matched} of {total} compared colours match")
