@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 
 from alpha_audit.errors import InputError
 from alpha_audit.render.github import escape_data
-from alpha_audit.safe_text import UNSAFE_CATEGORIES, first_unsafe, safe_text
+from alpha_audit.safe_text import JOINERS, UNSAFE_CATEGORIES, first_unsafe, safe_text
 
 HOSTILE = [
     "\x1b]52;c;SGVsbG8=\x07",  # OSC 52: write the reviewer's clipboard
@@ -37,7 +37,7 @@ def test_hostile_strings_become_printable_one_line_utf8(text: str) -> None:
 @given(st.text())
 def test_output_never_holds_an_unsafe_character_and_safe_text_is_kept(text: str) -> None:
     out = safe_text(text)
-    assert all(unicodedata.category(ch) not in UNSAFE_CATEGORIES for ch in out)
+    assert all(ch in JOINERS or unicodedata.category(ch) not in UNSAFE_CATEGORIES for ch in out)
     if first_unsafe(text) is None:
         assert out == text
 
@@ -75,3 +75,7 @@ def test_names_and_reasons_with_unsafe_characters_are_refused(tmp_path, name: st
     with pytest.raises(InputError, match="not a usable reason") as info:
         config_from_doc(config)
     assert first_unsafe(str(info.value)) is None
+
+
+def test_emoji_joiners_are_text() -> None:
+    assert safe_text("👩\u200d💻") == "👩\u200d💻" and first_unsafe("a\u200cb") is None

@@ -35,27 +35,31 @@ class AlphaAuditError(Exception):
         line: int | None = None,
         key: str | None = None,
     ) -> None:
+        from alpha_audit.safe_text import safe_text
+
+        # Keys, paths and values come from untrusted files: ``message`` and
+        # :meth:`where` are escaped here, once, so every way of printing an
+        # error (``str()``, the CLI's one line) sends no control character.
         super().__init__(message)
-        self.message = message
+        self.message = safe_text(message)
         self.path = None if path is None else Path(path)
         self.line = line
         self.key = key
 
     def where(self) -> str:
-        """``file:line: key`` prefix, omitting what is unknown."""
+        """``file:line: key`` prefix, omitting what is unknown (escaped like the message)."""
+        from alpha_audit.safe_text import safe_text
+
         parts = []
         if self.path is not None:
             parts.append(f"{self.path}:{self.line}" if self.line else str(self.path))
         if self.key:
             parts.append(self.key)
-        return ": ".join(parts)
+        return safe_text(": ".join(parts))
 
     def __str__(self) -> str:
-        # Keys, paths and values come from untrusted files: one sanitiser for all.
-        from alpha_audit.safe_text import safe_text
-
         where = self.where()
-        return safe_text(f"{where}: {self.message}" if where else self.message)
+        return f"{where}: {self.message}" if where else self.message
 
 
 class InputError(AlphaAuditError):

@@ -8,28 +8,47 @@ text but instructions are shown as escapes instead of being sent:
   ``::stop-commands::`` line), DEL, and C1 (``U+009B`` is a one-byte CSI);
   ESC starts CSI/OSC sequences (OSC 52 writes the clipboard, OSC 8 links).
 - ``Cf`` format characters: the bidi embeddings, overrides and isolates
-  ``U+202A-202E``, ``U+2066-2069`` (Trojan Source, CVE-2021-42574), zero-width
-  joiners and the BOM.
+  ``U+202A-202E``, ``U+2066-2069`` (Trojan Source, CVE-2021-42574), the BOM and
+  the invisible tag characters.  The zero-width joiner and non-joiner
+  (``U+200D``, ``U+200C``) are not: they join emoji sequences (``👩‍💻``) and
+  shape Persian and Indic text, and steer nothing.
 - ``Cs`` lone surrogates: legal in YAML escapes, unencodable in UTF-8 (every
   report crashed with ``UnicodeEncodeError``).
 - ``Zl``/``Zp`` line and paragraph separators: new lines to some renderers.
 
 Categories are Unicode's General_Category (Unicode Standard, section 4.5),
 read through :mod:`unicodedata`.
+
+:func:`check_name` is the load-side half: every name read from any input
+(YAML names, token paths, CSS custom properties, Figma variables, Resolver
+contexts, Tokens Studio themes and sets) is refused there, with one message
+naming the file and the place, if it holds such a character.
 """
 
 from __future__ import annotations
 
 import unicodedata
 
-__all__ = ["UNSAFE_CATEGORIES", "first_unsafe", "is_safe", "safe_text"]
+__all__ = [
+    "JOINERS",
+    "MAX_NAME",
+    "UNSAFE_CATEGORIES",
+    "check_name",
+    "first_unsafe",
+    "is_safe",
+    "safe_text",
+]
 
 # Unicode General_Category values that are instructions rather than text.
 UNSAFE_CATEGORIES = frozenset({"Cc", "Cf", "Cs", "Zl", "Zp"})
+# Format characters that are text: ZERO WIDTH NON-JOINER and ZERO WIDTH JOINER
+# (Unicode Standard, section 23.2); neither is a bidi control (UAX #9, 2.1-2.7).
+JOINERS = frozenset({"\u200c", "\u200d"})
+MAX_NAME = 200  # characters: a name is a label, not a document
 
 
 def _unsafe(ch: str) -> bool:
-    return unicodedata.category(ch) in UNSAFE_CATEGORIES
+    return ch not in JOINERS and unicodedata.category(ch) in UNSAFE_CATEGORIES
 
 
 def _escape(ch: str) -> str:
@@ -75,3 +94,49 @@ def safe_text(text: object, *, newlines: bool = False) -> str:
     if is_safe(s):
         return s
     return "".join(_escape(ch) if _unsafe(ch) and not (newlines and ch == "\n") else ch for ch in s)
+
+
+def check_name(
+    text: str,
+    *,
+    path: object = None,
+    line: int | None = None,
+    key: str | None = None,
+    what: str = "name",
+) -> str:
+    """``text`` if it is a usable name, else an :class:`~alpha_audit.errors.InputError`.
+
+    A usable name has 1-:data:`MAX_NAME` characters and none that
+    :func:`safe_text` escapes (controls, bidi and other format characters,
+    lone surrogates, line separators); emoji joiners are fine.  The error
+    names ``path``, ``line`` and ``key`` and shows the name escaped.
+
+    >>> check_name("👩\u200d💻")
+    '👩\u200d💻'
+    >>> try:
+    ...     check_name("a\u202eb", key="color.x")
+    ... except Exception as exc:
+    ...     print(str(exc)[:56])
+    color.x: name 'a\\u202eb' has the format (bidi) character
+    """
+    from pathlib import Path
+
+    from alpha_audit.errors import InputError
+
+    bad = first_unsafe(text)
+    if bad is None and 0 < len(text) <= MAX_NAME:
+        return text
+    shown = safe_text(text[:40]) + ("..." if len(text) > 40 else "")
+    if bad is None:
+        reason = f"is empty or longer than {MAX_NAME} characters"
+    else:
+        kind = {"Cc": "control", "Cf": "format (bidi)", "Cs": "lone surrogate"}.get(
+            unicodedata.category(bad), "line separator"
+        )
+        reason = f"has the {kind} character {_escape(bad)}"
+    raise InputError(
+        f"{what} '{shown}' {reason}; names may not hold control, bidi or surrogate characters",
+        path=None if path is None else Path(str(path)),
+        line=line,
+        key=None if key is None else safe_text(key),
+    )

@@ -286,3 +286,39 @@ def test_css_header_names_the_token_file_as_written() -> None:
     assert first.startswith("/* alpha-audit export from system.resolver.json ")
     hostile = render_css(replace(table, source="a*/b{}.json")).splitlines()[0]
     assert hostile.count("*/") == 1 and hostile.endswith("*/")
+
+
+def _css_project(tmp_path: Path, colors: str, css: str) -> Path:
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "t.css").write_text(css)
+    (tmp_path / "alpha-audit.yaml").write_text(
+        f"alpha: 1.1\ntokens:\n  file: t.css\n  canvases: bg\n  colors: {colors!r}\n"
+    )
+    return tmp_path
+
+
+def test_export_refuses_a_colours_glob_that_matches_nothing(tmp_path: Path) -> None:
+    from alpha_audit.export import table_from_config
+
+    project = _css_project(tmp_path, "icon.*", ":root { --bg: #fff; --fg: #0062ba }")
+    with pytest.raises(InputError, match=r"colors: 'icon\.\*' matches no colour token of t\.css"):
+        table_from_config(load_config(project / "alpha-audit.yaml"))
+
+
+def test_export_refuses_two_token_paths_that_become_one_property(tmp_path: Path) -> None:
+    from alpha_audit.export import table_from_config
+
+    css = '{"bg": {"$type": "color", "$value": "#fff"}, "a": {"$type": "color", '
+    css += '"b-c": {"$value": "#123456"}}, "a-b": {"$type": "color", "c": {"$value": "#654321"}}}'
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "t.tokens.json").write_text(css)
+    (tmp_path / "alpha-audit.yaml").write_text(
+        "alpha: 1.1\ntokens:\n  file: t.tokens.json\n  canvases: bg\n  colors: 'a*'\n"
+    )
+    table = table_from_config(load_config(tmp_path / "alpha-audit.yaml"))
+    assert len(render_export(table, "dtcg")) == 1  # DTCG keeps the two paths apart
+    for fmt in ("css", "tailwind"):
+        with pytest.raises(
+            InputError, match=r"tokens (color\.)?a\.b-c and (color\.)?a-b\.c .*both become"
+        ):
+            render_export(table, fmt)

@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 
 from alpha_audit.load.iconset import iconset_from_doc
 from alpha_audit.load.tokens.jsondoc import parse_json
-from alpha_audit.load.tokens.tailwind import modes_from_tailwind
+from alpha_audit.load.tokens.stylesheet import modes_from_stylesheet
 from alpha_audit.load.yamldoc import parse_yaml
 from alpha_audit.model import Span
 
@@ -231,7 +231,7 @@ def test_css_value_spans_are_exact_or_absent(tmp_path: Path) -> None:
     )
     path = tmp_path / "theme.css"
     path.write_bytes(text.encode())
-    tokens = modes_from_tailwind(path).modes["default"]
+    tokens = modes_from_stylesheet(path).modes["default"]
     for name, value in (("color.a", "#ff0000"), ("color.é.b", "oklch(63.7% 0.237 25.331)")):
         span = tokens[name].span
         assert span is not None and span.text == value and _at(text, span) == value
@@ -242,7 +242,7 @@ def test_css_value_spans_are_exact_or_absent(tmp_path: Path) -> None:
 def test_css_with_a_lone_cr_records_no_span(tmp_path: Path) -> None:
     path = tmp_path / "theme.css"
     path.write_bytes(b"@theme {\r  --color-a: #ff0000;\n}\n")
-    assert modes_from_tailwind(path).modes["default"]["color.a"].span is None
+    assert modes_from_stylesheet(path).modes["default"]["color.a"].span is None
 
 
 def test_tokens_studio_values_have_their_spans(tmp_path: Path) -> None:

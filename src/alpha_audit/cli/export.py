@@ -70,6 +70,8 @@ def export_command(
         raise UsageError(f"--format {fmt!r} is not one of {', '.join(formats)}")
     gamut_policy = read_gamut_option(gamut)
     table = table_from_config(project_config(config, Path.cwd()), alpha=alpha, gamut=gamut_policy)
+    for note in table.notes:
+        stderr_note(note)
     for a in table.adjusted:
         stderr_note(
             f"{a.token} ({a.mode}) is outside sRGB; gamut {a.policy} gives {a.output} "

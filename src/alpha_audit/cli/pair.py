@@ -7,8 +7,9 @@ from typing import Annotated
 import typer
 
 from alpha_audit.cli.console import emit, stdout_options
-from alpha_audit.cli.options import in_range
+from alpha_audit.cli.options import in_range, read_gamut_option
 from alpha_audit.cli.status import ExitStatus
+from alpha_audit.pair import DEFAULT_GAMUT
 from alpha_audit.ranges import ALPHA
 from alpha_audit.render import PairFormat
 
@@ -17,7 +18,8 @@ __all__ = ["pair_command"]
 
 def pair_command(
     color: Annotated[
-        str, typer.Argument(help="Source colour: #rgb, #rrggbb, rgb(r g b) or a CSS name.")
+        str,
+        typer.Argument(help="Source colour: any CSS colour (#rrggbb, rgb(), oklch(), a name)."),
     ],
     on: Annotated[
         list[str],
@@ -38,6 +40,16 @@ def pair_command(
     fmt: Annotated[
         PairFormat, typer.Option("--format", "-f", help="table or json.", case_sensitive=False)
     ] = PairFormat.TABLE,
+    gamut: Annotated[
+        str,
+        typer.Option(
+            "--gamut",
+            metavar="clip|map|error",
+            help="A colour outside sRGB (Tailwind v4's -500 steps): clip each channel (what "
+            "browsers draw on an sRGB screen), map (CSS Color 4 gamut mapping) or error. "
+            "The report says how far it moved.",
+        ),
+    ] = DEFAULT_GAMUT,
 ) -> ExitStatus:
     """Show one colour on a few backgrounds at a few coefficients.
 
@@ -48,6 +60,7 @@ def pair_command(
     """
     from alpha_audit.pair import pair_report
 
-    report = pair_report(color, on, alpha or [1.0, 1.1, 1.4])
+    policy = read_gamut_option(gamut)
+    report = pair_report(color, on, alpha or [1.0, 1.1, 1.4], gamut=policy or DEFAULT_GAMUT)
     emit(PairFormat(fmt).renderer()(report, stdout_options()), None, False)
     return ExitStatus.OK

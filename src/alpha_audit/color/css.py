@@ -3,7 +3,13 @@
 Parsing and conversion are coloraide's (``Color``): it implements every CSS
 Color 4 syntax (hex 3/4/6/8, ``rgb()``, ``hsl()``, ``hwb()``, ``lab()``,
 ``lch()``, ``oklab()``, ``oklch()``, ``color(<space> ...)`` and ``none``
-components).  The CSS Color 4 gamut-mapping algorithm (section 13.2.2, what
+components).  Two CSS Color 5 forms that design tokens use for translucency
+are read too, their structure tokenised by tinycss2 and their maths done by
+coloraide: ``color-mix(in <space>, <color> [p%], <color> [p%])`` (Tailwind's
+opacity modifiers write ``color-mix(in oklab, X 50%, transparent)``) and the
+relative colour syntax ``oklch(from <color> l c h / a)``.
+
+The CSS Color 4 gamut-mapping algorithm (section 13.2.2, what
 coloraide calls ``minde-chroma`` in OKLCH with a JND of 0.02) runs vectorised
 in :mod:`alpha_audit.color.gamut` with coloraide's matrices, so a design
 system's thousands of colours map in one batch (:func:`map_parsed`).
@@ -27,7 +33,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
-from typing import TYPE_CHECKING, Literal, get_args
+from typing import TYPE_CHECKING, Any, Literal, get_args
 
 import numpy as np
 from numpy.typing import NDArray
@@ -40,6 +46,7 @@ if TYPE_CHECKING:  # coloraide is imported on first use (import alpha_audit.colo
 __all__ = [
     "CSS_SPACES",
     "GAMUT_POLICIES",
+    "MAX_COLOR_TEXT",
     "GamutPolicy",
     "ParsedColor",
     "color_from_components",
@@ -219,6 +226,153 @@ def gamut_delta_e(colors: Sequence[ParsedColor]) -> NDArray[np.float64]:
     return np.asarray(delta_e_2000(before, after), dtype=np.float64).reshape(-1)
 
 
+# A colour written out is short; a var()-substituted color-mix() of relative
+# colours stays under a few hundred characters.  Longer text is refused
+# before any parsing (the nested forms below recurse once per level).
+MAX_COLOR_TEXT = 1000
+_MAX_NESTING = 8
+
+# color-mix() and the relative syntax name their space as CSS does.
+_MIX_SPACES = {**CSS_SPACES, "xyz": "xyz-d65"}
+# Relative colour syntax (CSS Color 5, section 4): the channel keywords of
+# each function and the scale from coloraide's coordinates to the numbers
+# the function takes (rgb() channels are 0-255, hsl()/hwb() percentages 0-100).
+_RELATIVE: dict[str, tuple[str, tuple[str, str, str], tuple[float, float, float]]] = {
+    "rgb": ("srgb", ("r", "g", "b"), (255.0, 255.0, 255.0)),
+    "rgba": ("srgb", ("r", "g", "b"), (255.0, 255.0, 255.0)),
+    "hsl": ("hsl", ("h", "s", "l"), (1.0, 100.0, 100.0)),
+    "hsla": ("hsl", ("h", "s", "l"), (1.0, 100.0, 100.0)),
+    "hwb": ("hwb", ("h", "w", "b"), (1.0, 100.0, 100.0)),
+    "lab": ("lab", ("l", "a", "b"), (1.0, 1.0, 1.0)),
+    "lch": ("lch", ("l", "c", "h"), (1.0, 1.0, 1.0)),
+    "oklab": ("oklab", ("l", "a", "b"), (1.0, 1.0, 1.0)),
+    "oklch": ("oklch", ("l", "c", "h"), (1.0, 1.0, 1.0)),
+}
+_HUE_METHODS = ("shorter", "longer", "increasing", "decreasing")
+
+
+def _match(value: str, depth: int) -> Color:
+    """A coloraide colour for CSS ``value``: CSS Color 4, ``color-mix()`` or relative syntax."""
+    color_cls = _color_class()
+    try:
+        match = color_cls.match(value, fullmatch=True)
+    except (ValueError, TypeError, IndexError):
+        match = None
+    if match is not None:
+        return match.color
+    if depth < _MAX_NESTING and "(" in value:
+        import tinycss2
+
+        try:
+            node = tinycss2.parse_one_component_value(value)
+        except RecursionError as exc:
+            raise ColorSyntaxError(f"{value[:40]!r} is nested too deeply; {_ALLOWED}") from exc
+        if node.type == "function":
+            args = [t for t in node.arguments if t.type not in ("whitespace", "comment")]
+            if node.lower_name == "color-mix":
+                return _color_mix(value, node.arguments, depth)
+            if args and args[0].type == "ident" and args[0].lower_value == "from":
+                return _relative(value, node.lower_name, args[1:], depth)
+    raise ColorSyntaxError(f"{value!r} is not a colour; {_ALLOWED}")
+
+
+def _split_commas(tokens: Sequence[Any]) -> list[list[Any]]:
+    parts: list[list[Any]] = [[]]
+    for t in tokens:
+        if t.type == "literal" and t.value == ",":
+            parts.append([])
+        elif t.type not in ("whitespace", "comment"):
+            parts[-1].append(t)
+    return parts
+
+
+def _color_mix(text: str, arguments: Sequence[Any], depth: int) -> Color:
+    """``color-mix(in <space> [<hue> hue], c1 [p1], c2 [p2])`` (CSS Color 5, section 3)."""
+    import tinycss2
+
+    parts = _split_commas(arguments)
+    head = [t.lower_value if t.type == "ident" else None for t in parts[0]]
+    if len(parts) != 3 or len(head) < 2 or head[0] != "in" or head[1] not in _MIX_SPACES:
+        raise ColorSyntaxError(
+            f"{text[:60]!r}: color-mix() takes (in <space>, <color> [p%], <color> [p%]) "
+            f"with a space of {', '.join(_MIX_SPACES)}"
+        )
+    hue = "shorter"
+    if len(head) == 4 and head[2] in _HUE_METHODS and head[3] == "hue":
+        hue = str(head[2])
+    elif len(head) != 2:
+        raise ColorSyntaxError(f"{text[:60]!r}: color-mix()'s hue method is <method> hue")
+    colors = []
+    weights: list[float | None] = []
+    for part in parts[1:]:
+        pcts = [t for t in part if t.type == "percentage"]
+        rest = [t for t in part if t.type != "percentage"]
+        if len(pcts) > 1 or len(rest) != 1 or not all(0 <= p.value <= 100 for p in pcts):
+            raise ColorSyntaxError(f"{text[:60]!r}: each color-mix() item is <color> [0-100%]")
+        colors.append(_match(tinycss2.serialize(rest).strip(), depth + 1))
+        weights.append(float(pcts[0].value) if pcts else None)
+    # CSS Color 5, 3.1: a missing percentage is 100% minus the other (50% both);
+    # the two are scaled to sum to 100%, and a smaller sum scales the alpha.
+    w1, w2 = weights
+    p1 = w1 if w1 is not None else 100.0 - (w2 if w2 is not None else 50.0)
+    p2 = w2 if w2 is not None else 100.0 - p1
+    total = p1 + p2
+    if total <= 0:
+        raise ColorSyntaxError(f"{text[:60]!r}: color-mix() percentages sum to zero")
+    space = _MIX_SPACES[str(head[1])]
+    mixed = colors[0].mix(colors[1], p2 / total, space=space, premultiplied=True, hue=hue)
+    mixed = mixed.convert(space)
+    if total < 100:
+        mixed.set("alpha", mixed.alpha(nans=False) * total / 100)
+    return mixed
+
+
+def _relative(text: str, name: str, args: Sequence[Any], depth: int) -> Color:
+    """``<fn>(from <color> c1 c2 c3 [/ a])`` with channel keywords (CSS Color 5, section 4)."""
+    import tinycss2
+
+    if not args:
+        raise ColorSyntaxError(f"{text[:60]!r}: relative colour syntax needs an origin colour")
+    origin = _match(tinycss2.serialize([args[0]]).strip(), depth + 1)
+    rest = list(args[1:])
+    if name == "color":
+        if not rest or rest[0].type != "ident" or rest[0].lower_value not in CSS_SPACES:
+            raise ColorSyntaxError(f"{text[:60]!r}: color(from <color> <space> ...) needs a space")
+        css_space = rest.pop(0).lower_value
+        space = CSS_SPACES[css_space]
+        keys = ("x", "y", "z") if space.startswith("xyz") else ("r", "g", "b")
+        scale = (1.0, 1.0, 1.0)
+        prefix = f"color({css_space} "
+    elif name in _RELATIVE:
+        space, keys, scale = _RELATIVE[name]
+        prefix = f"{name.removesuffix('a') if name in ('rgba', 'hsla') else name}("
+    else:
+        raise ColorSyntaxError(f"{text[:60]!r}: relative colour syntax in {name}() is not read")
+    coords = origin.convert(space).coords(nans=False)
+    values = dict(zip(keys, (c * k for c, k in zip(coords, scale, strict=True)), strict=True))
+    values["alpha"] = origin.alpha(nans=False)
+    slash = next((i for i, t in enumerate(rest) if t.type == "literal" and t.value == "/"), None)
+    channels, alpha = (rest, []) if slash is None else (rest[:slash], rest[slash + 1 :])
+    if len(channels) != 3 or len(alpha) > 1:
+        raise ColorSyntaxError(f"{text[:60]!r}: relative colour syntax takes 3 channels [/ alpha]")
+
+    def term(token: Any) -> str:
+        if token.type == "ident" and token.lower_value in values:
+            return repr(float(values[token.lower_value]))
+        if token.type in ("number", "percentage", "dimension") or (
+            token.type == "ident" and token.lower_value == "none"
+        ):
+            return str(tinycss2.serialize([token]))
+        raise ColorSyntaxError(
+            f"{text[:60]!r}: a relative channel is a keyword ({', '.join(values)}), a number, "
+            "a percentage or none (calc() is not read)"
+        )
+
+    shown = " ".join(term(t) for t in channels)
+    shown += f" / {term(alpha[0]) if alpha else repr(float(values['alpha']))}"
+    return _match(f"{prefix}{shown})", depth + 1)
+
+
 def parse_css_color(
     text: str, *, gamut: GamutPolicy = "error", allow_alpha: bool = False
 ) -> ParsedColor:
@@ -236,16 +390,9 @@ def parse_css_color(
     if not isinstance(text, str):
         raise ColorSyntaxError(f"{text!r} is not a colour string; {_ALLOWED}")
     value = text.strip()
-    if len(value) > 200 or "--" in value:  # "--" is coloraide's non-CSS space syntax
+    if len(value) > MAX_COLOR_TEXT or "--" in value:  # "--": coloraide's non-CSS space syntax
         raise ColorSyntaxError(f"{value[:40]!r} is not a colour; {_ALLOWED}")
-    color_cls = _color_class()
-    try:
-        match = color_cls.match(value, fullmatch=True)
-    except (ValueError, TypeError, IndexError):
-        match = None
-    if match is None:
-        raise ColorSyntaxError(f"{value!r} is not a colour; {_ALLOWED}")
-    color = match.color
+    color = _match(value, 0)
     space = color.space()
     if space not in CSS_SPACES.values():
         raise ColorSyntaxError(f"{value!r} uses colour space {space!r}; {_ALLOWED}")
@@ -274,7 +421,7 @@ def color_from_components(
     (0.0, 1.0, 0.0)
     """
     shown = text or f"{space} {list(components)}"
-    if space not in CSS_SPACES or space == "xyz":
+    if not isinstance(space, str) or space not in CSS_SPACES or space == "xyz":
         allowed = ", ".join(s for s in CSS_SPACES if s != "xyz")
         raise ColorSyntaxError(f"colorSpace {space!r} is not one of {allowed}")
     if len(components) != 3:

@@ -10,12 +10,13 @@ numbers; each format's renderer is a pure function of that table returning
 
 from __future__ import annotations
 
+import fnmatch
 from enum import StrEnum
 from pathlib import Path
 from typing import assert_never
 
 from alpha_audit.color.css import GamutPolicy
-from alpha_audit.errors import UsageError
+from alpha_audit.errors import InputError, UsageError
 from alpha_audit.export.table import ExportTable, export_table
 from alpha_audit.load.config import ProjectConfig
 
@@ -115,5 +116,16 @@ def table_from_config(
             f"the project config ({config.path}) has no tokens: table; export reads tokens"
         )
     tokens = config.tokens if gamut is None else replace(config.tokens, gamut=gamut)
+    if not tokens.colors:
+        raise UsageError(
+            f"the tokens: table of {config.path} has no colors:; export writes icon colours"
+        )
     themes = load_token_themes(tokens)
+    for pattern in tokens.colors:  # a glob that matches nothing would write an empty file
+        if not any(fnmatch.fnmatchcase(p, pattern) for m in themes.modes for p in m.colors):
+            raise InputError(
+                f"colors: {pattern!r} matches no colour token of {tokens.file.name} "
+                f"(modes {', '.join(m.name for m in themes.modes)})",
+                path=config.path,
+            )
     return export_table(themes, alpha=alpha, default_alpha=config.alpha)

@@ -2,23 +2,44 @@
 
 from __future__ import annotations
 
+from alpha_audit.errors import InputError
 from alpha_audit.export.escape import css_comment, css_ident, css_string
 from alpha_audit.export.table import ExportMode, ExportTable, exported_path
 
-__all__ = ["DEFAULT_SELECTOR", "mode_properties", "render_css"]
+__all__ = ["DEFAULT_SELECTOR", "css_properties", "mode_properties", "render_css"]
 
 DEFAULT_SELECTOR = '[data-theme="<mode>"]'
 
 
-def mode_properties(mode: ExportMode) -> list[tuple[str, str]]:
-    """``(property, hex)`` for every colour and canvas of a mode, in stable order."""
+def css_properties(mode: ExportMode, prefix: str = "") -> list[tuple[str, str]]:
+    """``(property, hex)`` for every colour and canvas of a mode, in stable order.
+
+    A token path becomes a property by dots to dashes (``prefix`` first when
+    the path does not start with it), so ``a.b-c`` and ``a-b.c`` would both
+    be ``--a-b-c``: two paths that meet in one property are an error naming
+    both, never one value silently written over the other.
+    """
     out = []
+    owner: dict[str, str] = {}
     for color in mode.colors:
         for canvas, hex_ in zip(mode.canvases, color.outputs, strict=True):
-            out.append(
-                ("--" + css_ident(exported_path(color.token, canvas, mode).replace(".", "-")), hex_)
-            )
+            path = exported_path(color.token, canvas, mode)
+            if prefix and not path.startswith(prefix):
+                path = prefix + path
+            prop = "--" + css_ident(path.replace(".", "-"))
+            if prop in owner and owner[prop] != path:
+                raise InputError(
+                    f"tokens {owner[prop]} and {path} (mode {mode.name}) both become the CSS "
+                    f"property {prop}; rename one so that each colour keeps its own property"
+                )
+            owner[prop] = path
+            out.append((prop, hex_))
     return out
+
+
+def mode_properties(mode: ExportMode) -> list[tuple[str, str]]:
+    """``(property, hex)`` of a mode's colours (:func:`css_properties` without a prefix)."""
+    return css_properties(mode)
 
 
 def _selector(template: str, mode: str) -> str:

@@ -56,6 +56,7 @@ class ExportTable:
     gamut: str
     modes: tuple[ExportMode, ...]
     adjusted: tuple[GamutAdjustment, ...] = ()
+    notes: tuple[str, ...] = ()  # how the token source became modes, tokens not audited
 
 
 def _hex(codes: np.ndarray) -> str:
@@ -119,7 +120,9 @@ def export_table(
                 colors=tuple(out_colors),
             )
         )
-    return ExportTable(themes.source.name, themes.gamut, tuple(modes), themes.adjusted)
+    return ExportTable(
+        themes.source.name, themes.gamut, tuple(modes), themes.adjusted, themes.notes
+    )
 
 
 def exported_path(color: str, canvas: ExportCanvas, mode: ExportMode) -> str:

@@ -8,21 +8,15 @@ the form alpha-audit's Tailwind reader takes back.
 
 from __future__ import annotations
 
+from alpha_audit.export.css import css_properties
 from alpha_audit.export.escape import css_ident, css_string
-from alpha_audit.export.table import ExportMode, ExportTable, exported_path
+from alpha_audit.export.table import ExportMode, ExportTable
 
 __all__ = ["render_tailwind"]
 
 
 def _props(mode: ExportMode) -> list[tuple[str, str]]:
-    out = []
-    for color in mode.colors:
-        for canvas, hex_ in zip(mode.canvases, color.outputs, strict=True):
-            path = exported_path(color.token, canvas, mode)
-            if not path.startswith("color."):
-                path = f"color.{path}"
-            out.append(("--" + css_ident(path.replace(".", "-")), hex_))
-    return out
+    return css_properties(mode, prefix="color.")
 
 
 def render_tailwind(table: ExportTable) -> str:

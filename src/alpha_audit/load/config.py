@@ -108,9 +108,14 @@ def find_config(start: str | Path) -> Path | None:
     for folder in (start, *start.parents):
         if not folder.is_relative_to(root):
             break
-        found = [folder / n for n in CONFIG_NAMES if (folder / n).is_file()]
+        found = [_contained(folder / n, root) for n in CONFIG_NAMES if (folder / n).is_file()]
         pyproject = folder / "pyproject.toml"
-        if pyproject.is_file() and _has_tool_table(pyproject) and _load_toml_table(pyproject):
+        # Contained before a byte is read: a pyproject.toml linking outside is never opened.
+        if (
+            pyproject.is_file()
+            and _has_tool_table(_contained(pyproject, root))
+            and _load_toml_table(pyproject)
+        ):
             found.append(pyproject)
         if len(found) > 1:
             names = " and ".join(p.name for p in found)
@@ -120,6 +125,15 @@ def find_config(start: str | Path) -> Path | None:
         if (folder / ".git").exists():
             return None
     return None
+
+
+def _contained(path: Path, root: Path) -> Path:
+    """``path`` if it resolves inside ``root``; a link outside is an input error."""
+    try:
+        contain_argument(path, root)
+    except PathRefused as err:
+        raise InputError(str(err), path=path) from err
+    return path
 
 
 def _load_toml_table(path: Path) -> dict[str, Any] | None:

@@ -11,11 +11,11 @@ import numpy as np
 
 from alpha_audit.color import PIPELINES, GamutPolicy, Pipeline, parse_color
 from alpha_audit.color.css import GAMUT_POLICIES, parse_css_color
-from alpha_audit.errors import ColorSyntaxError
+from alpha_audit.errors import ColorSyntaxError, InputError
 from alpha_audit.load.yamldoc import KeyPath, YamlDoc, format_key
 from alpha_audit.model import GamutAdjustment
 from alpha_audit.ranges import NumberRange
-from alpha_audit.safe_text import is_safe, safe_text
+from alpha_audit.safe_text import check_name, safe_text
 
 __all__ = [
     "check_keys",
@@ -76,14 +76,16 @@ def read_name(doc: YamlDoc, keys: KeyPath, value: Any) -> str:
         raise doc.error(keys, f"expected a name (text), got {describe(value)}")
     text = str(value).strip()
     # Control, format (bidi) and surrogate characters would forge report lines,
-    # drive the reviewer's terminal or crash UTF-8 output; names reach every format.
-    if not text or not is_safe(text) or len(text) > 200:
+    # drive the reviewer's terminal or crash UTF-8 output; names reach every
+    # format.  The one name policy of every input (alpha_audit.safe_text).
+    try:
+        return check_name(text, path=doc.path, line=doc.line(keys), key=format_key(keys))
+    except InputError as err:
         raise doc.error(
             keys,
             f"{safe_text(text[:40])!r} is not a usable name: 1-200 characters, "
             "no control, format (bidi) or surrogate characters",
-        )
-    return text
+        ) from err
 
 
 def read_number(

@@ -24,7 +24,12 @@ PAIR_SCHEMA = "alpha-audit.pair/1"
 
 def pair_document(report: PairReport) -> dict[str, Any]:
     """``{"schema": "alpha-audit.pair/1", "color": ..., "rows": [...]}``."""
-    return {"schema": PAIR_SCHEMA, "color": report.color, "rows": records(report.rows)}
+    return {
+        "schema": PAIR_SCHEMA,
+        "color": report.color,
+        "rows": records(report.rows),
+        "gamut": records(report.gamut),
+    }
 
 
 def render_json(report: PairReport, options: RenderOptions) -> str:
@@ -75,6 +80,12 @@ def render_table(report: PairReport, options: RenderOptions) -> str:
         pad_edge=False,
     )
     text = to_text(table, options)
+    if report.gamut:
+        lines = [
+            f"outside sRGB: {g.text} -> {g.output} (gamut {g.policy}, CIEDE2000 {g.delta_e:.2f})"
+            for g in report.gamut
+        ]
+        text += to_text(Text("\n".join(lines)), options)
     drawable = [r for r in report.rows if r.css_output is not None and r.alpha != 1.0]
     if not drawable:
         return text

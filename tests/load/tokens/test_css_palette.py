@@ -66,9 +66,14 @@ def test_root_dark_and_their_p3_variants_are_modes_in_cascade_order(tmp_path) ->
     assert value["p3"]["blue.1"] == "#fbfdff"
 
 
-def test_only_colour_values_become_tokens(tmp_path) -> None:
-    for tokens in _modes(tmp_path).modes.values():
-        assert "radius.2" not in tokens and "cursor" not in tokens
+def test_only_colour_values_become_colour_tokens(tmp_path) -> None:
+    modes = _modes(tmp_path).modes
+    for tokens in modes.values():
+        assert tokens["radius.2"].type == "css" and "not a colour" in str(
+            tokens["radius.2"].problem
+        )
+        assert tokens["blue.9"].type == "color" and tokens["blue.9"].problem is None
+    assert modes["dark"]["cursor"].type == "css" and "cursor" not in modes["default"]
 
 
 def test_aliases_and_lines_point_at_the_declaration_that_sets_the_colour(tmp_path) -> None:
@@ -81,5 +86,7 @@ def test_aliases_and_lines_point_at_the_declaration_that_sets_the_colour(tmp_pat
 
 
 def test_a_sheet_without_colours_names_what_it_looked_for(tmp_path) -> None:
-    with pytest.raises(InputError, match=r"palette\.css: has no @theme block.*:root rule"):
+    with pytest.raises(
+        InputError, match=r"palette\.css: has no custom property that is a colour.*:root"
+    ):
         _modes(tmp_path, ":root { --radius: 4px; }\n")

@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from alpha_audit.errors import InputError
-from alpha_audit.load.tokens import load_token_modes, parse_json, tokens_from_docs
+from alpha_audit.load.tokens import load_token_modes, parse_json, token_color, tokens_from_docs
 from alpha_audit.load.tokens.jsondoc import MAX_JSON_DEPTH
 
 
@@ -71,10 +71,15 @@ def test_ref_cycle_is_an_error() -> None:
         _tokens(text)
 
 
-def test_token_without_type_is_an_error_with_file_line_and_path() -> None:
-    text = '{\n  "size": {\n    "small": { "$value": "4px" }\n  }\n}'
+def test_token_without_type_is_an_error_where_selected_with_file_line_and_path() -> None:
+    text = (
+        '{\n  "size": {\n    "small": { "$value": "4px" }\n  },\n'
+        '  "c": {"$type": "color", "$value": "#fff"}\n}'
+    )
+    tokens = _tokens(text)  # an untyped radius nobody selects does not stop the load
+    assert token_color(tokens["c"]).encoded == (1.0, 1.0, 1.0)
     with pytest.raises(InputError, match=r"no \$type") as info:
-        _tokens(text)
+        token_color(tokens["size.small"])
     assert str(info.value).startswith("t.tokens.json:3: size.small: ")
 
 
@@ -83,9 +88,26 @@ def test_alias_takes_the_type_of_its_target() -> None:
     assert _tokens(text)["b"].type == "color"
 
 
-def test_missing_alias_target() -> None:
-    with pytest.raises(InputError, match=r"alias \{nope\} names no token"):
-        _tokens('{"a": {"$type": "color", "$value": "{nope}"}}')
+def test_missing_alias_target_is_an_error_where_selected() -> None:
+    tokens = _tokens('{"a": {"$type": "color", "$value": "{nope}"}, "b": {"$value": "{a}"}}')
+    for name in ("a", "b"):  # an alias of a broken token is broken the same way
+        with pytest.raises(InputError, match=r"alias \{nope\} names no token"):
+            token_color(tokens[name])
+
+
+def test_style_dictionary_value_references() -> None:
+    doc = parse_json(
+        '{"base": {"blue": {"value": "#0062ba", "type": "color"}}, '
+        '"icon": {"value": "{base.blue.value}", "type": "color"}}',
+        "sd.json",
+    )
+    tokens = tokens_from_docs([doc], legacy=True)
+    assert tokens["icon"].value == "#0062ba" and tokens["icon"].chain == ("base.blue",)
+
+
+def test_metadata_beside_groups_is_not_a_token() -> None:
+    tokens = _tokens('{"version": "1.2", "author": "x", "c": {"$type": "color", "$value": "#fff"}}')
+    assert list(tokens) == ["c"]
 
 
 def test_extends_copies_tokens_local_ones_win() -> None:

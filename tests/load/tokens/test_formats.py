@@ -116,7 +116,7 @@ def test_figma_translucent_colour_is_an_error_where_alpha_is_not_an_opacity(tmp_
 
 def test_tailwind_theme_with_none_hue_and_dark_override() -> None:
     modes = load_token_modes(REPO / "examples/tokens/tailwind/theme.css")
-    assert modes.kind == "tailwind" and list(modes.modes) == ["default", "dark"]
+    assert modes.kind == "css" and list(modes.modes) == ["default", "dark"]
     tokens = modes.modes["default"]
     grey = token_color(tokens["color.neutral.400"])
     assert grey.encoded[0] == pytest.approx(grey.encoded[1]) == pytest.approx(grey.encoded[2])
@@ -134,8 +134,10 @@ def test_tailwind_theme_with_none_hue_and_dark_override() -> None:
 def test_tailwind_var_to_unknown_property(tmp_path: Path) -> None:
     css = tmp_path / "t.css"
     css.write_text("@theme {\n  --color-a: var(--color-nope);\n}\n")
-    with pytest.raises(InputError, match=r"t\.css:2: color\.a: var\(--color-nope\)"):
-        load_token_modes(css)
+    css.write_text("@theme {\n  --color-a: var(--color-nope);\n  --color-b: red;\n}\n")
+    token = load_token_modes(css).modes["default"]["color.a"]  # loads: nothing selects it yet
+    with pytest.raises(InputError, match=r"t\.css:2: color\.a: var\(--color-nope\) names"):
+        token_color(token)
 
 
 def test_tokens_studio_single_file_themes(tmp_path: Path) -> None:
@@ -187,3 +189,94 @@ def test_tokens_studio_set_outside_root(tmp_path: Path) -> None:
     )
     with pytest.raises(InputError, match="outside"):
         load_token_modes(inner / "$themes.json")
+
+
+def test_figma_library_alias_loads_and_fails_only_where_selected(tmp_path: Path) -> None:
+    values = {
+        **_var(
+            "V:1",
+            "color/bg",
+            THEME,
+            {"2:0": {"r": 1, "g": 1, "b": 1}, "2:1": {"r": 0, "g": 0, "b": 0}},
+        ),
+        **_var(
+            "V:2",
+            "space/pad",
+            THEME,
+            {
+                "2:0": {"type": "VARIABLE_ALIAS", "id": "VariableID:abc/1:2"},
+                "2:1": {"type": "VARIABLE_ALIAS", "id": "VariableID:abc/1:2"},
+            },
+        ),
+    }
+    modes = load_token_modes(_figma(tmp_path, values))
+    assert token_color(modes.modes["Dark"]["color.bg"]).encoded == (0.0, 0.0, 0.0)
+    with pytest.raises(InputError, match=r"does not hold \(a library variable"):
+        token_color(modes.modes["Light"]["space.pad"])
+
+
+def test_figma_without_the_rest_envelope(tmp_path: Path) -> None:
+    values = _var(
+        "V:1", "color/bg", THEME, {"2:0": {"r": 1, "g": 1, "b": 1}, "2:1": {"r": 0, "g": 0, "b": 0}}
+    )
+    path = _figma(tmp_path, values)
+    path.write_text(json.dumps(json.loads(path.read_text())["meta"]))
+    modes = load_token_modes(path)
+    assert modes.kind == "figma" and list(modes.modes) == ["Light", "Dark"]
+
+
+def test_tokens_studio_without_themes_refuses_a_silent_merge(tmp_path: Path) -> None:
+    doc = {
+        "light": {"bg": {"value": "#ffffff", "type": "color"}},
+        "dark": {"bg": {"value": "#111111", "type": "color"}},
+        "$themes": [],
+        "$metadata": {"tokenSetOrder": ["light", "dark"]},
+    }
+    path = tmp_path / "tokens.json"
+    path.write_text(json.dumps(doc))
+    with pytest.raises(InputError, match=r"'light' and 'dark' both set bg"):
+        load_token_modes(path)
+    doc["dark"] = {"fg": {"value": "#111111", "type": "color"}}  # no overlap: one mode
+    path.write_text(json.dumps(doc))
+    assert list(load_token_modes(path).modes["default"]) == ["bg", "fg"]
+
+
+def test_tokens_studio_enabled_sets_win_over_source_sets(tmp_path: Path) -> None:
+    doc = {
+        "brand": {"ink": {"value": "#222222", "type": "color"}},
+        "core": {"ink": {"value": "#111111", "type": "color"}},
+        "$themes": [{"name": "t", "selectedTokenSets": {"brand": "enabled", "core": "source"}}],
+        "$metadata": {"tokenSetOrder": ["brand", "core"]},
+    }
+    path = tmp_path / "tokens.json"
+    path.write_text(json.dumps(doc))
+    assert load_token_modes(path).modes["t"]["ink"].value == "#222222"
+
+
+def test_tokens_studio_metadata_outside_the_root_is_not_opened(tmp_path: Path) -> None:
+    inner = tmp_path / "in"
+    inner.mkdir()
+    secret = tmp_path / "secret.json"
+    secret.write_text('{"tokenSetOrder": []}')
+    (inner / "$metadata.json").symlink_to(secret)
+    (inner / "$themes.json").write_text("[]")
+    with pytest.raises(InputError, match="outside the project root"):
+        load_token_modes(inner / "$themes.json", root=inner)
+
+
+@pytest.mark.parametrize(
+    ("data", "shape"),
+    [
+        (
+            {"a-color": {"sets": {"light": {"value": "#fff"}, "dark": {"value": "#000"}}}},
+            "per-token sets",
+        ),
+        ([{"name": "a/b", "value": 0, "mode": "dark", "type": "FLOAT"}], "Primer"),
+        ([1, 2], "JSON list"),
+    ],
+)
+def test_formats_that_are_not_read_are_named(tmp_path: Path, data, shape: str) -> None:
+    path = tmp_path / "x.json"
+    path.write_text(json.dumps(data))
+    with pytest.raises(InputError, match=f"looks like .*{shape}.*which alpha-audit does not read"):
+        load_token_modes(path)

@@ -106,7 +106,7 @@ def test_gamut_error_names_file_line_and_token(tmp_path) -> None:
 def test_a_mode_without_canvases_is_an_error(tmp_path) -> None:
     cfg = _project(tmp_path, "clip")
     cfg.write_text(cfg.read_text().replace("ui.bg.*", "nothing.*"))
-    with pytest.raises(InputError, match="no token matching canvases nothing"):
+    with pytest.raises(InputError, match="no opaque token matching canvases nothing"):
         load_token_themes(load_config(cfg).tokens)
 
 

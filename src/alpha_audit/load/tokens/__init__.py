@@ -1,5 +1,5 @@
 """Design tokens as input: DTCG 2025.10 (with the Resolver Module), Tokens Studio,
-Style Dictionary, Figma Variables and Tailwind v4 ``@theme`` CSS.
+Style Dictionary, Figma Variables and CSS (Tailwind v4 ``@theme``, palette and theme sheets).
 
 :func:`load_token_modes` detects the format from the file and returns
 :class:`TokenModes`: resolved tokens per mode, each remembering the file and
@@ -19,7 +19,7 @@ from alpha_audit.load.tokens.jsondoc import JsonDoc, load_json, parse_json
 from alpha_audit.load.tokens.model import Token, TokenModes
 from alpha_audit.load.tokens.resolver import is_resolver, modes_from_resolver
 from alpha_audit.load.tokens.studio import is_studio_file, modes_from_studio
-from alpha_audit.load.tokens.tailwind import modes_from_tailwind
+from alpha_audit.load.tokens.stylesheet import modes_from_stylesheet
 
 __all__ = [
     "TOKEN_FORMATS",
@@ -41,7 +41,8 @@ TOKEN_FORMATS = (
     "tokens-studio",
     "style-dictionary",
     "figma",
-    "tailwind",
+    "css",
+    "tailwind",  # the CSS reader, under the name it had first
 )
 
 
@@ -51,8 +52,39 @@ def _has_dollar_value(data: Any, depth: int = 0) -> bool:
     return "$value" in data or any(_has_dollar_value(v, depth + 1) for v in data.values())
 
 
+def _not_read(doc: JsonDoc) -> str | None:
+    """What a JSON file that is no token format alpha-audit reads looks like, if known."""
+    data = doc.data
+    if is_studio_file(doc):
+        return None
+    if isinstance(data, list):
+        if data and isinstance(data[0], dict) and {"name", "value", "mode"} <= set(data[0]):
+            return "a list of variables per mode (Primer's dist/figma importer format)"
+        return "a JSON list, not an object of token groups"
+    if not isinstance(data, dict):
+        return "a single JSON value, not an object of token groups"
+    for value in list(data.values())[:50]:
+        sets = value.get("sets") if isinstance(value, dict) else None
+        if isinstance(sets, dict) and any(isinstance(v, dict) for v in sets.values()):
+            return "per-token sets ({token: {sets: {light: {value}, dark: ...}}}, Adobe Spectrum)"
+    return None
+
+
 def detect_format(doc: JsonDoc) -> str:
-    """The token format of a parsed JSON file."""
+    """The token format of a parsed JSON file.
+
+    A file in a shape no reader takes is refused naming that shape, not with
+    a structural error deep inside a reader.
+    """
+    shape = _not_read(doc)
+    if shape is not None:
+        from alpha_audit.errors import InputError
+
+        raise InputError(
+            f"this looks like {shape}, which alpha-audit does not read; formats read: DTCG, "
+            "Resolver, Tokens Studio, Style Dictionary, Figma Variables (REST) and CSS",
+            path=doc.path,
+        )
     if is_figma(doc.data):
         return "figma"
     if is_resolver(doc.data):
@@ -77,8 +109,8 @@ def load_token_modes(
     """
     p = Path(path)
     bound = Path(root).resolve() if root is not None else p.resolve().parent
-    if format == "tailwind" or (format == "auto" and p.suffix.lower() == ".css"):
-        return modes_from_tailwind(p)
+    if format in ("css", "tailwind") or (format == "auto" and p.suffix.lower() == ".css"):
+        return modes_from_stylesheet(p)
     doc = load_json(p)
     kind = detect_format(doc) if format == "auto" else format
     if kind == "figma":

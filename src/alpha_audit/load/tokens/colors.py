@@ -24,8 +24,11 @@ def token_color(
     wild still use.  Errors name the token's file, line and path.
     """
     where: TokenPlace = {"file": token.file, "line": token.line, "path": token.path}
+    if token.problem is not None:
+        raise token_error(token.problem, **where)
     if token.type != "color":
-        raise token_error(f"is a {token.type!r} token, not a color token", **where)
+        via = f" (via {' -> '.join(token.chain)})" if token.chain else ""
+        raise token_error(f"is a {token.type!r} token{via}, not a color token", **where)
     value: Any = token.value
     try:
         if isinstance(value, str):

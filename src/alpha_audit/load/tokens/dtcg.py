@@ -27,13 +27,19 @@ from alpha_audit.errors import InputError
 from alpha_audit.load.tokens.jsondoc import JsonDoc, JsonPath
 from alpha_audit.load.tokens.model import (
     MAX_ALIAS_CHAIN,
+    MAX_EXPANSION,
     MAX_TOKENS,
     Token,
     TokenPlace,
     token_error,
 )
+from alpha_audit.safe_text import check_name
 
-__all__ = ["ALIAS", "TokenTree"]
+__all__ = ["ALIAS", "MAX_VALUE_NODES", "TokenTree"]
+
+# JSON values in one resolved token value (pointers expanded): a colour object
+# is six, a composite typography or shadow token a few dozen.
+MAX_VALUE_NODES = 10_000
 
 ALIAS = re.compile(r"\{([^{}]+)\}")
 _GROUP_KEYS = frozenset(
@@ -73,6 +79,19 @@ class TokenTree:
     raw: dict[str, _Raw] = field(default_factory=dict)
     groups: dict[str, _Group] = field(default_factory=dict)
     docs: list[JsonDoc] = field(default_factory=list)
+    steps: int = 0  # counted expansion steps (MAX_EXPANSION)
+
+    def count(self, n: int, doc: JsonDoc, keys: JsonPath, path: str | None) -> None:
+        """Count ``n`` expansion steps; past :data:`MAX_EXPANSION` an error naming the file."""
+        self.steps += n
+        if self.steps > MAX_EXPANSION:
+            raise token_error(
+                f"resolving takes more than {MAX_EXPANSION:,} steps ($ref, aliases, $extends); "
+                "the file expands without bound",
+                file=doc.path,
+                line=doc.line(keys),
+                path=path,
+            )
 
     # ---------------------------------------------------------------- reading
     def add(self, doc: JsonDoc, data: Any = None, keys: JsonPath = ()) -> None:
@@ -126,15 +145,11 @@ class TokenTree:
                     line=doc.line(child_keys),
                     path=path,
                 )
+            check_name(name, path=doc.path, line=doc.line(child_keys), key=path, what="token name")
             if not isinstance(child, dict):
-                if self.legacy and name in ("type", "description", "extensions"):
-                    continue
-                raise token_error(
-                    f"expected a token or a group (a JSON object), got {child!r:.40}",
-                    file=doc.path,
-                    line=doc.line(child_keys),
-                    path=path,
-                )
+                # Metadata beside the groups ("version": "1.2", "author": ...):
+                # not a token and not a group, so nothing to read.
+                continue
             if self._is_token(child):
                 if len(self.raw) >= MAX_TOKENS and path not in self.raw:
                     raise token_error(
@@ -149,6 +164,22 @@ class TokenTree:
 
     # ------------------------------------------------------------- $extends
     def _apply_extends(self) -> None:
+        """Copy each extended group's tokens into the extending group (local ones win).
+
+        Tokens and groups are indexed by every group prefix once, so the
+        work is the tokens copied (at most :data:`MAX_TOKENS`), not groups x
+        tokens; each copy is a counted step.
+        """
+        if not self.groups:
+            return
+        under: dict[str, list[str]] = {}  # group path -> token paths below it
+        for path in self.raw:
+            self._index(under, path)
+        subgroups: dict[str, list[_Group]] = {}
+        for g in self.groups.values():
+            parts = g.path.split(".") if g.path else []
+            for i in range(len(parts) + 1):
+                subgroups.setdefault(".".join(parts[:i]), []).append(g)
         done: set[str] = set()
 
         def visit(group: _Group, stack: list[str]) -> None:
@@ -164,10 +195,9 @@ class TokenTree:
                 )
             prefix = group.extends + "."
             # The target and its subgroups get their own inherited tokens first.
-            for other in list(self.groups.values()):
-                if other.path == group.extends or other.path.startswith(prefix):
-                    visit(other, [*stack, group.path])
-            inherited = [r for p, r in self.raw.items() if p.startswith(prefix)]
+            for other in subgroups.get(group.extends, []):
+                visit(other, [*stack, group.path])
+            inherited = [self.raw[p] for p in under.get(group.extends, [])]
             if not inherited:
                 raise token_error(
                     f"$extends names {group.extends!r}, which is no group of tokens",
@@ -175,6 +205,7 @@ class TokenTree:
                     line=group.doc.line((*group.keys, "$extends")),
                     path=group.path,
                 )
+            self.count(len(inherited), group.doc, group.keys, group.path)
             for r in inherited:
                 path = (group.path + "." if group.path else "") + r.path[len(prefix) :]
                 if path not in self.raw:
@@ -186,16 +217,24 @@ class TokenTree:
                             path=group.path,
                         )
                     self.raw[path] = _Raw(path, r.node, r.doc, r.keys, r.group_type or group.type)
+                    self._index(under, path)
             done.add(group.path)
 
         for group in list(self.groups.values()):
             visit(group, [])
+
+    @staticmethod
+    def _index(under: dict[str, list[str]], path: str) -> None:
+        parts = path.split(".")
+        for i in range(1, len(parts)):
+            under.setdefault(".".join(parts[:i]), []).append(path)
 
     # ------------------------------------------------------------ resolution
     def resolve(self) -> dict[str, Token]:
         """Every token with aliases and ``$ref`` followed and its type resolved."""
         self._apply_extends()
         self._cache: dict[str, Token] = {}
+        self._pointers: dict[tuple[int, str], tuple[Any, int]] = {}
         return {path: self._token(path, []) for path in self.raw}
 
     def _field(self, node: dict[str, Any], name: str) -> Any:
@@ -220,8 +259,23 @@ class TokenTree:
                 path=stack[0],
             )
         stack = [*stack, path]
+        self.count(1, raw.doc, raw.keys, path)
         value_key = "$value" if "$value" in raw.node else "value"
-        value, target = self._value(raw, raw.node[value_key], (*raw.keys, value_key), stack)
+        try:
+            value, target, size = self._value(
+                raw, raw.node[value_key], (*raw.keys, value_key), stack
+            )
+        except _Unresolved as exc:
+            token = self._broken(raw, path, exc.problem, exc.line)
+            self._cache[path] = token
+            return token
+        if size > MAX_VALUE_NODES:
+            raise token_error(
+                f"its value expands to more than {MAX_VALUE_NODES:,} JSON values ($ref)",
+                file=raw.doc.path,
+                line=raw.line,
+                path=path,
+            )
         if target is not None and len(target.chain) >= MAX_ALIAS_CHAIN:
             raise token_error(
                 f"alias chain longer than {MAX_ALIAS_CHAIN}: {path} -> {target.path} -> ...",
@@ -238,19 +292,17 @@ class TokenTree:
                 path=path,
             )
         ttype = declared or raw.group_type or (target.type if target else None)
-        if ttype is None:
-            raise token_error(
+        problem = target.problem if target is not None else None
+        if ttype is None and problem is None:
+            problem = (
                 "token has no $type (on itself or a parent group) and is no alias of a typed "
-                'token; add "$type": "color" (DTCG 2025.10: tools must not guess types)',
-                file=raw.doc.path,
-                line=raw.line,
-                path=path,
+                'token; add "$type": "color" (DTCG 2025.10: tools must not guess types)'
             )
         extensions = self._field(raw.node, "extensions")
         description = self._field(raw.node, "description")
         token = Token(
             path=path,
-            type=ttype,
+            type=ttype or "unknown",
             value=value,
             file=target.file if target else raw.doc.path,
             line=target.line if target else raw.line,
@@ -263,37 +315,73 @@ class TokenTree:
             # A literal string value is rewritten in place; an object, a list or
             # a $ref into a value has no single span (JsonDoc records strings only).
             span=target.span if target else raw.doc.span((*raw.keys, value_key)),
+            problem=problem,
         )
         self._cache[path] = token
         return token
 
+    def _broken(self, raw: _Raw, path: str, problem: str, line: int | None) -> Token:
+        """A token that cannot be resolved: it loads, and is an error only where selected."""
+        declared = self._field(raw.node, "type")
+        return Token(
+            path=path,
+            type=declared if isinstance(declared, str) else raw.group_type or "unknown",
+            value=None,
+            file=raw.doc.path,
+            line=line or raw.line,
+            problem=problem,
+        )
+
     def _value(
         self, raw: _Raw, value: Any, keys: JsonPath, stack: list[str]
-    ) -> tuple[Any, Token | None]:
-        """Resolved ``value`` and, when the whole value is a reference, the token it names."""
+    ) -> tuple[Any, Token | None, int]:
+        """Resolved ``value``, the token it names when it is a whole reference, and its size.
+
+        The size counts JSON values with shared sub-values counted each time
+        they occur, so a value that doubles through pointers is caught by
+        :data:`MAX_VALUE_NODES` before anything walks it.
+        """
         if isinstance(value, str) and (match := ALIAS.fullmatch(value.strip())):
-            name = match.group(1)
-            if name not in self.raw:
-                raise token_error(
-                    f"alias {value} names no token",
-                    file=raw.doc.path,
-                    line=raw.doc.line(keys),
-                    path=raw.path,
+            name = self._alias_target(match.group(1))
+            if name is None:
+                raise _Unresolved(
+                    f"alias {value} names no token in this file (a library or another "
+                    "file's token?)",
+                    raw.doc.line(keys),
                 )
             target = self._token(name, stack)
-            return target.value, target
+            return target.value, target, _size(target.value)
         if isinstance(value, dict) and "$ref" in value:
             return self._pointer(raw, value["$ref"], keys, stack)
         if isinstance(value, dict):
-            return {k: self._value(raw, v, (*keys, k), stack)[0] for k, v in value.items()}, None
+            out: dict[str, Any] = {}
+            size = 1
+            for k, v in value.items():
+                out[k], _, n = self._value(raw, v, (*keys, k), stack)
+                size += n
+            return out, None, size
         if isinstance(value, list):
-            return [self._value(raw, v, (*keys, i), stack)[0] for i, v in enumerate(value)], None
-        return value, None
+            items = []
+            size = 1
+            for i, v in enumerate(value):
+                item, _, n = self._value(raw, v, (*keys, i), stack)
+                items.append(item)
+                size += n
+            return items, None, size
+        return value, None, 1
+
+    def _alias_target(self, name: str) -> str | None:
+        """The token an alias names; Style Dictionary's ``{a.b.value}`` names ``a.b``."""
+        if name in self.raw:
+            return name
+        if self.legacy and name.endswith(".value") and name[: -len(".value")] in self.raw:
+            return name[: -len(".value")]
+        return None
 
     def _pointer(
         self, raw: _Raw, pointer: Any, keys: JsonPath, stack: list[str]
-    ) -> tuple[Any, Token | None]:
-        """Follow a JSON Pointer ``#/a/b`` in the token's own document."""
+    ) -> tuple[Any, Token | None, int]:
+        """Follow a JSON Pointer ``#/a/b`` in the token's own document (memoised, counted)."""
         where: TokenPlace = {"file": raw.doc.path, "line": raw.doc.line(keys), "path": raw.path}
         if not isinstance(pointer, str) or not pointer.startswith("#"):
             raise token_error(
@@ -304,6 +392,7 @@ class TokenTree:
         if pointer in stack:
             chain = " -> ".join([*stack[stack.index(pointer) :], pointer])
             raise token_error(f"$ref cycle: {chain}", **where)
+        self.count(1, raw.doc, keys, raw.path)
         parts = [p.replace("~1", "/").replace("~0", "~") for p in pointer[1:].split("/")[1:]]
         # A pointer at a token (in any merged source: the last one wins, as for
         # aliases) is an alias; a pointer into its value walks the resolved value.
@@ -314,7 +403,7 @@ class TokenTree:
             rest = parts[i:]
             target = self._token(token_path, stack)
             if not rest or rest == ["$value"] or (self.legacy and rest == ["value"]):
-                return target.value, target
+                return target.value, target, _size(target.value)
             if rest[0] not in ("$value", "value"):
                 raise token_error(
                     f"$ref {pointer} points into token {token_path} but not at its $value",
@@ -328,7 +417,11 @@ class TokenTree:
                     node = node[int(part)]
                 else:
                     raise token_error(f"$ref {pointer} points at nothing (no {part!r})", **where)
-            return node, None
+            return node, None, _size(node)
+        memo = (id(raw.doc), pointer)
+        if memo in self._pointers:
+            value, size = self._pointers[memo]
+            return value, None, size
         node = raw.doc.data
         for part in parts:
             if isinstance(node, dict) and part in node:
@@ -339,7 +432,31 @@ class TokenTree:
                 raise token_error(f"$ref {pointer} points at nothing (no {part!r})", **where)
         if len(stack) > MAX_ALIAS_CHAIN:
             raise token_error(f"$ref chain longer than {MAX_ALIAS_CHAIN}", **where)
-        return self._value(raw, node, keys, [*stack, pointer])[0], None
+        value, _, size = self._value(raw, node, keys, [*stack, pointer])
+        if size > MAX_VALUE_NODES:
+            raise token_error(
+                f"$ref {pointer} expands to more than {MAX_VALUE_NODES:,} JSON values", **where
+            )
+        self._pointers[memo] = (value, size)
+        return value, None, size
+
+
+class _Unresolved(Exception):
+    """A reference this file cannot resolve: the token becomes a :attr:`Token.problem`."""
+
+    def __init__(self, problem: str, line: int | None) -> None:
+        super().__init__(problem)
+        self.problem = problem
+        self.line = line
+
+
+def _size(value: Any) -> int:
+    """JSON values in ``value`` (an already resolved value: small, bounded when it was made)."""
+    if isinstance(value, dict):
+        return 1 + sum(_size(v) for v in value.values())
+    if isinstance(value, list):
+        return 1 + sum(_size(v) for v in value)
+    return 1
 
 
 def tokens_from_docs(docs: list[JsonDoc], *, legacy: bool = False) -> dict[str, Token]:

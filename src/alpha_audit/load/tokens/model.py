@@ -9,10 +9,32 @@ from typing import Any, TypedDict
 from alpha_audit.errors import InputError
 from alpha_audit.model import Span
 
-__all__ = ["MAX_ALIAS_CHAIN", "MAX_TOKENS", "Token", "TokenModes", "TokenPlace", "token_error"]
+__all__ = [
+    "MAX_ALIAS_CHAIN",
+    "MAX_EXPANSION",
+    "MAX_MODES",
+    "MAX_MODE_TOKENS",
+    "MAX_TOKENS",
+    "Token",
+    "TokenModes",
+    "TokenPlace",
+    "check_mode_budget",
+    "token_error",
+]
 
 MAX_TOKENS = 100_000  # a large design system has a few thousand tokens
 MAX_ALIAS_CHAIN = 64  # longer chains are a generator bug or an attack
+# Modes are themes: the same cap as a YAML theme's canvases (load/theme.py).
+MAX_MODES = 4096
+# Tokens resolved over all modes (modes x tokens): Primer's 9 themes x ~1,000
+# colours is 9,000 and daisyUI's 35 themes x 28 is 980, so a million is a
+# hundred times the largest real set while bounding a small file that asks
+# for thousands of modes of thousands of tokens (each mode re-resolves them).
+MAX_MODE_TOKENS = 1_000_000
+# Steps of one expansion (JSON Pointer and alias lookups, $extends copies,
+# CSS var() substitutions) in one file: every step is counted, so a few
+# kilobytes that double at every level stop here with an error, never hang.
+MAX_EXPANSION = 2_000_000
 
 
 @dataclass(frozen=True)
@@ -39,6 +61,10 @@ class Token:
     alias_line: int | None = field(default=None, compare=False)
     alias_file: Path | None = field(default=None, compare=False)
     span: Span | None = field(default=None, compare=False, repr=False)
+    # Why the token cannot be used (an alias to a token the file does not
+    # have, no type, a CSS value that is not a colour): raised only where the
+    # token is selected, so one broken token nobody selects does not stop a load.
+    problem: str | None = field(default=None, compare=False)
 
 
 @dataclass(frozen=True)
@@ -48,12 +74,35 @@ class TokenModes:
     ``modes`` keeps the source's order; a source without modes has one mode
     named ``default``.  ``source`` is the file that was loaded and ``kind``
     the detected format (``dtcg``, ``resolver``, ``tokens-studio``, ...).
+    ``notes`` say how the source became modes (which CSS rules are which
+    mode) for a line on stderr; ``skipped`` maps a token path to where a rule
+    that was not read would also set it (a ``min-width`` media query, a
+    ``:has()`` state), so a selected token can be warned about.
     """
 
     source: Path
     kind: str
     modes: dict[str, dict[str, Token]]
     default: str | None = None
+    notes: tuple[str, ...] = ()
+    skipped: dict[str, str] = field(default_factory=dict)
+
+
+def check_mode_budget(path: Path, modes: int, tokens: int) -> None:
+    """Refuse more than :data:`MAX_MODES` modes or :data:`MAX_MODE_TOKENS` resolutions.
+
+    Called before any mode is resolved, so the refusal costs nothing.
+    """
+    if modes > MAX_MODES:
+        raise InputError(
+            f"{modes} modes; at most {MAX_MODES} (the cap on a theme's canvases)", path=path
+        )
+    if modes * tokens > MAX_MODE_TOKENS:
+        raise InputError(
+            f"{modes} modes x {tokens} tokens = {modes * tokens:,} to resolve; at most "
+            f"{MAX_MODE_TOKENS:,} per token source",
+            path=path,
+        )
 
 
 class TokenPlace(TypedDict):

@@ -17,9 +17,11 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from alpha_audit.load.paths import PathRefused, contain
 from alpha_audit.load.tokens.dtcg import TokenTree
 from alpha_audit.load.tokens.jsondoc import JsonDoc, load_json
-from alpha_audit.load.tokens.model import TokenModes, token_error
+from alpha_audit.load.tokens.model import TokenModes, check_mode_budget, token_error
+from alpha_audit.safe_text import check_name
 
 __all__ = ["MAX_SOURCES", "is_resolver", "modes_from_resolver"]
 
@@ -50,9 +52,10 @@ class _Resolver:
     def file(self, keys: tuple[str | int, ...], ref: str) -> JsonDoc:
         if "://" in ref or ref.startswith("//"):
             raise self.error(keys, f"$ref {ref!r} is remote; only files in the project are read")
-        target = (self.base / ref.split("#", 1)[0]).resolve()
-        if not target.is_relative_to(self.root):
-            raise self.error(keys, f"$ref {ref!r} resolves outside {self.root}; not allowed")
+        try:
+            target = contain(self.root, self.base, ref.split("#", 1)[0])
+        except PathRefused as err:
+            raise self.error(keys, f"$ref: {err}") from err
         if target not in self.files:
             if len(self.files) >= MAX_SOURCES:
                 raise self.error(keys, f"more than {MAX_SOURCES} source files")
@@ -152,6 +155,9 @@ def modes_from_resolver(
         if name == chosen:
             contexts = list(ctx)
             default = node.get("default") if isinstance(node.get("default"), str) else None
+    check_mode_budget(doc.path, len(contexts), 0)
+    for context in contexts:
+        check_name(context, path=doc.path, line=doc.line(("modifiers",)), what="context name")
     modes = {}
     for context in contexts:
         tree = TokenTree(legacy=legacy)
@@ -165,5 +171,6 @@ def modes_from_resolver(
             if pick not in ctx:
                 raise r.error((*keys, "default"), f"default {pick!r} is not one of its contexts")
             r.sources(tree, (*keys, "contexts", pick), ctx[pick])
+        check_mode_budget(doc.path, len(contexts), len(tree.raw))
         modes[context] = tree.resolve()
     return TokenModes(doc.path, "resolver", modes, default)

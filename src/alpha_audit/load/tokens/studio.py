@@ -4,8 +4,16 @@ Two layouts: one JSON file whose top-level keys are token sets, beside
 ``$themes`` and ``$metadata``; or a folder of ``<set>.json`` files with
 ``$themes.json`` and ``$metadata.json``.  A theme's ``selectedTokenSets``
 maps set names to ``enabled``, ``source`` (used for references) or
-``disabled``; enabled and source sets merge in ``$metadata.tokenSetOrder``
-order, the last occurrence winning.  Each theme is one mode.
+``disabled``.  Source sets merge first and enabled sets after, each group in
+``$metadata.tokenSetOrder`` order, the last occurrence winning: references
+resolve into a source set, and an enabled set's token wins over a source
+set's (Tokens Studio leaves source sets out of its output).  Each theme is
+one mode.  Without themes the sets merge into one mode, ``default``, only
+when no token path is set by two of them; otherwise which set wins is a
+guess (a dark set would override the light one), so it is an error.
+
+Every file opened (sets, ``$metadata.json``) is resolved and must lie inside
+the project root (:func:`alpha_audit.load.paths.contain`), symlinks included.
 """
 
 from __future__ import annotations
@@ -13,9 +21,11 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from alpha_audit.load.paths import PathRefused, contain
 from alpha_audit.load.tokens.dtcg import TokenTree
 from alpha_audit.load.tokens.jsondoc import JsonDoc, load_json
-from alpha_audit.load.tokens.model import TokenModes, token_error
+from alpha_audit.load.tokens.model import TokenModes, check_mode_budget, token_error
+from alpha_audit.safe_text import check_name
 
 __all__ = ["is_studio_file", "modes_from_studio"]
 
@@ -35,7 +45,10 @@ def modes_from_studio(doc: JsonDoc, *, root: Path) -> TokenModes:
     base = doc.path.resolve().parent
     if folder:
         themes: Any = doc.data
-        meta_path = base / "$metadata.json"
+        try:
+            meta_path = contain(root, base, "$metadata.json")
+        except PathRefused as err:
+            raise token_error(str(err), file=doc.path, line=None, path=None) from err
         meta = load_json(meta_path).data if meta_path.is_file() else {}
         sets: dict[str, tuple[JsonDoc, Any]] = {}
     else:
@@ -55,27 +68,33 @@ def modes_from_studio(doc: JsonDoc, *, root: Path) -> TokenModes:
                     line=doc.line(keys),
                     path=".".join(map(str, keys)),
                 )
-            target = (base / f"{name}.json").resolve()
-            if not target.is_relative_to(root):
+            try:
+                target = contain(root, base, f"{name}.json")
+            except PathRefused as err:
                 raise token_error(
-                    f"token set {name!r} resolves outside {root}; not allowed",
+                    f"token set {name!r}: {err}",
                     file=doc.path,
                     line=doc.line(keys),
                     path=".".join(map(str, keys)),
-                )
+                ) from err
             loaded = load_json(target)
             sets[name] = (loaded, loaded.data)
         return sets[name]
 
+    def ordered(names: list[str]) -> list[str]:
+        if not isinstance(order, list):
+            return names
+        return sorted(names, key=lambda s: order.index(s) if s in order else len(order))
+
     def build(selected: list[str], keys: tuple[str | int, ...]) -> dict[str, Any]:
-        if isinstance(order, list):
-            selected = sorted(selected, key=lambda s: order.index(s) if s in order else len(order))
         tree = TokenTree(legacy=True)
         for name in selected:
             sdoc, data = load_set(name, keys)
             tree.add(sdoc, data, (name,) if sdoc is doc else ())
         return tree.resolve()
 
+    if len(themes) > 0:
+        check_mode_budget(doc.path, len(themes), 0)
     modes = {}
     for i, theme in enumerate(themes):
         keys: tuple[str | int, ...] = ("$themes", i) if not folder else (i,)
@@ -86,9 +105,36 @@ def modes_from_studio(doc: JsonDoc, *, root: Path) -> TokenModes:
                 line=doc.line(keys),
                 path=".".join(map(str, keys)),
             )
-        name = str(theme.get("name", i))
-        chosen = [s for s, state in theme["selectedTokenSets"].items() if state in _USED]
+        name = check_name(
+            str(theme.get("name", i)), path=doc.path, line=doc.line(keys), what="theme name"
+        )
+        states = theme["selectedTokenSets"]
+        chosen = ordered([s for s, st in states.items() if st == "source"])
+        chosen += ordered([s for s, st in states.items() if st == "enabled"])
         modes[name] = build(chosen, (*keys, "selectedTokenSets"))
+        check_mode_budget(doc.path, len(themes), len(modes[name]))
     if not modes:
-        modes["default"] = build(list(sets), ())
+        names = ordered(list(sets))
+        _no_overlap(doc, names, sets)
+        modes["default"] = build(names, ())
     return TokenModes(doc.path, "tokens-studio", modes, next(iter(modes)))
+
+
+def _no_overlap(doc: JsonDoc, names: list[str], sets: dict[str, tuple[JsonDoc, Any]]) -> None:
+    """Without themes, sets merge only when none sets a token path another sets."""
+    owner: dict[str, str] = {}
+    for name in names:
+        tree = TokenTree(legacy=True)
+        sdoc, data = sets[name]
+        tree.add(sdoc, data, (name,))
+        for path in tree.raw:
+            if path in owner:
+                raise token_error(
+                    f"has no $themes, and token sets {owner[path]!r} and {name!r} both set "
+                    f"{path}; merging them would let the later set win (a dark set over the "
+                    "light one): add themes in Tokens Studio that say which sets make a mode",
+                    file=doc.path,
+                    line=doc.line((name,)),
+                    path=path,
+                )
+            owner[path] = name

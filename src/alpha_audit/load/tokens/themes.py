@@ -40,6 +40,7 @@ from alpha_audit.color.css import (
 )
 from alpha_audit.color.srgb import srgb_decode
 from alpha_audit.errors import InputError
+from alpha_audit.load.theme import MAX_CANVASES
 from alpha_audit.load.tokens import load_token_modes, token_color
 from alpha_audit.load.tokens.model import Token, TokenModes, token_error
 from alpha_audit.model import Canvas, GamutAdjustment, Mode, Theme
@@ -52,6 +53,7 @@ __all__ = [
     "TokenConfig",
     "TokenMode",
     "TokenThemes",
+    "TranslucentToken",
     "load_token_themes",
     "token_config_from_mapping",
     "token_themes",
@@ -105,12 +107,27 @@ class TokenColor:
 
 
 @dataclass(frozen=True)
+class TranslucentToken:
+    """A selected canvas token with its own alpha below 1: a surface over the mode's canvas.
+
+    Kept, not audited yet: ``parsed.alpha`` is the token's alpha and
+    ``parsed.encoded`` its colour; ``mode`` the mode it belongs to, whose
+    opaque canvases (:attr:`TokenMode.theme`) are what it sits on.
+    """
+
+    token: Token
+    parsed: ParsedColor
+    mode: str
+
+
+@dataclass(frozen=True)
 class TokenMode:
-    """One mode: its theme (canvases from tokens) and its icon colours."""
+    """One mode: its theme (opaque canvases from tokens), icon colours and translucent surfaces."""
 
     name: str
     theme: Theme
     colors: dict[str, TokenColor]
+    translucent: dict[str, TranslucentToken] = field(default_factory=dict)
 
     def theme_palette(self) -> dict[str, str]:
         """``{token path: exact colour}`` of this mode's icon colours."""
@@ -126,6 +143,7 @@ class TokenThemes:
     gamut: GamutPolicy
     modes: tuple[TokenMode, ...]
     adjusted: tuple[GamutAdjustment, ...] = ()
+    notes: tuple[str, ...] = ()  # one line each for stderr: modes found, tokens skipped
 
     @property
     def themes(self) -> tuple[Theme, ...]:
@@ -170,6 +188,21 @@ def _alpha(token: Token, key: str) -> float | None:
     return float(raw)
 
 
+def _selection(source: TokenModes, config: TokenConfig) -> dict[str, tuple[bool, bool]]:
+    """``{path: (is canvas, is icon colour)}`` of every selected path, each glob tried once."""
+    out: dict[str, tuple[bool, bool]] = {}
+    seen: set[str] = set()
+    for tokens in source.modes.values():
+        for path in tokens:
+            if path in seen:
+                continue
+            seen.add(path)
+            is_canvas, is_color = _matches(path, config.canvases), _matches(path, config.colors)
+            if is_canvas or is_color:
+                out[path] = (is_canvas, is_color)
+    return out
+
+
 def _parse_all(
     source: TokenModes, config: TokenConfig
 ) -> tuple[dict[str, ParsedColor], list[tuple[str, str, str, Token, bool, bool]]]:
@@ -178,19 +211,20 @@ def _parse_all(
     Modes share most colours (aliases of one palette), so each distinct value
     is converted once; under ``map`` the values are parsed as ``clip`` (cheap)
     and the ones outside sRGB are then gamut-mapped in one vectorised batch.
+    A translucent value is parsed with its alpha (:func:`token_themes` decides).
     """
     parse_as: GamutPolicy = "clip" if config.gamut == "map" else config.gamut
+    chosen = _selection(source, config)
     seen: dict[str, ParsedColor] = {}
     selected: list[tuple[str, str, str, Token, bool, bool]] = []
     for name, tokens in source.modes.items():
         for path, token in tokens.items():
-            is_canvas = _matches(path, config.canvases)
-            is_color = _matches(path, config.colors)
-            if not (is_canvas or is_color):
+            if path not in chosen:
                 continue
+            is_canvas, is_color = chosen[path]
             key = json.dumps(token.value, sort_keys=True)
-            if key not in seen or token.type != "color":
-                seen[key] = token_color(token, gamut=parse_as)
+            if key not in seen or token.type != "color" or token.problem is not None:
+                seen[key] = token_color(token, gamut=parse_as, allow_alpha=True)
             selected.append((name, path, key, token, is_canvas, is_color))
     if config.gamut == "map":
         seen = dict(zip(seen, map_parsed(list(seen.values())), strict=True))
@@ -198,18 +232,47 @@ def _parse_all(
 
 
 def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
-    """Build a theme and icon colours per mode from resolved tokens."""
+    """Build a theme and icon colours per mode from resolved tokens.
+
+    A translucent canvas token (a surface or hover layer: alpha below 1) is
+    not a canvas of its own yet: it is kept in :attr:`TokenMode.translucent`
+    with its alpha and its mode's opaque canvases, and a note says so.  A
+    translucent icon colour is an error (the coefficient belongs in
+    ``$extensions``).  A CSS mode whose selected colours equal an earlier
+    mode's is audited once, with a note.
+    """
     seen, selected = _parse_all(source, config)
     modes: list[TokenMode] = []
     adjusted: list[tuple[str, Token, ParsedColor]] = []
+    notes: list[str] = list(source.notes)
     by_mode: dict[str, list[tuple[str, str, Token, bool, bool]]] = {n: [] for n in source.modes}
     for name, *entry in selected:
         by_mode[name].append(tuple(entry))  # type: ignore[arg-type]  # the 4 fields after name
+    chosen = {path for _, path, *_ in selected}
+    for path in sorted(chosen & set(source.skipped)):
+        notes.append(
+            f"{path}: also set at {source.skipped[path]}, which is no colour mode; "
+            "that value is not audited"
+        )
+    distinct: dict[tuple[Any, ...], str] = {}
+    total_canvases = 0
     for name, entries in by_mode.items():
         canvases: list[Canvas] = []
         colors: dict[str, TokenColor] = {}
+        translucent: dict[str, TranslucentToken] = {}
         for path, key, token, is_canvas, is_color in entries:
             parsed = seen[key]
+            if parsed.alpha < 1.0:
+                if is_color:
+                    raise token_error(
+                        f"{parsed.text[:60]!r} is translucent (alpha {parsed.alpha:.4g}); an "
+                        "icon colour is opaque and its coefficient lives in $extensions",
+                        file=token.file,
+                        line=token.line,
+                        path=path,
+                    )
+                translucent[path] = TranslucentToken(token, parsed, name)
+                continue
             if parsed.adjusted:
                 adjusted.append((name, token, parsed))
             if is_canvas:
@@ -227,13 +290,39 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
                 colors[path] = TokenColor(token, parsed, _alpha(token, config.alpha_extension))
         if not canvases:
             raise InputError(
-                f"mode {name!r} has no token matching canvases {', '.join(config.canvases)}",
+                f"mode {name!r} has no opaque token matching canvases {', '.join(config.canvases)}",
+                path=source.source,
+            )
+        if translucent:
+            shown = ", ".join(
+                f"{p} ({t.parsed.alpha:.3g})" for p, t in list(translucent.items())[:3]
+            )
+            more = f" and {len(translucent) - 3} more" if len(translucent) > 3 else ""
+            notes.append(
+                f"mode {name}: translucent canvas tokens are not audited yet: {shown}{more}"
+            )
+        signature = (
+            tuple((c.name, c.color, c.mode) for c in canvases),
+            tuple((p, c.parsed.encoded, c.alpha) for p, c in colors.items()),
+        )
+        # CSS rules name modes loosely (any class or data attribute that sets a
+        # property), so a sheet's identical modes are audited once; a format
+        # that names its modes (Resolver, Figma, Tokens Studio) keeps them all.
+        if source.kind == "css" and signature in distinct:
+            notes.append(f"mode {name}: the same selected colours as mode {distinct[signature]}")
+            continue
+        distinct[signature] = name
+        total_canvases += len(canvases)
+        if total_canvases > MAX_CANVASES:
+            raise InputError(
+                f"more than {MAX_CANVASES} canvases over {len(distinct)} modes; at most "
+                f"{MAX_CANVASES} (the cap on a theme's canvases)",
                 path=source.source,
             )
         theme = Theme(name, tuple(canvases), path=source.source)
-        modes.append(TokenMode(name, theme, colors))
+        modes.append(TokenMode(name, theme, colors, translucent))
     delta_e = gamut_delta_e([p for _, _, p in adjusted]) if adjusted else np.zeros(0)
-    notes = tuple(
+    moved = tuple(
         GamutAdjustment(
             mode=name,
             token=token.path,
@@ -246,7 +335,7 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
         )
         for (name, token, parsed), de in zip(adjusted, delta_e, strict=True)
     )
-    return TokenThemes(source.source, source.kind, config.gamut, tuple(modes), notes)
+    return TokenThemes(source.source, source.kind, config.gamut, tuple(modes), moved, tuple(notes))
 
 
 def _hex(parsed: ParsedColor) -> str:
