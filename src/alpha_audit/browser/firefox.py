@@ -1,4 +1,4 @@
-"""Firefox (ESR) over WebDriver BiDi on a loopback WebSocket (standard library only).
+"""Firefox (ESR) over WebDriver BiDi on a loopback WebSocket (the ``websockets`` client).
 
 Firefox is started headless with a fresh profile and
 ``--remote-debugging-port=0``; it picks a free port and prints
@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import base64
 import binascii
+import contextlib
 import json
 import os
 import re
@@ -21,6 +22,9 @@ import time
 from pathlib import Path
 from typing import Any
 
+from websockets.exceptions import WebSocketException
+from websockets.sync.client import ClientConnection, connect
+
 from alpha_audit.browser.interface import (
     Browser,
     BrowserError,
@@ -28,10 +32,11 @@ from alpha_audit.browser.interface import (
     deadline_after,
     time_left,
 )
-from alpha_audit.browser.websocket import WebSocket
 
 __all__ = ["Firefox"]
 
+# A message larger than this is refused rather than buffered (our pages send a few tens of MB).
+MAX_MESSAGE_BYTES = 512 * 1024 * 1024
 _LISTENING = re.compile(rb"WebDriver BiDi listening on (ws://127\.0\.0\.1:\d+)")
 # Profile preferences (about:config names).  WebGL without a GPU or display, and no
 # background traffic: the remote agent's recommended prefs already stop most of it.
@@ -103,7 +108,10 @@ class Firefox(Browser):
         while not (match := _LISTENING.search(log.read_bytes())):
             time_left(deadline, "Firefox (no WebDriver BiDi line on stderr)")
             time.sleep(0.02)
-        self._socket = WebSocket(match.group(1).decode() + "/session", timeout=self.timeout)
+        self._connection = contextlib.ExitStack()
+        self._socket = self._connection.enter_context(
+            _connect(match.group(1).decode() + "/session", self.timeout)
+        )
         self._next_id = 0
         session = self._call("session.new", {"capabilities": {}})
         caps = session.get("capabilities", {})
@@ -114,18 +122,23 @@ class Firefox(Browser):
         self, method: str, params: dict[str, Any], *, timeout: float | None = None
     ) -> dict[str, Any]:
         self._next_id += 1
-        self._socket.send_text(
-            json.dumps({"id": self._next_id, "method": method, "params": params})
-        )
         deadline = deadline_after(timeout or self.timeout)
-        while True:
-            message = json.loads(self._socket.receive_text(time_left(deadline, self.LABEL)))
-            if message.get("id") != self._next_id:
-                continue  # events, which we never subscribe to
-            if message.get("type") == "error":
-                raise BrowserError(f"Firefox {method}: {message.get('message')}")
-            result: dict[str, Any] = message["result"]
-            return result
+        try:
+            self._socket.send(json.dumps({"id": self._next_id, "method": method, "params": params}))
+            while True:
+                message = json.loads(self._socket.recv(time_left(deadline, self.LABEL)))
+                if message.get("id") == self._next_id:
+                    break  # anything else is an event, which we never subscribe to
+        except TimeoutError as exc:
+            raise BrowserError(f"{self.LABEL} {method} did not answer in time") from exc
+        except (OSError, WebSocketException) as exc:
+            raise BrowserError(
+                f"{self.LABEL} {method}: the WebDriver BiDi connection: {exc}"
+            ) from exc
+        if message.get("type") == "error":
+            raise BrowserError(f"Firefox {method}: {message.get('message')}")
+        result: dict[str, Any] = message["result"]
+        return result
 
     def _navigate(self, url: str) -> None:
         self._call(
@@ -173,4 +186,24 @@ class Firefox(Browser):
         try:
             self._call("browser.close", {}, timeout=5)
         finally:
-            self._socket.close()
+            self._connection.close()
+
+
+def _connect(url: str, timeout: float) -> ClientConnection:
+    """The BiDi WebSocket on loopback: no proxy from the environment, no size cap of 1 MiB.
+
+    Screenshots and pixel batches arrive as one message of tens of MB; a
+    message above :data:`MAX_MESSAGE_BYTES` is refused rather than buffered.
+    """
+    try:
+        return connect(
+            url,
+            proxy=None,  # websockets >= 15 would read HTTP(S)_PROXY; this socket is loopback only
+            open_timeout=timeout,
+            max_size=MAX_MESSAGE_BYTES,
+            compression=None,
+            ping_interval=None,  # no keep-alive pings: a busy page must not cost the link
+            close_timeout=2,
+        )
+    except (OSError, TimeoutError, WebSocketException) as exc:
+        raise BrowserError(f"cannot connect to Firefox's WebDriver BiDi at {url}: {exc}") from exc
