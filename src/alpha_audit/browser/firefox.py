@@ -28,7 +28,9 @@ from websockets.sync.client import ClientConnection, connect
 from alpha_audit.browser.interface import (
     Browser,
     BrowserError,
+    Clip,
     Installation,
+    JSONValue,
     deadline_after,
     time_left,
 )
@@ -64,6 +66,7 @@ class Firefox(Browser):
 
     NAME = "firefox"
     LABEL = "Firefox"
+    ISOLATED_SCRIPTS = True
     INSTALL_HINT = (
         "install Debian's packages (`sudo apt-get install -y firefox-esr libegl1 libegl-mesa0 "
         "libgl1-mesa-dri`, or `make browser` as root), or point ALPHA_AUDIT_FIREFOX at a binary"
@@ -83,12 +86,13 @@ class Firefox(Browser):
     def _start(self) -> None:
         profile = self.workdir / "profile"
         profile.mkdir()
+        prefs = {**_PREFS, **self._launch_prefs()}
         (profile / "user.js").write_text(
-            "".join(f"user_pref({json.dumps(k)}, {json.dumps(v)});\n" for k, v in _PREFS.items()),
+            "".join(f"user_pref({json.dumps(k)}, {json.dumps(v)});\n" for k, v in prefs.items()),
             encoding="utf-8",
         )
         log = self.workdir / "stderr.log"
-        env = {**os.environ, "MOZ_WEBGL_FORCE_EGL": "1", "MOZ_HEADLESS": "1"}
+        env = self.child_env({**os.environ, "MOZ_WEBGL_FORCE_EGL": "1", "MOZ_HEADLESS": "1"})
         env.pop("DISPLAY", None)  # headless and EGL: never an X server that is not ours
         with log.open("wb") as stderr:  # a file, never a pipe nobody drains
             self.processes.start(
@@ -118,6 +122,34 @@ class Firefox(Browser):
         self.version = f"{caps.get('browserName', 'firefox')} {caps.get('browserVersion', '')}"
         self._context = self._call("browsingContext.getTree", {})["contexts"][0]["context"]
 
+    def _launch_prefs(self) -> dict[str, JSONValue]:
+        """The colour scheme and, for untrusted pages, the proxy (about:config names)."""
+        prefs: dict[str, JSONValue] = {}
+        if self.options.color_scheme is not None:
+            dark = self.options.color_scheme == "dark"
+            prefs["layout.css.prefers-color-scheme.content-override"] = 0 if dark else 1
+            prefs["ui.systemUsesDarkTheme"] = 1 if dark else 0
+        prefs["ui.prefersReducedMotion"] = 1
+        if self.options.proxy is not None:
+            host, _, port = self.options.proxy.rpartition(":")
+            prefs.update(
+                {
+                    "network.proxy.type": 1,  # manual
+                    "network.proxy.http": host,
+                    "network.proxy.http_port": int(port),
+                    "network.proxy.ssl": host,
+                    "network.proxy.ssl_port": int(port),
+                    "network.proxy.no_proxies_on": ", ".join(self.options.direct),
+                    "network.proxy.allow_hijacking_localhost": True,  # loopback via proxy too
+                    "network.proxy.socks_remote_dns": True,
+                    "network.dns.disablePrefetch": True,
+                    "network.prefetch-next": False,
+                    "network.http.speculative-parallel-limit": 0,
+                    "media.peerconnection.enabled": False,  # WebRTC's UDP ignores proxies
+                }
+            )
+        return prefs
+
     def _call(
         self, method: str, params: dict[str, Any], *, timeout: float | None = None
     ) -> dict[str, Any]:
@@ -145,12 +177,15 @@ class Firefox(Browser):
             "browsingContext.navigate", {"context": self._context, "url": url, "wait": "complete"}
         )
 
-    def _evaluate_text(self, expression: str, timeout: float) -> str:
+    def _evaluate_text(self, expression: str, timeout: float, isolated: bool) -> str:
+        target: dict[str, str] = {"context": self._context}
+        if isolated:
+            target["sandbox"] = "alpha-audit"
         reply = self._call(
             "script.evaluate",
             {
                 "expression": expression,
-                "target": {"context": self._context},
+                "target": target,
                 "awaitPromise": True,
                 "resultOwnership": "none",
             },
@@ -162,21 +197,26 @@ class Firefox(Browser):
         value: str = reply["result"].get("value")  # JSON text (evaluate() refuses anything else)
         return value
 
-    def _set_viewport(self, width: int, height: int) -> None:
+    def _set_viewport(self, width: int, height: int, scale: float) -> None:
         self._call(
             "browsingContext.setViewport",
             {
                 "context": self._context,
                 "viewport": {"width": width, "height": height},
-                "devicePixelRatio": 1,
+                "devicePixelRatio": scale,
             },
         )
 
-    def _screenshot(self) -> bytes:
-        reply = self._call(
-            "browsingContext.captureScreenshot",
-            {"context": self._context, "origin": "viewport", "format": {"type": "image/png"}},
-        )
+    def _screenshot(self, clip: Clip | None) -> bytes:
+        params: dict[str, Any] = {
+            "context": self._context,
+            "origin": "viewport",
+            "format": {"type": "image/png"},
+        }
+        if clip is not None:
+            params["clip"] = {"type": "box", "x": clip.x, "y": clip.y}
+            params["clip"].update({"width": clip.width, "height": clip.height})
+        reply = self._call("browsingContext.captureScreenshot", params)
         try:
             return base64.b64decode(reply["data"], validate=True)
         except (KeyError, TypeError, binascii.Error) as exc:
