@@ -49,6 +49,16 @@ _FLAGS = (
     "--disable-extensions",
     "--mute-audio",
     "--force-color-profile=srgb",  # no colour management: CSS colours reach pixels as codes
+    # The browser's own traffic (network time, updates, sign-in, hints): none, so that
+    # what the blocking proxy sees is the page's.
+    "--disable-features=NetworkTimeServiceQuerying,OptimizationHints,"
+    "OptimizationGuideModelDownloading,MediaRouter,Translate,AutofillServerCommunication,"
+    "CertificateTransparencyComponentUpdater,AccountConsistency,SigninInterception",
+    "--disable-client-side-phishing-detection",
+    "--disable-domain-reliability",
+    "--disable-default-apps",
+    "--no-pings",
+    "--no-service-autorun",
     "--remote-debugging-pipe",
 )
 # Put the child's pipe ends on fds 3 and 4 after fork; Popen cannot place fds itself.

@@ -146,6 +146,7 @@ class Browser(abc.ABC):
         self.processes = ProcessGroup(self.workdir)
         self.version = ""
         self.scale = 1.0
+        self.viewport: tuple[int, int] | None = None  # the last size asked for
         self._closed = False
         try:
             (self.workdir / "tmp").mkdir()
@@ -267,6 +268,7 @@ class Browser(abc.ABC):
             raise BrowserError(f"device scale {scale:g}: must be 1 to 4")
         self._set_viewport(int(width), int(height), float(scale))
         self.scale = float(scale)
+        self.viewport = (int(width), int(height))
         check = (
             f"innerWidth === {int(width)} && innerHeight === {int(height)}"
             f" && devicePixelRatio === {float(scale)!r}"
