@@ -28,7 +28,7 @@ from pathlib import Path, PurePosixPath
 from typing import Any
 
 from alpha_audit.browser import COLOR_SCHEMES, ENGINES, ColorScheme
-from alpha_audit.errors import InputError, UsageError
+from alpha_audit.errors import UsageError
 from alpha_audit.load.fields import check_keys, describe, read_mapping, read_name, read_number
 from alpha_audit.load.paths import PathRefused, contain_argument, project_root
 from alpha_audit.load.yamldoc import KeyPath, YamlDoc, load_yaml
@@ -41,7 +41,16 @@ from alpha_audit.pages.sources import (
 )
 from alpha_audit.pages.states import State, state_matrix
 
-__all__ = ["RENDER_KEYS", "RenderConfig", "config_from_yaml", "source_from_argument"]
+__all__ = [
+    "RENDER_KEYS",
+    "RenderConfig",
+    "config_from_yaml",
+    "parse_attribute",
+    "parse_globals",
+    "resolve_render_config",
+    "source_from_argument",
+    "states_from_flags",
+]
 
 RENDER_KEYS = (
     "attribute",
@@ -333,6 +342,53 @@ def states_from_flags(
     )
 
 
-def read_iconset_error(path: Path) -> InputError:
-    """The error for an ``iconset`` that is not a file."""
-    return InputError("icon set manifest not found", path=path)
+def resolve_render_config(
+    arguments: Sequence[str],
+    *,
+    config_path: Path | None,
+    start: Path,
+    stories: Sequence[str] = (),
+    states: tuple[State, ...] | None = None,
+    **overrides: Any,
+) -> RenderConfig:
+    """The settings of one run: the project config's ``render:`` table, then the flags.
+
+    ``arguments`` (folders or loopback URLs) replace the configured sources;
+    ``stories`` globs apply to every Storybook source; other ``overrides``
+    replace a field when not None.
+    """
+    from alpha_audit.load.config import find_config
+
+    found = config_path if config_path is not None else find_config(start)
+    config = None
+    if found is not None and Path(found).suffix in (".yaml", ".yml"):
+        config = config_from_yaml(Path(found))
+    root = config.root if config is not None else project_root(start)
+    if config is None:
+        config = RenderConfig((), root=root)
+    if arguments:
+        config = replace(config, sources=tuple(source_from_argument(a, root) for a in arguments))
+    if stories:
+        config = replace(
+            config,
+            sources=tuple(
+                replace(s, stories=tuple(stories)) if isinstance(s, StorybookSource) else s
+                for s in config.sources
+            ),
+        )
+    if not config.sources:
+        raise UsageError(
+            "nothing to render: give a built Storybook folder, a folder of HTML pages or a "
+            "loopback URL, or a render: table in alpha-audit.yaml"
+        )
+    if states is not None:
+        config = replace(config, states=states)
+    for engine in overrides.get("engines") or ():
+        if engine not in ENGINES:
+            raise UsageError(f"--engine {engine!r}: choose from {', '.join(ENGINES)}")
+    if overrides.get("iconset") is not None:
+        try:
+            overrides["iconset"] = contain_argument(overrides["iconset"], root)
+        except PathRefused as exc:
+            raise UsageError(str(exc), path=overrides["iconset"]) from exc
+    return config.with_overrides(**overrides)
