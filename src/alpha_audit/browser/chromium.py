@@ -202,7 +202,13 @@ class Chromium(Browser):
         if reply.get("errorText"):
             raise BrowserError(f"Chromium could not open {url}: {reply['errorText']}")
         deadline = deadline_after(self.timeout)
-        check = f"location.href === {json.dumps(url)} && document.readyState === 'complete'"
+        # The page may rewrite its own query (Storybook writes its globals back): compare
+        # the address without it.
+        base = url.split("?", 1)[0].split("#", 1)[0]
+        check = (
+            f"location.href.split('?')[0].split('#')[0] === {json.dumps(base)}"
+            " && document.readyState === 'complete'"
+        )
         while not self.evaluate(check):
             time_left(deadline, f"Chromium loading {url}")
             time.sleep(0.02)
