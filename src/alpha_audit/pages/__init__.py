@@ -8,8 +8,11 @@ of every icon measured from the pixels (:mod:`.measure`) into
 paint and backdrop.  Pages are untrusted: :mod:`.server` serves them on
 loopback and refuses every other request, :mod:`.run` bounds time and memory.
 
->>> from alpha_audit.pages import RenderConfig, audit_pages  # doctest: +SKIP
->>> result = audit_pages(RenderConfig((StorybookSource(Path("storybook-static")),)))  # doctest: +SKIP
+Example (a built Storybook in the current folder)::
+
+    from pathlib import Path
+    from alpha_audit.pages import RenderConfig, StorybookSource, audit_pages
+    result = audit_pages(RenderConfig((StorybookSource(Path("storybook-static")),)))
 """
 
 from alpha_audit.pages.config import RenderConfig, config_from_yaml, source_from_argument

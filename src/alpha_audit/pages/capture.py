@@ -138,25 +138,25 @@ def capture_page(
     browser.evaluate(_SETTLED, isolated=isolated)
     browser.evaluate(f"(globalThis.{_PROBE} = {_probe_source()}, true)", isolated=isolated)
     options = {"selector": selector, "attribute": attribute, "maxSize": max_icon_size}
-    found = browser.evaluate(f"{_PROBE}.find({json.dumps(options)})", isolated=isolated)
-    assert isinstance(found, dict)
-    page_h = int(found["height"])  # type: ignore[call-overload]
+    found: Any = browser.evaluate(f"{_PROBE}.find({json.dumps(options)})", isolated=isolated)
+    if not isinstance(found, dict):
+        raise BrowserError(f"{browser.LABEL}: the icon probe returned {type(found).__name__}")
+    page_h = int(found["height"])
     if page_h > height and height < 4096:
         # Icons below the fold: make the viewport as tall as the page (4096 px at most).
         browser.set_viewport(width, min(page_h, 4096), scale)
         height = min(page_h, 4096)
         browser.evaluate(_SETTLED, isolated=isolated)
         found = browser.evaluate(f"{_PROBE}.find({json.dumps(options)})", isolated=isolated)
-        assert isinstance(found, dict)
     icons = [
         FoundIcon(
             str(i["kind"]),
             str(i["path"]),
-            tuple(float(v) for v in i["box"]),  # type: ignore[arg-type]
+            (float(i["box"][0]), float(i["box"][1]), float(i["box"][2]), float(i["box"][3])),
             dict(i["keys"]),
             tuple(dict(p) for p in i["paints"]),
         )
-        for i in found["icons"]  # type: ignore[union-attr]
+        for i in found["icons"]
     ]
     if not icons:
         empty = np.zeros((0, 0, 3), dtype=np.uint8)

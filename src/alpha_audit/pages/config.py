@@ -302,7 +302,7 @@ def config_from_yaml(path: Path) -> RenderConfig | None:
 
 
 def parse_globals(text: str) -> tuple[tuple[str, str], ...]:
-    """``theme:dark;density:compact`` (a ``--globals`` value) -> pairs; refuses a pair with no ``:``."""
+    """``theme:dark;density:compact`` (a ``--globals`` value) -> pairs; ``:`` is required."""
     pairs = []
     for part in text.split(";"):
         name, sep, value = part.partition(":")

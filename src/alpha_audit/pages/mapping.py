@@ -15,6 +15,7 @@ import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 from defusedxml import ElementTree
 
@@ -46,11 +47,11 @@ def geometry_hash(svg: bytes) -> str | None:
     """
     try:
         root = ElementTree.fromstring(svg)
-    except Exception:  # noqa: BLE001 - any parse refusal (defusedxml's included) means "no hash"
+    except Exception:
         return None
     lines: list[str] = []
 
-    def walk(element: ElementTree.Element) -> None:
+    def walk(element: Any) -> None:
         for child in element:
             tag = _local(str(child.tag))
             if tag in _SHAPES:
@@ -113,9 +114,9 @@ class ManifestIndex:
                     return self.icons[name], IconMatch.SPRITE_ID
         if isinstance(file, str) and file:
             for stem in _file_stem(file):
-                name = stem if stem in self.icons else self.stems.get(stem)
-                if name is not None:
-                    return self.icons[name], IconMatch.FILE_NAME
+                known = stem if stem in self.icons else self.stems.get(stem)
+                if known is not None:
+                    return self.icons[known], IconMatch.FILE_NAME
         if isinstance(geometry, str) and geometry in self.hashes:
             return self.icons[self.hashes[geometry]], IconMatch.PATH_HASH
         return None, IconMatch.NONE

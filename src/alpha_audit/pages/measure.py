@@ -34,6 +34,7 @@ from coloraide import Color
 from numpy.typing import NDArray
 
 from alpha_audit.color import (
+    Pipeline,
     composite_paint,
     contrast_ratio,
     coverage_stats,
@@ -153,10 +154,11 @@ def _predictions(
     drawn: Linear, behind: Linear, source: Linear, alpha: float, opacity: float
 ) -> tuple[Prediction, ...]:
     out = []
-    for pipeline in ("linear", "css"):
+    pipelines: tuple[Pipeline, ...] = ("linear", "css")
+    for pipeline in pipelines:
         if pipeline == "css" and not 0.0 <= alpha * opacity <= 1.0:
             continue  # CSS clamps opacity: the css pipeline cannot draw this coefficient
-        shown = composite_paint(source, behind, alpha, opacity, pipeline)  # type: ignore[arg-type]
+        shown = composite_paint(source, behind, alpha, opacity, pipeline)
         out.append(
             Prediction(
                 pipeline,
@@ -186,6 +188,7 @@ def _assign(
     distances = []
     for k in known:
         paint = paints[k]
+        assert paint.color is not None  # known paints have a colour
         shown = composite_paint(paint.color, b_lin, 1.0, min(1.0, paint.opacity), "css")
         codes = np.rint(np.clip(_encode(shown), 0, 1) * 255.0)
         distances.append(np.abs(codes - drawn[full]).sum(axis=-1))
@@ -328,7 +331,7 @@ def measure_capture(
     page: PageContext,
     matches: Sequence[tuple[Icon | None, IconMatch]],
 ) -> list[MeasuredPaint]:
-    """Every paint of every icon of ``capture``; ``matches`` pairs each icon with its manifest icon."""
+    """Every paint of every icon of ``capture``; ``matches`` gives each icon's manifest icon."""
     out: list[MeasuredPaint] = []
     for icon, (manifest_icon, how) in zip(capture.icons, matches, strict=True):
         out.extend(_measure_icon(capture, icon, page, manifest_icon, how))

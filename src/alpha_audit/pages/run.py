@@ -128,7 +128,7 @@ class _Worker:
     def _browser(self, job: Job) -> Browser:
         scheme = job.state.color_scheme
         current = self.browser
-        if current is not None and current.NAME == job.engine:
+        if current is not None and job.engine == current.NAME:
             if current.options.color_scheme == scheme:
                 return current
             if current.LIVE_COLOR_SCHEME:

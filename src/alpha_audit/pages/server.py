@@ -46,7 +46,7 @@ class _Quiet(BaseHTTPRequestHandler):
     server_version = "alpha-audit"
     sys_version = ""
 
-    def log_message(self, format: str, *args: object) -> None:  # noqa: A002 - stdlib's name
+    def log_message(self, format: str, *args: object) -> None:
         return
 
     def _refuse(self, status: HTTPStatus) -> None:
