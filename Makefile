@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: demo test lint format bench clean browser dist
+.PHONY: demo test lint format bench clean browser dist fixtures
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -34,8 +34,15 @@ dist: $(STAMP)
 	$(BIN)/python -m build --quiet --outdir dist . >/dev/null
 	$(BIN)/twine check --strict dist/*
 
+## fixtures: the real Storybook and static page tests/pages audit, built with npm from
+## tests/pages/site and cached outside the repository (tools/page_fixtures.py; rebuilt only
+## when those sources change)
+fixtures: $(STAMP)
+	@command -v npm >/dev/null 2>&1 && $(BIN)/python tools/page_fixtures.py >/dev/null \
+	  || echo "note: npm (Node.js 20.19+) is needed to build the test Storybook; tests/pages skips without it"
+
 ## test: install, then lint (ruff and mypy), build and check the distributions, and run the whole test suite
-test: lint browser dist
+test: lint browser dist fixtures
 	$(BIN)/pytest
 
 ## lint: ruff's lint and format checks, then mypy --strict on src/alpha_audit ([tool.mypy])

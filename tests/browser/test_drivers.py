@@ -12,7 +12,6 @@ from PIL import Image
 
 from alpha_audit.browser import ENGINES, BrowserError, engine_class, installed_engines
 from alpha_audit.browser.interface import json_expression
-from alpha_audit.browser.websocket import WebSocket, accept_key
 from alpha_audit.errors import UsageError
 
 # (JS expression, the JSON value every engine must return)
@@ -44,17 +43,6 @@ def _groups_gone(pids: list[int], within: float = 5.0) -> bool:
             return True
         time.sleep(0.05)
     return False
-
-
-def test_accept_key_is_rfc_6455s_example():
-    assert accept_key("dGhlIHNhbXBsZSBub25jZQ==") == "s3pPLMBiTxaQ9kYGzzhZRbK+xOo="
-
-
-def test_websocket_refuses_anything_but_loopback():
-    with pytest.raises(BrowserError, match="loopback"):
-        WebSocket("ws://example.com:80/session")
-    with pytest.raises(BrowserError, match="loopback"):
-        WebSocket("wss://127.0.0.1:9/session")
 
 
 def test_json_expression_awaits_and_serialises():

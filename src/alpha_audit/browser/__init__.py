@@ -10,18 +10,31 @@ from __future__ import annotations
 
 from alpha_audit.browser.chromium import Chromium
 from alpha_audit.browser.firefox import Firefox
-from alpha_audit.browser.interface import Browser, BrowserError, Installation, JSONValue
+from alpha_audit.browser.interface import (
+    COLOR_SCHEMES,
+    Browser,
+    BrowserError,
+    Clip,
+    ColorScheme,
+    Installation,
+    JSONValue,
+    LaunchOptions,
+)
 from alpha_audit.browser.webkit import WebKit
 from alpha_audit.errors import UsageError
 
 __all__ = [
+    "COLOR_SCHEMES",
     "ENGINES",
     "Browser",
     "BrowserError",
     "Chromium",
+    "Clip",
+    "ColorScheme",
     "Firefox",
     "Installation",
     "JSONValue",
+    "LaunchOptions",
     "WebKit",
     "engine_class",
     "installed_engines",
@@ -51,6 +64,8 @@ def installed_engines() -> dict[str, Installation]:
     return {name: where for name, where in found.items() if where is not None}
 
 
-def open_browser(name: str, *, timeout: float = 60.0) -> Browser:
+def open_browser(
+    name: str, *, timeout: float = 60.0, options: LaunchOptions | None = None
+) -> Browser:
     """Start engine ``name``; raises :class:`BrowserError` when it is not installed."""
-    return engine_class(name)(timeout=timeout)
+    return engine_class(name)(timeout=timeout, options=options)

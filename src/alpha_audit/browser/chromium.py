@@ -24,6 +24,8 @@ from typing import Any
 from alpha_audit.browser.interface import (
     Browser,
     BrowserError,
+    Clip,
+    ColorScheme,
     Installation,
     deadline_after,
     time_left,
@@ -47,6 +49,16 @@ _FLAGS = (
     "--disable-extensions",
     "--mute-audio",
     "--force-color-profile=srgb",  # no colour management: CSS colours reach pixels as codes
+    # The browser's own traffic (network time, updates, sign-in, hints): none, so that
+    # what the blocking proxy sees is the page's.
+    "--disable-features=NetworkTimeServiceQuerying,OptimizationHints,"
+    "OptimizationGuideModelDownloading,MediaRouter,Translate,AutofillServerCommunication,"
+    "CertificateTransparencyComponentUpdater,AccountConsistency,SigninInterception",
+    "--disable-client-side-phishing-detection",
+    "--disable-domain-reliability",
+    "--disable-default-apps",
+    "--no-pings",
+    "--no-service-autorun",
     "--remote-debugging-pipe",
 )
 # Put the child's pipe ends on fds 3 and 4 after fork; Popen cannot place fds itself.
@@ -62,6 +74,8 @@ class Chromium(Browser):
 
     NAME = "chromium"
     LABEL = "Chromium"
+    LIVE_COLOR_SCHEME = True
+    ISOLATED_SCRIPTS = True
     INSTALL_HINT = (
         "install Debian's package (`sudo apt-get install -y chromium`, or `make browser` as "
         "root), or point ALPHA_AUDIT_CHROMIUM at a Chromium/Chrome binary"
@@ -94,9 +108,11 @@ class Chromium(Browser):
                     *(sys.executable, "-c", _TRAMPOLINE, str(child_r), str(child_w)),
                     str(self.installation.binary),
                     *_FLAGS,
+                    *self._network_flags(),
                     f"--user-data-dir={self.workdir / 'profile'}",
                     "about:blank",
                 ],
+                env=self.child_env(),
                 pass_fds=(child_r, child_w),
             )
         finally:
@@ -112,6 +128,30 @@ class Chromium(Browser):
             "Target.attachToTarget", {"targetId": target["targetId"], "flatten": True}
         )
         self._session = attached["sessionId"]
+        self._target = target["targetId"]
+        self._world: int | None = None
+        self.emulate_color_scheme(self.options.color_scheme)
+
+    def _network_flags(self) -> list[str]:
+        """Every request through the proxy but those to ``direct`` origins; no DNS, no UDP."""
+        if self.options.proxy is None:
+            return []
+        # <-loopback> ends Chromium's implicit bypass of loopback: the driver ports and any
+        # other local service go through the (refusing) proxy too.
+        bypass = ";".join(("<-loopback>", *self.options.direct))
+        return [
+            f"--proxy-server=http://{self.options.proxy}",
+            f"--proxy-bypass-list={bypass}",
+            "--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE localhost, EXCLUDE 127.0.0.1",
+            "--force-webrtc-ip-handling-policy=disable_non_proxied_udp",
+            "--dns-prefetch-disable",
+        ]
+
+    def emulate_color_scheme(self, scheme: ColorScheme | None) -> None:
+        """``prefers-color-scheme`` (and reduced motion, for still pictures) from now on."""
+        features = [{"name": "prefers-reduced-motion", "value": "reduce"}]
+        features.append({"name": "prefers-color-scheme", "value": scheme or ""})
+        self._call("Emulation.setEmulatedMedia", {"features": features})
 
     def _messages(self, deadline: float) -> Iterator[dict[str, Any]]:
         while True:
@@ -157,21 +197,47 @@ class Chromium(Browser):
         raise AssertionError("unreachable")
 
     def _navigate(self, url: str) -> None:
+        self._world = None
         reply = self._call("Page.navigate", {"url": url})
         if reply.get("errorText"):
             raise BrowserError(f"Chromium could not open {url}: {reply['errorText']}")
         deadline = deadline_after(self.timeout)
-        check = f"location.href === {json.dumps(url)} && document.readyState === 'complete'"
+        # The page may rewrite its own query (Storybook writes its globals back): compare
+        # the address without it.
+        base = url.split("?", 1)[0].split("#", 1)[0]
+        check = (
+            f"location.href.split('?')[0].split('#')[0] === {json.dumps(base)}"
+            " && document.readyState === 'complete'"
+        )
         while not self.evaluate(check):
             time_left(deadline, f"Chromium loading {url}")
             time.sleep(0.02)
 
-    def _evaluate_text(self, expression: str, timeout: float) -> str:
-        reply = self._call(
-            "Runtime.evaluate",
-            {"expression": expression, "returnByValue": True, "awaitPromise": True},
-            timeout=timeout,
-        )
+    def _isolated_world(self) -> int:
+        """An execution context of our own in the page's main frame (DOM shared, JS not)."""
+        if self._world is None:
+            reply = self._call(
+                "Page.createIsolatedWorld", {"frameId": self._target, "worldName": "alpha-audit"}
+            )
+            self._world = int(reply["executionContextId"])
+        return self._world
+
+    def _evaluate_text(self, expression: str, timeout: float, isolated: bool) -> str:
+        params: dict[str, Any] = {
+            "expression": expression,
+            "returnByValue": True,
+            "awaitPromise": True,
+        }
+        if isolated:
+            params["contextId"] = self._isolated_world()
+        try:
+            reply = self._call("Runtime.evaluate", params, timeout=timeout)
+        except BrowserError as exc:
+            if not (isolated and "context" in str(exc).lower()):
+                raise
+            self._world = None  # the page navigated by itself: a new document, a new world
+            params["contextId"] = self._isolated_world()
+            reply = self._call("Runtime.evaluate", params, timeout=timeout)
         if "exceptionDetails" in reply:
             details = reply["exceptionDetails"]
             text = details.get("exception", {}).get("description") or details.get("text")
@@ -179,14 +245,23 @@ class Chromium(Browser):
         value: str = reply["result"].get("value")  # JSON text (evaluate() refuses anything else)
         return value
 
-    def _set_viewport(self, width: int, height: int) -> None:
+    def _set_viewport(self, width: int, height: int, scale: float) -> None:
         self._call(
             "Emulation.setDeviceMetricsOverride",
-            {"width": width, "height": height, "deviceScaleFactor": 1, "mobile": False},
+            {"width": width, "height": height, "deviceScaleFactor": scale, "mobile": False},
         )
 
-    def _screenshot(self) -> bytes:
-        reply = self._call("Page.captureScreenshot", {"format": "png"})
+    def _screenshot(self, clip: Clip | None) -> bytes:
+        params: dict[str, Any] = {"format": "png", "optimizeForSpeed": True}
+        if clip is not None:  # CSS pixels; the image has deviceScaleFactor pixels per CSS px
+            params["clip"] = {
+                "x": clip.x,
+                "y": clip.y,
+                "width": clip.width,
+                "height": clip.height,
+                "scale": 1,
+            }
+        reply = self._call("Page.captureScreenshot", params)
         try:
             return base64.b64decode(reply["data"], validate=True)
         except (KeyError, TypeError, binascii.Error) as exc:

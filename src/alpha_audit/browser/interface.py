@@ -11,7 +11,11 @@ terminates (then kills) on close, on exceptions and at interpreter exit, so a
 failed or timed-out run never leaves Firefox content processes, WebKit web
 processes or an Xvfb behind.
 
-Everything listens on loopback only; pages are local files.
+Everything listens on loopback only.  :class:`LaunchOptions` choose
+``prefers-color-scheme`` and send every request through a loopback proxy
+except those to the pages' own servers (:mod:`alpha_audit.pages`); the
+lifecycle (process groups, signals, a reaper that outlives a killed
+alpha-audit) is in :mod:`alpha_audit.browser.lifecycle`.
 """
 
 from __future__ import annotations
@@ -21,32 +25,30 @@ import contextlib
 import json
 import os
 import shutil
-import signal
-import subprocess
 import tempfile
 import time
-import weakref
-from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from types import TracebackType
-from typing import ClassVar, Self, TypeAlias
+from typing import ClassVar, Literal, Self, TypeAlias
 
-from alpha_audit.errors import AlphaAuditError
+from alpha_audit.browser.lifecycle import BrowserError, ProcessGroup
 
 __all__ = [
+    "COLOR_SCHEMES",
     "Browser",
     "BrowserError",
+    "Clip",
+    "ColorScheme",
     "Installation",
     "JSONValue",
+    "LaunchOptions",
     "ProcessGroup",
     "json_expression",
 ]
 
 JSONValue: TypeAlias = bool | int | float | str | list["JSONValue"] | dict[str, "JSONValue"] | None
 
-# How long a process gets to exit after SIGTERM before it is killed.
-_TERMINATE_GRACE = 3.0
 # The largest viewport side we ask for: Chromium's headless window and Xvfb's screen
 # (webkit.py) are this size at most; screenshots beyond it would be tens of MB anyway.
 _MAX_VIEWPORT = 4096
@@ -55,10 +57,6 @@ _TWO_FRAMES = (
 )
 # PNG, section 5.2 (ISO/IEC 15948).
 _PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
-
-
-class BrowserError(AlphaAuditError):
-    """A browser engine could not be started, did not answer in time, or a script failed."""
 
 
 @dataclass(frozen=True)
@@ -84,74 +82,27 @@ def json_expression(expression: str) -> str:
     return f'(async () => JSON.stringify(await ({expression})) ?? "null")()'
 
 
-class ProcessGroup:
-    """Child processes, each started in a new session, ended together.
+ColorScheme = Literal["light", "dark"]
+COLOR_SCHEMES: tuple[ColorScheme, ...] = ("light", "dark")
 
-    ``close`` sends SIGTERM to each group, waits briefly, then SIGKILLs what is
-    left; it runs from :meth:`Browser.close`, from a finaliser when a browser
-    is dropped, and at interpreter exit.
+
+@dataclass(frozen=True)
+class LaunchOptions:
+    """How an engine is started; the defaults are what the WebGL validation needs.
+
+    ``color_scheme`` is what ``prefers-color-scheme`` matches (``None``: the
+    engine's default, light).  ``proxy`` is a loopback ``host:port`` every
+    request goes through except those to ``direct`` (``host:port`` origins of
+    the pages' own servers): alpha-audit's blocking proxy
+    (:mod:`alpha_audit.pages.proxy`) answers everything else with an error and
+    records it, so untrusted pages reach nothing but their server.
     """
 
-    def __init__(self) -> None:
-        self._processes: list[subprocess.Popen[bytes]] = []
-        # A finalizer also runs at interpreter exit (weakref.finalize.atexit is True).
-        self._finalizer = weakref.finalize(self, ProcessGroup._end_all, self._processes)
-
-    def start(
-        self,
-        argv: Sequence[str],
-        *,
-        env: dict[str, str] | None = None,
-        pass_fds: Sequence[int] = (),
-        stderr: int | None = subprocess.DEVNULL,
-        stdout: int | None = subprocess.DEVNULL,
-    ) -> subprocess.Popen[bytes]:
-        """Start ``argv`` in its own session (process group); remember it for cleanup."""
-        try:
-            process = subprocess.Popen(
-                list(argv),
-                env=env,
-                pass_fds=tuple(pass_fds),
-                stdin=subprocess.DEVNULL,
-                stdout=stdout,
-                stderr=stderr,
-                start_new_session=True,
-            )
-        except OSError as exc:
-            raise BrowserError(f"cannot start {argv[0]}: {exc.strerror or exc}") from exc
-        self._processes.append(process)
-        return process
-
-    @staticmethod
-    def _end_all(processes: list[subprocess.Popen[bytes]]) -> None:
-        for sig in (signal.SIGTERM, signal.SIGKILL):
-            alive = [p for p in processes if p.poll() is None]
-            for process in alive:
-                with contextlib.suppress(ProcessLookupError, PermissionError):
-                    os.killpg(process.pid, sig)
-            deadline = time.monotonic() + _TERMINATE_GRACE
-            for process in alive:
-                with contextlib.suppress(subprocess.TimeoutExpired):
-                    process.wait(timeout=max(0.0, deadline - time.monotonic()))
-        # Grandchildren outlive a leader that exited by itself: end what is left of each group.
-        for process in processes:
-            with contextlib.suppress(ProcessLookupError, PermissionError):
-                os.killpg(process.pid, signal.SIGKILL)
-        for process in processes:
-            for stream in (process.stdout, process.stderr):
-                if stream is not None:
-                    with contextlib.suppress(OSError):
-                        stream.close()
-        processes.clear()
-
-    @property
-    def pids(self) -> tuple[int, ...]:
-        """Process ids of the group leaders started so far (each leads its own group)."""
-        return tuple(p.pid for p in self._processes)
-
-    def close(self) -> None:
-        """End every process group (idempotent)."""
-        self._finalizer()
+    color_scheme: ColorScheme | None = None
+    proxy: str | None = None
+    direct: tuple[str, ...] = ()
+    scale: int = 1
+    """Device pixels per CSS pixel for engines that fix it at start (WebKitGTK's GDK_SCALE)."""
 
 
 class Browser(abc.ABC):
@@ -173,22 +124,47 @@ class Browser(abc.ABC):
     NAME: ClassVar[str]
     LABEL: ClassVar[str]
     INSTALL_HINT: ClassVar[str]
+    LIVE_COLOR_SCHEME: ClassVar[bool] = False
+    """Whether :meth:`emulate_color_scheme` works without a restart."""
+    ISOLATED_SCRIPTS: ClassVar[bool] = False
+    """Whether ``evaluate(..., isolated=True)`` runs apart from the page's own scripts."""
 
-    def __init__(self, installation: Installation | None = None, *, timeout: float = 60.0) -> None:
+    def __init__(
+        self,
+        installation: Installation | None = None,
+        *,
+        timeout: float = 60.0,
+        options: LaunchOptions | None = None,
+    ) -> None:
         found = installation or self.find()
         if found is None:
             raise BrowserError(f"{self.LABEL} is not installed: {self.INSTALL_HINT}")
         self.installation = found
         self.timeout = float(timeout)
+        self.options = options or LaunchOptions()
         self.workdir = Path(tempfile.mkdtemp(prefix=f"alpha-audit-{self.NAME}-"))
-        self.processes = ProcessGroup()
+        self.processes = ProcessGroup(self.workdir)
         self.version = ""
+        self.scale = 1.0
+        self.viewport: tuple[int, int] | None = None  # the last size asked for
         self._closed = False
         try:
+            (self.workdir / "tmp").mkdir()
             self._start()
         except BaseException:
             self.close()
             raise
+
+    def child_env(self, base: dict[str, str] | None = None) -> dict[str, str]:
+        """The environment for the engine's programs: temporary files in our folder.
+
+        Whatever an engine leaves in ``TMPDIR`` (Chromium's
+        ``org.chromium.Chromium.*``) or in caches is removed with the browser.
+        """
+        env = dict(os.environ if base is None else base)
+        env["TMPDIR"] = str(self.workdir / "tmp")
+        env["XDG_CACHE_HOME"] = str(self.workdir / "tmp")
+        return env
 
     @classmethod
     @abc.abstractmethod
@@ -204,20 +180,32 @@ class Browser(abc.ABC):
         """Load ``url`` and wait until its load event has fired."""
 
     @abc.abstractmethod
-    def _evaluate_text(self, expression: str, timeout: float) -> str:
+    def _evaluate_text(self, expression: str, timeout: float, isolated: bool) -> str:
         """Evaluate ``expression`` (a promise of a string) and return the string."""
 
     @abc.abstractmethod
-    def _set_viewport(self, width: int, height: int) -> None:
-        """Ask for a ``width`` x ``height`` CSS-pixel viewport at device pixel ratio 1."""
+    def _set_viewport(self, width: int, height: int, scale: float) -> None:
+        """Ask for a ``width`` x ``height`` CSS-pixel viewport at device pixel ratio ``scale``."""
 
     @abc.abstractmethod
-    def _screenshot(self) -> bytes:
-        """A PNG of the viewport, one image pixel per CSS pixel."""
+    def _screenshot(self, clip: Clip | None) -> bytes:
+        """A PNG of the viewport (or of ``clip``, in CSS pixels), ``scale`` pixels per CSS px."""
 
     @abc.abstractmethod
     def _shutdown(self) -> None:
         """Ask the engine politely to quit (errors are ignored by :meth:`close`)."""
+
+    def emulate_color_scheme(self, scheme: ColorScheme | None) -> None:
+        """Make ``prefers-color-scheme`` match ``scheme`` from the next page on.
+
+        Engines that can only choose it at start (``LIVE_COLOR_SCHEME`` false)
+        refuse a change; start another browser with :class:`LaunchOptions`.
+        """
+        if scheme != self.options.color_scheme:
+            raise BrowserError(
+                f"{self.LABEL} chooses prefers-color-scheme when it starts; "
+                f"it was started with {self.options.color_scheme or 'the default'}"
+            )
 
     # ---------------------------------------------------------------- public API
 
@@ -234,29 +222,38 @@ class Browser(abc.ABC):
         self._navigate(path.as_uri())
         return path
 
-    def evaluate(self, expression: str, *, timeout: float | None = None) -> JSONValue:
-        """The value of a JS expression, after awaiting it if it is a promise, as JSON data."""
+    def evaluate(
+        self, expression: str, *, timeout: float | None = None, isolated: bool = False
+    ) -> JSONValue:
+        """The value of a JS expression, after awaiting it if it is a promise, as JSON data.
+
+        ``isolated`` runs it in a world of its own where the engine has one
+        (``ISOLATED_SCRIPTS``): it sees the page's DOM but none of the page's
+        JavaScript, and the page's scripts see nothing of it.
+        """
         self._check_open()
-        text = self._evaluate_text(json_expression(expression), timeout or self.timeout)
+        text = self._evaluate_text(json_expression(expression), timeout or self.timeout, isolated)
         try:
             value: JSONValue = json.loads(text)
         except (TypeError, json.JSONDecodeError) as exc:
             raise BrowserError(f"{self.LABEL} returned no JSON for {expression[:60]!r}") from exc
         return value
 
-    def wait_for(self, expression: str, *, timeout: float | None = None) -> JSONValue:
+    def wait_for(
+        self, expression: str, *, timeout: float | None = None, isolated: bool = False
+    ) -> JSONValue:
         """Poll ``expression`` until it is truthy; return its value."""
         deadline = time.monotonic() + (timeout or self.timeout)
         while True:
-            value = self.evaluate(expression)
+            value = self.evaluate(expression, isolated=isolated)
             if value:
                 return value
             if time.monotonic() > deadline:
                 raise BrowserError(f"{self.LABEL}: timed out waiting for {expression[:60]!r}")
             time.sleep(0.05)
 
-    def set_viewport(self, width: int, height: int) -> None:
-        """Make the page's viewport ``width`` x ``height`` CSS pixels, one device pixel each.
+    def set_viewport(self, width: int, height: int, scale: float = 1.0) -> None:
+        """Make the page's viewport ``width`` x ``height`` CSS pixels, ``scale`` device px each.
 
         Returns once the page itself reports that size (``innerWidth``,
         ``innerHeight``, ``devicePixelRatio``), so layout code that runs on
@@ -267,29 +264,35 @@ class Browser(abc.ABC):
             raise BrowserError(
                 f"viewport {width} x {height} px: each side must be 1 to {_MAX_VIEWPORT}"
             )
-        self._set_viewport(int(width), int(height))
+        if not 1 <= scale <= 4:
+            raise BrowserError(f"device scale {scale:g}: must be 1 to 4")
+        self._set_viewport(int(width), int(height), float(scale))
+        self.scale = float(scale)
+        self.viewport = (int(width), int(height))
         check = (
             f"innerWidth === {int(width)} && innerHeight === {int(height)}"
-            " && devicePixelRatio === 1"
+            f" && devicePixelRatio === {float(scale)!r}"
         )
         try:
             self.wait_for(check, timeout=min(self.timeout, 10.0))
         except BrowserError:
             got = self.evaluate("[innerWidth, innerHeight, devicePixelRatio]")
             raise BrowserError(
-                f"{self.LABEL}: asked for a {width} x {height} viewport at ratio 1, got {got}"
+                f"{self.LABEL}: asked for a {width} x {height} viewport at ratio {scale:g}, "
+                f"got {got}"
             ) from None
 
-    def screenshot(self) -> bytes:
-        """A PNG of what the viewport shows now, one image pixel per CSS pixel (ratio 1).
+    def screenshot(self, clip: Clip | None = None) -> bytes:
+        """A PNG of what the viewport shows now (or the ``clip`` box of it, CSS pixels).
 
+        The image has ``scale`` pixels per CSS pixel (:meth:`set_viewport`).
         Two animation frames are awaited first, so that changes a script made
         have been painted and composited (WebKitGTK's driver does not wait by
         itself: a first screenshot right after loading could show a stale frame).
         """
         self._check_open()
-        self.evaluate(_TWO_FRAMES)
-        png = self._screenshot()
+        self.evaluate(_TWO_FRAMES, isolated=self.ISOLATED_SCRIPTS)
+        png = self._screenshot(clip)
         if not png.startswith(_PNG_SIGNATURE):
             raise BrowserError(f"{self.LABEL} returned a screenshot that is not a PNG")
         return png
@@ -320,6 +323,16 @@ class Browser(abc.ABC):
     def _check_open(self) -> None:
         if self._closed:
             raise BrowserError(f"{self.LABEL} is closed")
+
+
+@dataclass(frozen=True)
+class Clip:
+    """A box of the viewport in CSS pixels (whole pixels: a device-pixel grid at any scale)."""
+
+    x: int
+    y: int
+    width: int
+    height: int
 
 
 def deadline_after(seconds: float) -> float:

@@ -13,6 +13,7 @@ from __future__ import annotations
 import base64
 import binascii
 import glob
+import io
 import json
 import os
 import select
@@ -27,6 +28,7 @@ from typing import Any
 from alpha_audit.browser.interface import (
     Browser,
     BrowserError,
+    Clip,
     Installation,
     deadline_after,
     time_left,
@@ -79,8 +81,12 @@ class WebKit(Browser):
         driver, xvfb = self.installation.helpers
         display = self._start_xvfb(xvfb)
         port = _free_port()
-        env = {k: v for k, v in os.environ.items() if k not in ("WAYLAND_DISPLAY",)}
+        env = self.child_env({k: v for k, v in os.environ.items() if k != "WAYLAND_DISPLAY"})
         env["DISPLAY"] = f":{display}"
+        env["GDK_SCALE"] = str(self.options.scale)  # devicePixelRatio, fixed for the process
+        if self.options.color_scheme is not None:
+            # WebKitGTK's prefers-color-scheme follows the GTK theme's variant.
+            env["GTK_THEME"] = f"Adwaita:{self.options.color_scheme}"
         log = self.workdir / "driver.log"
         with log.open("wb") as stderr:
             self.processes.start(
@@ -100,11 +106,15 @@ class WebKit(Browser):
             time_left(deadline, "WebKitWebDriver")
             time.sleep(0.05)
         options = {"binary": str(self.installation.binary), "args": ["--automation"]}
-        session = self._request(
-            "POST",
-            "/session",
-            {"capabilities": {"alwaysMatch": {"webkitgtk:browserOptions": options}}},
-        )
+        capabilities: dict[str, Any] = {"webkitgtk:browserOptions": options}
+        if self.options.proxy is not None:  # W3C WebDriver, section 7.1 (proxy configuration)
+            capabilities["proxy"] = {
+                "proxyType": "manual",
+                "httpProxy": self.options.proxy,
+                "sslProxy": self.options.proxy,
+                "noProxy": list(self.options.direct),
+            }
+        session = self._request("POST", "/session", {"capabilities": {"alwaysMatch": capabilities}})
         self._session = session["sessionId"]
         caps = session.get("capabilities", {})
         self.version = f"{caps.get('browserName', 'WebKitGTK')} {caps.get('browserVersion', '')}"
@@ -115,7 +125,8 @@ class WebKit(Browser):
         try:
             self.processes.start(
                 [str(xvfb), "-displayfd", str(write_end), "-nolisten", "tcp", "-screen", "0",
-                 "1280x1024x24"],
+                 f"{1280 * self.options.scale}x{1024 * self.options.scale}x24"],
+                env=self.child_env(),
                 pass_fds=(write_end,),
             )  # fmt: skip
         finally:
@@ -169,7 +180,8 @@ class WebKit(Browser):
     def _navigate(self, url: str) -> None:
         self._request("POST", self._session_path("url"), {"url": url})
 
-    def _evaluate_text(self, expression: str, timeout: float) -> str:
+    def _evaluate_text(self, expression: str, timeout: float, isolated: bool) -> str:
+        # WebDriver classic has no isolated worlds: scripts run beside the page's own.
         if self._script_timeout != timeout:
             self._request("POST", self._session_path("timeouts"), {"script": int(timeout * 1000)})
             self._script_timeout = timeout
@@ -204,7 +216,12 @@ class WebKit(Browser):
         assert last is not None
         return last
 
-    def _set_viewport(self, width: int, height: int) -> None:
+    def _set_viewport(self, width: int, height: int, scale: float) -> None:
+        if scale != self.options.scale:
+            raise BrowserError(
+                f"WebKitGTK fixes its device scale at start (GDK_SCALE={self.options.scale}); "
+                f"asked for {scale:g}"
+            )
         # WebDriver sizes the window, not the viewport (section 11.8.2): size it, let it
         # settle, measure what the window's own frame takes, and size it again with that
         # added, until the viewport is what was asked (the frame is the same each time).
@@ -218,12 +235,23 @@ class WebKit(Browser):
             extra_w = max(0, extra_w + width - inner_w)
             extra_h = max(0, extra_h + height - inner_h)
 
-    def _screenshot(self) -> bytes:
+    def _screenshot(self, clip: Clip | None) -> bytes:
         data = self._request("GET", self._session_path("screenshot"))
         try:
-            return base64.b64decode(str(data), validate=True)
+            png = base64.b64decode(str(data), validate=True)
         except binascii.Error as exc:
             raise BrowserError("WebKitWebDriver returned no screenshot") from exc
+        if clip is None:
+            return png
+        # WebDriver classic screenshots the whole viewport: cut the box out here.
+        from PIL import Image
+
+        s = self.options.scale
+        with Image.open(io.BytesIO(png)) as image:
+            box = (clip.x * s, clip.y * s, (clip.x + clip.width) * s, (clip.y + clip.height) * s)
+            out = io.BytesIO()
+            image.crop(box).save(out, format="PNG", compress_level=1)
+        return out.getvalue()
 
     def _shutdown(self) -> None:
         self._request("DELETE", f"/session/{self._session}", timeout=5)

@@ -33,6 +33,7 @@ from alpha_audit.cli.flags import cli_message
 from alpha_audit.cli.options import Command, OrderedOptionsCommand, hide_flag_types
 from alpha_audit.cli.pair import pair_command
 from alpha_audit.cli.preview import preview_command
+from alpha_audit.cli.render import render_command
 from alpha_audit.cli.reproduce import reproduce_command
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.cli.suggest import suggest_command
@@ -242,6 +243,7 @@ app.command("pair", cls=Command)(pair_command)
 app.command("reproduce", cls=Command)(reproduce_command)
 app.command("themes", cls=Command)(themes_command)
 app.command("export", cls=Command)(export_command)
+app.command("render", cls=Command)(render_command)
 
 
 def main(argv: Sequence[str] | None = None) -> None:

@@ -59,6 +59,7 @@ CONFIG_KEYS = (
     "min-delta-e",
     "min-size-contrast",
     "pipeline",
+    "render",  # alpha-audit render's table, read by alpha_audit.pages.config
     "strict-svg",
     "theme",
     "themes",

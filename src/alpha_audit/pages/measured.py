@@ -1,0 +1,161 @@
+"""What a page audit finds: measured paints, page problems and blocked requests.
+
+Plain frozen dataclasses, the end of :mod:`alpha_audit.pages`: one
+:class:`MeasuredPaint` per (source, state, icon instance, paint), ready to
+become paint rows.  Colours are given both as 8-bit sRGB hex and as linear
+sRGB (float64 triples); contrast ratios are WCAG 2.2's.
+"""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass
+
+__all__ = [
+    "BlockedRequest",
+    "Coverage",
+    "IconMatch",
+    "MeasuredPaint",
+    "PageProblem",
+    "Prediction",
+    "RenderResult",
+]
+
+Linear = tuple[float, float, float]
+
+
+class IconMatch(enum.StrEnum):
+    """How a found icon was tied to the manifest's icon (or that it was not)."""
+
+    DATA_ATTRIBUTE = "data-attribute"
+    SPRITE_ID = "sprite-id"
+    FILE_NAME = "file-name"
+    PATH_HASH = "path-hash"
+    NONE = "none"
+
+
+@dataclass(frozen=True)
+class Coverage:
+    """The paint's coverage measured from the difference of the two captures.
+
+    ``pixels`` device pixels differ between the captures; ``full`` of them are
+    fully covered (the drawn colour comes from those); ``q50`` and
+    ``full_share`` as in :func:`alpha_audit.color.coverage_stats`, ``ink`` the
+    sum of coverage in device pixels.
+    """
+
+    pixels: int
+    full: int
+    ink: float
+    q50: float
+    full_share: float
+
+
+@dataclass(frozen=True)
+class Prediction:
+    """The model's displayed colour and contrast for the same paint and backdrop."""
+
+    pipeline: str  # "linear" or "css"
+    output: str
+    output_linear: Linear
+    contrast: float
+    drift: float  # CIEDE2000 between the drawn colour and this output
+
+
+@dataclass(frozen=True)
+class MeasuredPaint:
+    """One paint of one icon instance in one source and state, as the browser drew it.
+
+    ``icon`` is the manifest's icon name, or ``None`` when the icon maps to no
+    manifest icon (``match`` says how it was mapped); ``label`` names it either
+    way (story or page, state, DOM path).  ``drawn`` is the median colour of
+    the fully covered pixels; ``behind`` the median backdrop under them (the
+    capture with every icon hidden), ``around`` the median backdrop in a ring
+    just outside the icon.  ``contrast_worst`` and ``contrast_median`` are over
+    the fully covered pixels, each against the backdrop at the same pixel.
+    ``model_source``/``model_alpha``/``model_opacity`` are what the model was
+    given (the manifest's colour and alpha for a mapped ``currentColor`` paint,
+    else the colour the engine computed, at alpha 1); ``predictions`` holds the
+    model's output under ``linear`` and ``css`` (css only where ``alpha *
+    opacity`` is in [0, 1]).  ``render_drift`` is the CIEDE2000 from the drawn
+    colour to the nearer prediction; ``box`` the icon's crop box in CSS pixels
+    of the page (x, y, width, height).
+    """
+
+    source: str  # story id or page URL path
+    source_kind: str  # "storybook", "page", "url"
+    url: str
+    state: str
+    engine: str
+    label: str
+    icon: str | None
+    match: IconMatch
+    element: str  # "svg", "use", "img", "mask", "selector"
+    dom_path: str
+    paint: str  # "currentColor" or the colour the engine computed (#rrggbb), or "image"
+    kinds: tuple[str, ...]
+    drawn: str | None
+    drawn_linear: Linear | None
+    behind: str | None
+    behind_linear: Linear | None
+    around: str | None
+    around_linear: Linear | None
+    coverage: Coverage
+    contrast_worst: float | None
+    contrast_median: float | None
+    model_source: str | None
+    model_alpha: float | None
+    model_opacity: float | None
+    predictions: tuple[Prediction, ...]
+    render_drift: float | None
+    box: tuple[float, float, float, float]
+    threshold: float = 3.0
+
+    @property
+    def passes(self) -> bool | None:
+        """Whether the worst pixel reaches the threshold (None where nothing was drawn)."""
+        if self.contrast_worst is None:
+            return None
+        return self.contrast_worst >= self.threshold
+
+    def prediction(self, pipeline: str) -> Prediction | None:
+        """The model's prediction under ``pipeline``, or None where it has none."""
+        return next((p for p in self.predictions if p.pipeline == pipeline), None)
+
+
+@dataclass(frozen=True)
+class BlockedRequest:
+    """A request a page made that was refused: it was not to the page's own server."""
+
+    source: str
+    state: str
+    engine: str
+    url: str  # for HTTPS, the host and port the page tried to reach
+
+
+@dataclass(frozen=True)
+class PageProblem:
+    """A source and state that could not be audited, and why (a time or memory limit ...)."""
+
+    source: str
+    state: str
+    engine: str
+    url: str
+    message: str
+
+
+@dataclass(frozen=True)
+class RenderResult:
+    """Everything one run found, in a stable order (source, state, engine, DOM order)."""
+
+    paints: tuple[MeasuredPaint, ...]
+    problems: tuple[PageProblem, ...]
+    blocked: tuple[BlockedRequest, ...]
+    audited: int  # source x state x engine combinations audited
+    icons: int  # icon instances found over all of them
+    engines: tuple[tuple[str, str], ...]  # (engine, version)
+
+    @property
+    def failing(self) -> tuple[MeasuredPaint, ...]:
+        """Paints whose worst pixel is below the threshold."""
+        return tuple(p for p in self.paints if p.passes is False)

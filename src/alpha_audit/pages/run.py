@@ -1,0 +1,287 @@
+"""Audit every source x state x engine: workers, browsers, limits and the measured paints.
+
+:func:`audit_pages` serves the source folders on loopback, starts one browser
+per worker (each behind its own blocking proxy, so refused requests are
+attributed to the page that made them), and runs the page x state jobs in
+parallel, one capture pair each.  A guard thread per worker ends the browser
+when a page passes its time limit or the browser's processes together pass
+the memory cap; that page becomes a :class:`PageProblem` and the worker
+starts a fresh browser.  Browsers never outlive the call (nor alpha-audit:
+:mod:`alpha_audit.browser.lifecycle`).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import queue
+import threading
+import time
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+from alpha_audit.browser import Browser, BrowserError, LaunchOptions, engine_class
+from alpha_audit.browser.lifecycle import ending_on_signals
+from alpha_audit.errors import AlphaAuditError, UsageError
+from alpha_audit.model import IconSet
+from alpha_audit.pages.capture import capture_page
+from alpha_audit.pages.config import RenderConfig
+from alpha_audit.pages.mapping import ManifestIndex
+from alpha_audit.pages.measure import PageContext, measure_capture
+from alpha_audit.pages.measured import BlockedRequest, MeasuredPaint, PageProblem, RenderResult
+from alpha_audit.pages.server import BlockingProxy, PageServer
+from alpha_audit.pages.sources import FolderSource, StorybookSource, Target, targets
+from alpha_audit.pages.states import State, globals_param
+
+__all__ = ["Job", "audit_pages", "plan_jobs"]
+
+_GUARD_PERIOD = 0.25  # seconds between checks of a page's time and its browser's memory
+
+
+@dataclass(frozen=True)
+class Job:
+    """One page in one state in one engine."""
+
+    order: int
+    target: Target
+    state: State
+    engine: str
+
+    def url(self, server: PageServer | None) -> str:
+        """The page's URL, with the state's Storybook globals."""
+        if self.target.mount is None or server is None:
+            url = self.target.path
+        else:
+            url = server.url(self.target.mount, self.target.path)
+        if self.state.globals and self.target.storybook:
+            url += ("&" if "?" in url else "?") + "globals=" + globals_param(self.state.globals)
+        return url
+
+
+def plan_jobs(config: RenderConfig) -> list[Job]:
+    """Every target x state x engine, grouped so each engine restarts as little as it must."""
+    pages = targets(config.sources)
+    jobs = [
+        Job(0, target, state, engine)
+        for engine in config.engines
+        for state in config.states
+        for target in pages
+    ]
+    jobs.sort(key=lambda j: (config.engines.index(j.engine), j.state.color_scheme or ""))
+    return [Job(k, j.target, j.state, j.engine) for k, j in enumerate(jobs)]
+
+
+class _Guard:
+    """Ends a worker's browser when the current page runs out of time or memory."""
+
+    def __init__(self, timeout: float, memory_bytes: int) -> None:
+        self.timeout = timeout
+        self.memory_bytes = memory_bytes
+        self.browser: Browser | None = None
+        self.deadline: float | None = None
+        self.reason: str | None = None
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._watch, daemon=True)
+        self._thread.start()
+
+    def _watch(self) -> None:
+        while not self._stop.wait(_GUARD_PERIOD):
+            browser = self.browser
+            if browser is None or self.deadline is None:
+                continue
+            if time.monotonic() > self.deadline:
+                self.reason = f"took longer than the limit of {self.timeout:g} s per page"
+            elif browser.processes.resident_bytes() > self.memory_bytes:
+                self.reason = (
+                    f"the browser used more than the memory cap of {self.memory_bytes >> 20} MiB"
+                )
+            else:
+                continue
+            browser.processes.close()  # the worker's call fails at once; it starts afresh
+
+    @contextlib.contextmanager
+    def page(self, browser: Browser) -> Iterator[None]:
+        self.browser, self.reason = browser, None
+        self.deadline = time.monotonic() + self.timeout
+        try:
+            yield
+        finally:
+            self.deadline = None
+
+    def close(self) -> None:
+        self._stop.set()
+        self._thread.join()
+
+
+class _Worker:
+    """One thread: one browser (restarted as needed) behind one proxy."""
+
+    def __init__(self, config: RenderConfig, server: PageServer | None, direct: tuple[str, ...]):
+        self.config = config
+        self.server = server
+        self.direct = direct
+        self.proxy = BlockingProxy()
+        self.guard = _Guard(config.timeout, config.memory_mb << 20)
+        self.browser: Browser | None = None
+        self.versions: dict[str, str] = {}
+
+    def _browser(self, job: Job) -> Browser:
+        scheme = job.state.color_scheme
+        current = self.browser
+        if current is not None and job.engine == current.NAME:
+            if current.options.color_scheme == scheme:
+                return current
+            if current.LIVE_COLOR_SCHEME:
+                current.emulate_color_scheme(scheme)
+                current.options = replace(current.options, color_scheme=scheme)
+                return current
+        self.close_browser()
+        options = LaunchOptions(scheme, self.proxy.address, self.direct, self.config.scale)
+        self.browser = engine_class(job.engine)(timeout=self.config.timeout, options=options)
+        self.versions[job.engine] = self.browser.version
+        return self.browser
+
+    def close_browser(self) -> None:
+        if self.browser is not None:
+            # End the processes first: another thread may be mid-call on this browser.
+            self.browser.processes.close()
+            self.browser.close()
+            self.browser = None
+
+    def run(
+        self, job: Job, index: ManifestIndex, threshold: float
+    ) -> tuple[list[MeasuredPaint], PageProblem | None, list[str], int]:
+        url = job.url(self.server)
+        self.proxy.take()
+        try:
+            browser = self._browser(job)
+            with self.guard.page(browser):
+                capture = capture_page(
+                    browser,
+                    url,
+                    job.state,
+                    storybook=job.target.storybook,
+                    viewport=self.config.viewport,
+                    scale=self.config.scale,
+                    selector=self.config.selector,
+                    attribute=self.config.attribute,
+                    max_icon_size=self.config.max_icon_size,
+                )
+        except BrowserError as exc:
+            reason = self.guard.reason or str(exc)
+            self.close_browser()
+            problem = PageProblem(job.target.name, job.state.name, job.engine, url, reason)
+            return [], problem, self.proxy.take(), 0
+        page = PageContext(
+            job.target.name, job.target.kind, url, job.state.name, job.engine, threshold
+        )
+        matches = [index.match(icon.keys) for icon in capture.icons]
+        paints = measure_capture(capture, page, matches)
+        return paints, None, self.proxy.take(), len(capture.icons)
+
+    def close(self) -> None:
+        try:
+            self.close_browser()
+        finally:
+            self.guard.close()
+            self.proxy.close()
+
+
+def _mounts(config: RenderConfig) -> list[Path]:
+    return [
+        s.folder if isinstance(s, StorybookSource | FolderSource) else Path(config.root)
+        for s in config.sources
+    ]
+
+
+def audit_pages(
+    config: RenderConfig,
+    iconset: IconSet | None = None,
+    *,
+    progress: Callable[[int, int], None] | None = None,
+) -> RenderResult:
+    """Audit every source x state x engine of ``config``; ``progress(done, total)`` per job.
+
+    Raises :class:`UsageError` for sources that do not exist or select
+    nothing and for engines that are not installed; a page that fails (a
+    script error, a time or memory limit) is a :class:`PageProblem` in the
+    result instead.
+    """
+    for engine in config.engines:
+        if engine_class(engine).find() is None:
+            cls = engine_class(engine)
+            raise UsageError(f"{cls.LABEL} is not installed: {cls.INSTALL_HINT}")
+    jobs = plan_jobs(config)
+    index = ManifestIndex.of(iconset)
+    results: dict[int, tuple[list[MeasuredPaint], PageProblem | None, list[str], int]] = {}
+    todo: queue.Queue[Job] = queue.Queue()
+    for job in jobs:
+        todo.put(job)
+    failure: list[BaseException] = []
+    lock = threading.Lock()
+    with ending_on_signals(), PageServer(_mounts(config), Path(config.root)) as server:
+        direct = tuple(
+            dict.fromkeys(
+                [server.address, server.address.replace("127.0.0.1", "localhost")]
+                + [j.target.path.split("/")[2] for j in jobs if j.target.mount is None]
+            )
+        )
+        workers = [
+            _Worker(config, server, direct) for _ in range(max(1, min(config.workers, len(jobs))))
+        ]
+
+        def work(worker: _Worker) -> None:
+            while not failure:
+                try:
+                    job = todo.get_nowait()
+                except queue.Empty:
+                    return
+                try:
+                    outcome = worker.run(job, index, config.threshold)
+                except BaseException as exc:  # handed to the caller's thread below
+                    failure.append(exc)
+                    return
+                with lock:
+                    results[job.order] = outcome
+                    if progress is not None:
+                        progress(len(results), len(jobs))
+
+        threads = [threading.Thread(target=work, args=(w,), daemon=True) for w in workers]
+        try:
+            for thread in threads:
+                thread.start()
+            for thread in threads:
+                while thread.is_alive():
+                    thread.join(0.1)  # short joins: SIGTERM and Ctrl-C are handled meanwhile
+        finally:
+            failure.append(AlphaAuditError("stopped"))  # tells the other workers to stop
+            for worker in workers:
+                worker.close()
+            for thread in threads:
+                thread.join(5)
+        if len(failure) > 1:
+            raise failure[0]
+    versions: dict[str, str] = {}
+    for worker in workers:
+        versions.update(worker.versions)
+    paints: list[MeasuredPaint] = []
+    problems: list[PageProblem] = []
+    blocked: list[BlockedRequest] = []
+    icons = 0
+    for job in sorted(jobs, key=lambda j: (j.target.name, j.state.name, j.engine)):
+        found, problem, refused, count = results[job.order]
+        paints.extend(found)
+        icons += count
+        if problem is not None:
+            problems.append(problem)
+        blocked.extend(
+            BlockedRequest(job.target.name, job.state.name, job.engine, url) for url in refused
+        )
+    return RenderResult(
+        tuple(paints),
+        tuple(problems),
+        tuple(blocked),
+        len(jobs),
+        icons,
+        tuple(sorted(versions.items())),
+    )

@@ -1,0 +1,202 @@
+"""alpha-audit's own loopback servers: the pages' files, and a proxy that refuses the rest.
+
+:class:`PageServer` serves each source folder under ``/<n>/`` on
+``127.0.0.1`` (GET and HEAD only, no directory listings, every path resolved
+and kept inside its folder *and* the project root, files capped in size).
+:class:`BlockingProxy` is the proxy every browser is told to use for anything
+but the page server: it answers each request with ``403`` without opening a
+connection anywhere, and records what was asked, so a page's attempts to reach
+the network (or another loopback port, such as a WebDriver endpoint) are
+refused and reported.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import mimetypes
+import socketserver
+import threading
+from collections.abc import Sequence
+from http import HTTPStatus
+from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+from pathlib import Path
+from types import TracebackType
+from typing import Self
+from urllib.parse import unquote, urlsplit
+
+__all__ = ["MAX_FILE_BYTES", "BlockingProxy", "PageServer"]
+
+MAX_FILE_BYTES = 64 << 20  # a page's script bundle is a few MB; larger is refused
+_TYPES = {
+    ".js": "text/javascript",
+    ".mjs": "text/javascript",
+    ".css": "text/css",
+    ".svg": "image/svg+xml",
+    ".json": "application/json",
+    ".html": "text/html; charset=utf-8",
+    ".woff2": "font/woff2",
+    ".wasm": "application/wasm",
+}
+
+
+class _Quiet(BaseHTTPRequestHandler):
+    """Request handling shared by both servers: no logging to stderr."""
+
+    protocol_version = "HTTP/1.1"
+    server_version = "alpha-audit"
+    sys_version = ""
+
+    def log_message(self, format: str, *args: object) -> None:
+        return
+
+    def _refuse(self, status: HTTPStatus) -> None:
+        body = status.phrase.encode()
+        self.send_response(status)
+        self.send_header("Content-Type", "text/plain")
+        self.send_header("Content-Length", str(len(body)))
+        self.send_header("Connection", "close")
+        self.end_headers()
+        if self.command != "HEAD":
+            self.wfile.write(body)
+        self.close_connection = True
+
+
+class _FileHandler(_Quiet):
+    server: _FileServer
+
+    def do_GET(self) -> None:
+        self._serve(body=True)
+
+    def do_HEAD(self) -> None:
+        self._serve(body=False)
+
+    def _file(self) -> Path | None:
+        path = unquote(urlsplit(self.path).path)
+        parts = [p for p in path.split("/") if p]
+        if not parts or not parts[0].isdigit() or int(parts[0]) >= len(self.server.mounts):
+            return None
+        if any(p in ("..", ".") or "\\" in p or "\x00" in p for p in parts):
+            return None
+        folder = self.server.mounts[int(parts[0])]
+        candidate = folder.joinpath(*parts[1:])
+        if path.endswith("/") or candidate == folder:
+            candidate = candidate / "index.html"
+        try:
+            resolved = candidate.resolve(strict=True)
+        except (OSError, RuntimeError):
+            return None
+        # Symlinks may not lead out of the folder or the project.
+        if not (resolved.is_relative_to(folder) and resolved.is_relative_to(self.server.root)):
+            return None
+        return resolved if resolved.is_file() else None
+
+    def _serve(self, *, body: bool) -> None:
+        file = self._file()
+        if file is None:
+            self._refuse(HTTPStatus.NOT_FOUND)
+            return
+        size = file.stat().st_size
+        if size > MAX_FILE_BYTES:
+            self._refuse(HTTPStatus.REQUEST_ENTITY_TOO_LARGE)
+            return
+        kind = _TYPES.get(file.suffix.lower()) or mimetypes.guess_type(file.name)[0]
+        self.send_response(HTTPStatus.OK)
+        self.send_header("Content-Type", kind or "application/octet-stream")
+        self.send_header("Content-Length", str(size))
+        self.send_header("Cache-Control", "max-age=3600")  # one browser loads many stories
+        self.send_header("X-Content-Type-Options", "nosniff")
+        self.end_headers()
+        if body:
+            with contextlib.suppress(OSError), file.open("rb") as fh:
+                while chunk := fh.read(1 << 20):
+                    self.wfile.write(chunk)
+
+
+class _FileServer(ThreadingHTTPServer):
+    daemon_threads = True
+    mounts: tuple[Path, ...]
+    root: Path
+
+
+class _Background:
+    """A server running in a daemon thread until ``close``."""
+
+    def __init__(self, server: socketserver.TCPServer) -> None:
+        self._server = server
+        self._thread = threading.Thread(target=server.serve_forever, daemon=True)
+        self._thread.start()
+
+    @property
+    def address(self) -> str:
+        """``127.0.0.1:PORT``."""
+        host, port = self._server.server_address[:2]
+        return f"{host!s}:{port}"
+
+    def close(self) -> None:
+        """Stop serving and release the port (idempotent)."""
+        if self._thread.is_alive():
+            self._server.shutdown()
+            self._thread.join()
+        self._server.server_close()
+
+    def __enter__(self) -> Self:
+        return self
+
+    def __exit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> None:
+        self.close()
+
+
+class PageServer(_Background):
+    """Serves ``mounts[n]`` at ``http://127.0.0.1:PORT/n/`` (nothing outside ``root``)."""
+
+    def __init__(self, mounts: Sequence[Path], root: Path) -> None:
+        server = _FileServer(("127.0.0.1", 0), _FileHandler)
+        server.mounts = tuple(m.resolve() for m in mounts)
+        server.root = root.resolve()
+        super().__init__(server)
+
+    def url(self, mount: int, path: str) -> str:
+        """The URL of ``path`` (query included) in folder ``mount``."""
+        return f"http://{self.address}/{mount}/{path}"
+
+
+class _ProxyHandler(_Quiet):
+    server: _ProxyServer
+
+    def _record(self) -> None:
+        target = self.path if self.command != "CONNECT" else f"https://{self.path}"
+        with self.server.lock:
+            self.server.requests.append(target[:2000])
+        self._refuse(HTTPStatus.FORBIDDEN)
+
+    do_GET = do_POST = do_PUT = do_DELETE = do_HEAD = do_OPTIONS = do_PATCH = _record
+    do_CONNECT = _record
+
+
+class _ProxyServer(ThreadingHTTPServer):
+    daemon_threads = True
+    lock: threading.Lock
+    requests: list[str]
+
+
+class BlockingProxy(_Background):
+    """A proxy that refuses every request and remembers it (:meth:`take`)."""
+
+    def __init__(self) -> None:
+        server = _ProxyServer(("127.0.0.1", 0), _ProxyHandler)
+        server.lock = threading.Lock()
+        server.requests = []
+        self._proxy = server
+        super().__init__(server)
+
+    def take(self) -> list[str]:
+        """The requests refused since the last call, in order, without repeats."""
+        with self._proxy.lock:
+            taken = list(dict.fromkeys(self._proxy.requests))
+            self._proxy.requests.clear()
+        return taken

@@ -1,0 +1,163 @@
+"""Where pages come from: a built Storybook, a folder of HTML pages, loopback URLs.
+
+Each source lists its :class:`Target` pages: one per selected story
+(``iframe.html?id=...``, Storybook 8 to 10's ``index.json``), one per HTML
+file, or the URL itself.  Folders are served by alpha-audit's own loopback
+server (:mod:`alpha_audit.pages.server`) under a path of their own.
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import json
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from urllib.parse import quote, urlsplit
+
+from alpha_audit.errors import InputError, UsageError
+from alpha_audit.load.files import read_text_capped
+from alpha_audit.load.paths import PathRefused, glob_contained
+
+__all__ = [
+    "LOOPBACK_HOSTS",
+    "FolderSource",
+    "Source",
+    "StorybookSource",
+    "Target",
+    "UrlSource",
+    "check_loopback_url",
+    "targets",
+]
+
+LOOPBACK_HOSTS = ("localhost", "127.0.0.1", "[::1]", "::1")
+MAX_INDEX_BYTES = 32 << 20  # a Storybook of thousands of stories has an index of a few MB
+MAX_PAGES = 20_000
+
+
+@dataclass(frozen=True)
+class StorybookSource:
+    """A built Storybook (``storybook-static/`` with ``index.json``); ``stories`` are globs.
+
+    A glob matches a story's id (``icons--toolbar``) or its ``Title/Name``
+    path (``Icons/Toolbar``).
+    """
+
+    folder: Path
+    stories: tuple[str, ...] = ("*",)
+
+
+@dataclass(frozen=True)
+class FolderSource:
+    """A folder of HTML pages served on loopback; ``pattern`` selects the pages."""
+
+    folder: Path
+    pattern: str = "**/*.html"
+
+
+@dataclass(frozen=True)
+class UrlSource:
+    """A page already served on loopback (``http://localhost:6006/...``)."""
+
+    url: str
+
+
+Source = StorybookSource | FolderSource | UrlSource
+
+
+@dataclass(frozen=True)
+class Target:
+    """One page to audit: ``name`` (story id or path) and where to load it.
+
+    ``mount`` is the index of the folder on alpha-audit's server (``None`` for
+    a URL source) and ``path`` the URL path below it, query included.
+    """
+
+    kind: str  # "storybook", "page", "url"
+    name: str
+    mount: int | None
+    path: str
+    storybook: bool
+
+
+def check_loopback_url(url: str) -> str:
+    """``url`` if it is ``http://`` on a loopback host, else a :class:`UsageError`."""
+    parts = urlsplit(url)
+    if parts.scheme != "http" or parts.hostname not in LOOPBACK_HOSTS or not parts.port:
+        raise UsageError(
+            f"{url!r} is not a loopback page: give http://localhost:PORT/... or "
+            "http://127.0.0.1:PORT/... (pages are audited with no network but loopback)"
+        )
+    return url
+
+
+def _stories(source: StorybookSource) -> list[tuple[str, str]]:
+    """``(id, "Title/Name")`` of every story in the index, in its order."""
+    index = source.folder / "index.json"
+    if not index.is_file():
+        raise UsageError(
+            "is not a built Storybook (no index.json): run `storybook build` first, "
+            "or give a folder of HTML pages",
+            path=source.folder,
+        )
+    text = read_text_capped(index, MAX_INDEX_BYTES, InputError, "a Storybook index.json")
+    try:
+        data = json.loads(text)
+    except (json.JSONDecodeError, RecursionError) as exc:
+        raise InputError(f"not valid JSON: {exc}", path=index) from exc
+    entries = data.get("entries") if isinstance(data, dict) else None
+    if not isinstance(entries, dict) or data.get("v") not in (4, 5):
+        raise InputError(
+            f"not a Storybook 7-10 index (v {data.get('v') if isinstance(data, dict) else '?'}, "
+            "expected 4 or 5 with entries)",
+            path=index,
+        )
+    found = []
+    for key, entry in entries.items():
+        if not isinstance(entry, dict) or entry.get("type", "story") != "story":
+            continue  # docs pages draw no story of their own
+        story = str(entry.get("id", key))
+        found.append((story, f"{entry.get('title', '')}/{entry.get('name', '')}"))
+    return found
+
+
+def targets(sources: Sequence[Source]) -> list[Target]:
+    """Every page of every source, in order; a selection that matches nothing is an error."""
+    out: list[Target] = []
+    for mount, source in enumerate(sources):
+        if isinstance(source, StorybookSource):
+            stories = _stories(source)
+            chosen = [
+                (story, path)
+                for story, path in stories
+                if any(fnmatch.fnmatchcase(story, g) or fnmatch.fnmatchcase(path, g)
+                       for g in source.stories)
+            ]  # fmt: skip
+            if not chosen:
+                raise UsageError(
+                    f"no story matches {', '.join(source.stories)} "
+                    f"({len(stories)} stories; globs match ids such as {stories[0][0]!r} "
+                    "or Title/Name)"
+                    if stories
+                    else "the Storybook has no stories",
+                    path=source.folder,
+                )
+            for story, _ in chosen:
+                path = f"iframe.html?id={quote(story, safe='')}&viewMode=story"
+                out.append(Target("storybook", story, mount, path, True))
+        elif isinstance(source, FolderSource):
+            try:
+                pages = glob_contained(
+                    source.folder, source.folder, source.pattern, limit=MAX_PAGES
+                )
+            except PathRefused as exc:
+                raise UsageError(str(exc), path=source.folder) from exc
+            if not pages:
+                raise UsageError(f"no page matches {source.pattern!r}", path=source.folder)
+            for page in pages:
+                relative = page.relative_to(source.folder).as_posix()
+                out.append(Target("page", relative, mount, quote(relative), False))
+        else:
+            check_loopback_url(source.url)
+            out.append(Target("url", source.url, None, source.url, "iframe.html" in source.url))
+    return out
