@@ -45,6 +45,8 @@ _EXPORTS: dict[str, tuple[str, str]] = {
     "load_theme": ("alpha_audit.load.theme", "load_theme"),
     "load_iconset": ("alpha_audit.load.iconset", "load_iconset"),
     "ProjectConfig": ("alpha_audit.load.config", "ProjectConfig"),
+    "Overrides": ("alpha_audit.load.config", "Overrides"),
+    "resolve_config": ("alpha_audit.load.config", "resolve_config"),
     "load_config": ("alpha_audit.load.config", "load_config"),
     "project_config": ("alpha_audit.load.config", "project_config"),
     "IconProblem": ("alpha_audit.load.svg", "IconProblem"),
@@ -81,7 +83,6 @@ _EXPORTS: dict[str, tuple[str, str]] = {
     "parse_baseline": ("alpha_audit.load.baseline", "parse_baseline"),
     "read_baseline": ("alpha_audit.load.baseline", "read_baseline"),
     "with_fixes": ("alpha_audit.fixes", "with_fixes"),
-    "check_files": ("alpha_audit.pipeline", "check_files"),
     "check_project": ("alpha_audit.pipeline", "check_project"),
     "CheckFormat": ("alpha_audit.render", "CheckFormat"),
     "RenderOptions": ("alpha_audit.render", "RenderOptions"),
@@ -136,6 +137,7 @@ __all__ = [
     "InputError",
     "Layout",
     "MaskSet",
+    "Overrides",
     "PairFormat",
     "PairReport",
     "PairRow",
@@ -164,7 +166,6 @@ __all__ = [
     "bundled_iconsets",
     "bundled_theme",
     "bundled_themes",
-    "check_files",
     "check_project",
     "composite_extended",
     "contrast_ratio",
@@ -197,6 +198,7 @@ __all__ = [
     "render_suggest",
     "reproduction_json",
     "reproduction_markdown",
+    "resolve_config",
     "srgb_decode",
     "srgb_encode",
     "suggest_document",
@@ -258,9 +260,11 @@ if TYPE_CHECKING:  # for type checkers only; at run time __getattr__ imports on 
         read_baseline,
     )
     from alpha_audit.load.config import (
+        Overrides,
         ProjectConfig,
         load_config,
         project_config,
+        resolve_config,
     )
     from alpha_audit.load.iconset import (
         load_iconset,
@@ -297,7 +301,6 @@ if TYPE_CHECKING:  # for type checkers only; at run time __getattr__ imports on 
         pair_table,
     )
     from alpha_audit.pipeline import (
-        check_files,
         check_project,
     )
     from alpha_audit.policy import (

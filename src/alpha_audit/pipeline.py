@@ -1,27 +1,33 @@
-"""Files in, audit out: load themes and icon sets, read and rasterise paints, audit, gate."""
+"""Files in, report out: load, read and rasterise paints, audit the rows, gate, fix.
+
+One way through for every command: a resolved
+:class:`~alpha_audit.load.config.ProjectConfig` (:func:`~alpha_audit.load.config.resolve_config`)
+-> themes and icon sets (YAML files, or one theme per design-token mode) -> each
+icon set's paints, rendered once -> one :func:`~alpha_audit.rows.audit` per
+theme x icon set -> the gate -> the fixes.  Nothing is printed.
+"""
 
 from __future__ import annotations
 
 import contextlib
-from collections.abc import Callable, Iterable, Iterator, Sequence
-from dataclasses import replace
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from alpha_audit.color import GamutPolicy, Pipeline
+from alpha_audit.color import Pipeline
 from alpha_audit.color.metrics import preload_colour
 from alpha_audit.errors import SvgError, UsageError
-from alpha_audit.findings import FindingKey
 from alpha_audit.fixes import with_fixes
 from alpha_audit.gate import evaluate
+from alpha_audit.load.baseline import read_baseline
+from alpha_audit.load.config import ProjectConfig
 from alpha_audit.load.iconset import load_iconset
 from alpha_audit.load.paint_masks import PaintSet, measure_paints
 from alpha_audit.load.svg import IconProblem, RenderLimits
 from alpha_audit.load.theme import load_theme
-from alpha_audit.load.tokens.themes import TokenConfig
 from alpha_audit.model import GamutAdjustment, IconSet, Theme
-from alpha_audit.policy import Policy
-from alpha_audit.results import CheckReport
+from alpha_audit.results import CheckReport, Progress
 from alpha_audit.rows import (
     AuditResult,
     audit,
@@ -33,19 +39,20 @@ from alpha_audit.rows import (
 if TYPE_CHECKING:
     from alpha_audit.load.sandbox import RenderPool
 
-__all__ = ["check_files", "check_project", "render_paints", "render_pool"]
+__all__ = ["Work", "audits", "check_project", "plan", "render_paints", "render_pool"]
 
 
 def render_paints(
     iconset: IconSet,
     *,
-    strict_svg: bool,
-    on_icon: Callable[[], None] | None,
+    strict_svg: bool = False,
+    on_icon: Callable[[], None] | None = None,
     pool: RenderPool | None = None,
 ) -> PaintSet:
     """Every icon's paints, each measured at every size; empty icons become problems.
 
     ``pool``: render workers the caller started early (:func:`render_pool`).
+    With ``strict_svg`` the first icon that cannot be rendered raises.
     """
     preload_colour()  # the audit needs it next; the import runs while the workers render
     paints = measure_paints(
@@ -78,7 +85,7 @@ def render_paints(
 def render_pool() -> Iterator[RenderPool]:
     """Render workers started now, so they are ready once the inputs are read.
 
-    Each takes a few tenths of a second to start; a check starts them before
+    Each takes a few tenths of a second to start; a command starts them before
     loading anything (an input error just stops them) and renders with them.
     """
     from alpha_audit.load.sandbox import RenderPool
@@ -88,206 +95,129 @@ def render_pool() -> Iterator[RenderPool]:
         yield pool.prestart()
 
 
-def _audit(
-    theme: Theme,
-    iconset: IconSet,
-    paints: PaintSet,
-    *,
-    alpha: float | None,
-    threshold: float | None,
-    pipeline: Pipeline,
-) -> AuditResult:
-    return audit(theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=pipeline)
+@dataclass(frozen=True)
+class Work:
+    """One icon set and the themes it is audited on (each with that theme's icon colours).
 
-
-def _check_sizes(themes: Sequence[Theme], iconsets: Sequence[IconSet]) -> None:
-    """Refuse a check over the bounds before any icon is rendered (each icon draws a paint)."""
-    icons = sum(len(s.icons) for s in iconsets)
-    canvases = sum(len(t.canvases) for t in themes)
-    path = themes[0].path if len(themes) == 1 else None
-    check_combinations(icons, canvases, 1, path)
-
-
-def check_files(
-    theme_path: str | Path,
-    iconset_path: str | Path,
-    *,
-    alpha: float | None = None,
-    threshold: float | None = None,
-    strict_svg: bool = False,
-    pipeline: str | None = None,
-    on_start: Callable[[int], None] | None = None,
-    on_icon: Callable[[], None] | None = None,
-    gamut: GamutPolicy | None = None,
-) -> AuditResult:
-    """Load both files, read and rasterise every icon's paints at every size, and audit.
-
-    Icons that cannot be rendered are left out and listed in
-    ``result.problems``; with ``strict_svg`` the first one raises
-    :class:`~alpha_audit.errors.SvgError`.  ``pipeline`` overrides the icon
-    set's and the theme's (docs/model.md); an alpha the pipeline cannot draw
-    is an :class:`~alpha_audit.errors.InputError` raised before any render.
-    ``on_start(n)`` and ``on_icon()`` report progress; ``gamut`` is the
-    project's policy for colours outside sRGB (else each file's ``gamut:``).
+    A YAML theme pairs with the set as written; a design-token mode with the
+    set coloured by that mode's tokens.  ``pairs[0][1]`` is the set rendered.
     """
-    with render_pool() as pool:
-        theme = load_theme(theme_path, gamut=gamut)
-        iconset = load_iconset(iconset_path, gamut=gamut)
-        chosen = resolve_pipeline(pipeline, iconset.pipeline, theme.pipeline)
-        check_pipeline(iconset, chosen, alpha)
-        if on_start is not None:
-            on_start(len(iconset.icons))
-        paints = render_paints(iconset, strict_svg=strict_svg, on_icon=on_icon, pool=pool)
-    return _audit(theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=chosen)
+
+    pairs: tuple[tuple[Theme, IconSet], ...]
+    pipelines: tuple[Pipeline, ...]
 
 
-def check_project(
-    themes: Sequence[str | Path],
-    iconsets: Sequence[str | Path],
-    *,
-    policy: Policy,
-    alpha: float | None = None,
-    threshold: float | None = None,
-    baseline: Iterable[FindingKey] | None = None,
-    strict_svg: bool = False,
-    pipeline: str | None = None,
-    on_start: Callable[[int], None] | None = None,
-    on_icon: Callable[[], None] | None = None,
-    tokens: TokenConfig | None = None,
-    gamut: GamutPolicy | None = None,
-    pool: RenderPool | None = None,
-) -> CheckReport:
-    """Audit every icon set on every theme and apply the gate ``policy``.
+def plan(project: ProjectConfig) -> tuple[list[Work], tuple[GamutAdjustment, ...]]:
+    """Every input loaded and checked before any icon is rendered.
 
-    ``policy`` is required: the gate applies what the caller chose (the
-    CLI passes the config's policy, ``Policy()`` is the documented default),
-    never a default picked here.
-
-    Every file is loaded (and every input error raised) before any icon is
-    rendered; each icon set is rendered once whatever the number of themes.
-    Audits come in icon-set order, then theme order.  With ``tokens`` (the
-    config's ``tokens:`` table) each icon set is also audited on every token
-    mode, its icons' colours named by token path.  ``pipeline`` (from
-    ``--pipeline`` or the config) overrides each icon set's, then each
-    theme's; ``linear`` when none says.  ``gamut`` (``--gamut``, else the
-    config's) decides colours outside sRGB in every file, tokens included;
-    the colours it moved are in ``report.gamut``.  ``pool``: render workers
-    the caller started early (:func:`render_pool`), else started here.
+    Returns the work per icon set (icon sets in order, then themes in order:
+    token modes first, then YAML themes) and the colours the gamut policy moved.
     """
-    with contextlib.ExitStack() as stack:
-        if pool is None:
-            pool = stack.enter_context(render_pool())
-        if tokens is not None and gamut is not None:
-            tokens = replace(tokens, gamut=gamut)
-        if tokens is not None:
-            return _check_with_tokens(
-                themes,
-                iconsets,
-                tokens,
-                pool,
-                policy=policy,
-                alpha=alpha,
-                threshold=threshold,
-                baseline=baseline,
-                strict_svg=strict_svg,
-                pipeline=pipeline,
-                on_start=on_start,
-                on_icon=on_icon,
-                gamut=gamut,
-            )
-        if not themes or not iconsets:
-            raise UsageError(
-                "nothing to audit: give THEME ICONSET, or name themes and iconsets in "
-                "alpha-audit.yaml or [tool.alpha-audit] in pyproject.toml"
-            )
-        loaded_themes = [load_theme(t, gamut=gamut) for t in _unique(themes)]
-        loaded_sets = [load_iconset(s, gamut=gamut) for s in _unique(iconsets)]
-        policy.check_exemptions(
-            (c.name for t in loaded_themes for c in t.canvases),
-            (i.name for s in loaded_sets for i in s.icons),
-        )
-        _check_sizes(loaded_themes, loaded_sets)  # before any icon is rendered
-        chosen = {
-            (t.name, s.name): resolve_pipeline(pipeline, s.pipeline, t.pipeline)
-            for s in loaded_sets
-            for t in loaded_themes
-        }
-        for s in loaded_sets:
-            for t in loaded_themes:
-                check_pipeline(s, chosen[(t.name, s.name)], alpha)
-        if on_start is not None:
-            on_start(sum(len(s.icons) for s in loaded_sets))
-        audits = []
-        for iconset in loaded_sets:
-            paints = render_paints(iconset, strict_svg=strict_svg, on_icon=on_icon, pool=pool)
-            for theme in loaded_themes:
-                kind = chosen[(theme.name, iconset.name)]
-                audits.append(
-                    _audit(theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=kind)
-                )
-        gate = evaluate(audits, policy, baseline=baseline)
-        moved = _gamut_notes([*loaded_themes, *loaded_sets])
-        # Every renderer shows the fix for each failing colour: computed once, here.
-        return with_fixes(CheckReport(audits=tuple(audits), gate=gate, gamut=moved))
-
-
-def _gamut_notes(
-    inputs: Sequence[Theme | IconSet], *extra: Sequence[GamutAdjustment]
-) -> tuple[GamutAdjustment, ...]:
-    """Every colour the gamut policy moved, each once, in input order."""
-    notes = [a for item in inputs for a in item.adjusted]
-    notes += [a for group in extra for a in group]
-    return tuple(dict.fromkeys(notes))
-
-
-def _check_with_tokens(
-    themes: Sequence[str | Path],
-    iconsets: Sequence[str | Path],
-    tokens: TokenConfig,
-    pool: RenderPool,
-    *,
-    policy: Policy,
-    alpha: float | None,
-    threshold: float | None,
-    baseline: Iterable[FindingKey] | None,
-    strict_svg: bool,
-    pipeline: str | None,
-    on_start: Callable[[int], None] | None,
-    on_icon: Callable[[], None] | None,
-    gamut: GamutPolicy | None,
-) -> CheckReport:
-    """check_project with token themes: every icon set on every token mode (and YAML theme)."""
     from alpha_audit.load.tokens.project import token_audit_pairs
     from alpha_audit.load.tokens.themes import load_token_themes
 
-    if not iconsets:
-        raise UsageError("nothing to audit: the config has tokens: but names no iconset")
-    token_themes = load_token_themes(tokens)
-    loaded_themes = [load_theme(t, gamut=gamut) for t in _unique(themes)]
-    per_set = [token_audit_pairs(token_themes, s, gamut=gamut) for s in _unique(iconsets)]
-    # YAML themes get the first mode's icon colours.
-    per_set = [pairs + [(t, pairs[0][1]) for t in loaded_themes] for pairs in per_set]
-    for pairs in per_set:  # before any icon is rendered
-        _check_sizes([t for t, _ in pairs], [pairs[0][1]])
+    if not project.iconsets or not (project.themes or project.tokens):
+        raise UsageError(
+            "nothing to audit: give THEME ICONSET, or name themes and iconsets in "
+            "alpha-audit.yaml or [tool.alpha-audit] in pyproject.toml"
+        )
+    gamut = project.gamut
+    tokens = project.tokens
+    if tokens is not None and gamut is not None:
+        tokens = replace(tokens, gamut=gamut)
+    token_themes = load_token_themes(tokens) if tokens is not None else None
+    themes = [load_theme(t, gamut=gamut) for t in _unique(project.themes)]
+    work = []
+    for path in _unique(project.iconsets):
+        if token_themes is not None:
+            pairs = token_audit_pairs(token_themes, path, gamut=gamut)
+            pairs += [(t, pairs[0][1]) for t in themes]  # YAML themes: the first mode's colours
+        else:
+            iconset = load_iconset(path, gamut=gamut)
+            pairs = [(t, iconset) for t in themes]
+        icons = len(pairs[0][1].icons)
+        canvases = sum(len(t.canvases) for t, _ in pairs)
+        check_combinations(icons, canvases, 1, pairs[0][1].path)  # each icon draws a paint
+        chosen = []
         for theme, iconset in pairs:
-            check_pipeline(
-                iconset, resolve_pipeline(pipeline, iconset.pipeline, theme.pipeline), alpha
-            )
-    if on_start is not None:
-        on_start(sum(len(pairs[0][1].icons) for pairs in per_set))
-    audits = []
-    for pairs in per_set:
+            kind = resolve_pipeline(project.pipeline, iconset.pipeline, theme.pipeline)
+            check_pipeline(iconset, kind, project.alpha)
+            chosen.append(kind)
+        work.append(Work(tuple(pairs), tuple(chosen)))
+    project.policy.check_exemptions(
+        (c.name for w in work for t, _ in w.pairs for c in t.canvases),
+        (i.name for w in work for i in w.pairs[0][1].icons),
+    )
+    moved = [a for w in work for t, s in w.pairs for a in (*t.adjusted, *s.adjusted)]
+    if token_themes is not None:
+        moved += token_themes.adjusted
+    return work, tuple(dict.fromkeys(moved))
+
+
+def audits(
+    project: ProjectConfig,
+    work: Sequence[Work],
+    *,
+    pool: RenderPool | None = None,
+    progress: Progress | None = None,
+) -> list[AuditResult]:
+    """Render each icon set once and audit it on each of its themes."""
+    if progress is not None:
+        progress[0](sum(len(w.pairs[0][1].icons) for w in work))
+    out = []
+    for w in work:
         # The modes differ in colours only: the icons render once.
-        paints = render_paints(pairs[0][1], strict_svg=strict_svg, on_icon=on_icon, pool=pool)
-        for theme, iconset in pairs:
-            kind = resolve_pipeline(pipeline, iconset.pipeline, theme.pipeline)
-            audits.append(
-                _audit(theme, iconset, paints, alpha=alpha, threshold=threshold, pipeline=kind)
+        paints = render_paints(
+            w.pairs[0][1],
+            strict_svg=project.strict_svg,
+            on_icon=None if progress is None else progress[1],
+            pool=pool,
+        )
+        for (theme, iconset), kind in zip(w.pairs, w.pipelines, strict=True):
+            out.append(
+                audit(
+                    theme,
+                    iconset,
+                    paints,
+                    alpha=project.alpha,
+                    threshold=project.threshold,
+                    pipeline=kind,
+                )
             )
-    gate = evaluate(audits, policy, baseline=baseline)
-    sets = [pairs[0][1] for pairs in per_set]
-    moved = _gamut_notes([*loaded_themes, *sets], token_themes.adjusted)
-    return with_fixes(CheckReport(audits=tuple(audits), gate=gate, gamut=moved))
+    return out
+
+
+def check_project(
+    project: ProjectConfig,
+    *,
+    pool: RenderPool | None = None,
+    progress: Progress | None = None,
+    use_baseline: bool = True,
+) -> CheckReport:
+    """Audit every icon set on every theme (or token mode) of ``project`` and gate it.
+
+    Every file is loaded, and every input error raised, before any icon is
+    rendered; each icon set is rendered once whatever the number of themes.
+    The gate applies ``project.policy`` (the CLI passes the config with its
+    flags applied, :func:`~alpha_audit.load.config.resolve_config`); the
+    baseline file it names is read unless ``use_baseline`` is false (when a
+    new one is being written).  ``pool``: render workers started early.
+
+    >>> from alpha_audit.bundled import bundled_iconset, bundled_theme
+    >>> paper, vibrant = bundled_theme("paper16"), bundled_iconset("vibrant")
+    >>> check_project(ProjectConfig(themes=(paper,), iconsets=(vibrant,))).gate.passed
+    True
+    """
+    work, moved = plan(project)
+    known = None
+    if use_baseline and project.baseline is not None:
+        known = read_baseline(project.baseline)
+    with contextlib.ExitStack() as stack:
+        if pool is None:
+            pool = stack.enter_context(render_pool())
+        results = audits(project, work, pool=pool, progress=progress)
+    gate = evaluate(results, project.policy, baseline=known)
+    return with_fixes(CheckReport(audits=tuple(results), gate=gate, gamut=moved))
 
 
 def _unique(paths: Sequence[str | Path]) -> list[Path]:

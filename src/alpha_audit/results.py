@@ -7,6 +7,7 @@ them, so a renderer never imports what computes a fix.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -27,10 +28,15 @@ __all__ = [
     "Limit",
     "NearestColor",
     "PairSuggestion",
+    "Progress",
     "ReachAlpha",
     "SafeAlpha",
     "SuggestResult",
 ]
+
+
+Progress = tuple[Callable[[int], None], Callable[[], None]]
+"""``(start(total), one done)``: what a progress bar is told (icons, questions ...)."""
 
 
 @dataclass(frozen=True)

@@ -108,11 +108,16 @@ def test_apply_per_colour_and_icon_passes_the_gate_and_keeps_alert(
     by_name = {i.name: i.alpha for i in after.icons}
     assert by_name["alert"] == 1.18  # the explicit choice is kept
     assert {n: by_name[n] for n in plan.icons} == plan.icons
+    colours = {i.color_name: i.alpha for i in after.icons if i.name != "alert"}
+    assert {c: colours[c] for c in plan.palette} == plan.palette  # one alpha per colour
+    assert (scope == "colour") == bool(plan.palette) and (scope == "icon") == bool(plan.icons)
     # Independently: the gate passes on the manifest as written.
     assert evaluate([audit(theme, after)], Policy()).passed
-    # Only lines were added: every original line is still there, in order.
+    # Every original line is still there, in order, but the palette entries given an alpha.
+    given = {f"  {c}:" for c in plan.palette}
+    kept = [line for line in original.splitlines() if not line.startswith(tuple(given))]
     lines = iter(manifest.read_text().splitlines())
-    assert all(any(line == got for got in lines) for line in original.splitlines())
+    assert all(any(line == got for got in lines) for line in kept)
 
 
 def test_apply_replace_explicit_overwrites_alert(tmp_path: Path, repo: Path) -> None:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from dataclasses import replace
 from pathlib import Path
 from typing import Annotated
@@ -11,8 +10,9 @@ import typer
 
 from alpha_audit.cli.console import emit, progress_bar, stderr_note, stdout_options
 from alpha_audit.cli.options import (
-    OPTION_ORDER,
+    ARGS,
     ConfigOption,
+    FailOnOption,
     ForceOption,
     GamutOption,
     IconsetArgument,
@@ -24,12 +24,11 @@ from alpha_audit.cli.options import (
     StrictSvgOption,
     ThemeArgument,
     ThresholdOption,
+    flag,
+    given_order,
     in_range,
-    read_gamut_option,
-    rules_flag,
 )
 from alpha_audit.cli.status import ExitStatus
-from alpha_audit.load.paths import project_root
 from alpha_audit.ranges import ALPHA
 from alpha_audit.render import CheckFormat, RenderOptions
 from alpha_audit.render.common import check_suffix
@@ -38,16 +37,16 @@ __all__ = ["check_command", "pair_outputs"]
 
 
 def pair_outputs(
-    formats: list[CheckFormat], outputs: list[Path], order: Sequence[str] | None = None
+    formats: list[CheckFormat], outputs: list[Path], order: list[str] | None = None
 ) -> list[tuple[CheckFormat, Path | None]]:
     """Give each ``--output`` to the ``--format`` before it (``-`` or none: stdout).
 
     ``order`` is ``"format"`` / ``"output"`` per option as given on the command
-    line (:class:`~alpha_audit.cli_options.OrderedOptionsCommand` records it);
-    without it, the n-th output goes with the n-th format.  One ``-o`` with one
-    ``-f`` pair in either order.  Refused: an output whose extension belongs to
-    another format (``-f junit -o a.sarif``), an output with no format before
-    it, two outputs for one format, and two formats on stdout.
+    line (:func:`~alpha_audit.cli.options.given_order`); without it, the n-th
+    output goes with the n-th format.  One ``-o`` with one ``-f`` pair in either
+    order.  Refused: an output whose extension belongs to another format (``-f
+    junit -o a.sarif``), an output with no format before it, two outputs for one
+    format, and two formats on stdout.
     """
     from alpha_audit.errors import UsageError
 
@@ -89,24 +88,20 @@ def pair_outputs(
     return pairs
 
 
+_ORDER = {"format": ("-f", "--format"), "output": ("-o", "--output")}
+
+
 def check_command(
     ctx: typer.Context,
     theme: ThemeArgument = None,
     iconset: IconsetArgument = None,
     themes: Annotated[
         list[Path] | None,
-        typer.Option(
-            "--theme",
-            metavar="PATH",
-            help="Another theme to audit (repeatable).",
-            show_default=False,
-        ),
+        typer.Option("--theme", metavar="PATH", help="Another theme to audit (repeatable)."),
     ] = None,
     iconsets: Annotated[
         list[Path] | None,
-        typer.Option(
-            "--iconset", metavar="PATH", help="Another icon set (repeatable).", show_default=False
-        ),
+        typer.Option("--iconset", metavar="PATH", help="Another icon set (repeatable)."),
     ] = None,
     config: ConfigOption = None,
     alpha: Annotated[
@@ -114,24 +109,13 @@ def check_command(
         typer.Option(
             "--alpha",
             "-a",
-            help="Coefficient for every icon (overrides the manifest).",
+            help="Coefficient for every icon.",
             callback=in_range("--alpha", ALPHA),
+            show_default="the manifest's",
         ),
     ] = None,
     threshold: ThresholdOption = None,
-    fail_on: Annotated[
-        list[str] | None,
-        typer.Option(
-            "--fail-on",
-            metavar="RULE",
-            help="Rule that fails the gate (repeatable; replaces the policy): loss, "
-            "below-threshold, newly-failing, collision, new-collision, separation, unrenderable, "
-            "fixed-colour, not-audited, drift, lock, confusion, thin-strokes, cvd-collision, "
-            "cvd-confusion. [default: loss, newly-failing, new-collision]",
-            show_default=False,
-            callback=rules_flag("--fail-on"),
-        ),
-    ] = None,
+    fail_on: FailOnOption = None,
     max_loss: MaxLossOption = None,
     min_delta_e: MinDeltaEOption = None,
     max_drift: MaxDriftOption = None,
@@ -139,7 +123,7 @@ def check_command(
     pipeline: PipelineOption = None,
     gamut: GamutOption = None,
     exit_zero: Annotated[
-        bool, typer.Option("--exit-zero", help="Report findings but exit 0 even if the gate fails.")
+        bool, flag("--exit-zero", help="Report findings but exit 0 even if the gate fails.")
     ] = False,
     fmt: Annotated[
         list[CheckFormat] | None,
@@ -149,7 +133,7 @@ def check_command(
             metavar="FORMAT",
             help=f"Report format (repeatable): {', '.join(CheckFormat)}.",
             case_sensitive=False,
-            show_default=False,
+            show_default=CheckFormat.TABLE.value,
         ),
     ] = None,
     output: Annotated[
@@ -159,12 +143,16 @@ def check_command(
             "-o",
             metavar="PATH",
             help="File for the --format before it ('-' = stdout; repeatable).",
-            show_default=False,
+            show_default="stdout",
         ),
     ] = None,
     baseline: Annotated[
         Path | None,
-        typer.Option("--baseline", help="Fail only on findings not in this baseline file."),
+        typer.Option(
+            "--baseline",
+            help="Fail only on findings not in this baseline file.",
+            show_default="the config's baseline:",
+        ),
     ] = None,
     write_baseline: Annotated[
         Path | None,
@@ -175,8 +163,8 @@ def check_command(
 ) -> ExitStatus:
     """Audit icon sets on themes and fail the build on the findings the policy names.
 
-    Per canvas: mean contrast gain against a = 1, icons at or above the threshold
-    (at a = 1 -> at a), icons that newly pass, contrast losses, 8-bit collisions
+    Per canvas: mean contrast gain against a = 1, paints at or above the threshold
+    (at a = 1 -> at a), paints that newly pass, contrast losses, 8-bit collisions
     between distinct colours, and the smallest CIEDE2000 between the set's colours.
     With no THEME ICONSET, audits what the project config names.
 
@@ -188,54 +176,42 @@ def check_command(
     Example:
     [bold]alpha-audit check themes/github-primer.yaml examples/vibrant/iconset.yaml -a 1.2[/]
     """
-    from alpha_audit.bundled import iconset_source, theme_source
     from alpha_audit.errors import UsageError
     from alpha_audit.gate import baseline_document
-    from alpha_audit.load.baseline import read_baseline
-    from alpha_audit.load.config import project_config
+    from alpha_audit.load.config import Overrides, resolve_config
+    from alpha_audit.load.paths import project_root
     from alpha_audit.output import Output, check_targets, write_files
     from alpha_audit.pipeline import check_project
     from alpha_audit.render.common import dumps
 
-    gamut_policy = read_gamut_option(gamut)
-    given = ctx.meta.get(OPTION_ORDER)
-    order = None if given is None else ["format" if n == "fmt" else n for n in given]
+    order = given_order(ctx.meta.get(ARGS, ()), _ORDER)
     pairs = pair_outputs(list(fmt or []), list(output or []), order)
-    # Every file target is checked before the audit runs and again as one write at the end.
-    files = [out for _, out in pairs if out is not None]
-    files += [write_baseline] if write_baseline is not None else []
-    check_targets(files, overwrite=force)
+    files = [out for _, out in pairs if out is not None] + [write_baseline] * bool(write_baseline)
+    check_targets([f for f in files if f is not None], overwrite=force)  # before the work
     if (theme is None) != (iconset is None):
         raise UsageError("give both THEME and ICONSET, or neither (to use the project config)")
-
-    project = project_config(config, Path.cwd())
-    cli_themes = [theme_source(t) for t in ([theme] if theme else []) + list(themes or [])]
-    cli_sets = [iconset_source(s) for s in ([iconset] if iconset else []) + list(iconsets or [])]
-    policy = project.policy.with_overrides(
-        rules=fail_on,
-        max_loss=max_loss,
-        min_delta_e=min_delta_e,
-        max_drift=max_drift,
-        min_size_contrast=min_size_contrast,
+    project = resolve_config(
+        Overrides(
+            config=config,
+            themes=(*([theme] if theme else []), *(themes or [])),
+            iconsets=(*([iconset] if iconset else []), *(iconsets or [])),
+            alpha=alpha,
+            threshold=threshold,
+            fail_on=tuple(fail_on or ()),
+            max_loss=max_loss,
+            min_delta_e=min_delta_e,
+            max_drift=max_drift,
+            min_size_contrast=min_size_contrast,
+            pipeline=pipeline,
+            gamut=gamut,
+            baseline=baseline,
+            strict_svg=strict_svg,
+        ),
+        Path.cwd(),
     )
-    baseline_path = baseline if baseline is not None else project.baseline
-    known = read_baseline(baseline_path) if baseline_path is not None else None
-
-    with progress_bar("Rendering icons") as (on_start, on_icon):
+    with progress_bar("Rendering icons") as progress:
         report = check_project(
-            cli_themes or project.themes,
-            cli_sets or project.iconsets,
-            policy=policy,
-            alpha=alpha if alpha is not None else project.alpha,
-            threshold=threshold if threshold is not None else project.threshold,
-            baseline=known,
-            strict_svg=strict_svg or project.strict_svg,
-            pipeline=pipeline if pipeline is not None else project.pipeline,
-            on_start=on_start,
-            on_icon=on_icon,
-            tokens=None if cli_themes or cli_sets else project.tokens,
-            gamut=gamut_policy if gamut_policy is not None else project.gamut,
-            pool=ctx.obj,
+            project, pool=ctx.obj, progress=progress, use_baseline=write_baseline is None
         )
     # Paths in reports are relative to the repository (the folder with .git): what
     # GitHub annotations, SARIF's %SRCROOT% and GitLab expect, from any subfolder.
@@ -252,9 +228,9 @@ def check_command(
         stderr_note(f"wrote {'baseline ' if path == write_baseline else ''}{path}")
     if stdout_text is not None:
         emit(stdout_text, None, force)
+    gate = report.gate
     if write_baseline is not None:
         return ExitStatus.OK
-    gate = report.gate
     if gate.passed:
         stderr_note("gate passed")
         return ExitStatus.OK

@@ -1,9 +1,13 @@
-"""Options shared by several commands, declared once (typer ``Annotated`` aliases)."""
+"""Options shared by several commands, declared once (typer ``Annotated`` aliases).
+
+Defaults shown in ``--help`` come from the library (the rule registry,
+:class:`~alpha_audit.policy.Policy`'s fields, the WCAG threshold), never typed
+by hand.  A flag shows no type after it (``metavar=""``), as in click.
+"""
 
 from __future__ import annotations
 
-import difflib
-from collections.abc import Callable
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Annotated, Any, TypeVar
 
@@ -12,11 +16,15 @@ from typer.core import TyperCommand
 
 from alpha_audit import ranges
 from alpha_audit.color.css import GAMUT_POLICIES, GamutPolicy
+from alpha_audit.color.metrics import NON_TEXT_THRESHOLD
 from alpha_audit.errors import UsageError
+from alpha_audit.rules import DEFAULT_RULES, RULES, Rule
 
 __all__ = [
-    "OPTION_ORDER",
+    "ARGS",
+    "Command",
     "ConfigOption",
+    "FailOnOption",
     "ForceOption",
     "GamutOption",
     "IconsetArgument",
@@ -24,44 +32,57 @@ __all__ = [
     "MaxLossOption",
     "MinDeltaEOption",
     "MinSizeContrastOption",
-    "OrderedOptionsCommand",
     "PipelineOption",
     "StrictSvgOption",
     "ThemeArgument",
     "ThresholdOption",
+    "flag",
+    "given_order",
     "in_range",
     "read_gamut_option",
+    "rules_flag",
+    "untyped_flags",
 ]
+
+ARGS = "alpha_audit.args"
+"""``ctx.meta`` key: the command's arguments as given (the group records them)."""
 
 ThemeArgument = Annotated[
     Path | None,
     typer.Argument(
-        help="Theme YAML or a bundled theme name (default: what the project config names)."
+        help="Theme YAML or a bundled theme name.",
+        show_default="what the project config names",
     ),
 ]
 IconsetArgument = Annotated[
     Path | None,
     typer.Argument(
-        help="Icon-set manifest YAML or vibrant, the bundled example "
-        "(default: what the project config names)."
+        help="Icon-set manifest YAML, or vibrant (the bundled example).",
+        show_default="what the project config names",
     ),
 ]
 ConfigOption = Annotated[
     Path | None,
     typer.Option(
         "--config",
-        help="Project config (default: alpha-audit.yaml, .alpha-audit.yaml or "
-        "\\[tool.alpha-audit] in pyproject.toml, found from here upwards).",
+        help="Project config file.",
+        show_default="alpha-audit.yaml, .alpha-audit.yaml or [tool.alpha-audit] in "
+        "pyproject.toml, found from here upwards",
     ),
 ]
+
+
+def flag(*names: str, help: str) -> Any:
+    """A boolean flag: no value, shown without a type (click's convention)."""
+    return typer.Option(*names, help=help, metavar="")
 
 
 # A flag's value: one number, a repeatable flag's list of them, or not given.
 Given = TypeVar("Given", bound=float | list[int] | list[float] | None)
 
 
-def in_range(flag: str, allowed: ranges.NumberRange) -> Callable[[Given], Given]:
-    """A typer callback refusing a value of ``flag`` outside ``allowed`` (each, if repeatable).
+def in_range(name: str, allowed: ranges.NumberRange) -> Callable[[Given], Given]:
+    """A typer callback refusing a value of ``name`` outside ``allowed`` (each, if repeatable).
 
     The range is the one the theme or config key of the same meaning obeys
     (:mod:`alpha_audit.ranges`), so the flag and the file refuse alike.
@@ -70,76 +91,88 @@ def in_range(flag: str, allowed: ranges.NumberRange) -> Callable[[Given], Given]
     def check(value: Given) -> Given:
         for number in value if isinstance(value, list) else () if value is None else (value,):
             if not allowed.allows(number):
-                raise UsageError(allowed.refusal(f"{flag} {number:g}"))
+                raise UsageError(allowed.refusal(f"{name} {number:g}"))
         return value
 
     return check
 
 
-ThresholdOption = Annotated[
-    float | None,
-    typer.Option(
-        help="Contrast threshold (default: the theme's, else 3.0 = WCAG 1.4.11).",
-        callback=in_range("--threshold", ranges.CONTRAST_RATIO),
-    ),
-]
-
-
 def rules_flag(
-    flag: str, refused: tuple[str, ...] = (), why: str = ""
+    name: str, refused: tuple[str, ...] = (), why: str = ""
 ) -> Callable[[list[str] | None], list[str] | None]:
-    """A typer callback parsing rule names, naming ``flag``; ``refused`` rules are errors."""
+    """A typer callback parsing rule names, naming ``name``; ``refused`` rules are errors."""
 
     def check(values: list[str] | None) -> list[str] | None:
-        from alpha_audit.errors import UsageError
-        from alpha_audit.rules import Rule
-
-        allowed = [r.value for r in Rule if r.value not in refused]
         for value in values or []:
-            name = value.strip().lower()
-            if name in refused:
-                raise UsageError(f"{flag} {value} is not allowed here: {why}")
-            if name not in allowed:
-                close = difflib.get_close_matches(name, allowed, n=1)
-                hint = f"did you mean {close[0]!r}? " if close else ""
-                raise UsageError(
-                    f"{flag}: unknown rule {value!r}; {hint}use one of: {', '.join(allowed)}"
-                )
+            if value.strip().lower() in refused:
+                raise UsageError(f"{name} {value} is not allowed here: {why}")
+            Rule.parse(value, name)
         return values
 
     return check
 
 
+def _policy_default(field: str) -> str:
+    from alpha_audit.policy import Policy
+
+    value = getattr(Policy(), field)
+    return f"the config's, else {'the threshold' if value is None else f'{value:g}'}"
+
+
+ThresholdOption = Annotated[
+    float | None,
+    typer.Option(
+        help="Contrast threshold.",
+        callback=in_range("--threshold", ranges.CONTRAST_RATIO),
+        show_default=f"the theme's, else {NON_TEXT_THRESHOLD:g}: WCAG 2.2 SC 1.4.11",
+    ),
+]
+FailOnOption = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--fail-on",
+        metavar="RULE",
+        help="Rule that fails the gate (repeatable; replaces the policy): "
+        + ", ".join(RULES)
+        + " (docs/rules.md).",
+        show_default="the config's, else " + ", ".join(r for r in RULES if r in DEFAULT_RULES),
+        callback=rules_flag("--fail-on"),
+    ),
+]
 MaxLossOption = Annotated[
     float | None,
     typer.Option(
         "--max-loss",
-        help="Contrast loss tolerated by the loss rule. [default: 0]",
+        help="Contrast loss tolerated by the loss rule.",
         callback=in_range("--max-loss", ranges.CONTRAST_LOSS),
+        show_default=_policy_default("max_loss"),
     ),
 ]
 MinDeltaEOption = Annotated[
     float | None,
     typer.Option(
         "--min-delta-e",
-        help="Smallest CIEDE2000 for separation and confusion. [default: 10]",
+        help="Smallest CIEDE2000 for separation and confusion.",
         callback=in_range("--min-delta-e", ranges.DELTA_E),
+        show_default=_policy_default("min_delta_e"),
     ),
 ]
 MaxDriftOption = Annotated[
     float | None,
     typer.Option(
         "--max-drift",
-        help="Largest CIEDE2000 colour drift for drift. [default: 10]",
+        help="Largest CIEDE2000 colour drift for drift.",
         callback=in_range("--max-drift", ranges.DELTA_E),
+        show_default=_policy_default("max_drift"),
     ),
 ]
 MinSizeContrastOption = Annotated[
     float | None,
     typer.Option(
         "--min-size-contrast",
-        help="Smallest size contrast for thin-strokes. [default: the threshold]",
+        help="Smallest size contrast for thin-strokes.",
         callback=in_range("--min-size-contrast", ranges.CONTRAST_RATIO),
+        show_default=_policy_default("min_size_contrast"),
     ),
 ]
 PipelineOption = Annotated[
@@ -148,9 +181,8 @@ PipelineOption = Annotated[
         "--pipeline",
         metavar="linear|css",
         help="How icons are drawn: linear (the paper: WebGL, linearRGB filter, exported "
-        "colours) or css (browser opacity, alpha in [0, 1]). [default: the config's, the "
-        "icon set's, the theme's, else linear]",
-        show_default=False,
+        "colours) or css (browser opacity, alpha in [0, 1]).",
+        show_default="the config's, the icon set's, the theme's, else linear",
     ),
 ]
 GamutOption = Annotated[
@@ -159,16 +191,14 @@ GamutOption = Annotated[
         "--gamut",
         metavar="clip|map|error",
         help="Colours outside sRGB in themes, manifests and tokens: clip (per channel, as "
-        "browsers do), map (CSS Color 4 gamut mapping) or error. [default: the config's, "
-        "else each file's gamut:, else error]",
-        show_default=False,
+        "browsers do), map (CSS Color 4 gamut mapping) or error.",
+        show_default="the config's, else each file's gamut:, else error",
     ),
 ]
 StrictSvgOption = Annotated[
-    bool,
-    typer.Option("--strict-svg", help="Treat an SVG that cannot be rendered as an input error."),
+    bool, flag("--strict-svg", help="Treat an SVG that cannot be rendered as an input error.")
 ]
-ForceOption = Annotated[bool, typer.Option("--force", help="Replace existing output files.")]
+ForceOption = Annotated[bool, flag("--force", help="Replace existing output files.")]
 
 
 def read_gamut_option(value: str | None) -> GamutPolicy | None:
@@ -181,15 +211,41 @@ def read_gamut_option(value: str | None) -> GamutPolicy | None:
     return value
 
 
-OPTION_ORDER = "alpha_audit.option_order"
+def given_order(args: Sequence[str], names: Mapping[str, tuple[str, ...]]) -> list[str]:
+    """Which of the named options were given, in command-line order.
 
+    ``names`` maps a key to the option's spellings (``{"format": ("-f",
+    "--format")}``).  Click hands each repeatable option over as one list,
+    which loses which ``--output`` followed which ``--format``; the arguments
+    as given (:data:`ARGS`) still say.  Values (``-f json``, ``-fjson``,
+    ``--format=json``) are stepped over, and ``--`` ends the options.
 
-def hide_flag_types(params: list[Any]) -> list[Any]:
-    """``params`` with no type shown after a flag.
-
-    typer's rich help prints ``<bool>`` after every flag (``--force <bool>``),
-    which reads as if it took a value; a flag shows no type, as in click.
+    >>> given_order(["-f", "json", "-o", "-", "--format=sarif"], {"f": ("-f", "--format"),
+    ...     "o": ("-o", "--output")})
+    ['f', 'o', 'f']
     """
+    out: list[str] = []
+    skip = False
+    for arg in args:
+        if skip:
+            skip = False
+            continue
+        if arg == "--":
+            break
+        for key, spellings in names.items():
+            if arg in spellings:
+                out.append(key)
+                skip = True
+            elif any(
+                arg.startswith(s + "=") if s.startswith("--") else arg.startswith(s) and arg != s
+                for s in spellings
+            ):
+                out.append(key)
+    return out
+
+
+def untyped_flags(params: list[Any]) -> list[Any]:
+    """``params`` with no type shown after a flag (``--help``, which typer adds, included)."""
     for param in params:
         if getattr(param, "is_flag", False) and param.metavar is None:
             param.metavar = ""
@@ -197,21 +253,8 @@ def hide_flag_types(params: list[Any]) -> list[Any]:
 
 
 class Command(TyperCommand):
-    """Every alpha-audit command: typer's, with flags shown as flags in its help."""
+    """Every alpha-audit command: typer's, its help option shown without a type."""
 
     def get_params(self, ctx: Any) -> list[Any]:
-        return hide_flag_types(super().get_params(ctx))
-
-
-class OrderedOptionsCommand(Command):
-    """A command that records the order its options were given in (``ctx.meta``).
-
-    Click hands each repeatable option over as one list, which loses which
-    ``--output`` followed which ``--format``; the parser knows, so ask it once.
-    """
-
-    def parse_args(self, ctx: typer.Context, args: list[str]) -> list[str]:  # type: ignore[override]  # the base names typer's private click Context; typer.Context is its public subclass
-        """Record ``[param name, ...]`` per option occurrence, then parse as usual."""
-        _, _, order = self.make_parser(ctx).parse_args(args=list(args))
-        ctx.meta[OPTION_ORDER] = [p.name for p in order]
-        return super().parse_args(ctx, args)
+        """The command's parameters (click's public hook), ``--help`` with no ``<bool>``."""
+        return untyped_flags(super().get_params(ctx))

@@ -30,7 +30,7 @@ from alpha_audit.cli.check import check_command
 from alpha_audit.cli.console import stderr_console
 from alpha_audit.cli.export import export_command
 from alpha_audit.cli.flags import cli_message
-from alpha_audit.cli.options import Command, OrderedOptionsCommand, hide_flag_types
+from alpha_audit.cli.options import ARGS, Command, untyped_flags
 from alpha_audit.cli.pair import pair_command
 from alpha_audit.cli.preview import preview_command
 from alpha_audit.cli.render import render_command
@@ -51,19 +51,13 @@ def _error_line(message: str) -> None:
 
 
 def _usage_error(exc: typer.TyperException) -> NoReturn:
-    """A usage error typer found, as one line naming the command and where help is.
-
-    ``alpha-audit`` alone is not an error to reword: typer shows the help
-    (matched by name, as typer itself does, since the class is private).
-    """
-    if type(exc).__name__ == "NoArgsIsHelpError":
-        raise exc
+    """A usage error typer found, as one line naming the command and where help is."""
     ctx = getattr(exc, "ctx", None)
     path = ctx.command_path if ctx is not None else "alpha-audit"
     message = exc.format_message().rstrip(".")
     param = getattr(exc, "param", None)
     if ctx is not None and param is not None:
-        value = _given_value(ctx.meta.get(_ARGS, []), getattr(param, "opts", []))
+        value = _given_value(ctx.meta.get(ARGS, []), getattr(param, "opts", []))
         message = _plain_words(message, value)
     _error_line(f"{message} (see '{path} --help')")
     raise typer.Exit(ExitStatus.INPUT_ERROR)
@@ -111,8 +105,6 @@ def _memory_limit() -> str:
     return f"the address-space limit of {soft / (1 << 20):.0f} MiB"
 
 
-_ARGS = "alpha_audit.args"  # ctx.meta key: the command's arguments as given
-
 MAX_REASON = 200
 """Characters of an unexpected exception's text kept in its one-line report."""
 
@@ -153,9 +145,11 @@ class _Group(TyperGroup):
     """The single boundary where results and exceptions become exit codes."""
 
     def get_params(self, ctx: Any) -> list[Any]:
-        return hide_flag_types(super().get_params(ctx))
+        return untyped_flags(super().get_params(ctx))
 
     def parse_args(self, ctx: Any, args: list[str]) -> list[str]:
+        if not args and self.no_args_is_help:
+            return super().parse_args(ctx, args)  # ``alpha-audit`` alone: typer shows the help
         try:
             return super().parse_args(ctx, args)
         except typer.TyperException as exc:
@@ -164,7 +158,7 @@ class _Group(TyperGroup):
     def invoke(self, ctx: Any) -> Any:
         # The command's own arguments, seen here before the group hands them on.
         # To name a bad value in a usage error, and to see --help before workers start.
-        ctx.meta[_ARGS] = list(ctx.args)
+        ctx.meta[ARGS] = list(ctx.args)
         try:
             status = super().invoke(ctx)
             if not isinstance(status, ExitStatus):
@@ -227,7 +221,7 @@ def _root(
     ] = False,
 ) -> None:
     """Audit icon sets across light and dark themes with extended-alpha compositing."""
-    wants_help = {"-h", "--help"} & set(ctx.meta.get(_ARGS, ()))
+    wants_help = {"-h", "--help"} & set(ctx.meta.get(ARGS, ()))
     if ctx.invoked_subcommand in _RENDERING and not wants_help:
         from alpha_audit.pipeline import render_pool
 
@@ -236,7 +230,7 @@ def _root(
         ctx.obj = ctx.with_resource(render_pool())
 
 
-app.command("check", cls=OrderedOptionsCommand)(check_command)
+app.command("check", cls=Command)(check_command)
 app.command("suggest", cls=Command)(suggest_command)
 app.command("preview", cls=Command)(preview_command)
 app.command("pair", cls=Command)(pair_command)

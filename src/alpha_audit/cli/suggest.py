@@ -7,9 +7,10 @@ from typing import Annotated
 
 import typer
 
-from alpha_audit.cli.console import emit, stdout_options
+from alpha_audit.cli.console import emit, progress_bar, stderr_note, stdout_options
 from alpha_audit.cli.options import (
     ConfigOption,
+    FailOnOption,
     ForceOption,
     GamutOption,
     IconsetArgument,
@@ -19,13 +20,13 @@ from alpha_audit.cli.options import (
     MinSizeContrastOption,
     ThemeArgument,
     ThresholdOption,
+    flag,
     in_range,
-    read_gamut_option,
-    rules_flag,
 )
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.ranges import ALPHA_MAX, PRECISION
 from alpha_audit.render import SuggestFormat
+from alpha_audit.suggest import SCOPES
 
 __all__ = ["suggest_command"]
 
@@ -41,6 +42,15 @@ def _scope(value: str | None) -> str | None:
     if value.strip().lower() not in scopes:
         raise UsageError(f"--apply {value!r} is not a scope; use one of: {', '.join(scopes)}")
     return value.strip().lower()
+
+
+def _scopes(values: list[str] | None) -> list[str] | None:
+    from alpha_audit.errors import UsageError
+
+    for value in values or []:
+        if value not in SCOPES:
+            raise UsageError(f"--only {value!r} is not a scope; use one of: {', '.join(SCOPES)}")
+    return values
 
 
 def suggest_command(
@@ -65,23 +75,7 @@ def suggest_command(
         ),
     ] = 3,
     threshold: ThresholdOption = None,
-    fail_on: Annotated[
-        list[str] | None,
-        typer.Option(
-            "--fail-on",
-            metavar="RULE",
-            help="Rule that must hold (repeatable; replaces the policy): any rule of check "
-            "(docs/ci.md). "
-            "[default: the config's, else loss, newly-failing, new-collision, confusion]",
-            show_default=False,
-            # suggest composites colours, it never renders an SVG.
-            callback=rules_flag(
-                "--fail-on",
-                refused=("unrenderable",),
-                why="suggest never renders SVGs; use it with check",
-            ),
-        ),
-    ] = None,
+    fail_on: FailOnOption = None,
     max_loss: MaxLossOption = None,
     min_delta_e: MinDeltaEOption = None,
     max_drift: MaxDriftOption = None,
@@ -108,11 +102,21 @@ def suggest_command(
     ] = None,
     replace_explicit: Annotated[
         bool,
-        typer.Option(
+        flag(
             "--replace-explicit",
             help="With --apply, also replace alphas the manifest sets per icon.",
         ),
     ] = False,
+    only: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--only",
+            metavar="SCOPE",
+            help=f"Answer only these questions (repeatable): {', '.join(SCOPES)}.",
+            show_default="all",
+            callback=_scopes,
+        ),
+    ] = None,
 ) -> ExitStatus:
     """The largest alpha every coefficient in [1, alpha] keeps the gate policy for.
 
@@ -125,74 +129,75 @@ def suggest_command(
     Example:
     [bold]alpha-audit suggest themes/paper16.yaml examples/vibrant/iconset.yaml --apply set[/]
     """
-    from alpha_audit.bundled import iconset_source, theme_source
     from alpha_audit.errors import UsageError
-    from alpha_audit.load.config import project_config
-    from alpha_audit.load.iconset import load_iconset
-    from alpha_audit.load.theme import load_theme
+    from alpha_audit.load.config import Overrides, resolve_config
     from alpha_audit.output import check_targets
-    from alpha_audit.pipeline import render_paints
+    from alpha_audit.pipeline import audits, plan
     from alpha_audit.render.common import RenderOptions, check_suffix
-    from alpha_audit.rows import audit, resolve_pipeline
-    from alpha_audit.suggest.apply import apply_suggestion, describe_plan
+    from alpha_audit.suggest.apply import apply_suggestion, describe_plan, recheck
     from alpha_audit.suggest.engine import suggest
 
     if output is not None:
         check_suffix(fmt.value, output)
         check_targets([output], overwrite=force)  # before the work, not after
-    gamut_policy = read_gamut_option(gamut)
     if (theme is None) != (iconset is None):
         raise UsageError("give both THEME and ICONSET, or neither (to use the project config)")
-    project = project_config(config, Path.cwd())
-    if gamut_policy is None:
-        gamut_policy = project.gamut
-    if theme is None or iconset is None:
-        if project.tokens is not None and not project.themes:
-            raise UsageError(
-                "suggest reads YAML themes, not the config's tokens: table (a coefficient in "
-                "$extensions is never rewritten); give THEME ICONSET, or run check, which "
-                "audits every token mode (docs/tokens.md)"
-            )
-        if len(project.themes) != 1 or len(project.iconsets) != 1:
-            raise UsageError(
-                "suggest needs one theme and one icon set: give THEME ICONSET, or a project "
-                f"config naming exactly one of each (found {len(project.themes)} theme(s), "
-                f"{len(project.iconsets)} icon set(s))"
-            )
-        theme, iconset = project.themes[0], project.iconsets[0]
-    theme, source = theme_source(theme), iconset_source(iconset)
-    if apply is not None and source != Path(iconset):
+    project = resolve_config(
+        Overrides(
+            config=config,
+            themes=(theme,) if theme else (),
+            iconsets=(iconset,) if iconset else (),
+            threshold=threshold,
+            fail_on=tuple(fail_on or ()),
+            max_loss=max_loss,
+            min_delta_e=min_delta_e,
+            max_drift=max_drift,
+            min_size_contrast=min_size_contrast,
+            gamut=gamut,
+        ),
+        Path.cwd(),
+    )
+    if project.tokens is not None:
+        raise UsageError(
+            "suggest reads YAML themes, not the config's tokens: table (a coefficient in "
+            "$extensions is never rewritten); give THEME ICONSET, or run check, which "
+            "audits every token mode (docs/tokens.md)"
+        )
+    if len(project.themes) != 1 or len(project.iconsets) != 1:
+        raise UsageError(
+            "suggest needs one theme and one icon set: give THEME ICONSET, or a project "
+            f"config naming exactly one of each (found {len(project.themes)} theme(s), "
+            f"{len(project.iconsets)} icon set(s))"
+        )
+    manifest = project.iconsets[0]
+    if apply is not None and iconset is not None and manifest != Path(iconset):
         raise UsageError(
             f"--apply rewrites the manifest in place and {iconset} is the bundled example; "
-            f"copy {source.parent} into your project and give its {source.name}"
+            f"copy {manifest.parent} into your project and give its {manifest.name}"
         )
-    iconset = source
-    policy = project.policy.with_overrides(
-        rules=fail_on,
-        max_loss=max_loss,
-        min_delta_e=min_delta_e,
-        max_drift=max_drift,
-        min_size_contrast=min_size_contrast,
-    )
-
-    loaded_theme = load_theme(theme, gamut=gamut_policy)
-    loaded_set = load_iconset(iconset, gamut=gamut_policy)
-    policy.check_exemptions(
-        (c.name for c in loaded_theme.canvases), (i.name for i in loaded_set.icons)
-    )
+    work, _ = plan(project)
     # The gate judges every paint of every SVG as drawn: suggest answers the same rows.
-    paints = render_paints(loaded_set, strict_svg=False, on_icon=None, pool=ctx.obj)
-    rows = audit(
-        loaded_theme,
-        loaded_set,
-        paints,
-        threshold=threshold if threshold is not None else project.threshold,
-        pipeline=resolve_pipeline(project.pipeline, loaded_set.pipeline, loaded_theme.pipeline),
-    )
-    result = suggest(rows, policy, alpha_max=alpha_max, precision=precision)
+    (rows,) = audits(project, work, pool=ctx.obj)
+    with progress_bar("Answering") as progress:
+        result = suggest(
+            rows,
+            project.policy,
+            alpha_max=alpha_max,
+            precision=precision,
+            scopes=only or SCOPES,
+            progress=progress,
+        )
     options = stdout_options() if output is None else RenderOptions()
     emit(fmt.renderer()(result, options), output, force)
     if apply is not None:
-        plan, changed = apply_suggestion(iconset, result, apply, replace_explicit=replace_explicit)
-        typer.echo(describe_plan(plan, iconset, changed, precision), err=True)
+        applied, changed = apply_suggestion(
+            manifest, result, apply, replace_explicit=replace_explicit
+        )
+        verdict = recheck(manifest, result, gamut=project.gamut)
+        stderr_note(describe_plan(applied, manifest, changed, precision))
+        stderr_note(
+            "check: the gate passes with what was written"
+            if verdict
+            else "check: the gate still fails with what was written (run alpha-audit check)"
+        )
     return ExitStatus.OK

@@ -16,7 +16,7 @@ from pathlib import Path, PurePosixPath
 from typing import Any
 
 from alpha_audit import ranges
-from alpha_audit.color import GamutPolicy, Pipeline
+from alpha_audit.color import GAMUT_POLICIES, PIPELINES, GamutPolicy, Pipeline
 from alpha_audit.errors import InputError, UsageError
 from alpha_audit.load.fields import (
     check_keys,
@@ -38,11 +38,13 @@ from alpha_audit.safe_text import is_safe, safe_text
 __all__ = [
     "CONFIG_KEYS",
     "CONFIG_NAMES",
+    "Overrides",
     "ProjectConfig",
     "config_from_doc",
     "find_config",
     "load_config",
     "project_config",
+    "resolve_config",
 ]
 
 CONFIG_NAMES = ("alpha-audit.yaml", ".alpha-audit.yaml")
@@ -156,6 +158,67 @@ def project_config(explicit: str | Path | None, start: str | Path) -> ProjectCon
     """``explicit`` if given, else the config found from ``start`` upwards, else defaults."""
     path = explicit if explicit is not None else find_config(start)
     return load_config(path) if path is not None else ProjectConfig()
+
+
+@dataclass(frozen=True)
+class Overrides:
+    """What a caller (the command line's flags) sets over the project config.
+
+    ``None`` (and an empty tuple) keeps the config's value.  Themes or icon
+    sets given replace the config's, and its ``tokens:`` table with them; each
+    may name a bundled theme or the bundled example set.
+    """
+
+    config: Path | None = None
+    themes: tuple[str | Path, ...] = ()
+    iconsets: tuple[str | Path, ...] = ()
+    alpha: float | None = None
+    threshold: float | None = None
+    fail_on: tuple[str, ...] = ()
+    max_loss: float | None = None
+    min_delta_e: float | None = None
+    max_drift: float | None = None
+    min_size_contrast: float | None = None
+    pipeline: str | None = None
+    gamut: str | None = None
+    baseline: Path | None = None
+    strict_svg: bool = False
+
+
+def resolve_config(overrides: Overrides | None = None, start: str | Path = ".") -> ProjectConfig:
+    """The project config (given, else found from ``start`` upwards) with ``overrides`` applied.
+
+    The one place every command resolves what it audits: ``check``,
+    ``suggest``, ``preview`` and ``export`` call it and nothing else.
+    """
+    from alpha_audit.bundled import iconset_source, theme_source
+
+    o = overrides or Overrides()
+    project = project_config(o.config, start)
+    for flag, value in (("--pipeline", o.pipeline), ("--gamut", o.gamut)):
+        allowed = PIPELINES if flag == "--pipeline" else GAMUT_POLICIES
+        if value is not None and value.strip().lower() not in allowed:
+            raise UsageError(f"{flag} {value!r} is not one of: {', '.join(allowed)}")
+    given = bool(o.themes or o.iconsets)
+    return replace(
+        project,
+        themes=tuple(theme_source(t) for t in o.themes) if given else project.themes,
+        iconsets=tuple(iconset_source(s) for s in o.iconsets) if given else project.iconsets,
+        tokens=None if given else project.tokens,
+        alpha=project.alpha if o.alpha is None else o.alpha,
+        threshold=project.threshold if o.threshold is None else o.threshold,
+        policy=project.policy.with_overrides(
+            rules=o.fail_on or None,
+            max_loss=o.max_loss,
+            min_delta_e=o.min_delta_e,
+            max_drift=o.max_drift,
+            min_size_contrast=o.min_size_contrast,
+        ),
+        pipeline=project.pipeline if o.pipeline is None else o.pipeline.strip().lower(),  # type: ignore[arg-type]  # checked against PIPELINES above
+        gamut=project.gamut if o.gamut is None else o.gamut.strip().lower(),  # type: ignore[arg-type]  # checked against GAMUT_POLICIES above
+        baseline=project.baseline if o.baseline is None else o.baseline,
+        strict_svg=project.strict_svg or o.strict_svg,
+    )
 
 
 def load_config(path: str | Path) -> ProjectConfig:

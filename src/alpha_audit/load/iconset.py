@@ -53,6 +53,7 @@ _MANIFEST_KEYS = (
     "gamut",
 )
 _ICON_KEYS = ("file", "name", "color", "alpha")
+_PALETTE_KEYS = ("color", "alpha")
 _OVERRIDE_KEYS = ("color", "alpha", "lock")
 
 
@@ -103,6 +104,8 @@ class _Manifest:
         self.adjusted: list[GamutAdjustment] = []
         self.owner = str(self.data.get("name", ""))
         self.palette_spans: dict[str, Span] = {}  # where each palette entry's colour is written
+        # A palette colour's own alpha (``red: {color: ..., alpha: 1.1}``) and where it is.
+        self.palette_alpha: dict[str, tuple[float, KeyPath]] = {}
         self.palette = self.read_palette()
 
     def read_color(self, keys: KeyPath, value: Any) -> str:
@@ -112,13 +115,23 @@ class _Manifest:
         )
 
     def read_palette(self) -> dict[str, str]:
+        """``{name: colour}``; an entry may be ``{color: ..., alpha: ...}`` (the colour's alpha)."""
         raw = self.data.get("palette", {})
         raw = read_mapping(self.doc, ("palette",), raw, "a palette {name: colour}")
         palette = {}
         for k, v in raw.items():
             name = read_name(self.doc, ("palette", k), k)
-            palette[name] = self.read_color(("palette", k), v)
-            span = self.doc.spans.get(("palette", k))
+            keys: KeyPath = ("palette", k)
+            if isinstance(v, dict):
+                check_keys(self.doc, keys, v, _PALETTE_KEYS)
+                if "color" not in v:
+                    raise self.doc.error(keys, "a palette entry written as a mapping needs color:")
+                if "alpha" in v:
+                    alpha_keys: KeyPath = (*keys, "alpha")
+                    self.palette_alpha[name] = (self.alpha(alpha_keys, v["alpha"]), alpha_keys)
+                keys, v = (*keys, "color"), v["color"]
+            palette[name] = self.read_color(keys, v)
+            span = self.doc.spans.get(keys)
             if span is not None:
                 self.palette_spans[name] = span
         return palette
@@ -278,6 +291,10 @@ def iconset_from_doc(doc: YamlDoc, *, root: Path, gamut: GamutPolicy | None = No
                 f"icon {icon_name!r} has no colour; set a manifest-wide color:, a palette: "
                 "to cycle, or color: on the icon",
             )
+        overridden = overrides.get(icon_name)
+        own_alpha = "alpha" in explicit or (isinstance(overridden, dict) and "alpha" in overridden)
+        if not own_alpha and color_name in m.palette_alpha:
+            alpha, alpha_keys = m.palette_alpha[color_name]  # the colour's own alpha
         icons.append(
             Icon(
                 icon_name,

@@ -9,7 +9,10 @@ from __future__ import annotations
 
 from alpha_audit.lazy import lazy_exports
 
-__all__ = ["largest_safe_alpha", "suggest"]
+__all__ = ["SCOPES", "largest_safe_alpha", "suggest"]
+
+# What suggest answers: one coefficient for the set, per colour, per pair of roles, per icon.
+SCOPES = ("set", "colour", "pair", "icon")
 
 __getattr__ = lazy_exports(
     __name__,

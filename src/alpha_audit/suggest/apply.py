@@ -31,6 +31,7 @@ from alpha_audit.output import write_bytes
 from alpha_audit.rows import with_alphas
 
 if TYPE_CHECKING:
+    from alpha_audit.color import GamutPolicy
     from alpha_audit.results import SuggestResult
 
 __all__ = [
@@ -44,6 +45,7 @@ __all__ = [
     "explicit_alpha_icons",
     "format_alpha",
     "plan_apply",
+    "recheck",
     "set_alpha",
 ]
 
@@ -178,6 +180,7 @@ class _Manifest:
     overrides_key: yaml.Node | None = field(init=False, default=None)
     overrides: yaml.Node | None = field(init=False, default=None)
     entries: dict[str, yaml.Node] = field(init=False, default_factory=dict)
+    palette: dict[str, yaml.Node] = field(init=False, default_factory=dict)
 
     def __post_init__(self) -> None:
         try:
@@ -211,6 +214,14 @@ class _Manifest:
         for key, node in root.value:
             if isinstance(key, yaml.ScalarNode) and key.value == "overrides":
                 self.overrides_key, self.overrides = key, node
+        palette = _value(root, "palette")
+        if isinstance(palette, yaml.MappingNode):
+            for key, node in palette.value:
+                if isinstance(key, yaml.ScalarNode):
+                    self.palette[key.value] = node
+                    alpha = _value(node, "alpha") if isinstance(node, yaml.MappingNode) else None
+                    if alpha is not None:
+                        self._checked(alpha, anchored)
         if isinstance(self.overrides, yaml.MappingNode):
             for key, node in self.overrides.value:
                 if not isinstance(key, yaml.ScalarNode):
@@ -310,9 +321,14 @@ def edit_alphas(
     *,
     top: str | None = None,
     icons: dict[str, str] | None = None,
+    palette: dict[str, str] | None = None,
     path: str | Path | None = None,
 ) -> str:
-    """``text`` with the top-level alpha set to ``top`` and each icon's alpha in ``icons`` set.
+    """``text`` with the top-level alpha, each icon's in ``icons`` and each colour's set.
+
+    A palette colour in ``palette`` gets an alpha of its own: a plain entry
+    (``red: "#cc3311"``) becomes ``red: {color: "#cc3311", alpha: 1.1}``, an
+    entry written as a mapping gains or changes its ``alpha``.
 
     An icon whose alpha the manifest already sets (``icons:`` entry or
     ``overrides:``) has that value replaced; otherwise its ``overrides:`` entry
@@ -343,6 +359,11 @@ def edit_alphas(
             edits.append(_replacement(text, *_span(m.top), top))
         else:
             appended.append(f"alpha: {top}")
+    for name, value in (palette or {}).items():
+        node = m.palette.get(name)
+        if node is None:
+            raise InputError(f"cannot edit this manifest: no palette entry {name!r}", path=path)
+        edits.append(_mapping_alpha(text, node, value, eol))
     new_entries: list[tuple[str, str]] = []
     for name, value in (icons or {}).items():
         if name in m.explicit:
@@ -372,8 +393,25 @@ def edit_alphas(
     if appended:
         newline = "" if edited.endswith("\n") or not edited else eol
         edited += newline + eol.join(appended) + eol
-    _check_edit(text, edited, top, icons or {}, path)
+    _check_edit(text, edited, top, icons or {}, palette or {}, path)
     return edited
+
+
+def _mapping_alpha(text: str, node: yaml.Node, value: str, eol: str) -> tuple[int, int, str]:
+    """The edit giving the entry at ``node`` (a scalar colour or a mapping) ``alpha: value``."""
+    if isinstance(node, yaml.ScalarNode):
+        start, end = _span(node)
+        return start, end, f"{{color: {text[start:end]}, alpha: {value}}}"
+    assert isinstance(node, yaml.MappingNode)
+    alpha = _value(node, "alpha")
+    if alpha is not None:
+        return _replacement(text, *_span(alpha), value)
+    if node.flow_style:
+        close = node.end_mark.index - 1  # the closing brace
+        return close, close, f"{', ' if node.value else ''}alpha: {value}"
+    indent = node.value[0][0].start_mark.column
+    at = _line_end(text, _content_end(node) - 1)
+    return at, at, eol + " " * indent + f"alpha: {value}"
 
 
 def _add_entries(
@@ -427,8 +465,9 @@ class ApplyPlan:
     """What ``suggest --apply`` will write.
 
     ``top`` is the new set-wide alpha (``None``: unchanged), ``icons`` the
-    per-icon alphas, ``kept`` the icons whose explicit choice is left alone
-    and ``skipped`` the colours or icons with no safe alpha at all.
+    per-icon alphas, ``palette`` the palette colours' own alphas, ``kept`` the
+    icons whose explicit choice is left alone and ``skipped`` the colours or
+    icons with no safe alpha at all.
     """
 
     scope: ApplyScope
@@ -437,6 +476,7 @@ class ApplyPlan:
     kept: tuple[str, ...] = ()
     skipped: tuple[str, ...] = ()
     passes: bool | None = None  # the gate on the planned alphas (None: not checked)
+    palette: dict[str, float] = field(default_factory=dict)
 
 
 def plan_apply(
@@ -452,9 +492,13 @@ def plan_apply(
     with those icons fixed at their own alpha (so it stays safe with them).
     ``colour``/``icon``: each colour's (icon's) largest safe alpha, one after
     the other, each with the colours (icons) before it at their new alpha, so
-    the answers hold together (each alone would assume the rest unchanged);
-    written per icon where it differs from what the icon has now.  The plan
-    then re-runs the gate on the result (``passes``).
+    the answers hold together (each alone would assume the rest unchanged).
+    A colour with no safe alpha alone moves together with a role it confuses
+    (:attr:`~alpha_audit.results.SuggestResult.per_pair`: the joint answer).
+    A palette colour's answer is written once, as the colour's own alpha
+    (``palette: {red: {color: ..., alpha: ...}}``); other alphas per icon where
+    they differ from what the icon has now.  The plan then re-runs the gate on
+    the same rows with the planned alphas (``passes``).
     """
     from alpha_audit.suggest.engine import largest_safe_alpha
 
@@ -475,6 +519,7 @@ def plan_apply(
 
     top: float | None = None
     skipped: list[str] = []
+    palette: dict[str, float] = {}
     if scope is ApplyScope.SET:
         movable = [n for n in names if n not in kept]
         if movable:
@@ -496,23 +541,41 @@ def plan_apply(
             if scope is ApplyScope.COLOUR
             else [(i.icon, (i.icon,)) for i in result.per_icon]
         )
+        members_of = dict(groups)
+        partners = {c: [p.colors for p in result.per_pair if c in p.colors] for c in members_of}
+        moved: dict[str, float] = {}
         for label, members in groups:
+            if label in moved:
+                continue
             movable = [n for n in members if n not in kept]
             if not movable:
                 continue
             alpha = safe_for(movable)
+            together = [label]
+            for pair in partners.get(label, []) if alpha is None else []:
+                both = [n for c in pair for n in members_of.get(c, ()) if n not in kept]
+                alpha = safe_for(both)
+                if alpha is not None:
+                    together, movable = list(pair), both
+                    break
             if alpha is None:
                 skipped.append(label)
                 continue
             alphas.update(dict.fromkeys(movable, alpha))
+            moved.update(dict.fromkeys(together, alpha))
         p = result.precision
         original = {i.name: i.alpha for i in iconset.icons}
+        if scope is ApplyScope.COLOUR:
+            palette = {c: a for c, a in moved.items() if c in iconset.palette}
+        by_colour = {i.name: i.color_name for i in iconset.icons}
         wanted = {
             n: alphas[n]
             for n in names
             if format_alpha(alphas[n], p) != format_alpha(original[n], p)
+            # A palette colour's own alpha sets every icon that has none of its own.
+            and not (by_colour[n] in palette and n not in explicit)
         }
-    return ApplyPlan(scope, top, wanted, kept, tuple(skipped), _passes(result, alphas))
+    return ApplyPlan(scope, top, wanted, kept, tuple(skipped), _passes(result, alphas), palette)
 
 
 def _passes(result: SuggestResult, alphas: dict[str, float]) -> bool:
@@ -541,15 +604,27 @@ def apply_suggestion(
     given, target, text = _read_manifest(path, root)
     explicit = explicit_alpha_icons(text, given)
     plan = plan_apply(result, scope, explicit, replace_explicit=replace_explicit)
-    if plan.top is None and not plan.icons and plan.skipped:
+    if plan.top is None and not plan.icons and not plan.palette and plan.skipped:
         raise UsageError(
             f"no safe alpha to apply for {', '.join(plan.skipped)}: "
             "the policy already fails at alpha = 1"
         )
-    top = None if plan.top is None else format_alpha(plan.top, result.precision)
-    icons = {n: format_alpha(a, result.precision) for n, a in plan.icons.items()}
-    edited = edit_alphas(text, top=top, icons=icons, path=given)
+    p = result.precision
+    top = None if plan.top is None else format_alpha(plan.top, p)
+    icons = {n: format_alpha(a, p) for n, a in plan.icons.items()}
+    palette = {c: format_alpha(a, p) for c, a in plan.palette.items()}
+    edited = edit_alphas(text, top=top, icons=icons, palette=palette, path=given)
     return plan, _write_if_changed(target, text, edited)
+
+
+def recheck(path: str | Path, result: SuggestResult, *, gamut: GamutPolicy | None = None) -> bool:
+    """The gate's verdict on the manifest as written: its alphas read back, the same rows."""
+    from alpha_audit.gate import evaluate
+    from alpha_audit.load.iconset import load_iconset
+
+    written = {i.name: i.alpha for i in load_iconset(path, gamut=gamut).icons}
+    audited = {n: a for n, a in written.items() if n in {i.name for i in result.iconset.icons}}
+    return evaluate([with_alphas(result.audit, audited)], result.policy).passed
 
 
 def _icon_entry_name(item: Any) -> str | None:
@@ -564,7 +639,12 @@ def _icon_entry_name(item: Any) -> str | None:
 
 
 def _check_edit(
-    before: str, after: str, top: str | None, icons: dict[str, str], path: str | Path | None
+    before: str,
+    after: str,
+    top: str | None,
+    icons: dict[str, str],
+    palette: dict[str, str],
+    path: str | Path | None,
 ) -> None:
     """Refuse an edit that does not parse, or means more than the planned alpha values."""
     data = yaml.safe_load(before)
@@ -572,13 +652,25 @@ def _check_edit(
     if isinstance(expected, dict):
         if top is not None:
             expected["alpha"] = float(top)
+        if palette:
+            colours = dict(expected.get("palette") or {})
+            for colour, value in palette.items():
+                entry = colours.get(colour)
+                entry = dict(entry) if isinstance(entry, dict) else {"color": entry}
+                colours[colour] = {**entry, "alpha": float(value)}
+            expected["palette"] = colours
         entries = expected.get("icons")
         listed: set[str] = set()
         if isinstance(entries, list):
             new_entries = []
             for item in entries:
                 name = _icon_entry_name(item)
-                if name in icons and isinstance(item, dict) and "alpha" in item:
+                if (
+                    name is not None
+                    and name in icons
+                    and isinstance(item, dict)
+                    and "alpha" in item
+                ):
                     item = dict(item, alpha=float(icons[name]))
                     listed.add(name)
                 new_entries.append(item)
@@ -621,6 +713,10 @@ def describe_plan(plan: ApplyPlan, path: str | Path, changed: bool, precision: i
     if plan.top is not None:
         verb = "wrote" if changed else "already has"
         parts.append(f"{verb} alpha {format_alpha(plan.top, precision)} in {path}")
+    if plan.palette:
+        shown = ", ".join(f"{c}: {format_alpha(a, precision)}" for c, a in plan.palette.items())
+        count = len(plan.palette)
+        parts.append(f"wrote alpha for {count} colour{'s' * (count != 1)} ({shown}) in {path}")
     if plan.icons:
         shown = ", ".join(f"{n}: {format_alpha(a, precision)}" for n, a in plan.icons.items())
         count = len(plan.icons)
@@ -633,6 +729,4 @@ def describe_plan(plan: ApplyPlan, path: str | Path, changed: bool, precision: i
         parts.append(f"kept the explicit alpha of {count} icon{'s' * (count != 1)} ({names})")
     if plan.skipped:
         parts.append(f"no safe alpha for {', '.join(plan.skipped)}")
-    if plan.passes is not None:
-        parts.append("the gate passes" if plan.passes else "the gate still fails (see check)")
     return "; ".join(parts)

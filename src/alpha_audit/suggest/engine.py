@@ -35,7 +35,7 @@ can be drawn, so the question is alpha 1 itself.  Pure computation.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
 from decimal import ROUND_FLOOR, Decimal
 
@@ -84,11 +84,13 @@ from alpha_audit.results import (
     IconSuggestion,
     Limit,
     PairSuggestion,
+    Progress,
     SafeAlpha,
     SuggestResult,
 )
 from alpha_audit.rows import AuditResult, find_collisions
 from alpha_audit.rules import Rule
+from alpha_audit.suggest import SCOPES
 from alpha_audit.suggest.events import (
     clip_breakpoints,
     code_timeline,
@@ -99,7 +101,6 @@ from alpha_audit.suggest.events import (
 
 __all__ = [
     "GRID_STEP",
-    "SCOPES",
     "SafeAlphas",
     "largest_safe_alpha",
     "suggest",
@@ -118,8 +119,6 @@ _CHUNK = 1 << 20
 _TIMELINE_CACHE_BYTES = 64 << 20
 ALPHA_LO = 1.0  # the reference coefficient; the safe interval starts here
 _RULE_ORDER = {rule: k for k, rule in enumerate(Rule)}
-# What suggest answers: one coefficient for the set, per colour, per pair of roles, per icon.
-SCOPES = ("set", "colour", "pair", "icon")
 
 # A limit found: (rule, canvas index or -1 for every canvas, icon indices, first unsafe alpha,
 # attained).
@@ -984,7 +983,7 @@ def suggest(
     precision: int = 3,
     scopes: Iterable[str] = SCOPES,
     pairs: Iterable[tuple[str, str]] = (),
-    progress: Callable[[int], None] | None = None,
+    progress: Progress | None = None,
 ) -> SuggestResult:
     """The largest safe alpha for the whole set, per colour, per pair of roles and per icon.
 
@@ -994,8 +993,8 @@ def suggest(
     together (``pairs`` adds more), the joint answer when neither can move
     alone; per icon, one icon moves.  Others keep their alpha.  ``policy`` is
     the gate's.  Icons that could not be rendered are left out, as ``check``
-    leaves them out (``left_out``).  ``progress(n)`` is called as questions
-    are answered.
+    leaves them out (``left_out``).  ``progress`` is told how many questions
+    there are, then each one answered.
 
     >>> from alpha_audit.model import Canvas, Icon, IconSet, Theme
     >>> from alpha_audit.rows import audit
@@ -1015,16 +1014,35 @@ def suggest(
         raise UsageError(f"unknown scope {sorted(unknown)[0]!r}; use one of: {', '.join(SCOPES)}")
     iconset = result.iconset
     n = len(engine.names)
-    tick = progress or (lambda k: None)
-    overall = engine.answer(np.ones(n, dtype=bool), precision) if "set" in wanted else None
-    tick(1)
-
+    start, tick = progress or ((lambda total: None), (lambda: None))
     groups: dict[str, list[int]] = {name: [] for name in iconset.palette}
     for i, icon in enumerate(iconset.icons):
         groups.setdefault(icon.color_name or icon.color, []).append(i)
+    asked = {tuple(sorted(p)) for p in pairs}
+    if "pair" in wanted and (Rule.CONFUSION in policy.rules or Rule.CVD_CONFUSION in policy.rules):
+        only = Policy(
+            rules=policy.rules & {Rule.CONFUSION, Rule.CVD_CONFUSION},
+            warnings=frozenset(),
+            min_delta_e=policy.min_delta_e,
+            exemptions=policy.exemptions,
+        )
+        for f in findings_for(result, only):
+            if f.exemption is None and "roles" in f.numbers:
+                one, two = str(f.numbers["roles"]).split(",", 1)
+                asked.add((one, two) if one <= two else (two, one))
+    start(
+        ("set" in wanted)
+        + len(groups) * ("colour" in wanted)
+        + len(asked) * ("pair" in wanted)
+        + n * ("icon" in wanted)
+    )
+    overall = engine.answer(np.ones(n, dtype=bool), precision) if "set" in wanted else None
+    tick()
+
     per_color = []
     for name, members in groups.items() if "colour" in wanted else ():
         if not members:
+            tick()
             continue
         moving = np.zeros(n, dtype=bool)
         moving[members] = True
@@ -1036,23 +1054,13 @@ def suggest(
                 safe=engine.answer(moving, precision, per_canvas_needed=False),
             )
         )
-        tick(1)
+        tick()
 
     per_pair = []
     if "pair" in wanted:
-        asked = {tuple(sorted(p)) for p in pairs}
-        if Rule.CONFUSION in policy.rules or Rule.CVD_CONFUSION in policy.rules:
-            only = Policy(
-                rules=policy.rules & {Rule.CONFUSION, Rule.CVD_CONFUSION},
-                warnings=frozenset(),
-                min_delta_e=policy.min_delta_e,
-                exemptions=policy.exemptions,
-            )
-            for f in findings_for(result, only):
-                if f.exemption is None and "roles" in f.numbers:
-                    asked.add(tuple(sorted(str(f.numbers["roles"]).split(",", 1))))
         for a, b in sorted(asked):
             members = groups.get(a, []) + groups.get(b, [])
+            tick()
             if not members:
                 continue
             moving = np.zeros(n, dtype=bool)
@@ -1064,7 +1072,6 @@ def suggest(
                     safe=engine.answer(moving, precision, per_canvas_needed=False),
                 )
             )
-            tick(1)
 
     # Icons of one style (the same paints at the same alpha) get the same answer,
     # unless an exemption names an icon; then every icon is asked on its own.
@@ -1085,7 +1092,7 @@ def suggest(
             safe = engine.answer(moving, precision, per_canvas_needed=False)
             cache[style] = (icon.name, safe)
         per_icon.append(IconSuggestion(icon.name, icon.color_name or icon.color, icon.alpha, safe))
-        tick(1)
+        tick()
     empty = SafeAlpha(None, None, None, ())
     return SuggestResult(
         audit=result,
