@@ -208,10 +208,11 @@ _HEADER = [
 ]
 
 
-def _setup_sentence(differs: str | None, same: str) -> str:
+def _setup_sentence(subject: str, differs: str | None, same: str) -> str:
+    """``subject: same; comparable ...`` or ``subject: not the paper's (why); ...``."""
     if differs is None:
-        return same
-    return f"Not the paper's setup ({escape_markdown(differs)}): not comparable in digits."
+        return f"{subject}: {same}; comparable to every printed digit."
+    return f"{subject}: not the paper's ({escape_markdown(differs)}); not comparable in digits."
 
 
 def _broad_section(run: Reproduction, index: _Index) -> list[str]:
@@ -223,7 +224,7 @@ def _broad_section(run: Reproduction, index: _Index) -> list[str]:
         "",
         f"{first.source_levels}^3 sources x {first.background_levels}^3 backgrounds, uniform in "
         f"encoded sRGB with endpoints; {first.combinations:,} combinations per alpha.  "
-        + _setup_sentence(differs, "The paper's grids: comparable to every printed digit."),
+        + _setup_sentence("Setup", differs, "the paper's grids"),
         "",
         *_HEADER,
     ]
@@ -268,7 +269,7 @@ def _broad_section(run: Reproduction, index: _Index) -> list[str]:
 
 
 _PAPER_CANVASES = (
-    f"The paper's sixteen canvases (bundled theme {PAPER_THEME}, from the authors' public "
+    f"the paper's sixteen canvases (bundled theme {PAPER_THEME}, from the authors' public "
     "evaluation protocol)"
 )
 
@@ -282,7 +283,7 @@ def _full_gamut_section(run: Reproduction, index: _Index) -> list[str]:
         "",
         f"All {first.levels}^3 sources on the {len(first.canvases)} canvases of theme "
         f"{escape_markdown(first.theme)}.  "
-        + _setup_sentence(differs, f"{_PAPER_CANVASES}: comparable to every printed digit."),
+        + _setup_sentence("Setup", differs, f"every 8-bit source on {_PAPER_CANVASES}"),
         "",
         *_HEADER,
     ]
@@ -367,10 +368,10 @@ def _palette_section(run: Reproduction, index: _Index) -> list[str]:
         f"All {len(p.palette) * (len(p.palette) - 1) // 2} pairs of "
         f"{escape_markdown(', '.join(p.palette))} on each "
         f"canvas ({p.combinations} combinations); {p.random_pairs:,} random pairs (seed "
-        f"{p.seed}) on each canvas ({p.random_combinations:,} combinations).  Palette pairs: "
-        + _setup_sentence(palette, f"{_PAPER_CANVASES}: comparable to every printed digit.")
-        + "  Random pairs: "
-        + _setup_sentence(random, "the paper's canvases, count and seed: comparable.")
+        f"{p.seed}) on each canvas ({p.random_combinations:,} combinations).  "
+        + _setup_sentence("Palette pairs", palette, f"Tol's Vibrant on {_PAPER_CANVASES}")
+        + "  "
+        + _setup_sentence("Random pairs", random, "the paper's count and seed on its canvases")
         + "  The paper's random collisions (617 -> 15,098) are read as alpha 1.1 -> 1.4; at "
         "alpha 1.0 distinct 8-bit sources cannot collide.",
         "",
