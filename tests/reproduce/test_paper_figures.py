@@ -35,17 +35,17 @@ FULL_GAMUT = [
     ("1.4", "increase %", "increase_pct", "99.6132"),  # Table 1
     ("1.4", "decrease %", "decrease_pct", "0.3867"),  # Table 1
     ("1.1", "mean change", "mean_change", "0.9783"),  # Section 4.2
-    ("1.1", "newly reach 3:1, % of all", "newly_reach_pct", "4.8346"),  # abstract, 4.2
-    ("1.1", "Difference mean change", "mean_difference_change", "-1.3050"),  # Section 4.2
-    ("1.1", "Exclusion mean change", "mean_exclusion_change", "-1.3104"),  # Section 4.2
+    ("1.1", "newly 3:1, % of all", "newly_reach_pct", "4.8346"),  # abstract, 4.2
+    ("1.1", "Difference, mean", "mean_difference_change", "-1.3050"),  # Section 4.2
+    ("1.1", "Exclusion, mean", "mean_exclusion_change", "-1.3104"),  # Section 4.2
 ]
 PALETTE = [  # Section 4.3
     ("1.1", "smaller CIEDE2000", "smaller", "32"),
-    ("1.1", "palette collisions", "collisions", "0"),
+    ("1.1", "collisions", "collisions", "0"),
     ("1.4", "smaller CIEDE2000", "smaller", "88"),
-    ("1.4", "palette collisions", "collisions", "8"),
-    ("1.1", "random-pair collisions", "random_collisions", "617"),
-    ("1.4", "random-pair collisions", "random_collisions", "15,098"),
+    ("1.4", "collisions", "collisions", "8"),
+    ("1.1", "random collisions", "random_collisions", "617"),
+    ("1.4", "random collisions", "random_collisions", "15,098"),
 ]
 
 

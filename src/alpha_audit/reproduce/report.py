@@ -15,7 +15,7 @@ from importlib.metadata import PackageNotFoundError, version
 from typing import Any
 
 from rich import box
-from rich.console import Group
+from rich.console import Group, RenderableType
 from rich.table import Table
 from rich.text import Text
 
@@ -491,14 +491,14 @@ def _table(title: str) -> Table:
 _Versus = tuple[str, str, float, Comparison | None, int]
 
 
-def _versus_table(title: str, rows: list[_Versus], notes: Sequence[str] = ()) -> Table:
+def _versus_table(title: str, rows: list[_Versus], notes: Sequence[str] = ()) -> RenderableType:
     """Paper beside ours, to the printed decimals, and whether every printed digit matches.
 
     A value computed with a setup other than the paper's shows the printed
-    value but no verdict; the caption says why.
+    value but no verdict; a note below the table says why.
     """
     t = _table(title)
-    for col in ("alpha", "quantity", "paper", "ours", "every digit?"):
+    for col in ("alpha", "quantity", "paper", "ours", "match?"):
         t.add_column(col, justify="left" if col == "quantity" else "right", no_wrap=True)
     reasons: dict[str, None] = {}
     for alpha, label, ours, printed, decimals in rows:
@@ -514,12 +514,13 @@ def _versus_table(title: str, rows: list[_Versus], notes: Sequence[str] = ()) ->
             reasons[printed.differs] = None
         t.add_row(alpha, label, f"{printed.printed.value:z,.{d}f}", f"{ours:z,.{d}f}", verdict)
     notes = [*(f"not the paper's setup: {r}" for r in reasons), *notes]
-    if notes:
-        t.caption = Text("\n".join(notes))  # reasons name the theme: never rich markup
-    return t
+    if not notes:
+        return t
+    # Below the table, not its caption: a caption wraps at the table's (narrow) width.
+    return Group(t, Text("\n".join(notes)), Text())  # reasons name the theme: never markup
 
 
-def _broad_table(run: Reproduction, index: _Index) -> Table:
+def _broad_table(run: Reproduction, index: _Index) -> RenderableType:
     assert run.broad_grid is not None
     rows: list[_Versus] = []
     # One line per distinct worst case: every alpha usually shares the paper's one.
@@ -537,12 +538,12 @@ def _broad_table(run: Reproduction, index: _Index) -> Table:
         src, bg = (",".join(f"{v:g}" for v in c) for c in (r.worst_source, r.worst_background))
         worst_cases.setdefault(f"largest loss ({src}) on ({bg}), CR {worst}", []).append(key)
     notes = [f"alpha {' and '.join(alphas)}: {case}" for case, alphas in worst_cases.items()]
-    return _versus_table("Broad grid (paper Table 1 and Section 4.2): paper vs ours", rows, notes)
+    return _versus_table("Broad grid (Table 1, Section 4.2): paper vs ours", rows, notes)
 
 
-def _full_gamut_tables(run: Reproduction, index: _Index) -> list[Table]:
+def _full_gamut_tables(run: Reproduction, index: _Index) -> list[RenderableType]:
     assert run.full_gamut is not None
-    tables = []
+    tables: list[RenderableType] = []
     # Two tables, not one of nine columns: each fits 60 columns with every
     # figure whole (the nine needed 72).
     halves = (
@@ -570,9 +571,9 @@ def _full_gamut_tables(run: Reproduction, index: _Index) -> list[Table]:
         "increase_pct": "increase %",
         "decrease_pct": "decrease %",
         "mean_change": "mean change",
-        "newly_reach_pct": "newly reach 3:1, % of all",
-        "mean_difference_change": "Difference mean change",
-        "mean_exclusion_change": "Exclusion mean change",
+        "newly_reach_pct": "newly 3:1, % of all",
+        "mean_difference_change": "Difference, mean",
+        "mean_exclusion_change": "Exclusion, mean",
     }
     rows: list[_Versus] = [
         (c.group, labels[c.name], c.ours, c, 4)
@@ -580,28 +581,40 @@ def _full_gamut_tables(run: Reproduction, index: _Index) -> list[Table]:
         if c.experiment == "full_gamut" and c.ours is not None
     ]
     if rows:
-        tables.append(_versus_table("Full gamut (paper Section 4.2, Table 1): paper vs ours", rows))
+        tables.append(_versus_table("Full gamut (Section 4.2, Table 1): paper vs ours", rows))
     return tables
 
 
-def _palette_table(run: Reproduction, index: _Index) -> Table:
+def _palette_tables(run: Reproduction, index: _Index) -> list[RenderableType]:
     assert run.palette is not None
     p = run.palette
+    t = _table(f"Palette separation: {p.combinations} pair x canvas combinations")
+    for col in ("alpha", "smaller CIEDE2000", "collisions", "random-pair collisions"):
+        t.add_column(col, justify="right", no_wrap=True)
+    for a in sorted(set(p.alphas) | set(p.random_alphas)):
+        t.add_row(
+            alpha_key(a),
+            str(p.smaller.get(a, "—")),
+            str(p.collisions.get(a, "—")),
+            f"{p.random_collisions[a]:,} of {p.random_combinations:,}"
+            if a in p.random_collisions
+            else "—",
+        )
     counts = {name: index.get(("palette", "counts", name)) for name in PAPER["palette"]["counts"]}
     rows: list[_Versus] = [
-        ("", "palette pair x canvas", p.combinations, counts["combinations"], 0),
-        ("", "random pair x canvas", p.random_combinations, counts["random_combinations"], 0),
+        ("", "pairs x canvases", p.combinations, counts["combinations"], 0),
+        ("", "random x canvases", p.random_combinations, counts["random_combinations"], 0),
     ]
     for a in sorted(set(p.alphas) | set(p.random_alphas)):
         key = alpha_key(a)
         for name, label, values in (
             ("smaller", "smaller CIEDE2000", p.smaller),
-            ("collisions", "palette collisions", p.collisions),
-            ("random_collisions", "random-pair collisions", p.random_collisions),
+            ("collisions", "collisions", p.collisions),
+            ("random_collisions", "random collisions", p.random_collisions),
         ):
-            if a in values:
-                rows.append((key, label, values[a], index.get(("palette", key, name)), 0))
-    return _versus_table("Palette separation (paper Section 4.3): paper vs ours", rows)
+            if a in values and ("palette", key, name) in index:
+                rows.append((key, label, values[a], index[("palette", key, name)], 0))
+    return [t, _versus_table("Palette separation (Section 4.3): paper vs ours", rows)]
 
 
 def _sweep_table(run: Reproduction) -> Table:
@@ -622,10 +635,10 @@ def _sweep_table(run: Reproduction) -> Table:
     return t
 
 
-def tables(run: Reproduction) -> list[Table]:
-    """Rich tables of a run, one or more per experiment."""
+def tables(run: Reproduction) -> list[RenderableType]:
+    """Rich tables of a run, one or more per experiment (notes below some)."""
     index = _index(run)
-    tables = []
+    tables: list[RenderableType] = []
     if run.broad_grid is not None:
         tables.append(_broad_table(run, index))
     if run.full_gamut is not None:
@@ -633,7 +646,7 @@ def tables(run: Reproduction) -> list[Table]:
     if run.sweep is not None:
         tables.append(_sweep_table(run))
     if run.palette is not None:
-        tables.append(_palette_table(run, index))
+        tables += _palette_tables(run, index)
     return tables + browser_tables(run.browser, run.runtime, _table)
 
 
