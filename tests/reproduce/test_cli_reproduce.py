@@ -73,7 +73,12 @@ def test_quick_run_writes_every_output(tmp_path: Path) -> None:
     assert doc["palette"]["combinations"] == 336
     report = (out / "report.md").read_text()
     assert "99.8145" in report  # the paper's value, shown beside ours
-    assert "method only" in report
+    # Quick grids are not the paper's: shown, never called a match or a mismatch ...
+    assert "no: 33^3 sources, not 256^3 (abstract, Table 1) | n/a |" in report
+    assert "no: a 5^3 x 9^3 grid, not 17^3 x 33^3 (Table 1) | n/a |" in report
+    # ... but the palette pairs on the paper's canvases do not depend on the grids.
+    assert "| alpha 1.1: smaller CIEDE2000 | 32 | 32 | yes (Section 4.3) | **yes** |" in report
+    assert "**NO**" not in report
     for name in ("sweep-1-2.png", "sweep-0-2.png"):
         with Image.open(out / name) as image:
             assert image.format == "PNG" and image.size[0] > image.size[1] > 100

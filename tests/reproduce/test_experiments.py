@@ -19,7 +19,12 @@ from alpha_audit.reproduce import (
     sweep_alphas,
 )
 from alpha_audit.reproduce.experiments import pair_collisions
-from alpha_audit.reproduce.grids import code_channels, encoded_levels, random_source_pairs
+from alpha_audit.reproduce.grids import (
+    PAPER_SEED,
+    code_channels,
+    encoded_levels,
+    random_source_pairs,
+)
 from alpha_audit.reproduce.reference import reference_broad_grid
 
 BLACK_WHITE = Theme("bw", (Canvas("white", "#ffffff", "light"), Canvas("black", "#000000", "dark")))
@@ -144,6 +149,12 @@ def test_random_pairs_are_distinct_and_reproducible() -> None:
     assert np.all((pairs >= 0) & (pairs < 1 << 24))
     np.testing.assert_array_equal(pairs, random_source_pairs(5000))
     assert not np.array_equal(pairs, random_source_pairs(5000, seed=1))
+
+
+def test_the_papers_pairs_are_one_plain_draw() -> None:
+    """At seed 20260913 no pair is dropped: the pairs are the first ``integers`` draw, sorted."""
+    draw = np.random.default_rng(PAPER_SEED).integers(0, 1 << 24, size=(65536, 2), dtype=np.int64)
+    np.testing.assert_array_equal(random_source_pairs(65536), np.sort(draw, axis=1))
 
 
 def test_pair_collisions_match_direct_quantisation(paper16) -> None:

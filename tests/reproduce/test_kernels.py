@@ -19,14 +19,15 @@ from alpha_audit.reproduce.grids import encoded_levels
 from alpha_audit.reproduce.reference import reference_full_gamut
 
 # Canvases that stress both sides of the luminance split and clipping in every
-# direction: the extremes, primaries, mid greys, yellow (the paper's worst case).
+# direction: the extremes, primaries, mid greys, yellow (the paper's worst case),
+# and near-black, near-white and tinted canvases of the paper's sixteen.
 STRESS = Theme(
     "stress",
     tuple(
         Canvas(f"c{i}", color)
         for i, color in enumerate(
             ["#000000", "#ffffff", "#ff0000", "#00ff00", "#0000ff", "#ffff00", "#808080",
-             "#777777", "#0a0a0a", "#fafafa", "#1c1815", "#f1f5fa", "#3a7f21", "#c0ffee"]
+             "#777777", "#111111", "#fafafa", "#201c18", "#f2f6fa", "#3a7f21", "#c0ffee"]
         )
     ),
 )  # fmt: skip

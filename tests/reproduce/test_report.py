@@ -67,10 +67,17 @@ def test_json_document() -> None:
     }  # fmt: skip
     assert doc["broad_grid"]["1.4"]["increase"] == 6
     assert doc["broad_grid"]["1.1"]["worst"]["contrast"] == {"1.0": 10.0, "1.1": 9.5}
+    ours = doc["broad_grid"]["1.1"]["increase_pct"]
     assert doc["paper"]["broad_grid"]["1.1"]["increase_pct"] == {
-        "value": 90.3672, "decimals": 4, "comparable": True, "where": "Table 1",
+        "value": 90.3672, "decimals": 4, "where": "Table 1", "setup": "broad-grid",
+        "ours": ours, "comparable": True, "why_not_comparable": None, "matches": False,
     }  # fmt: skip
     assert "full_gamut" not in doc
+    # A printed value this run did not compute is listed, never compared.
+    assert doc["paper"]["full_gamut"]["1.1"]["increase_pct"] | {"value": None} == {
+        "value": None, "decimals": 4, "where": "abstract, Table 1", "setup": "full-gamut",
+        "ours": None, "comparable": False, "why_not_comparable": "not computed", "matches": None,
+    }  # fmt: skip
 
 
 @pytest.mark.parametrize(

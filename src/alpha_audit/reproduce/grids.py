@@ -43,12 +43,17 @@ def byte_levels() -> NDArray[np.float64]:
 def random_source_pairs(n: int, seed: int = PAPER_SEED) -> NDArray[np.int64]:
     """``n`` distinct unordered pairs of distinct 8-bit sRGB colours, as 24-bit codes.
 
-    The paper does not say how it builds its pairs, so this is our
-    construction: draw ``(n, 2)`` codes uniform on ``[0, 2**24)`` from
+    The paper names only the generator and seed ("65,536 distinct
+    source-color pairs", ``default_rng(20260913)``), so the construction is
+    ours: draw ``(n, 2)`` codes uniform on ``[0, 2**24)`` from
     ``np.random.default_rng(seed)``, drop pairs of equal colours, order each
     pair (smaller code first), keep the first occurrence of each pair and
-    draw again until ``n`` remain.  Returns shape ``(n, 2)``, first column the
-    smaller code; a code ``0xRRGGBB`` holds the channels' bytes.
+    draw again until ``n`` remain.  At the paper's seed the first draw has
+    neither equal nor repeated pairs, and on the paper's canvases it gives
+    exactly its printed 617 and 15,098 collisions (seeds 1 to 3 give 555 to
+    644 and 14,834 to 15,008), so it is very likely the paper's draw.
+    Returns shape ``(n, 2)``, first column the smaller code; a code
+    ``0xRRGGBB`` holds the channels' bytes.
 
     >>> random_source_pairs(3).shape
     (3, 2)

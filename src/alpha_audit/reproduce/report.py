@@ -5,27 +5,30 @@ tables fit 80 columns and never cut a number.  The JSON
 schema ``alpha-audit.reproduce/1`` is documented in ``docs/reproduce.md``;
 numbers are unrounded.  The Markdown report puts the paper's printed values
 beside ours and says, per value, whether it is comparable in digits and
-whether ours matches to every printed digit.
+whether ours matches to every printed digit (:mod:`.compare` decides both).
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from importlib.metadata import PackageNotFoundError, version
 from typing import Any
 
 from rich import box
-from rich.console import Group
+from rich.console import Group, RenderableType
 from rich.table import Table
 from rich.text import Text
 
 from alpha_audit.render.common import RenderOptions, dumps, escape_markdown, to_text
+from alpha_audit.reproduce.compare import Comparison, comparisons, setup_differences
 from alpha_audit.reproduce.experiments import ContrastChange
 from alpha_audit.reproduce.paper import (
     PAPER,
+    PAPER_THEME,
     WORST_BACKGROUND,
     WORST_SOURCE,
-    PaperValue,
-    matches_printed,
+    Setup,
+    alpha_key,
 )
 from alpha_audit.reproduce.report_browser import (
     browser_json,
@@ -47,15 +50,6 @@ __all__ = [
 ]
 
 SCHEMA = "alpha-audit.reproduce/1"
-
-
-def alpha_key(alpha: float) -> str:
-    """JSON key of a coefficient: ``str(float)``, e.g. ``"1.1"``, ``"1.0"``.
-
-    >>> alpha_key(1.1), alpha_key(1)
-    ('1.1', '1.0')
-    """
-    return str(float(alpha))
 
 
 def _tool_version() -> str:
@@ -156,21 +150,19 @@ def to_json_dict(run: Reproduction) -> dict[str, Any]:
         doc["browser"] = browser_json(run.browser)
     if run.runtime is not None:
         doc["runtime"] = runtime_json(run.runtime)
-    doc["paper"] = {
-        experiment: {
-            group: {
-                name: {
-                    "value": v.value,
-                    "decimals": v.decimals,
-                    "comparable": v.comparable,
-                    "where": v.where,
-                }
-                for name, v in values.items()
-            }
-            for group, values in groups.items()
+    paper: dict[str, Any] = {}
+    for c in comparisons(run):
+        paper.setdefault(c.experiment, {}).setdefault(c.group, {})[c.name] = {
+            "value": c.printed.value,
+            "decimals": c.printed.decimals,
+            "where": c.printed.where,
+            "setup": c.printed.setup.value,
+            "ours": c.ours,
+            "comparable": c.comparable,
+            "why_not_comparable": c.differs,
+            "matches": c.matches,
         }
-        for experiment, groups in PAPER.items()
-    }
+    doc["paper"] = paper
     return doc
 
 
@@ -181,26 +173,33 @@ def render_json(run: Reproduction, options: RenderOptions | None = None) -> str:
 
 # --------------------------------------------------------------------------- Markdown
 
+_Index = dict[tuple[str, str, str], Comparison]
+
+
+def _index(run: Reproduction) -> _Index:
+    return {(c.experiment, c.group, c.name): c for c in comparisons(run)}
+
 
 def _fmt(value: float, decimals: int) -> str:
     return f"{value:z,.{decimals}f}"
 
 
-def _row(label: str, ours: float | None, printed: PaperValue | None, decimals: int = 4) -> str:
+def _row(label: str, ours: float | None, printed: Comparison | None, decimals: int = 4) -> str:
+    shown = "—" if ours is None else _fmt(ours, decimals)
     if printed is None:
-        shown = "—" if ours is None else _fmt(ours, decimals)
         return f"| {label} | — | {shown} | no printed value | — |"
-    d = printed.decimals
-    if ours is None:
-        return f"| {label} | {_fmt(printed.value, d)} | — | — | — |"
+    d = printed.printed.decimals
+    paper = _fmt(printed.printed.value, d)
+    if ours is not None:
+        shown = _fmt(ours, max(d, 4) if d else 0)  # counts stay integers
+    where = printed.printed.where
     if printed.comparable:
-        verdict = "**yes**" if matches_printed(ours, printed) else "**NO**"
-        comparable = f"yes ({printed.where})"
+        verdict = "**yes**" if printed.matches else "**NO**"
+        comparable = f"yes ({where})"
     else:
         verdict = "n/a"
-        comparable = f"method only ({printed.where})"
-    shown = _fmt(ours, max(d, 4) if d else 0)  # counts stay integers
-    return f"| {label} | {_fmt(printed.value, d)} | {shown} | {comparable} | {verdict} |"
+        comparable = f"no: {escape_markdown(printed.differs or '')} ({where})"
+    return f"| {label} | {paper} | {shown} | {comparable} | {verdict} |"
 
 
 _HEADER = [
@@ -209,49 +208,55 @@ _HEADER = [
 ]
 
 
-def _broad_section(run: Reproduction) -> list[str]:
+def _setup_sentence(subject: str, differs: str | None, same: str) -> str:
+    """``subject: same; comparable ...`` or ``subject: not the paper's (why); ...``."""
+    if differs is None:
+        return f"{subject}: {same}; comparable to every printed digit."
+    return f"{subject}: not the paper's ({escape_markdown(differs)}); not comparable in digits."
+
+
+def _broad_section(run: Reproduction, index: _Index) -> list[str]:
     assert run.broad_grid is not None
     first = run.broad_grid[0]
+    differs = setup_differences(run)[Setup.BROAD_GRID]
     lines = [
         "## Broad grid (Table 1, Section 4.2)",
         "",
         f"{first.source_levels}^3 sources x {first.background_levels}^3 backgrounds, uniform in "
-        f"encoded sRGB with endpoints; {first.combinations:,} combinations per alpha.  Depends on "
-        "nothing the paper leaves out: comparable to every printed digit at the paper's grid "
-        "sizes.",
+        f"encoded sRGB with endpoints; {first.combinations:,} combinations per alpha.  "
+        + _setup_sentence("Setup", differs, "the paper's grids"),
         "",
         *_HEADER,
     ]
-    paper_grid = first.source_levels == 17 and first.background_levels == 33
     for r in run.broad_grid:
         key = alpha_key(r.alpha)
-        printed = PAPER["broad_grid"].get(key, {}) if paper_grid else {}
         lines += [
-            _row(f"alpha {key}: increase %", r.increase_pct, printed.get("increase_pct")),
-            _row(f"alpha {key}: decrease %", r.decrease_pct, printed.get("decrease_pct")),
-            _row(f"alpha {key}: maximum loss", r.max_loss, printed.get("max_loss")),
-            _row(
-                f"alpha {key}: decreases with loss <= 0.25, %",
-                r.loss_le_0_25_pct,
-                printed.get("loss_le_0_25_pct"),
-            ),
-            _row(
-                f"alpha {key}: worst case, contrast at 1",
-                r.worst_contrast[1.0],
-                printed.get("worst_contrast_1.0"),
-            ),
-            _row(
-                f"alpha {key}: worst case, contrast at {key}",
-                r.worst_contrast[r.alpha],
-                printed.get(f"worst_contrast_{key}"),
-            ),
+            _row(label, ours, index.get(("broad_grid", key, name)))
+            for label, ours, name in (
+                (f"alpha {key}: increase %", r.increase_pct, "increase_pct"),
+                (f"alpha {key}: decrease %", r.decrease_pct, "decrease_pct"),
+                (f"alpha {key}: maximum loss", r.max_loss, "max_loss"),
+                (
+                    f"alpha {key}: decreases with loss <= 0.25, %",
+                    r.loss_le_0_25_pct,
+                    "loss_le_0_25_pct",
+                ),
+                (
+                    f"alpha {key}: worst case, contrast at 1",
+                    r.worst_contrast[1.0],
+                    "worst_contrast_1.0",
+                ),
+                (
+                    f"alpha {key}: worst case, contrast at {key}",
+                    r.worst_contrast[r.alpha],
+                    f"worst_contrast_{key}",
+                ),
+            )
         ]
     lines.append("")
     for r in run.broad_grid:
         same = r.worst_source == WORST_SOURCE and r.worst_background == WORST_BACKGROUND
-        verdict = (
-            ("the same as" if same else "NOT the same as") if paper_grid else "on a grid unlike"
-        )
+        verdict = ("the same as" if same else "NOT the same as") if differs is None else "unlike"
         contrasts = " -> ".join(
             f"{cr:z.4f} (alpha {alpha_key(a)})" for a, cr in r.worst_contrast.items()
         )
@@ -263,21 +268,27 @@ def _broad_section(run: Reproduction) -> list[str]:
     return [*lines, ""]
 
 
-def _full_gamut_section(run: Reproduction) -> list[str]:
+_PAPER_CANVASES = (
+    f"the paper's sixteen canvases (bundled theme {PAPER_THEME}, from the authors' public "
+    "evaluation protocol)"
+)
+
+
+def _full_gamut_section(run: Reproduction, index: _Index) -> list[str]:
     assert run.full_gamut is not None
     first = run.full_gamut[0]
+    differs = setup_differences(run)[Setup.FULL_GAMUT]
     lines = [
         "## Full gamut (Section 4.2, Table 1)",
         "",
         f"All {first.levels}^3 sources on the {len(first.canvases)} canvases of theme "
-        f"{escape_markdown(first.theme)}.  The paper does not publish its sixteen canvases, so "
-        "these figures are comparable in method only.",
+        f"{escape_markdown(first.theme)}.  "
+        + _setup_sentence("Setup", differs, f"every 8-bit source on {_PAPER_CANVASES}"),
         "",
         *_HEADER,
     ]
     for r in run.full_gamut:
         key = alpha_key(r.alpha)
-        printed = PAPER["full_gamut"].get(key, {})
         t = r.total
         for label, name in (
             ("increase %", "increase_pct"),
@@ -288,7 +299,11 @@ def _full_gamut_section(run: Reproduction) -> list[str]:
             ("Difference mean change", "mean_difference_change"),
             ("Exclusion mean change", "mean_exclusion_change"),
         ):
-            lines.append(_row(f"alpha {key}: {label}", getattr(t, name), printed.get(name)))
+            lines.append(
+                _row(
+                    f"alpha {key}: {label}", getattr(t, name), index.get(("full_gamut", key, name))
+                )
+            )
     lines += ["", "Per canvas:", ""]
     lines += [
         "| alpha | canvas | mode | increase % | decrease % | unchanged % | mean change "
@@ -319,8 +334,8 @@ def _sweep_section(run: Reproduction) -> list[str]:
         f"alpha in [{s.alphas[0]:g}, {s.alphas[-1]:g}] ({len(s.alphas)} values) on a {s.levels}^3 "
         f"source grid; collision rate over {s.pairs:,} distinct random 8-bit source pairs (seed "
         f"{s.seed}).  Light and dark groups each weight their canvases equally.  The paper prints "
-        "no sweep values and does not publish its canvases or pair construction: figures only, "
-        "comparable in shape, not in digits.  See `sweep-1-2.png` and `sweep-0-2.png`.",
+        "no sweep values, only the figures: compare `sweep-1-2.png` and `sweep-0-2.png` with its "
+        "Figures 3 and 6 in shape.",
         "",
         "| alpha | mean change light | mean change dark | decreases light | decreases dark | "
         "collisions light | collisions dark |",
@@ -342,45 +357,80 @@ def _sweep_section(run: Reproduction) -> list[str]:
     return [*lines, ""]
 
 
-def _palette_section(run: Reproduction) -> list[str]:
+def _palette_section(run: Reproduction, index: _Index) -> list[str]:
     assert run.palette is not None
     p = run.palette
-    counts = PAPER["palette"]["counts"]
+    differences = setup_differences(run)
+    palette, random = differences[Setup.PALETTE], differences[Setup.RANDOM_PAIRS]
     lines = [
         "## Palette separation (Section 4.3)",
         "",
         f"All {len(p.palette) * (len(p.palette) - 1) // 2} pairs of "
         f"{escape_markdown(', '.join(p.palette))} on each "
-        f"canvas ({p.combinations} combinations); {p.random_pairs:,} random pairs on each canvas "
-        f"({p.random_combinations:,} combinations).  Counts of combinations are comparable; "
-        "smaller-CIEDE2000 and collision counts depend on the unpublished canvases and pair "
-        "construction and are comparable in method only.  The paper's random collisions "
-        "(617 -> 15,098) are read as alpha 1.1 -> 1.4; at alpha 1.0 distinct 8-bit sources "
-        "cannot collide.",
+        f"canvas ({p.combinations} combinations); {p.random_pairs:,} random pairs (seed "
+        f"{p.seed}) on each canvas ({p.random_combinations:,} combinations).  "
+        + _setup_sentence("Palette pairs", palette, f"Tol's Vibrant on {_PAPER_CANVASES}")
+        + "  "
+        + _setup_sentence("Random pairs", random, "the paper's count and seed on its canvases")
+        + "  The paper's random collisions (617 -> 15,098) are read as alpha 1.1 -> 1.4; at "
+        "alpha 1.0 distinct 8-bit sources cannot collide.",
         "",
         *_HEADER,
-        _row("palette combinations", p.combinations, counts["combinations"], 0),
-        _row("random combinations", p.random_combinations, counts["random_combinations"], 0),
+        _row(
+            "palette combinations",
+            p.combinations,
+            index.get(("palette", "counts", "combinations")),
+            0,
+        ),
+        _row(
+            "random combinations",
+            p.random_combinations,
+            index.get(("palette", "counts", "random_combinations")),
+            0,
+        ),
     ]
     for a in p.alphas:
         key = alpha_key(a)
-        printed = PAPER["palette"].get(key, {})
         lines += [
-            _row(f"alpha {key}: smaller CIEDE2000", p.smaller[a], printed.get("smaller"), 0),
-            _row(f"alpha {key}: collisions", p.collisions[a], printed.get("collisions"), 0),
+            _row(
+                f"alpha {key}: smaller CIEDE2000",
+                p.smaller[a],
+                index.get(("palette", key, "smaller")),
+                0,
+            ),
+            _row(
+                f"alpha {key}: collisions",
+                p.collisions[a],
+                index.get(("palette", key, "collisions")),
+                0,
+            ),
         ]
     for a in p.random_alphas:
         key = alpha_key(a)
-        printed = PAPER["palette"].get(key, {})
         lines.append(
             _row(
                 f"alpha {key}: random-pair collisions",
                 p.random_collisions[a],
-                printed.get("random_collisions"),
+                index.get(("palette", key, "random_collisions")),
                 0,
             )
         )
     return [*lines, ""]
+
+
+def _tally(run: Reproduction) -> str:
+    """One sentence: how many printed figures were comparable and how many match."""
+    compared = [c for c in comparisons(run) if c.comparable]
+    if not compared:
+        return "No printed figure of the paper is comparable in digits in this run."
+    missed = [c for c in compared if not c.matches]
+    text = (
+        f"{len(compared) - len(missed)} of the {len(compared)} printed figures comparable in "
+        "this run match every printed digit"
+    )
+    if missed:
+        text += "; NOT matching: " + ", ".join(f"{c.experiment} {c.group} {c.name}" for c in missed)
+    return text + "."
 
 
 def render_markdown(run: Reproduction, options: RenderOptions | None = None) -> str:
@@ -389,6 +439,7 @@ def render_markdown(run: Reproduction, options: RenderOptions | None = None) -> 
     Theme and canvas names come from input files: escaped like every Markdown
     report (:func:`~alpha_audit.render.common.escape_markdown`).
     """
+    index = _index(run)
     lines = [
         "# alpha-audit reproduce: Opacity Is Not Just Opacity, Section 4",
         "",
@@ -400,19 +451,20 @@ def render_markdown(run: Reproduction, options: RenderOptions | None = None) -> 
             else "; the paper's grid sizes."
         ),
         "",
-        "'Comparable in digits' marks values that depend only on what the paper specifies; "
-        "for those, 'Matches' says whether ours rounds to the printed value.  Other values are "
-        "shown for comparison of method and magnitude, never as a match.",
+        "'Comparable in digits' marks values computed with the paper's setup (its grids, its "
+        "sixteen canvases, Tol's Vibrant palette, 65,536 random pairs from seed 20260913); for "
+        "those, 'Matches' says whether ours rounds to the printed value.  Other values are shown "
+        "for comparison of magnitude, never as a match.  " + _tally(run),
         "",
     ]
     if run.broad_grid is not None:
-        lines += _broad_section(run)
+        lines += _broad_section(run, index)
     if run.full_gamut is not None:
-        lines += _full_gamut_section(run)
+        lines += _full_gamut_section(run, index)
     if run.sweep is not None:
         lines += _sweep_section(run)
     if run.palette is not None:
-        lines += _palette_section(run)
+        lines += _palette_section(run, index)
     if run.browser is not None:
         lines += browser_markdown(run.browser)
     if run.runtime is not None:
@@ -435,106 +487,169 @@ def _table(title: str) -> Table:
     )
 
 
-def tables(run: Reproduction) -> list[Table]:
-    """Rich tables of a run, one per experiment."""
-    tables = []
-    if run.broad_grid is not None:
-        t = _table("Broad grid (paper Table 1 and Section 4.2): paper vs ours")
-        for col in ("alpha", "quantity", "paper", "ours", "every digit?"):
-            t.add_column(col, justify="left" if col == "quantity" else "right", no_wrap=True)
-        # One line per distinct worst case: every alpha usually shares the paper's one.
-        worst_cases: dict[str, list[str]] = {}
-        paper_grid = run.settings.source_levels == 17 and run.settings.background_levels == 33
-        quantities = (
+# (alpha, quantity, ours, the printed value or None, decimals when nothing is printed)
+_Versus = tuple[str, str, float, Comparison | None, int]
+
+
+def _versus_table(title: str, rows: list[_Versus], notes: Sequence[str] = ()) -> RenderableType:
+    """Paper beside ours, to the printed decimals, and whether every printed digit matches.
+
+    A value computed with a setup other than the paper's shows the printed
+    value but no verdict; a note below the table says why.
+    """
+    t = _table(title)
+    for col in ("alpha", "quantity", "paper", "ours", "match?"):
+        t.add_column(col, justify="left" if col == "quantity" else "right", no_wrap=True)
+    reasons: dict[str, None] = {}
+    for alpha, label, ours, printed, decimals in rows:
+        if printed is None:
+            t.add_row(alpha, label, "—", f"{ours:z,.{decimals}f}", "—")
+            continue
+        d = printed.printed.decimals
+        verdict: str | Text = "—"
+        if printed.comparable:
+            ok = printed.matches
+            verdict = Text("yes", style="green") if ok else Text("NO", style="bold red")
+        elif printed.differs:
+            reasons[printed.differs] = None
+        t.add_row(alpha, label, f"{printed.printed.value:z,.{d}f}", f"{ours:z,.{d}f}", verdict)
+    notes = [*(f"not the paper's setup: {r}" for r in reasons), *notes]
+    if not notes:
+        return t
+    # Below the table, not its caption: a caption wraps at the table's (narrow) width.
+    return Group(t, Text("\n".join(notes)), Text())  # reasons name the theme: never markup
+
+
+def _broad_table(run: Reproduction, index: _Index) -> RenderableType:
+    assert run.broad_grid is not None
+    rows: list[_Versus] = []
+    # One line per distinct worst case: every alpha usually shares the paper's one.
+    worst_cases: dict[str, list[str]] = {}
+    for r in run.broad_grid:
+        key = alpha_key(r.alpha)
+        for name, label in (
             ("increase_pct", "increase %"),
             ("decrease_pct", "decrease %"),
             ("max_loss", "maximum loss"),
             ("loss_le_0_25_pct", "losses <= 0.25, %"),
-        )
-        for r in run.broad_grid:
-            printed = PAPER["broad_grid"].get(alpha_key(r.alpha), {}) if paper_grid else {}
-            for name, label in quantities:
-                ours = getattr(r, name)
-                paper = printed.get(name)
-                if paper is None:
-                    t.add_row(alpha_key(r.alpha), label, "—", f"{ours:z.4f}", "—")
+        ):
+            rows.append((key, label, getattr(r, name), index.get(("broad_grid", key, name)), 4))
+        worst = " > ".join(f"{cr:z.4f} (a={alpha_key(a)})" for a, cr in r.worst_contrast.items())
+        src, bg = (",".join(f"{v:g}" for v in c) for c in (r.worst_source, r.worst_background))
+        worst_cases.setdefault(f"largest loss ({src}) on ({bg}), CR {worst}", []).append(key)
+    notes = [f"alpha {' and '.join(alphas)}: {case}" for case, alphas in worst_cases.items()]
+    return _versus_table("Broad grid (Table 1, Section 4.2): paper vs ours", rows, notes)
+
+
+def _full_gamut_tables(run: Reproduction, index: _Index) -> list[RenderableType]:
+    assert run.full_gamut is not None
+    tables: list[RenderableType] = []
+    # Two tables, not one of nine columns: each fits 60 columns with every
+    # figure whole (the nine needed 72).
+    halves = (
+        ("contrast changes", ("inc %", "dec %", "same %")),
+        ("threshold and separation", ("mean", "3:1 %", "Diff", "Excl")),
+    )
+    for k, (what, columns) in enumerate(halves):
+        t = _table(f"Full gamut on {run.theme.name}: {what}" if k == 0 else f"Full gamut: {what}")
+        for col in ("alpha", "group", *columns):
+            t.add_column(col, justify="right", no_wrap=True)
+        for fg in run.full_gamut:
+            groups = [("all", fg.total)] + [(m, fg.group(m)) for m in ("light", "dark")]
+            for name, c in groups:
+                if c is None:
                     continue
-                ok = matches_printed(ours, paper)
-                t.add_row(
-                    alpha_key(r.alpha),
-                    label,
-                    f"{paper.value:.{paper.decimals}f}",
-                    f"{ours:.{paper.decimals}f}",
-                    Text("yes", style="green") if ok else Text("NO", style="bold red"),
-                )
-            worst = " > ".join(
-                f"{cr:z.4f} (a={alpha_key(a)})" for a, cr in r.worst_contrast.items()
-            )
-            src, bg = (",".join(f"{v:g}" for v in c) for c in (r.worst_source, r.worst_background))
-            case = f"largest loss ({src}) on ({bg}), CR {worst}"
-            worst_cases.setdefault(case, []).append(alpha_key(r.alpha))
-        t.caption = "\n".join(
-            f"alpha {' and '.join(alphas)}: {case}" for case, alphas in worst_cases.items()
-        )
+                figures = (
+                    (c.increase_pct, c.decrease_pct, c.unchanged_pct)
+                    if k == 0
+                    else (c.mean_change, c.newly_reach_pct, c.mean_difference_change,
+                          c.mean_exclusion_change)
+                )  # fmt: skip
+                t.add_row(alpha_key(fg.alpha), name, *(f"{v:z.4f}" for v in figures))
         tables.append(t)
+    labels = {
+        "increase_pct": "increase %",
+        "decrease_pct": "decrease %",
+        "mean_change": "mean change",
+        "newly_reach_pct": "newly 3:1, % of all",
+        "mean_difference_change": "Difference, mean",
+        "mean_exclusion_change": "Exclusion, mean",
+    }
+    rows: list[_Versus] = [
+        (c.group, labels[c.name], c.ours, c, 4)
+        for c in index.values()
+        if c.experiment == "full_gamut" and c.ours is not None
+    ]
+    if rows:
+        tables.append(_versus_table("Full gamut (Section 4.2, Table 1): paper vs ours", rows))
+    return tables
+
+
+def _palette_tables(run: Reproduction, index: _Index) -> list[RenderableType]:
+    assert run.palette is not None
+    p = run.palette
+    t = _table(f"Palette separation: {p.combinations} pair x canvas combinations")
+    for col in ("alpha", "smaller CIEDE2000", "collisions", "random-pair collisions"):
+        t.add_column(col, justify="right", no_wrap=True)
+    for a in sorted(set(p.alphas) | set(p.random_alphas)):
+        t.add_row(
+            alpha_key(a),
+            str(p.smaller.get(a, "—")),
+            str(p.collisions.get(a, "—")),
+            f"{p.random_collisions[a]:,} of {p.random_combinations:,}"
+            if a in p.random_collisions
+            else "—",
+        )
+    counts = {name: index.get(("palette", "counts", name)) for name in PAPER["palette"]["counts"]}
+    rows: list[_Versus] = [
+        ("", "pairs x canvases", p.combinations, counts["combinations"], 0),
+        ("", "random x canvases", p.random_combinations, counts["random_combinations"], 0),
+    ]
+    for a in sorted(set(p.alphas) | set(p.random_alphas)):
+        key = alpha_key(a)
+        for name, label, values in (
+            ("smaller", "smaller CIEDE2000", p.smaller),
+            ("collisions", "collisions", p.collisions),
+            ("random_collisions", "random collisions", p.random_collisions),
+        ):
+            if a in values and ("palette", key, name) in index:
+                rows.append((key, label, values[a], index[("palette", key, name)], 0))
+    return [t, _versus_table("Palette separation (Section 4.3): paper vs ours", rows)]
+
+
+def _sweep_table(run: Reproduction) -> Table:
+    assert run.sweep is not None
+    s = run.sweep
+    t = _table(f"Sweep on {s.levels}^3 sources, {s.pairs:,} random pairs (every 0.25)")
+    for col in ("alpha", "mean change L/D", "decreases L/D", "collisions L/D"):
+        t.add_column(col, justify="right", no_wrap=True)
+    for i, a in enumerate(s.alphas):
+        if abs(a * 4 - round(a * 4)) > 1e-9:
+            continue
+
+        def pair(series: dict[str, tuple[float, ...]], i: int = i) -> str:
+            return " / ".join(f"{series[g][i]:z.4f}" for g in ("light", "dark") if g in series)
+
+        t.add_row(f"{a:g}", pair(s.mean_change), pair(s.decrease_share),
+                  pair(s.collision_rate))  # fmt: skip
+    return t
+
+
+def tables(run: Reproduction) -> list[RenderableType]:
+    """Rich tables of a run, one or more per experiment (notes below some)."""
+    index = _index(run)
+    tables: list[RenderableType] = []
+    if run.broad_grid is not None:
+        tables.append(_broad_table(run, index))
     if run.full_gamut is not None:
-        # Two tables, not one of nine columns: each fits 60 columns with every
-        # figure whole (the nine needed 72).
-        halves = (
-            ("contrast changes", ("inc %", "dec %", "same %")),
-            ("threshold and separation", ("mean", "3:1 %", "Diff", "Excl")),
-        )
-        for k, (what, columns) in enumerate(halves):
-            title = f"Full gamut on {run.theme.name} (comparable to the paper in method only)"
-            t = _table(f"{title}: {what}" if k == 0 else f"Full gamut: {what}")
-            for col in ("alpha", "group", *columns):
-                t.add_column(col, justify="right", no_wrap=True)
-            for fg in run.full_gamut:
-                rows = [("all", fg.total)] + [(m, fg.group(m)) for m in ("light", "dark")]
-                for name, c in rows:
-                    if c is None:
-                        continue
-                    figures = (
-                        (c.increase_pct, c.decrease_pct, c.unchanged_pct)
-                        if k == 0
-                        else (c.mean_change, c.newly_reach_pct, c.mean_difference_change,
-                              c.mean_exclusion_change)
-                    )  # fmt: skip
-                    t.add_row(alpha_key(fg.alpha), name, *(f"{v:z.4f}" for v in figures))
-            tables.append(t)
+        tables += _full_gamut_tables(run, index)
     if run.sweep is not None:
-        s = run.sweep
-        t = _table(f"Sweep on {s.levels}^3 sources, {s.pairs:,} random pairs (every 0.25)")
-        for col in ("alpha", "mean change L/D", "decreases L/D", "collisions L/D"):
-            t.add_column(col, justify="right", no_wrap=True)
-        for i, a in enumerate(s.alphas):
-            if abs(a * 4 - round(a * 4)) > 1e-9:
-                continue
-
-            def pair(series: dict[str, tuple[float, ...]], i: int = i) -> str:
-                return " / ".join(f"{series[g][i]:z.4f}" for g in ("light", "dark") if g in series)
-
-            t.add_row(f"{a:g}", pair(s.mean_change), pair(s.decrease_share),
-                      pair(s.collision_rate))  # fmt: skip
-        tables.append(t)
+        tables.append(_sweep_table(run))
     if run.palette is not None:
-        pal = run.palette
-        t = _table(f"Palette separation: {pal.combinations} pair x canvas combinations")
-        for col in ("alpha", "smaller CIEDE2000", "collisions", "random-pair collisions"):
-            t.add_column(col, justify="right", no_wrap=True)
-        for a in sorted(set(pal.alphas) | set(pal.random_alphas)):
-            t.add_row(
-                alpha_key(a),
-                str(pal.smaller.get(a, "—")),
-                str(pal.collisions.get(a, "—")),
-                f"{pal.random_collisions[a]:,} of {pal.random_combinations:,}"
-                if a in pal.random_collisions
-                else "—",
-            )
-        tables.append(t)
+        tables += _palette_tables(run, index)
     return tables + browser_tables(run.browser, run.runtime, _table)
 
 
 def render_table(run: Reproduction, options: RenderOptions) -> str:
-    """Every experiment's table at ``options.width`` columns."""
-    return to_text(Group(*tables(run)), options)
+    """Every experiment's table at ``options.width`` columns, then the tally of printed figures."""
+    return to_text(Group(*tables(run), Text(_tally(run))), options)
