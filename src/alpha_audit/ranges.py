@@ -23,7 +23,9 @@ __all__ = [
     "ICON_SIZE",
     "MAX_ICON_SIZE",
     "MAX_PRECISION",
+    "PAGE_SECONDS",
     "PRECISION",
+    "WORKERS",
     "NumberRange",
 ]
 
@@ -75,3 +77,7 @@ ICON_SIZE = NumberRange(1, MAX_ICON_SIZE, f"whole pixels 1-{MAX_ICON_SIZE}")
 # significant digits, so 9 decimals stay exact for coefficients up to 100.
 MAX_PRECISION = 9
 PRECISION = NumberRange(0, MAX_PRECISION, f"0-{MAX_PRECISION} decimals")
+# render: browser pages in parallel (each a browser process of a few hundred MB).
+WORKERS = NumberRange(1, 16, "whole pages in parallel, 1-16")
+# render: seconds one page and state may take (a hung page is a problem, not a hang).
+PAGE_SECONDS = NumberRange(1, 600, "seconds between 1 and 600")

@@ -19,7 +19,7 @@ text but instructions are shown as escapes instead of being sent:
 Categories are Unicode's General_Category (Unicode Standard, section 4.5),
 read through :mod:`unicodedata`.
 
-:func:`check_name` is the load-side half: every name read from any input
+:func:`alpha_audit.load.names.check_name` is the load-side half: every name read from any input
 (YAML names, token paths, CSS custom properties, Figma variables, Resolver
 contexts, Tokens Studio themes and sets) is refused there, with one message
 naming the file and the place, if it holds such a character.
@@ -33,7 +33,7 @@ __all__ = [
     "JOINERS",
     "MAX_NAME",
     "UNSAFE_CATEGORIES",
-    "check_name",
+    "escape_char",
     "first_unsafe",
     "is_safe",
     "safe_text",
@@ -51,7 +51,7 @@ def _unsafe(ch: str) -> bool:
     return ch not in JOINERS and unicodedata.category(ch) in UNSAFE_CATEGORIES
 
 
-def _escape(ch: str) -> str:
+def escape_char(ch: str) -> str:
     """``\\x1b``, ``\\u202e``, ``\\ud800``: the Python escape, readable and inert."""
     code = ord(ch)
     if code < 0x100:
@@ -93,50 +93,6 @@ def safe_text(text: object, *, newlines: bool = False) -> str:
     s = text if isinstance(text, str) else str(text)
     if is_safe(s):
         return s
-    return "".join(_escape(ch) if _unsafe(ch) and not (newlines and ch == "\n") else ch for ch in s)
-
-
-def check_name(
-    text: str,
-    *,
-    path: object = None,
-    line: int | None = None,
-    key: str | None = None,
-    what: str = "name",
-) -> str:
-    """``text`` if it is a usable name, else an :class:`~alpha_audit.errors.InputError`.
-
-    A usable name has 1-:data:`MAX_NAME` characters and none that
-    :func:`safe_text` escapes (controls, bidi and other format characters,
-    lone surrogates, line separators); emoji joiners are fine.  The error
-    names ``path``, ``line`` and ``key`` and shows the name escaped.
-
-    >>> check_name("👩\u200d💻")
-    '👩\u200d💻'
-    >>> try:
-    ...     check_name("a\u202eb", key="color.x")
-    ... except Exception as exc:
-    ...     print(str(exc)[:56])
-    color.x: name 'a\\u202eb' has the format (bidi) character
-    """
-    from pathlib import Path
-
-    from alpha_audit.errors import InputError
-
-    bad = first_unsafe(text)
-    if bad is None and 0 < len(text) <= MAX_NAME:
-        return text
-    shown = safe_text(text[:40]) + ("..." if len(text) > 40 else "")
-    if bad is None:
-        reason = f"is empty or longer than {MAX_NAME} characters"
-    else:
-        kind = {"Cc": "control", "Cf": "format (bidi)", "Cs": "lone surrogate"}.get(
-            unicodedata.category(bad), "line separator"
-        )
-        reason = f"has the {kind} character {_escape(bad)}"
-    raise InputError(
-        f"{what} '{shown}' {reason}; names may not hold control, bidi or surrogate characters",
-        path=None if path is None else Path(str(path)),
-        line=line,
-        key=None if key is None else safe_text(key),
+    return "".join(
+        escape_char(ch) if _unsafe(ch) and not (newlines and ch == "\n") else ch for ch in s
     )

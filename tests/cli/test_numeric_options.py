@@ -39,6 +39,8 @@ EXPECTED = {
     ("pair", "--alpha"): ALPHA,
     ("export", "--alpha"): ALPHA,
     ("reproduce", "--alpha"): ALPHA,
+    ("render", "--workers"): (1, 16, "whole pages in parallel, 1-16"),
+    ("render", "--timeout"): (1, 600, "seconds between 1 and 600"),
 }
 # What a command needs besides the bad flag to get as far as checking it.
 REQUIRED = {"preview": ["t.yaml", "i.yaml"], "pair": ["red", "--on", "white"]}
@@ -79,7 +81,7 @@ def _bad_values(low: float, high: float, integer: bool) -> list[float]:
 CASES = [
     (command, flag, value, what)
     for (command, flag), (low, high, what) in EXPECTED.items()
-    for value in _bad_values(low, high, flag in ("--precision", "--size"))
+    for value in _bad_values(low, high, flag in ("--precision", "--size", "--workers"))
 ]
 
 

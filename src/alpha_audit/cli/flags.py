@@ -24,6 +24,7 @@ FLAGS: dict[str, str] = {
     "baseline_document": "--write-baseline",
     "icons": "--icons",
     "gamut": "--gamut",
+    "engines": "--engine",
 }
 """Backticked phrase in a library message -> what the command line says instead."""
 

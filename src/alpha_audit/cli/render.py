@@ -9,15 +9,20 @@ the input is unusable or a page could not be audited (one line says which).
 from __future__ import annotations
 
 import enum
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Annotated, assert_never
 
 import typer
 from rich import box
 
+from alpha_audit import ranges
+from alpha_audit.browser import COLOR_SCHEMES
 from alpha_audit.cli.console import emit, progress_bar, stderr_note, stdout_options
-from alpha_audit.cli.options import ConfigOption, ForceOption
+from alpha_audit.cli.options import ConfigOption, ForceOption, in_range
 from alpha_audit.cli.status import ExitStatus
+from alpha_audit.errors import UsageError
+from alpha_audit.pages.states import State, state_matrix
 
 __all__ = ["RenderFormat", "render_command"]
 
@@ -67,6 +72,47 @@ def _table_text(result: object) -> str:
     return to_text(table, stdout_options()) + summary
 
 
+def parse_globals(text: str) -> tuple[tuple[str, str], ...]:
+    """``theme:dark;density:compact`` (a ``--globals`` value) -> pairs; ``:`` is required."""
+    pairs = []
+    for part in text.split(";"):
+        name, sep, value = part.partition(":")
+        if not sep or not name.strip() or not value.strip():
+            raise UsageError(
+                f"--globals {text!r}: write NAME:VALUE pairs joined by ';' (theme:dark)"
+            )
+        pairs.append((name.strip(), value.strip()))
+    return tuple(pairs)
+
+
+def parse_attribute(text: str) -> tuple[str, str]:
+    """``data-theme=dark`` (an ``--html-attribute`` value) -> ``(name, value)``."""
+    name, sep, value = text.partition("=")
+    if not sep or not name.strip():
+        raise UsageError(f"--html-attribute {text!r}: write NAME=VALUE (data-theme=dark)")
+    return name.strip(), value.strip()
+
+
+def states_from_flags(
+    globals_values: Sequence[str],
+    schemes: Sequence[str],
+    attributes: Sequence[str],
+    classes: Sequence[str],
+) -> tuple[State, ...] | None:
+    """The state matrix the flags ask for, or None when no state flag was given."""
+    if not (globals_values or schemes or attributes or classes):
+        return None
+    for scheme in schemes:
+        if scheme not in COLOR_SCHEMES:
+            raise UsageError(f"--color-scheme {scheme!r}: choose light or dark")
+    return state_matrix(
+        [parse_globals(g) for g in globals_values],
+        [s for s in schemes if s in COLOR_SCHEMES],
+        [parse_attribute(a) for a in attributes],
+        list(classes),
+    )
+
+
 def render_command(
     sources: Annotated[
         list[str] | None,
@@ -109,10 +155,20 @@ def render_command(
         Path | None, typer.Option(help="Icon-set manifest the icons are mapped to.")
     ] = None,
     workers: Annotated[
-        int | None, typer.Option(min=1, max=16, help="Pages in parallel. [default: CPUs, <= 4]")
+        int | None,
+        typer.Option(
+            help="Pages in parallel.",
+            callback=in_range("--workers", ranges.WORKERS),
+            show_default="CPUs, at most 4",
+        ),
     ] = None,
     timeout: Annotated[
-        float | None, typer.Option(min=1, max=600, help="Seconds per page and state. [default: 30]")
+        float | None,
+        typer.Option(
+            help="Seconds per page and state.",
+            callback=in_range("--timeout", ranges.PAGE_SECONDS),
+            show_default="30",
+        ),
     ] = None,
     fmt: Annotated[
         RenderFormat,
@@ -137,7 +193,7 @@ def render_command(
     """
     from alpha_audit.load.iconset import load_iconset
     from alpha_audit.pages import audit_pages
-    from alpha_audit.pages.config import resolve_render_config, states_from_flags
+    from alpha_audit.pages.config import resolve_render_config
     from alpha_audit.pages.report import render_document
     from alpha_audit.render.common import dumps
 

@@ -12,10 +12,11 @@ import numpy as np
 from alpha_audit.color import PIPELINES, GamutPolicy, Pipeline, parse_color
 from alpha_audit.color.css import GAMUT_POLICIES, parse_css_color
 from alpha_audit.errors import ColorSyntaxError, InputError
+from alpha_audit.load.names import check_name
 from alpha_audit.load.yamldoc import KeyPath, YamlDoc, format_key
 from alpha_audit.model import GamutAdjustment
 from alpha_audit.ranges import NumberRange
-from alpha_audit.safe_text import check_name, safe_text
+from alpha_audit.safe_text import safe_text
 
 __all__ = [
     "check_keys",

@@ -45,11 +45,8 @@ __all__ = [
     "RENDER_KEYS",
     "RenderConfig",
     "config_from_yaml",
-    "parse_attribute",
-    "parse_globals",
     "resolve_render_config",
     "source_from_argument",
-    "states_from_flags",
 ]
 
 RENDER_KEYS = (
@@ -301,47 +298,6 @@ def config_from_yaml(path: Path) -> RenderConfig | None:
     return replace(config, **changes)
 
 
-def parse_globals(text: str) -> tuple[tuple[str, str], ...]:
-    """``theme:dark;density:compact`` (a ``--globals`` value) -> pairs; ``:`` is required."""
-    pairs = []
-    for part in text.split(";"):
-        name, sep, value = part.partition(":")
-        if not sep or not name.strip() or not value.strip():
-            raise UsageError(
-                f"--globals {text!r}: write NAME:VALUE pairs joined by ';' (theme:dark)"
-            )
-        pairs.append((name.strip(), value.strip()))
-    return tuple(pairs)
-
-
-def parse_attribute(text: str) -> tuple[str, str]:
-    """``data-theme=dark`` (an ``--html-attribute`` value) -> ``(name, value)``."""
-    name, sep, value = text.partition("=")
-    if not sep or not name.strip():
-        raise UsageError(f"--html-attribute {text!r}: write NAME=VALUE (data-theme=dark)")
-    return name.strip(), value.strip()
-
-
-def states_from_flags(
-    globals_values: Sequence[str],
-    schemes: Sequence[str],
-    attributes: Sequence[str],
-    classes: Sequence[str],
-) -> tuple[State, ...] | None:
-    """The state matrix the flags ask for, or None when no state flag was given."""
-    if not (globals_values or schemes or attributes or classes):
-        return None
-    for scheme in schemes:
-        if scheme not in COLOR_SCHEMES:
-            raise UsageError(f"--color-scheme {scheme!r}: choose light or dark")
-    return state_matrix(
-        [parse_globals(g) for g in globals_values],
-        [s for s in schemes if s in COLOR_SCHEMES],
-        [parse_attribute(a) for a in attributes],
-        list(classes),
-    )
-
-
 def resolve_render_config(
     arguments: Sequence[str],
     *,
@@ -385,7 +341,7 @@ def resolve_render_config(
         config = replace(config, states=states)
     for engine in overrides.get("engines") or ():
         if engine not in ENGINES:
-            raise UsageError(f"--engine {engine!r}: choose from {', '.join(ENGINES)}")
+            raise UsageError(f"`engines` {engine!r}: choose from {', '.join(ENGINES)}")
     if overrides.get("iconset") is not None:
         try:
             overrides["iconset"] = contain_argument(overrides["iconset"], root)

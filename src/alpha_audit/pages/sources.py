@@ -96,7 +96,7 @@ def _stories(source: StorybookSource) -> list[tuple[str, str]]:
     index = source.folder / "index.json"
     if not index.is_file():
         raise UsageError(
-            "is not a built Storybook (no index.json): run `storybook build` first, "
+            "is not a built Storybook (no index.json): run 'storybook build' first, "
             "or give a folder of HTML pages",
             path=source.folder,
         )

@@ -87,5 +87,5 @@ def state_matrix(
         fields: dict[str, object] = {}
         for _, part in combination:
             fields.update(part)
-        states.append(State(_label([name for name, _ in combination]), **fields))  # type: ignore[arg-type]
+        states.append(State(_label([name for name, _ in combination]), **fields))  # type: ignore[arg-type]  # the fields each dimension sets are State's own
     return tuple(states) or (DEFAULT_STATE,)

@@ -24,6 +24,7 @@ from pathlib import Path
 from typing import Any
 
 from alpha_audit.errors import InputError
+from alpha_audit.load.names import check_name
 from alpha_audit.load.tokens.jsondoc import JsonDoc, JsonPath
 from alpha_audit.load.tokens.model import (
     MAX_ALIAS_CHAIN,
@@ -33,7 +34,6 @@ from alpha_audit.load.tokens.model import (
     TokenPlace,
     token_error,
 )
-from alpha_audit.safe_text import check_name
 
 __all__ = ["ALIAS", "MAX_VALUE_NODES", "TokenTree"]
 

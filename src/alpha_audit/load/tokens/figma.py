@@ -20,6 +20,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from alpha_audit.load.names import check_name
 from alpha_audit.load.tokens.jsondoc import JsonDoc, JsonPath
 from alpha_audit.load.tokens.model import (
     MAX_ALIAS_CHAIN,
@@ -29,7 +30,6 @@ from alpha_audit.load.tokens.model import (
     check_mode_budget,
     token_error,
 )
-from alpha_audit.safe_text import check_name
 
 __all__ = ["is_figma", "modes_from_figma"]
 

@@ -17,11 +17,11 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from alpha_audit.load.names import check_name
 from alpha_audit.load.paths import PathRefused, contain
 from alpha_audit.load.tokens.dtcg import TokenTree
 from alpha_audit.load.tokens.jsondoc import JsonDoc, load_json
 from alpha_audit.load.tokens.model import TokenModes, check_mode_budget, token_error
-from alpha_audit.safe_text import check_name
 
 __all__ = ["MAX_SOURCES", "is_resolver", "modes_from_resolver"]
 

@@ -49,6 +49,7 @@ from typing import Any
 
 from alpha_audit.errors import InputError
 from alpha_audit.load.files import read_capped
+from alpha_audit.load.names import check_name
 from alpha_audit.load.spans import LineIndex
 from alpha_audit.load.tokens.model import (
     MAX_EXPANSION,
@@ -59,7 +60,7 @@ from alpha_audit.load.tokens.model import (
     token_error,
 )
 from alpha_audit.model import Span
-from alpha_audit.safe_text import check_name, safe_text
+from alpha_audit.safe_text import safe_text
 
 __all__ = ["MAX_CSS_BYTES", "MAX_VALUE_TOKENS", "modes_from_stylesheet"]
 
