@@ -34,3 +34,11 @@ def test_readme_links_resolve() -> None:
     readme = (REPO / "README.md").read_text()
     for target in re.findall(r"\]\(((?:docs|themes|examples)/[^)#]+)\)", readme):
         assert (REPO / target).exists(), target
+
+
+def test_the_rules_table_is_the_registrys() -> None:
+    from alpha_audit.rules import rules_table
+
+    assert rules_table() in (REPO / "docs" / "rules.md").read_text(), (
+        "docs/rules.md is stale: paste alpha_audit.rules.rules_table() into it"
+    )

@@ -424,47 +424,54 @@ class _Name:
             offset = start + len(line)
 
 
-def _table_class() -> type[Table]:
-    """A rich Table whose ``shrink_first`` columns give their width to the other names.
+class _Fitted:
+    """A table whose ``shrink_first`` name columns give way before the other names.
 
     Rich narrows the widest wrapping column first, so a long canvas name wrapped
-    while an icon list beside it kept its line.  After rich's own sharing out,
-    width moves from the ``shrink_first`` columns (down to their minimum) to the
-    name columns still narrower than their longest cell; the total is unchanged.
+    while an icon list beside it kept its line.  At render time (rich's public
+    console protocol) this measures the table; if it is wider than the space
+    given, the ``shrink_first`` columns get a ``max_width`` (a public column
+    setting) that takes the excess from them first, down to their minimum, and
+    rich shares out whatever is left as usual.
     """
-    from rich.table import Table
 
-    class FittedTable(Table):
-        shrink_first: list[int]
+    def __init__(self, build: Any, donors: list[int], floors: list[int]) -> None:
+        self.build, self.donors, self.floors = build, donors, floors
 
-        def _calculate_column_widths(self, console: Any, options: Any) -> list[int]:
-            widths = list(super()._calculate_column_widths(console, options))
-            donors = [k for k in self.shrink_first if k < len(widths)]
-            if not donors:
-                return widths
-            wanted = [
-                max(
-                    (self._measure_column(console, options, c).maximum - self._get_padding_width(k))
-                    if k not in donors
-                    else 0,
-                    0,
-                )
-                for k, c in enumerate(self.columns)
-            ]
-            for k, column in enumerate(self.columns):
-                if k in donors or column.no_wrap:
-                    continue
-                need = wanted[k] - widths[k] + self._get_padding_width(k)
-                for d in donors:
-                    floor = (self.columns[d].min_width or 1) + self._get_padding_width(d)
-                    give = min(max(need, 0), widths[d] - floor)
-                    if give > 0:
-                        widths[d] -= give
-                        widths[k] += give
-                        need -= give
-            return widths
+    def __rich_measure__(self, console: Any, options: Any) -> Any:
+        from rich.measure import Measurement
 
-    return FittedTable
+        return Measurement.get(console, options, self.build({}))
+
+    def __rich_console__(self, console: Any, options: Any) -> Any:
+        from rich.measure import Measurement
+
+        table = self.build({})
+        if self.donors:
+            widest = Measurement.get(console, options.update(width=1 << 16), table).maximum
+            excess = widest - options.max_width
+            limits: dict[int, int] = {}
+            for k, floor in zip(self.donors, self.floors, strict=True):
+                if excess <= 0:
+                    break
+                own = self._natural(console, options, table, k)
+                give = min(excess, max(own - floor, 0))
+                limits[k] = own - give
+                excess -= give
+            if limits:
+                table = self.build(limits)
+        yield table
+
+    @staticmethod
+    def _natural(console: Any, options: Any, table: Table, k: int) -> int:
+        """The widest cell of column ``k`` (its header included), in cells."""
+        from rich.measure import Measurement
+
+        wide = options.update(width=1 << 16)
+        column = table.columns[k]
+        return max(
+            Measurement.get(console, wide, cell).maximum for cell in [column.header, *column.cells]
+        )
 
 
 def fitted_table(
@@ -473,51 +480,58 @@ def fitted_table(
     *,
     section_ends: frozenset[int] = frozenset(),
     **table_options: Any,
-) -> Table:
+) -> RenderableType:
     """A rich table that gives way in its name columns only.
 
     Rich shares out a too-narrow width by shrinking wrapping columns first and
     then, as a last resort, every column with an ellipsis, which is how a hex
     code became ``#10b9…``.  Here figures are ``no_wrap`` with a minimum width
     of their widest cell (so they are never shrunk) and names fold, so at any
-    width where the figures fit, every figure is printed whole.  Cells that are
+    width where the figures fit, every figure is printed whole; ``shrink_first``
+    names give way before the other names (:class:`_Fitted`).  Cells that are
     strings become literal :class:`~rich.text.Text` (names are never markup).
     A rule is drawn under the rows whose index is in ``section_ends``.
     """
     from rich.cells import cell_len
+    from rich.table import Table
     from rich.text import Text
 
     body = [[c if isinstance(c, Text) else Text(str(c)) for c in row] for row in rows]
     table_options.setdefault("padding", (0, 1, 0, 0))  # one space between columns
-    table = _table_class()(**table_options)
-    table.shrink_first = [k for k, c in enumerate(columns) if c.shrink_first]  # type: ignore[attr-defined]  # a FittedTable, local to _table_class (rich loads lazily)
-    for k, column in enumerate(columns):
-        if column.number:
-            widest = max((cell_len(row[k].plain) for row in body if k < len(row)), default=1)
-            table.add_column(
-                column.header,
-                justify=column.justify,
-                no_wrap=True,
-                min_width=max(widest, cell_len(column.header)),
+
+    def build(limits: dict[int, int]) -> Table:
+        table = Table(**table_options)
+        for k, column in enumerate(columns):
+            if column.number:
+                widest = max((cell_len(row[k].plain) for row in body if k < len(row)), default=1)
+                table.add_column(
+                    column.header,
+                    justify=column.justify,
+                    no_wrap=True,
+                    min_width=max(widest, cell_len(column.header)),
+                )
+            else:
+                table.add_column(
+                    column.header,
+                    justify=column.justify,
+                    overflow="fold",
+                    min_width=column.min_width,
+                    max_width=limits.get(k),
+                )
+        for n, row in enumerate(body):
+            table.add_row(
+                *(
+                    cell
+                    if k >= len(columns) or columns[k].number
+                    else _Name(cell, columns[k].min_width)
+                    for k, cell in enumerate(row)
+                ),
+                end_section=n in section_ends,
             )
-        else:
-            table.add_column(
-                column.header,
-                justify=column.justify,
-                overflow="fold",
-                min_width=column.min_width,
-            )
-    for n, row in enumerate(body):
-        table.add_row(
-            *(
-                cell
-                if k >= len(columns) or columns[k].number
-                else _Name(cell, columns[k].min_width)
-                for k, cell in enumerate(row)
-            ),
-            end_section=n in section_ends,
-        )
-    return table
+        return table
+
+    donors = [k for k, c in enumerate(columns) if c.shrink_first]
+    return _Fitted(build, donors, [columns[k].min_width for k in donors])
 
 
 # ------------------------------------------------------------------ fixes in words

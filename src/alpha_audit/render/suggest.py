@@ -12,7 +12,6 @@ from typing import Any
 
 from rich import box
 from rich.console import Group, RenderableType
-from rich.table import Table
 from rich.text import Text
 
 from alpha_audit.render.common import (
@@ -138,7 +137,9 @@ def render_table(result: SuggestResult, options: RenderOptions) -> str:
     p, a_max = result.precision, result.alpha_max
     parts: list[RenderableType] = [Text(_headline(result))]
 
-    def table(title: str, first: str, rows: list[list[str]], *, with_canvas: bool = True) -> Table:
+    def table(
+        title: str, first: str, rows: list[list[str]], *, with_canvas: bool = True
+    ) -> RenderableType:
         """Alphas and where they break never cut (render.common.fitted_table); names wrap."""
         columns = [
             name_column(first, min_width=9),  # "■ #rrggbb" or a colour name and its hex

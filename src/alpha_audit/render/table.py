@@ -12,7 +12,6 @@ from pathlib import Path
 from rich import box
 from rich.console import Group, RenderableType
 from rich.padding import Padding
-from rich.table import Table
 from rich.text import Text
 
 from alpha_audit.gate import GateResult
@@ -46,7 +45,7 @@ def _fmt_alpha(result: AuditResult) -> str:
     return f"{alphas[0]:g}..{alphas[-1]:g}"
 
 
-def _summary_table(result: AuditResult) -> Table:
+def _summary_table(result: AuditResult) -> RenderableType:
     t = result.threshold
     rows = []
     for cs in result.canvas_summaries():

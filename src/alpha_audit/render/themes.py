@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from rich import box
-from rich.table import Table
+from rich.console import RenderableType
 
 from alpha_audit.model import Theme
 from alpha_audit.render.common import (
@@ -41,7 +41,7 @@ def themes_document(themes: Themes) -> dict[str, Any]:
     }
 
 
-def _table(themes: Themes) -> Table:
+def _table(themes: Themes) -> RenderableType:
     """Names wrap, hex codes never cut (render.common.fitted_table)."""
     rows = [
         (name if i == 0 else "", canvas.name, canvas.color, str(canvas.mode))
