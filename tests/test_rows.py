@@ -75,8 +75,12 @@ def test_every_json_number_agrees_with_reference(
         s = ref_hex_to_linear(row["source"])
         b = ref_hex_to_linear(row["background"])
         out = ref_composite(s, b, row["alpha"])
-        ref, cr = ref_contrast(s, b), ref_contrast(out, b)
         assert row["output"] == ref_hex(out)
+        # The float maths, and what ships: the 8-bit output on the (8-bit) canvas.
+        assert row["contrast_ref_float"] == pytest.approx(ref_contrast(s, b), abs=1e-9)
+        assert row["contrast_float"] == pytest.approx(ref_contrast(out, b), abs=1e-9)
+        shipped = ref_hex_to_linear(ref_hex(out))
+        ref, cr = ref_contrast(ref_hex_to_linear(ref_hex(s)), b), ref_contrast(shipped, b)
         assert row["contrast_ref"] == pytest.approx(ref, abs=1e-9)
         assert row["contrast"] == pytest.approx(cr, abs=1e-9)
         assert row["gain"] == pytest.approx(cr - ref, abs=1e-9)
@@ -89,9 +93,11 @@ def test_issue_row_vibrant_orange_on_white() -> None:
     theme, icons = make(["#ee7733"], [1.1], ["#ffffff"])
     row = check_to_dict(audit(theme, icons))["rows"][0]
     assert row["output"] == "#ec5a00"
-    assert row["contrast_ref"] == 2.868083650384096
-    assert row["contrast"] == 3.4733853122940994
-    assert row["gain"] == 0.6053016619100036
+    assert row["contrast_ref"] == row["contrast_ref_float"] == 2.868083650384096
+    assert row["contrast_float"] == 3.4733853122940994  # the float maths
+    shipped = ref_contrast(ref_hex_to_linear("#ec5a00"), ref_hex_to_linear("#ffffff"))
+    assert row["contrast"] == pytest.approx(shipped, abs=1e-12)  # what a screen shows
+    assert row["gain"] == pytest.approx(shipped - 2.868083650384096, abs=1e-12)
     assert (row["passes_ref"], row["passes"], row["newly_passes"], row["loss"]) == (
         False,
         True,
@@ -118,7 +124,10 @@ def test_worst_case_is_a_loss() -> None:
     theme, icons = make(["#0000cf"], [1.4], ["#ffff00"])
     result = audit(theme, icons)
     assert result.loss.all()
-    assert result.summary.max_loss == pytest.approx(10.2773 - 8.6379, abs=2e-4)
+    assert (result.contrast_ref_float - result.contrast_float).max() == pytest.approx(
+        10.2773 - 8.6379, abs=2e-4
+    )  # the paper's float figures; what ships differs by the 8-bit rounding
+    assert result.summary.max_loss == pytest.approx(10.2773 - 8.6379, abs=0.02)
 
 
 def test_collision_between_distinct_sources_is_found() -> None:
@@ -173,8 +182,9 @@ def test_rows_are_in_stable_canvas_then_icon_order() -> None:
 def test_json_has_no_nan_and_full_precision() -> None:
     theme, icons = make(["#ee7733"], [1.1], ["#ffffff"])
     text = dumps(check_to_dict(audit(theme, icons)))
-    assert "NaN" not in text and "3.4733853122940994" in text
-    assert math.isclose(json.loads(text)["summary"]["mean_gain"], 0.6053016619100036)
+    assert "NaN" not in text and "3.4733853122940994" in text  # contrast_float, in full
+    doc = json.loads(text)
+    assert math.isclose(doc["summary"]["mean_gain"], doc["rows"][0]["gain"], rel_tol=1e-15)
 
 
 def test_the_sets_minimum_at_alpha_1_is_its_own_closest_pair() -> None:

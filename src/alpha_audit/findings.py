@@ -26,6 +26,7 @@ from alpha_audit.color import (
     delta_e_2000_lab,
     linear_to_hex,
     linear_to_lab,
+    shipped,
     simulate_cvd,
     to_8bit,
 )
@@ -375,8 +376,9 @@ def _confusions(c: _Collector, rule: Rule, deficiency: Deficiency | None) -> Non
     roles = roles.reshape(-1)
     bg = r.theme.backgrounds[np.newaxis, :, :]
     src = r.sources[reps][:, None, :]
-    solid = composite_paint(src, bg, 1.0, 1.0, r.pipeline)
-    shown = composite_paint(src, bg, r.alpha[reps][:, None], 1.0, r.pipeline)
+    # Judged as they ship: the 8-bit colours (docs/model.md, "What ships is what is judged").
+    solid = shipped(composite_paint(src, bg, 1.0, 1.0, r.pipeline))
+    shown = shipped(composite_paint(src, bg, r.alpha[reps][:, None], 1.0, r.pipeline))
     if deficiency is not None:
         solid, shown = simulate_cvd(solid, deficiency), simulate_cvd(shown, deficiency)
     under = "" if deficiency is None else f" under simulated {deficiency}"
@@ -450,8 +452,8 @@ def _cvd_collision(c: _Collector, rule: Rule) -> None:
     idx = np.array(reps, dtype=np.intp)
     bg = r.theme.backgrounds[np.newaxis, :, :]
     src = r.sources[idx][:, None, :]
-    shown = composite_paint(src, bg, r.alpha[idx][:, None], 1.0, r.pipeline)
-    solid = composite_paint(src, bg, 1.0, 1.0, r.pipeline)
+    shown = shipped(composite_paint(src, bg, r.alpha[idx][:, None], 1.0, r.pipeline))
+    solid = shipped(composite_paint(src, bg, 1.0, 1.0, r.pipeline))
     sources = [r.entries[p].source for p in idx]
     for deficiency in DEFICIENCIES:
         seen = to_8bit(simulate_cvd(shown, deficiency))

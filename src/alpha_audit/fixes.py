@@ -39,11 +39,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from alpha_audit.color import (
     composite_coverage,
+    contrast_from_luminance,
     contrast_ratio,
     delta_e_2000,
     from_8bit,
     linear_to_hex,
     relative_luminance,
+    shipped,
     to_8bit,
 )
 from alpha_audit.color.oklch import linear_to_oklch, oklch_to_linear
@@ -62,7 +64,7 @@ from alpha_audit.results import (
 from alpha_audit.rows import AuditResult
 from alpha_audit.rules import Rule
 from alpha_audit.suggest.engine import SafeAlphas
-from alpha_audit.suggest.events import luminance_band, luminance_band_pieces
+from alpha_audit.suggest.events import code_crossings
 
 __all__ = [
     "ACHROMATIC_CHROMA",
@@ -139,17 +141,17 @@ def smallest_alpha_reaching(
 
     ``source`` is one linear colour ``(3,)``, ``backgrounds`` the canvases
     ``(m, 3)``, ``opacities`` the paint's opacities (each must reach it).
-    Exact: the bad set (contrast below the threshold somewhere) is a finite
-    union of open intervals, one per canvas, opacity and linear piece; the
-    infimum of its complement is ``1`` or a right end of one of them, so only
-    those candidates are tested.  ``rounded`` is ``exact`` rounded up to
-    ``precision`` decimals, stepped up until a direct composite passes
-    everywhere; both are ``None`` when nothing up to ``alpha_max`` does.
+    Judged on what ships (8-bit colours on the 8-bit canvas), exactly: what
+    ships changes only where a displayed channel crosses a code threshold, so
+    every crossing and every gap between two is judged, in order; ``exact`` is
+    the first good one (a gap's left end is its infimum).  ``rounded`` is
+    ``exact`` rounded up to ``precision`` decimals, stepped up until what ships
+    passes everywhere; both are ``None`` when nothing up to ``alpha_max`` does.
 
     >>> # Linear grey 0.4 on white: 2.33:1 at alpha 1; darker with a > 1 (moved away from white).
     >>> rounded, exact = smallest_alpha_reaching([0.4] * 3, [[1.0, 1.0, 1.0]], 3.0)
-    >>> rounded, round(exact, 9)  # Y = 1 - 0.6 a reaches 0.3 at a = 7/6
-    (1.167, 1.166666667)
+    >>> rounded, round(exact, 6)  # Y = 1 - 0.6 a reaches 0.3 near a = 7/6, in 8 bits
+    (1.167, 1.166667)
     """
     s = np.asarray(source, dtype=np.float64).reshape(3)
     bgs = np.asarray(backgrounds, dtype=np.float64).reshape(-1, 3)
@@ -157,34 +159,33 @@ def smallest_alpha_reaching(
     t = float(threshold)
     bg = np.repeat(bgs, o.size, axis=0)  # every (canvas, opacity)
     q = np.tile(o, bgs.shape[0])
-    y_bg = relative_luminance(bg)
-    lo, hi = luminance_band(t, y_bg)
-    # Displayed luminance o Y(clip) + (1 - o) Yb: the band on Y(clip) itself.
-    with np.errstate(divide="ignore", invalid="ignore"):
-        lo = np.where(q > 0, (lo - (1.0 - q) * y_bg) / q, np.inf)
-        hi = np.where(q > 0, (hi - (1.0 - q) * y_bg) / q, -np.inf)
-    pieces = luminance_band_pieces(s[np.newaxis, :], bg, lo, hi, ALPHA_LO, alpha_max)
-    p = np.stack([pc[0] for pc in pieces])  # (4, combos)
-    qq = np.stack([pc[1] for pc in pieces])
-    lower = np.stack([pc[2] for pc in pieces])
-    upper = np.stack([pc[3] for pc in pieces])
-    ends = np.concatenate([[ALPHA_LO], upper.ravel(), qq.ravel()])
-    candidates = np.unique(ends[np.isfinite(ends) & (ends >= ALPHA_LO) & (ends <= alpha_max)])
-    c = candidates[:, np.newaxis, np.newaxis]
-    bad = np.any((p <= c) & (c <= qq) & (lower < c) & (c < upper), axis=(1, 2))
-    good = candidates[~bad]
-    if good.size == 0:
+    y_screen = relative_luminance(shipped(bg))
+
+    def reaches(a: NDArray[np.float64]) -> NDArray[np.bool_]:
+        """Whether what ships at each ``a`` (shape (N,)) reaches ``t`` on every canvas."""
+        shown = shipped(composite_coverage(s, bg[:, None, :], a[None, :], q[:, None]))
+        y = relative_luminance(shown)
+        ok: NDArray[np.bool_] = np.all(contrast_from_luminance(y, y_screen[:, None]) >= t, axis=0)
+        return ok
+
+    # What ships changes only where a displayed channel crosses a code threshold: judge
+    # every crossing and every gap between two (the codes are constant on a gap).
+    crossings = code_crossings(np.broadcast_to(s, bg.shape), bg, q[:, None]).reshape(-1)
+    inside = crossings[np.isfinite(crossings) & (crossings > ALPHA_LO) & (crossings < alpha_max)]
+    points = np.unique(np.concatenate([[ALPHA_LO, alpha_max], inside]))
+    elements = np.empty(2 * points.size - 1)
+    elements[0::2], elements[1::2] = points, 0.5 * (points[:-1] + points[1:])
+    good = np.zeros(elements.size, dtype=bool)
+    for start in range(0, elements.size, _CHUNK):
+        good[start : start + _CHUNK] = reaches(elements[start : start + _CHUNK])
+    if not good.any():
         return None, None
-    exact = float(good[0])
+    k = int(np.argmax(good))
+    exact = float(points[k // 2])  # a point, or the left end of a gap (its infimum)
     unit = 10.0**-precision
-
-    def reaches(a: float) -> bool:
-        out = composite_coverage(s, bg, a, q)
-        return bool(np.all(contrast_ratio(out, bg) >= t))
-
     rounded = _round_up(exact, precision)
-    while rounded <= alpha_max + unit / 2 and not reaches(rounded):
-        # A later bad interval, or float noise exactly at the crossing.
+    while rounded <= alpha_max + unit / 2 and not reaches(np.array([rounded]))[0]:
+        # A later bad element, or float noise exactly at a crossing.
         rounded = _round_up(rounded + unit / 2, precision)
     if rounded > alpha_max + unit / 2:
         return None, exact
@@ -223,9 +224,10 @@ def passes_everywhere(
         chunk = flat[start : start + step]
         ok = np.all((chunk >= 0.0) & (chunk <= 1.0), axis=-1)
         src = np.clip(chunk, 0.0, 1.0)[:, np.newaxis, np.newaxis, :]
-        shown = composite_coverage(src, b, a[None, :, None], o[None, :, None])
-        ref = composite_coverage(src, b, 1.0, o[None, :, None])
-        contrast, c_ref = contrast_ratio(shown, b), contrast_ratio(ref, b)  # (N, k, m)
+        shown = shipped(composite_coverage(src, b, a[None, :, None], o[None, :, None]))
+        ref = shipped(composite_coverage(src, b, 1.0, o[None, :, None]))
+        screen = shipped(b)  # judged as it ships: 8-bit colours on the 8-bit canvas
+        contrast, c_ref = contrast_ratio(shown, screen), contrast_ratio(ref, screen)
         for rule in rules:
             ok &= ~np.any(contrast_breaks(rule, pol, c_ref, contrast, threshold), axis=(1, 2))
         out[start : start + step] = ok

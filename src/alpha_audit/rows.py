@@ -45,6 +45,7 @@ from alpha_audit.color import (
     hue_shift,
     linear_to_lab,
     pack_8bit,
+    shipped,
     to_8bit,
 )
 from alpha_audit.color.nearest import (
@@ -172,7 +173,7 @@ class Row:
     alpha: float
     pipeline: Pipeline
     output: str
-    contrast_ref: float
+    contrast_ref: float  # what ships: the 8-bit colours on the 8-bit canvas
     contrast: float
     gain: float
     drift: float
@@ -181,6 +182,8 @@ class Row:
     passes_ref: bool = False
     passes: bool = False
     loss: bool = False
+    contrast_ref_float: float = math.nan  # the float colours' (the paper's maths)
+    contrast_float: float = math.nan
 
     @property
     def fixed(self) -> bool:
@@ -351,7 +354,9 @@ class AuditResult:
 
     ``iconset`` holds the icons audited (those that could not be rendered are
     in ``problems``).  Arrays are per row ``(p, ...)``; ``entries[r]`` says
-    what row ``r`` draws.
+    what row ``r`` draws.  What ships is what is judged: contrast, drift, size
+    contrast and separation are of the 8-bit colours a screen shows (the float
+    contrast of the paper's maths is kept beside it, ``contrast_float``).
     """
 
     theme: Theme
@@ -363,10 +368,12 @@ class AuditResult:
     sources: NDArray[np.float64]  # (p, 3) linear
     opacity: NDArray[np.float64]  # (p,)
     alpha: NDArray[np.float64]  # (p,)
-    output: NDArray[np.float64]  # (p, m, 3) linear, displayed
-    reference: NDArray[np.float64]  # (p, m, 3) displayed at a = 1
-    contrast_ref: NDArray[np.float64]  # (p, m)
-    contrast: NDArray[np.float64]  # (p, m)
+    output: NDArray[np.float64]  # (p, m, 3) linear, displayed (float, before 8 bits)
+    reference: NDArray[np.float64]  # (p, m, 3) displayed at a = 1 (float)
+    contrast_ref: NDArray[np.float64]  # (p, m) of what ships: 8-bit colours on the 8-bit canvas
+    contrast: NDArray[np.float64]  # (p, m) likewise
+    contrast_ref_float: NDArray[np.float64]  # (p, m) of the float colours (the paper's maths)
+    contrast_float: NDArray[np.float64]  # (p, m)
     drift: NDArray[np.float64]  # (p, m)
     hue_shift: NDArray[np.float64]  # (p, m), NaN where achromatic
     q50: NDArray[np.float64]  # (p, k)
@@ -418,6 +425,11 @@ class AuditResult:
         return to_8bit(self.output)
 
     @cached_property
+    def shown(self) -> NDArray[np.float64]:
+        """The 8-bit colours a screen shows, decoded again, ``(p, m, 3)``."""
+        return shipped(self.output)
+
+    @cached_property
     def separations(self) -> tuple[Separation, ...]:
         """Closest pair of distinct paints per canvas, computed on first use only."""
         return tuple(_separations(self))
@@ -431,6 +443,7 @@ class AuditResult:
         q50, full_share = self.q50.tolist(), self.full_share.tolist()
         size_contrast = self.size_contrast.tolist()
         passes_ref, passes, loss = (a.tolist() for a in (self.passes_ref, self.passes, self.loss))
+        ref_float, now_float = self.contrast_ref_float.tolist(), self.contrast_float.tolist()
         for j, canvas in enumerate(self.theme.canvases):
             for p, e in enumerate(self.entries):
                 shift = hue[p][j]
@@ -457,6 +470,8 @@ class AuditResult:
                     passes_ref=passes_ref[p][j],
                     passes=passes[p][j],
                     loss=loss[p][j],
+                    contrast_ref_float=ref_float[p][j],
+                    contrast_float=now_float[p][j],
                 )
 
     @cached_property
@@ -655,15 +670,17 @@ def _compose(
     """Every figure of the rows ``entries`` draw (:func:`audit` without the reading)."""
     p, m, k = len(entries), len(theme.canvases), q50.shape[1]
     bg = theme.backgrounds[np.newaxis, :, :]  # (1, m, 3)
+    screen = shipped(bg)  # the canvas as an 8-bit screen shows it
     s3 = sources[:, np.newaxis, :]
     output = composite_paint(s3, bg, alphas[:, None], opacity[:, None], pipeline)
     reference = composite_paint(s3, bg, np.ones((p, 1)), opacity[:, None], pipeline)
+    shown, shown_ref = shipped(output), shipped(reference)
     # Size contrast: the paint at opacity o * q50, sizes on the last axis.
     q = np.nan_to_num(q50, nan=0.0)[:, np.newaxis, :] * opacity[:, None, None]  # (p, 1, k)
     at_size = composite_paint(
         s3[:, :, np.newaxis, :], bg[:, :, np.newaxis, :], alphas[:, None, None], q, pipeline
     )  # (p, m, k, 3)
-    size_contrast = contrast_ratio(at_size, bg[:, :, np.newaxis, :]).reshape(p, m, k)
+    size_contrast = contrast_ratio(shipped(at_size), screen[:, :, np.newaxis, :]).reshape(p, m, k)
     size_contrast = np.where(np.isnan(q50)[:, np.newaxis, :], np.nan, size_contrast)
     result = AuditResult(
         theme=theme,
@@ -677,10 +694,12 @@ def _compose(
         alpha=alphas,
         output=output,
         reference=reference,
-        contrast_ref=contrast_ratio(reference, bg),
-        contrast=contrast_ratio(output, bg),
-        drift=delta_e_2000(reference, output).reshape(p, m),
-        hue_shift=hue_shift(reference, output).reshape(p, m),
+        contrast_ref=contrast_ratio(shown_ref, screen),
+        contrast=contrast_ratio(shown, screen),
+        contrast_ref_float=contrast_ratio(reference, bg),
+        contrast_float=contrast_ratio(output, bg),
+        drift=delta_e_2000(shown_ref, shown).reshape(p, m),
+        hue_shift=hue_shift(shown_ref, shown).reshape(p, m),
         q50=q50,
         full_share=full,
         size_contrast=size_contrast,
@@ -767,8 +786,8 @@ def _separations(result: AuditResult) -> list[Separation]:
     pairs = k * (k - 1) // 2 - int(np.sum(group_sizes * (group_sizes - 1) // 2))
     if pairs == 0:
         return []
-    lab_ref = linear_to_lab(result.reference[reps])  # (k, m, 3)
-    lab_out = linear_to_lab(result.output[reps])  # (k, m, 3)
+    lab_ref = linear_to_lab(shipped(result.reference[reps]))  # (k, m, 3), as screens show them
+    lab_out = linear_to_lab(result.shown[reps])  # (k, m, 3)
     decreases: list[int | None] = [None] * m
     closest: list[ClosestPair | None] = [None] * m
     if pairs * m <= DECREASES_BUDGET:

@@ -85,19 +85,19 @@ def test_cli_apply_and_no_write_without_it(tmp_path: Path, repo: Path) -> None:
     assert res.exit_code == 0, res.output
     assert (target / "iconset.yaml").read_text() == original
     doc = json.loads(res.stdout)
-    assert doc["schema"] == "alpha-audit.suggest/2" and doc["alpha"] == 1.192
+    assert doc["schema"] == "alpha-audit.suggest/2" and doc["alpha"] == 1.193
     # The default policy holds confusion: orange and magenta (roles) blur on white first.
     assert doc["limited_by"]["rule"] == "confusion" and doc["limited_by"]["canvas"] == "white"
     assert doc["limited_by"]["grid"] == 1e-3  # bracketed, and said so
     assert len(doc["per_color"]) == 7 and len(doc["per_icon"]) == 12
     for fmt in ("table", "markdown"):
         res = runner.invoke(app, ["suggest", theme, str(target / "iconset.yaml"), "-f", fmt])
-        assert res.exit_code == 0 and "1.192" in res.stdout
+        assert res.exit_code == 0 and "1.193" in res.stdout
     res = runner.invoke(app, ["suggest", theme, str(target / "iconset.yaml"), "--apply", "set"])
     assert res.exit_code == 0, res.output
     edited = (target / "iconset.yaml").read_text()
     # The explicit `alert: {alpha: 1.18}` is kept; the comment stays in its column.
-    assert edited == original.replace("alpha: 1.1   ", "alpha: 1.192 ")
+    assert edited == original.replace("alpha: 1.1   ", "alpha: 1.193 ")
     assert "kept the explicit alpha of 1 icon (alert)" in res.stderr
 
 

@@ -126,7 +126,7 @@ def test_apply_replace_explicit_overwrites_alert(tmp_path: Path, repo: Path) -> 
         app, ["suggest", theme, str(manifest), "--apply", "set", "--replace-explicit"]
     )
     assert res.exit_code == 0, res.output
-    assert {i.alpha for i in load_iconset(manifest).icons} == {1.192}
+    assert {i.alpha for i in load_iconset(manifest).icons} == {1.193}
 
 
 def test_apply_unknown_scope_is_a_usage_error(tmp_path: Path, repo: Path) -> None:

@@ -46,9 +46,11 @@ def broken_at(
     out = np.clip(
         bg[None, None] + coef[:, :, None, None] * (src[None, :, None] - bg[None, None]), 0, 1
     )  # (N, n, m, 3)
+    # Judged as it ships: the 8-bit colours (the sources and canvases are 8-bit already).
+    shown = srgb_decode(to_8bit(out) / 255.0)
     y_bg = relative_luminance(bg)
     c_ref = contrast_from_luminance(relative_luminance(src)[:, None], y_bg[None, :])
-    c = contrast_from_luminance(relative_luminance(out), y_bg)
+    c = contrast_from_luminance(relative_luminance(shown), y_bg)
     t = theme.threshold
     bad = np.zeros(alphas.shape, dtype=bool)
     mv = moving[None, :, None]
@@ -214,11 +216,14 @@ def test_paper_worst_case_loses_contrast_immediately() -> None:
     theme = Theme("t", (Canvas("yellow", "#ffff00"),))
     iconset = IconSet("s", (Icon("dot", "dot.svg", "rgb(0 0 207.1875)", 1.0),))
     safe = largest_safe_alpha(audit(theme, iconset), Policy(rules=frozenset({Rule.LOSS})))
-    assert safe.alpha == 1.0 and safe.limit is not None
-    assert safe.limit.rule is Rule.LOSS and safe.limit.at == pytest.approx(1.0, abs=1e-8)
-    # Allowing the paper's loss at 1.1 (10.2773 -> 9.8118) moves the limit to 1.1.
+    # What ships (8 bits) first loses at the first code step above 1, a few thousandths on.
+    assert safe.alpha is not None and 1.0 <= safe.alpha < 1.01 and safe.limit is not None
+    assert safe.limit.rule is Rule.LOSS and safe.limit.at == pytest.approx(1.0, abs=1e-2)
+    # Allowing the paper's (float) loss at 1.1 (10.2773 -> 9.8118) moves the limit to about
+    # 1.1: what ships is the 8-bit colour, whose loss reaches it a little earlier (1.092).
     allowed = Policy(rules=frozenset({Rule.LOSS}), max_loss=10.277324 - 9.811806)
-    assert largest_safe_alpha(audit(theme, iconset), allowed).alpha == pytest.approx(1.1, abs=2e-3)
+    answer = largest_safe_alpha(audit(theme, iconset), allowed).alpha
+    assert answer is not None and 1.08 < answer <= 1.1
 
 
 def test_black_and_white_canvases_never_lose_contrast() -> None:

@@ -2,6 +2,7 @@
 
 The judge shares nothing with :mod:`alpha_audit.suggest`: it composites by
 hand (the paper's formula, the coverage form for a paint at opacity ``o``),
+judges what ships (8-bit colours, encoded and rounded by the spec's formula),
 measures CIEDE2000 with colour-science directly and simulates CVD with
 colour-science's Machado matrices, then applies each rule as docs/model.md
 states it.  For seeded random small sets it sweeps every coefficient in
@@ -48,6 +49,14 @@ CSS_SRGB_TO_XYZ = np.array(
 CSS_D65 = np.array([0.3127, 0.3290])
 
 
+def _ship(linear: np.ndarray) -> np.ndarray:
+    """What an 8-bit screen shows: CSS Color 4 encode, x255, round half to even, decode."""
+    v = np.clip(linear, 0.0, 1.0)
+    encoded = np.where(v <= 0.0031308, 12.92 * v, 1.055 * v ** (1 / 2.4) - 0.055)
+    codes = np.rint(encoded * 255.0) / 255.0
+    return np.where(codes <= 0.04045, codes / 12.92, ((codes + 0.055) / 1.055) ** 2.4)
+
+
 def _lab(linear: np.ndarray) -> np.ndarray:
     return colour.XYZ_to_Lab(linear @ CSS_SRGB_TO_XYZ.T, CSS_D65)
 
@@ -80,8 +89,9 @@ def judge_unsafe(
     k = alphas[None, None, :, None]
     o = opacity[:, None, None, None]
     pushed = np.clip(bg + k * (s - bg), 0, 1)
-    shown = o * pushed + (1 - o) * bg  # the coverage form
-    ref = o * s + (1 - o) * bg
+    shown = _ship(o * pushed + (1 - o) * bg)  # the coverage form, as it ships (8 bits)
+    ref = _ship(o * s + (1 - o) * bg)
+    pushed = _ship(pushed)
     out = np.zeros(alphas.shape, dtype=bool)
     if Rule.DRIFT in policy.rules:
         drift = _de(np.broadcast_to(ref, shown.shape), shown)  # (n, m, N)
@@ -208,7 +218,7 @@ def test_thin_strokes_is_exact_at_q50() -> None:
     weights = np.array([0.2126, 0.7152, 0.0722])  # WCAG 2.2 relative luminance
 
     def size_contrast(a: float) -> float:
-        shown = 0.5 * np.clip(bg + a * (s - bg), 0, 1) + 0.5 * bg
+        shown = _ship(0.5 * np.clip(bg + a * (s - bg), 0, 1) + 0.5 * bg)  # as it ships
         y, yb = shown @ weights, bg @ weights
         return float((max(y, yb) + 0.05) / (min(y, yb) + 0.05))
 
@@ -220,8 +230,10 @@ def test_thin_strokes_is_exact_at_q50() -> None:
     assert safe.alpha is not None and safe.limit is not None
     assert safe.limit.rule is Rule.THIN_STROKES and safe.limit.grid is None  # exact
     assert size_contrast(safe.alpha) >= limit - 1e-10
-    assert size_contrast(safe.limit.at + 1e-9) < limit
-    assert abs(size_contrast(safe.limit.at) - limit) < 1e-9  # the crossing itself
+    # What ships steps at an 8-bit code crossing: above it on one side, below on the other.
+    assert size_contrast(safe.limit.at + 1e-9) < limit <= size_contrast(safe.limit.at - 1e-9)
+    sweep = np.linspace(1.0, safe.alpha, 2001)
+    assert min(size_contrast(a) for a in sweep) >= limit
 
 
 def _confused(

@@ -29,6 +29,7 @@ __all__ = [
     "linear_to_hex",
     "pack_8bit",
     "parse_color",
+    "shipped",
     "srgb_decode",
     "srgb_encode",
     "to_8bit",
@@ -63,6 +64,18 @@ def pack_8bit(codes: ArrayLike) -> NDArray[np.int64]:
 def from_8bit(codes: ArrayLike) -> NDArray[np.float64]:
     """8-bit sRGB codes to linear colour."""
     return srgb_decode(np.asarray(codes, dtype=np.float64) / 255.0)
+
+
+def shipped(linear: ArrayLike) -> NDArray[np.float64]:
+    """What an 8-bit screen shows for a linear colour: :func:`to_8bit`, decoded again.
+
+    The gate judges these (docs/model.md, "What ships is what is judged"); the
+    float colour stays in the JSON rows.
+
+    >>> shipped([0.5, 0.0, 1.0]).round(6).tolist()
+    [0.502886, 0.0, 1.0]
+    """
+    return from_8bit(to_8bit(linear))
 
 
 def linear_to_hex(linear: ArrayLike) -> str:

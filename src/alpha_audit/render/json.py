@@ -112,6 +112,8 @@ def _rows(result: AuditResult) -> list[dict[str, Any]]:
                 "contrast_ref": row.contrast_ref,
                 "contrast": row.contrast,
                 "gain": row.gain,
+                "contrast_ref_float": row.contrast_ref_float,
+                "contrast_float": row.contrast_float,
                 "passes_ref": row.passes_ref,
                 "passes": row.passes,
                 "newly_passes": row.newly_passes,

@@ -541,28 +541,38 @@ def plan_apply(
             if scope is ApplyScope.COLOUR
             else [(i.icon, (i.icon,)) for i in result.per_icon]
         )
-        members_of = dict(groups)
-        partners = {c: [p.colors for p in result.per_pair if c in p.colors] for c in members_of}
+        colour_of = {i.name: i.color_name or i.color for i in iconset.icons}
+        icons_of: dict[str, list[str]] = {}
+        for name, colour in colour_of.items():
+            icons_of.setdefault(colour, []).append(name)
         moved: dict[str, float] = {}
+        done: set[str] = set()
         for label, members in groups:
-            if label in moved:
+            if label in done:
                 continue
             movable = [n for n in members if n not in kept]
             if not movable:
                 continue
             alpha = safe_for(movable)
             together = [label]
-            for pair in partners.get(label, []) if alpha is None else []:
-                both = [n for c in pair for n in members_of.get(c, ()) if n not in kept]
+            colour = label if scope is ApplyScope.COLOUR else colour_of[label]
+            for pair in (p.colors for p in result.per_pair if colour in p.colors):
+                if alpha is not None:
+                    break
+                # No safe alpha alone: move with the role it confuses (the joint answer).
+                other = pair[1] if pair[0] == colour else pair[0]
+                both = movable + [n for n in icons_of.get(other, []) if n not in kept]
                 alpha = safe_for(both)
                 if alpha is not None:
-                    together, movable = list(pair), both
-                    break
+                    movable = both
+                    together = list(pair) if scope is ApplyScope.COLOUR else both
             if alpha is None:
                 skipped.append(label)
                 continue
             alphas.update(dict.fromkeys(movable, alpha))
-            moved.update(dict.fromkeys(together, alpha))
+            done.update(together)
+            if scope is ApplyScope.COLOUR:
+                moved.update(dict.fromkeys(together, alpha))
         p = result.precision
         original = {i.name: i.alpha for i in iconset.icons}
         if scope is ApplyScope.COLOUR:

@@ -45,13 +45,16 @@ from numpy.typing import NDArray
 from alpha_audit.color import (
     DEFICIENCIES,
     Deficiency,
+    composite_coverage,
     composite_paint,
+    contrast_from_luminance,
     contrast_ratio,
     delta_e_2000,
     delta_e_2000_lab,
     linear_to_lab,
     pack_8bit,
     relative_luminance,
+    shipped,
     simulate_cvd,
     to_8bit,
 )
@@ -93,6 +96,7 @@ from alpha_audit.rules import Rule
 from alpha_audit.suggest import SCOPES
 from alpha_audit.suggest.events import (
     clip_breakpoints,
+    code_crossings,
     code_timeline,
     first_below,
     first_in_luminance_band,
@@ -172,6 +176,54 @@ def _shared_code_starts(
     return np.unique(pos[shared])
 
 
+# The most an 8-bit screen moves a linear channel, so a luminance: half the widest gap
+# between decoded codes (next to white: (1 - decode(254/255)) / 2 = 0.004449), rounded up.
+SHIPPED_Y_ERROR = 0.0045
+# Candidates judged at once by _first_unsafe_code (each up to ~1,500 elements).
+_CANDIDATES = 512
+
+
+def _first_unsafe_code(
+    source: NDArray[np.float64],
+    background: NDArray[np.float64],
+    coverage: NDArray[np.float64],
+    a_lo: NDArray[np.float64],
+    a_hi: float,
+    y_screen: NDArray[np.float64],
+    floor: NDArray[np.float64],
+) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    """For each candidate, the first ``a`` in ``[a_lo, a_hi]`` where what ships is below ``floor``.
+
+    ``(start, attained)``, ``nan`` where none: every code crossing of the
+    displayed channels and every gap between two is judged once (the codes are
+    constant on a gap), in order.  A gap's start is its left end, not attained.
+    """
+    crossings = code_crossings(source, background, coverage[:, None]).reshape(len(source), -1)
+    inside = (crossings > a_lo[:, None]) & (crossings < a_hi)
+    ends = np.full((len(source), 1), a_hi)  # before the padding (inf) once sorted
+    points = np.sort(np.concatenate([np.where(inside, crossings, np.inf), ends], axis=1), axis=1)
+    points = np.concatenate([a_lo[:, None], points], axis=1)
+    points = np.where(np.isfinite(points), points, np.nan)
+    n = points.shape[1]
+    elements = np.empty((len(source), 2 * n - 1))
+    elements[:, 0::2] = points
+    elements[:, 1::2] = 0.5 * (points[:, :-1] + points[:, 1:])
+    valid = np.isfinite(elements)  # the rest is padding
+    shown = composite_coverage(
+        source[:, None, :],
+        background[:, None, :],
+        np.where(valid, elements, a_hi),
+        coverage[:, None],
+    )
+    y = relative_luminance(shipped(shown))
+    unsafe = valid & (contrast_from_luminance(y, y_screen[:, None]) < floor[:, None])
+    hit = unsafe.any(axis=1)
+    k = np.argmax(unsafe, axis=1)
+    is_point = k % 2 == 0
+    left = points[np.arange(len(source)), k // 2]
+    return np.where(hit, left, np.nan), hit & is_point
+
+
 class _Engine:
     """Everything shared by the questions of one audit: per-row limits, timelines, exemptions."""
 
@@ -189,6 +241,7 @@ class _Engine:
         self.canvases = tuple(c.name for c in r.theme.canvases)
         self.backgrounds = r.theme.backgrounds
         self.y_bg = relative_luminance(self.backgrounds)
+        self.y_screen = relative_luminance(shipped(self.backgrounds))  # the canvas as shipped
         self.keys = r.paint_keys
         self.locked = locked_rows(r)
         rules = policy.rules
@@ -266,24 +319,31 @@ class _Engine:
     def shown(
         self, tracks: _Tracks, t: NDArray[np.intp], a: NDArray[np.float64], j: int
     ) -> NDArray[np.float64]:
-        """Tracks ``t`` on canvas ``j`` at coefficients ``a`` (moving ones) as (len(t), N, 3)."""
+        """What tracks ``t`` ship on canvas ``j`` at coefficients ``a`` (moving), (len(t), N, 3)."""
         coef = np.where(tracks.moving[t][:, np.newaxis], a, tracks.alpha[t][:, np.newaxis])
-        return composite_paint(
+        return self.ship(
             tracks.source[t][:, np.newaxis, :],
             self.backgrounds[j],
             coef,
             tracks.opacity[t][:, np.newaxis],
-            self.pipeline,
         )
 
     def shown_at(
         self, tracks: _Tracks, t: NDArray[np.intp], a: NDArray[np.float64], j: int
     ) -> NDArray[np.float64]:
-        """Track ``t[k]`` at coefficient ``a[k]`` on canvas ``j``, elementwise: (K, 3)."""
+        """What track ``t[k]`` ships at coefficient ``a[k]`` on canvas ``j``: (K, 3)."""
         coef = np.where(tracks.moving[t], a, tracks.alpha[t])
-        return composite_paint(
-            tracks.source[t], self.backgrounds[j], coef, tracks.opacity[t], self.pipeline
-        )
+        return self.ship(tracks.source[t], self.backgrounds[j], coef, tracks.opacity[t])
+
+    def ship(
+        self,
+        source: NDArray[np.float64],
+        background: NDArray[np.float64],
+        alpha: NDArray[np.float64] | float,
+        opacity: NDArray[np.float64] | float,
+    ) -> NDArray[np.float64]:
+        """The 8-bit colour a paint ships at ``alpha`` (what the gate judges), as linear light."""
+        return shipped(composite_paint(source, background, alpha, opacity, self.pipeline))
 
     # -- per row: independent of every other icon, computed once ----------------
 
@@ -307,14 +367,22 @@ class _Engine:
     def _band_starts(
         self, floor: NDArray[np.float64], coverage: NDArray[np.float64]
     ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
-        """Where the displayed contrast first drops below ``floor``, (p, m[, k]).
+        """Where the contrast of what ships first drops below ``floor``, (p, m[, k]), exactly.
 
-        Displayed luminance is ``o Y(clip) + (1 - o) Yb``; solving the band for
-        ``Y(clip)`` leaves :func:`first_in_luminance_band`'s exact problem.
+        What ships is the 8-bit colour (:func:`~alpha_audit.color.shipped`), a step
+        function of ``a`` that changes only where a displayed channel crosses a code
+        threshold (:func:`~alpha_audit.suggest.events.code_crossings`).  Its luminance
+        lies within :data:`SHIPPED_Y_ERROR` of the float one, so the float luminance
+        entering the band widened by that much is a lower bound on the start, found
+        exactly (:func:`first_in_luminance_band` on ``o Y(clip) + (1 - o) Yb``).  From
+        there each candidate is judged at every crossing and on every gap between
+        crossings, which is every value it takes: the first unsafe element is the answer.
         """
         extra = floor.ndim - 2
-        y_bg = self.y_bg.reshape(1, -1, *([1] * extra))
-        lo, hi = luminance_band(floor, y_bg)
+        shape_bg = (1, -1, *([1] * extra))
+        lo, hi = luminance_band(floor, self.y_screen.reshape(shape_bg))
+        lo, hi = lo - SHIPPED_Y_ERROR, hi + SHIPPED_Y_ERROR
+        y_bg = self.y_bg.reshape(shape_bg)
         o = coverage
         with np.errstate(divide="ignore", invalid="ignore"):
             lo_c = np.where(o > 0, (lo - (1.0 - o) * y_bg) / o, np.inf)
@@ -323,7 +391,19 @@ class _Engine:
         shape = (p, m, *([1] * extra), 3)
         s = np.broadcast_to(self.result.sources.reshape(p, 1, *([1] * extra), 3), shape)
         b = np.broadcast_to(self.backgrounds.reshape(1, m, *([1] * extra), 3), shape)
-        return first_in_luminance_band(s, b, lo_c, hi_c, ALPHA_LO, self.a_hi)
+        bound, _ = first_in_luminance_band(s, b, lo_c, hi_c, ALPHA_LO, self.a_hi)
+        start = np.full(floor.shape, np.nan)
+        attained = np.zeros(floor.shape, dtype=bool)
+        y_screen = np.broadcast_to(self.y_screen.reshape(shape_bg), floor.shape)
+        cells = np.argwhere(np.isfinite(bound))
+        for chunk in range(0, len(cells), _CANDIDATES):
+            at = tuple(cells[chunk : chunk + _CANDIDATES].T)
+            first, point = _first_unsafe_code(
+                s[at], b[at], np.broadcast_to(o, floor.shape)[at], bound[at], self.a_hi,
+                y_screen[at], floor[at],
+            )  # fmt: skip
+            start[at], attained[at] = first, point
+        return start, attained
 
     def _contrast(self) -> list[Found]:
         out: list[Found] = []
@@ -369,7 +449,7 @@ class _Engine:
             sel = rows[lo : lo + per]
             s = r.sources[sel][:, np.newaxis, np.newaxis, :]
             o = r.opacity[sel][:, np.newaxis, np.newaxis]
-            ref = composite_paint(s, bg, 1.0, o, self.pipeline)  # (q, m, 1, 3)
+            ref = self.ship(s, bg, 1.0, o)  # (q, m, 1, 3)
 
             def minus_drift(
                 a: NDArray[np.float64],
@@ -378,7 +458,7 @@ class _Engine:
                 ref: NDArray[np.float64] = ref,
             ) -> NDArray[np.float64]:
                 a = a.reshape(1, 1, -1) if a.ndim == 1 else a.reshape(len(s), m, -1)
-                return -delta_e_2000(ref, composite_paint(s, bg, a, o, self.pipeline))
+                return -delta_e_2000(ref, self.ship(s, bg, a, o))
 
             # drift_breaks(d, limit) is d > drift_ceiling(limit), i.e. -d < -ceiling.
             _, unsafe = first_below(minus_drift, grid, -drift_ceiling(limit))
@@ -590,7 +670,7 @@ class _Engine:
             chunk = max(1, _CHUNK // grid.size)
             # The rule's reference is every role at alpha 1, as the gate has it, not the
             # others at their configured alpha: a pair the others confuse is this one's too.
-            solid = composite_paint(roles.source, self.backgrounds[j], 1.0, 1.0, self.pipeline)
+            solid = self.ship(roles.source, self.backgrounds[j], 1.0, 1.0)
             lab_ref = linear_to_lab(view(solid))
             lightness = linear_to_lab(view(self.shown(roles, every, grid, j)))[..., 0]
             s_l = lightness_weight_max(lightness)
@@ -713,8 +793,8 @@ class _Engine:
         if rows.size:
             s = r.sources[rows][:, np.newaxis, :]
             o = r.opacity[rows][:, np.newaxis]
-            shown = composite_paint(s, bg, a, o, self.pipeline)
-            c_now = contrast_ratio(shown, bg)
+            shown = self.ship(s, bg, a, o)
+            c_now = contrast_ratio(shown, shipped(bg))
             checks: list[tuple[Rule, NDArray[np.bool_]]] = [
                 (
                     rule,
@@ -723,7 +803,7 @@ class _Engine:
                 for rule in self.policy.contrast_rules
             ]
             if Rule.DRIFT in rules or Rule.LOCK in rules:
-                d = delta_e_2000(r.reference[rows], shown)
+                d = delta_e_2000(shipped(r.reference[rows]), shown)
                 if Rule.DRIFT in rules:
                     checks.append((Rule.DRIFT, drift_breaks(d, self.policy.max_drift)))
                 if Rule.LOCK in rules:
@@ -732,8 +812,8 @@ class _Engine:
             if Rule.THIN_STROKES in rules and r.sizes:
                 limit = self.policy.min_size_contrast or self.threshold
                 q = (np.nan_to_num(r.q50[rows]) * r.opacity[rows][:, np.newaxis])[:, np.newaxis, :]
-                at = composite_paint(s[:, :, None], bg[..., None, :], a, q, self.pipeline)
-                sc = contrast_ratio(at, bg[..., np.newaxis, :])
+                at = self.ship(s[:, :, None], bg[..., None, :], a, q)
+                sc = contrast_ratio(at, shipped(bg)[..., np.newaxis, :])
                 sc = np.where(np.isnan(r.q50[rows])[:, np.newaxis, :], np.nan, sc)
                 thin = np.asarray((sc < size_contrast_floor(limit)).any(axis=2))
                 checks.append((Rule.THIN_STROKES, thin))
@@ -805,7 +885,7 @@ class _Engine:
             )
             keep = tracks.moving[first] | tracks.moving[second]
             if rule is not Rule.SEPARATION:
-                solid = composite_paint(tracks.source, self.backgrounds[j], 1.0, 1.0, self.pipeline)
+                solid = self.ship(tracks.source, self.backgrounds[j], 1.0, 1.0)
                 lab_ref = linear_to_lab(view(solid))
                 keep &= confusion_possible(delta_e_2000_lab(lab_ref[first], lab_ref[second]), level)
             for f, g in zip(first[keep].tolist(), second[keep].tolist(), strict=True):
