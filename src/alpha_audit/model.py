@@ -19,10 +19,12 @@ from alpha_audit.color import (
     NON_TEXT_THRESHOLD,
     GamutPolicy,
     Pipeline,
+    composite_paint,
     parse_color,
     relative_luminance,
     srgb_decode,
 )
+from alpha_audit.errors import InputError
 
 __all__ = [
     "Canvas",
@@ -154,7 +156,13 @@ class GamutAdjustment:
 
 @dataclass(frozen=True)
 class Canvas:
-    """An opaque background colour of a theme."""
+    """A background of a theme: an opaque colour, or a translucent layer over another canvas.
+
+    A layer (``opacity`` below 1) names the canvas it sits ``over``: a surface or
+    hover tint at 8% over the page.  The audit sees it as the stack it is,
+    composited in its pipeline (:meth:`Theme.flattened`); ``stack`` then says
+    what it was made of.
+    """
 
     name: str
     color: str
@@ -166,11 +174,14 @@ class Canvas:
     exact: str | None = field(default=None, compare=False, repr=False)
     # Where the colour's value is written (a design token's), when exactly known.
     span: Span | None = field(default=None, compare=False, repr=False)
+    over: str | None = None  # the canvas a translucent layer sits on
+    opacity: float = 1.0  # the layer's own alpha (1: an opaque canvas)
+    stack: str | None = field(default=None, compare=False)  # "8% #0969da over paper"
     linear: tuple[float, float, float] = field(init=False, compare=False)
 
     def __post_init__(self) -> None:
         _normalise(self, self.color)
-        if self.mode is None:
+        if self.mode is None and self.over is None:  # a layer's mode is its stack's
             object.__setattr__(self, "mode", infer_mode(np.array(self.linear)))
 
 
@@ -187,8 +198,54 @@ class Theme:
 
     @property
     def backgrounds(self) -> NDArray[np.float64]:
-        """Linear canvas colours, shape ``(n_canvases, 3)``."""
+        """Linear canvas colours, shape ``(n_canvases, 3)`` (layers: :meth:`flattened` first)."""
         return np.array([c.linear for c in self.canvases], dtype=np.float64).reshape(-1, 3)
+
+    def flattened(self, pipeline: Pipeline = "linear") -> Theme:
+        """Every translucent layer composited over its canvas, as ``pipeline`` draws it.
+
+        ``linear``: ``o Cl + (1 - o) Cb`` in linear light; ``css``: what a browser
+        does with an ``rgba()`` surface, the encoded blend rounded to 8 bits.  A
+        layer over a layer is composited from the bottom up.  Each flattened
+        canvas is opaque, keeps its name and says in ``stack`` what it is.
+
+        >>> t = Theme("t", (Canvas("page", "#ffffff"), Canvas("chip", "#0969da", over="page",
+        ...     opacity=0.5)))
+        >>> t.flattened("css").canvases[1].color, t.flattened("css").canvases[1].stack
+        ('#84b4ec', '50% #0969da over page')
+        """
+        if all(c.over is None for c in self.canvases):
+            return self
+        by_name = {c.name: c for c in self.canvases}
+        done: dict[str, Canvas] = {}
+
+        def flat(canvas: Canvas, below: tuple[str, ...] = ()) -> Canvas:
+            if canvas.over is None or canvas.name in done:
+                return done.get(canvas.name, canvas)
+            if canvas.over not in by_name or canvas.name in below:
+                why = "names no canvas" if canvas.over not in by_name else "makes a loop of layers"
+                raise InputError(
+                    f"canvas {canvas.name!r} is over {canvas.over!r}, which {why}",
+                    path=canvas.file or self.path,
+                    line=canvas.line,
+                )
+            base = flat(by_name[canvas.over], (*below, canvas.name))
+            shown = composite_paint(
+                np.array(canvas.linear), np.array(base.linear), 1.0, canvas.opacity, pipeline
+            )
+            r, g, b = (float(v) for v in shown)
+            done[canvas.name] = replace(
+                canvas,
+                color=f"color(srgb-linear {r!r} {g!r} {b!r})",
+                exact=None,
+                mode=canvas.mode or infer_mode(shown),
+                over=None,
+                opacity=1.0,
+                stack=f"{canvas.opacity:.0%} {canvas.color} over {canvas.over}",
+            )
+            return done[canvas.name]
+
+        return replace(self, canvases=tuple(flat(c) for c in self.canvases))
 
 
 @dataclass(frozen=True)

@@ -613,6 +613,7 @@ def audit(
     '#ec5a00'
     """
     check_pipeline(iconset, pipeline, alpha)
+    theme = theme.flattened(pipeline)  # translucent layers composited as the pipeline draws
     if alpha is not None:
         iconset = iconset.with_alpha(alpha)
     problems = () if paints is None else paints.problems

@@ -135,9 +135,11 @@ def test_manifest_palette_colours_follow_the_manifests_policy(tmp_path) -> None:
 def test_check_reports_each_moved_colour_in_json_table_and_markdown(tmp_path) -> None:
     report = check_project(
         ProjectConfig(
-            themes=tuple([_theme(tmp_path)]), iconsets=tuple([_manifest(tmp_path)]), policy=Policy()
-        ),
-        gamut="map",
+            themes=(_theme(tmp_path),),
+            iconsets=(_manifest(tmp_path),),
+            policy=Policy(),
+            gamut="map",
+        )
     )
     assert {(n.token, n.mode) for n in report.gamut} == {
         ("canvases[2].color", "wide"),

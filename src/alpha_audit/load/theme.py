@@ -24,7 +24,8 @@ __all__ = ["MAX_CANVASES", "load_theme", "theme_from_doc"]
 
 MAX_CANVASES = 4096
 _THEME_KEYS = ("name", "threshold", "canvases", "description", "source", "pipeline", "gamut")
-_CANVAS_KEYS = ("name", "color", "mode")
+_CANVAS_KEYS = ("name", "color", "mode", "over")
+MAX_LAYERS = 8  # canvases stacked on one another (a surface, a hover tint ...)
 
 
 def load_theme(path: str | Path, *, gamut: GamutPolicy | None = None) -> Theme:
@@ -41,6 +42,42 @@ def load_theme(path: str | Path, *, gamut: GamutPolicy | None = None) -> Theme:
     except PathRefused as err:
         raise InputError(str(err), path=path) from err
     return theme_from_doc(load_yaml(path), gamut=gamut)
+
+
+def read_layer_color(
+    doc: YamlDoc, keys: tuple[str | int, ...], value: object, gamut: GamutPolicy
+) -> tuple[str, float]:
+    """A layer's colour and its own alpha (``rgb(9 105 218 / 0.08)``, ``#0969da14`` ...)."""
+    from alpha_audit.color import parse_css_color
+    from alpha_audit.errors import ColorSyntaxError
+
+    if not isinstance(value, str):
+        raise doc.error(keys, f"expected a colour string, got {type(value).__name__}")
+    try:
+        parsed = parse_css_color(value, gamut=gamut, allow_alpha=True)
+    except ColorSyntaxError as exc:
+        raise doc.error(keys, exc.message) from exc
+    if not 0.0 < parsed.alpha <= 1.0:
+        raise doc.error(keys, f"a layer's alpha must be above 0, got {parsed.alpha:g}")
+    return parsed.css, parsed.alpha
+
+
+def _check_layers(doc: YamlDoc, canvases: list[Canvas]) -> None:
+    """Every layer is over a canvas of the theme, with no loop and at most MAX_LAYERS deep."""
+    by_name = {c.name: (i, c) for i, c in enumerate(canvases)}
+    for i, canvas in enumerate(canvases):
+        depth, seen, at = 0, {canvas.name}, canvas
+        while at.over is not None:
+            keys = ("canvases", i, "over")
+            if at.over not in by_name:
+                raise doc.error(keys, f"{at.over!r} names no canvas of this theme")
+            at = by_name[at.over][1]
+            depth += 1
+            if at.name in seen or depth > MAX_LAYERS:
+                raise doc.error(
+                    keys, f"layers over {canvas.over!r} loop or stack deeper than {MAX_LAYERS}"
+                )
+            seen.add(at.name)
 
 
 def theme_from_doc(doc: YamlDoc, *, gamut: GamutPolicy | None = None) -> Theme:
@@ -73,9 +110,16 @@ def theme_from_doc(doc: YamlDoc, *, gamut: GamutPolicy | None = None) -> Theme:
         check_keys(doc, keys, item, _CANVAS_KEYS)
         if "color" not in item:
             raise doc.error(keys, 'canvas has no color; add color: "#rrggbb"')
-        color = read_color(
-            doc, (*keys, "color"), item["color"], gamut=policy, adjusted=adjusted, owner=name
-        )
+        over = item.get("over")
+        opacity = 1.0
+        if over is not None:
+            # A translucent layer over another canvas: its colour carries its alpha.
+            over = read_name(doc, (*keys, "over"), over)
+            color, opacity = read_layer_color(doc, (*keys, "color"), item["color"], policy)
+        else:
+            color = read_color(
+                doc, (*keys, "color"), item["color"], gamut=policy, adjusted=adjusted, owner=name
+            )
         cname = read_name(doc, (*keys, "name"), item.get("name", color))
         if cname in seen:
             raise doc.error(
@@ -87,7 +131,8 @@ def theme_from_doc(doc: YamlDoc, *, gamut: GamutPolicy | None = None) -> Theme:
         mode = item.get("mode")
         if mode is not None and mode not in ("light", "dark"):
             raise doc.error((*keys, "mode"), f"{mode!r} is not a mode; use light or dark (or omit)")
-        canvases.append(Canvas(cname, color, mode, line=doc.line(keys)))
+        canvases.append(Canvas(cname, color, mode, line=doc.line(keys), over=over, opacity=opacity))
+    _check_layers(doc, canvases)
     pipeline = read_pipeline(doc, ("pipeline",), data["pipeline"]) if "pipeline" in data else None
     return Theme(
         name,

@@ -45,7 +45,8 @@ def check_to_dict(result: AuditResult, base: Path | None = None) -> dict[str, An
             "name": theme.name,
             "path": display_path(theme.path, base) if theme.path else None,
             "canvases": [
-                {"name": c.name, "color": c.color, "mode": c.mode} for c in theme.canvases
+                {"name": c.name, "color": c.color, "mode": c.mode, "stack": c.stack}
+                for c in theme.canvases
             ],
         },
         "iconset": {

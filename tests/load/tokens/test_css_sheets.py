@@ -166,10 +166,13 @@ def test_translucency_forms_are_parsed_and_kept(tmp_path: Path, value: str, alph
     assert _hex(parsed.css) == "#0062ba"  # the colour itself, before its own alpha
     themes = _themes(tmp_path, text, canvases=("bg", "bg.hover"))
     (mode,) = themes.modes
-    assert [c.name for c in mode.theme.canvases] == ["bg"]
+    # Audited as a layer over the mode's first opaque canvas (issue 20, item 4).
+    bg, hover = mode.theme.canvases
+    assert (bg.name, hover.name, hover.over) == ("bg", "bg.hover", "bg")
+    assert hover.opacity == pytest.approx(alpha) and hover.color == "#0062ba"
     kept = mode.translucent["bg.hover"]
     assert kept.mode == "default" and kept.parsed.alpha == pytest.approx(alpha)
-    assert any("translucent canvas tokens are not audited yet" in n for n in themes.notes)
+    assert any("bg.hover (0.08) audited as layers over bg" in n for n in themes.notes)
 
 
 def test_a_translucent_icon_colour_is_an_error(tmp_path: Path) -> None:

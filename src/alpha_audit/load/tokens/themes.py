@@ -25,7 +25,7 @@ import fnmatch
 import json
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -110,9 +110,9 @@ class TokenColor:
 class TranslucentToken:
     """A selected canvas token with its own alpha below 1: a surface over the mode's canvas.
 
-    Kept, not audited yet: ``parsed.alpha`` is the token's alpha and
-    ``parsed.encoded`` its colour; ``mode`` the mode it belongs to, whose
-    opaque canvases (:attr:`TokenMode.theme`) are what it sits on.
+    ``parsed.alpha`` is the token's alpha and ``parsed.encoded`` its colour;
+    ``mode`` the mode it belongs to.  It is audited as a layer
+    (:class:`~alpha_audit.model.Canvas` ``over``) on the mode's first opaque canvas.
     """
 
     token: Token
@@ -234,9 +234,9 @@ def _parse_all(
 def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
     """Build a theme and icon colours per mode from resolved tokens.
 
-    A translucent canvas token (a surface or hover layer: alpha below 1) is
-    not a canvas of its own yet: it is kept in :attr:`TokenMode.translucent`
-    with its alpha and its mode's opaque canvases, and a note says so.  A
+    A translucent canvas token (a surface or hover layer: alpha below 1) is a
+    layer over the mode's first opaque canvas (composited in the audit's
+    pipeline), kept in :attr:`TokenMode.translucent` too, and a note says so.  A
     translucent icon colour is an error (the coefficient belongs in
     ``$extensions``).  A CSS mode whose selected colours equal an earlier
     mode's is audited once, with a note.
@@ -260,6 +260,7 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
         canvases: list[Canvas] = []
         colors: dict[str, TokenColor] = {}
         translucent: dict[str, TranslucentToken] = {}
+        layers: list[Canvas] = []
         for path, key, token, is_canvas, is_color in entries:
             parsed = seen[key]
             if parsed.alpha < 1.0:
@@ -272,6 +273,19 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
                         path=path,
                     )
                 translucent[path] = TranslucentToken(token, parsed, name)
+                if is_canvas:  # a surface or hover layer: audited over the mode's canvas
+                    layers.append(
+                        Canvas(
+                            path,
+                            parsed.css,
+                            config.modes.get(name),
+                            line=token.line,
+                            file=token.file,
+                            span=token.span,
+                            over="",  # set below: the mode's first opaque canvas
+                            opacity=parsed.alpha,
+                        )
+                    )
                 continue
             if parsed.adjusted:
                 adjusted.append((name, token, parsed))
@@ -293,13 +307,13 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
                 f"mode {name!r} has no opaque token matching canvases {', '.join(config.canvases)}",
                 path=source.source,
             )
-        if translucent:
-            shown = ", ".join(
-                f"{p} ({t.parsed.alpha:.3g})" for p, t in list(translucent.items())[:3]
-            )
-            more = f" and {len(translucent) - 3} more" if len(translucent) > 3 else ""
+        if layers:
+            base = canvases[0].name
+            canvases += [replace(layer, over=base) for layer in layers]
+            shown = ", ".join(f"{c.name} ({c.opacity:.3g})" for c in layers[:3])
+            more = f" and {len(layers) - 3} more" if len(layers) > 3 else ""
             notes.append(
-                f"mode {name}: translucent canvas tokens are not audited yet: {shown}{more}"
+                f"mode {name}: translucent canvases {shown}{more} audited as layers over {base}"
             )
         signature = (
             tuple((c.name, c.color, c.mode) for c in canvases),
