@@ -12,7 +12,10 @@ page, ``reproduce --out`` results and figures, and ``suggest --apply``.
   temporary files are removed and nothing is left behind.
 - A target that is a symbolic link is replaced by the new file (``os.replace``
   renames over the link), never written *through*, so a link in a checkout
-  cannot aim our output at a file elsewhere.
+  cannot aim our output at a file elsewhere; and a target named inside the
+  project (the folder with ``.git``) must stay inside it once every folder on
+  the way is resolved, so a *folder* committed as a link (``reports -> /etc``)
+  cannot either.  A path given outside the project is the user's choice.
 - ``OSError`` while writing (a full disk, a file-size limit) is a
   :class:`~alpha_audit.errors.UsageError` naming the file, not a traceback.
 """
@@ -68,9 +71,19 @@ def check_targets(targets: Iterable[str | Path], *, overwrite: bool) -> None:
     (without ``overwrite``), is not a regular file, sits in a missing folder,
     or is given twice (the same file reached by two names counts too).
     """
+    from alpha_audit.load.paths import project_root
+
     seen: dict[Path, Path] = {}
+    root = Path(os.path.abspath(project_root(Path.cwd())))
     for given in targets:
         target = Path(given)
+        folder = Path(os.path.abspath(_folder(target)))
+        if folder.is_relative_to(root) and not folder.resolve().is_relative_to(root.resolve()):
+            raise UsageError(
+                f"folder {_folder(target)} leads outside the project ({folder.resolve()}) "
+                "through a link; refusing to write there",
+                path=target,
+            )
         key = _folder(target).resolve() / target.name
         if key in seen:
             raise UsageError(f"is the target of two outputs (also {seen[key]})", path=target)

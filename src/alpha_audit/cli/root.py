@@ -16,6 +16,7 @@ Command modules never import this module (they import :mod:`.console`,
 
 from __future__ import annotations
 
+import errno
 import re
 import traceback
 from collections.abc import Sequence
@@ -39,6 +40,7 @@ from alpha_audit.cli.status import ExitStatus
 from alpha_audit.cli.suggest import suggest_command
 from alpha_audit.cli.themes import themes_command
 from alpha_audit.errors import AlphaAuditError
+from alpha_audit.safe_text import safe_text
 
 __all__ = ["ExitStatus", "app", "main"]
 
@@ -109,6 +111,14 @@ MAX_REASON = 200
 """Characters of an unexpected exception's text kept in its one-line report."""
 
 
+# Errors of the environment a write meets (errno names): the output, not alpha-audit, failed.
+_WRITE_ERRORS = frozenset(
+    getattr(errno, n)
+    for n in ("ENOSPC", "EIO", "EPIPE", "EBADF", "EFBIG", "EDQUOT", "EROFS")
+    if hasattr(errno, n)
+)
+
+
 def _classify(exc: Exception) -> tuple[ExitStatus, str]:
     """The exit code ``exc`` means and the one line that says why."""
     if isinstance(exc, AlphaAuditError):
@@ -122,7 +132,10 @@ def _classify(exc: Exception) -> tuple[ExitStatus, str]:
         return ExitStatus.INPUT_ERROR, "input nested too deeply (Python's recursion limit)"
     if isinstance(exc, OSError) and exc.filename is not None:
         # The environment refused (permissions, a full disk): not a bug, and the file says where.
-        return ExitStatus.INPUT_ERROR, f"{exc.filename}: {exc.strerror or exc}"
+        return ExitStatus.INPUT_ERROR, safe_text(f"{exc.filename}: {exc.strerror or exc}")
+    if isinstance(exc, OSError) and exc.errno in _WRITE_ERRORS:
+        # Writing a report to stdout failed (a full disk, a closed or broken stream).
+        return ExitStatus.INPUT_ERROR, f"cannot write the output: {exc.strerror or exc}"
     reason = " ".join(str(exc).split("\n", 1)[0].split())[:MAX_REASON]
     return ExitStatus.INTERNAL_ERROR, (
         "internal error (a bug in alpha-audit, please report it): "

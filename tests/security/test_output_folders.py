@@ -1,0 +1,65 @@
+"""Issue 21: an output folder committed as a link cannot aim a report outside the checkout."""
+
+from __future__ import annotations
+
+import errno
+import os
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from alpha_audit.cli import app
+from alpha_audit.cli.root import _classify
+from alpha_audit.cli.status import ExitStatus
+
+
+@pytest.fixture
+def project(tmp_path: Path) -> Path:
+    (tmp_path / "proj" / ".git").mkdir(parents=True)
+    (tmp_path / "outside").mkdir()
+    (tmp_path / "proj" / "reports").symlink_to("../outside")
+    (tmp_path / "proj" / "deep").mkdir()
+    (tmp_path / "proj" / "deep" / "out").symlink_to("../../outside")
+    return tmp_path
+
+
+def _run(args: list[str], cwd: Path):  # type: ignore[no-untyped-def]
+    old = Path.cwd()
+    os.chdir(cwd)
+    try:
+        return CliRunner().invoke(app, args)
+    finally:
+        os.chdir(old)
+
+
+@pytest.mark.parametrize(
+    "target", ["reports/r.json", "deep/out/r.json", "reports/../reports/r.json"]
+)
+def test_a_linked_folder_leading_out_is_refused_before_anything_is_written(
+    project: Path, target: str
+) -> None:
+    result = _run(["check", "paper16", "vibrant", "-f", "json", "-o", target], project / "proj")
+    assert result.exit_code == ExitStatus.INPUT_ERROR
+    assert "leads outside the project" in result.stderr and result.stderr.count("\n") == 1
+    assert list((project / "outside").iterdir()) == []
+
+
+def test_a_path_given_outside_the_project_is_the_users_choice(project: Path) -> None:
+    target = project / "outside" / "r.json"
+    result = _run(
+        ["check", "paper16", "vibrant", "-f", "json", "-o", str(target)], project / "proj"
+    )
+    assert result.exit_code == 0, result.output
+    assert target.is_file()
+
+
+@pytest.mark.parametrize("code", [errno.ENOSPC, errno.EIO, errno.EPIPE])
+def test_a_failing_output_stream_is_exit_2_not_a_bug(code: int) -> None:
+    status, line = _classify(OSError(code, os.strerror(code)))
+    assert status is ExitStatus.INPUT_ERROR and line.startswith("cannot write the output")
+
+
+def test_a_file_name_in_an_os_error_is_shown_escaped() -> None:
+    status, line = _classify(PermissionError(13, "Permission denied", "a\x1b]52;c;x\x07b"))
+    assert status is ExitStatus.INPUT_ERROR and "\x1b" not in line and "\x07" not in line
