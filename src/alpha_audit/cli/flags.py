@@ -25,6 +25,7 @@ FLAGS: dict[str, str] = {
     "icons": "--icons",
     "gamut": "--gamut",
     "engines": "--engine",
+    "pipeline": "--pipeline",
 }
 """Backticked phrase in a library message -> what the command line says instead."""
 

@@ -1,19 +1,22 @@
 """What ``export`` writes: every icon colour's displayed output per mode and canvas.
 
-The numbers are the audit's: ``composite_extended`` then ``to_8bit`` on the
-same linear float64 colours, so every exported hex equals ``check``'s
-``output`` for that icon colour and canvas, to the 8-bit code.
+The numbers are the audit's own rows: each mode's icon colours are audited on
+its canvases (:func:`~alpha_audit.rows.audit`, each colour a ``currentColor``
+paint, the ``linear`` pipeline whose extended coefficient only an exported
+colour can ship), and every exported hex is that row's ``output``.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
-from alpha_audit.color import composite_extended, srgb_decode, to_8bit
 from alpha_audit.errors import UsageError
 from alpha_audit.load.tokens.themes import GamutAdjustment, TokenThemes
+from alpha_audit.model import Icon, IconSet
+from alpha_audit.rows import audit
 
 __all__ = ["ExportCanvas", "ExportColor", "ExportMode", "ExportTable", "export_table"]
 
@@ -85,10 +88,7 @@ def export_table(
     """
     modes = []
     for mode in themes.modes:
-        canvases = mode.theme.canvases
-        shorts = _short_names([c.name for c in canvases])
-        backgrounds = mode.theme.backgrounds  # (m, 3)
-        out_colors = []
+        icons = []
         for path, color in mode.colors.items():
             a = (
                 alpha
@@ -102,13 +102,20 @@ def export_table(
                     "project config (an icon manifest's alpha: is per icon, not per colour) "
                     "or pass `alpha`"
                 )
-            source = srgb_decode(color.parsed.array)
-            output = composite_extended(source[np.newaxis, :], backgrounds, a)
-            codes = to_8bit(output)
-            source_hex = _hex(to_8bit(source))
-            out_colors.append(
-                ExportColor(path, source_hex, float(a), tuple(_hex(c) for c in codes))
+            icons.append(Icon(path, Path(path), color.css, float(a), path))
+        result = audit(mode.theme, IconSet(mode.name, tuple(icons)))
+        canvases = result.theme.canvases  # layers flattened as the audit drew them
+        shorts = _short_names([c.name for c in canvases])
+        codes = result.output_codes  # (colours, canvases, 3): the rows' outputs
+        out_colors = [
+            ExportColor(
+                e.icon.name,
+                e.icon.color,
+                float(result.alpha[p]),
+                tuple(_hex(codes[p, j]) for j in range(len(canvases))),
             )
+            for p, e in enumerate(result.entries)
+        ]
         modes.append(
             ExportMode(
                 name=mode.name,
