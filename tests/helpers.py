@@ -25,3 +25,38 @@ def solid_paints(iconset, problems=(), sizes=None):  # type: ignore[no-untyped-d
         cov = (PaintCoverage(group, dict.fromkeys(sizes or iconset.sizes, solid)),)
         icons[icon.name] = IconPaints(icon.name, Path(icon.file), SvgPaints((paint,)), cov)
     return PaintSet(icons, tuple(problems))
+
+
+# -- an independent reference: the spec formulas written out, not alpha_audit's ---------
+
+
+def spec_decode(v):  # type: ignore[no-untyped-def]
+    """CSS Color 4 sRGB decode of encoded values in [0, 1]."""
+    import numpy as np
+
+    v = np.asarray(v, dtype=float)
+    return np.where(v <= 0.04045, v / 12.92, ((v + 0.055) / 1.055) ** 2.4)
+
+
+def spec_hex(text: str):  # type: ignore[no-untyped-def]
+    """``#rrggbb`` as linear sRGB."""
+    import numpy as np
+
+    return spec_decode(np.array([int(text[k : k + 2], 16) for k in (1, 3, 5)]) / 255.0)
+
+
+def spec_ship(linear):  # type: ignore[no-untyped-def]
+    """What an 8-bit screen shows: CSS Color 4 encode, x255, round half to even, decode."""
+    import numpy as np
+
+    v = np.clip(np.asarray(linear, dtype=float), 0.0, 1.0)
+    encoded = np.where(v <= 0.0031308, 12.92 * v, 1.055 * v ** (1 / 2.4) - 0.055)
+    return spec_decode(np.rint(encoded * 255.0) / 255.0)
+
+
+def spec_contrast(a, b) -> float:  # type: ignore[no-untyped-def]
+    """WCAG 2.2 contrast of two linear colours (luminance 0.2126/0.7152/0.0722)."""
+    import numpy as np
+
+    la, lb = (float(np.dot(np.asarray(c, dtype=float), [0.2126, 0.7152, 0.0722])) for c in (a, b))
+    return (max(la, lb) + 0.05) / (min(la, lb) + 0.05)

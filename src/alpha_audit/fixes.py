@@ -150,8 +150,10 @@ def smallest_alpha_reaching(
 
     >>> # Linear grey 0.4 on white: 2.33:1 at alpha 1; darker with a > 1 (moved away from white).
     >>> rounded, exact = smallest_alpha_reaching([0.4] * 3, [[1.0, 1.0, 1.0]], 3.0)
-    >>> rounded, round(exact, 6)  # Y = 1 - 0.6 a reaches 0.3 near a = 7/6, in 8 bits
-    (1.167, 1.166667)
+    >>> # In float Y = 1 - 0.6 a reaches 0.3 at a = 7/6, but the 8-bit code shown there
+    >>> # gives 2.995:1; the next code, from a = 1.169440 on, gives 3.033:1.
+    >>> rounded, round(exact, 6)
+    (1.17, 1.16944)
     """
     s = np.asarray(source, dtype=np.float64).reshape(3)
     bgs = np.asarray(backgrounds, dtype=np.float64).reshape(-1, 3)

@@ -11,9 +11,10 @@ import pytest
 from typer.testing import CliRunner
 
 from alpha_audit.cli import app
-from alpha_audit.color import contrast_ratio, hex_to_linear, size_contrast
+from alpha_audit.color import contrast_ratio, hex_to_linear
 from alpha_audit.load.paints import isolate_paints
 from alpha_audit.load.svg import rasterize
+from helpers import spec_contrast, spec_hex, spec_ship
 
 runner = CliRunner()
 NS = 'xmlns="http://www.w3.org/2000/svg"'
@@ -70,7 +71,8 @@ def test_thirty_percent_disc_has_the_coverage_form_contrast(project: Path) -> No
     assert row["opacity"] == pytest.approx(0.3)
     cs, cb = hex_to_linear("#64748b"), np.ones(3)
     shown = 0.3 * np.clip(cb + 1.2 * (cs - cb), 0, 1) + 0.7 * cb
-    assert row["contrast"] == pytest.approx(float(contrast_ratio(shown, cb)), rel=1e-12)
+    assert row["contrast_float"] == pytest.approx(spec_contrast(shown, cb), rel=1e-12)
+    assert row["contrast"] == pytest.approx(spec_contrast(spec_ship(shown), cb), rel=1e-12)
 
 
 def test_size_contrast_is_lower_at_16_and_matches_an_independent_q50(project: Path) -> None:
@@ -80,8 +82,10 @@ def test_size_contrast_is_lower_at_16_and_matches_an_independent_q50(project: Pa
         mask = rasterize(isolate_paints(STROKED.encode(), lambda p: True), size)
         q = np.sort(mask[mask > 0])
         q50 = q[np.argmax(np.cumsum(q) >= q.sum() / 2)]
-        expected = float(size_contrast(hex_to_linear("#64748b"), np.ones(3), 1.2, q50))
-        assert row["sizes"][str(size)]["contrast"] == pytest.approx(expected, abs=1e-6)
+        cs, cb = spec_hex("#64748b"), np.ones(3)
+        shown = q50 * np.clip(cb + 1.2 * (cs - cb), 0, 1) + (1 - q50) * cb  # as it ships
+        expected = spec_contrast(spec_ship(shown), cb)
+        assert row["sizes"][str(size)]["contrast"] == pytest.approx(expected, abs=1e-12)
     assert row["sizes"]["16"]["contrast"] < row["sizes"]["48"]["contrast"] <= row["contrast"]
 
 

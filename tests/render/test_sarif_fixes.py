@@ -123,8 +123,10 @@ def test_every_kind_of_fix_is_offered_at_its_target(failing: tuple[Path, dict[st
             line,
             rep["insertedContent"]["text"],
         )
-    # The override's alpha for wave, the set-wide alpha for leaf.
-    assert got[("wave", "set alpha to 1")] == ("  wave: {alpha: 1.3}", "1")
+    # The override's alpha for wave, the set-wide alpha for leaf.  Judged as it
+    # ships: navy on yellow shows code (0, 0, 208) up to a = 1.005 as at a = 1, and
+    # (0, 0, 209) from 1.0055 on (a lower contrast), so 1.005 is the largest safe alpha.
+    assert got[("wave", "set alpha to 1.005")] == ("  wave: {alpha: 1.3}", "1.005")
     leaf_alpha = next(v for (icon, d), v in got.items() if icon == "leaf" and "alpha" in d)
     assert leaf_alpha[0] == "alpha: 1.4   # set-wide" and float(leaf_alpha[1]) > 1.4
     # Colours: quotes as written (single stays single; a plain value gains double

@@ -388,7 +388,7 @@ class _Engine:
             lo_c = np.where(o > 0, (lo - (1.0 - o) * y_bg) / o, np.inf)
             hi_c = np.where(o > 0, (hi - (1.0 - o) * y_bg) / o, -np.inf)
         p, m = len(self.row_icon), len(self.canvases)
-        shape = (p, m, *([1] * extra), 3)
+        shape = (*floor.shape, 3)  # cells index every axis, sizes included
         s = np.broadcast_to(self.result.sources.reshape(p, 1, *([1] * extra), 3), shape)
         b = np.broadcast_to(self.backgrounds.reshape(1, m, *([1] * extra), 3), shape)
         bound, _ = first_in_luminance_band(s, b, lo_c, hi_c, ALPHA_LO, self.a_hi)
