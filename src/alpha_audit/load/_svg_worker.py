@@ -12,21 +12,38 @@ without importing alpha-audit (or numpy) in the worker.  In the worker:
   ``data:`` alike), so external images, stylesheets and ``<use>`` targets
   render as nothing.
 
-Protocol on stdin/stdout, all integers unsigned big-endian:
-request ``u32 n_sizes, n x u32 size, u32 n_bytes, bytes`` (``n_sizes = 0``
-ends the worker); reply, per size, ``u8 status, u32 n, n bytes`` where status
-0 carries ``size * size`` alpha bytes and status 1 a UTF-8 error message.
+Protocol on stdin/stdout, all integers unsigned big-endian: a request is one
+icon, ``u32 n_sizes, n_sizes x u32 size, u32 n_svgs``, then per SVG (one per
+paint group) ``u32 n_bytes, bytes`` (``n_sizes = 0`` ends the worker); the
+reply, per SVG and per size, ``u8 status, u32 n, n bytes`` where status 0
+carries ``size * size`` alpha bytes and status 1 a UTF-8 error message.  Each
+SVG is parsed once for all its sizes (:func:`render_alphas`).  Before the
+first reply the worker says it is ready (status 2, no bytes): a job's time
+counts from then, not from a start-up slowed by a busy machine.
+
+On Linux the pool starts one *fork server* (``--fork-server FD``): it imports
+and warms up the renderer once, then forks each worker on the pipes it is sent
+over a Unix socket (``S`` + worker id + the two descriptors), so a pool of
+workers costs one start-up instead of one each.  The server itself never
+reads an SVG; each forked worker drops the socket, dies with the server
+(``PR_SET_PDEATHSIG``) and installs the sandbox before reading its first
+request.  ``K`` + id kills and reaps a worker; ``R`` + id reaps one that
+ended and answers ``u32 id, i32 exit code`` (negative: the signal).
 """
 
 from __future__ import annotations
 
+import contextlib
 import os
+import signal
+import socket
 import struct
 import sys
-from typing import BinaryIO
+from collections.abc import Sequence
+from typing import Any, BinaryIO
 
 EMPTY_SVG = b'<svg xmlns="http://www.w3.org/2000/svg" width="1" height="1"/>'
-OK, FAILED = 0, 1
+OK, FAILED, READY = 0, 1, 2  # reply statuses; READY (with no bytes) once, before the first
 MAX_MESSAGE = 300  # characters of an error message sent back
 
 
@@ -42,10 +59,57 @@ def render_alpha(svg: bytes, size: int) -> bytes:
     output surface is always ``size x size`` (a non-square drawing is
     centred).  No URL is ever fetched.
     """
+    return _draw(_parse(svg), size)
+
+
+def render_alphas(svg: bytes, sizes: Sequence[int]) -> list[bytes | BaseException]:
+    """:func:`render_alpha` at every size from one parse; a failure is its exception.
+
+    cairosvg's drawing may change the tree it draws (``<use>`` drops its
+    ``x`` and ``y``, a ``<mask>`` becomes a group ...), so the tree is compared
+    with its state before the first drawing after each one and parsed again
+    when it changed: every size is drawn from a tree as the parser made it,
+    which is what a fresh parse per size would draw.
+    """
+    try:
+        tree = _parse(svg)
+    except Exception as exc:
+        return [exc] * len(sizes)
+    pristine = _state(tree)
+    out: list[bytes | BaseException] = []
+    for k, size in enumerate(sizes):
+        try:
+            out.append(_draw(tree, size))
+        except Exception as exc:
+            out.append(exc)
+        if k + 1 < len(sizes) and _state(tree) != pristine:
+            try:
+                tree = _parse(svg)
+            except Exception as exc:  # parsed once already: only a resource can fail now
+                return out + [exc] * (len(sizes) - k - 1)
+    return out
+
+
+def _parse(svg: bytes) -> Any:
     import cairosvg.parser
+
+    return cairosvg.parser.Tree(bytestring=svg, unsafe=False, url_fetcher=refuse_url)
+
+
+def _state(tree: Any) -> list[tuple[object, dict[str, object], int]]:
+    """Every node's tag, attributes and child count: what a drawing may have changed."""
+    out = []
+    stack = [tree]
+    while stack:
+        node = stack.pop()
+        out.append((node.tag, dict(node), len(node.children)))
+        stack.extend(node.children)
+    return out
+
+
+def _draw(tree: Any, size: int) -> bytes:
     import cairosvg.surface
 
-    tree = cairosvg.parser.Tree(bytestring=svg, unsafe=False, url_fetcher=refuse_url)
     surface = cairosvg.surface.PNGSurface(tree, None, 96, output_width=size, output_height=size)
     image = surface.cairo
     image.flush()
@@ -131,7 +195,9 @@ def _read_exact(stream: BinaryIO, n: int) -> bytes:
 
 
 def serve(stdin: BinaryIO, stdout: BinaryIO, memory_bytes: int | None = None) -> None:
-    """Answer render requests until a request with no sizes or end of input."""
+    """Say ready, then answer render requests until a request with no sizes or end of input."""
+    stdout.write(struct.pack(">BI", READY, 0))
+    stdout.flush()
     u32 = struct.Struct(">I")
     while True:
         try:
@@ -139,26 +205,101 @@ def serve(stdin: BinaryIO, stdout: BinaryIO, memory_bytes: int | None = None) ->
             if n_sizes == 0:
                 return
             sizes = struct.unpack(f">{n_sizes}I", _read_exact(stdin, 4 * n_sizes))
-            (n_bytes,) = u32.unpack(_read_exact(stdin, 4))
-            svg = _read_exact(stdin, n_bytes)
+            (n_svgs,) = u32.unpack(_read_exact(stdin, 4))
+            svgs = []
+            for _ in range(n_svgs):
+                (n_bytes,) = u32.unpack(_read_exact(stdin, 4))
+                svgs.append(_read_exact(stdin, n_bytes))
         except EOFError:
             return
         reply = bytearray()
-        for size in sizes:
-            try:
-                payload, status = render_alpha(svg, size), OK
-            except BaseException as exc:  # every failure of a hostile file is a reply
-                if isinstance(exc, KeyboardInterrupt | SystemExit):
-                    raise
-                reason = describe_failure(exc, memory_bytes)
-                payload, status = reason.encode("utf-8", "replace"), FAILED
-            reply += struct.pack(">BI", status, len(payload)) + payload
+        for svg in svgs:
+            for rendered in render_alphas(svg, sizes):
+                if isinstance(rendered, bytes):
+                    payload, status = rendered, OK
+                else:  # every failure of a hostile file is a reply
+                    reason = describe_failure(rendered, memory_bytes)
+                    payload, status = reason.encode("utf-8", "replace"), FAILED
+                reply += struct.pack(">BI", status, len(payload)) + payload
         stdout.write(reply)
         stdout.flush()
 
 
+def _warm_up() -> None:
+    """Import and exercise the renderer before any sandbox: imports open files, and
+    fontconfig loads for text."""
+    render_alpha(
+        b'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 4 4"><text>a</text>'
+        b'<image href="x.png" width="1" height="1"/><rect width="2" height="2"/></svg>',
+        4,
+    )
+
+
+def serve_forks(control: socket.socket, memory_bytes: int, cpu_seconds: int) -> None:
+    """The fork server: fork a sandboxed worker per ``S`` request until the socket closes."""
+    children: dict[int, int] = {}  # worker id -> pid
+    server = os.getpid()
+    while True:
+        try:
+            message, fds, _, _ = socket.recv_fds(control, 5, 2)
+        except OSError:
+            break
+        if len(message) != 5:
+            for fd in fds:
+                os.close(fd)
+            break  # end of input (or garbage): the pool is gone
+        op, worker = message[:1], struct.unpack(">I", message[1:])[0]
+        if op == b"S" and len(fds) == 2:
+            pid = os.fork()
+            if pid == 0:  # the worker
+                try:
+                    control.close()
+                    _become_worker(fds[0], fds[1], server, memory_bytes, cpu_seconds)
+                finally:
+                    os._exit(0)
+            children[worker] = pid
+        elif op in (b"K", b"R") and worker in children:
+            pid = children.pop(worker)
+            if op == b"K":
+                _kill(pid)
+            _, status = os.waitpid(pid, 0)
+            if op == b"R":
+                control.sendall(struct.pack(">Ii", worker, os.waitstatus_to_exitcode(status)))
+        for fd in fds:
+            os.close(fd)
+    for pid in children.values():
+        _kill(pid)
+        os.waitpid(pid, 0)
+
+
+def _kill(pid: int) -> None:
+    with contextlib.suppress(ProcessLookupError):
+        os.kill(pid, signal.SIGKILL)
+
+
+def _become_worker(
+    request_fd: int, reply_fd: int, server: int, memory_bytes: int, cpu_seconds: int
+) -> None:
+    """In a forked child: take the pipes as stdin/stdout, die with the server, sandbox, serve."""
+    os.dup2(request_fd, 0)
+    os.dup2(reply_fd, 1)
+    import ctypes
+
+    pr_set_pdeathsig = 1  # <linux/prctl.h>
+    ctypes.CDLL(None, use_errno=True).prctl(pr_set_pdeathsig, signal.SIGKILL)
+    if os.getppid() != server:  # the server ended before the line above
+        return
+    install_sandbox(memory_bytes, cpu_seconds)
+    with open(0, "rb", closefd=False) as stdin, open(1, "wb", closefd=False) as stdout:
+        serve(stdin, stdout, memory_bytes)
+
+
 def main() -> None:
-    """Worker entry point: ``python -I _svg_worker.py MEMORY_BYTES CPU_SECONDS``."""
+    """Worker entry point: ``python -I _svg_worker.py MEMORY CPU [--fork-server FD]``.
+
+    ``MEMORY`` is the address-space limit in bytes, ``CPU`` the CPU-time limit in
+    seconds; with ``--fork-server``, the workers are forked from this process.
+    """
     memory_bytes, cpu_seconds = int(sys.argv[1]), int(sys.argv[2])
     sys.setrecursionlimit(2000)
     # cairocffi looks cairo up with ctypes.util.find_library, which runs
@@ -167,12 +308,11 @@ def main() -> None:
     import ctypes.util
 
     ctypes.util.find_library = lambda name: None
-    # Warm up before sandboxing: imports open files, and fontconfig loads for text.
-    render_alpha(
-        b'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 4 4"><text>a</text>'
-        b'<image href="x.png" width="1" height="1"/><rect width="2" height="2"/></svg>',
-        4,
-    )
+    _warm_up()
+    if sys.argv[3:4] == ["--fork-server"]:
+        control = socket.socket(fileno=int(sys.argv[4]))
+        serve_forks(control, memory_bytes, cpu_seconds)
+        return
     install_sandbox(memory_bytes, cpu_seconds)
     serve(sys.stdin.buffer, sys.stdout.buffer, memory_bytes)
 

@@ -5,9 +5,14 @@ seconds (a ``<use>`` fan-out under cairosvg's 100k cap), some exhaust memory
 or crash the C library, and exceptions escape as many types.  So rendering
 happens in worker processes (:mod:`alpha_audit.load._svg_worker`) with
 resource limits and an audit hook; this module hands them jobs, enforces
-:attr:`RenderLimits.timeout` per icon by killing the worker, and turns every
-failure into a one-line reason.  Replies are parsed with fixed-size headers,
-never unpickled, so even a compromised worker can only send wrong pixels.
+:attr:`RenderLimits.timeout` per job (one icon: all its paint groups at all
+its sizes) by killing the worker, and turns every failure into a one-line
+reason.  Replies are parsed with fixed-size headers, never unpickled, so even
+a compromised worker can only send wrong pixels.
+
+On Linux the workers are forked from one fork server that imported the
+renderer once (a third of a second of CPU per worker saved; the pages it
+loaded are shared); elsewhere each worker is its own ``python -I`` process.
 """
 
 from __future__ import annotations
@@ -16,28 +21,31 @@ import contextlib
 import os
 import selectors
 import signal
+import socket
 import struct
 import subprocess
 import sys
 import time
 from collections import deque
 from collections.abc import Iterable, Iterator, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from types import TracebackType
-from typing import TYPE_CHECKING, TypeVar
+from typing import IO, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
 
-if TYPE_CHECKING:  # svg imports this module to render: a run-time import back would be a cycle
-    from alpha_audit.load.svg import RenderLimits
-
-__all__ = ["Outcome", "RenderPool"]
+__all__ = ["Outcome", "RenderLimits", "RenderPool"]
 
 T = TypeVar("T")
 
 _WORKER = Path(__file__).with_name("_svg_worker.py")
 _HEADER = struct.Struct(">BI")
+_READY = 2  # the status a worker sends, once, when its start-up is over
+# Seconds a worker may take to start (import the renderer) before it is given up:
+# independent of any input, so generous; a busy machine can take many seconds.
+_START_TIMEOUT = 60.0
 _MAX_MESSAGE_BYTES = 4096
 # Jobs sent to a worker before it answers the first: enough that it never waits
 # for this process between small jobs.  Their requests stay under a pipe's
@@ -45,79 +53,225 @@ _MAX_MESSAGE_BYTES = 4096
 _PIPELINE_JOBS = 4
 _PIPELINE_BYTES = 16 << 10
 
-# Per job: a reason string when the whole icon failed, else one mask or reason per size.
-Outcome = str | list[NDArray[np.uint8] | str]  # 8-bit coverage codes, alpha x 255
+# Per job: a reason string when the whole icon failed, else per SVG of the job
+# one mask or reason per size.
+Mask = NDArray[np.uint8]  # 8-bit coverage codes, alpha x 255
+Outcome = str | list[list[Mask | str]]
+
+
+@dataclass(frozen=True)
+class RenderLimits:
+    """Bounds on rendering one untrusted SVG (documented in docs/ci.md).
+
+    ``timeout`` is wall-clock seconds per icon for all its paint groups and
+    sizes; ``memory`` the worker's address-space limit in bytes; ``cpu`` the
+    worker's CPU-time backstop in seconds; ``workers`` how many render
+    processes run at once.
+    """
+
+    timeout: float = 5.0
+    memory: int = 1 << 30  # 1 GiB address space: Python + cairo need ~300 MiB
+    cpu: int = 600
+    workers: int = max(1, min(4, os.cpu_count() or 1))
+
+
+def _worker_env() -> dict[str, str]:
+    # HOME (and USER) set: without them the interpreter asks the account
+    # database (NSS, /etc/passwd) at start-up, before the guard is installed.
+    return {
+        "PATH": os.environ.get("PATH", ""),
+        "OPENBLAS_NUM_THREADS": "1",
+        "LC_ALL": "C",
+        "HOME": "/nonexistent",
+        "USER": "alpha-audit",
+        "LOGNAME": "alpha-audit",
+        "TZ": "UTC",  # no /etc/localtime
+    }
+
+
+class _ForkServer:
+    """The process the workers are forked from (Linux); see :mod:`._svg_worker`.
+
+    It imports the renderer once; each worker forked from it costs a few
+    milliseconds instead of a third of a second of imports.  Its only input is
+    this socket: it never reads an SVG.
+    """
+
+    def __init__(self, limits: RenderLimits) -> None:
+        ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_STREAM)
+        try:
+            self.proc = subprocess.Popen(
+                [
+                    sys.executable,
+                    "-I",
+                    str(_WORKER),
+                    str(limits.memory),
+                    str(limits.cpu),
+                    "--fork-server",
+                    str(theirs.fileno()),
+                ],
+                stdin=subprocess.DEVNULL,
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
+                env=_worker_env(),
+                cwd=_WORKER.parent,
+                pass_fds=(theirs.fileno(),),
+                process_group=0,  # so that pause() reaches the workers it forked too
+            )
+        finally:
+            theirs.close()
+        self.control = ours
+        self.control.settimeout(_CONTROL_TIMEOUT)
+        self.next_id = 0
+        self.paused = False
+
+    def spawn(self, request_fd: int, reply_fd: int) -> int:
+        """Fork a worker reading ``request_fd`` and writing ``reply_fd``; its id."""
+        self.next_id += 1
+        socket.send_fds(
+            self.control, [b"S" + struct.pack(">I", self.next_id)], [request_fd, reply_fd]
+        )
+        return self.next_id
+
+    def kill(self, worker: int) -> None:
+        with contextlib.suppress(OSError):
+            self.control.sendall(b"K" + struct.pack(">I", worker))
+
+    def exit_code(self, worker: int) -> int | None:
+        """Reap an ended worker: its exit code (negative: the signal), None if unknown."""
+        try:
+            self.control.sendall(b"R" + struct.pack(">I", worker))
+            reply = b""
+            while len(reply) < 8:
+                chunk = self.control.recv(8 - len(reply))
+                if not chunk:
+                    return None
+                reply += chunk
+        except OSError:
+            return None
+        answered, code = struct.unpack(">Ii", reply)
+        return code if answered == worker else None
+
+    def pause(self, paused: bool) -> None:
+        """Stop (or continue) the server and, with it, the workers still starting."""
+        if paused != self.paused and self.proc.poll() is None:
+            with contextlib.suppress(OSError):
+                os.killpg(self.proc.pid, signal.SIGSTOP if paused else signal.SIGCONT)
+        self.paused = paused
+
+    def close(self) -> None:
+        """End the server; the workers die with it (``PR_SET_PDEATHSIG``)."""
+        self.pause(False)
+        with contextlib.suppress(OSError):
+            self.control.close()
+        if self.proc.poll() is None:
+            self.proc.kill()
+        self.proc.wait()
 
 
 class _Worker:
     """One render process and the jobs sent to it, oldest (the one it is on) first."""
 
-    def __init__(self, limits: RenderLimits) -> None:
+    def __init__(self, limits: RenderLimits, server: _ForkServer | None = None) -> None:
         self.limits = limits
-        # HOME (and USER) set: without them the interpreter asks the account
-        # database (NSS, /etc/passwd) at start-up, before the guard is installed.
-        env = {
-            "PATH": os.environ.get("PATH", ""),
-            "OPENBLAS_NUM_THREADS": "1",
-            "LC_ALL": "C",
-            "HOME": "/nonexistent",
-            "USER": "alpha-audit",
-            "LOGNAME": "alpha-audit",
-            "TZ": "UTC",  # no /etc/localtime
-        }
-        self.proc = subprocess.Popen(
-            [sys.executable, "-I", str(_WORKER), str(limits.memory), str(limits.cpu)],
-            stdin=subprocess.PIPE,
-            stdout=subprocess.PIPE,
-            stderr=subprocess.DEVNULL,
-            env=env,
-            cwd=_WORKER.parent,
-        )
-        assert self.proc.stdin is not None and self.proc.stdout is not None
-        self.stdin, self.stdout = self.proc.stdin, self.proc.stdout
+        self.server = server
+        self.proc: subprocess.Popen[bytes] | None = None
+        self.stdin: IO[bytes]
+        self.stdout: IO[bytes]
+        if server is not None:
+            request_r, request_w = os.pipe()
+            reply_r, reply_w = os.pipe()
+            try:
+                self.id = server.spawn(request_r, reply_w)
+            except OSError:
+                os.close(request_w)
+                os.close(reply_r)
+                raise
+            finally:  # the worker holds its ends now (or there is no worker)
+                os.close(request_r)
+                os.close(reply_w)
+            self.stdin = open(request_w, "wb")  # noqa: SIM115  # closed in kill()
+            self.stdout = open(reply_r, "rb")  # noqa: SIM115  # closed in kill()
+        else:
+            self.proc = subprocess.Popen(
+                [sys.executable, "-I", str(_WORKER), str(limits.memory), str(limits.cpu)],
+                stdin=subprocess.PIPE,
+                stdout=subprocess.PIPE,
+                stderr=subprocess.DEVNULL,
+                env=_worker_env(),
+                cwd=_WORKER.parent,
+            )
+            assert self.proc.stdin is not None and self.proc.stdout is not None
+            self.stdin, self.stdout = self.proc.stdin, self.proc.stdout
         os.set_blocking(self.stdout.fileno(), False)
-        # (job, sizes, request bytes) in the order sent; the worker answers in that order.
-        self.jobs: deque[tuple[int, tuple[int, ...], int]] = deque()
+        # (job, svgs, sizes, request bytes) in the order sent; the worker answers in that order.
+        self.jobs: deque[tuple[int, int, tuple[int, ...], int]] = deque()
         self.started = 0.0  # when the oldest job began: the reply before it came then
+        self.spawned = time.monotonic()
+        self.ready = False  # it said so: its start-up is over
         self.buffer = bytearray()
+        self.ended: int | None = None  # exit code once known
 
     @property
     def pending_bytes(self) -> int:
-        return sum(n for _, _, n in self.jobs)
+        return sum(n for _, _, _, n in self.jobs)
 
     def deadline(self, timeout: float) -> float:
-        """When the job it is on runs out of time (each job gets ``timeout`` of its own)."""
+        """When the job it is on runs out of time (each job gets ``timeout`` of its own,
+        from when the worker was ready; its start-up gets :data:`_START_TIMEOUT`)."""
+        if not self.ready:
+            return self.spawned + max(timeout, _START_TIMEOUT)
         return self.started + timeout
 
-    def send(self, job: int, svg: bytes, sizes: tuple[int, ...]) -> None:
-        request = struct.pack(f">I{len(sizes)}II", len(sizes), *sizes, len(svg)) + svg
+    def send(self, job: int, request: bytes, svgs: int, sizes: tuple[int, ...]) -> None:
         self.stdin.write(request)
         self.stdin.flush()
         if not self.jobs:
             self.started = time.monotonic()
-        self.jobs.append((job, sizes, len(request)))
+        self.jobs.append((job, svgs, sizes, len(request)))
 
-    def replies(self) -> Iterator[tuple[int, list[NDArray[np.uint8] | str]]]:
+    def replies(self) -> Iterator[tuple[int, list[list[Mask | str]]]]:
         """``(job, masks)`` for each complete reply in the buffer; ValueError if malformed."""
+        if not self.ready:
+            if len(self.buffer) < _HEADER.size:
+                return
+            if _HEADER.unpack_from(self.buffer) != (_READY, 0):
+                raise ValueError("malformed reply")
+            del self.buffer[: _HEADER.size]
+            self.ready = True
+            self.started = time.monotonic()  # the first job starts now
         while self.jobs:
-            parsed = self._parse(self.jobs[0][1])
+            _, svgs, sizes, _ = self.jobs[0]
+            parsed = self._parse(svgs, sizes)
             if parsed is None:
                 return
             reply, used = parsed
             del self.buffer[:used]
-            job, _, _ = self.jobs.popleft()
+            job = self.jobs.popleft()[0]
             self.started = time.monotonic()  # the next job starts now
             yield job, reply
         if self.buffer:
             raise ValueError("malformed reply")
 
-    def _parse(self, sizes: tuple[int, ...]) -> tuple[list[NDArray[np.uint8] | str], int] | None:
+    def _parse(
+        self, svgs: int, sizes: tuple[int, ...]
+    ) -> tuple[list[list[Mask | str]], int] | None:
         """The first reply in the buffer and its length, None if incomplete."""
-        out: list[NDArray[np.uint8] | str] = []
+        out: list[list[Mask | str]] = []
         pos = 0
+        for _ in range(svgs):
+            masks, pos = self._parse_one(sizes, pos)
+            if masks is None:
+                return None
+            out.append(masks)
+        return out, pos
+
+    def _parse_one(self, sizes: tuple[int, ...], pos: int) -> tuple[list[Mask | str] | None, int]:
+        """One SVG's masks from ``pos``: (masks, end), or (None, pos) if incomplete."""
+        out: list[Mask | str] = []
         for size in sizes:
             if len(self.buffer) < pos + _HEADER.size:
-                return None
+                return None, pos
             status, n = _HEADER.unpack_from(self.buffer, pos)
             pos += _HEADER.size
             if (status == 0 and n != size * size) or (status == 1 and n > _MAX_MESSAGE_BYTES):
@@ -125,7 +279,7 @@ class _Worker:
             if status not in (0, 1):
                 raise ValueError("malformed reply")
             if len(self.buffer) < pos + n:
-                return None
+                return None, pos
             chunk = bytes(self.buffer[pos : pos + n])
             pos += n
             if status == 0:
@@ -137,16 +291,29 @@ class _Worker:
         return out, pos
 
     def kill(self) -> None:
-        if self.proc.poll() is None:
-            self.proc.kill()
-        self.proc.wait()
+        if self.proc is not None:
+            if self.proc.poll() is None:
+                self.proc.kill()
+            self.proc.wait()
+        elif self.server is not None and self.ended is None:
+            self.server.kill(self.id)
         for stream in (self.stdin, self.stdout):
             with contextlib.suppress(OSError):
                 stream.close()
 
+    def exit_code(self) -> int | None:
+        """The ended worker's exit code (negative: the signal), None if unknown."""
+        if self.proc is not None:
+            return self.proc.wait()
+        if self.ended is None and self.server is not None:
+            self.ended = self.server.exit_code(self.id)
+        return self.ended
+
     def death_reason(self) -> str:
         """Why the worker ended mid-job, as a problem message."""
-        code = self.proc.wait()
+        code = self.exit_code()
+        if code is None:
+            return "renderer stopped unexpectedly"
         if code < 0:
             try:
                 name = signal.Signals(-code).name
@@ -161,6 +328,21 @@ class _Worker:
         return f"renderer stopped unexpectedly (exit code {code})"
 
 
+# Seconds to wait for the fork server's answer about a worker that ended.
+_CONTROL_TIMEOUT = 10.0
+# Fork the workers from one server where fork is safe after loading cairo and
+# fontconfig (Linux; macOS's system libraries are not fork-safe).
+_FORK = sys.platform == "linux"
+
+
+def _request(svgs: Sequence[bytes], sizes: Sequence[int]) -> bytes:
+    """One job as the worker reads it (see :mod:`._svg_worker`)."""
+    parts = [struct.pack(f">I{len(sizes)}II", len(sizes), *sizes, len(svgs))]
+    for svg in svgs:
+        parts += [struct.pack(">I", len(svg)), svg]
+    return b"".join(parts)
+
+
 class RenderPool:
     """Up to ``workers`` render processes; use as a context manager."""
 
@@ -168,6 +350,8 @@ class RenderPool:
         self.limits = limits
         self.size = max(1, workers)
         self.workers: list[_Worker] = []
+        self._server: _ForkServer | None = None
+        self._no_server = not _FORK
 
     def __enter__(self) -> RenderPool:
         return self
@@ -178,11 +362,18 @@ class RenderPool:
         exc: BaseException | None,
         tb: TracebackType | None,
     ) -> None:
+        self.close()
+
+    def close(self) -> None:
+        """Stop every worker (and the fork server); the pool can start them again."""
         # Idle workers hold nothing worth a clean exit (their interpreter's
         # shutdown costs tens of ms each), and a busy one is abandoned anyway.
         for w in self.workers:
             w.kill()
         self.workers.clear()
+        if self._server is not None:
+            self._server.close()
+            self._server = None
 
     def prestart(self) -> RenderPool:
         """Start every worker now, without waiting for them.
@@ -192,24 +383,55 @@ class RenderPool:
         ready by the time it has work.
         """
         while len(self.workers) < self.size:
-            self.workers.append(_Worker(self.limits))
+            self.workers.append(self._new_worker())
         return self
+
+    def pause(self) -> None:
+        """Let the workers still starting up wait, using no CPU, until work comes.
+
+        For a caller that found nothing to render (every mask cached): the
+        start-up it began early would otherwise compete with its own work.
+        :meth:`stream` continues them.  Only forked workers can wait this way.
+        """
+        if self._server is not None and not any(w.jobs for w in self.workers):
+            self._server.pause(True)
+
+    def _new_worker(self) -> _Worker:
+        if not self._no_server:
+            try:
+                if self._server is None or self._server.proc.poll() is not None:
+                    if self._server is not None:
+                        self._server.close()
+                    self._server = _ForkServer(self.limits)
+                self._server.pause(False)
+                return _Worker(self.limits, self._server)
+            except OSError:
+                self._no_server = True  # no fork server here: one process per worker
+        return _Worker(self.limits)
 
     def _replace(self, worker: _Worker) -> None:
         worker.kill()
         self.workers.remove(worker)
 
-    def map(self, jobs: Sequence[tuple[bytes, tuple[int, ...]]]) -> list[Outcome]:
-        """Render every ``(svg bytes, sizes)`` job; outcomes in job order."""
+    def map(self, jobs: Sequence[tuple[Sequence[bytes], tuple[int, ...]]]) -> list[Outcome]:
+        """Render every ``(svgs, sizes)`` job; outcomes in job order."""
         results: list[Outcome] = ["not rendered"] * len(jobs)
-        for index, outcome in self.stream((i, svg, sizes) for i, (svg, sizes) in enumerate(jobs)):
+        for index, outcome in self.stream((i, svgs, sizes) for i, (svgs, sizes) in enumerate(jobs)):
             results[index] = outcome
         return results
 
     def stream(
-        self, jobs: Iterable[tuple[T, bytes, tuple[int, ...]]], *, ahead: int | None = None
+        self,
+        jobs: Iterable[tuple[T, Sequence[bytes], tuple[int, ...]]],
+        *,
+        ahead: int | None = None,
     ) -> Iterator[tuple[T, Outcome]]:
-        """Render ``(tag, svg bytes, sizes)`` jobs; ``(tag, outcome)`` as each one finishes.
+        """Render ``(tag, svgs, sizes)`` jobs; ``(tag, outcome)`` as each one finishes.
+
+        A job is one icon: its SVGs (one per paint group) are rendered at
+        every size by one worker within one :attr:`RenderLimits.timeout`, and
+        its outcome holds, per SVG, a mask or a reason per size (or one reason
+        for the whole job).
 
         Jobs are pulled from ``jobs`` only when needed, so a lazy source (one
         that parses each icon as it is asked for it) works while the workers
@@ -226,23 +448,28 @@ class RenderPool:
         """
         source = iter(jobs)
         exhausted = False
-        queued: deque[tuple[T, bytes, tuple[int, ...]]] = deque()
+        # (tag, request bytes, SVGs in it, sizes)
+        queued: deque[tuple[T, bytes, int, tuple[int, ...]]] = deque()
         limit = 2 * self.size if ahead is None else max(0, ahead)
         timeout = self.limits.timeout
-        sent: dict[int, tuple[T, bytes, tuple[int, ...]]] = {}  # by serial, until answered
+        sent: dict[int, tuple[T, bytes, int, tuple[int, ...]]] = {}  # by serial, until answered
         selector = selectors.DefaultSelector()
         for kept in self.workers:  # workers kept from an earlier call
             selector.register(kept.stdout, selectors.EVENT_READ, kept)
+        if self._server is not None:
+            self._server.pause(False)
 
         def pull() -> None:
             nonlocal exhausted
             try:
-                queued.append(next(source))
+                tag, svgs, sizes = next(source)
             except StopIteration:
                 exhausted = True
+                return
+            queued.append((tag, _request(svgs, sizes), len(svgs), tuple(sizes)))
 
         def start() -> _Worker:
-            worker = _Worker(self.limits)
+            worker = self._new_worker()
             self.workers.append(worker)
             selector.register(worker.stdout, selectors.EVENT_READ, worker)
             return worker
@@ -254,14 +481,14 @@ class RenderPool:
             if worker.jobs:
                 head, *rest = worker.jobs
                 done.append((sent.pop(head[0])[0], reason))
-                queued.extendleft(sent.pop(job) for job, _, _ in reversed(rest))
+                queued.extendleft(sent.pop(job) for job, _, _, _ in reversed(rest))
 
         def room(worker: _Worker, request: bytes) -> bool:
             if not worker.jobs:
                 return True
             return (
                 len(worker.jobs) < _PIPELINE_JOBS
-                and worker.pending_bytes + len(request) + 12 <= _PIPELINE_BYTES
+                and worker.pending_bytes + len(request) <= _PIPELINE_BYTES
             )
 
         try:
@@ -283,7 +510,7 @@ class RenderPool:
                     while queued and worker in self.workers and room(worker, queued[0][1]):
                         job = queued.popleft()
                         try:
-                            worker.send(serial, job[1], job[2])
+                            worker.send(serial, job[1], job[2], job[3])
                             sent[serial] = job
                         except (BrokenPipeError, OSError):
                             if worker.jobs:  # it died on an earlier job: seen when read
@@ -310,9 +537,6 @@ class RenderPool:
                         chunk = os.read(worker.stdout.fileno(), 1 << 20)
                     except BlockingIOError:
                         continue
-                    if not worker.jobs:  # an idle worker only speaks to say it died
-                        fail(worker, "renderer stopped unexpectedly", done)
-                        continue
                     if not chunk:
                         fail(worker, worker.death_reason(), done)
                         continue
@@ -325,7 +549,11 @@ class RenderPool:
                 now = time.monotonic()
                 for worker in [w for w in self.workers if w.jobs]:
                     if worker.deadline(timeout) <= now:
-                        reason = f"took longer than {timeout:g} s to render; refused"
+                        reason = (
+                            f"took longer than {timeout:g} s to render; refused"
+                            if worker.ready
+                            else f"renderer did not start within {_START_TIMEOUT:g} s"
+                        )
                         fail(worker, reason, done)
                 yield from done
         finally:
