@@ -17,6 +17,7 @@ from alpha_audit.cli.options import (
     MaxLossOption,
     MinDeltaEOption,
     MinSizeContrastOption,
+    NoCacheOption,
     ThemeArgument,
     ThresholdOption,
     in_range,
@@ -113,6 +114,7 @@ def suggest_command(
             help="With --apply, also replace alphas the manifest sets per icon.",
         ),
     ] = False,
+    no_cache: NoCacheOption = False,
 ) -> ExitStatus:
     """The largest alpha every coefficient in [1, alpha] keeps the gate policy for.
 

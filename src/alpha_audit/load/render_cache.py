@@ -39,7 +39,7 @@ import stat
 import struct
 import sys
 import time
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from pathlib import Path
 
 __all__ = [
@@ -68,9 +68,11 @@ _enabled: contextvars.ContextVar[bool] = contextvars.ContextVar(
 )
 
 
-def disable() -> None:
-    """Run without the cache from here on in this context (the CLI's ``--no-cache``)."""
-    _enabled.set(False)
+def disable() -> Callable[[], None]:
+    """Run without the cache from here on in this context (the CLI's ``--no-cache``);
+    the function returned turns it back on."""
+    token = _enabled.set(False)
+    return lambda: _enabled.reset(token)
 
 
 def default_cache_dir() -> Path:
