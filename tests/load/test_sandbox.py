@@ -79,7 +79,7 @@ def test_only_small_requests_are_sent_ahead(monkeypatch: pytest.MonkeyPatch) -> 
         out = dict(pool.stream(iter(jobs)))
     assert sorted(out) == list(range(12))
     assert all(not isinstance(o, str) and int(o[0][0].sum()) > 0 for o in out.values())
-    big_request, small_request = (len(sandbox._request([svg], (8,))) for svg in (big, small))
+    big_request, small_request = (len(sandbox._request([svg], (8,))[0]) for svg in (big, small))
     assert big_request > sandbox._PIPELINE_BYTES
     assert queued_at_send[big_request] == 0  # only ever sent to a worker with nothing queued
     assert queued_at_send[small_request] >= 1  # small ones were sent ahead

@@ -12,14 +12,27 @@ without importing alpha-audit (or numpy) in the worker.  In the worker:
   ``data:`` alike), so external images, stylesheets and ``<use>`` targets
   render as nothing.
 
-Protocol on stdin/stdout, all integers unsigned big-endian: a request is one
-icon, ``u32 n_sizes, n_sizes x u32 size, u32 n_svgs``, then per SVG (one per
-paint group) ``u32 n_bytes, bytes`` (``n_sizes = 0`` ends the worker); the
-reply, per SVG and per size, ``u8 status, u32 n, n bytes`` where status 0
-carries ``size * size`` alpha bytes and status 1 a UTF-8 error message.  Each
-SVG is parsed once for all its sizes (:func:`render_alphas`).  Before the
+Protocol on stdin/stdout, all integers unsigned big-endian.  A request is one
+icon: ``u8 kind, u32 n_sizes, n_sizes x u32 size`` (``n_sizes = 0`` ends the
+worker), then
+
+* kind 0 (*render*): ``u32 n_svgs``, then per SVG ``u32 n_bytes, bytes``; the
+  reply holds, per SVG and per size, an *entry* ``u8 status, u32 n, n bytes``
+  where status 0 carries ``size * size`` alpha bytes and status 1 a UTF-8
+  error message;
+* kind 1 (*paints*): ``u32 max_groups, u32 n_bytes, bytes``: the worker reads
+  the SVG's paints (:mod:`alpha_audit.load.paints`, within its counted bounds),
+  splits it into one SVG per paint group and renders each.  The reply is one
+  entry with the paints as JSON (status 0, :func:`~alpha_audit.load.paints.encode_paints`)
+  followed by ``u32 n_groups`` and, per group and per size, an entry as above;
+  or one entry saying why the paints could not be read: status 3 when the
+  paint reader refused the file (as it always will), 1 for any other failure.
+
+Each SVG is parsed once for all its sizes (:func:`render_alphas`).  Before the
 first reply the worker says it is ready (status 2, no bytes): a job's time
-counts from then, not from a start-up slowed by a busy machine.
+counts from then, not from a start-up slowed by a busy machine.  Reading the
+paints here keeps that work off the parent's critical path and inside the
+sandbox's time and memory limits.
 
 On Linux the pool starts one *fork server* (``--fork-server FD``): it imports
 and warms up the renderer once, then forks each worker on the pipes it is sent
@@ -43,7 +56,9 @@ from collections.abc import Sequence
 from typing import Any, BinaryIO
 
 EMPTY_SVG = b'<svg xmlns="http://www.w3.org/2000/svg" width="1" height="1"/>'
-OK, FAILED, READY = 0, 1, 2  # reply statuses; READY (with no bytes) once, before the first
+# Reply statuses: READY (with no bytes) once, before the first reply; REFUSED, a
+# paints job's file refused by the paint reader (the same file always is).
+OK, FAILED, READY, REFUSED = 0, 1, 2, 3
 MAX_MESSAGE = 300  # characters of an error message sent back
 
 
@@ -194,45 +209,78 @@ def _read_exact(stream: BinaryIO, n: int) -> bytes:
     return data
 
 
+RENDER, PAINTS = 0, 1  # request kinds
+
+
 def serve(stdin: BinaryIO, stdout: BinaryIO, memory_bytes: int | None = None) -> None:
-    """Say ready, then answer render requests until a request with no sizes or end of input."""
+    """Say ready, then answer requests until a request with no sizes or end of input."""
     stdout.write(struct.pack(">BI", READY, 0))
     stdout.flush()
     u32 = struct.Struct(">I")
     while True:
         try:
-            (n_sizes,) = u32.unpack(_read_exact(stdin, 4))
+            kind, n_sizes = struct.unpack(">BI", _read_exact(stdin, 5))
             if n_sizes == 0:
                 return
             sizes = struct.unpack(f">{n_sizes}I", _read_exact(stdin, 4 * n_sizes))
-            (n_svgs,) = u32.unpack(_read_exact(stdin, 4))
+            (count,) = u32.unpack(_read_exact(stdin, 4))  # SVGs, or the most paint groups
             svgs = []
-            for _ in range(n_svgs):
+            for _ in range(1 if kind == PAINTS else count):
                 (n_bytes,) = u32.unpack(_read_exact(stdin, 4))
                 svgs.append(_read_exact(stdin, n_bytes))
         except EOFError:
             return
         reply = bytearray()
+        if kind == PAINTS:
+            paints, svgs, problem, lasting = read_paints(svgs[0], count, memory_bytes)
+            if problem is not None:
+                reply += _entry(REFUSED if lasting else FAILED, problem.encode("utf-8", "replace"))
+            else:
+                reply += _entry(OK, paints) + u32.pack(len(svgs))
         for svg in svgs:
             for rendered in render_alphas(svg, sizes):
                 if isinstance(rendered, bytes):
-                    payload, status = rendered, OK
+                    reply += _entry(OK, rendered)
                 else:  # every failure of a hostile file is a reply
                     reason = describe_failure(rendered, memory_bytes)
-                    payload, status = reason.encode("utf-8", "replace"), FAILED
-                reply += struct.pack(">BI", status, len(payload)) + payload
+                    reply += _entry(FAILED, reason.encode("utf-8", "replace"))
         stdout.write(reply)
         stdout.flush()
 
 
+def _entry(status: int, payload: bytes) -> bytes:
+    return struct.pack(">BI", status, len(payload)) + payload
+
+
+def read_paints(
+    svg: bytes, max_groups: int, memory_bytes: int | None = None
+) -> tuple[bytes, list[bytes], str | None, bool]:
+    """``(paints JSON, one SVG per paint group, None, False)``, or ``(b"", [], why not,
+    lasting)`` where ``lasting`` says the paint reader refused the file (it always will:
+    its bounds are counted, not timed), not a resource limit of this process."""
+    from alpha_audit.errors import SvgError
+    from alpha_audit.load.paints import encode_paints, paints_and_isolates
+
+    try:
+        paints, variants = paints_and_isolates(svg, max_groups=max_groups)
+    except SvgError as exc:
+        reason = f"line {exc.line}: {exc.message}" if exc.line else exc.message
+        return b"", [], reason, True
+    except Exception as exc:  # a hostile file's every other failure is a reply too
+        return b"", [], describe_failure(exc, memory_bytes), False
+    return encode_paints(paints), variants, None, False
+
+
 def _warm_up() -> None:
-    """Import and exercise the renderer before any sandbox: imports open files, and
-    fontconfig loads for text."""
-    render_alpha(
+    """Import and exercise the renderer and the paint reader before any sandbox:
+    imports open files, and fontconfig loads for text."""
+    svg = (
         b'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 4 4"><text>a</text>'
-        b'<image href="x.png" width="1" height="1"/><rect width="2" height="2"/></svg>',
-        4,
+        b'<image href="x.png" width="1" height="1"/><rect width="2" height="2"/>'
+        b"<style>rect { fill: #f00 }</style></svg>"
     )
+    render_alpha(svg, 4)
+    read_paints(svg, 1)
 
 
 def serve_forks(control: socket.socket, memory_bytes: int, cpu_seconds: int) -> None:

@@ -2,29 +2,29 @@
 
 For every icon the paints are read (:mod:`alpha_audit.load.paints`) and grouped
 by colour and opacity; each group is rasterised alone, opaque, at every size
-(:func:`~alpha_audit.load.paints.isolate_paints`) by the same sandboxed
-worker pool as every other render -- one job per icon, so one time budget
-covers all its groups and sizes -- and its mask is reduced at once to
-:class:`~alpha_audit.color.coverage.CoverageStats`.  Icons are read lazily,
-as the pool asks for work, so parsing runs while the workers render, and masks
-are not kept unless asked for (:func:`paint_masks`): memory stays bounded by
-the pool whatever the number of icons, paints and sizes.
+(:func:`~alpha_audit.load.paints.isolate_paints`), and its mask is reduced at
+once to :class:`~alpha_audit.color.coverage.CoverageStats`.  Both happen in
+the sandboxed render workers (:class:`~alpha_audit.load.sandbox.ReadPaints`):
+one job per icon, so one time budget covers its reading and all its groups and
+sizes, and this process only reads files and reduces masks.  Masks are not
+kept unless asked for (:func:`paint_masks`): memory stays bounded by the pool
+whatever the number of icons, paints and sizes.
 
 What a render gave is kept in the render cache
 (:mod:`alpha_audit.load.render_cache`): an icon whose bytes, sizes and
-renderer are unchanged since an earlier run is neither parsed nor rendered.
+renderer are unchanged since an earlier run is neither read nor rendered
+again, nor is a file the paint reader refused (its bounds are counted, so it
+always will).
 """
 
 from __future__ import annotations
 
 import contextlib
 import hashlib
-import json
 import math
-import re
 import struct
 import zlib
-from collections.abc import Callable, Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -33,9 +33,9 @@ from numpy.typing import NDArray
 
 from alpha_audit.color.coverage import CoverageStats, coverage_stats
 from alpha_audit.errors import SvgError
-from alpha_audit.load.paints import CURRENT_COLOR, Paint, PaintGroup, SvgPaints, Unaudited
+from alpha_audit.load.paints import PaintGroup, SvgPaints, decode_paints, encode_paints
 from alpha_audit.load.render_cache import RenderCache, entry_key, open_default
-from alpha_audit.load.sandbox import RenderLimits, RenderPool
+from alpha_audit.load.sandbox import PaintsReply, ReadPaints, RenderLimits, RenderPool
 from alpha_audit.load.svg import IconProblem, read_svg
 
 __all__ = [
@@ -196,6 +196,7 @@ class _Measured:
     failure: str | None = None
     cached_paints: bool = False
     rendered: dict[int, tuple[Mask, ...]] = field(default_factory=dict)  # this run, per size
+    refused: str | None = None  # why the paint reader refused it, found this run
 
 
 def _measure(
@@ -224,11 +225,17 @@ def _measure(
             continue
         todo.append(_Measured(index, name, path, hashlib.sha256(data).digest(), data))
     try:
+        unread = len(early)
         if store is not None:
             _from_cache(store, todo, sizes, keep_masks)
-        missing = [m for m in todo if m.stats is None or len(m.stats) < len(sizes)]
-        if progress is not None:
-            for _ in range(len(early) + len(todo) - len(missing)):
+        for m in todo:
+            if m.refused is not None:  # refused by the paint reader in an earlier run
+                early[m.index] = IconProblem(m.name, m.path, m.refused)
+        missing = [
+            m for m in todo if m.refused is None and (m.stats is None or len(m.stats) < len(sizes))
+        ]
+        if progress is not None:  # icons unread, refused before or all cached: done now
+            for _ in range(unread + len(todo) - len(missing)):
                 progress()
         if missing:
             _render(missing, sizes, limits, pool, keep_masks, progress, early)
@@ -266,45 +273,36 @@ def _render(
     progress: Callable[[], None] | None,
     early: dict[int, IconProblem],
 ) -> None:
-    """Parse and render the icons the cache did not have, one job per icon."""
-    from alpha_audit.load.paints import paints_and_isolates
-
-    Job = tuple[tuple[_Measured, tuple[int, ...]], list[bytes], tuple[int, ...]]
-
-    def jobs() -> Iterator[Job]:
-        """Each icon parsed and split into paint groups only when the pool asks for work."""
-        for m in missing:
-            try:
-                paints, variants = paints_and_isolates(
-                    m.data, path=m.path, max_groups=MAX_PAINT_GROUPS
-                )
-            except SvgError as exc:
-                early[m.index] = IconProblem(m.name, m.path, _with_line(exc))
-                if progress is not None:
-                    progress()
-                continue
-            m.paints, m.groups = paints, paints.groups()
-            todo = tuple(s for s in sizes if m.stats is None or s not in m.stats)
-            if not variants:  # nothing the audit can measure: no render
-                m.rendered = {s: () for s in sizes}
-                _keep(m, m.rendered, keep_masks)
-                if progress is not None:
-                    progress()
-                continue
-            yield (m, todo), variants, todo
-
+    """Read and render the icons the cache did not have: one job per icon, its paints
+    read in the worker (off this process's path, inside the sandbox's limits)."""
+    jobs = (
+        ((m, todo), ReadPaints(m.data, MAX_PAINT_GROUPS), todo)
+        for m in missing
+        for todo in [tuple(s for s in sizes if m.stats is None or s not in m.stats)]
+    )
     workers = max(1, min(limits.workers, len(missing)))
     with contextlib.nullcontext(pool) if pool else RenderPool(limits, workers=workers) as used:
         used.size = workers
-        for (m, todo), outcome in used.stream(jobs()):
+        for (m, todo), outcome in used.stream(jobs):
             if progress is not None:
                 progress()
-            if isinstance(outcome, str):
+            if isinstance(outcome, str):  # out of time, crashed ...
                 m.failure = outcome
                 continue
+            if not isinstance(outcome, PaintsReply):
+                raise TypeError(f"a ReadPaints job answered {type(outcome).__name__}")
+            if outcome.problem is not None:  # the file's paints could not be read
+                early[m.index] = IconProblem(m.name, m.path, outcome.problem)
+                m.refused = outcome.problem if outcome.lasting else None
+                continue
+            paints = decode_paints(outcome.paints)
+            if paints is None or len(paints.groups()) != len(outcome.masks):
+                m.failure = "renderer sent a malformed reply; refused"
+                continue
+            m.paints, m.groups = paints, paints.groups()
             rendered: dict[int, tuple[Mask, ...]] = {}
             for k, size in enumerate(todo):
-                per_group = [masks[k] for masks in outcome]
+                per_group = [masks[k] for masks in outcome.masks]
                 failure = next((r for r in per_group if isinstance(r, str)), None)
                 if failure is not None:
                     m.failure = failure
@@ -327,7 +325,6 @@ def _keep(m: _Measured, rendered: dict[int, tuple[Mask, ...]], keep_masks: bool)
 
 # --- the render cache's entries ---------------------------------------------------------------
 
-_HEX = re.compile(r"#[0-9a-f]{6}")
 _STATS = struct.Struct(">dddI")
 
 
@@ -336,13 +333,21 @@ def _from_cache(
 ) -> None:
     """Fill in what the cache has: each icon's paints, then its masks' statistics per size."""
     paint_keys = {m.index: entry_key("paints", m.digest) for m in todo}
-    found = store.get(paint_keys.values())
+    refused_keys = {m.index: entry_key("refused", m.digest) for m in todo}
+    found = store.get([*paint_keys.values(), *refused_keys.values()])
     known = []
     for m in todo:
+        refusal = found.get(refused_keys[m.index])
+        if refusal is not None:
+            m.refused = _decode_refusal(refusal)
+            if m.refused is not None:
+                m.cached_paints = True  # nothing to write back
+                continue
+            store.forget(refused_keys[m.index])
         value = found.get(paint_keys[m.index])
         if value is None:
             continue
-        paints = _decode_paints(value)
+        paints = decode_paints(value)
         if paints is None or len(paints.groups()) > MAX_PAINT_GROUPS:
             store.forget(paint_keys[m.index])
             continue
@@ -372,52 +377,23 @@ def _from_cache(
 def _to_cache(store: RenderCache, todo: list[_Measured], sizes: tuple[int, ...]) -> None:
     """Keep what was rendered for every icon that rendered completely."""
     for m in todo:
+        if m.refused is not None and not m.cached_paints:
+            store.put(entry_key("refused", m.digest), m.refused.encode())
         if m.failure is not None or m.paints is None or not m.rendered or m.stats is None:
             continue
         if not m.cached_paints:
-            store.put(entry_key("paints", m.digest), _encode_paints(m.paints))
+            store.put(entry_key("paints", m.digest), encode_paints(m.paints))
         for size, masks in m.rendered.items():
             store.put(entry_key("masks", m.digest, size), _encode_masks(m.stats[size], masks))
 
 
-def _encode_paints(paints: SvgPaints) -> bytes:
-    doc = {
-        "paints": [[p.color, p.kind, p.opacity, p.element, p.line] for p in paints.paints],
-        "unaudited": [[u.element, u.line, u.reason] for u in paints.unaudited],
-    }
-    return json.dumps(doc, separators=(",", ":"), allow_nan=False).encode()
-
-
-def _decode_paints(value: bytes) -> SvgPaints | None:
-    """An icon's paints from the cache; None unless every field has a value reading could give."""
+def _decode_refusal(value: bytes) -> str | None:
+    """A paint reader's refusal from the cache: short printable text, else None."""
     try:
-        doc = json.loads(value)
-        paints = tuple(
-            Paint(color, kind, float(opacity), element, line)
-            for color, kind, opacity, element, line in doc["paints"]
-        )
-        unaudited = tuple(
-            Unaudited(element, line, reason) for element, line, reason in doc["unaudited"]
-        )
-    except (ValueError, TypeError, KeyError):
+        text = value.decode()
+    except UnicodeDecodeError:
         return None
-    for p in paints:
-        if not (
-            (p.color == CURRENT_COLOR or (isinstance(p.color, str) and _HEX.fullmatch(p.color)))
-            and p.kind in ("fill", "stroke")
-            and 0.0 < p.opacity <= 1.0
-            and isinstance(p.element, str)
-            and _line(p.line)
-        ):
-            return None
-    for u in unaudited:
-        if not (isinstance(u.element, str) and isinstance(u.reason, str) and _line(u.line)):
-            return None
-    return SvgPaints(paints, unaudited)
-
-
-def _line(line: object) -> bool:
-    return line is None or (type(line) is int and line >= 1)
+    return text if 0 < len(value) <= 4096 and text.isprintable() else None
 
 
 def _encode_masks(stats: Sequence[CoverageStats], masks: Sequence[Mask]) -> bytes:

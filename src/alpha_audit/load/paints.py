@@ -41,6 +41,7 @@ from __future__ import annotations
 
 import contextlib
 import functools
+import json
 import re
 import xml.etree.ElementTree as ET
 from collections.abc import Callable, Container, Iterator, Sequence
@@ -70,6 +71,8 @@ __all__ = [
     "PaintKind",
     "SvgPaints",
     "Unaudited",
+    "decode_paints",
+    "encode_paints",
     "extract_paints",
     "isolate_each",
     "isolate_groups",
@@ -246,6 +249,54 @@ def paints_and_isolates(
             path=path,
         )
     return paints, _isolate(document, [_in_group(g.key) for g in groups], path)
+
+
+def encode_paints(paints: SvgPaints) -> bytes:
+    """``paints`` as compact JSON (what the render worker sends and the render cache keeps)."""
+    doc = {
+        "paints": [[p.color, p.kind, p.opacity, p.element, p.line] for p in paints.paints],
+        "unaudited": [[u.element, u.line, u.reason] for u in paints.unaudited],
+    }
+    return json.dumps(doc, separators=(",", ":"), allow_nan=False).encode()
+
+
+def decode_paints(value: bytes) -> SvgPaints | None:
+    """:func:`encode_paints`'s JSON read back; None unless every field holds a value that
+    reading an SVG could give (it comes from a cache file or a render process)."""
+    try:
+        doc = json.loads(value)
+        paints = tuple(
+            Paint(color, kind, float(opacity), element, line)
+            for color, kind, opacity, element, line in doc["paints"]
+        )
+        unaudited = tuple(
+            Unaudited(element, line, reason) for element, line, reason in doc["unaudited"]
+        )
+    except (ValueError, TypeError, KeyError, OverflowError, RecursionError):
+        return None
+    for p in paints:
+        if not (
+            (
+                p.color == CURRENT_COLOR
+                or (isinstance(p.color, str) and _HEX_COLOR.fullmatch(p.color))
+            )
+            and p.kind in ("fill", "stroke")
+            and 0.0 < p.opacity <= 1.0
+            and isinstance(p.element, str)
+            and _line(p.line)
+        ):
+            return None
+    for u in unaudited:
+        if not (isinstance(u.element, str) and isinstance(u.reason, str) and _line(u.line)):
+            return None
+    return SvgPaints(paints, unaudited)
+
+
+def _line(line: object) -> bool:
+    return line is None or (type(line) is int and line >= 1)
+
+
+_HEX_COLOR = re.compile(r"#[0-9a-f]{6}")
 
 
 # A colour drawn at full strength in the masks :func:`isolate_paints` makes.

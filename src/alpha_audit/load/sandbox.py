@@ -36,27 +36,56 @@ from typing import IO, TypeVar
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["Outcome", "RenderLimits", "RenderPool"]
+__all__ = ["Outcome", "PaintsReply", "ReadPaints", "RenderLimits", "RenderPool"]
 
 T = TypeVar("T")
 
 _WORKER = Path(__file__).with_name("_svg_worker.py")
 _HEADER = struct.Struct(">BI")
 _READY = 2  # the status a worker sends, once, when its start-up is over
+_REFUSED = 3  # a paints job's file refused by the paint reader
 # Seconds a worker may take to start (import the renderer) before it is given up:
 # independent of any input, so generous; a busy machine can take many seconds.
 _START_TIMEOUT = 60.0
 _MAX_MESSAGE_BYTES = 4096
+_MAX_PAINTS_BYTES = 64 << 20  # an SVG of 1 MiB describes far fewer paints
 # Jobs sent to a worker before it answers the first: enough that it never waits
 # for this process between small jobs.  Their requests stay under a pipe's
 # capacity (64 KiB on Linux; 16 KiB is safe everywhere), so writing one never blocks.
 _PIPELINE_JOBS = 4
 _PIPELINE_BYTES = 16 << 10
 
-# Per job: a reason string when the whole icon failed, else per SVG of the job
-# one mask or reason per size.
 Mask = NDArray[np.uint8]  # 8-bit coverage codes, alpha x 255
-Outcome = str | list[list[Mask | str]]
+
+
+@dataclass(frozen=True)
+class ReadPaints:
+    """A job that reads an SVG's paints in the worker and renders each paint group
+    (see :func:`alpha_audit.load.paints.paints_and_isolates`)."""
+
+    svg: bytes
+    max_groups: int
+
+
+@dataclass(frozen=True)
+class PaintsReply:
+    """What a :class:`ReadPaints` job gave: the paints as JSON
+    (:func:`~alpha_audit.load.paints.encode_paints`) and per group a mask or a reason
+    per size; or ``problem``, why the paints could not be read."""
+
+    paints: bytes
+    masks: list[list[Mask | str]]
+    problem: str | None = None
+    lasting: bool = False  # the paint reader refused the file: it always will
+
+
+# Per job: a reason string when the whole job failed (time, crash); else, for a job
+# of SVGs, per SVG one mask or reason per size, and for a ReadPaints job its reply.
+Outcome = str | list[list[Mask | str]] | PaintsReply
+
+
+class _Incomplete(Exception):
+    """The reply is not all in the buffer yet."""
 
 
 @dataclass(frozen=True)
@@ -204,7 +233,8 @@ class _Worker:
             assert self.proc.stdin is not None and self.proc.stdout is not None
             self.stdin, self.stdout = self.proc.stdin, self.proc.stdout
         os.set_blocking(self.stdout.fileno(), False)
-        # (job, svgs, sizes, request bytes) in the order sent; the worker answers in that order.
+        # (job, SVGs or ReadPaints' group cap as -cap, sizes, request bytes) in the order
+        # sent; the worker answers in that order.
         self.jobs: deque[tuple[int, int, tuple[int, ...], int]] = deque()
         self.started = 0.0  # when the oldest job began: the reply before it came then
         self.spawned = time.monotonic()
@@ -224,14 +254,16 @@ class _Worker:
         return self.started + timeout
 
     def send(self, job: int, request: bytes, svgs: int, sizes: tuple[int, ...]) -> None:
+        """Write one request; ``svgs`` is its SVG count, or minus the group cap of a
+        :class:`ReadPaints` job."""
         self.stdin.write(request)
         self.stdin.flush()
         if not self.jobs:
             self.started = time.monotonic()
         self.jobs.append((job, svgs, sizes, len(request)))
 
-    def replies(self) -> Iterator[tuple[int, list[list[Mask | str]]]]:
-        """``(job, masks)`` for each complete reply in the buffer; ValueError if malformed."""
+    def replies(self) -> Iterator[tuple[int, list[list[Mask | str]] | PaintsReply]]:
+        """``(job, reply)`` for each complete reply in the buffer; ValueError if malformed."""
         if not self.ready:
             if len(self.buffer) < _HEADER.size:
                 return
@@ -242,53 +274,32 @@ class _Worker:
             self.started = time.monotonic()  # the first job starts now
         while self.jobs:
             _, svgs, sizes, _ = self.jobs[0]
-            parsed = self._parse(svgs, sizes)
-            if parsed is None:
+            cursor = _Cursor(self.buffer)
+            try:
+                reply = self._parse(cursor, svgs, sizes)
+            except _Incomplete:
                 return
-            reply, used = parsed
-            del self.buffer[:used]
+            del self.buffer[: cursor.pos]
             job = self.jobs.popleft()[0]
             self.started = time.monotonic()  # the next job starts now
             yield job, reply
         if self.buffer:
             raise ValueError("malformed reply")
 
+    @staticmethod
     def _parse(
-        self, svgs: int, sizes: tuple[int, ...]
-    ) -> tuple[list[list[Mask | str]], int] | None:
-        """The first reply in the buffer and its length, None if incomplete."""
-        out: list[list[Mask | str]] = []
-        pos = 0
-        for _ in range(svgs):
-            masks, pos = self._parse_one(sizes, pos)
-            if masks is None:
-                return None
-            out.append(masks)
-        return out, pos
-
-    def _parse_one(self, sizes: tuple[int, ...], pos: int) -> tuple[list[Mask | str] | None, int]:
-        """One SVG's masks from ``pos``: (masks, end), or (None, pos) if incomplete."""
-        out: list[Mask | str] = []
-        for size in sizes:
-            if len(self.buffer) < pos + _HEADER.size:
-                return None, pos
-            status, n = _HEADER.unpack_from(self.buffer, pos)
-            pos += _HEADER.size
-            if (status == 0 and n != size * size) or (status == 1 and n > _MAX_MESSAGE_BYTES):
-                raise ValueError("malformed reply")
-            if status not in (0, 1):
-                raise ValueError("malformed reply")
-            if len(self.buffer) < pos + n:
-                return None, pos
-            chunk = bytes(self.buffer[pos : pos + n])
-            pos += n
-            if status == 0:
-                # Kept as cairo's 8-bit codes: 1 byte a pixel instead of 8.
-                out.append(np.frombuffer(chunk, dtype=np.uint8).reshape(size, size))
-            else:
-                text = chunk.decode("utf-8", "replace")
-                out.append("".join(ch if ch.isprintable() else " " for ch in text))
-        return out, pos
+        cursor: _Cursor, svgs: int, sizes: tuple[int, ...]
+    ) -> list[list[Mask | str]] | PaintsReply:
+        """One reply (see :mod:`._svg_worker`); _Incomplete if it has not all come."""
+        if svgs >= 0:
+            return [[cursor.entry(size) for size in sizes] for _ in range(svgs)]
+        status, paints = cursor.header(_MAX_PAINTS_BYTES)
+        if status != 0:
+            return PaintsReply(b"", [], _printable(paints), lasting=status == _REFUSED)
+        (groups,) = struct.unpack(">I", cursor.take(4))
+        if groups > -svgs:
+            raise ValueError("malformed reply")
+        return PaintsReply(paints, [[cursor.entry(size) for size in sizes] for _ in range(groups)])
 
     def kill(self) -> None:
         if self.proc is not None:
@@ -335,12 +346,56 @@ _CONTROL_TIMEOUT = 10.0
 _FORK = sys.platform == "linux"
 
 
-def _request(svgs: Sequence[bytes], sizes: Sequence[int]) -> bytes:
-    """One job as the worker reads it (see :mod:`._svg_worker`)."""
-    parts = [struct.pack(f">I{len(sizes)}II", len(sizes), *sizes, len(svgs))]
-    for svg in svgs:
+class _Cursor:
+    """Reads a reply's entries from a buffer, raising _Incomplete past its end."""
+
+    def __init__(self, buffer: bytearray) -> None:
+        self.buffer = buffer
+        self.pos = 0
+
+    def take(self, n: int) -> bytes:
+        if len(self.buffer) < self.pos + n:
+            raise _Incomplete
+        chunk = bytes(self.buffer[self.pos : self.pos + n])
+        self.pos += n
+        return chunk
+
+    def header(self, ok_limit: int) -> tuple[int, bytes]:
+        """An entry's status and bytes; status 0 may carry up to ``ok_limit`` bytes."""
+        status, n = _HEADER.unpack(self.take(_HEADER.size))
+        if status not in (0, 1, _REFUSED) or n > (ok_limit if status == 0 else _MAX_MESSAGE_BYTES):
+            raise ValueError("malformed reply")
+        return status, self.take(n)
+
+    def entry(self, size: int) -> Mask | str:
+        """One mask (status 0, exactly ``size * size`` bytes) or reason (status 1)."""
+        status, chunk = self.header(size * size)
+        if status == _REFUSED:
+            raise ValueError("malformed reply")
+        if status == 0:
+            if len(chunk) != size * size:
+                raise ValueError("malformed reply")
+            # Kept as cairo's 8-bit codes: 1 byte a pixel instead of 8.
+            return np.frombuffer(chunk, dtype=np.uint8).reshape(size, size)
+        return _printable(chunk)
+
+
+def _printable(chunk: bytes) -> str:
+    text = chunk.decode("utf-8", "replace")
+    return "".join(ch if ch.isprintable() else " " for ch in text)
+
+
+def _request(what: Sequence[bytes] | ReadPaints, sizes: Sequence[int]) -> tuple[bytes, int]:
+    """One job as the worker reads it (see :mod:`._svg_worker`), and what its reply holds
+    (the SVG count, or minus the group cap of a :class:`ReadPaints` job)."""
+    head = struct.pack(f">BI{len(sizes)}I", int(isinstance(what, ReadPaints)), len(sizes), *sizes)
+    if isinstance(what, ReadPaints):
+        body = struct.pack(">II", what.max_groups, len(what.svg)) + what.svg
+        return head + body, -what.max_groups
+    parts = [head, struct.pack(">I", len(what))]
+    for svg in what:
         parts += [struct.pack(">I", len(svg)), svg]
-    return b"".join(parts)
+    return b"".join(parts), len(what)
 
 
 class RenderPool:
@@ -413,7 +468,9 @@ class RenderPool:
         worker.kill()
         self.workers.remove(worker)
 
-    def map(self, jobs: Sequence[tuple[Sequence[bytes], tuple[int, ...]]]) -> list[Outcome]:
+    def map(
+        self, jobs: Sequence[tuple[Sequence[bytes] | ReadPaints, tuple[int, ...]]]
+    ) -> list[Outcome]:
         """Render every ``(svgs, sizes)`` job; outcomes in job order."""
         results: list[Outcome] = ["not rendered"] * len(jobs)
         for index, outcome in self.stream((i, svgs, sizes) for i, (svgs, sizes) in enumerate(jobs)):
@@ -422,16 +479,17 @@ class RenderPool:
 
     def stream(
         self,
-        jobs: Iterable[tuple[T, Sequence[bytes], tuple[int, ...]]],
+        jobs: Iterable[tuple[T, Sequence[bytes] | ReadPaints, tuple[int, ...]]],
         *,
         ahead: int | None = None,
     ) -> Iterator[tuple[T, Outcome]]:
         """Render ``(tag, svgs, sizes)`` jobs; ``(tag, outcome)`` as each one finishes.
 
-        A job is one icon: its SVGs (one per paint group) are rendered at
+        A job is one icon: its SVGs (or, for a :class:`ReadPaints` job, the
+        SVG of each of its paint groups, split by the worker) are rendered at
         every size by one worker within one :attr:`RenderLimits.timeout`, and
-        its outcome holds, per SVG, a mask or a reason per size (or one reason
-        for the whole job).
+        its outcome holds, per SVG, a mask or a reason per size (a
+        :class:`PaintsReply` for ReadPaints), or one reason for the whole job.
 
         Jobs are pulled from ``jobs`` only when needed, so a lazy source (one
         that parses each icon as it is asked for it) works while the workers
@@ -462,11 +520,11 @@ class RenderPool:
         def pull() -> None:
             nonlocal exhausted
             try:
-                tag, svgs, sizes = next(source)
+                tag, what, sizes = next(source)
             except StopIteration:
                 exhausted = True
                 return
-            queued.append((tag, _request(svgs, sizes), len(svgs), tuple(sizes)))
+            queued.append((tag, *_request(what, sizes), tuple(sizes)))
 
         def start() -> _Worker:
             worker = self._new_worker()

@@ -192,7 +192,12 @@ def rasterize_icons(
                     )
                 ):
                     for k, size in enumerate(missing):
-                        mask = outcome if isinstance(outcome, str) else outcome[0][k]
+                        if isinstance(outcome, str):
+                            mask: NDArray[np.uint8] | str = outcome
+                        elif isinstance(outcome, list):
+                            mask = outcome[0][k]
+                        else:
+                            raise TypeError(f"a render job answered {type(outcome).__name__}")
                         rendered[(name, size)] = mask
                         if store is not None and not isinstance(mask, str):
                             store.put(keys[(name, size)], zlib.compress(mask.tobytes()))
