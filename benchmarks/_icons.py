@@ -72,6 +72,12 @@ def _npm_package(name: str) -> Path:
     return folder / "package"
 
 
+def flag_icons(count: int | None = None) -> list[Path]:
+    """flag-icons' 4x3 flags by file name (downloads once): several paints each."""
+    flags = sorted((_npm_package("flag-icons") / "flags/4x3").glob("*.svg"))
+    return flags[:count] if count is not None else flags
+
+
 def simple_icons(count: int | None = None) -> list[tuple[Path, str]]:
     """simple-icons logos with their brand colour ``(svg, '#rrggbb')``, by slug order."""
     import json

@@ -107,9 +107,9 @@ def renderer_fingerprint() -> bytes:
     import importlib.util
     import platform
 
-    from alpha_audit import __version__
-
-    parts = [f"schema {_SCHEMA}", f"alpha-audit {__version__}", platform.machine()]
+    # The package is initialised before any of its modules: read, not imported (no cycle).
+    version = sys.modules["alpha_audit"].__version__
+    parts = [f"schema {_SCHEMA}", f"alpha-audit {version}", platform.machine()]
     for package, pattern in (
         ("cairosvg", None),
         ("cairocffi", rb"VERSION = __version__ = '([^']+)'"),
