@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -154,3 +156,30 @@ def test_workers_are_forked_from_one_server_and_end_with_the_pool() -> None:
         assert len(workers) == 2  # forked, not started as interpreters of their own
     assert not [p for p, args in _children(os.getpid()) if "_svg_worker.py" in args]
     assert not _children(server)
+
+
+@pytest.mark.skipif(not sandbox_forks(), reason="workers are forked on Linux only")
+def test_a_run_that_may_find_everything_cached_loads_no_renderer_until_its_first_job(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import time
+
+    from alpha_audit.load.render_cache import FILE_NAME
+
+    monkeypatch.setenv("ALPHA_AUDIT_CACHE_DIR", str(tmp_path))
+    (tmp_path / FILE_NAME).write_bytes(b"\0" * 20000)  # a cache with entries, as far as it shows
+
+    def cairo_loaded(pid: int) -> bool:
+        return "libcairo" in Path(f"/proc/{pid}/maps").read_text()
+
+    with RenderPool(RenderLimits(timeout=20.0), workers=2) as pool:
+        pool.prestart()
+        assert pool._server is not None
+        server = pool._server.proc.pid
+        time.sleep(0.5)  # time it would have had to load (the assertion does not depend on it)
+        assert not cairo_loaded(server)
+        assert _children(server) == []  # no worker forked yet
+        (out,) = pool.map([([_good(1)], (8,))])
+        assert not isinstance(out, str)
+        assert cairo_loaded(server)
+        assert len(_children(server)) == 2

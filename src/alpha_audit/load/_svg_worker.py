@@ -41,7 +41,8 @@ workers costs one start-up instead of one each.  The server itself never
 reads an SVG; each forked worker drops the socket, dies with the server
 (``PR_SET_PDEATHSIG``) and installs the sandbox before reading its first
 request.  ``K`` + id kills and reaps a worker; ``R`` + id reaps one that
-ended and answers ``u32 id, i32 exit code`` (negative: the signal).
+ended and answers ``u32 id, i32 exit code`` (negative: the signal).  Started
+with ``--hold``, the server warms up and forks only once sent ``G``.
 """
 
 from __future__ import annotations
@@ -283,10 +284,20 @@ def _warm_up() -> None:
     read_paints(svg, 1)
 
 
-def serve_forks(control: socket.socket, memory_bytes: int, cpu_seconds: int) -> None:
-    """The fork server: fork a sandboxed worker per ``S`` request until the socket closes."""
+def serve_forks(
+    control: socket.socket, memory_bytes: int, cpu_seconds: int, *, hold: bool = False
+) -> None:
+    """The fork server: fork a sandboxed worker per ``S`` request until the socket closes.
+
+    With ``hold``, the renderer is warmed up only on ``G`` (go): until then the
+    server costs no CPU and the workers asked for wait, so a run that finds
+    everything in the render cache never pays for the renderer's start-up.
+    """
     children: dict[int, int] = {}  # worker id -> pid
+    held: list[tuple[int, list[int]]] = []  # (worker id, fds) asked for before go
     server = os.getpid()
+    if not hold:
+        _warm_up()
     while True:
         try:
             message, fds, _, _ = socket.recv_fds(control, 5, 2)
@@ -297,27 +308,60 @@ def serve_forks(control: socket.socket, memory_bytes: int, cpu_seconds: int) -> 
                 os.close(fd)
             break  # end of input (or garbage): the pool is gone
         op, worker = message[:1], struct.unpack(">I", message[1:])[0]
-        if op == b"S" and len(fds) == 2:
-            pid = os.fork()
-            if pid == 0:  # the worker
-                try:
-                    control.close()
-                    _become_worker(fds[0], fds[1], server, memory_bytes, cpu_seconds)
-                finally:
-                    os._exit(0)
-            children[worker] = pid
-        elif op in (b"K", b"R") and worker in children:
-            pid = children.pop(worker)
-            if op == b"K":
-                _kill(pid)
-            _, status = os.waitpid(pid, 0)
+        if op == b"G" and hold:
+            hold = False
+            _warm_up()
+            while held:
+                waiting, their_fds = held.pop(0)
+                others = [fd for _, later in held for fd in later]  # not the worker's to keep
+                children[waiting] = _fork_worker(
+                    control, their_fds, server, memory_bytes, cpu_seconds, others
+                )
+        elif op == b"S" and len(fds) == 2:
+            if hold:
+                held.append((worker, fds))
+                continue  # their descriptors are kept until the worker is forked
+            children[worker] = _fork_worker(control, fds, server, memory_bytes, cpu_seconds)
+            continue
+        elif op in (b"K", b"R"):
+            pid = children.pop(worker, None)
+            code = 0
+            if pid is not None:
+                if op == b"K":
+                    _kill(pid)
+                code = os.waitstatus_to_exitcode(os.waitpid(pid, 0)[1])
             if op == b"R":
-                control.sendall(struct.pack(">Ii", worker, os.waitstatus_to_exitcode(status)))
+                control.sendall(struct.pack(">Ii", worker, code))
         for fd in fds:
             os.close(fd)
     for pid in children.values():
         _kill(pid)
         os.waitpid(pid, 0)
+
+
+def _fork_worker(
+    control: socket.socket,
+    fds: list[int],
+    server: int,
+    memory_bytes: int,
+    cpu_seconds: int,
+    others: Sequence[int] = (),
+) -> int:
+    """Fork one worker on ``fds`` (its request and reply pipes), which are then closed
+    here; the worker's pid.  ``others`` are descriptors the worker must not hold (other
+    workers' pipes: a reply pipe held open elsewhere would hide its worker's end)."""
+    pid = os.fork()
+    if pid == 0:  # the worker
+        try:
+            control.close()
+            for fd in others:
+                os.close(fd)
+            _become_worker(fds[0], fds[1], server, memory_bytes, cpu_seconds)
+        finally:
+            os._exit(0)
+    for fd in fds:
+        os.close(fd)
+    return pid
 
 
 def _kill(pid: int) -> None:
@@ -343,10 +387,11 @@ def _become_worker(
 
 
 def main() -> None:
-    """Worker entry point: ``python -I _svg_worker.py MEMORY CPU [--fork-server FD]``.
+    """Worker entry point: ``python -I _svg_worker.py MEMORY CPU [--fork-server FD [--hold]]``.
 
     ``MEMORY`` is the address-space limit in bytes, ``CPU`` the CPU-time limit in
-    seconds; with ``--fork-server``, the workers are forked from this process.
+    seconds; with ``--fork-server``, the workers are forked from this process
+    (with ``--hold``, once told to go).
     """
     memory_bytes, cpu_seconds = int(sys.argv[1]), int(sys.argv[2])
     sys.setrecursionlimit(2000)
@@ -356,11 +401,11 @@ def main() -> None:
     import ctypes.util
 
     ctypes.util.find_library = lambda name: None
-    _warm_up()
     if sys.argv[3:4] == ["--fork-server"]:
         control = socket.socket(fileno=int(sys.argv[4]))
-        serve_forks(control, memory_bytes, cpu_seconds)
+        serve_forks(control, memory_bytes, cpu_seconds, hold="--hold" in sys.argv[5:])
         return
+    _warm_up()
     install_sandbox(memory_bytes, cpu_seconds)
     serve(sys.stdin.buffer, sys.stdout.buffer, memory_bytes)
 

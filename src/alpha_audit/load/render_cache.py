@@ -50,6 +50,7 @@ __all__ = [
     "default_cache_dir",
     "disable",
     "open_default",
+    "probably_warm",
     "renderer_fingerprint",
 ]
 
@@ -93,6 +94,17 @@ def open_default() -> RenderCache | None:
     if not _enabled.get() or os.environ.get(NO_CACHE_ENV):
         return None
     return RenderCache.open(default_cache_dir())
+
+
+def probably_warm() -> bool:
+    """Whether the user's cache is on and has a file with entries in it (a guess, for
+    deciding whether to start the renderer before knowing what a run will render)."""
+    if not _enabled.get() or os.environ.get(NO_CACHE_ENV):
+        return False
+    try:
+        return (default_cache_dir() / FILE_NAME).stat().st_size > 8192
+    except OSError:
+        return False
 
 
 @functools.cache

@@ -126,7 +126,7 @@ class _ForkServer:
     this socket: it never reads an SVG.
     """
 
-    def __init__(self, limits: RenderLimits) -> None:
+    def __init__(self, limits: RenderLimits, *, hold: bool = False) -> None:
         ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_STREAM)
         try:
             self.proc = subprocess.Popen(
@@ -138,6 +138,7 @@ class _ForkServer:
                     str(limits.cpu),
                     "--fork-server",
                     str(theirs.fileno()),
+                    *(["--hold"] if hold else []),
                 ],
                 stdin=subprocess.DEVNULL,
                 stdout=subprocess.DEVNULL,
@@ -153,6 +154,14 @@ class _ForkServer:
         self.control.settimeout(_CONTROL_TIMEOUT)
         self.next_id = 0
         self.paused = False
+        self.held = hold  # started with --hold: nothing loaded until release()
+
+    def release(self) -> None:
+        """Let a held server load the renderer and fork the workers asked for."""
+        if self.held:
+            self.held = False
+            with contextlib.suppress(OSError):
+                self.control.sendall(b"G" + struct.pack(">I", 0))
 
     def spawn(self, request_fd: int, reply_fd: int) -> int:
         """Fork a worker reading ``request_fd`` and writing ``reply_fd``; its id."""
@@ -435,10 +444,20 @@ class RenderPool:
 
         A worker takes a few tenths of a second to start (the renderer's
         import); a caller that starts them before reading its inputs has them
-        ready by the time it has work.
+        ready by the time it has work.  When the render cache holds entries
+        (a run that may find everything there) the fork server starts but
+        loads nothing until the first job: a run that renders nothing then
+        costs nothing here, and one that does waits a few hundredths longer.
         """
+        from alpha_audit.load.render_cache import probably_warm
+
+        if self._server is None and not self._no_server:
+            try:
+                self._server = _ForkServer(self.limits, hold=probably_warm())
+            except OSError:
+                self._no_server = True
         while len(self.workers) < self.size:
-            self.workers.append(self._new_worker())
+            self.workers.append(self._new_worker(release=False))
         return self
 
     def pause(self) -> None:
@@ -451,7 +470,7 @@ class RenderPool:
         if self._server is not None and not any(w.jobs for w in self.workers):
             self._server.pause(True)
 
-    def _new_worker(self) -> _Worker:
+    def _new_worker(self, *, release: bool = True) -> _Worker:
         if not self._no_server:
             try:
                 if self._server is None or self._server.proc.poll() is not None:
@@ -459,6 +478,8 @@ class RenderPool:
                         self._server.close()
                     self._server = _ForkServer(self.limits)
                 self._server.pause(False)
+                if release:
+                    self._server.release()
                 return _Worker(self.limits, self._server)
             except OSError:
                 self._no_server = True  # no fork server here: one process per worker
@@ -516,6 +537,7 @@ class RenderPool:
             selector.register(kept.stdout, selectors.EVENT_READ, kept)
         if self._server is not None:
             self._server.pause(False)
+            self._server.release()
 
         def pull() -> None:
             nonlocal exhausted
