@@ -188,6 +188,8 @@ def install_sandbox(memory_bytes: int, cpu_seconds: int) -> None:
                 resource.setrlimit(limit, (value, hard))
             except (ValueError, OSError):
                 pass
+        global _LIFETIME_CPU
+        _LIFETIME_CPU = cpu_seconds
     roots = _allowed_roots()
     blocked_prefixes = ("socket.", "subprocess.", "os.exec", "os.posix_spawn", "os.spawn")
     blocked = {"os.system", "os.fork", "os.forkpty", "urllib.Request", "ctypes.dlopen"}
@@ -213,8 +215,17 @@ def _read_exact(stream: BinaryIO, n: int) -> bytes:
 RENDER, PAINTS = 0, 1  # request kinds
 
 
-def serve(stdin: BinaryIO, stdout: BinaryIO, memory_bytes: int | None = None) -> None:
-    """Say ready, then answer requests until a request with no sizes or end of input."""
+def serve(
+    stdin: BinaryIO,
+    stdout: BinaryIO,
+    memory_bytes: int | None = None,
+    job_cpu: int | None = None,
+) -> None:
+    """Say ready, then answer requests until a request with no sizes or end of input.
+
+    With ``job_cpu``, each request may use that many more seconds of CPU time
+    (:func:`_allow_cpu`): past it the kernel ends this process (``SIGXCPU``).
+    """
     stdout.write(struct.pack(">BI", READY, 0))
     stdout.flush()
     u32 = struct.Struct(">I")
@@ -231,6 +242,8 @@ def serve(stdin: BinaryIO, stdout: BinaryIO, memory_bytes: int | None = None) ->
                 svgs.append(_read_exact(stdin, n_bytes))
         except EOFError:
             return
+        if job_cpu is not None:
+            _allow_cpu(job_cpu)
         reply = bytearray()
         if kind == PAINTS:
             paints, svgs, problem, lasting = read_paints(svgs[0], count, memory_bytes)
@@ -247,6 +260,29 @@ def serve(stdin: BinaryIO, stdout: BinaryIO, memory_bytes: int | None = None) ->
                     reply += _entry(FAILED, reason.encode("utf-8", "replace"))
         stdout.write(reply)
         stdout.flush()
+
+
+def _allow_cpu(seconds: int) -> None:
+    """Let the next job use ``seconds`` more CPU time (rounded up to whole seconds of this
+    process's total, RLIMIT_CPU's unit), within the worker's own limit.
+
+    CPU time, unlike wall-clock time, does not shrink when the machine is busy:
+    an icon is refused for what rendering it costs, not for what else runs.
+    """
+    import math
+    import resource
+
+    used = resource.getrusage(resource.RUSAGE_SELF)
+    _, hard = resource.getrlimit(resource.RLIMIT_CPU)
+    want = math.ceil(used.ru_utime + used.ru_stime) + seconds
+    for cap in (_LIFETIME_CPU, None if hard == resource.RLIM_INFINITY else hard):
+        if cap is not None:
+            want = min(want, cap)
+    with contextlib.suppress(ValueError, OSError):
+        resource.setrlimit(resource.RLIMIT_CPU, (want, hard))
+
+
+_LIFETIME_CPU: int | None = None  # the worker's own CPU limit, set by install_sandbox
 
 
 def _entry(status: int, payload: bytes) -> bytes:
@@ -285,7 +321,12 @@ def _warm_up() -> None:
 
 
 def serve_forks(
-    control: socket.socket, memory_bytes: int, cpu_seconds: int, *, hold: bool = False
+    control: socket.socket,
+    memory_bytes: int,
+    cpu_seconds: int,
+    job_cpu: int | None = None,
+    *,
+    hold: bool = False,
 ) -> None:
     """The fork server: fork a sandboxed worker per ``S`` request until the socket closes.
 
@@ -315,13 +356,15 @@ def serve_forks(
                 waiting, their_fds = held.pop(0)
                 others = [fd for _, later in held for fd in later]  # not the worker's to keep
                 children[waiting] = _fork_worker(
-                    control, their_fds, server, memory_bytes, cpu_seconds, others
+                    control, their_fds, server, (memory_bytes, cpu_seconds, job_cpu), others
                 )
         elif op == b"S" and len(fds) == 2:
             if hold:
                 held.append((worker, fds))
                 continue  # their descriptors are kept until the worker is forked
-            children[worker] = _fork_worker(control, fds, server, memory_bytes, cpu_seconds)
+            children[worker] = _fork_worker(
+                control, fds, server, (memory_bytes, cpu_seconds, job_cpu)
+            )
             continue
         elif op in (b"K", b"R"):
             pid = children.pop(worker, None)
@@ -343,8 +386,7 @@ def _fork_worker(
     control: socket.socket,
     fds: list[int],
     server: int,
-    memory_bytes: int,
-    cpu_seconds: int,
+    limits: tuple[int, int, int | None],
     others: Sequence[int] = (),
 ) -> int:
     """Fork one worker on ``fds`` (its request and reply pipes), which are then closed
@@ -356,7 +398,7 @@ def _fork_worker(
             control.close()
             for fd in others:
                 os.close(fd)
-            _become_worker(fds[0], fds[1], server, memory_bytes, cpu_seconds)
+            _become_worker(fds[0], fds[1], server, *limits)
         finally:
             os._exit(0)
     for fd in fds:
@@ -370,7 +412,12 @@ def _kill(pid: int) -> None:
 
 
 def _become_worker(
-    request_fd: int, reply_fd: int, server: int, memory_bytes: int, cpu_seconds: int
+    request_fd: int,
+    reply_fd: int,
+    server: int,
+    memory_bytes: int,
+    cpu_seconds: int,
+    job_cpu: int | None,
 ) -> None:
     """In a forked child: take the pipes as stdin/stdout, die with the server, sandbox, serve."""
     os.dup2(request_fd, 0)
@@ -383,17 +430,18 @@ def _become_worker(
         return
     install_sandbox(memory_bytes, cpu_seconds)
     with open(0, "rb", closefd=False) as stdin, open(1, "wb", closefd=False) as stdout:
-        serve(stdin, stdout, memory_bytes)
+        serve(stdin, stdout, memory_bytes, job_cpu)
 
 
 def main() -> None:
-    """Worker entry point: ``python -I _svg_worker.py MEMORY CPU [--fork-server FD [--hold]]``.
+    """Worker entry point: ``python -I _svg_worker.py MEMORY CPU JOB_CPU [--fork-server FD
+    [--hold]]``.
 
-    ``MEMORY`` is the address-space limit in bytes, ``CPU`` the CPU-time limit in
-    seconds; with ``--fork-server``, the workers are forked from this process
-    (with ``--hold``, once told to go).
+    ``MEMORY`` is the address-space limit in bytes, ``CPU`` a worker's CPU-time
+    limit in seconds and ``JOB_CPU`` each job's; with ``--fork-server``, the
+    workers are forked from this process (with ``--hold``, once told to go).
     """
-    memory_bytes, cpu_seconds = int(sys.argv[1]), int(sys.argv[2])
+    memory_bytes, cpu_seconds, job_cpu = (int(a) for a in sys.argv[1:4])
     sys.setrecursionlimit(2000)
     # cairocffi looks cairo up with ctypes.util.find_library, which runs
     # ldconfig and gcc (subprocesses writing files in /tmp).  Without it
@@ -401,13 +449,13 @@ def main() -> None:
     import ctypes.util
 
     ctypes.util.find_library = lambda name: None
-    if sys.argv[3:4] == ["--fork-server"]:
-        control = socket.socket(fileno=int(sys.argv[4]))
-        serve_forks(control, memory_bytes, cpu_seconds, hold="--hold" in sys.argv[5:])
+    if sys.argv[4:5] == ["--fork-server"]:
+        control = socket.socket(fileno=int(sys.argv[5]))
+        serve_forks(control, memory_bytes, cpu_seconds, job_cpu, hold="--hold" in sys.argv[6:])
         return
     _warm_up()
     install_sandbox(memory_bytes, cpu_seconds)
-    serve(sys.stdin.buffer, sys.stdout.buffer, memory_bytes)
+    serve(sys.stdin.buffer, sys.stdout.buffer, memory_bytes, job_cpu)
 
 
 if __name__ == "__main__":

@@ -18,6 +18,7 @@ loaded are shared); elsewhere each worker is its own ``python -I`` process.
 from __future__ import annotations
 
 import contextlib
+import math
 import os
 import selectors
 import signal
@@ -36,7 +37,7 @@ from typing import IO, TypeVar
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["Outcome", "PaintsReply", "ReadPaints", "RenderLimits", "RenderPool"]
+__all__ = ["WALL_FACTOR", "Outcome", "PaintsReply", "ReadPaints", "RenderLimits", "RenderPool"]
 
 T = TypeVar("T")
 
@@ -92,16 +93,29 @@ class _Incomplete(Exception):
 class RenderLimits:
     """Bounds on rendering one untrusted SVG (documented in docs/ci.md).
 
-    ``timeout`` is wall-clock seconds per icon for all its paint groups and
-    sizes; ``memory`` the worker's address-space limit in bytes; ``cpu`` the
-    worker's CPU-time backstop in seconds; ``workers`` how many render
-    processes run at once.
+    ``timeout`` is the seconds of CPU time each icon gets for reading its
+    paints and rendering all its paint groups and sizes (rounded up to whole
+    seconds; counted by the worker's kernel, so a busy machine does not shorten
+    it), with :data:`WALL_FACTOR` times as much wall-clock time as a backstop;
+    ``memory`` the worker's address-space limit in bytes; ``cpu`` a worker's
+    CPU-time limit over its life; ``workers`` how many render processes run
+    at once.
     """
 
     timeout: float = 5.0
     memory: int = 1 << 30  # 1 GiB address space: Python + cairo need ~300 MiB
     cpu: int = 600
     workers: int = max(1, min(4, os.cpu_count() or 1))
+
+    @property
+    def job_cpu(self) -> int:
+        """Whole seconds of CPU time per icon (RLIMIT_CPU counts whole seconds)."""
+        return max(1, math.ceil(self.timeout))
+
+
+# A job's wall-clock backstop, in multiples of its CPU time: catches a worker that
+# waits without computing; a busy machine's share of CPU rarely falls below a quarter.
+WALL_FACTOR = 4
 
 
 def _worker_env() -> dict[str, str]:
@@ -136,6 +150,7 @@ class _ForkServer:
                     str(_WORKER),
                     str(limits.memory),
                     str(limits.cpu),
+                    str(limits.job_cpu),
                     "--fork-server",
                     str(theirs.fileno()),
                     *(["--hold"] if hold else []),
@@ -232,7 +247,14 @@ class _Worker:
             self.stdout = open(reply_r, "rb")  # noqa: SIM115  # closed in kill()
         else:
             self.proc = subprocess.Popen(
-                [sys.executable, "-I", str(_WORKER), str(limits.memory), str(limits.cpu)],
+                [
+                    sys.executable,
+                    "-I",
+                    str(_WORKER),
+                    str(limits.memory),
+                    str(limits.cpu),
+                    str(limits.job_cpu),
+                ],
                 stdin=subprocess.PIPE,
                 stdout=subprocess.PIPE,
                 stderr=subprocess.DEVNULL,
@@ -256,11 +278,12 @@ class _Worker:
         return sum(n for _, _, _, n in self.jobs)
 
     def deadline(self, timeout: float) -> float:
-        """When the job it is on runs out of time (each job gets ``timeout`` of its own,
-        from when the worker was ready; its start-up gets :data:`_START_TIMEOUT`)."""
+        """When the job it is on runs out of wall-clock time (each job gets ``timeout``
+        times :data:`WALL_FACTOR` of its own, from when the worker was ready; its start-up
+        gets :data:`_START_TIMEOUT`)."""
         if not self.ready:
             return self.spawned + max(timeout, _START_TIMEOUT)
-        return self.started + timeout
+        return self.started + timeout * WALL_FACTOR
 
     def send(self, job: int, request: bytes, svgs: int, sizes: tuple[int, ...]) -> None:
         """Write one request; ``svgs`` is its SVG count, or minus the group cap of a
@@ -339,8 +362,8 @@ class _Worker:
                 name = signal.Signals(-code).name
             except ValueError:
                 name = f"signal {-code}"
-            if name == "SIGXCPU":
-                return f"renderer ran out of CPU time (limit {self.limits.cpu} s); refused"
+            if name == "SIGXCPU":  # its CPU time for this icon (or, rarely, for its life)
+                return f"took longer than {self.limits.timeout:g} s to render (CPU time); refused"
             return (
                 f"renderer crashed ({name}); the file may need more than the "
                 f"{self.limits.memory >> 20} MiB render memory limit"
@@ -630,7 +653,8 @@ class RenderPool:
                 for worker in [w for w in self.workers if w.jobs]:
                     if worker.deadline(timeout) <= now:
                         reason = (
-                            f"took longer than {timeout:g} s to render; refused"
+                            f"took longer than {timeout:g} s to render (over "
+                            f"{timeout * WALL_FACTOR:g} s of wall-clock time); refused"
                             if worker.ready
                             else f"renderer did not start within {_START_TIMEOUT:g} s"
                         )
