@@ -183,3 +183,27 @@ def test_a_run_that_may_find_everything_cached_loads_no_renderer_until_its_first
         assert not isinstance(out, str)
         assert cairo_loaded(server)
         assert len(_children(server)) == 2
+
+
+def test_each_job_gets_its_cpu_seconds_from_what_the_worker_used_so_far() -> None:
+    """The budget is CPU time set before each job (RLIMIT_CPU), not what the clock says."""
+    import subprocess
+    import sys
+
+    code = (
+        "import math, resource\n"
+        "from alpha_audit.load import _svg_worker as w\n"
+        "w._LIFETIME_CPU = 600\n"
+        "sum(i * i for i in range(3_000_000))  # some CPU time used already\n"
+        "w._allow_cpu(5)\n"
+        "u = resource.getrusage(resource.RUSAGE_SELF)\n"
+        "soft, _ = resource.getrlimit(resource.RLIMIT_CPU)\n"
+        "print(soft - math.ceil(u.ru_utime + u.ru_stime))\n"
+        "w._LIFETIME_CPU = 3\n"
+        "w._allow_cpu(5)\n"
+        "print(resource.getrlimit(resource.RLIMIT_CPU)[0])\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    ahead, capped = out.stdout.split()
+    assert int(ahead) in (4, 5)  # 5 s from the whole second it had reached
+    assert int(capped) == 3  # never past the worker's own limit
