@@ -148,3 +148,21 @@ def run_measured(args: list[str]) -> tuple[float, int, int]:
     seconds = time.perf_counter() - start
     found = re.search(r"Maximum resident set size \(kbytes\): (\d+)", done.stderr)
     return seconds, int(found.group(1)) // 1024 if found else -1, done.returncode
+
+
+def run_timed(args: list[str]) -> tuple[float, float, int, int]:
+    """Like :func:`run_measured`, plus the CPU seconds (user + system) of the process and
+    the children it waited for: (seconds, CPU seconds, peak RSS in MB, exit code)."""
+    import re
+    import time
+
+    start = time.perf_counter()
+    done = subprocess.run(
+        ["/usr/bin/time", "-v", *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True
+    )
+    seconds = time.perf_counter() - start
+    user = re.search(r"User time \(seconds\): ([\d.]+)", done.stderr)
+    system = re.search(r"System time \(seconds\): ([\d.]+)", done.stderr)
+    cpu = float(user.group(1)) + float(system.group(1)) if user and system else -1.0
+    found = re.search(r"Maximum resident set size \(kbytes\): (\d+)", done.stderr)
+    return seconds, cpu, int(found.group(1)) // 1024 if found else -1, done.returncode

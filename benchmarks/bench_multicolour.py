@@ -38,7 +38,8 @@ def measured(files: list[Path], rounds: int) -> tuple[float, int]:
         result = measure_paints(icons, SIZES, cache=False, limits=RenderLimits(timeout=60.0))
         best = min(best, time.perf_counter() - start)
         groups = sum(len(i.coverage) for i in result.icons.values())
-        if result.problems:
+        # flags with more than MAX_PAINT_GROUPS paints are refused (the audit's rule)
+        if any("distinct paints" not in p.message for p in result.problems):
             raise SystemExit(f"problems: {result.problems[:3]}")
     return best, groups
 
@@ -52,8 +53,9 @@ def straightforward_against_ours(files: list[Path]) -> tuple[float, float, int]:
     start = time.perf_counter()
     ours = []
     for svg in data:
-        _, variants, _, _ = read_paints(svg, 32)
-        ours.append([render_alphas(v, SIZES) for v in variants])
+        _, variants, refused, _ = read_paints(svg, 32)
+        if refused is None:
+            ours.append([render_alphas(v, SIZES) for v in variants])
     fast = time.perf_counter() - start
     real = paints._prunable
     paints._prunable = lambda document: set()  # every group's SVG is the whole drawing
@@ -61,7 +63,10 @@ def straightforward_against_ours(files: list[Path]) -> tuple[float, float, int]:
         start = time.perf_counter()
         plain = []
         for svg in data:
-            _, variants = paints.paints_and_isolates(svg, max_groups=32)
+            try:
+                _, variants = paints.paints_and_isolates(svg, max_groups=32)
+            except paints.SvgError:
+                continue
             plain.append([[render_alpha(v, size) for size in SIZES] for v in variants])
         slow = time.perf_counter() - start
     finally:

@@ -452,7 +452,7 @@ def main() -> None:
     if sys.argv[4:5] == ["--fork-server"]:
         control = socket.socket(fileno=int(sys.argv[5]))
         serve_forks(control, memory_bytes, cpu_seconds, job_cpu, hold="--hold" in sys.argv[6:])
-        return
+        os._exit(0)  # its workers are reaped; an interpreter shutdown would only cost time
     _warm_up()
     install_sandbox(memory_bytes, cpu_seconds)
     serve(sys.stdin.buffer, sys.stdout.buffer, memory_bytes, job_cpu)

@@ -213,13 +213,18 @@ class _ForkServer:
         self.paused = paused
 
     def close(self) -> None:
-        """End the server; the workers die with it (``PR_SET_PDEATHSIG``)."""
+        """End the server: told by its socket closing, it kills and reaps its workers (so
+        their CPU time is counted as this process's children's) and exits; if it does
+        not within :data:`_CLOSE_SECONDS` it is killed, and its workers die with it
+        (``PR_SET_PDEATHSIG``)."""
         self.pause(False)
         with contextlib.suppress(OSError):
             self.control.close()
-        if self.proc.poll() is None:
+        try:
+            self.proc.wait(timeout=_CLOSE_SECONDS)
+        except subprocess.TimeoutExpired:
             self.proc.kill()
-        self.proc.wait()
+            self.proc.wait()
 
 
 class _Worker:
@@ -371,8 +376,10 @@ class _Worker:
         return f"renderer stopped unexpectedly (exit code {code})"
 
 
-# Seconds to wait for the fork server's answer about a worker that ended.
+# Seconds to wait for the fork server's answer about a worker that ended, and for
+# the server to end its workers and exit when the pool closes.
 _CONTROL_TIMEOUT = 10.0
+_CLOSE_SECONDS = 2.0
 # Fork the workers from one server where fork is safe after loading cairo and
 # fontconfig (Linux; macOS's system libraries are not fork-safe).
 _FORK = sys.platform == "linux"
