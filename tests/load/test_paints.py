@@ -395,3 +395,30 @@ def test_a_group_svg_holds_only_its_own_shapes_unless_selectors_read_structure()
     positional = f"<style>rect:nth-child(3) {{ stroke-width: 2 }}</style>{flag}"
     _, variants = paints_and_isolates(f'<svg {NS} viewBox="0 0 8 8">{positional}</svg>'.encode())
     assert all(v.count(b"<ns0:rect") == 8 for v in variants)
+
+
+@pytest.mark.parametrize(
+    "style",
+    ["", "<style>rect:first-child { stroke-width: 1 }</style>"],  # prunable or not
+)
+def test_a_use_target_is_in_no_groups_mask(style: str) -> None:
+    """cairosvg draws a <use>'s target whatever the <use>'s display: the group SVGs must
+    not carry one that points anywhere (its paints are not audited)."""
+    import numpy as np
+
+    from alpha_audit.load.paints import paints_and_isolates
+    from alpha_audit.load.svg import rasterize
+
+    xlink = 'xmlns:xlink="http://www.w3.org/1999/xlink"'
+    svg = (
+        f'<svg {NS} {xlink} viewBox="0 0 8 8">{style}<defs><rect id="r" width="4" height="4" '
+        'fill="#00f"/></defs><rect x="4" y="4" width="4" height="4" fill="#f00"/>'
+        '<use xlink:href="#r"/><g><use href="#r" x="4"/></g></svg>'
+    ).encode()
+    found, (red,) = paints_and_isolates(svg)
+    assert [g.color for g in found.groups()] == ["#ff0000"]
+    assert [u.element for u in found.unaudited] == ["<use>", "<use>"]
+    mask = rasterize(red, 8)
+    np.testing.assert_array_equal(mask[4:, 4:], 1.0)  # the red square ...
+    assert mask[:4, :].sum() == 0 and mask[:, :4].sum() == 0  # ... and nothing else
+    assert rasterize(svg, 8)[:4, :4].sum() > 0  # the whole drawing does show the target

@@ -314,8 +314,9 @@ def isolate_paints(
     opacity is audited separately): every element and group is drawn at
     opacity 1, kept paints opaque (``#000000`` unless already an opaque hex
     colour), other fills and strokes ``none``, and text, images, ``<use>``,
-    markers and filters are not drawn.  Only the declarations that change
-    something are appended to an element's ``style`` attribute, with
+    markers and filters are not drawn (a ``<use>`` is left out or pointed at
+    nothing: the renderer draws its target whatever its ``display``).  Only the
+    declarations that change something are appended to an element's ``style`` attribute, with
     ``!important``, the last word in the cascade, so ``<style>`` rules cannot
     undo them; geometry (``stroke-width``, transforms, clip paths) is untouched.
 
@@ -359,8 +360,9 @@ def _isolate(
             f"{MAX_ISOLATE_WORK} element renders; refused (resource limit)",
             path=path,
         )
-    original = [v.node.get("style") for v in visited]
     movable = _prunable(document)
+    _disarm_uses(document, {id(v.node) for v in visited if id(v.node) not in movable})
+    original = [v.node.get("style") for v in visited]
     out = []
     for keep in keeps:
         left_out = _left_out(visited, movable, keep)
@@ -390,13 +392,14 @@ def _prunable(document: _Document) -> set[int]:
 
     Left out, a subtree that draws nothing changes the rendered mask only
     through what refers to it or what its presence changes for others, so an
-    element qualifies only when its whole subtree is shapes and groups the
-    walk visited (no ``<defs>``, ``<clipPath>``, ``<use>``, text or unknown
-    elements, whose content the renderer may draw or look up), none has an
-    ``id`` (cairosvg looks paths up by id, for ``clip-path`` too), it is not the
-    root nor a child of ``<switch>`` (which renders its first child), and no
-    selector of the stylesheet depends on siblings or descendants
-    (``:nth-child``, ``+``, ``:has()`` ..., :func:`_reads_structure`).
+    element qualifies only when its whole subtree is shapes, groups and
+    ``<use>`` elements the walk visited (no ``<defs>``, ``<clipPath>``, text or
+    unknown elements, whose content the renderer may draw or look up), none
+    but a ``<use>`` has an ``id`` (cairosvg looks paths up by id, for
+    ``clip-path`` too), it is not the root nor a child of ``<switch>`` (which
+    renders its first child), and no selector of the stylesheet depends on
+    siblings or descendants (``:nth-child``, ``+``, ``:has()`` ...,
+    :func:`_reads_structure`).
     """
     if document.structural or not document.visited:
         return set()
@@ -404,16 +407,47 @@ def _prunable(document: _Document) -> set[int]:
     ok: set[int] = set()
     for v in reversed(document.visited):  # children before their parents
         node = v.node
+        if _local(document.parents.get(id(node), node)) == "switch":
+            continue
+        if _is_use(v):  # drawn by none of the groups; cairosvg registers no id of it
+            ok.add(id(node))
+            continue
         if (
             v.hidden_kind
             or node.get("id") is not None
             or not all(id(child) in ok for child in node)
-            or _local(document.parents.get(id(node), node)) == "switch"
         ):
             continue
         ok.add(id(node))
     ok.discard(id(document.visited[0].node))  # the root stays
     return ok & visited.keys()
+
+
+def _is_use(v: _Visited) -> bool:
+    return v.hidden_kind and _local(v.node) == "use"
+
+
+def _disarm_uses(document: _Document, kept: Container[int]) -> None:
+    """Point every ``<use>`` the group SVGs keep at nothing.
+
+    cairosvg draws a ``<use>``'s target whatever the ``<use>``'s ``display``,
+    so ``display: none`` alone would put the target into every group's mask;
+    a reference to an id the file does not have draws nothing, and the
+    element stays where selectors may look for it.
+    """
+    uses = [v.node for v in document.visited if _is_use(v) and id(v.node) in kept]
+    if not uses:
+        return
+    ids = {e.get("id") for e in document.visited[0].node.iter()}
+    nothing = next(
+        f"alpha-audit-nothing-{k}"
+        for k in range(len(ids) + 1)
+        if f"alpha-audit-nothing-{k}" not in ids
+    )
+    for node in uses:
+        for name in ("href", "{http://www.w3.org/1999/xlink}href"):
+            if node.get(name) is not None:
+                node.set(name, f"#{nothing}")
 
 
 def _left_out(
