@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
+from pathlib import Path
 
 import cssselect2
 import pytest
@@ -161,3 +162,23 @@ def test_paints_and_isolates_counts_its_variants_before_writing_them() -> None:
     svg = f"<svg {NS}>{many * 300}</svg>".encode()
     with pytest.raises(SvgError, match="element renders; refused"):
         paints_and_isolates(svg)
+
+
+def test_the_render_workers_refuse_a_hostile_stylesheet_with_the_bound_named(
+    tmp_path: Path,
+) -> None:
+    """Through the pool (where paints are read): a problem naming the bound, the rest goes on."""
+    from alpha_audit.load.paint_masks import measure_paints
+
+    folder = tmp_path
+    body, _ = HOSTILE["backtracking descendants"]
+    (folder / "hostile.svg").write_text(f"<svg {NS}>{body}</svg>")
+    (folder / "fine.svg").write_text(
+        f'<svg {NS} viewBox="0 0 4 4"><rect width="4" height="4"/></svg>'
+    )
+    icons = [("hostile", folder / "hostile.svg"), ("fine", folder / "fine.svg")]
+    result = measure_paints(icons, [8], cache=False)
+    (problem,) = result.problems
+    assert problem.icon == "hostile"
+    assert f"{MAX_MATCH_WORK}" in problem.message and "refused before matching" in problem.message
+    assert list(result.icons) == ["fine"]
