@@ -72,6 +72,12 @@ def _npm_package(name: str) -> Path:
     return folder / "package"
 
 
+def flag_icons(count: int | None = None) -> list[Path]:
+    """flag-icons' 4x3 flags by file name (downloads once): several paints each."""
+    flags = sorted((_npm_package("flag-icons") / "flags/4x3").glob("*.svg"))
+    return flags[:count] if count is not None else flags
+
+
 def simple_icons(count: int | None = None) -> list[tuple[Path, str]]:
     """simple-icons logos with their brand colour ``(svg, '#rrggbb')``, by slug order."""
     import json
@@ -142,3 +148,21 @@ def run_measured(args: list[str]) -> tuple[float, int, int]:
     seconds = time.perf_counter() - start
     found = re.search(r"Maximum resident set size \(kbytes\): (\d+)", done.stderr)
     return seconds, int(found.group(1)) // 1024 if found else -1, done.returncode
+
+
+def run_timed(args: list[str]) -> tuple[float, float, int, int]:
+    """Like :func:`run_measured`, plus the CPU seconds (user + system) of the process and
+    the children it waited for: (seconds, CPU seconds, peak RSS in MB, exit code)."""
+    import re
+    import time
+
+    start = time.perf_counter()
+    done = subprocess.run(
+        ["/usr/bin/time", "-v", *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True
+    )
+    seconds = time.perf_counter() - start
+    user = re.search(r"User time \(seconds\): ([\d.]+)", done.stderr)
+    system = re.search(r"System time \(seconds\): ([\d.]+)", done.stderr)
+    cpu = float(user.group(1)) + float(system.group(1)) if user and system else -1.0
+    found = re.search(r"Maximum resident set size \(kbytes\): (\d+)", done.stderr)
+    return seconds, cpu, int(found.group(1)) // 1024 if found else -1, done.returncode

@@ -31,6 +31,7 @@ def _capped(args: list[str]) -> list[str]:
 
 
 def main() -> None:
+    os.environ["ALPHA_AUDIT_NO_CACHE"] = "1"  # every run renders, as before the render cache
     cli = str(Path(sys.executable).with_name("alpha-audit"))
     count = int(os.environ.get("BENCH_LOGOS", "0")) or None
     logos = simple_icons(count)

@@ -13,6 +13,7 @@ and save with Pillow's default PNG settings.
 from __future__ import annotations
 
 import argparse
+import os
 import subprocess
 import sys
 import tempfile
@@ -84,6 +85,7 @@ def rasterize_only(manifest: Path) -> float:
 
 
 def main() -> None:
+    os.environ["ALPHA_AUDIT_NO_CACHE"] = "1"  # every run renders, as before the render cache
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--icons", type=Path, help="folder of SVG icons (default: lucide-static)")
     args = parser.parse_args()

@@ -19,6 +19,13 @@ settings.register_profile("dev", deadline=None)
 settings.load_profile("ci" if os.environ.get("CI") else "dev")
 
 
+@pytest.fixture(autouse=True, scope="session")
+def _own_render_cache(tmp_path_factory: pytest.TempPathFactory) -> None:
+    """The suite's render cache: one folder for the session, never the user's."""
+    os.environ.pop("ALPHA_AUDIT_NO_CACHE", None)
+    os.environ["ALPHA_AUDIT_CACHE_DIR"] = str(tmp_path_factory.mktemp("render-cache"))
+
+
 @pytest.fixture(autouse=True)
 def _plain_terminal(monkeypatch: pytest.MonkeyPatch) -> None:
     for name in ("NO_COLOR", "FORCE_COLOR", "COLUMNS", "LINES", "TERM", "CLICOLOR_FORCE"):

@@ -20,9 +20,9 @@ def started(monkeypatch: pytest.MonkeyPatch) -> list[int]:
     made: list[int] = []
     real = sandbox._Worker.__init__
 
-    def spy(self: sandbox._Worker, limits: object) -> None:
+    def spy(self: sandbox._Worker, *args: object) -> None:
         made.append(1)
-        real(self, limits)  # type: ignore[arg-type]  # the RenderLimits it was given
+        real(self, *args)  # type: ignore[arg-type]  # the RenderLimits (and fork server) given
 
     monkeypatch.setattr(sandbox._Worker, "__init__", spy)
     return made

@@ -85,10 +85,10 @@ def test_render_pool_serves_several_map_calls() -> None:
 
     svg = LUCIDE_LIKE.encode()
     with RenderPool(RenderLimits(timeout=20.0), workers=1) as pool:
-        first = pool.map([(svg, (8,))])
-        second = pool.map([(svg, (8,)), (svg, (8,))])
+        first = pool.map([([svg], (8,))])
+        second = pool.map([([svg], (8,)), ([svg], (8,))])
     assert all(not isinstance(o, str) for o in [*first, *second])
-    np.testing.assert_array_equal(first[0][0], second[1][0])
+    np.testing.assert_array_equal(first[0][0][0], second[1][0][0])
 
 
 def test_stream_pulls_work_only_as_the_workers_need_it() -> None:
@@ -102,7 +102,7 @@ def test_stream_pulls_work_only_as_the_workers_need_it() -> None:
     def source() -> Iterator[tuple[int, bytes, tuple[int, ...]]]:
         for i in range(40):
             pulled.append(i)
-            yield i, svg, (8,)
+            yield i, [svg], (8,)
 
     seen: list[tuple[int, int]] = []  # (tag, jobs pulled when its outcome arrived)
     with RenderPool(RenderLimits(timeout=20.0), workers=2) as pool:
@@ -120,13 +120,40 @@ def test_read_ahead_changes_nothing_but_timing() -> None:
     from alpha_audit.load.sandbox import RenderPool
     from alpha_audit.load.svg import RenderLimits
 
-    jobs = [(i, LUCIDE_LIKE.replace('r="10"', f'r="{3 + i}"').encode(), (8, 16)) for i in range(6)]
+    jobs = [
+        (i, [LUCIDE_LIKE.replace('r="10"', f'r="{3 + i}"').encode()], (8, 16)) for i in range(6)
+    ]
     out = []
     for workers, ahead in ((1, 0), (2, 8)):
         with RenderPool(RenderLimits(timeout=20.0), workers=workers) as pool:
             out.append(dict(pool.stream(iter(jobs), ahead=ahead)))
     assert out[0].keys() == out[1].keys() == set(range(6))
     for tag in range(6):
-        for a, b in zip(out[0][tag], out[1][tag], strict=True):
+        for a, b in zip(out[0][tag][0], out[1][tag][0], strict=True):
             np.testing.assert_array_equal(a, b)
-    assert len({out[0][t][1].tobytes() for t in range(6)}) > 1  # the jobs really differ
+    assert len({out[0][t][0][1].tobytes() for t in range(6)}) > 1  # the jobs really differ
+
+
+def test_one_job_per_icon_whatever_its_paint_groups(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A six-group icon is one job: one time budget, not six (issue 21)."""
+    from alpha_audit.load import sandbox
+
+    jobs: list[int] = []  # one entry per job sent
+    send = sandbox._Worker.send
+
+    def spy(self: sandbox._Worker, job: int, request: bytes, svgs: int, sizes: object) -> None:
+        jobs.append(job)
+        send(self, job, request, svgs, sizes)  # type: ignore[arg-type]  # the sizes given
+
+    monkeypatch.setattr(sandbox._Worker, "send", spy)
+    colours = ["#ff0000", "#00ff00", "#0000ff", "#ffff00", "#00ffff", "#ff00ff"]
+    body = "".join(
+        f'<rect x="{i}" width="1" height="4" fill="{c}"/>' for i, c in enumerate(colours)
+    )
+    path = tmp_path / "six.svg"
+    path.write_text(f'<svg {NS} viewBox="0 0 6 4">{body}</svg>')
+    result = measure_paints([("six", path)], [8, 16], cache=False)
+    assert len(result.icons["six"].coverage) == 6
+    assert len(jobs) == 1

@@ -339,3 +339,86 @@ def test_isolates_draw_what_forcing_every_declaration_draws(
         for size in (8, 17, 24):
             np.testing.assert_array_equal(rasterize(a, size), rasterize(b, size))
     assert sum(len(v) for v in lean) < sum(len(v) for v in forced)  # it did skip some
+
+
+PRUNING = [
+    # groups, a <switch>, ids, a clip path that is a <path> with an id, nested shapes
+    '<g><rect width="3" height="3" fill="#f00"/><g><circle cx="6" cy="6" r="2" fill="#00f"/>'
+    '</g></g><switch><rect width="8" height="1" fill="#0f0"/><rect fill="#f00"/></switch>'
+    '<path id="c" d="M0 0h4v4z" fill="#00f"/><rect width="8" height="8" fill="#f00" '
+    'clip-path="url(#c)"/><rect x="2" width="2" height="8" fill="#0f0"><circle r="9" '
+    'fill="#f00"/></rect>',
+    # <use> draws its target whatever its display; <a> and text stay
+    '<defs><rect id="r" width="4" height="4"/></defs><use href="#r" fill="#0f0"/>'
+    '<a><rect x="4" width="4" height="4" fill="#00f"/></a><text y="8" fill="#f00">a</text>'
+    '<g id="keep"><rect y="4" width="4" height="4" fill="#00f"/></g>',
+    # a stylesheet of classes and descendants (structure-free: pruning stays)
+    "<style>.a { fill: #f00 } g .b { fill: #00f }</style>"
+    '<g><rect class="a" width="4" height="4"/><rect class="b" x="4" width="4" height="4"/></g>',
+    # a positional selector: what is left out would change what matches
+    "<style>rect:first-child { fill: #f00 } rect + rect { stroke: #00f }</style>"
+    '<g><rect width="4" height="4" fill="#0f0"/><rect x="4" width="4" height="4"/></g>',
+]
+
+
+@pytest.mark.parametrize("body", PRUNING + TRICKY)
+def test_leaving_out_what_draws_nothing_changes_no_mask(
+    body: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Each group's SVG without the elements that draw nothing renders pixel for pixel
+    what the whole SVG with them unpainted renders."""
+    import numpy as np
+
+    from alpha_audit.load import paints as module
+    from alpha_audit.load.paints import paints_and_isolates
+    from alpha_audit.load.svg import rasterize
+
+    svg = f'<svg {NS} viewBox="0 0 8 8">{body}</svg>'.encode()
+    _, pruned = paints_and_isolates(svg)
+    monkeypatch.setattr(module, "_prunable", lambda document: set())
+    _, whole = paints_and_isolates(svg)
+    assert len(pruned) == len(whole) > 0
+    for a, b in zip(pruned, whole, strict=True):
+        for size in (8, 13, 24):
+            np.testing.assert_array_equal(rasterize(a, size), rasterize(b, size))
+
+
+def test_a_group_svg_holds_only_its_own_shapes_unless_selectors_read_structure() -> None:
+    from alpha_audit.load.paints import paints_and_isolates
+
+    flag = "".join(
+        f'<rect x="{i}" width="1" height="8" fill="{c}"/>'
+        for i, c in enumerate(["#f00", "#0f0"] * 4)
+    )
+    _, (red, green) = paints_and_isolates(f'<svg {NS} viewBox="0 0 8 8">{flag}</svg>'.encode())
+    assert red.count(b"<ns0:rect") == green.count(b"<ns0:rect") == 4
+    positional = f"<style>rect:nth-child(3) {{ stroke-width: 2 }}</style>{flag}"
+    _, variants = paints_and_isolates(f'<svg {NS} viewBox="0 0 8 8">{positional}</svg>'.encode())
+    assert all(v.count(b"<ns0:rect") == 8 for v in variants)
+
+
+@pytest.mark.parametrize(
+    "style",
+    ["", "<style>rect:first-child { stroke-width: 1 }</style>"],  # prunable or not
+)
+def test_a_use_target_is_in_no_groups_mask(style: str) -> None:
+    """cairosvg draws a <use>'s target whatever the <use>'s display: the group SVGs must
+    not carry one that points anywhere (its paints are not audited)."""
+    import numpy as np
+
+    from alpha_audit.load.paints import paints_and_isolates
+    from alpha_audit.load.svg import rasterize
+
+    xlink = 'xmlns:xlink="http://www.w3.org/1999/xlink"'
+    svg = (
+        f'<svg {NS} {xlink} viewBox="0 0 8 8">{style}<defs><rect id="r" width="4" height="4" '
+        'fill="#00f"/></defs><rect x="4" y="4" width="4" height="4" fill="#f00"/>'
+        '<use xlink:href="#r"/><g><use href="#r" x="4"/></g></svg>'
+    ).encode()
+    found, (red,) = paints_and_isolates(svg)
+    assert [g.color for g in found.groups()] == ["#ff0000"]
+    assert [u.element for u in found.unaudited] == ["<use>", "<use>"]
+    mask = rasterize(red, 8)
+    np.testing.assert_array_equal(mask[4:, 4:], 1.0)  # the red square ...
+    assert mask[:4, :].sum() == 0 and mask[:, :4].sum() == 0  # ... and nothing else
+    assert rasterize(svg, 8)[:4, :4].sum() > 0  # the whole drawing does show the target

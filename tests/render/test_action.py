@@ -31,3 +31,16 @@ def test_the_report_goes_to_the_job_summary_and_the_gate_exits_last() -> None:
     assert "--format github --output -" in check
     names = list(steps)
     assert names[-1] == "Gate verdict" and "exit" in steps["Gate verdict"]["run"]
+
+
+def test_the_render_cache_is_kept_between_runs_where_the_check_looks_for_it() -> None:
+    steps = _steps()
+    names = list(steps)
+    cache = steps["Restore the render cache"]
+    check = steps["alpha-audit check"]
+    assert cache["uses"].startswith("actions/cache@")
+    assert names.index("Restore the render cache") < names.index("alpha-audit check")
+    assert cache["with"]["path"] == check["env"]["ALPHA_AUDIT_CACHE_DIR"]
+    assert cache["with"]["restore-keys"] in cache["with"]["key"]  # the newest one is restored
+    assert "inputs.cache != 'false'" in cache["if"]
+    assert "inputs.cache == 'false'" in check["env"]["ALPHA_AUDIT_NO_CACHE"]

@@ -20,6 +20,7 @@ from alpha_audit.cli.options import (
     MaxLossOption,
     MinDeltaEOption,
     MinSizeContrastOption,
+    NoCacheOption,
     PipelineOption,
     StrictSvgOption,
     ThemeArgument,
@@ -160,6 +161,7 @@ def check_command(
     ] = None,
     force: ForceOption = False,
     strict_svg: StrictSvgOption = False,
+    no_cache: NoCacheOption = False,
 ) -> ExitStatus:
     """Audit icon sets on themes and fail the build on the findings the policy names.
 

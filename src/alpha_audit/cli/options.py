@@ -32,6 +32,7 @@ __all__ = [
     "MaxLossOption",
     "MinDeltaEOption",
     "MinSizeContrastOption",
+    "NoCacheOption",
     "PipelineOption",
     "StrictSvgOption",
     "ThemeArgument",
@@ -199,6 +200,28 @@ StrictSvgOption = Annotated[
     bool, flag("--strict-svg", help="Treat an SVG that cannot be rendered as an input error.")
 ]
 ForceOption = Annotated[bool, flag("--force", help="Replace existing output files.")]
+
+
+def _no_cache(ctx: typer.Context, value: bool) -> bool:
+    """``--no-cache``: this command neither reads nor writes the render cache."""
+    if value:
+        from alpha_audit.load.render_cache import disable
+
+        ctx.call_on_close(disable())
+    return value
+
+
+NoCacheOption = Annotated[
+    bool,
+    typer.Option(
+        "--no-cache",
+        help="Render every icon afresh: neither read nor write the render cache "
+        "($ALPHA_AUDIT_CACHE_DIR, else the user cache folder; ALPHA_AUDIT_NO_CACHE=1 "
+        "does the same).",
+        callback=_no_cache,
+        metavar="",
+    ),
+]
 
 
 def read_gamut_option(value: str | None) -> GamutPolicy | None:

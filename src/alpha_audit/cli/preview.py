@@ -11,6 +11,7 @@ from alpha_audit.cli.console import progress_bar, stderr_console
 from alpha_audit.cli.options import (
     ForceOption,
     GamutOption,
+    NoCacheOption,
     StrictSvgOption,
     ThresholdOption,
     in_range,
@@ -79,6 +80,7 @@ def preview_command(
     force: ForceOption = False,
     strict_svg: StrictSvgOption = False,
     gamut: GamutOption = None,
+    no_cache: NoCacheOption = False,
 ) -> ExitStatus:
     """Draw the icons on the theme's canvases: PNG sheets (-o DIR) and/or a WebGL2 page (--html).
 

@@ -18,6 +18,7 @@ from alpha_audit.cli.options import (
     MaxLossOption,
     MinDeltaEOption,
     MinSizeContrastOption,
+    NoCacheOption,
     ThemeArgument,
     ThresholdOption,
     flag,
@@ -117,6 +118,7 @@ def suggest_command(
             callback=_scopes,
         ),
     ] = None,
+    no_cache: NoCacheOption = False,
 ) -> ExitStatus:
     """The largest alpha every coefficient in [1, alpha] keeps the gate policy for.
 

@@ -27,6 +27,11 @@ supported, reported as not audited: gradient and pattern paints (``url(...)``),
 ``<foreignObject>``, markers and filters.  ``@media``, ``@import`` and
 ``var()`` are ignored, as cairosvg ignores them.
 
+Every bound is checked before the work it bounds: the element count and depth as
+the XML is parsed, the selector-matching work (:data:`MAX_MATCH_WORK`, counted
+from each selector's shape and the tree's depth and width) before any element
+is matched, the variants (:data:`MAX_ISOLATE_WORK`) before any is written.
+
 Group opacity is multiplied down the tree.  That is exact for one element;
 for overlapping children of a translucent group it is the per-element
 approximation (the group is composited once, so overlaps are not doubled).
@@ -34,6 +39,9 @@ approximation (the group is composited once, so overlaps are not doubled).
 
 from __future__ import annotations
 
+import contextlib
+import functools
+import json
 import re
 import xml.etree.ElementTree as ET
 from collections.abc import Callable, Container, Iterator, Sequence
@@ -42,6 +50,8 @@ from pathlib import Path
 from typing import Any, Literal, cast
 
 import cssselect2
+import cssselect2.compiler
+import cssselect2.parser
 import defusedxml
 import defusedxml.ElementTree
 import tinycss2
@@ -55,11 +65,14 @@ __all__ = [
     "MAX_ELEMENTS",
     "MAX_ISOLATE_WORK",
     "MAX_MATCH_WORK",
+    "MAX_SELECTORS",
     "Paint",
     "PaintGroup",
     "PaintKind",
     "SvgPaints",
     "Unaudited",
+    "decode_paints",
+    "encode_paints",
     "extract_paints",
     "isolate_each",
     "isolate_groups",
@@ -73,11 +86,16 @@ PaintKind = Literal["fill", "stroke"]
 
 # Limits on the in-process parse of an untrusted file (already capped at
 # MAX_SVG_BYTES by load.svg.read_svg).  Icons have tens of elements and a few
-# rules; the product bounds cssselect2's matching work, the depth mirrors the
-# render worker, whose recursion limit (2000 frames) stops cairosvg near 600.
+# rules.  The depth mirrors the render worker, whose recursion limit (2000
+# frames) stops cairosvg near 600.  MAX_MATCH_WORK bounds the cascade: for
+# every selector, the elements it may be tested on times an upper bound on the
+# element tests one match makes (a descendant combinator may walk every
+# ancestor, ``:has()`` every descendant ...) plus the declarations it applies;
+# counted before any element is matched (each unit is about a microsecond).
 MAX_ELEMENTS = 20_000
 MAX_DEPTH = 500
-MAX_MATCH_WORK = 2_000_000  # elements x selectors
+MAX_SELECTORS = 5_000  # compiled selectors per file
+MAX_MATCH_WORK = 1_000_000  # element tests + declarations applied, counted before matching
 MAX_ISOLATE_WORK = 100_000  # rendered elements x per-paint variants
 
 _SHAPES = frozenset({"path", "rect", "circle", "ellipse", "line", "polyline", "polygon"})
@@ -202,7 +220,7 @@ def extract_paints(svg: bytes, *, path: str | Path | None = None) -> SvgPaints:
     [('#ff0000', 'fill', 0.25), ('currentColor', 'stroke', 0.5)]
     """
     unaudited: list[Unaudited] = []
-    return _paints_of(list(_walk(svg, path, unaudited)), unaudited)
+    return _paints_of(_read(svg, path, unaudited).visited, unaudited)
 
 
 def _paints_of(visited: Sequence[_Visited], unaudited: list[Unaudited]) -> SvgPaints:
@@ -221,8 +239,8 @@ def paints_and_isolates(
     is an :class:`SvgError` raised before any SVG is written.
     """
     unaudited: list[Unaudited] = []
-    visited = list(_walk(svg, path, unaudited))
-    paints = _paints_of(visited, unaudited)
+    document = _read(svg, path, unaudited)
+    paints = _paints_of(document.visited, unaudited)
     groups = paints.groups()
     if max_groups is not None and len(groups) > max_groups:
         raise SvgError(
@@ -230,7 +248,55 @@ def paints_and_isolates(
             f"{max_groups} are audited per icon",
             path=path,
         )
-    return paints, _isolate(visited, [_in_group(g.key) for g in groups], path)
+    return paints, _isolate(document, [_in_group(g.key) for g in groups], path)
+
+
+def encode_paints(paints: SvgPaints) -> bytes:
+    """``paints`` as compact JSON (what the render worker sends and the render cache keeps)."""
+    doc = {
+        "paints": [[p.color, p.kind, p.opacity, p.element, p.line] for p in paints.paints],
+        "unaudited": [[u.element, u.line, u.reason] for u in paints.unaudited],
+    }
+    return json.dumps(doc, separators=(",", ":"), allow_nan=False).encode()
+
+
+def decode_paints(value: bytes) -> SvgPaints | None:
+    """:func:`encode_paints`'s JSON read back; None unless every field holds a value that
+    reading an SVG could give (it comes from a cache file or a render process)."""
+    try:
+        doc = json.loads(value)
+        paints = tuple(
+            Paint(color, kind, float(opacity), element, line)
+            for color, kind, opacity, element, line in doc["paints"]
+        )
+        unaudited = tuple(
+            Unaudited(element, line, reason) for element, line, reason in doc["unaudited"]
+        )
+    except (ValueError, TypeError, KeyError, OverflowError, RecursionError):
+        return None
+    for p in paints:
+        if not (
+            (
+                p.color == CURRENT_COLOR
+                or (isinstance(p.color, str) and _HEX_COLOR.fullmatch(p.color))
+            )
+            and p.kind in ("fill", "stroke")
+            and 0.0 < p.opacity <= 1.0
+            and isinstance(p.element, str)
+            and _line(p.line)
+        ):
+            return None
+    for u in unaudited:
+        if not (isinstance(u.element, str) and isinstance(u.reason, str) and _line(u.line)):
+            return None
+    return SvgPaints(paints, unaudited)
+
+
+def _line(line: object) -> bool:
+    return line is None or (type(line) is int and line >= 1)
+
+
+_HEX_COLOR = re.compile(r"#[0-9a-f]{6}")
 
 
 # A colour drawn at full strength in the masks :func:`isolate_paints` makes.
@@ -248,10 +314,17 @@ def isolate_paints(
     opacity is audited separately): every element and group is drawn at
     opacity 1, kept paints opaque (``#000000`` unless already an opaque hex
     colour), other fills and strokes ``none``, and text, images, ``<use>``,
-    markers and filters are not drawn.  Only the declarations that change
-    something are appended to an element's ``style`` attribute, with
+    markers and filters are not drawn (a ``<use>`` is left out or pointed at
+    nothing: the renderer draws its target whatever its ``display``).  Only the
+    declarations that change something are appended to an element's ``style`` attribute, with
     ``!important``, the last word in the cascade, so ``<style>`` rules cannot
     undo them; geometry (``stroke-width``, transforms, clip paths) is untouched.
+
+    Shapes and groups that would draw nothing are left out of the SVG instead
+    (the renderer would still parse and trace them), where that cannot change
+    the drawing (:func:`_prunable`): each group's render then costs what its
+    own elements cost, so a flag with fifteen colours renders about as fast as
+    one drawn in one colour.
     """
     return isolate_each(svg, [keep], path=path)[0]
 
@@ -273,23 +346,29 @@ def isolate_each(
 ) -> list[bytes]:
     """:func:`isolate_paints` for several predicates; the work is bounded by
     :data:`MAX_ISOLATE_WORK` (rendered elements x variants)."""
-    return _isolate(list(_walk(svg, path, [])), keeps, path)
+    return _isolate(_read(svg, path, []), keeps, path)
 
 
 def _isolate(
-    visited: list[_Visited], keeps: Sequence[Callable[[Paint], bool]], path: str | Path | None
+    document: _Document, keeps: Sequence[Callable[[Paint], bool]], path: str | Path | None
 ) -> list[bytes]:
-    """One SVG per predicate from walked elements (their tree is rewritten in place)."""
+    """One SVG per predicate from a walked document (its tree is rewritten in place)."""
+    visited = document.visited
     if len(visited) * len(keeps) > MAX_ISOLATE_WORK:
         raise SvgError(
             f"{len(keeps)} paints on {len(visited)} elements need more than "
             f"{MAX_ISOLATE_WORK} element renders; refused (resource limit)",
             path=path,
         )
+    movable = _prunable(document)
+    _disarm_uses(document, {id(v.node) for v in visited if id(v.node) not in movable})
     original = [v.node.get("style") for v in visited]
     out = []
     for keep in keeps:
+        left_out = _left_out(visited, movable, keep)
         for v, style in zip(visited, original, strict=True):
+            if id(v.node) in left_out:
+                continue  # not in this SVG: whatever it says does not matter
             decls = _overrides(v, keep)
             if not decls:  # renders as it is: left byte for byte (a third of the render cost)
                 if style is None:
@@ -303,8 +382,112 @@ def _isolate(
             )
         # ElementTree writes the SVG namespace with a prefix (ns0:svg); the renderer
         # matches elements by namespace, not prefix, so the drawing is the same.
-        out.append(ET.tostring(visited[0].node, encoding="utf-8"))
+        with _without(document.parents, left_out):
+            out.append(ET.tostring(visited[0].node, encoding="utf-8"))
     return out
+
+
+def _prunable(document: _Document) -> set[int]:
+    """Elements (by ``id()``) whose subtree an isolated SVG may leave out when it draws nothing.
+
+    Left out, a subtree that draws nothing changes the rendered mask only
+    through what refers to it or what its presence changes for others, so an
+    element qualifies only when its whole subtree is shapes, groups and
+    ``<use>`` elements the walk visited (no ``<defs>``, ``<clipPath>``, text or
+    unknown elements, whose content the renderer may draw or look up), none
+    but a ``<use>`` has an ``id`` (cairosvg looks paths up by id, for
+    ``clip-path`` too), it is not the root nor a child of ``<switch>`` (which
+    renders its first child), and no selector of the stylesheet depends on
+    siblings or descendants (``:nth-child``, ``+``, ``:has()`` ...,
+    :func:`_reads_structure`).
+    """
+    if document.structural or not document.visited:
+        return set()
+    visited = {id(v.node): v for v in document.visited}
+    ok: set[int] = set()
+    for v in reversed(document.visited):  # children before their parents
+        node = v.node
+        if _local(document.parents.get(id(node), node)) == "switch":
+            continue
+        if _is_use(v):  # drawn by none of the groups; cairosvg registers no id of it
+            ok.add(id(node))
+            continue
+        if (
+            v.hidden_kind
+            or node.get("id") is not None
+            or not all(id(child) in ok for child in node)
+        ):
+            continue
+        ok.add(id(node))
+    ok.discard(id(document.visited[0].node))  # the root stays
+    return ok & visited.keys()
+
+
+def _is_use(v: _Visited) -> bool:
+    return v.hidden_kind and _local(v.node) == "use"
+
+
+def _disarm_uses(document: _Document, kept: Container[int]) -> None:
+    """Point every ``<use>`` the group SVGs keep at nothing.
+
+    cairosvg draws a ``<use>``'s target whatever the ``<use>``'s ``display``,
+    so ``display: none`` alone would put the target into every group's mask;
+    a reference to an id the file does not have draws nothing, and the
+    element stays where selectors may look for it.
+    """
+    uses = [v.node for v in document.visited if _is_use(v) and id(v.node) in kept]
+    if not uses:
+        return
+    ids = {e.get("id") for e in document.visited[0].node.iter()}
+    nothing = next(
+        f"alpha-audit-nothing-{k}"
+        for k in range(len(ids) + 1)
+        if f"alpha-audit-nothing-{k}" not in ids
+    )
+    for node in uses:
+        for name in ("href", "{http://www.w3.org/1999/xlink}href"):
+            if node.get(name) is not None:
+                node.set(name, f"#{nothing}")
+
+
+def _left_out(
+    visited: Sequence[_Visited], movable: set[int], keep: Callable[[Paint], bool]
+) -> set[int]:
+    """The outermost movable elements that draw none of ``keep``'s paints (by ``id()``)."""
+    if not movable:
+        return set()
+    drawing: set[int] = set()  # elements drawing a kept paint, or above one
+    for v in reversed(visited):  # children before their parents
+        if any(p.opacity > 0.0 and keep(p) for p in v.paints) or any(
+            id(child) in drawing for child in v.node
+        ):
+            drawing.add(id(v.node))
+    out: set[int] = set()
+    skipped: set[int] = set()  # inside an element already left out
+    for v in visited:  # parents first: only the outermost one of a subtree is removed
+        key = id(v.node)
+        if key in skipped:
+            skipped.update(id(child) for child in v.node)
+        elif key in movable and key not in drawing:
+            out.add(key)
+            skipped.update(id(child) for child in v.node)
+    return out
+
+
+@contextlib.contextmanager
+def _without(parents: dict[int, ET.Element], left_out: set[int]) -> Iterator[None]:
+    """The tree with the ``left_out`` elements detached, put back in place afterwards."""
+    touched: dict[int, tuple[ET.Element, list[ET.Element]]] = {}
+    for key in left_out:
+        parent = parents[key]
+        touched.setdefault(id(parent), (parent, list(parent)))
+    try:
+        for parent, children in touched.values():
+            parent[:] = [c for c in children if id(c) not in left_out]
+        yield
+    finally:
+        for parent, children in touched.values():
+            parent[:] = children
 
 
 @dataclass
@@ -313,6 +496,24 @@ class _Visited:
     paints: tuple[Paint, ...]
     hidden_kind: bool  # an element the audit does not judge (text, image, use ...)
     rendered: dict[str, str | None]  # the renderer's view of what a mask overrides
+
+
+@dataclass
+class _Document:
+    """A walked SVG: its rendered elements in document order and what pruning may rely on."""
+
+    visited: list[_Visited]
+    parents: dict[int, ET.Element]  # element id() -> parent element
+    structural: bool  # a selector depends on siblings or descendants
+
+
+@dataclass(frozen=True)
+class _Extent:
+    """How big a parsed tree is: what bounds the work of matching one selector."""
+
+    elements: int
+    depth: int  # of the deepest element, the root's being 0
+    widest: int  # most children of one element
 
 
 def _overrides(v: _Visited, keep: Callable[[Paint], bool]) -> dict[str, str]:
@@ -359,10 +560,16 @@ def _kept_declarations(style: str, ours: Container[str]) -> list[str]:
     ]
 
 
-def _parse(svg: bytes, path: str | Path | None) -> tuple[ET.Element, dict[int, int]]:
-    """The XML tree and each element's start line (keyed by ``id``), under the limits."""
+def _parse(svg: bytes, path: str | Path | None) -> tuple[ET.Element, dict[int, int], _Extent]:
+    """The XML tree, each element's start line (keyed by ``id``) and its extent.
+
+    The element count and depth are refused as the parser reaches them, before
+    the rest of the file is read.
+    """
     lines: list[int] = []
     parser_box: list[defusedxml.ElementTree.DefusedXMLParser] = []
+    open_children: list[int] = []  # per open element, its children so far
+    extent = {"depth": 0, "widest": 0}
 
     class _LineBuilder(ET.TreeBuilder):
         def start(self, tag: Any, attrs: dict[Any, Any], /) -> ET.Element:
@@ -370,8 +577,23 @@ def _parse(svg: bytes, path: str | Path | None) -> tuple[ET.Element, dict[int, i
                 raise SvgError(
                     f"has more than {MAX_ELEMENTS} elements; refused (resource limit)", path=path
                 )
+            if len(open_children) > MAX_DEPTH:
+                raise SvgError(
+                    f"nests elements deeper than {MAX_DEPTH}; refused (resource limit)",
+                    path=path,
+                    line=parser_box[0].parser.CurrentLineNumber,
+                )
             lines.append(parser_box[0].parser.CurrentLineNumber)
+            extent["depth"] = max(extent["depth"], len(open_children))
+            if open_children:
+                open_children[-1] += 1
+                extent["widest"] = max(extent["widest"], open_children[-1])
+            open_children.append(0)
             return super().start(tag, attrs)
+
+        def end(self, tag: Any, /) -> ET.Element:
+            open_children.pop()
+            return super().end(tag)
 
     parser = defusedxml.ElementTree.DefusedXMLParser(target=_LineBuilder())
     parser_box.append(parser)
@@ -388,15 +610,25 @@ def _parse(svg: bytes, path: str | Path | None) -> tuple[ET.Element, dict[int, i
         line = exc.position[0] if getattr(exc, "position", None) else None
         reason = str(exc).split(":", 1)[0]
         raise SvgError(f"is not well-formed XML ({reason})", path=path, line=line) from exc
-    return root, {id(e): n for e, n in zip(root.iter(), lines, strict=False)}
+    extent_ = _Extent(len(lines), extent["depth"], extent["widest"])
+    return root, {id(e): n for e, n in zip(root.iter(), lines, strict=False)}, extent_
 
 
 def _stylesheet(
-    root: ET.Element, elements: int, path: str | Path | None
-) -> tuple[cssselect2.Matcher, cssselect2.Matcher]:
-    """Normal and ``!important`` matchers of every ``<style type="text/css">``, like cairosvg."""
+    root: ET.Element, extent: _Extent, path: str | Path | None
+) -> tuple[tuple[cssselect2.Matcher, cssselect2.Matcher] | None, bool]:
+    """Normal and ``!important`` matchers of every ``<style type="text/css">``, like cairosvg
+    (None when there is no rule to match), and whether a selector depends on siblings or
+    descendants (:func:`_reads_structure`).
+
+    Before a selector is compiled its matching work is counted (:func:`_match_cost`
+    on every element, plus its declarations applied to each); past
+    :data:`MAX_MATCH_WORK` in all, or :data:`MAX_SELECTORS` selectors, the file
+    is refused before any element is matched.
+    """
     normal, important = cssselect2.Matcher(), cssselect2.Matcher()
-    selectors = 0
+    selectors = work = 0
+    structural = False
     for style in root.iter(f"{{{SVG_NS}}}style"):
         if style.get("type", "text/css") != "text/css" or not style.text:
             continue
@@ -405,24 +637,137 @@ def _stylesheet(
                 continue
             plain, strong = _declarations(rule.content)
             try:
-                compiled = list(cssselect2.compile_selector_list(rule.prelude))
+                parsed = list(cssselect2.parser.parse(rule.prelude))
             except cssselect2.SelectorError:
                 continue  # an invalid selector drops its rule (CSS Syntax 3)
-            for selector in compiled:
-                if selector.pseudo_element is not None or selector.never_matches:
-                    continue
+            except RecursionError as exc:
+                raise SvgError(
+                    "nests CSS selectors too deeply; refused (resource limit)", path=path
+                ) from exc
+            for one in parsed:
                 selectors += 1
-                if selectors * elements > MAX_MATCH_WORK:
+                if selectors > MAX_SELECTORS:
                     raise SvgError(
-                        f"has {selectors}+ CSS selectors on {elements} elements; refused "
-                        f"(resource limit: {MAX_MATCH_WORK} selector x element matches)",
+                        f"has more than {MAX_SELECTORS} CSS selectors; refused (resource limit)",
                         path=path,
                     )
+                try:
+                    cost = _match_cost(one.parsed_tree, extent)
+                    reads_structure = _reads_structure(one.parsed_tree)
+                    selector = cssselect2.compiler.CompiledSelector(one)
+                except cssselect2.SelectorError:
+                    continue
+                except RecursionError as exc:
+                    raise SvgError(
+                        "nests CSS selectors too deeply; refused (resource limit)", path=path
+                    ) from exc
+                if one.pseudo_element is not None or selector.never_matches:
+                    continue
+                work += extent.elements * (cost + len(plain) + len(strong))
+                if work > MAX_MATCH_WORK:
+                    raise SvgError(
+                        f"has CSS selectors whose matching on {extent.elements} elements "
+                        f"(nesting depth {extent.depth}) needs more than {MAX_MATCH_WORK} "
+                        "element tests; refused before matching (resource limit)",
+                        path=path,
+                    )
+                structural = structural or reads_structure
                 if plain:
                     normal.add_selector(selector, plain)
                 if strong:
                     important.add_selector(selector, strong)
-    return normal, important
+    return ((normal, important) if work else None), structural
+
+
+# Pseudo-classes whose match depends on an element's siblings or children.
+_POSITIONAL = frozenset(
+    {"first-child", "last-child", "only-child", "first-of-type", "last-of-type", "only-of-type"}
+)
+
+
+# Selectors holding a list of selectors: :not(), :is()/:where(), and the like.
+_SELECTOR_LISTS = (
+    cssselect2.parser.NegationSelector,
+    cssselect2.parser.MatchesAnySelector,
+    cssselect2.parser.SpecificityAdjustmentSelector,
+)
+
+
+def _match_cost(node: object, extent: _Extent) -> int:
+    """An upper bound on the element tests cssselect2 makes matching ``node`` on one element.
+
+    Follows cssselect2's compiled tests (``cssselect2/compiler.py``): a
+    descendant combinator tries every ancestor for the left part, ``~`` every
+    earlier sibling, ``:has()`` every descendant or later sibling, an
+    ``:nth-child(... of S)`` every sibling; nested parts multiply.  Capped just
+    above :data:`MAX_MATCH_WORK`, which refuses anything larger anyway.
+    """
+    p = cssselect2.parser
+    cap = MAX_MATCH_WORK + 1
+    if isinstance(node, p.CombinedSelector):
+        fan = {" ": extent.depth, "~": extent.widest}.get(node.combinator, 1)
+        left = _match_cost(node.left, extent)
+        return min(cap, _match_cost(node.right, extent) + max(1, fan) * left)
+    if isinstance(node, p.CompoundSelector):
+        return min(cap, sum(_match_cost(s, extent) for s in node.simple_selectors) or 1)
+    if isinstance(node, _SELECTOR_LISTS):
+        return min(cap, 1 + sum(_match_cost(s.parsed_tree, extent) for s in node.selector_list))
+    if isinstance(node, p.RelationalSelector):
+        fans = {" ": extent.elements}
+        return min(
+            cap,
+            1
+            + sum(
+                max(1, fans.get(r.combinator, extent.widest))
+                * _match_cost(r.selector.parsed_tree, extent)
+                for r in node.selector_list
+            ),
+        )
+    if isinstance(node, p.PseudoClassSelector):
+        return max(1, extent.widest) if node.name in _POSITIONAL else 1
+    if isinstance(node, p.FunctionalPseudoClassSelector):
+        if node.name == "lang":
+            return max(1, extent.depth)
+        of = _nth_of(node)
+        inner = sum(_match_cost(s.parsed_tree, extent) for s in of) if of else 1
+        return min(cap, max(1, extent.widest) * (inner + 1))
+    return 1  # type, class, id, attribute, namespace: one test
+
+
+def _nth_of(node: Any) -> list[Any]:
+    """The selectors after ``of`` in ``:nth-child(An+B of S)``, parsed as cssselect2 does."""
+    arguments = list(node.arguments)
+    for k, token in enumerate(arguments):
+        if token.type == "ident" and token.value == "of":
+            return list(cssselect2.parser.parse(arguments[k + 1 :]))
+    return []
+
+
+def _reads_structure(node: object) -> bool:
+    """Whether a selector's match may change when another element's subtree is removed.
+
+    Sibling combinators, positional pseudo-classes, ``:empty``, ``:nth-*()`` and
+    ``:has()`` look beyond an element and its ancestors; type, class, id and
+    attribute tests and the descendant and child combinators do not.
+    """
+    p = cssselect2.parser
+    if isinstance(node, p.CombinedSelector):
+        return (
+            node.combinator in ("+", "~")
+            or _reads_structure(node.left)
+            or _reads_structure(node.right)
+        )
+    if isinstance(node, p.CompoundSelector):
+        return any(_reads_structure(s) for s in node.simple_selectors)
+    if isinstance(node, _SELECTOR_LISTS):
+        return any(_reads_structure(s.parsed_tree) for s in node.selector_list)
+    if isinstance(node, p.RelationalSelector):
+        return True
+    if isinstance(node, p.PseudoClassSelector):
+        return str(node.name) in _POSITIONAL or node.name == "empty"
+    if isinstance(node, p.FunctionalPseudoClassSelector):
+        return bool(node.name != "lang")
+    return False
 
 
 def _declarations(tokens: object) -> tuple[list[tuple[str, str]], list[tuple[str, str]]]:
@@ -461,6 +806,7 @@ def _in_svg_namespace(node: ET.Element) -> bool:
     return not tag.startswith("{") or tag.startswith(f"{{{SVG_NS}}}")
 
 
+@functools.lru_cache(maxsize=4096)
 def _number(value: str | None) -> float | None:
     """An ``<alpha-value>`` (number or percentage), clamped to [0, 1]; None when invalid."""
     if value is None:
@@ -489,6 +835,7 @@ def _length_is_zero(value: str | None) -> bool:
         return False
 
 
+@functools.lru_cache(maxsize=4096)
 def _valid(name: str, value: str) -> bool:
     """Whether a declared value is usable; invalid ones are ignored (CSS Syntax 3)."""
     if value.strip().lower() == "inherit":
@@ -502,6 +849,7 @@ def _valid(name: str, value: str) -> bool:
     return True
 
 
+@functools.lru_cache(maxsize=4096)
 def _paint_value(value: str) -> tuple[str, object]:
     """Classify a ``<paint>`` value.
 
@@ -529,6 +877,7 @@ def _paint_value(value: str) -> tuple[str, object]:
     return _color_value(text)
 
 
+@functools.lru_cache(maxsize=4096)
 def _color_value(text: str) -> tuple[str, object]:
     """A CSS colour as ``('color', (hex, alpha))``, ``('current', None)``, ``('space', name)``
     or ``('invalid', None)``."""
@@ -551,7 +900,7 @@ def _cascade(
     wrapper: cssselect2.ElementWrapper,
     parent: dict[str, str | None],
     parent_raw: dict[str, str | None],
-    matchers: tuple[cssselect2.Matcher, cssselect2.Matcher],
+    matchers: tuple[cssselect2.Matcher, cssselect2.Matcher] | None,
 ) -> tuple[dict[str, str | None], dict[str, str | None]]:
     """Computed values of the properties this module reads, and the renderer's view.
 
@@ -569,10 +918,11 @@ def _cascade(
     layers: list[list[tuple[str, str]]] = [
         [(name, node.get(name)) for name in _PROPERTIES if node.get(name) is not None]
     ]
-    normal, important = matchers
-    layers += [rule[-1] for rule in normal.match(wrapper)]
+    if matchers is not None:
+        layers += [rule[-1] for rule in matchers[0].match(wrapper)]
     layers.append(inline_normal)
-    layers += [rule[-1] for rule in important.match(wrapper)]
+    if matchers is not None:
+        layers += [rule[-1] for rule in matchers[1].match(wrapper)]
     layers.append(inline_important)
     raw = {name: parent_raw[name] if name in _INHERITED_MASK else None for name in parent_raw}
     for declarations in layers:
@@ -591,36 +941,43 @@ def _cascade(
     return computed, raw
 
 
-def _walk(svg: bytes, path: str | Path | None, unaudited: list[Unaudited]) -> Iterator[_Visited]:
-    """Every rendered SVG element with its paints, in document order; unaudited ones noted."""
-    root, lines = _parse(svg, path)
+def _read(svg: bytes, path: str | Path | None, unaudited: list[Unaudited]) -> _Document:
+    """Parse, check the bounds, and walk ``svg``; unaudited elements are noted."""
+    root, lines, extent = _parse(svg, path)
     if _local(root) != "svg" or not _in_svg_namespace(root):
         raise SvgError("has no <svg> root element; not an SVG file", path=path)
-    total = len(lines)
-    matchers = _stylesheet(root, total, path)
+    matchers, structural = _stylesheet(root, extent, path)
+    visited = list(_walk(root, lines, matchers, path, unaudited))
+    parents = {id(child): parent for parent in root.iter() for child in parent}
+    return _Document(visited, parents, structural)
+
+
+def _walk(
+    root: ET.Element,
+    lines: dict[int, int],
+    matchers: tuple[cssselect2.Matcher, cssselect2.Matcher] | None,
+    path: str | Path | None,
+    unaudited: list[Unaudited],
+) -> Iterator[_Visited]:
+    """Every rendered SVG element with its paints, in document order; unaudited ones noted."""
     ids = {e.get("id"): e for e in root.iter() if e.get("id")}
     wrapper_root = cssselect2.ElementWrapper.from_xml_root(root)
     initial: dict[str, str | None] = {**_INITIAL, "opacity": "1"}
     nothing: dict[str, str | None] = dict.fromkeys(_MASK_PROPERTIES)
     # (wrapper, parent computed values, the renderer's view of them, product of
-    # ancestors' opacity, depth, filtered above)
+    # ancestors' opacity, filtered above); the depth was bounded by the parse
     stack: list[
         tuple[
             cssselect2.ElementWrapper,
             dict[str, str | None],
             dict[str, str | None],
             float,
-            int,
             bool,
         ]
-    ] = [(wrapper_root, initial, nothing, 1.0, 0, False)]
+    ] = [(wrapper_root, initial, nothing, 1.0, False)]
     while stack:
-        wrapper, parent, parent_raw, group_opacity, depth, filtered = stack.pop()
+        wrapper, parent, parent_raw, group_opacity, filtered = stack.pop()
         node = wrapper.etree_element
-        if depth > MAX_DEPTH:
-            raise SvgError(
-                f"nests elements deeper than {MAX_DEPTH}; refused (resource limit)", path=path
-            )
         tag = _local(node)
         if not _in_svg_namespace(node) or tag in _NOT_RENDERED:
             continue
@@ -651,7 +1008,7 @@ def _walk(svg: bytes, path: str | Path | None, unaudited: list[Unaudited]) -> It
         if tag == "switch":
             children = children[:1]  # only the first child renders (cairosvg: no feature tests)
         for child in reversed(children):
-            stack.append((child, computed, raw, opacity, depth + 1, filtered))
+            stack.append((child, computed, raw, opacity, filtered))
 
 
 def _shape_paints(

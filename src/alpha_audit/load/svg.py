@@ -9,16 +9,20 @@ the rest of the audit goes on.
 
 from __future__ import annotations
 
-import os
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
 
 from alpha_audit.errors import SvgError
 from alpha_audit.load.files import read_capped
+from alpha_audit.load.sandbox import RenderLimits, RenderPool
+
+if TYPE_CHECKING:
+    from alpha_audit.load.render_cache import RenderCache
 
 __all__ = [
     "MAX_SVG_BYTES",
@@ -41,21 +45,6 @@ _NOT_SVG = {
     b"%PDF": "a PDF document",
     b"RIFF": "a RIFF (WebP/WAV) file",
 }
-
-
-@dataclass(frozen=True)
-class RenderLimits:
-    """Bounds on rendering one untrusted SVG (documented in docs/ci.md).
-
-    ``timeout`` is wall-clock seconds per icon for all its sizes; ``memory``
-    the worker's address-space limit in bytes; ``cpu`` the worker's CPU-time
-    backstop in seconds; ``workers`` how many render processes run at once.
-    """
-
-    timeout: float = 5.0
-    memory: int = 1 << 30  # 1 GiB address space: Python + cairo need ~300 MiB
-    cpu: int = 600
-    workers: int = max(1, min(4, os.cpu_count() or 1))
 
 
 @dataclass(frozen=True)
@@ -142,6 +131,7 @@ def rasterize_icons(
     *,
     progress: Callable[[], None] | None = None,
     limits: RenderLimits | None = None,
+    cache: RenderCache | bool = True,
 ) -> MaskSet:
     """Rasterise every (name, file) at every size; failures become problems.
 
@@ -149,45 +139,100 @@ def rasterize_icons(
     text) and rendered in sandboxed worker processes bounded by ``limits``: a
     file that takes too long, needs too much memory or crashes the renderer is
     one problem, and the rest of the set goes on.  ``progress`` is called once
-    per icon.
+    per icon.  Masks rendered before come from the render cache
+    (:mod:`alpha_audit.load.render_cache`; ``cache`` as in
+    :func:`~alpha_audit.load.paint_masks.measure_paints`).
     """
-    from alpha_audit.load.sandbox import RenderPool
+    import hashlib
+    import zlib
+
+    from alpha_audit.load.render_cache import entry_key, open_default
 
     limits = limits or RenderLimits()
-    sizes = tuple(int(s) for s in sizes)
-    masks: dict[tuple[str, int], NDArray[np.uint8]] = {}
+    sizes = tuple(dict.fromkeys(int(s) for s in sizes))
     problems: list[IconProblem] = []
-    jobs: list[tuple[str, Path, bytes]] = []
+    jobs: list[tuple[str, Path, bytes, bytes]] = []  # name, file, svg, sha256
     for name, file in icons:
         try:
-            jobs.append((name, Path(file), read_svg(file)))
+            data = read_svg(file)
         except SvgError as exc:
             problems.append(IconProblem(name, Path(file), exc.message))
             if progress is not None:
                 progress()
-    failed: dict[str, IconProblem] = {}
-    with RenderPool(limits, workers=min(limits.workers, len(jobs))) as pool:
-        for (name, file, _), outcome in zip(
-            jobs, pool.map([(data, sizes) for _, _, data in jobs]), strict=True
-        ):
-            if isinstance(outcome, str):
-                failed[name] = IconProblem(name, file, outcome)
-            else:
-                for size, mask in zip(sizes, outcome, strict=True):
-                    if isinstance(mask, str):
-                        failed.setdefault(name, IconProblem(name, file, mask))
-                    elif not mask.any():
-                        failed.setdefault(
-                            name,
-                            IconProblem(name, file, f"renders nothing at {size}px (empty icon)"),
-                        )
-                    else:
-                        masks[(name, size)] = mask
-            if progress is not None:
+            continue
+        jobs.append((name, Path(file), data, hashlib.sha256(data).digest()))
+    opened = open_default() if cache is True else None
+    store = opened if cache is True else cache or None
+    rendered: dict[tuple[str, int], NDArray[np.uint8] | str] = {}
+    keys = {
+        (name, size): entry_key("whole", digest, size)
+        for name, _, _, digest in jobs
+        for size in sizes
+    }
+    try:
+        found = store.get(keys.values()) if store is not None else {}
+        for (name, size), key in keys.items():
+            value = found.get(key)
+            raw = _inflate(value, size * size) if value is not None else None
+            if raw is not None:
+                rendered[(name, size)] = np.frombuffer(raw, dtype=np.uint8).reshape(size, size)
+            elif value is not None and store is not None:
+                store.forget(key)
+        todo = [(job, tuple(s for s in sizes if (job[0], s) not in rendered)) for job in jobs]
+        todo = [(job, missing) for job, missing in todo if missing]
+        if progress is not None:
+            for _ in range(len(jobs) - len(todo)):
                 progress()
-    for name in failed:
+        if todo:
+            with RenderPool(limits, workers=min(limits.workers, len(todo))) as pool:
+                for (name, _, _, _), missing, outcome in (
+                    (job, missing, outcome)
+                    for (job, missing), outcome in pool.stream(
+                        ((job, missing), (job[2],), missing) for job, missing in todo
+                    )
+                ):
+                    for k, size in enumerate(missing):
+                        if isinstance(outcome, str):
+                            mask: NDArray[np.uint8] | str = outcome
+                        elif isinstance(outcome, list):
+                            mask = outcome[0][k]
+                        else:
+                            raise TypeError(f"a render job answered {type(outcome).__name__}")
+                        rendered[(name, size)] = mask
+                        if store is not None and not isinstance(mask, str):
+                            store.put(keys[(name, size)], zlib.compress(mask.tobytes()))
+                    if progress is not None:
+                        progress()
+        if store is not None:
+            store.flush()
+    finally:
+        if opened is not None:
+            opened.close()
+    masks: dict[tuple[str, int], NDArray[np.uint8]] = {}
+    for name, file, _, _ in jobs:
+        good = {}
         for size in sizes:
-            masks.pop((name, size), None)
-    order = {name: i for i, (name, _, _) in enumerate(jobs)}
-    problems += sorted(failed.values(), key=lambda p: order[p.icon])
+            mask = rendered[(name, size)]
+            if isinstance(mask, str):
+                problems.append(IconProblem(name, file, mask))
+                break
+            if not mask.any():
+                problems.append(
+                    IconProblem(name, file, f"renders nothing at {size}px (empty icon)")
+                )
+                break
+            good[(name, size)] = mask
+        else:
+            masks.update(good)
     return MaskSet(CoverageMasks(masks), tuple(problems))
+
+
+def _inflate(value: bytes, length: int) -> bytes | None:
+    """A cached mask's bytes, None unless it inflates to exactly ``length`` bytes."""
+    import zlib
+
+    try:
+        raw = zlib.decompressobj().decompress(value, length + 1)
+    except zlib.error:
+        return None
+    return raw if len(raw) == length else None
