@@ -146,15 +146,17 @@ def solid_rows(
     theme: Theme,
     iconset: IconSet,
     masks: Mapping[tuple[str, int], NDArray[np.float64]],
-    sizes: Sequence[int],
+    sizes: Sequence[int] | None = None,
 ) -> PreviewRows:
     """Icons drawn as one ``currentColor`` mask each (the paper's validation and timing).
 
-    ``masks`` maps ``(icon, size)`` to a whole-icon coverage mask; with no SVG
-    paints read, each icon's row is its manifest colour (no size figures).
+    ``masks`` maps ``(icon, size)`` to a whole-icon coverage mask (values
+    ``k / 255``) at ``sizes`` (default: every size it holds); icons without a
+    mask at every size are left out.  With no SVG paints read, each icon's row
+    is its manifest colour (no size figures).
     """
-    sizes = tuple(sizes)
-    drawings = {
-        i.name: solid_drawing(i, {s: masks[(i.name, s)] for s in sizes}) for i in iconset.icons
-    }
-    return PreviewRows(audit(theme, replace(iconset, sizes=sizes)), drawings)
+    sizes = tuple(sorted({s for _, s in masks})) if sizes is None else tuple(sizes)
+    drawn = [i for i in iconset.icons if all((i.name, s) in masks for s in sizes)]
+    drawings = {i.name: solid_drawing(i, {s: masks[(i.name, s)] for s in sizes}) for i in drawn}
+    missing = {i.name for i in iconset.icons} - set(drawings)
+    return PreviewRows(audit(theme, replace(iconset.without(missing), sizes=sizes)), drawings)

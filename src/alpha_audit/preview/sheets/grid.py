@@ -66,7 +66,7 @@ class GridFrame:
     fonts: Fonts
     header: str
     sub: str
-    legend: str
+    legend: tuple[str, str]
     blocks: tuple[tuple[NDArray[np.float64], NDArray[np.float64], str, str], ...]
 
 
@@ -114,19 +114,19 @@ def grid_frame(
     header = f"{canvas.name}  {canvas.color}"
     sub = f"{title} · {canvas.mode} canvas · {size} px"
     legend = (
-        f"under each icon: its rows' size contrast at {size} px on this canvas (lowest over "
-        f"its paints); underlined below {threshold:g}:1; square at top right: a hard-coded colour"
+        f"under each icon: its rows' size contrast at {size} px (lowest over its paints),",
+        f"underlined below {threshold:g}:1; a square at its top right: a hard-coded colour",
     )
     content_w = max(
         cols * cell_w - gap,
         Fonts.width(fonts.title, header),
         Fonts.width(fonts.body, sub),
-        Fonts.width(fonts.body, legend),
+        *(Fonts.width(fonts.body, line) for line in legend),
         *(Fonts.width(fonts.row, b[2]) + Fonts.width(fonts.body, b[3]) for b in blocks),
     )
     block_h = _BLOCK_GAP + _BLOCK_HEAD + rows * cell_h
     width = 2 * MARGIN + content_w
-    height = header_bottom(2) + len(alphas) * block_h + MARGIN
+    height = header_bottom(3) + len(alphas) * block_h + MARGIN
     return GridFrame(
         width, height, cols, gap, cell_w, cell_h, block_h, fonts, header, sub, legend, tuple(blocks)
     )
@@ -162,7 +162,8 @@ def draw_grid(
     canvas, size = spec.canvases[0], spec.size
     icons = available(iconset.icons, drawn.drawings, size)
     j = drawn.canvas_index(canvas.name)
-    labels = [drawn.size_contrast(a, size, icons)[:, j] for a in alphas]
+    each = {a: drawn.size_contrast(a, size, icons)[:, j] for a in dict.fromkeys(alphas)}
+    labels = [each[a] for a in alphas]
     labels_ref = drawn.size_contrast(1.0, size, icons)[:, j]
     frame = grid_frame(spec, icons, alphas, threshold, max_width, title, labels, labels_ref)
     fonts, cols, gap = frame.fonts, frame.cols, frame.gap
@@ -175,8 +176,9 @@ def draw_grid(
 
     out.text((MARGIN, MARGIN), frame.header, fonts.title, ink.text)
     out.text((MARGIN, header_bottom(0)), frame.sub, fonts.body, ink.muted)
-    out.text((MARGIN, header_bottom(1)), frame.legend, fonts.body, ink.muted)
-    y = header_bottom(2) + _BLOCK_GAP
+    for line, text in enumerate(frame.legend, start=1):
+        out.text((MARGIN, header_bottom(line)), text, fonts.body, ink.muted)
+    y = header_bottom(3) + _BLOCK_GAP
     for coeff, contrast, label, summary in frame.blocks:
         pixels = composite_drawings(drawings, size, background, coeff, drawn.pipeline)
         used = out.text((MARGIN, y), label, fonts.row, ink.text)
