@@ -9,7 +9,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from multipaint import write_multipaint
 
 from alpha_audit import load_iconset, load_theme
 from alpha_audit.errors import UsageError
@@ -17,6 +16,7 @@ from alpha_audit.load.paint_masks import paint_masks
 from alpha_audit.preview import html as page_html
 from alpha_audit.preview.figures import preview_rows
 from alpha_audit.preview.html import mask_atlas, preview_html
+from multipaint import write_multipaint
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -7,7 +7,6 @@ import re
 
 import numpy as np
 import pytest
-from multipaint import write_multipaint
 from PIL import Image
 from typer.testing import CliRunner
 
@@ -15,6 +14,7 @@ from alpha_audit import load_iconset, load_theme
 from alpha_audit.cli import app
 from alpha_audit.load.paint_masks import paint_masks
 from alpha_audit.preview.figures import preview_rows
+from multipaint import write_multipaint
 
 
 def _check_json(theme, manifest, pipeline, alpha):
