@@ -68,5 +68,5 @@ def test_atlas_pages_hold_at_most_the_guaranteed_texture_size():
 
 def test_a_page_over_the_mask_budget_is_refused_before_packing(monkeypatch):
     monkeypatch.setattr(page_html, "MAX_PAGE_MASK_BYTES", 1000)
-    with pytest.raises(UsageError, match=r"MiB of coverage masks .* fewer --size"):
+    with pytest.raises(UsageError, match=r"MiB of coverage masks .* fewer sizes"):
         page_html._check_page_bytes(4, [16, 48])

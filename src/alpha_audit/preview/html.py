@@ -126,7 +126,7 @@ def _check_page_bytes(slots: int, sizes: Sequence[int]) -> None:
             f"the page would carry {total / 2**20:,.1f} MiB of coverage masks ({slots:,} paint "
             f"groups x sizes {', '.join(map(str, sizes))} px), more than the "
             f"{MAX_PAGE_MASK_BYTES // 2**20} MiB a self-contained page holds; give fewer "
-            "--size values or split the icon set"
+            "sizes or split the icon set"
         )
 
 
