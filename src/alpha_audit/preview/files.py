@@ -18,6 +18,7 @@ from alpha_audit.preview.compose import near_source_canvases
 from alpha_audit.preview.figures import preview_rows
 from alpha_audit.preview.html import preview_html
 from alpha_audit.preview.sheets import (
+    SWATCH_ALPHAS,
     Alpha,
     Layout,
     check_writable,
@@ -138,6 +139,8 @@ def preview_files(
     broken = {p.icon for p in masks.problems}
     usable = replace(iconset, icons=tuple(i for i in iconset.icons if i.name not in broken))
     rows: list[Alpha] = list(alphas) if alphas else default_alphas(usable)
+    # css opacity stops at 1: the swatch rows it can draw (the others are the linear pipeline's).
+    swatch_rows = [a for a in SWATCH_ALPHAS if 0.0 <= a <= 1.0] if kind == "css" else None
     drawn = preview_rows(replace(theme, canvases=canvases), iconset, masks, raster_sizes, kind)
 
     written: list[Path] = []
@@ -145,7 +148,7 @@ def preview_files(
         specs,
         iconset,  # pages index the manifest's icons; icons not drawn are left out
         drawn,
-        alphas=rows if (alphas or layout is not Layout.SWATCHES) else None,
+        alphas=rows if (alphas or layout is not Layout.SWATCHES) else swatch_rows,
         threshold=theme.threshold,
         title=title,
     ):
