@@ -21,8 +21,11 @@ import pytest
 from alpha_audit import load_iconset, load_theme, rasterize_icons
 from alpha_audit.browser import ENGINES
 from alpha_audit.browser.validate import PAPER_CONFIGURATIONS, Configuration, validate_page
+from alpha_audit.load.paint_masks import paint_masks
 from alpha_audit.model import Icon, IconSet
 from alpha_audit.preview import Blend
+from alpha_audit.preview.figures import preview_rows, solid_rows
+from multipaint import write_multipaint
 
 ROOT = Path(__file__).resolve().parents[2]
 SIZES = (16, 24, 48)
@@ -51,14 +54,14 @@ def validation_input(tmp_path_factory: pytest.TempPathFactory, generated_svgs):
     iconset = _icon_set(folder, generated_svgs)
     rendered = rasterize_icons([(i.name, i.file) for i in iconset.icons], SIZES)
     assert not rendered.problems
-    return theme, iconset, rendered.masks
+    return theme, iconset, solid_rows(theme, iconset, rendered.masks, SIZES)
 
 
 def test_webgl_page_matches_the_cpu_reference(engine, validation_input, capsys):
     name, installation = engine
-    theme, iconset, masks = validation_input
+    theme, iconset, drawn = validation_input
     with ENGINES[name](installation) as browser:
-        result = validate_page(browser, theme, iconset, masks, sizes=SIZES, configurations=CONFIGS)
+        result = validate_page(browser, theme, iconset, drawn, sizes=SIZES, configurations=CONFIGS)
 
     n = len(iconset.icons)
     with capsys.disabled():
@@ -72,3 +75,28 @@ def test_webgl_page_matches_the_cpu_reference(engine, validation_input, capsys):
     assert result.instances >= MIN_INSTANCES
     assert result.max_error <= TOLERANCE
     assert result.max_error_uncovered == 0  # an uncovered pixel shows the canvas exactly
+
+
+@pytest.fixture(scope="module")
+def multipaint_input(tmp_path_factory: pytest.TempPathFactory):
+    """A red stroke, a 0.3 disc, a two-colour icon and all three in one, paint by paint."""
+    folder = tmp_path_factory.mktemp("multipaint")
+    theme_path, manifest = write_multipaint(folder)
+    theme, iconset = load_theme(theme_path), load_iconset(manifest)
+    masks = paint_masks([(i.name, i.file) for i in iconset.icons], SIZES, cache=False)
+    assert not masks.problems
+    return theme, iconset, masks
+
+
+@pytest.mark.parametrize("pipeline", ["linear", "css"])
+def test_webgl_page_draws_every_paint_group_as_the_cpu(engine, multipaint_input, pipeline):
+    name, installation = engine
+    theme, iconset, masks = multipaint_input
+    drawn = preview_rows(theme, iconset, masks, SIZES, pipeline)
+    alphas = (0.6, 1.0) if pipeline == "css" else (0.6, 1.0, 1.2, -1.0)
+    configs = tuple(Configuration(Blend.EXTENDED, a) for a in alphas)
+    with ENGINES[name](installation) as browser:
+        result = validate_page(browser, theme, iconset, drawn, sizes=SIZES, configurations=configs)
+    assert result.instances == len(iconset.icons) * len(theme.canvases) * len(SIZES) * len(configs)
+    assert result.max_error <= TOLERANCE
+    assert result.max_error_uncovered == 0

@@ -7,8 +7,9 @@ import pytest
 from fontTools.ttLib import TTFont
 from PIL import ImageFont
 
-from alpha_audit.model import Canvas, Icon, IconSet
+from alpha_audit.model import Canvas, Icon, IconSet, Theme
 from alpha_audit.preview import Layout, plan_sheets, render_sheet
+from alpha_audit.preview.figures import solid_rows
 from alpha_audit.preview.fonts import font_for_char, runs, text_width
 
 BUNDLED = ImageFont.load_default(size=14)
@@ -51,7 +52,8 @@ def _grid(name: str) -> np.ndarray:
     mask = np.zeros((24, 24))
     mask[4:20, 4:20] = 1.0
     (spec,) = plan_sheets(Layout.GRID, [canvas], [24], "t")
-    sheet = render_sheet(spec, iconset, {(name, 24): mask}, alphas=[1.0])
+    drawn = solid_rows(Theme("t", (canvas,)), iconset, {(name, 24): mask})
+    sheet = render_sheet(spec, iconset, drawn, alphas=[1.0])
     return np.asarray(sheet.image)
 
 

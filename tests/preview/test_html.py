@@ -1,4 +1,4 @@
-"""The preview page is one self-contained file whose masks round-trip exactly."""
+"""The preview page is one self-contained file carrying each paint group's mask exactly."""
 
 from __future__ import annotations
 
@@ -8,33 +8,65 @@ import re
 from pathlib import Path
 
 import numpy as np
+import pytest
 
-from alpha_audit import load_iconset, load_theme, rasterize_icons
+from alpha_audit import load_iconset, load_theme
+from alpha_audit.errors import UsageError
+from alpha_audit.load.paint_masks import paint_masks
+from alpha_audit.preview import html as page_html
+from alpha_audit.preview.figures import preview_rows
 from alpha_audit.preview.html import mask_atlas, preview_html
+from multipaint import write_multipaint
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def test_page_is_self_contained_and_masks_round_trip():
-    theme = load_theme(ROOT / "themes" / "paper16.yaml")
-    iconset = load_iconset(ROOT / "examples" / "vibrant" / "iconset.yaml")
-    masks = rasterize_icons([(i.name, i.file) for i in iconset.icons], [16, 48]).masks
-    page = preview_html(theme, iconset, masks, sizes=[16, 48])
+def _page_data(page: str) -> dict:
+    return json.loads(re.search(r'id="alpha-audit-data">(.*?)</script>', page, re.S).group(1))
+
+
+def test_page_is_self_contained_and_group_masks_round_trip(tmp_path):
+    theme_path, manifest = write_multipaint(tmp_path)
+    theme, iconset = load_theme(theme_path), load_iconset(manifest)
+    masks = paint_masks([(i.name, i.file) for i in iconset.icons], [16, 48], cache=False)
+    drawn = preview_rows(theme, iconset, masks, [16, 48])
+    page = preview_html(theme, iconset, drawn, sizes=[16, 48])
     assert "default-src 'none'" in page  # CSP: no network, no external files
     assert not re.search(r"""(src|href)\s*=\s*["'](?!data:)""", page)
     assert "__ALPHA_AUDIT_" not in page
-    data = json.loads(re.search(r'id="alpha-audit-data">(.*?)</script>', page, re.S).group(1))
+    data = _page_data(page)
+    assert data["pipeline"] == "linear"
+    by_name = {i["name"]: i for i in data["icons"]}
+    assert [layer["hex"] for layer in by_name["red"]["layers"]] == ["#ff0000"]
+    assert by_name["red"]["fixed"] and by_name["disc"]["fixed"]
+    assert [layer["opacity"] for layer in by_name["disc"]["layers"]] == [pytest.approx(0.3)]
+    assert len(by_name["mixed"]["layers"]) == 3
     for size in (16, 48):
         atlas = data["atlases"][str(size)]
         codes = np.frombuffer(base64.b64decode(atlas["data"]), dtype=np.uint8)
-        codes = codes.reshape(atlas["height"], atlas["width"])
-        for k, icon in enumerate(data["icons"]):
-            r, c = divmod(k, atlas["columns"])
-            block = codes[r * size : (r + 1) * size, c * size : (c + 1) * size]
-            assert np.array_equal(block / 255.0, masks[(icon["name"], size)])
+        codes = codes.reshape(atlas["pages"], atlas["height"], atlas["width"])
+        per_page = atlas["columns"] * atlas["rows"]
+        for icon in data["icons"]:
+            for g, mask in enumerate(masks.icons[icon["name"]].masks[size]):
+                page_no, rest = divmod(icon["first"] + g, per_page)
+                r, c = divmod(rest, atlas["columns"])
+                block = codes[page_no, r * size : (r + 1) * size, c * size : (c + 1) * size]
+                assert np.array_equal(block, mask)
 
 
 def test_atlas_layout():
-    cols, atlas = mask_atlas([np.full((4, 4), k / 255) for k in range(5)], 4)
-    assert cols == 3 and atlas.shape == (8, 12)
-    assert atlas[4, 4] == 4 and atlas[0, 8] == 2
+    cols, rows, atlas = mask_atlas([np.full((4, 4), k, dtype=np.uint8) for k in range(5)], 4)
+    assert (cols, rows) == (3, 2) and atlas.shape == (1, 8, 12)
+    assert atlas[0, 4, 4] == 4 and atlas[0, 0, 8] == 2
+
+
+def test_atlas_pages_hold_at_most_the_guaranteed_texture_size():
+    cols, rows, atlas = mask_atlas([np.full((512, 512), k, dtype=np.uint8) for k in range(20)], 512)
+    assert (cols, rows) == (4, 4) and atlas.shape == (2, 2048, 2048)
+    assert atlas[1, 0, 512] == 17
+
+
+def test_a_page_over_the_mask_budget_is_refused_before_packing(monkeypatch):
+    monkeypatch.setattr(page_html, "MAX_PAGE_MASK_BYTES", 1000)
+    with pytest.raises(UsageError, match=r"MiB of coverage masks .* fewer sizes"):
+        page_html._check_page_bytes(4, [16, 48])

@@ -16,7 +16,7 @@ from typer.testing import CliRunner
 from alpha_audit.cli import app
 from alpha_audit.color import composite_coverage, to_8bit
 from alpha_audit.errors import UsageError
-from alpha_audit.model import Canvas, Icon, IconSet
+from alpha_audit.model import Canvas, Icon, IconSet, Theme
 from alpha_audit.preview import (
     MAX_NEAR_SOURCE_COLORS,
     PIXEL_BUDGET,
@@ -26,6 +26,7 @@ from alpha_audit.preview import (
     plan_sheets,
     render_sheet,
 )
+from alpha_audit.preview.figures import solid_rows
 
 ROOT = Path(__file__).resolve().parents[2]
 THEME = str(ROOT / "themes" / "paper16.yaml")
@@ -44,8 +45,13 @@ def _big_set(n: int, size: int, *, palette: bool = True) -> tuple[IconSet, dict]
     return IconSet("big", icons, palette=pal, sizes=(size,)), masks
 
 
+def _rows(iconset, masks, canvases=CANVASES):
+    return solid_rows(Theme("t", tuple(canvases)), iconset, masks)
+
+
 def _render_pages(specs, iconset, masks, **options):
-    return [render_sheet(spec, iconset, masks, **options) for spec in specs]
+    drawn = _rows(iconset, masks, {c: None for s in specs for c in s.canvases})
+    return [render_sheet(spec, iconset, drawn, **options) for spec in specs]
 
 
 @pytest.mark.parametrize("layout", [Layout.GRID, Layout.COMPARE])
@@ -81,7 +87,7 @@ def test_a_sheet_that_fits_keeps_its_name_and_has_no_page():
     iconset, masks = _big_set(30, 16)
     planned = plan_sheets(Layout.GRID, CANVASES[:1], [16], "t")
     assert paginate(planned, iconset) == planned
-    assert render_sheet(planned[0], iconset, masks).spec.page is None
+    assert render_sheet(planned[0], iconset, _rows(iconset, masks)).spec.page is None
 
 
 def test_pages_are_even_and_in_manifest_order():
@@ -120,7 +126,7 @@ def test_drawing_a_sheet_over_the_budget_is_refused():
     iconset, masks = _big_set(1, 16)
     (spec,) = plan_sheets(Layout.GRID, CANVASES[:1], [16], "t")
     with pytest.raises(UsageError, match=f"more than the {PIXEL_BUDGET:,} px"):
-        render_sheet(spec, iconset, masks, alphas=[1.0] * 200_000)
+        render_sheet(spec, iconset, _rows(iconset, masks), alphas=[1.0] * 200_000)
 
 
 def test_near_source_canvases_are_bounded():

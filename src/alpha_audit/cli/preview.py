@@ -12,6 +12,7 @@ from alpha_audit.cli.options import (
     ForceOption,
     GamutOption,
     NoCacheOption,
+    PipelineOption,
     StrictSvgOption,
     ThresholdOption,
     in_range,
@@ -77,6 +78,7 @@ def preview_command(
         ),
     ] = False,
     threshold: ThresholdOption = None,
+    pipeline: PipelineOption = None,
     force: ForceOption = False,
     strict_svg: StrictSvgOption = False,
     gamut: GamutOption = None,
@@ -84,17 +86,26 @@ def preview_command(
 ) -> ExitStatus:
     """Draw the icons on the theme's canvases: PNG sheets (-o DIR) and/or a WebGL2 page (--html).
 
-    Every icon pixel is encode(q * clip(Cb + a(Cs - Cb)) + (1 - q) * Cb) in linear
-    sRGB, rounded half to even to 8 bits; labels never cover an icon.
+    Each icon is drawn as its audit rows draw it: every paint (an SVG's own fills
+    and strokes, currentColor in the manifest colour) in its own colour and opacity,
+    in painter's order, under the pipeline check uses. Linear: P = o q clip(Cb +
+    a(Cs - Cb)) + (1 - o q) P in linear sRGB; css: source-over on encoded values;
+    8 bits rounded half to even. Under each icon: its rows' size contrast at the
+    drawn size (the number check --format json gives); a small square marks an
+    icon that hard-codes a colour. Labels never cover an icon.
 
     Example:
     [bold]alpha-audit preview themes/paper16.yaml examples/vibrant/iconset.yaml -o previews
     --html previews/vibrant.html[/]
     """
     from alpha_audit.bundled import iconset_source, theme_source
+    from alpha_audit.load.config import Overrides, resolve_config
     from alpha_audit.preview.files import preview_files
 
     gamut_policy = read_gamut_option(gamut)
+    # The pipeline as check decides it: the flag, else the project config's; preview_files
+    # goes on to the icon set's, the theme's, else linear.
+    project = resolve_config(Overrides(pipeline=pipeline), Path.cwd())
     with progress_bar("Rendering previews") as (on_start, on_step):
         result = preview_files(
             theme_source(theme),
@@ -111,6 +122,7 @@ def preview_command(
             on_start=on_start,
             on_step=on_step,
             gamut=gamut_policy,
+            pipeline=project.pipeline,
         )
     err = stderr_console()
     for problem in result.problems:

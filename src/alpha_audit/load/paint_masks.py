@@ -99,6 +99,7 @@ class IconMasks:
     paints: SvgPaints
     groups: tuple[PaintGroup, ...]
     masks: dict[int, tuple[Mask, ...]]
+    stats: dict[int, tuple[CoverageStats, ...]] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -107,6 +108,24 @@ class PaintMasks:
 
     icons: dict[str, IconMasks]
     problems: tuple[IconProblem, ...]
+
+    def paint_set(self) -> PaintSet:
+        """The same icons as :func:`measure_paints` gives them: coverage figures, no masks."""
+        return PaintSet(
+            {
+                name: IconPaints(
+                    m.icon,
+                    m.file,
+                    m.paints,
+                    tuple(
+                        PaintCoverage(g, {size: m.stats[size][k] for size in m.stats})
+                        for k, g in enumerate(m.groups)
+                    ),
+                )
+                for name, m in self.icons.items()
+            },
+            self.problems,
+        )
 
 
 def measure_paints(
@@ -176,7 +195,9 @@ def paint_masks(
     measured, problems = _measure(
         icons, sizes, progress=progress, limits=limits, pool=pool, cache=cache, keep_masks=True
     )
-    result = {m.name: IconMasks(m.name, m.path, m.paints, m.groups, m.masks) for m in measured}
+    result = {
+        m.name: IconMasks(m.name, m.path, m.paints, m.groups, m.masks, m.stats) for m in measured
+    }
     return PaintMasks(result, problems)
 
 

@@ -9,13 +9,16 @@ from pathlib import Path
 from alpha_audit.color import GamutPolicy
 from alpha_audit.errors import SvgError, UsageError
 from alpha_audit.load.iconset import load_iconset
-from alpha_audit.load.svg import IconProblem, rasterize_icons
+from alpha_audit.load.paint_masks import paint_masks
+from alpha_audit.load.svg import IconProblem
 from alpha_audit.load.theme import load_theme
 from alpha_audit.model import Canvas, IconSet, Theme
 from alpha_audit.output import write_text
 from alpha_audit.preview.compose import near_source_canvases
+from alpha_audit.preview.figures import preview_rows
 from alpha_audit.preview.html import preview_html
 from alpha_audit.preview.sheets import (
+    SWATCH_ALPHAS,
     Alpha,
     Layout,
     check_writable,
@@ -26,6 +29,7 @@ from alpha_audit.preview.sheets import (
     write_sheet,
 )
 from alpha_audit.ranges import ALPHA, ICON_SIZE
+from alpha_audit.rows import check_pipeline, resolve_pipeline
 
 __all__ = ["DEFAULT_SIZE", "PreviewResult", "preview_canvases", "preview_files"]
 
@@ -72,13 +76,19 @@ def preview_files(
     on_start: Callable[[int], None] | None = None,
     on_step: Callable[[], None] | None = None,
     gamut: GamutPolicy | None = None,
+    pipeline: str | None = None,
 ) -> PreviewResult:
-    """Load, rasterise once, then write PNG sheets to ``out_dir`` and/or a page to ``html_path``.
+    """Load, render every paint group once, audit, then write PNG sheets and/or a page.
 
-    Every target is checked before any work: an existing file is an error
-    unless ``overwrite``.  ``on_start(n)`` and ``on_step()`` report progress
-    over icons rasterised plus files written; ``gamut`` decides colours
-    outside sRGB (else each file's ``gamut:``, else they are an error).
+    Sheets go to ``out_dir``, the page to ``html_path``.  Icons are drawn as
+    their audit rows draw them (each paint group in its colour and opacity,
+    under ``pipeline``: the given one, else the icon set's, else the
+    theme's, else linear, as ``check`` decides) and labelled with their
+    rows' size contrast.  Every target is checked before any work: an
+    existing file is an error unless ``overwrite``.  ``on_start(n)`` and
+    ``on_step()`` report progress over icons rendered plus files written;
+    ``gamut`` decides colours outside sRGB (else each file's ``gamut:``,
+    else they are an error).
     """
     if out_dir is None and html_path is None:
         raise UsageError("nothing to write: give `out_dir` for PNG sheets and/or `html_path`")
@@ -87,7 +97,13 @@ def preview_files(
     iconset = load_iconset(iconset_path, gamut=gamut)
     if threshold is not None:
         theme = replace(theme, threshold=float(threshold))
-    canvases = preview_canvases(theme, iconset, near_source)
+    kind = resolve_pipeline(pipeline, iconset.pipeline, theme.pipeline)
+    check_pipeline(iconset, kind)
+    for a in alphas:
+        check_pipeline(iconset, kind, a)
+    # Canvases as the rows see them: translucent layers composited as the pipeline draws.
+    shown = replace(theme, canvases=preview_canvases(theme, iconset, near_source))
+    canvases = shown.flattened(kind).canvases
     sheet_sizes = sorted(set(sizes)) if sizes else [DEFAULT_SIZE]
     page_sizes = sorted(set(sizes)) if sizes else sorted({*iconset.sizes, DEFAULT_SIZE})
     prefix = "near-source" if near_source else theme.name
@@ -116,22 +132,23 @@ def preview_files(
     raster_sizes = sorted({*(sheet_sizes if specs else ()), *(page_sizes if html_path else ())})
     if on_start is not None:
         on_start(len(iconset.icons) + len(targets))
-    masks = rasterize_icons(
-        [(i.name, i.file) for i in iconset.icons], raster_sizes, progress=on_step
-    )
+    masks = paint_masks([(i.name, i.file) for i in iconset.icons], raster_sizes, progress=on_step)
     if strict_svg and masks.problems:
         first = masks.problems[0]
         raise SvgError(first.message, path=first.file)
     broken = {p.icon for p in masks.problems}
     usable = replace(iconset, icons=tuple(i for i in iconset.icons if i.name not in broken))
     rows: list[Alpha] = list(alphas) if alphas else default_alphas(usable)
+    # css opacity stops at 1: the swatch rows it can draw (the others are the linear pipeline's).
+    swatch_rows = [a for a in SWATCH_ALPHAS if 0.0 <= a <= 1.0] if kind == "css" else None
+    drawn = preview_rows(replace(theme, canvases=canvases), iconset, masks, raster_sizes, kind)
 
     written: list[Path] = []
     for sheet in render_all(
         specs,
-        iconset,  # pages index the manifest's icons; icons without masks are left out
-        masks.masks,
-        alphas=rows if (alphas or layout is not Layout.SWATCHES) else None,
+        iconset,  # pages index the manifest's icons; icons not drawn are left out
+        drawn,
+        alphas=rows if (alphas or layout is not Layout.SWATCHES) else swatch_rows,
         threshold=theme.threshold,
         title=title,
     ):
@@ -142,7 +159,7 @@ def preview_files(
         page = preview_html(
             replace(theme, canvases=canvases),
             usable,
-            masks.masks,
+            drawn,
             sizes=page_sizes,
             alpha=alphas[0] if alphas else None,
         )

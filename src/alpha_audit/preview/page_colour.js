@@ -21,3 +21,35 @@
     return s.map((v, k) => clip(b[k] + a * (v - b[k])));
   }
 
+  /** What an 8-bit screen shows for a linear colour. */
+  const shipped = (c) => to8bit(c).map((v) => decode(v / 255));
+  /**
+   * A paint of colour s at weight w = opacity x coverage on canvas b, as its row draws it:
+   * linear: w X + (1 - w) b with X the blend; css: b' + a w (s' - b') on encoded values, 8-bit.
+   */
+  function paintShown(s, b, a, w, mode) {
+    if (CSS && mode === 0) {
+      return s.map((v, k) => {
+        const be = encode(b[k]);
+        return decode(roundHalfEven(clip(be + a * w * (encode(v) - be)) * 255) / 255);
+      });
+    }
+    const x = blend(s, b, a, mode);
+    return x.map((v, k) => w * v + (1 - w) * b[k]);
+  }
+  /**
+   * An icon's size contrast at `size` on canvas b: the lowest over its paint groups of the
+   * contrast of the group shown at opacity x q50 (8-bit) against the 8-bit canvas. NaN when
+   * no group draws at that size.
+   */
+  function sizeContrast(icon, b, a, size, mode) {
+    const screen = shipped(b);
+    let low = NaN;
+    for (const layer of icon.layers) {
+      const q50 = layer.q50[String(size)];
+      if (q50 === null || q50 === undefined) continue;
+      const c = contrast(shipped(paintShown(layer.linear, b, a, q50 * layer.opacity, mode)), screen);
+      if (!(c >= low)) low = c;
+    }
+    return low;
+  }

@@ -1,5 +1,7 @@
   // ---- the data embedded by html.py, and the page's fixed choices --------------------------
   const DATA = JSON.parse(document.getElementById("alpha-audit-data").textContent);
+  // The rows' pipeline: css draws source-over on encoded values (alpha in [0, 1]).
+  const CSS = DATA.pipeline === "css";
   const BLENDS = [
     { id: "alpha", label: "α (extended)", code: 0 },
     { id: "difference", label: "Difference", code: 1 },

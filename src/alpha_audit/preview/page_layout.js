@@ -122,7 +122,7 @@
     for (const band of layout.bands) {
       const items = cells.filter((c) => c.band === band)
         .map((c) => ({ icon: c.icon, x: c.x, y: c.y - tile.y, alpha: alphaFor(DATA.icons[c.icon]) }));
-      if (items.length) renderer.draw(layout.size, band.canvas.linear, state.blend, items);
+      if (items.length) renderer.draw(layout.size, band.canvas.linear, state.blend, items, CSS);
     }
     const pixels = renderer.read(layout.width, tile.h);
     const canvas = tile.canvas;

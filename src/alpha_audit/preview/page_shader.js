@@ -10,38 +10,62 @@ void main() {
   vec2 px = vec2(u_origin) + a_corner * float(u_size);
   gl_Position = vec4(px / u_viewport * 2.0 - 1.0, 0.0, 1.0);
 }`;
+  // Up to MAX_PAINT_GROUPS (load/paint_masks.py) groups per icon, painted in order.
+  const MAX_GROUPS = 32;
   const FRAGMENT = `#version 300 es
 precision highp float;
 precision highp int;
-precision highp sampler2D;
-uniform sampler2D u_mask;    // R8 coverage atlas, q = k / 255
-uniform ivec2 u_origin;      // icon's lower-left pixel in the framebuffer
-uniform ivec2 u_atlas;       // icon's top-left texel in the atlas
+precision highp sampler2DArray;
+uniform sampler2DArray u_mask; // R8 coverage slots, q = k / 255, pages of columns x rows slots
+uniform ivec2 u_origin;        // icon's lower-left pixel in the framebuffer
+uniform int u_columns;         // slots across a page
+uniform int u_perPage;         // slots on a page
+uniform int u_first;           // the icon's first group's slot
+uniform int u_count;           // the icon's groups
 uniform int u_size;
-uniform vec3 u_source;       // Cs, linear sRGB, from the object
-uniform vec3 u_background;   // Cb, linear sRGB, from the application
-uniform float u_alpha;       // the real-valued coefficient
-uniform int u_blend;         // 0 extended alpha, 1 Difference, 2 Exclusion
+uniform vec3 u_sources[${MAX_GROUPS}];  // Cs per group, linear sRGB
+uniform float u_opacity[${MAX_GROUPS}]; // o per group
+uniform vec3 u_background;     // Cb, linear sRGB, from the application
+uniform float u_alpha;         // the real-valued coefficient
+uniform int u_blend;           // 0 extended alpha, 1 Difference, 2 Exclusion
+uniform int u_css;             // 1: source-over on encoded values (the css pipeline)
 out vec4 o_color;
-vec3 encodeSrgb(vec3 c) {    // CSS Color 4 gam_sRGB
+vec3 encodeSrgb(vec3 c) {      // CSS Color 4 gam_sRGB
   vec3 lo = c * 12.92;
   vec3 hi = 1.055 * pow(max(c, vec3(0.0)), vec3(1.0 / 2.4)) - 0.055;
   return mix(lo, hi, greaterThan(c, vec3(0.0031308)));
 }
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy) - u_origin;
-  float q = texelFetch(u_mask, u_atlas + ivec2(p.x, u_size - 1 - p.y), 0).r;
-  vec3 s = u_source;
   vec3 b = u_background;
-  vec3 outColor;
-  if (u_blend == 1) {
-    outColor = clamp(abs(s - b), 0.0, 1.0);
-  } else if (u_blend == 2) {
-    outColor = clamp(s + b - 2.0 * s * b, 0.0, 1.0);
-  } else {
-    outColor = clamp(b + u_alpha * (s - b), 0.0, 1.0);
+  bool css = u_css == 1 && u_blend == 0;
+  vec3 colour = css ? encodeSrgb(b) : b;
+  for (int g = 0; g < ${MAX_GROUPS}; g++) {
+    if (g >= u_count) break;
+    int slot = u_first + g;
+    int page = slot / u_perPage;
+    int rest = slot - page * u_perPage;
+    int row = rest / u_columns;
+    int col = rest - row * u_columns;
+    float q = texelFetch(u_mask, ivec3(col * u_size + p.x, row * u_size + u_size - 1 - p.y, page), 0).r;
+    vec3 s = u_sources[g];
+    if (css) {
+      float w = u_alpha * (u_opacity[g] * q);
+      colour = clamp(colour + w * (encodeSrgb(s) - colour), 0.0, 1.0);
+      continue;
+    }
+    vec3 x;
+    if (u_blend == 1) {
+      x = clamp(abs(s - b), 0.0, 1.0);
+    } else if (u_blend == 2) {
+      x = clamp(s + b - 2.0 * s * b, 0.0, 1.0);
+    } else {
+      x = clamp(b + u_alpha * (s - b), 0.0, 1.0);
+    }
+    float w = u_opacity[g] * q;
+    colour = w * x + (1.0 - w) * colour;
   }
-  o_color = vec4(encodeSrgb(q * outColor + (1.0 - q) * b), 1.0);
+  o_color = vec4(css ? colour : encodeSrgb(colour), 1.0);
 }`;
 
   class Renderer {
@@ -69,8 +93,9 @@ void main() {
       }
       gl.useProgram(program);
       this.u = {};
-      for (const name of ["u_viewport", "u_origin", "u_size", "u_mask", "u_atlas", "u_source",
-        "u_background", "u_alpha", "u_blend"]) {
+      for (const name of ["u_viewport", "u_origin", "u_size", "u_mask", "u_columns",
+        "u_perPage", "u_first", "u_count", "u_sources", "u_opacity", "u_background", "u_alpha",
+        "u_blend", "u_css"]) {
         this.u[name] = gl.getUniformLocation(program, name);
       }
       const vao = gl.createVertexArray();
@@ -99,36 +124,30 @@ void main() {
       };
     }
 
-    /**
-     * The mask atlas of one size as textures of at most MAX_TEXTURE_SIZE rows each: icon k sits
-     * in chunk floor(row / rowsPerChunk), row = floor(k / columns).
-     */
+    /** The mask slots of one size as one texture array (pages of at most 2048 x 2048). */
     texture(size) {
       const gl = this.gl;
       if (!this.textures.has(size)) {
         const atlas = DATA.atlases[String(size)];
         const limit = gl.getParameter(gl.MAX_TEXTURE_SIZE);
-        if (atlas.width > limit) throw new Error(`mask atlas wider than this GPU's ${limit} px`);
-        const bytes = Uint8Array.from(atob(atlas.data), (ch) => ch.charCodeAt(0));
-        const rowsPerChunk = Math.max(1, Math.floor(limit / size));
-        const chunks = [];
-        for (let row0 = 0; row0 * size < atlas.height; row0 += rowsPerChunk) {
-          const height = Math.min(rowsPerChunk * size, atlas.height - row0 * size);
-          const tex = gl.createTexture();
-          gl.bindTexture(gl.TEXTURE_2D, tex);
-          gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
-          gl.texImage2D(gl.TEXTURE_2D, 0, gl.R8, atlas.width, height, 0, gl.RED,
-            gl.UNSIGNED_BYTE, bytes.subarray(row0 * size * atlas.width,
-              (row0 * size + height) * atlas.width));
-          for (const p of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) {
-            gl.texParameteri(gl.TEXTURE_2D, p, gl.NEAREST);
-          }
-          for (const p of [gl.TEXTURE_WRAP_S, gl.TEXTURE_WRAP_T]) {
-            gl.texParameteri(gl.TEXTURE_2D, p, gl.CLAMP_TO_EDGE);
-          }
-          chunks.push(tex);
+        const layers = gl.getParameter(gl.MAX_ARRAY_TEXTURE_LAYERS);
+        if (atlas.width > limit || atlas.height > limit) {
+          throw new Error(`mask atlas larger than this GPU's ${limit} px`);
         }
-        this.textures.set(size, { chunks, rowsPerChunk, columns: atlas.columns });
+        if (atlas.pages > layers) throw new Error(`mask atlas beyond this GPU's ${layers} layers`);
+        const bytes = Uint8Array.from(atob(atlas.data), (ch) => ch.charCodeAt(0));
+        const tex = gl.createTexture();
+        gl.bindTexture(gl.TEXTURE_2D_ARRAY, tex);
+        gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+        gl.texImage3D(gl.TEXTURE_2D_ARRAY, 0, gl.R8, atlas.width, atlas.height, atlas.pages, 0,
+          gl.RED, gl.UNSIGNED_BYTE, bytes);
+        for (const p of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) {
+          gl.texParameteri(gl.TEXTURE_2D_ARRAY, p, gl.NEAREST);
+        }
+        for (const p of [gl.TEXTURE_WRAP_S, gl.TEXTURE_WRAP_T]) {
+          gl.texParameteri(gl.TEXTURE_2D_ARRAY, p, gl.CLAMP_TO_EDGE);
+        }
+        this.textures.set(size, { tex, columns: atlas.columns, perPage: atlas.columns * atlas.rows });
       }
       return this.textures.get(size);
     }
@@ -166,26 +185,38 @@ void main() {
       gl.disable(gl.SCISSOR_TEST);
     }
 
-    /** Draw icons of one size on one canvas colour; items are {icon, x, y, alpha}, top-down. */
-    draw(size, background, blendCode, items) {
+    /**
+     * Draw icons of one size on one canvas colour; items are {icon, x, y, alpha}, top-down.
+     * An icon's groups are its `layers` (colour, opacity) from slot `first`; an icon without
+     * layers is one group of its own colour at opacity 1 in the slot of its index.
+     */
+    draw(size, background, blendCode, items, css = false) {
       const gl = this.gl;
-      const { chunks, rowsPerChunk, columns } = this.texture(size);
+      const { tex, columns, perPage } = this.texture(size);
       gl.activeTexture(gl.TEXTURE0);
-      let bound = -1;
+      gl.bindTexture(gl.TEXTURE_2D_ARRAY, tex);
       gl.uniform1i(this.u.u_size, size);
+      gl.uniform1i(this.u.u_columns, columns);
+      gl.uniform1i(this.u.u_perPage, perPage);
       gl.uniform3f(this.u.u_background, background[0], background[1], background[2]);
       gl.uniform1i(this.u.u_blend, blendCode);
+      gl.uniform1i(this.u.u_css, css ? 1 : 0);
+      const sources = new Float32Array(3 * MAX_GROUPS), opacity = new Float32Array(MAX_GROUPS);
       for (const item of items) {
         const icon = DATA.icons[item.icon];
-        const s = icon.linear;
-        gl.uniform3f(this.u.u_source, s[0], s[1], s[2]);
+        const layers = icon.layers || [{ linear: icon.linear, opacity: 1 }];
+        const count = Math.min(layers.length, MAX_GROUPS);
+        for (let g = 0; g < count; g++) {
+          sources.set(layers[g].linear, 3 * g);
+          opacity[g] = layers[g].opacity;
+        }
+        gl.uniform3fv(this.u.u_sources, sources);
+        gl.uniform1fv(this.u.u_opacity, opacity);
+        gl.uniform1i(this.u.u_count, count);
+        gl.uniform1i(this.u.u_first, icon.layers ? icon.first : item.icon);
         gl.uniform1f(this.u.u_alpha, item.alpha);
         gl.uniform2i(this.u.u_origin, item.x, this.canvas.height - item.y - size);
-        const row = Math.floor(item.icon / columns), chunk = Math.floor(row / rowsPerChunk);
-        if (chunk !== bound) { gl.bindTexture(gl.TEXTURE_2D, chunks[chunk]); bound = chunk; }
-        gl.uniform2i(this.u.u_atlas, (item.icon % columns) * size, (row % rowsPerChunk) * size);
         gl.drawArrays(gl.TRIANGLES, 0, 6);
       }
     }
   }
-

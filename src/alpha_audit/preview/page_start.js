@@ -34,7 +34,7 @@
           items.push({ icon: first + k, x: (k % cols) * size, y: Math.floor(k / cols) * size,
             alpha: job.alpha });
         }
-        renderer.draw(size, canvas.linear, code, items);
+        renderer.draw(size, canvas.linear, code, items, CSS);
         const pixels = renderer.read(w, h);
         for (const item of items) {
           for (let r = 0; r < size; r++) {

@@ -1,13 +1,17 @@
   // ---- labels, band titles, tooltip and controls ---------------------------------------------
   // Names come from input files: they only ever reach the page as textContent, never as markup.
 
+  /** The icon's rows on a canvas: size contrast at the drawn size, at alpha and at 1. */
   function metrics(icon, canvas) {
-    const a = alphaFor(icon);
-    const out = blend(icon.linear, canvas.linear, a, state.blend);
-    return { a, out, cr: contrast(out, canvas.linear), ref: contrast(icon.linear, canvas.linear) };
+    const a = alphaFor(icon), b = canvas.linear, size = state.size;
+    return {
+      a,
+      cr: sizeContrast(icon, b, a, size, state.blend),
+      ref: sizeContrast(icon, b, 1, size, 0),
+    };
   }
 
-  const fmt = (v) => (v < 10 ? v.toFixed(2) : v.toFixed(1));
+  const fmt = (v) => (Number.isNaN(v) ? "-" : v < 10 ? v.toFixed(2) : v.toFixed(1));
 
   function buildBands(layout) {
     const overlay = $("overlay");
@@ -43,6 +47,7 @@
       hit.dataset.band = String(cell.band.index);
       Object.assign(hit.style, { left: `${cell.x * z}px`, top: `${cell.y * z}px`,
         width: `${layout.size * z}px`, height: `${layout.size * z}px` });
+      if (icon.fixed) hit.classList.add("fixed");
       hit.addEventListener("mouseenter", () => showTip(cell, hit));
       hit.addEventListener("mouseleave", hideTip);
       parts.push(hit);
@@ -124,9 +129,10 @@
     name.textContent = icon.name;
     tip.replaceChildren(
       name,
-      line("source ", { hex: icon.hex }, ` · α ${fmt(m.a)}`),
-      line("output ", { hex: toHex(m.out) }, " on ", { hex: cell.band.canvas.hex }),
-      line(`contrast ${fmt(m.ref)} → ${fmt(m.cr)}:1`),
+      line(`α ${fmt(m.a)} on `, { hex: cell.band.canvas.hex }, ` · ${DATA.pipeline} pipeline`),
+      ...icon.layers.map((layer) => line(layer.paint === "currentColor" ? "currentColor " : "fixed ",
+        { hex: layer.hex }, layer.opacity < 1 ? ` · opacity ${fmt(layer.opacity)}` : "")),
+      line(`size contrast at ${state.size} px ${fmt(m.ref)} → ${fmt(m.cr)}:1`),
     );
     const r = el.getBoundingClientRect();
     tip.style.display = "block";
@@ -153,7 +159,8 @@
 
   function setAlpha(value) {
     if (!Number.isFinite(value)) return;
-    state.alpha = Math.min(2, Math.max(-2, Math.round(value * 1000) / 1000));
+    const [low, high] = CSS ? [0, 1] : [-2, 2]; // css opacity is limited to [0, 1]
+    state.alpha = Math.min(high, Math.max(low, Math.round(value * 1000) / 1000));
     state.own = false;
     syncControls();
     schedule(false, true);
@@ -182,7 +189,7 @@
     const range = $("alpha-range"), number = $("alpha-number");
     range.addEventListener("input", () => setAlpha(parseFloat(range.value)));
     number.addEventListener("input", () => setAlpha(parseFloat(number.value)));
-    chips($("alpha-chips"), ALPHA_CHIPS, (v) => String(v),
+    chips($("alpha-chips"), CSS ? ALPHA_CHIPS.filter((v) => v >= 0 && v <= 1) : ALPHA_CHIPS, (v) => String(v),
       (v) => !state.own && state.blend === 0 && Number(v) === state.alpha,
       (v) => { state.blend = 0; setAlpha(v); });
     if (ownAlphas.length === 1 && ownAlphas[0] === 1) $("own-label").hidden = true;

@@ -26,6 +26,7 @@ from alpha_audit.browser.validate import PAPER_CONFIGURATIONS, PageValidation, v
 from alpha_audit.errors import UsageError
 from alpha_audit.load.svg import rasterize_icons
 from alpha_audit.model import Icon, IconSet, Theme
+from alpha_audit.preview.figures import solid_rows
 from alpha_audit.reproduce.grids import VIBRANT
 
 __all__ = [
@@ -154,6 +155,7 @@ def browser_validation(
     present, missing = run_engines(engines)
     sizes = tuple(sorted({int(s) for s in sizes}))
     iconset, masks, failed = load_validation_icons(Path(icons), sizes, count)
+    drawn = solid_rows(theme, iconset, masks, sizes)
     results = []
     for name in present:
         with ENGINES[name]() as browser:
@@ -167,7 +169,7 @@ def browser_validation(
                     browser,
                     theme,
                     iconset,
-                    masks,
+                    drawn,
                     sizes=sizes,
                     configurations=PAPER_CONFIGURATIONS,
                     progress=step,

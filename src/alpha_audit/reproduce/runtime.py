@@ -25,12 +25,14 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import NDArray
 from PIL import Image, ImageDraw
 
 from alpha_audit.browser import ENGINES, Browser
 from alpha_audit.browser.interface import BrowserError
 from alpha_audit.color.srgb import srgb_decode
 from alpha_audit.output import Output
+from alpha_audit.preview.compose import mask_codes
 from alpha_audit.preview.html import RENDERER_ASSET, asset, atlas_data, scoped_script
 from alpha_audit.reproduce.browser import PAPER_ICONS, load_validation_icons, run_engines
 from alpha_audit.reproduce.experiments import sweep_alphas
@@ -173,7 +175,7 @@ def _page(icons_dir: Path, settings: RuntimeSettings) -> tuple[str, int, int]:
         "size": ICON_SIZE,
         "atlases": {
             str(ICON_SIZE): atlas_data(
-                [masks[(i.name, ICON_SIZE)] for i in iconset.icons], ICON_SIZE
+                [_codes(masks[(i.name, ICON_SIZE)]) for i in iconset.icons], ICON_SIZE
             )
         },
         "icons": [{"linear": list(i.linear)} for i in icons],
@@ -193,6 +195,14 @@ def _page(icons_dir: Path, settings: RuntimeSettings) -> tuple[str, int, int]:
         f"<script>{script}</script></body></html>"
     )
     return page, settings.icons, n
+
+
+def _codes(mask: NDArray[np.float64]) -> NDArray[np.uint8]:
+    """A cairo coverage mask (values k / 255) as the 8-bit codes the atlas holds."""
+    codes = mask_codes(mask)
+    if codes is None:
+        raise ValueError("a coverage mask must hold values k / 255")
+    return codes
 
 
 def _round_orders(settings: RuntimeSettings) -> list[list[int]]:

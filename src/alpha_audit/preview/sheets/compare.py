@@ -8,15 +8,15 @@ page.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import NDArray
 
-from alpha_audit.color import contrast_ratio, parse_color, srgb_decode
+from alpha_audit.color import parse_color, srgb_decode
 from alpha_audit.model import Icon, IconSet
-from alpha_audit.preview.compose import blend_colors, composite_masks
+from alpha_audit.preview.compose import composite_drawings
+from alpha_audit.preview.figures import PreviewRows
 from alpha_audit.preview.sheets.plan import (
     ICON_ALPHA,
     Alpha,
@@ -32,6 +32,7 @@ from alpha_audit.preview.sheets.surface import (
     Surface,
     available,
     fill_of,
+    fixed_mark,
     header_bottom,
     ink_on,
     rgb,
@@ -110,6 +111,7 @@ def compare_frame(
     legend = "each row: one canvas; left to right: " + ", ".join(
         alpha_label(a, icons) for a in panels
     )
+    legend += "; counts: icons whose rows' size contrast passes; square: a hard-coded colour"
     content_w = max(
         len(panels) * (panel_w + _PANEL_GAP) - _PANEL_GAP,
         Fonts.width(fonts.title, header),
@@ -140,14 +142,14 @@ def compare_frame(
 def draw_compare(
     spec: SheetSpec,
     iconset: IconSet,
-    masks: Mapping[tuple[str, int], NDArray[np.float64]],
+    drawn: PreviewRows,
     alphas: Sequence[Alpha],
     threshold: float,
     title: str,
 ) -> Sheet:
     """Draw a comparison sheet (see the module docstring)."""
     size = spec.size
-    icons = available(iconset.icons, masks, size)
+    icons = available(iconset.icons, drawn.drawings, size)
     n = len(icons)
     frame = compare_frame(spec, icons, alphas, title)
     fonts, panels, cols, gap, pad = frame.fonts, frame.panels, frame.cols, frame.gap, frame.pad
@@ -158,24 +160,25 @@ def draw_compare(
     out = Surface(spec, frame.width, frame.height, rgb(PAGE_COLOR))
     out.text((MARGIN, MARGIN), frame.header, fonts.title, ink.text)
     out.text((MARGIN, header_bottom(0)), frame.legend, fonts.body, ink.muted)
-    stack = np.stack([masks[(i.name, size)] for i in icons]) if icons else np.zeros((0, size, size))
-    sources = np.array([i.linear for i in icons], dtype=np.float64).reshape(-1, 3)
+    drawings = [drawn.drawings[i.name] for i in icons]
+    contrast = {a: drawn.size_contrast(a, size, icons) for a in panels}
     for r, canvas in enumerate(spec.canvases):
         y = top + r * row_h
         background = np.array(canvas.linear)
         fill = fill_of(canvas.linear)
+        ink_panel = ink_on(canvas.linear).text
         used = out.text((MARGIN, y), f"{canvas.name}  ", fonts.row, ink.text)
         out.text((MARGIN + used, y + _CAPTION_DROP), canvas.color, fonts.body, ink.muted)
         for p, alpha in enumerate(panels):
             coeff = alphas_for(alpha, icons)
-            contrast = contrast_ratio(blend_colors(sources, background, coeff), background)
+            passing = int((contrast[alpha][:, drawn.canvas_index(canvas.name)] >= threshold).sum())
             x0 = MARGIN + p * (panel_w + _PANEL_GAP)
-            caption = f"{alpha_label(alpha, icons)} · {int((contrast >= threshold).sum())}"
+            caption = f"{alpha_label(alpha, icons)} · {passing}"
             caption += f" of {n} at or above {threshold:g}:1"
             out.text((x0, y + _CAPTION_TOP), caption, fonts.body, ink.muted)
             py = y + row_head
             out.rect((x0, py, x0 + panel_w, py + panel_h), fill)
-            pixels = composite_masks(stack, sources, background, coeff)
+            pixels = composite_drawings(drawings, size, background, coeff, drawn.pipeline)
             for k, icon in enumerate(icons):
                 rr, cc = divmod(k, cols)
                 x = x0 + pad + cc * (size + gap)
@@ -186,4 +189,6 @@ def draw_compare(
                     ),
                     pixels[k],
                 )
+                if drawings[k].fixed:
+                    fixed_mark(out, x, yy, size, gap, ink_panel)
     return out.finish()

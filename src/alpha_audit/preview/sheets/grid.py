@@ -1,23 +1,24 @@
 """The ``grid`` layout: one sheet per canvas and size.
 
 A block per coefficient row, each a grid of icons wrapping to a readable
-width, with each icon's contrast ratio underneath (underlined below the
-threshold).
+width, each icon drawn paint group by paint group as its rows draw it, with
+its rows' size contrast underneath (underlined below the threshold) and a
+small square at its top right when it hard-codes a colour.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 from PIL import ImageFont
 
-from alpha_audit.color import contrast_ratio
 from alpha_audit.model import Icon, IconSet
-from alpha_audit.preview.compose import blend_colors, composite_masks
+from alpha_audit.preview.compose import composite_drawings
+from alpha_audit.preview.figures import PreviewRows
 from alpha_audit.preview.sheets.plan import Alpha, SheetSpec, alpha_label, alphas_for
 from alpha_audit.preview.sheets.surface import (
     MARGIN,
@@ -27,6 +28,7 @@ from alpha_audit.preview.sheets.surface import (
     Surface,
     available,
     fill_of,
+    fixed_mark,
     header_bottom,
     ink_on,
 )
@@ -64,7 +66,7 @@ class GridFrame:
     fonts: Fonts
     header: str
     sub: str
-    legend: str
+    legend: tuple[str, str]
     blocks: tuple[tuple[NDArray[np.float64], NDArray[np.float64], str, str], ...]
 
 
@@ -75,8 +77,15 @@ def grid_frame(
     threshold: float,
     max_width: int,
     title: str,
+    contrast: Sequence[NDArray[np.float64]] | None = None,
+    contrast_ref: NDArray[np.float64] | None = None,
 ) -> GridFrame:
-    """Lay out a grid sheet of ``icons`` without drawing it (its size is known before)."""
+    """Lay out a grid sheet of ``icons`` without drawing it (its size is known before).
+
+    ``contrast`` is each alpha row's labels (the icons' size contrast on the
+    sheet's canvas), ``contrast_ref`` the same at alpha 1; without them the
+    counts in the captions are laid out at their widest (every icon passing).
+    """
     canvas, size = spec.canvases[0], spec.size
     fonts = Fonts(11 if size <= 24 else 12)
     n = len(icons)
@@ -92,33 +101,32 @@ def grid_frame(
     cols = max(1, min(n, (max_width - 2 * MARGIN + gap) // cell_w))
     rows = max(1, math.ceil(n / cols))
 
-    sources = np.array([i.linear for i in icons], dtype=np.float64).reshape(-1, 3)
-    background = np.array(canvas.linear)
-    passing_ref = int((contrast_ratio(sources, background) >= threshold).sum())
+    passing_ref = n if contrast_ref is None else int((contrast_ref >= threshold).sum())
     blocks = []
-    for alpha in alphas:
+    for r, alpha in enumerate(alphas):
         coeff = alphas_for(alpha, icons)
-        contrast = contrast_ratio(blend_colors(sources, background, coeff), background)
-        summary = f"   {int((contrast >= threshold).sum())} of {n} at or above {threshold:g}:1"
+        labels = np.full(n, np.inf) if contrast is None else contrast[r]
+        summary = f"   {int((labels >= threshold).sum())} of {n} at or above {threshold:g}:1"
         if alpha != 1.0:
             summary += f" (alpha = 1: {passing_ref})"
-        blocks.append((coeff, contrast, alpha_label(alpha, icons), summary))
+        blocks.append((coeff, labels, alpha_label(alpha, icons), summary))
 
     header = f"{canvas.name}  {canvas.color}"
     sub = f"{title} · {canvas.mode} canvas · {size} px"
     legend = (
-        f"under each icon: WCAG contrast ratio on this canvas; underlined below {threshold:g}:1"
+        f"under each icon: its rows' size contrast at {size} px (lowest over its paints),",
+        f"underlined below {threshold:g}:1; a square at its top right: a hard-coded colour",
     )
     content_w = max(
         cols * cell_w - gap,
         Fonts.width(fonts.title, header),
         Fonts.width(fonts.body, sub),
-        Fonts.width(fonts.body, legend),
+        *(Fonts.width(fonts.body, line) for line in legend),
         *(Fonts.width(fonts.row, b[2]) + Fonts.width(fonts.body, b[3]) for b in blocks),
     )
     block_h = _BLOCK_GAP + _BLOCK_HEAD + rows * cell_h
     width = 2 * MARGIN + content_w
-    height = header_bottom(2) + len(alphas) * block_h + MARGIN
+    height = header_bottom(3) + len(alphas) * block_h + MARGIN
     return GridFrame(
         width, height, cols, gap, cell_w, cell_h, block_h, fonts, header, sub, legend, tuple(blocks)
     )
@@ -144,7 +152,7 @@ def _fit(font: ImageFont.FreeTypeFont, text: str, width: int) -> str:
 def draw_grid(
     spec: SheetSpec,
     iconset: IconSet,
-    masks: Mapping[tuple[str, int], NDArray[np.float64]],
+    drawn: PreviewRows,
     alphas: Sequence[Alpha],
     threshold: float,
     max_width: int,
@@ -152,23 +160,27 @@ def draw_grid(
 ) -> Sheet:
     """Draw a grid sheet: a block per coefficient row (see the module docstring)."""
     canvas, size = spec.canvases[0], spec.size
-    icons = available(iconset.icons, masks, size)
-    frame = grid_frame(spec, icons, alphas, threshold, max_width, title)
+    icons = available(iconset.icons, drawn.drawings, size)
+    j = drawn.canvas_index(canvas.name)
+    each = {a: drawn.size_contrast(a, size, icons)[:, j] for a in dict.fromkeys(alphas)}
+    labels = [each[a] for a in alphas]
+    labels_ref = drawn.size_contrast(1.0, size, icons)[:, j]
+    frame = grid_frame(spec, icons, alphas, threshold, max_width, title, labels, labels_ref)
     fonts, cols, gap = frame.fonts, frame.cols, frame.gap
     cell_w, cell_h = frame.cell_w, frame.cell_h
     ink = ink_on(canvas.linear)
     fill = fill_of(canvas.linear)
-    stack = np.stack([masks[(i.name, size)] for i in icons]) if icons else np.zeros((0, size, size))
-    sources = np.array([i.linear for i in icons], dtype=np.float64).reshape(-1, 3)
+    drawings = [drawn.drawings[i.name] for i in icons]
     background = np.array(canvas.linear)
     out = Surface(spec, frame.width, frame.height, fill)
 
     out.text((MARGIN, MARGIN), frame.header, fonts.title, ink.text)
     out.text((MARGIN, header_bottom(0)), frame.sub, fonts.body, ink.muted)
-    out.text((MARGIN, header_bottom(1)), frame.legend, fonts.body, ink.muted)
-    y = header_bottom(2) + _BLOCK_GAP
+    for line, text in enumerate(frame.legend, start=1):
+        out.text((MARGIN, header_bottom(line)), text, fonts.body, ink.muted)
+    y = header_bottom(3) + _BLOCK_GAP
     for coeff, contrast, label, summary in frame.blocks:
-        pixels = composite_masks(stack, sources, background, coeff)
+        pixels = composite_drawings(drawings, size, background, coeff, drawn.pipeline)
         used = out.text((MARGIN, y), label, fonts.row, ink.text)
         out.text((MARGIN + used, y + _CAPTION_DROP), summary, fonts.body, ink.muted)
         row_top = y + _BLOCK_HEAD
@@ -183,14 +195,16 @@ def draw_grid(
                 ),
                 pixels[k],
             )
+            if drawings[k].fixed:
+                fixed_mark(out, x, cy, size, (cell_w - gap - size) // 2 + gap, ink.text)
             value = float(contrast[k])
-            text = f"{value:.2f}" if value < 10 else f"{value:.1f}"
-            color = ink.text if value >= threshold else ink.alert
+            text = "-" if math.isnan(value) else f"{value:.2f}" if value < 10 else f"{value:.1f}"
+            color = ink.text if not value < threshold else ink.alert
             tw = Fonts.width(fonts.small, text)
             tx = cx + (cell_w - gap - tw) // 2
             ty = cy + size + _LABEL_GAP
             out.label((tx, ty), text, fonts.small, color, fill)
-            if value < threshold:
+            if value < threshold:  # NaN (nothing drawn) is not underlined
                 underline = ty + fonts.small_px + _UNDERLINE_DROP
                 out.rect((tx, underline, tx + tw, underline + 1), color)
             name = _fit(fonts.small, icon.name, cell_w - gap)

@@ -2,15 +2,13 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import replace
 from typing import assert_never
 
-import numpy as np
-from numpy.typing import NDArray
-
 from alpha_audit.color import NON_TEXT_THRESHOLD
 from alpha_audit.model import IconSet
+from alpha_audit.preview.figures import PreviewRows
 from alpha_audit.preview.sheets.compare import draw_compare
 from alpha_audit.preview.sheets.grid import draw_grid
 from alpha_audit.preview.sheets.plan import Alpha, Layout, SheetSpec, sheet_rows, sheet_title
@@ -26,7 +24,7 @@ DEFAULT_MAX_WIDTH = 1400
 def render_sheet(
     spec: SheetSpec,
     iconset: IconSet,
-    masks: Mapping[tuple[str, int], NDArray[np.float64]],
+    drawn: PreviewRows,
     *,
     alphas: Sequence[Alpha] | None = None,
     threshold: float = NON_TEXT_THRESHOLD,
@@ -35,7 +33,7 @@ def render_sheet(
 ) -> Sheet:
     """Draw one planned sheet.
 
-    ``masks`` maps ``(icon name, size)`` to coverage (icons without a mask are
+    ``drawn`` holds the icons' drawings and rows (icons without a drawing are
     left out); ``alphas`` are the rows (``None`` entries use each icon's own
     coefficient; default :func:`default_alphas`, or :data:`SWATCH_ALPHAS` for
     swatches); ``max_width`` bounds the grid layout's width in pixels.
@@ -47,17 +45,17 @@ def render_sheet(
         case Layout.GRID:
             if page is not None:
                 iconset = replace(iconset, icons=iconset.icons[page.first : page.stop])
-            return draw_grid(spec, iconset, masks, rows, threshold, max_width, label)
+            return draw_grid(spec, iconset, drawn, rows, threshold, max_width, label)
         case Layout.SWATCHES:
             colors = swatch_colors(iconset)
             if page is not None:
                 colors = colors[page.first : page.stop]
             real = [a for a in rows if a is not None]  # swatch rows are never None
-            return draw_swatches(spec, colors, real, threshold, label)
+            return draw_swatches(spec, colors, real, threshold, label, drawn.pipeline)
         case Layout.COMPARE:
             if page is not None:
                 iconset = replace(iconset, icons=iconset.icons[page.first : page.stop])
-            return draw_compare(spec, iconset, masks, rows, threshold, label)
+            return draw_compare(spec, iconset, drawn, rows, threshold, label)
         case _:
             assert_never(spec.layout)
 
@@ -65,7 +63,7 @@ def render_sheet(
 def render_all(
     specs: Sequence[SheetSpec],
     iconset: IconSet,
-    masks: Mapping[tuple[str, int], NDArray[np.float64]],
+    drawn: PreviewRows,
     *,
     on_sheet: Callable[[], None] | None = None,
     alphas: Sequence[Alpha] | None = None,
@@ -81,7 +79,7 @@ def render_all(
         sheet = render_sheet(
             spec,
             iconset,
-            masks,
+            drawn,
             alphas=alphas,
             threshold=threshold,
             max_width=max_width,

@@ -1,7 +1,7 @@
 """The drawing surface every layout shares: flat colour, then labels, then icon blocks.
 
 A sheet starts as flat colour, labels are drawn into the gutters, and the
-composited icon pixels from :func:`~alpha_audit.preview.compose.composite_masks`
+composited icon pixels from :func:`~alpha_audit.preview.compose.composite_drawings`
 are copied in last, so no label or gutter ever touches an icon pixel.  Every
 copied block is recorded as a :class:`Placement`, which is what the tests
 recompute pixel by pixel.
@@ -20,11 +20,13 @@ from PIL import Image, ImageDraw, ImageFont
 from alpha_audit.color import contrast_ratio, parse_color, srgb_decode, srgb_encode, to_8bit
 from alpha_audit.errors import UsageError
 from alpha_audit.model import Icon
+from alpha_audit.preview.compose import Drawing
 from alpha_audit.preview.fonts import draw_text, text_metrics, text_width
 from alpha_audit.preview.sheets.plan import SheetSpec
 
 __all__ = [
     "BODY_LINE",
+    "FIXED_MARK",
     "MARGIN",
     "PIXEL_BUDGET",
     "TITLE_LINE",
@@ -36,6 +38,7 @@ __all__ = [
     "available",
     "check_budget",
     "fill_of",
+    "fixed_mark",
     "header_bottom",
     "ink_on",
     "rgb",
@@ -179,11 +182,21 @@ class Fonts:
         return _text_width(font.size, text)
 
 
-def available(
-    icons: Sequence[Icon], masks: Mapping[tuple[str, int], NDArray[np.float64]], size: int
-) -> list[Icon]:
-    """The icons that have a mask at ``size`` (the others are left off the sheet)."""
-    return [i for i in icons if (i.name, size) in masks]
+def available(icons: Sequence[Icon], drawings: Mapping[str, Drawing], size: int) -> list[Icon]:
+    """The icons drawn at ``size`` (the others, unreadable or unrendered, are left off)."""
+    return [i for i in icons if i.name in drawings and size in drawings[i.name].masks]
+
+
+FIXED_MARK = 4
+"""px; the side of the square at an icon's top right that says it hard-codes a colour."""
+
+
+def fixed_mark(out: Surface, x: int, y: int, size: int, room: int, fill: RGB8) -> None:
+    """Mark the icon drawn at (x, y) as hard-coding a colour: a square in the gutter at its
+    top right, ``room`` px wide at most (never over an icon pixel)."""
+    side = min(FIXED_MARK, room - 2)
+    if side > 0:
+        out.rect((x + size + 1, y, x + size + 1 + side, y + side), fill)
 
 
 class Surface:

@@ -12,9 +12,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from alpha_audit.color import contrast_ratio, parse_color, srgb_decode, to_8bit
+from alpha_audit.color import contrast_ratio, parse_color, shipped, srgb_decode, to_8bit
+from alpha_audit.color.composite import Pipeline, composite_paint
+from alpha_audit.load.paints import CURRENT_COLOR
 from alpha_audit.model import IconSet
-from alpha_audit.preview.compose import blend_colors, composite_masks
+from alpha_audit.preview.compose import Drawing, Layer, composite_drawings
 from alpha_audit.preview.sheets.plan import SheetSpec
 from alpha_audit.preview.sheets.surface import (
     MARGIN,
@@ -123,8 +125,13 @@ def draw_swatches(
     alphas: Sequence[float],
     threshold: float,
     title: str,
+    pipeline: Pipeline = "linear",
 ) -> Sheet:
-    """Draw a swatch sheet of ``colors`` (label, hex; see the module docstring)."""
+    """Draw a swatch sheet of ``colors`` (label, hex; see the module docstring).
+
+    Each swatch is the colour as a solid paint shows it under ``pipeline``;
+    its contrast is that of the 8-bit colour on the 8-bit canvas, as a row's.
+    """
     canvas = spec.canvases[0]
     frame = swatch_frame(spec, colors, alphas, threshold, title)
     fonts, side, left, top = frame.fonts, frame.side, frame.left, frame.top
@@ -142,14 +149,22 @@ def draw_swatches(
         x = MARGIN + left + j * cell_w
         out.text((x, top), name, fonts.body, ink.text)
         out.text((x, top + fonts.body_px + _LINE_PAD), color, fonts.small, ink.muted)
-    full = np.ones((len(colors), side, side))
+    full = (np.full((side, side), 255, dtype=np.uint8),)
+    solids = [
+        Drawing(
+            name,
+            (Layer(CURRENT_COLOR, (float(s[0]), float(s[1]), float(s[2])), 1.0),),
+            {side: full},
+        )
+        for (name, _), s in zip(colors, sources, strict=True)
+    ]
     for r, alpha in enumerate(alphas):
         y = top + head_h + r * cell_h
         out.text((MARGIN, y + (side - fonts.row_px) // 2), labels[r], fonts.row, ink.text)
         coeff = np.full(len(colors), float(alpha))
-        pixels = composite_masks(full, sources, background, coeff)
-        output = blend_colors(sources, background, coeff)
-        contrast = contrast_ratio(output, background)
+        pixels = composite_drawings(solids, side, background, coeff, pipeline)
+        output = composite_paint(sources, background, coeff, 1.0, pipeline)
+        contrast = contrast_ratio(shipped(output), shipped(background))
         for j in range(len(colors)):
             x = MARGIN + left + j * cell_w
             source = (float(sources[j, 0]), float(sources[j, 1]), float(sources[j, 2]))
