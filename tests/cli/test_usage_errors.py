@@ -53,7 +53,6 @@ FLAG_ERRORS = [
     (["suggest", "--alpha-max", "0.5"], "--alpha-max 0.5 is out of range"),
     (["suggest", "--precision", "12"], "--precision 12 is out of range"),
     (["check", "--fail-on", "seperation"], "--fail-on: unknown rule 'seperation'; did you mean"),
-    (["suggest", "--fail-on", "unrenderable"], "--fail-on unrenderable is not allowed here"),
 ]
 
 

@@ -12,7 +12,7 @@ from coloraide import Color
 
 from alpha_audit.color import srgb_decode
 from alpha_audit.errors import InputError
-from alpha_audit.load.config import load_config
+from alpha_audit.load.config import ProjectConfig, load_config
 from alpha_audit.load.iconset import load_iconset
 from alpha_audit.load.theme import load_theme
 from alpha_audit.pipeline import check_project
@@ -133,7 +133,14 @@ def test_manifest_palette_colours_follow_the_manifests_policy(tmp_path) -> None:
 
 
 def test_check_reports_each_moved_colour_in_json_table_and_markdown(tmp_path) -> None:
-    report = check_project([_theme(tmp_path)], [_manifest(tmp_path)], policy=Policy(), gamut="map")
+    report = check_project(
+        ProjectConfig(
+            themes=(_theme(tmp_path),),
+            iconsets=(_manifest(tmp_path),),
+            policy=Policy(),
+            gamut="map",
+        )
+    )
     assert {(n.token, n.mode) for n in report.gamut} == {
         ("canvases[2].color", "wide"),
         ("palette.brand", "set"),

@@ -12,6 +12,7 @@ from urllib.parse import unquote
 import pytest
 
 from alpha_audit.gate import evaluate
+from alpha_audit.load.config import ProjectConfig
 from alpha_audit.load.svg import IconProblem
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
 from alpha_audit.policy import Policy
@@ -170,7 +171,12 @@ def test_sarif_failure_messages_end_with_their_fix() -> None:
     from alpha_audit.policy import Policy
 
     report = check_project(
-        [bundled_theme("paper16")], [bundled_iconset("vibrant")], policy=Policy(), alpha=1.5
+        ProjectConfig(
+            themes=(bundled_theme("paper16"),),
+            iconsets=(bundled_iconset("vibrant"),),
+            policy=Policy(),
+            alpha=1.5,
+        )
     )
     assert report.gate.failures
     doc = json.loads(CheckFormat.SARIF.renderer()(report, RenderOptions()))

@@ -20,6 +20,7 @@ import pytest
 from markdown_it import MarkdownIt
 
 from alpha_audit.gate import evaluate
+from alpha_audit.load.config import ProjectConfig
 from alpha_audit.load.svg import IconProblem
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
 from alpha_audit.pair import pair_report
@@ -164,7 +165,12 @@ def _every_rule_report() -> CheckReport:
 
     policy = Policy(rules=frozenset(Rule) - {Rule.LOCK}, min_delta_e=25.0, max_drift=5.0)
     return check_project(
-        [bundled_theme("paper16")], [bundled_iconset("vibrant")], policy=policy, alpha=1.8
+        ProjectConfig(
+            themes=(bundled_theme("paper16"),),
+            iconsets=(bundled_iconset("vibrant"),),
+            policy=policy,
+            alpha=1.8,
+        )
     )
 
 

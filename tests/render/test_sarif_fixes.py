@@ -14,6 +14,7 @@ from typing import Any
 
 import pytest
 
+from alpha_audit.load.config import ProjectConfig
 from alpha_audit.pipeline import check_project
 from alpha_audit.policy import Policy
 from alpha_audit.render import CheckFormat, RenderOptions
@@ -61,12 +62,16 @@ def _project(root: Path, manifest: str = MANIFEST) -> Path:
 
 
 def _failures(root: Path) -> set[tuple[str, str | None, tuple[str, ...]]]:
-    report = check_project([root / "theme.yaml"], [root / "set.yaml"], policy=POLICY)
+    report = check_project(
+        ProjectConfig(themes=(root / "theme.yaml",), iconsets=(root / "set.yaml",), policy=POLICY)
+    )
     return {(f.rule.value, f.canvas, f.icons) for f in report.gate.failures}
 
 
 def _sarif(root: Path) -> dict[str, Any]:
-    report = check_project([root / "theme.yaml"], [root / "set.yaml"], policy=POLICY)
+    report = check_project(
+        ProjectConfig(themes=(root / "theme.yaml",), iconsets=(root / "set.yaml",), policy=POLICY)
+    )
     doc: dict[str, Any] = json.loads(CheckFormat.SARIF.renderer()(report, RenderOptions(base=root)))
     return doc
 
@@ -188,7 +193,11 @@ sizes: [16]
 
 def test_alpha_from_the_command_line_gets_no_alpha_fix(tmp_path: Path) -> None:
     root = _project(tmp_path / "cli")
-    report = check_project([root / "theme.yaml"], [root / "set.yaml"], policy=POLICY, alpha=1.4)
+    report = check_project(
+        ProjectConfig(
+            themes=(root / "theme.yaml",), iconsets=(root / "set.yaml",), policy=POLICY, alpha=1.4
+        )
+    )
     doc = json.loads(CheckFormat.SARIF.renderer()(report, RenderOptions(base=root)))
     texts = [fx["description"]["text"] for _, fx in _fixed(doc)]
     assert texts and not any(t.startswith("set alpha") for t in texts)
@@ -296,7 +305,9 @@ def _token_check(root: Path) -> Any:
     from alpha_audit.load.config import load_config
 
     project = load_config(root / "alpha-audit.yaml")
-    return check_project([], project.iconsets, policy=POLICY, tokens=project.tokens)
+    return check_project(
+        ProjectConfig(iconsets=project.iconsets, policy=POLICY, tokens=project.tokens)
+    )
 
 
 @pytest.mark.parametrize(

@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from alpha_audit.load.config import load_config
+from alpha_audit.load.config import ProjectConfig, load_config
 from alpha_audit.pipeline import check_project
 from alpha_audit.policy import Policy
 from alpha_audit.render import CheckFormat, RenderOptions
@@ -25,7 +25,11 @@ def _report():
     project = load_config(EXAMPLE / "alpha-audit.yaml")
     # threshold 21: every icon x canvas is below it, so every icon has a finding.
     policy = Policy(rules=frozenset({Rule.BELOW_THRESHOLD}))
-    return check_project([], project.iconsets, policy=policy, threshold=21.0, tokens=project.tokens)
+    return check_project(
+        ProjectConfig(
+            iconsets=project.iconsets, policy=policy, threshold=21.0, tokens=project.tokens
+        )
+    )
 
 
 def test_findings_carry_the_token_lines_of_icon_colour_and_canvas() -> None:
