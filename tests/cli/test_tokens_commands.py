@@ -34,7 +34,7 @@ def test_a_bad_gamut_is_one_usage_line_on_every_command(project, command) -> Non
     args = {"preview": ["preview", "t.yaml", "i.yaml", "-o", "out"]}.get(command, [command])
     result = runner.invoke(app, [*args, "--gamut", "squash"])
     assert result.exit_code == ExitStatus.INPUT_ERROR
-    assert "--gamut 'squash' is not one of: clip, map, error" in result.output
+    assert "--gamut 'squash' is not a policy; use one of: clip, map, error" in result.output
 
 
 def test_check_gamut_flag_overrides_the_tokens_table(project) -> None:

@@ -195,10 +195,12 @@ def resolve_config(overrides: Overrides | None = None, start: str | Path = ".") 
 
     o = overrides or Overrides()
     project = project_config(o.config, start)
-    for flag, value in (("--pipeline", o.pipeline), ("--gamut", o.gamut)):
-        allowed = PIPELINES if flag == "--pipeline" else GAMUT_POLICIES
+    for flag, value, allowed, what in (
+        ("--pipeline", o.pipeline, PIPELINES, "a pipeline"),
+        ("--gamut", o.gamut, GAMUT_POLICIES, "a policy"),
+    ):
         if value is not None and value.strip().lower() not in allowed:
-            raise UsageError(f"{flag} {value!r} is not one of: {', '.join(allowed)}")
+            raise UsageError(f"{flag} {value!r} is not {what}; use one of: {', '.join(allowed)}")
     given = bool(o.themes or o.iconsets)
     return replace(
         project,
