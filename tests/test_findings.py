@@ -68,11 +68,10 @@ def test_primer_severe_and_danger_confuse_at_1_15() -> None:
     iconset, paints = painted(icons)
     result = audit(LIGHT, iconset, paints)
     found = find(result, {"confusion"})
-    assert [(f.rule, f.canvas) for f in found] == [
-        ("confusion", "light-default"),
-        ("confusion", "light-muted"),
-    ]
-    first = found[0]
+    # One root cause (the pair of roles) over both canvases, with the worst one's figures.
+    (first,) = found
+    assert first.canvases == ("light-default", "light-muted")
+    assert first.canvas == "light-muted"  # the closer of the two: the muted canvas
     assert first.numbers["roles"] == "danger,severe"
     assert first.numbers["delta_e_ref"] == pytest.approx(16.1, abs=0.05)
     assert first.numbers["delta_e"] == pytest.approx(5.2, abs=0.05)
@@ -203,9 +202,9 @@ def test_cvd_collision_is_new_at_alpha() -> None:
         Icon("b", "b.svg", "#005500", 3.0, color_name="g"),
     ]
     result = audit(Theme("w", (Canvas("white", "#ffffff"),)), *painted(icons))
-    found = find(result, {"cvd-collision"})
-    assert {f.numbers["deficiency"] for f in found} == {"protanopia", "deuteranopia", "tritanopia"}
-    assert all(f.numbers["output"] == "#000000" and set(f.icons) == {"a", "b"} for f in found)
+    (found,) = find(result, {"cvd-collision"})  # one pair of colours: one root cause
+    assert found.numbers["deficiencies"] == "deuteranopia, protanopia, tritanopia"
+    assert found.numbers["output"] == "#000000" and set(found.icons) == {"a", "b"}
 
 
 def test_end_to_end_with_rendered_masks(tmp_path: Path) -> None:

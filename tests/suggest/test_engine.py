@@ -53,7 +53,10 @@ def broken_at(
     bad = np.zeros(alphas.shape, dtype=bool)
     mv = moving[None, :, None]
     if Rule.LOSS in policy.rules:
-        bad |= ((c - c_ref < -max(policy.max_loss, 1e-10)) & mv).any(axis=(1, 2))
+        # Gated above the visibility floor, beyond the allowance and the relative tolerance.
+        margin = np.maximum(max(policy.max_loss, 1e-10), policy.loss_tolerance * c_ref)
+        lost = (c - c_ref < -margin) & (c_ref >= policy.visibility_floor)
+        bad |= (lost & mv).any(axis=(1, 2))
     if Rule.NEWLY_FAILING in policy.rules:
         bad |= ((c_ref >= t) & (c < t) & mv).any(axis=(1, 2))
     if Rule.BELOW_THRESHOLD in policy.rules:
@@ -213,9 +216,15 @@ def test_paper_worst_case_loses_contrast_immediately() -> None:
     # Paper, Section 4: sRGB (0, 0, 0.8125) on (1, 1, 0); 0.8125 * 255 = 207.1875.
     theme = Theme("t", (Canvas("yellow", "#ffff00"),))
     iconset = IconSet("s", (Icon("dot", "dot.svg", "rgb(0 0 207.1875)", 1.0),))
-    safe = largest_safe_alpha(audit(theme, iconset), Policy(rules=frozenset({Rule.LOSS})))
+    exact = Policy(rules=frozenset({Rule.LOSS}), loss_tolerance=0.0)
+    safe = largest_safe_alpha(audit(theme, iconset), exact)
     assert safe.alpha == 1.0 and safe.limit is not None
     assert safe.limit.rule is Rule.LOSS and safe.limit.at == pytest.approx(1.0, abs=1e-8)
+    # With the default relative tolerance (1e-6 of 10.28:1) the limit is where the
+    # loss reaches 1.03e-5: the loss is linear in alpha near 1 (4.65 per unit).
+    safe = largest_safe_alpha(audit(theme, iconset), Policy(rules=frozenset({Rule.LOSS})))
+    assert safe.alpha == 1.0 and safe.limit is not None
+    assert safe.limit.at == pytest.approx(1.0 + 10.277324e-6 / 4.6552, rel=1e-6, abs=2e-7)
     # Allowing the paper's loss at 1.1 (10.2773 -> 9.8118) moves the limit to 1.1.
     allowed = Policy(rules=frozenset({Rule.LOSS}), max_loss=10.277324 - 9.811806)
     assert largest_safe_alpha(audit(theme, iconset), allowed).alpha == pytest.approx(1.1, abs=2e-3)
