@@ -220,10 +220,15 @@ def evaluate(
     return judge(audits, policy, collect(audits, policy), baseline)
 
 
-def collect(audits: Iterable[AuditResult], policy: Policy) -> list[Finding]:
-    """Every audit's findings, icon-judging ones once over all themes (:func:`evaluate`)."""
+def collect(
+    audits: Iterable[AuditResult], policy: Policy, *, seen: Iterable[Finding] = ()
+) -> list[Finding]:
+    """Every audit's findings, icon-judging ones once over all themes (:func:`evaluate`).
+
+    ``seen``: findings collected already (from earlier audits, one at a time).
+    """
     out: list[Finding] = []
-    once: set[tuple[str, str, str, tuple[str, ...]]] = set()
+    once = {(f.rule.value, f.iconset, f.message, f.icons) for f in seen if not f.canvases}
     for result in audits:
         for f in findings_for(result, policy):
             if not f.canvases:  # judged per icon: once for all themes

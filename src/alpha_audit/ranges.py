@@ -20,6 +20,7 @@ __all__ = [
     "COMBINATIONS",
     "CONTRAST_LOSS",
     "CONTRAST_RATIO",
+    "DEFAULT_COMBINATIONS",
     "DELTA_E",
     "ICON_SIZE",
     "LOSS_TOLERANCE",
@@ -69,6 +70,9 @@ LOSS_TOLERANCE = NumberRange(0.0, 1.0, "a relative tolerance between 0 and 1")
 # Paint rows x canvases one check audits (the resource bound a config may raise):
 # at least one; 10^9 rows would need hundreds of GB whatever the bound says.
 COMBINATIONS = NumberRange(1, 1_000_000_000, "whole paint x canvas rows, 1 to 1,000,000,000")
+# The bound by default: each row is a JSON row of about 600 bytes and a few
+# microseconds of work (docs/ci.md measures memory against it).
+DEFAULT_COMBINATIONS = 250_000
 # CIEDE2000 between sRGB colours stays well under 200 (black-white is 100, the widest
 # hue pairs ~125): a larger --min-delta-e or --max-drift can only be a typo.
 DELTA_E = NumberRange(0.0, 200.0, "a CIEDE2000 difference between 0 and 200")

@@ -127,3 +127,32 @@ def test_stale_count_is_grammatical(fmt: str) -> None:
     assert "1 baseline entry no longer occurs" in texts[0]
     assert "entries" not in texts[0]
     assert "2 baseline entries no longer occur" in texts[1]
+
+
+def test_write_baseline_works_when_the_config_names_it_and_calls_nothing_stale(
+    tmp_path: Path,
+) -> None:
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "a.svg").write_text(SVG)
+    (tmp_path / "set.yaml").write_text('icons: "*.svg"\ncolor: "#0000cf"\nalpha: 1.4\n')
+    (tmp_path / "theme.yaml").write_text('canvases: [{name: sun, color: "#ffff00"}]\n')
+    (tmp_path / "alpha-audit.yaml").write_text(
+        "theme: theme.yaml\niconset: set.yaml\nbaseline: alpha-audit-baseline.json\n"
+    )
+    old = Path.cwd()
+    os.chdir(tmp_path)
+    try:
+        runner = CliRunner()
+        missing = runner.invoke(app, ["check"])
+        assert missing.exit_code == 2 and "--write-baseline" in missing.output
+        for extra in ([], ["--force"]):  # the first write, then writing it again over itself
+            wrote = runner.invoke(
+                app, ["check", "--write-baseline", "alpha-audit-baseline.json", *extra, "-f", "json"]
+            )
+            assert wrote.exit_code == 0, wrote.output
+            gate = json.loads(wrote.stdout)["gate"]
+            assert gate["passed"] and gate["stale_baseline"] == []
+            assert [f["icons"] for f in gate["baselined"]] == [["a"]]
+        assert runner.invoke(app, ["check"]).exit_code == 0
+    finally:
+        os.chdir(old)

@@ -31,7 +31,9 @@ from alpha_audit.load.files import read_text_capped
 from alpha_audit.load.paths import PathRefused, contain_argument, project_root
 from alpha_audit.load.tokens.themes import TokenConfig, token_config_from_mapping
 from alpha_audit.load.yamldoc import MAX_YAML_BYTES, KeyPath, YamlDoc, format_key, load_yaml
+from alpha_audit.model import Span
 from alpha_audit.policy import Exemption, Policy
+from alpha_audit.rows import MAX_COMBINATIONS
 from alpha_audit.rules import DEFAULT_RULES, DEFAULT_WARNINGS, Level, Rule
 from alpha_audit.safe_text import is_safe, safe_text
 
@@ -57,6 +59,7 @@ CONFIG_KEYS = (
     "iconset",
     "iconsets",
     "loss-tolerance",
+    "max-combinations",
     "max-drift",
     "max-loss",
     "min-delta-e",
@@ -90,6 +93,12 @@ class ProjectConfig:
     tokens: TokenConfig | None = None
     pipeline: Pipeline | None = None
     gamut: GamutPolicy | None = None  # for theme and manifest colours; None: each file's own
+    # Paint rows x canvases one check audits: the resource bound (docs/ci.md says how
+    # memory scales with it).
+    max_combinations: int = MAX_COMBINATIONS
+    # Where the config writes ``alpha:`` (findings point there); None: not written, or
+    # overridden by --alpha.
+    alpha_span: Span | None = field(default=None, compare=False)
 
 
 def _has_tool_table(pyproject: Path) -> bool:
@@ -188,6 +197,7 @@ class Overrides:
     gamut: str | None = None
     baseline: Path | None = None
     strict_svg: bool = False
+    max_combinations: int | None = None
 
 
 def resolve_config(overrides: Overrides | None = None, start: str | Path = ".") -> ProjectConfig:
@@ -227,6 +237,10 @@ def resolve_config(overrides: Overrides | None = None, start: str | Path = ".") 
         gamut=project.gamut if o.gamut is None else o.gamut.strip().lower(),  # type: ignore[arg-type]  # checked against GAMUT_POLICIES above
         baseline=project.baseline if o.baseline is None else o.baseline,
         strict_svg=project.strict_svg or o.strict_svg,
+        max_combinations=(
+            project.max_combinations if o.max_combinations is None else o.max_combinations
+        ),
+        alpha_span=project.alpha_span if o.alpha is None else None,
     )
 
 
@@ -390,6 +404,15 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
     alpha = threshold = None
     if "alpha" in data:
         alpha = read_number(doc, at("alpha"), data["alpha"], allowed=ranges.ALPHA)
+    max_combinations = MAX_COMBINATIONS
+    if "max-combinations" in data:
+        value = data["max-combinations"]
+        number = read_number(doc, at("max-combinations"), value, allowed=ranges.COMBINATIONS)
+        if number != int(number):
+            raise doc.error(
+                at("max-combinations"), f"expected {ranges.COMBINATIONS.what}, got {value!r}"
+            )
+        max_combinations = int(number)
     if "threshold" in data:
         threshold = read_number(
             doc, at("threshold"), data["threshold"], allowed=ranges.CONTRAST_RATIO
@@ -467,4 +490,6 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
         tokens=tokens,
         pipeline=pipeline,
         gamut=gamut,
+        max_combinations=max_combinations,
+        alpha_span=doc.spans.get(at("alpha")),
     )
