@@ -111,7 +111,9 @@ def test_fixing_a_base_finding_passes_and_counts_it_as_fixed(repo: Path) -> None
     assert result.exit_code == 0, result.output
     gate = json.loads(result.stdout)["gate"]
     assert gate["baseline"] == {"kind": "base", "name": "HEAD"}
-    assert gate["stale_baseline"] == [{"theme": "t", "iconset": "s", "rule": "loss", "icons": ["a"]}]
+    assert gate["stale_baseline"] == [
+        {"theme": "t", "iconset": "s", "rule": "loss", "icons": ["a"]}
+    ]
 
 
 def test_a_base_without_the_config_makes_every_finding_new(repo: Path) -> None:

@@ -147,7 +147,8 @@ def test_write_baseline_works_when_the_config_names_it_and_calls_nothing_stale(
         assert missing.exit_code == 2 and "--write-baseline" in missing.output
         for extra in ([], ["--force"]):  # the first write, then writing it again over itself
             wrote = runner.invoke(
-                app, ["check", "--write-baseline", "alpha-audit-baseline.json", *extra, "-f", "json"]
+                app,
+                ["check", "--write-baseline", "alpha-audit-baseline.json", *extra, "-f", "json"],
             )
             assert wrote.exit_code == 0, wrote.output
             gate = json.loads(wrote.stdout)["gate"]
