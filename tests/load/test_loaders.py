@@ -252,6 +252,8 @@ def test_a_glob_may_name_icons_by_path_to_keep_variants_apart(tmp_path: Path) ->
     assert set(icons) == {"filled/x", "filled/y", "outline/x"}
     assert icons["outline/x"].alpha == 1.2 and icons["filled/x"].alpha == 1.0
     assert icons["outline/x"].file == (tmp_path / "icons" / "outline" / "x.svg").resolve()
-    bad = write(tmp_path / "icons", "bad.yaml", 'icons: {glob: "**/*.svg", name: file}\ncolor: red\n')
+    bad = write(
+        tmp_path / "icons", "bad.yaml", 'icons: {glob: "**/*.svg", name: file}\ncolor: red\n'
+    )
     with pytest.raises(InputError, match=r"icons\.name: expected one of stem, path"):
         load_iconset(bad)
