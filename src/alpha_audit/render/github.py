@@ -109,6 +109,9 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
             title=f"alpha-audit {w.rule.value}: {RULES[w.rule].help}",
         )
         for w in gate.warnings
+        # A loss reported but not gated (an invisible paint, a sub-tolerance loss) is
+        # in the JSON and SARIF reports; an annotation slot is for what needs a look.
+        if w.numbers.get("gated") != "false"
     ]
     lines: list[str] = []
     if gate.passed:
