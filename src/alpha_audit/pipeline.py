@@ -282,10 +282,12 @@ def base_baseline(
 
     with tempfile.TemporaryDirectory(prefix="alpha-audit-base-") as tmp:
         home = Path(tmp) / "home"
-        tree = Path(tmp) / "tree"
         home.mkdir()
-        tree.mkdir()
         top = git_toplevel(start, home)
+        # The repository's own folder name: a set or theme named after its folder
+        # (no name: key) keeps its name, and with it its findings' keys.
+        tree = Path(tmp) / "revision" / top.name
+        tree.mkdir(parents=True)
         commit = resolve_commit(top, ref, home)
         export_revision(top, commit, tree, home)
         (tree / ".git").mkdir(exist_ok=True)  # the project root, as in the checkout
