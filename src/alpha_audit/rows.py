@@ -158,7 +158,7 @@ def check_combinations(
         raise InputError(
             f"{rows:,} paints x {canvases:,} canvases x {sizes} sizes is more than one check "
             f"audits ({limit:,} paint rows, {cells:,} paint x canvas x size figures); raise "
-            "max-combinations (--max-combinations) if the memory is there (docs/ci.md), "
+            "`max_combinations` if the memory is there (docs/ci.md), "
             "split the theme or the icon set, or give fewer sizes",
             path=path,
         )

@@ -144,3 +144,19 @@ def test_github_annotations_cannot_be_injected() -> None:
 def test_table_shows_gate_verdict() -> None:
     text = render_check(_report(), "table", OPTIONS)
     assert "Gate failed: 2 root cause(s)" in text and "loss: deep on sun" in text
+
+
+def test_junit_fails_every_canvas_of_a_folded_root_cause() -> None:
+    import xml.etree.ElementTree as ET
+
+    theme = Theme("t", tuple(Canvas(n, c) for n, c in (("sun", "#ffff00"), ("lemon", "#ffff40"))))
+    icons = (Icon("deep", BASE / "icons" / "deep.svg", "#0000cf", 1.4),)
+    result = audit(theme, IconSet("set", icons))
+    report = CheckReport(audits=(result,), gate=evaluate([result], Policy()))
+    (finding,) = report.gate.failures
+    assert finding.canvases == ("sun", "lemon")
+    root = ET.fromstring(render_check(report, "junit", OPTIONS))
+    failed = {
+        case.get("classname") for case in root.iter("testcase") if case.find("failure") is not None
+    }
+    assert failed == {"set.sun", "set.lemon"}

@@ -25,6 +25,8 @@ FLAGS: dict[str, str] = {
     "icons": "--icons",
     "gamut": "--gamut",
     "engines": "--engine",
+    "max_combinations": "max-combinations (--max-combinations)",
+    "base": "--base",
 }
 """Backticked phrase in a library message -> what the command line says instead."""
 

@@ -50,7 +50,7 @@ def check_ref(ref: str) -> str:
     ('origin/main', 'HEAD~1')
     >>> check_ref("--output=x")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
-    alpha_audit.errors.UsageError: --base '--output=x' is not a revision: ...
+    alpha_audit.errors.UsageError: `base` '--output=x' is not a revision: ...
     """
     bad = (
         not ref
@@ -62,7 +62,7 @@ def check_ref(ref: str) -> str:
     )
     if bad:
         shown = ref[:60].encode("unicode_escape").decode("ascii")
-        raise UsageError(f"--base {shown!r} is not a revision: give a branch, tag or commit")
+        raise UsageError(f"`base` {shown!r} is not a revision: give a branch, tag or commit")
     return ref
 
 
@@ -108,7 +108,7 @@ def _run(repo: Path, home: Path, *args: str) -> str:
             stdin=subprocess.DEVNULL,
         )
     except FileNotFoundError as exc:
-        raise UsageError("--base needs git on PATH") from exc
+        raise UsageError("`base` needs git on PATH") from exc
     except subprocess.TimeoutExpired as exc:
         raise InputError(f"git {args[0]} took more than {GIT_SECONDS} s", path=repo) from exc
     if done.returncode != 0:
@@ -122,7 +122,7 @@ def git_toplevel(start: Path, home: Path) -> Path:
     try:
         top = _run(start, home, "rev-parse", "--show-toplevel")
     except UsageError as exc:
-        raise UsageError(f"--base needs a git repository ({exc.message})") from exc
+        raise UsageError(f"`base` needs a git repository ({exc.message})") from exc
     return Path(top).resolve()
 
 
@@ -135,11 +135,11 @@ def resolve_commit(repo: Path, ref: str, home: Path) -> str:
         )
     except UsageError as exc:
         raise UsageError(
-            f"--base {ref!r} names no commit of this repository (fetch it first, e.g. "
+            f"`base` {ref!r} names no commit of this repository (fetch it first, e.g. "
             f"`git fetch origin {ref}`)"
         ) from exc
     if not re.fullmatch(r"[0-9a-f]{40}|[0-9a-f]{64}", commit):
-        raise UsageError(f"--base {ref!r} names no commit of this repository")
+        raise UsageError(f"`base` {ref!r} names no commit of this repository")
     return commit
 
 
@@ -153,7 +153,7 @@ def export_revision(repo: Path, commit: str, into: Path, home: Path) -> None:
     if not re.fullmatch(r"[0-9a-f]{40}|[0-9a-f]{64}", commit):
         raise UsageError(f"not a commit id: {commit[:80]!r}")
     if not hasattr(tarfile, "data_filter"):  # Python 3.11.4 added it
-        raise UsageError("--base needs Python 3.11.4 or newer (tarfile's data filter)")
+        raise UsageError("`base` needs Python 3.11.4 or newer (tarfile's data filter)")
     with subprocess.Popen(
         _git(repo, home, "archive", "--format=tar", commit),
         env=_environment(home),
@@ -190,7 +190,7 @@ def _extract(stream: IO[bytes], into: Path) -> None:
             if files > MAX_EXPORT_FILES or total > MAX_EXPORT_BYTES:
                 raise InputError(
                     f"the base revision holds more than {MAX_EXPORT_FILES:,} files or "
-                    f"{MAX_EXPORT_BYTES >> 30} GiB; --base cannot audit it"
+                    f"{MAX_EXPORT_BYTES >> 30} GiB; `base` cannot audit it"
                 )
             try:
                 archive.extract(member, into, filter="data")
