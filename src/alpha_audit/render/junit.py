@@ -55,9 +55,9 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     """The report as a JUnit XML document (``<testsuites>``)."""
     by_cell: dict[tuple[str, str, str | None, str], list[Finding]] = defaultdict(list)
     for f in report.gate.findings:
-        for canvas in f.canvases or (f.canvas,):  # a root cause fails each of its canvases
+        for name in f.canvases or (f.canvas,):  # a root cause fails each of its canvases
             for icon_name in f.icons:
-                by_cell[(f.theme, f.iconset, canvas, icon_name)].append(f)
+                by_cell[(f.theme, f.iconset, name, icon_name)].append(f)
     unrenderable_fails = report.gate.policy.level(Rule.UNRENDERABLE) is Level.FAIL
 
     root = ET.Element("testsuites", {"name": "alpha-audit"})
