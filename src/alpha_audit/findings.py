@@ -155,8 +155,8 @@ def _icon_refs(
     return tuple(files), tuple(sorted(set(lines)))
 
 
-# Badness of one cell (higher is worse) and, given the worst cell's index, its
-# message and figures: how a rule hands one root cause to the collector.
+# Given the index of a root cause's worst cell, its message and figures: how a
+# rule hands one root cause to the collector (:meth:`_Collector.fold`).
 Build = Callable[[int], tuple[str, Mapping[str, float | str]]]
 
 

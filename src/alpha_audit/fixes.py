@@ -536,11 +536,9 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
             continue
         a = audits.get((f.theme, f.iconset))
         found: list[int] = []
-        if a is not None and f.rule in _PER_PAINT:
-            role = _role_of(f, a.by_name)
-            modes = _mode_canvases(f, a.result) if role is not None else {}
-            for mode in modes:
-                assert role is not None
+        role = _role_of(f, a.by_name) if a is not None and f.rule in _PER_PAINT else None
+        if a is not None and role is not None:
+            for mode in _mode_canvases(f, a.result):
                 color = (f.theme, f.iconset, role)
                 key: object = ("colour", f.theme, f.iconset, role, mode)
                 if key not in index and (color in colors_fixed or budget > 0):

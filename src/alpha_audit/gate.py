@@ -211,11 +211,11 @@ def evaluate(
 
     >>> from alpha_audit.rows import audit
     >>> from alpha_audit.model import Canvas, Icon, IconSet, Theme
-    >>> theme = Theme("t", (Canvas("yellow", "#ffff00"), Canvas("white", "#ffffff")))
+    >>> canvases = (Canvas("yellow", "#ffff00"), Canvas("lemon", "#ffff40"))
     >>> icons = IconSet("s", (Icon("dot", "dot.svg", "#0000d0", 1.4),))
-    >>> gate = evaluate([audit(theme, icons)], Policy())
+    >>> gate = evaluate([audit(Theme("t", canvases), icons)], Policy())
     >>> [(f.rule.value, f.canvas, f.canvases, f.icons) for f in gate.failures]
-    [('loss', 'yellow', ('yellow', 'white'), ('dot',))]
+    [('loss', 'yellow', ('yellow', 'lemon'), ('dot',))]
     """
     return judge(audits, policy, collect(audits, policy), baseline)
 

@@ -292,20 +292,20 @@ def base_baseline(
         export_revision(top, commit, tree, home)
         (tree / ".git").mkdir(exist_ok=True)  # the project root, as in the checkout
 
-        def moved(path: str | Path | None) -> str | Path | None:
-            if path is None:
-                return None
+        def moved(path: str | Path) -> str | Path:
+            """A path inside the repository, in the revision's tree; anything else as given."""
             full = (start / path).resolve()
             if not (start / path).exists() or not full.is_relative_to(top):
-                return path  # a bundled name, or outside the repository: as given
+                return path  # a bundled name, or outside the repository
             return tree / full.relative_to(top)
 
         here = tree / start.resolve().relative_to(top)
+        config = overrides.config
         mapped = replace(
             overrides,
-            config=moved(overrides.config),  # type: ignore[arg-type]  # a path in, a path out
-            themes=tuple(moved(t) or t for t in overrides.themes),
-            iconsets=tuple(moved(s) or s for s in overrides.iconsets),
+            config=None if config is None else Path(moved(config)),
+            themes=tuple(moved(t) for t in overrides.themes),
+            iconsets=tuple(moved(s) for s in overrides.iconsets),
             baseline=None,
         )
         try:
