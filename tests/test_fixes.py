@@ -265,13 +265,11 @@ def _report(policy: Policy) -> CheckReport:
 def test_fixes_for_every_failing_color_and_canvas() -> None:
     report = _report(Policy(rules=frozenset({Rule.BELOW_THRESHOLD})))
     fixes = fixes_for(report, alpha_max=3.0)  # red cannot move on white: yellow needs a > 2
-    failing = {(f.canvas, name) for f in report.gate.failures for name in f.icons}
-    # Yellow fails on both light canvases, black on the dark one.
-    assert {(fx.color, fx.canvas) for fx in fixes} == {
-        ("warn", "white"),
-        ("warn", "paper"),
-        ("ink", "ink"),
-    }
+    failing = {(c, name) for f in report.gate.failures for c in f.canvases for name in f.icons}
+    # Yellow fails on both light canvases (one fix for the light mode, computed on
+    # the worst of them), black on the dark one.
+    assert {(fx.color, fx.mode) for fx in fixes} == {("warn", "light"), ("ink", "dark")}
+    assert next(fx for fx in fixes if fx.color == "warn").canvas in ("white", "paper")
     assert {("white", "a"), ("paper", "b"), ("ink", "c")} <= failing
     warn = next(fx for fx in fixes if fx.color == "warn")
     assert warn.icons == ("a", "b") and warn.line == 3 and warn.mode == "light"
@@ -317,7 +315,7 @@ def test_json_report_carries_the_fixes() -> None:
     assert [(f["color"], f["canvas"]) for f in fixes] == [
         (fx.color, fx.canvas) for fx in fixes_for(report)
     ]
-    warn = fixes[0]
+    warn = next(f for f in fixes if f["color"] == "warn")
     assert warn["nearest_color"]["color"].startswith("#")
     assert warn["smallest_alpha_reaching"]["mode"] == "light"
     # Each failure points at the fixes of its icons' colours on its canvas.

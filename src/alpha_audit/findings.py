@@ -3,15 +3,19 @@
 :func:`findings_for` applies every rule a :class:`~alpha_audit.policy.Policy`
 fails on or reports (:attr:`~alpha_audit.policy.Policy.reported`) to an
 :class:`~alpha_audit.rows.AuditResult` and returns one :class:`Finding` per
-objection, naming its rule, theme, icon set, canvas, icon(s), numbers and the
-files and lines that set the values involved.  Every figure comes from the
-audit's rows (its pipeline's colours).  Exemptions are applied here; baselines
-and the verdict are :mod:`alpha_audit.gate`'s.  Pure computation.
+*root cause*: a rule's objection to one paint of one icon, one pair of roles,
+or one group of colours, folded over every canvas where it occurs (naming
+them, and the worst, whose figures it carries).  Each finding says where the
+failing value is written (:attr:`Finding.locations`: the ``alpha:`` or colour
+that sets it, the palette entries of both roles ...), the SVG being a related
+place.  Every figure comes from the audit's rows (its pipeline's colours).
+Exemptions are applied here (a canvas exempted apart is a finding apart);
+baselines and the verdict are :mod:`alpha_audit.gate`'s.  Pure computation.
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -31,49 +35,81 @@ from alpha_audit.color import (
     to_8bit,
 )
 from alpha_audit.color.nearest import delta_e_2000_lightness_key, pairs_below
-from alpha_audit.model import Edit, Icon
+from alpha_audit.model import Edit, Icon, Span
 from alpha_audit.policy import (
     Exemption,
     Policy,
     confusion_breaks,
     contrast_breaks,
     drift_breaks,
+    loss_reported,
     size_contrast_floor,
 )
-from alpha_audit.rows import AuditResult
+from alpha_audit.rows import AuditResult, Collision, PaintEntry, Separation
 from alpha_audit.rules import Level, Rule
 
 __all__ = [
     "LOCK_TOLERANCE",
+    "MAX_LOCATIONS",
     "Finding",
     "FindingKey",
+    "Location",
     "cvd_collision_groups",
     "findings_for",
     "locked_rows",
+    "ranked",
     "role_rows",
+    "severity",
 ]
 
 # A locked (brand) colour may move by less than one just-noticeable
 # difference: CIEDE2000 = 1 is the usual reading of one JND.
 LOCK_TOLERANCE = 1.0
 
-# (theme, icon set, rule, canvas, icons): what a baseline matches on.  Never a
+# Where a finding between many colours is written: the first few places (a
+# collision of 353 brand colours names the alpha and a dozen entries, not 353).
+MAX_LOCATIONS = 12
+
+# (theme, icon set, rule, icons): what a baseline matches on, the identity of a
+# root cause.  Never a canvas (a finding folds every canvas where it occurs), a
 # line number or a value, so editing a manifest does not invalidate a baseline.
-FindingKey = tuple[str, str, str, str | None, tuple[str, ...]]
+FindingKey = tuple[str, str, str, tuple[str, ...]]
+
+
+@dataclass(frozen=True)
+class Location:
+    """A line that sets a value of a finding: ``what`` says which value.
+
+    ``what`` is ``alpha`` (the ``alpha:`` that applies: the icon's own or
+    override, its palette entry's, the set's, or the project config's),
+    ``colour`` (the palette entry or colour written on the icon), ``token``
+    (the design token at the end of the colour's alias chain), ``paint`` (an
+    SVG element's hard-coded colour) or ``svg`` (the drawing itself).
+    ``span`` is the value's exact region where the loader knows it.
+    """
+
+    file: Path
+    line: int
+    what: str
+    span: Span | None = None
 
 
 @dataclass(frozen=True)
 class Finding:
-    """One thing a rule objects to.
+    """One root cause a rule objects to.
 
-    ``numbers`` holds the figures a reviewer needs (contrast before and after,
-    threshold, CIEDE2000, 8-bit output ...), ``files`` the icons' SVG files
-    and ``lines`` the manifest lines that set each icon's colour or alpha;
-    ``sources`` the (file, line) of each design token that sets a colour of
-    the finding (icon colour first, then the canvas), where the fix goes.
-    ``level`` is what the policy does with the rule; ``fixes`` index the
-    report's fixes that answer this finding and ``edits`` are those known to
-    clear it as exact text edits (both from :mod:`alpha_audit.fixes`).
+    ``canvas`` is the worst canvas, whose figures ``numbers`` and ``message``
+    give (contrast before and after, threshold, CIEDE2000, 8-bit output ...);
+    ``canvases`` every canvas where it occurs, in theme order (empty for a
+    rule judging icons, not canvases).  ``locations`` say where the failing
+    values are written, the one to edit first (:class:`Location`); ``files``
+    are the icons' SVG files, ``lines`` the manifest lines that set each
+    icon's colour or alpha, ``sources`` the (file, line) of each design token
+    setting a colour of the finding.  ``level`` is what the gate does with it
+    (a loss on an already invisible paint is reported, not gated, whatever the
+    rule's level); ``fixes`` index the report's fixes that answer it and
+    ``edits`` are those known to clear it as exact text edits (both from
+    :mod:`alpha_audit.fixes`).
     """
 
     rule: Rule
@@ -92,11 +128,13 @@ class Finding:
     level: Level = Level.FAIL
     fixes: tuple[int, ...] = ()
     edits: tuple[Edit, ...] = ()
+    canvases: tuple[str, ...] = ()
+    locations: tuple[Location, ...] = ()
 
     @property
     def key(self) -> FindingKey:
-        """Identity for baselines: theme, icon set, rule, canvas and icons."""
-        return (self.theme, self.iconset, self.rule.value, self.canvas, self.icons)
+        """Identity for baselines and ``--base``: theme, icon set, rule and icons."""
+        return (self.theme, self.iconset, self.rule.value, self.icons)
 
     @property
     def fails(self) -> bool:
@@ -118,38 +156,114 @@ def _icon_refs(
     return tuple(files), tuple(sorted(set(lines)))
 
 
+# Given the index of a root cause's worst cell, its message and figures: how a
+# rule hands one root cause to the collector (:meth:`_Collector.fold`).
+Build = Callable[[int], tuple[str, Mapping[str, float | str]]]
+
+
 class _Collector:
     """Builds the findings of one audit, each with its locations and exemption."""
 
     def __init__(self, result: AuditResult, policy: Policy) -> None:
         self.result, self.policy = result, policy
         self.by_name = {i.name: i for i in result.iconset.icons}  # once: a brand set has thousands
+        self.canvas_names = [c.name for c in result.theme.canvases]
         self.out: list[Finding] = []
+        self._alpha_at: dict[str, Location | None] = {}
+        self._colour_at: dict[str, Location | None] = {}
+
+    # -------------------------------------------------------------- locations
+
+    def alpha_at(self, name: str) -> Location | None:
+        """Where the alpha of icon ``name`` is written (its own, palette's, set's, config's)."""
+        if name not in self._alpha_at:
+            icon, manifest = self.by_name.get(name), self.result.iconset.path
+            found = None
+            if icon is not None and icon.alpha_span is not None:
+                s = icon.alpha_span
+                found = Location(s.file, s.start_line, "alpha", s)
+            elif icon is not None and icon.alpha_line is not None and manifest is not None:
+                found = Location(manifest, icon.alpha_line, "alpha")
+            self._alpha_at[name] = found
+        return self._alpha_at[name]
+
+    def colour_at(self, name: str) -> Location | None:
+        """Where the colour of icon ``name`` is written: its token, else its manifest value."""
+        if name not in self._colour_at:
+            icon, manifest = self.by_name.get(name), self.result.iconset.path
+            found = None
+            if icon is not None:
+                span = icon.color_span
+                if icon.token_file is not None and icon.token_line is not None:
+                    file = Path(icon.token_file)
+                    exact = span if span is not None and span.file == file else None
+                    found = Location(file, icon.token_line, "token", exact)
+                elif span is not None:
+                    found = Location(span.file, span.start_line, "colour", span)
+                elif icon.color_line is not None and manifest is not None:
+                    found = Location(manifest, icon.color_line, "colour")
+            self._colour_at[name] = found
+        return self._colour_at[name]
+
+    def paint_locations(self, e: PaintEntry, *, colour_first: bool = False) -> tuple[Location, ...]:
+        """Where one paint's alpha and colour are set (a hard-coded colour: its SVG element)."""
+        colour = (
+            Location(Path(e.icon.file), e.line or 1, "paint")
+            if e.fixed
+            else self.colour_at(e.icon.name)
+        )
+        alpha = self.alpha_at(e.icon.name)
+        found = (colour, alpha) if colour_first else (alpha, colour)
+        return tuple(loc for loc in found if loc is not None)
+
+    def group_locations(
+        self, names: Iterable[str], *, colour_first: bool = False
+    ) -> tuple[Location, ...]:
+        """The alphas and colours of several icons, each place once, at most MAX_LOCATIONS."""
+        names = list(names)
+        alphas = [self.alpha_at(n) for n in names]
+        colours = [self.colour_at(n) for n in names]
+        found = [*colours, *alphas] if colour_first else [*alphas, *colours]
+        unique: dict[tuple[Path, int], Location] = {}
+        for loc in found:
+            if loc is not None:
+                unique.setdefault((loc.file, loc.line), loc)
+            if len(unique) >= MAX_LOCATIONS:
+                break
+        return tuple(unique.values())
 
     def token_sources(
-        self, names: Sequence[str], canvas: str | None
+        self, names: Sequence[str], canvases: Sequence[str]
     ) -> tuple[tuple[Path, int], ...]:
-        """(file, line) of the design tokens setting the icons' colours, then the canvas's."""
+        """(file, line) of the design tokens setting the icons' colours, then the canvases'."""
         out: list[tuple[Path, int]] = []
-        for name in names:
+        for name in names[:MAX_LOCATIONS]:
             icon = self.by_name.get(name)
             if icon is not None and icon.token_file is not None and icon.token_line is not None:
                 out.append((Path(icon.token_file), icon.token_line))
+        wanted = set(canvases)
         for c in self.result.theme.canvases:
-            if c.name == canvas and c.file is not None and c.line is not None:
+            if c.name in wanted and c.file is not None and c.line is not None:
                 out.append((Path(c.file), c.line))
-        return tuple(dict.fromkeys(out))  # unique, first-seen order
+        return tuple(dict.fromkeys(out))[: 2 * MAX_LOCATIONS]  # unique, first-seen order
+
+    # -------------------------------------------------------------- findings
 
     def add(
         self,
         rule: Rule,
-        canvas: str | None,
         icons: tuple[str, ...],
         message: str,
         numbers: Mapping[str, float | str],
+        *,
         files: tuple[Path, ...] | None = None,
+        locations: tuple[Location, ...] = (),
+        canvases: Sequence[str] = (),
+        canvas: str | None = None,
+        level: Level | None = None,
     ) -> None:
-        own_files, lines = _icon_refs(self.by_name, icons)
+        """One finding (``canvas`` the worst of ``canvases``; none: a rule judging icons)."""
+        own_files, lines = _icon_refs(self.by_name, icons[:MAX_LOCATIONS])
         self.out.append(
             Finding(
                 rule=rule,
@@ -163,17 +277,58 @@ class _Collector:
                 manifest=self.result.iconset.path,
                 lines=lines,
                 exemption=self.policy.exempt(rule, canvas, icons),
-                sources=self.token_sources(icons, canvas),
-                level=self.policy.level(rule),
+                sources=self.token_sources(icons, canvases),
+                level=self.policy.level(rule) if level is None else level,
+                canvases=tuple(canvases),
+                locations=locations,
             )
         )
+
+    def fold(
+        self,
+        rule: Rule,
+        icons: tuple[str, ...],
+        cells: Sequence[int],
+        badness: Sequence[float],
+        build: Build,
+        *,
+        locations: tuple[Location, ...] = (),
+        level: Level | None = None,
+    ) -> None:
+        """One finding for the cells (canvas indices) of one root cause.
+
+        ``badness[k]`` ranks cell ``cells[k]`` (higher is worse); the finding
+        carries the worst cell's figures (``build(k)``) and names every canvas.
+        Canvases an exemption covers fold apart, so an exemption still names
+        exactly what it covers.
+        """
+        parts: dict[Exemption | None, list[int]] = {}
+        for k, j in enumerate(cells):
+            parts.setdefault(self.policy.exempt(rule, self.canvas_names[j], icons), []).append(k)
+        for ks in parts.values():  # the worst canvas of a part has the part's exemption
+            worst = max(ks, key=lambda k: (badness[k], -k))
+            message, numbers = build(worst)
+            names = [self.canvas_names[j] for j in sorted({cells[k] for k in ks})]
+            canvas = self.canvas_names[cells[worst]]
+            self.add(
+                rule,
+                icons,
+                message,
+                numbers,
+                locations=locations,
+                canvases=names,
+                canvas=canvas,
+                level=level,
+            )
 
 
 def findings_for(result: AuditResult, policy: Policy) -> list[Finding]:
     """Every finding of the rules ``policy`` fails on or reports, exemptions applied.
 
-    Order is stable: rules in :class:`~alpha_audit.rules.Rule` order; within a
-    rule, canvas order, then row (icon, paint) order.
+    One finding per root cause, folded over canvases.  Order is stable: rules
+    in :class:`~alpha_audit.rules.Rule` order; within a rule, row (icon,
+    paint) order or the order of the first canvas where a group occurs.
+    :func:`ranked` orders them by severity.
     """
     c = _Collector(result, policy)
     reported = policy.reported
@@ -191,62 +346,138 @@ _CONTRAST_TEMPLATES = {
 
 
 def _contrast(c: _Collector, rule: Rule) -> None:
-    """The per paint x canvas contrast rules."""
-    r = c.result
-    mask = contrast_breaks(rule, c.policy, r.contrast_ref, r.contrast, r.threshold, r.tolerance)
+    """The per paint contrast rules, one finding per paint over the canvases it fails on.
+
+    A loss on a paint below the visibility floor at alpha 1, or within the
+    relative tolerance, is reported (level ``warn``), never gated.
+    """
+    r, policy = c.result, c.policy
+    mask = contrast_breaks(rule, policy, r.contrast_ref, r.contrast, r.threshold, r.tolerance)
+    quiet = np.zeros_like(mask)
+    if rule is Rule.LOSS:
+        quiet = loss_reported(policy, r.contrast_ref, r.contrast, r.tolerance)
     canvases = r.theme.canvases
-    for j, p in zip(*np.nonzero(mask.T), strict=True):  # canvas order, then row order
-        p, j = int(p), int(j)
+    worse = -r.gain if rule is Rule.LOSS else -r.contrast  # (p, m), higher is worse
+    for p in np.flatnonzero((mask | quiet).any(axis=1)).tolist():
         e = r.entries[p]
-        numbers: dict[str, float | str] = {
-            "alpha": float(r.alpha[p]),
-            "contrast_ref": float(r.contrast_ref[p, j]),
-            "contrast": float(r.contrast[p, j]),
-            "gain": float(r.gain[p, j]),
-            "threshold": float(r.threshold),
-            "background": canvases[j].color,
-            "source": e.source,
-            "paint": e.paint,
-            "opacity": e.opacity,
-        }
-        message = _CONTRAST_TEMPLATES[rule].format(
-            ref=numbers["contrast_ref"],
-            now=numbers["contrast"],
-            gain=numbers["gain"],
-            a=numbers["alpha"],
-            t=r.threshold,
+        colour_first = rule is Rule.BELOW_THRESHOLD and bool(
+            (r.contrast_ref[p] < r.threshold).all()
         )
-        if e.fixed or e.opacity != 1.0:
-            message += f" (paint {e.paint} at opacity {e.opacity:g})"
-        c.add(rule, canvases[j].name, (e.icon.name,), message, numbers)
+        locations = c.paint_locations(e, colour_first=colour_first)
+        for cells_mask, level in ((mask[p], None), (quiet[p], Level.WARN)):
+            cells = np.flatnonzero(cells_mask).tolist()
+            if not cells:
+                continue
+
+            def figures(
+                k: int, p: int = p, e: PaintEntry = e, cells: list[int] = cells
+            ) -> tuple[str, dict[str, float | str]]:
+                j = cells[k]
+                numbers: dict[str, float | str] = {
+                    "alpha": float(r.alpha[p]),
+                    "contrast_ref": float(r.contrast_ref[p, j]),
+                    "contrast": float(r.contrast[p, j]),
+                    "gain": float(r.gain[p, j]),
+                    "threshold": float(r.threshold),
+                    "background": canvases[j].color,
+                    "source": e.source,
+                    "paint": e.paint,
+                    "opacity": e.opacity,
+                }
+                message = _CONTRAST_TEMPLATES[rule].format(
+                    ref=numbers["contrast_ref"],
+                    now=numbers["contrast"],
+                    gain=numbers["gain"],
+                    a=numbers["alpha"],
+                    t=r.threshold,
+                )
+                if e.fixed or e.opacity != 1.0:
+                    message += f" (paint {e.paint} at opacity {e.opacity:g})"
+                return message, numbers
+
+            build: Build = figures
+            if level is Level.WARN:
+                build = _quiet(figures, r.contrast_ref[p], cells, policy.visibility_floor)
+            c.fold(
+                rule,
+                (e.icon.name,),
+                cells,
+                worse[p, cells].tolist(),
+                build,
+                locations=locations,
+                level=level,
+            )
+
+
+def _quiet(build: Build, ref: NDArray[np.float64], cells: list[int], floor: float) -> Build:
+    """``build`` with the reason a loss is reported, not gated, added to its message."""
+
+    def quiet(k: int) -> tuple[str, Mapping[str, float | str]]:
+        message, numbers = build(k)
+        if ref[cells[k]] < floor:
+            why = f"already below the visibility floor {floor:g}:1 at alpha 1"
+        else:
+            why = "within the loss tolerance"
+        return f"{message} ({why}: reported, not gated)", {**numbers, "gated": "false"}
+
+    return quiet
 
 
 def _collisions(c: _Collector, rule: Rule) -> None:
     """``collision`` (every shared output) or ``new-collision`` (not already at alpha 1).
 
-    With both enabled a new collision is reported once, as ``collision``.
+    One finding per set of colliding colours, over the canvases where exactly
+    they collide.  With both enabled a new collision is reported once, as
+    ``collision``.
     """
     if rule is Rule.NEW_COLLISION and Rule.COLLISION in c.policy.reported:
         return
+    index = {name: j for j, name in enumerate(c.canvas_names)}
+    groups: dict[tuple[str, ...], list[Collision]] = {}
     for col in c.result.collisions:
         if rule is Rule.NEW_COLLISION and not col.new:
             continue
-        give = "both give" if len(col.sources) == 2 else "all give"
-        message = f"distinct colours {', '.join(col.sources)} {give} {col.output}" + (
-            "" if col.new else " (already at alpha 1)"
+        groups.setdefault(col.sources, []).append(col)
+    for cols in groups.values():
+        icons = tuple(sorted({n for col in cols for n in col.icons}))
+
+        def build(k: int, cols: list[Collision] = cols) -> tuple[str, dict[str, float | str]]:
+            col = cols[k]
+            give = "both give" if len(col.sources) == 2 else "all give"
+            message = f"distinct colours {', '.join(col.sources)} {give} {col.output}" + (
+                "" if col.new else " (already at alpha 1)"
+            )
+            numbers: dict[str, float | str] = {
+                "output": col.output,
+                "sources": ", ".join(col.sources),
+                "colours": len(col.sources),
+                "new": str(col.new).lower(),
+            }
+            return message, numbers
+
+        c.fold(
+            rule,
+            icons,
+            [index[col.canvas] for col in cols],
+            [float(len(col.icons)) for col in cols],
+            build,
+            locations=c.group_locations(icons),
         )
-        numbers = {
-            "output": col.output,
-            "sources": ", ".join(col.sources),
-            "new": str(col.new).lower(),
-        }
-        c.add(rule, col.canvas, col.icons, message, numbers)
 
 
 def _separation(c: _Collector, rule: Rule) -> None:
+    """The closest pair of colours below ``min_delta_e``, one finding per pair of colours."""
     limit = c.policy.min_delta_e
+    index = {name: j for j, name in enumerate(c.canvas_names)}
+    pairs: dict[tuple[str, ...], list[Separation]] = {}
     for s in c.result.separations:
         if s.delta_e < limit:
+            pairs.setdefault(tuple(sorted(s.sources)), []).append(s)
+    for found in pairs.values():
+        icons = tuple(sorted({n for s in found for n in s.icons}))
+
+        def build(k: int, found: list[Separation] = found) -> tuple[str, dict[str, float | str]]:
+            s = found[k]
             message = (
                 f"closest colours are CIEDE2000 {s.delta_e:.2f} apart "
                 f"(at alpha 1: {s.delta_e_ref:.2f}); minimum {limit:g}"
@@ -257,12 +488,28 @@ def _separation(c: _Collector, rule: Rule) -> None:
                 "min_delta_e": limit,
                 "sources": ", ".join(s.sources),
             }
-            c.add(rule, s.canvas, tuple(sorted(set(s.icons))), message, numbers)
+            return message, numbers
+
+        c.fold(
+            rule,
+            icons,
+            [index[s.canvas] for s in found],
+            [-s.delta_e for s in found],
+            build,
+            locations=c.group_locations(icons, colour_first=True),
+        )
 
 
 def _unrenderable(c: _Collector, rule: Rule) -> None:
     for p in c.result.problems:  # broken icons are not in the audited set: name the file
-        c.add(rule, None, (p.icon,), p.message, {}, files=(Path(p.file),))
+        c.add(
+            rule,
+            (p.icon,),
+            p.message,
+            {},
+            files=(Path(p.file),),
+            locations=(Location(Path(p.file), 1, "svg"),),
+        )
 
 
 def _fixed_colour(c: _Collector, rule: Rule) -> None:
@@ -273,18 +520,26 @@ def _fixed_colour(c: _Collector, rule: Rule) -> None:
         where = f" (line {e.line})" if e.line else ""
         c.add(
             rule,
-            None,
             (e.icon.name,),
             f"{'/'.join(e.kinds)} {e.paint} of {element}{where} is hard-coded: it is audited "
             "as itself and will not follow the theme",
             {"paint": e.paint, "element": element + where},
+            locations=(Location(Path(e.icon.file), e.line or 1, "paint"),),
         )
 
 
 def _not_audited(c: _Collector, rule: Rule) -> None:
     for u in c.result.unaudited:
         where = f" (line {u.line})" if u.line else ""
-        c.add(rule, None, (u.icon,), f"{u.element}: {u.reason}", {"element": u.element + where})
+        icon = c.by_name.get(u.icon)
+        at = () if icon is None else (Location(Path(icon.file), u.line or 1, "svg"),)
+        c.add(
+            rule,
+            (u.icon,),
+            f"{u.element}: {u.reason}",
+            {"element": u.element + where},
+            locations=at,
+        )
 
 
 def _drift(c: _Collector, rule: Rule) -> None:
@@ -295,38 +550,72 @@ def _drift(c: _Collector, rule: Rule) -> None:
         limit, selected = c.policy.max_drift, np.ones(len(r.entries), dtype=bool)
     over = drift_breaks(r.drift, limit) & selected[:, np.newaxis]
     what = "locked colour" if rule is Rule.LOCK else "colour"
-    for j, canvas in enumerate(r.theme.canvases):
-        for p in np.flatnonzero(over[:, j]).tolist():
-            e = r.entries[p]
+    for p in np.flatnonzero(over.any(axis=1)).tolist():
+        e = r.entries[p]
+        cells = np.flatnonzero(over[p]).tolist()
+
+        def build(
+            k: int, p: int = p, e: PaintEntry = e, cells: list[int] = cells
+        ) -> tuple[str, dict[str, float | str]]:
+            j = cells[k]
             d = float(r.drift[p, j])
             shown = linear_to_hex(r.output[p, j])
-            c.add(
-                rule,
-                canvas.name,
-                (e.icon.name,),
+            message = (
                 f"{what} {e.source} is shown as {shown} at alpha {r.alpha[p]:g}: "
-                f"CIEDE2000 {d:.1f} > {limit:g}",
-                {"drift": d, "limit": limit, "source": e.source, "output": shown, "paint": e.paint},
+                f"CIEDE2000 {d:.1f} > {limit:g}"
             )
+            return message, {
+                "drift": d,
+                "limit": limit,
+                "source": e.source,
+                "output": shown,
+                "paint": e.paint,
+            }
+
+        c.fold(
+            rule,
+            (e.icon.name,),
+            cells,
+            r.drift[p, cells].tolist(),
+            build,
+            locations=c.paint_locations(e),
+        )
 
 
 def _thin_strokes(c: _Collector, rule: Rule) -> None:
     r = c.result
     limit = r.threshold if c.policy.min_size_contrast is None else c.policy.min_size_contrast
-    below = r.size_contrast < size_contrast_floor(limit)  # (p, m, k); NaN never is
-    for j, canvas in enumerate(r.theme.canvases):
-        for p in np.flatnonzero(below[:, j, :].any(axis=1)).tolist():
-            e = r.entries[p]
-            k = int(np.nanargmin(r.size_contrast[p, j]))
-            size, sc = r.sizes[k], float(r.size_contrast[p, j, k])
-            c.add(
-                rule,
-                canvas.name,
-                (e.icon.name,),
-                f"at {size}px half the ink of {e.paint} is at coverage <= {r.q50[p, k]:.2f}: "
-                f"size contrast {sc:.2f} < {limit:g}:1 (colour contrast {r.contrast[p, j]:.2f})",
-                {"size": size, "q50": float(r.q50[p, k]), "size_contrast": sc, "paint": e.paint},
+    below = np.any(r.size_contrast < size_contrast_floor(limit), axis=2)  # (p, m); NaN never is
+    for p in np.flatnonzero(below.any(axis=1)).tolist():
+        e = r.entries[p]
+        cells = np.flatnonzero(below[p]).tolist()
+        worst = np.nanmin(r.size_contrast[p][cells], axis=1)
+
+        def build(
+            k: int, p: int = p, e: PaintEntry = e, cells: list[int] = cells
+        ) -> tuple[str, dict[str, float | str]]:
+            j = cells[k]
+            m = int(np.nanargmin(r.size_contrast[p, j]))
+            size, sc = r.sizes[m], float(r.size_contrast[p, j, m])
+            message = (
+                f"at {size}px half the ink of {e.paint} is at coverage <= {r.q50[p, m]:.2f}: "
+                f"size contrast {sc:.2f} < {limit:g}:1 (colour contrast {r.contrast[p, j]:.2f})"
             )
+            return message, {
+                "size": size,
+                "q50": float(r.q50[p, m]),
+                "size_contrast": sc,
+                "paint": e.paint,
+            }
+
+        c.fold(
+            rule,
+            (e.icon.name,),
+            cells,
+            (-worst).tolist(),
+            build,
+            locations=c.paint_locations(e, colour_first=True),
+        )
 
 
 def locked_rows(result: AuditResult) -> NDArray[np.bool_]:
@@ -358,19 +647,71 @@ def role_rows(result: AuditResult) -> list[int]:
 
 
 def _confusion(c: _Collector, rule: Rule) -> None:
-    if rule is Rule.CONFUSION:
-        _confusions(c, rule, None)
-    else:
-        for deficiency in DEFICIENCIES:
-            _confusions(c, rule, deficiency)
+    """One finding per pair of roles, over the canvases (and simulated deficiencies)."""
+    pairs: dict[tuple[str, str], list[_Confused]] = {}
+    for deficiency in (None,) if rule is Rule.CONFUSION else DEFICIENCIES:
+        for one in _confusions(c, deficiency):
+            pairs.setdefault(one.roles, []).append(one)
+    min_delta_e = c.policy.min_delta_e
+    for (r1, r2), found in sorted(pairs.items()):
+        icons = found[0].icons
+        # The palette entries of both roles are where the confusion is written.
+        locations = c.group_locations(icons, colour_first=True)
+
+        def build(
+            k: int, found: list[_Confused] = found, r1: str = r1, r2: str = r2
+        ) -> tuple[str, dict[str, float | str]]:
+            f = found[k]
+            under = "" if f.deficiency is None else f" under simulated {f.deficiency}"
+            message = (
+                f"{r1} and {r2} are told apart at alpha 1 (CIEDE2000 {f.ref:.1f}) but not at "
+                f"alpha {f.alphas[0]:g}/{f.alphas[1]:g} ({f.de:.1f} < {min_delta_e:g}){under}"
+            )
+            numbers: dict[str, float | str] = {
+                "delta_e_ref": f.ref,
+                "delta_e": f.de,
+                "min_delta_e": min_delta_e,
+                "roles": f"{r1},{r2}",
+                **(
+                    {
+                        "deficiency": f.deficiency,
+                        "deficiencies": ", ".join(sorted({str(g.deficiency) for g in found})),
+                    }
+                    if f.deficiency
+                    else {}
+                ),
+            }
+            return message, numbers
+
+        c.fold(
+            rule,
+            icons,
+            [f.canvas for f in found],
+            [-f.de for f in found],
+            build,
+            locations=locations,
+        )
 
 
-def _confusions(c: _Collector, rule: Rule, deficiency: Deficiency | None) -> None:
+@dataclass(frozen=True)
+class _Confused:
+    """Two roles confused on one canvas (under one simulated deficiency, or none)."""
+
+    roles: tuple[str, str]
+    icons: tuple[str, str]
+    alphas: tuple[float, float]
+    canvas: int
+    ref: float
+    de: float
+    deficiency: Deficiency | None
+
+
+def _confusions(c: _Collector, deficiency: Deficiency | None) -> list[_Confused]:
     """Roles distinct at alpha 1 (CIEDE2000 >= min_delta_e) but not at the icons' alpha."""
     r, min_delta_e = c.result, c.policy.min_delta_e
     reps = np.array(role_rows(r), dtype=np.intp)
     if reps.size < 2:
-        return
+        return []
     entries = [r.entries[p] for p in reps]
     roles = np.unique(np.array([e.role for e in entries], dtype=object), return_inverse=True)[1]
     roles = roles.reshape(-1)
@@ -381,8 +722,8 @@ def _confusions(c: _Collector, rule: Rule, deficiency: Deficiency | None) -> Non
     shown = shipped(composite_paint(src, bg, r.alpha[reps][:, None], 1.0, r.pipeline))
     if deficiency is not None:
         solid, shown = simulate_cvd(solid, deficiency), simulate_cvd(shown, deficiency)
-    under = "" if deficiency is None else f" under simulated {deficiency}"
-    for j, canvas in enumerate(r.theme.canvases):
+    out: list[_Confused] = []
+    for j in range(len(r.theme.canvases)):
         # Only pairs closer than min_delta_e at alpha can be confused: found by the
         # exact lightness-pruned search (dE00 >= |dL|/S_L), never all pairs at once.
         lab = linear_to_lab(shown[:, j, :])
@@ -402,22 +743,20 @@ def _confusions(c: _Collector, rule: Rule, deficiency: Deficiency | None) -> Non
             one, two = sorted((entries[i[h]].role, entries[k[h]].role))
             if (one, two) not in worst or de[h] < de[worst[one, two]]:
                 worst[one, two] = h
-        for (r1, r2), h in sorted(worst.items()):
+        for pair, h in sorted(worst.items()):
             a, b = entries[i[h]], entries[k[h]]
-            c.add(
-                rule,
-                canvas.name,
-                (a.icon.name, b.icon.name),
-                f"{r1} and {r2} are told apart at alpha 1 (CIEDE2000 {ref[h]:.1f}) but not at "
-                f"alpha {a.icon.alpha:g}/{b.icon.alpha:g} ({de[h]:.1f} < {min_delta_e:g}){under}",
-                {
-                    "delta_e_ref": float(ref[h]),
-                    "delta_e": float(de[h]),
-                    "min_delta_e": min_delta_e,
-                    "roles": f"{r1},{r2}",
-                    **({"deficiency": deficiency} if deficiency else {}),
-                },
+            out.append(
+                _Confused(
+                    pair,
+                    (a.icon.name, b.icon.name),
+                    (a.icon.alpha, b.icon.alpha),
+                    j,
+                    float(ref[h]),
+                    float(de[h]),
+                    deficiency,
+                )
             )
+    return out
 
 
 def cvd_collision_groups(
@@ -444,7 +783,11 @@ def cvd_collision_groups(
 
 
 def _cvd_collision(c: _Collector, rule: Rule) -> None:
-    """Distinct roles' colours whose simulated outputs newly share an 8-bit code."""
+    """Distinct roles' colours whose simulated outputs newly share an 8-bit code.
+
+    One finding per set of colours, over the canvases and deficiencies where
+    exactly they look alike.
+    """
     r = c.result
     reps = role_rows(r)
     if len(reps) < 2:
@@ -455,20 +798,71 @@ def _cvd_collision(c: _Collector, rule: Rule) -> None:
     shown = shipped(composite_paint(src, bg, r.alpha[idx][:, None], 1.0, r.pipeline))
     solid = shipped(composite_paint(src, bg, 1.0, 1.0, r.pipeline))
     sources = [r.entries[p].source for p in idx]
+    groups: dict[tuple[str, ...], list[tuple[int, str, Deficiency, tuple[str, ...]]]] = {}
     for deficiency in DEFICIENCIES:
         seen = to_8bit(simulate_cvd(shown, deficiency))
         ref = to_8bit(simulate_cvd(solid, deficiency))
-        for j, canvas in enumerate(r.theme.canvases):
+        for j in range(len(r.theme.canvases)):
             for code, members in cvd_collision_groups(seen[:, j], ref[:, j], sources):
-                colours = sorted({sources[m] for m in members})
+                colours = tuple(sorted({sources[m] for m in members}))
                 out = "#{:02x}{:02x}{:02x}".format(*code)
-                c.add(
-                    rule,
-                    canvas.name,
-                    tuple(sorted({r.entries[idx[m]].icon.name for m in members})),
-                    f"{', '.join(colours)} all look like {out} under simulated {deficiency}",
-                    {"output": out, "deficiency": deficiency},
-                )
+                names = tuple(sorted({r.entries[idx[m]].icon.name for m in members}))
+                groups.setdefault(colours, []).append((j, out, deficiency, names))
+    for colours, found in groups.items():
+        icons = tuple(sorted({n for *_, names in found for n in names}))
+
+        def build(
+            k: int,
+            found: list[tuple[int, str, Deficiency, tuple[str, ...]]] = found,
+            colours: tuple[str, ...] = colours,
+        ) -> tuple[str, dict[str, float | str]]:
+            _, out, deficiency, _ = found[k]
+            message = f"{', '.join(colours)} all look like {out} under simulated {deficiency}"
+            every = sorted({d for _, _, d, _ in found})
+            return message, {
+                "output": out,
+                "deficiency": deficiency,
+                "deficiencies": ", ".join(every),
+                "colours": len(colours),
+            }
+
+        c.fold(
+            rule,
+            icons,
+            [j for j, *_ in found],
+            [float(len(names)) for *_, names in found],
+            build,
+            locations=c.group_locations(icons, colour_first=True),
+        )
+
+
+def severity(finding: Finding) -> tuple[int, float]:
+    """How bad a root cause is, for ordering: smaller first.
+
+    Collisions of many colours lead (the more colours, the worse), then
+    confusions of roles, then paints newly failing or below the threshold
+    (least contrast first), then losses by size, then the other rules.
+    """
+    n = finding.numbers
+    rule = finding.rule
+    if rule in (Rule.COLLISION, Rule.NEW_COLLISION, Rule.CVD_COLLISION):
+        return 0, -float(n.get("colours", 0)) - len(finding.icons) / 1e9
+    if rule in (Rule.CONFUSION, Rule.CVD_CONFUSION):
+        return 1, float(n.get("delta_e", 0.0))
+    if rule in (Rule.NEWLY_FAILING, Rule.BELOW_THRESHOLD):
+        return 2, float(n.get("contrast", 0.0))
+    if rule is Rule.LOSS:
+        return 3, float(n.get("gain", 0.0))
+    if rule in (Rule.LOCK, Rule.DRIFT):
+        return 4, -float(n.get("drift", 0.0))
+    if rule in (Rule.SEPARATION, Rule.THIN_STROKES):
+        return 5, float(n.get("delta_e", n.get("size_contrast", 0.0)))
+    return 6, 0.0
+
+
+def ranked(findings: Iterable[Finding]) -> list[Finding]:
+    """``findings`` worst root cause first (:func:`severity`); ties keep their order."""
+    return sorted(findings, key=severity)
 
 
 _RULES = {

@@ -482,14 +482,32 @@ def _role_of(finding: Finding, by_name: dict[str, Icon]) -> str | None:
     return icon.color_name or icon.color
 
 
+def _mode_canvases(finding: Finding, result: AuditResult) -> dict[str, int]:
+    """For each canvas mode of ``finding``: the canvas its colour fix is computed on.
+
+    The worst canvas for its own mode, else the first canvas of the mode
+    where the finding occurs (a colour's reaching alpha is per mode).
+    """
+    index = {c.name: k for k, c in enumerate(result.theme.canvases)}
+    names = [finding.canvas, *finding.canvases] if finding.canvas else list(finding.canvases)
+    out: dict[str, int] = {}
+    for name in names:
+        j = index.get(name or "")
+        if j is not None:
+            out.setdefault(str(result.theme.canvases[j].mode), j)
+    return out
+
+
 def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 3) -> CheckReport:
     """``report`` with its fixes: each failing finding names the fixes that answer it.
 
-    Order is stable: audits in order, then colours in finding order.  Each
-    colour's largest safe alpha and nearest colour are computed once; the
-    smallest reaching alpha once per mode; a group rule's answer once per
-    rule and roles.  At most :data:`MAX_FIXED_COLORS` colours get a fix (the
-    rest are counted in ``fixes_left_out``).
+    Order is stable: audits in order, then colours in finding order (worst
+    first).  A finding about one colour gets one colour fix per canvas mode
+    it occurs in (the worst canvas of the mode).  Each colour's largest safe
+    alpha and nearest colour are computed once; the smallest reaching alpha
+    once per mode; a group rule's answer once per rule and roles.  At most
+    :data:`MAX_FIXED_COLORS` colours get a fix (the rest are counted in
+    ``fixes_left_out``).
     """
     gate = report.gate
     policy = gate.policy
@@ -500,38 +518,40 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
     fixes: list[Fix] = []
     index: dict[object, int] = {}
     budget = MAX_FIXED_COLORS
-    wanted: dict[tuple[str, str, str, int], set[Rule]] = {}  # colour fixes, in order
+    # First pass: which colours fail which per-paint rules in which mode, on which canvas.
+    wanted: dict[tuple[str, str, str, str], set[Rule]] = {}
+    canvas_of: dict[tuple[str, str, str, str], int] = {}
     left_out: set[tuple[str, str, str]] = set()
-    # First pass: which colours fail which per-paint rules on which canvas.
     for f in gate.failures:
         a = audits.get((f.theme, f.iconset))
-        if a is None or f.canvas is None or f.rule not in _PER_PAINT:
+        if a is None or not f.canvases or f.rule not in _PER_PAINT:
             continue
         role = _role_of(f, a.by_name)
-        j = next((k for k, c in enumerate(a.result.theme.canvases) if c.name == f.canvas), None)
-        if role is None or j is None:
+        if role is None:
             continue
-        wanted.setdefault((f.theme, f.iconset, role, j), set()).add(f.rule)
+        for mode, j in _mode_canvases(f, a.result).items():
+            wanted.setdefault((f.theme, f.iconset, role, mode), set()).add(f.rule)
+            canvas_of.setdefault((f.theme, f.iconset, role, mode), j)
     colors_fixed: set[tuple[str, str, str]] = set()
     findings = []
     for f in gate.findings:
-        if not f.fails or f.canvas is None:
+        if not f.fails or not f.canvases:
             findings.append(f)
             continue
         a = audits.get((f.theme, f.iconset))
         found: list[int] = []
-        if a is not None and f.rule in _PER_PAINT:
-            role = _role_of(f, a.by_name)
-            j = next((k for k, c in enumerate(a.result.theme.canvases) if c.name == f.canvas), None)
-            if role is not None and j is not None:
+        role = _role_of(f, a.by_name) if a is not None and f.rule in _PER_PAINT else None
+        if a is not None and role is not None:
+            for mode in _mode_canvases(f, a.result):
                 color = (f.theme, f.iconset, role)
-                key: object = ("colour", f.theme, f.iconset, role, j)
+                key: object = ("colour", f.theme, f.iconset, role, mode)
                 if key not in index and (color in colors_fixed or budget > 0):
                     if color not in colors_fixed:
                         budget -= 1
                         colors_fixed.add(color)
                     index[key] = len(fixes)
-                    fixes.append(a.color_fix(role, j, wanted[f.theme, f.iconset, role, j]))
+                    which = (f.theme, f.iconset, role, mode)
+                    fixes.append(a.color_fix(role, canvas_of[which], wanted[which]))
                 if key in index:
                     found.append(index[key])
                 else:
@@ -600,6 +620,9 @@ def _edits(finding: Finding, fixes: Sequence[Fix], result: AuditResult | None) -
             and reach is not None
             and reach not in (icon.alpha, safe)
             and finding.rule in _REACH_RULES
+            # It reaches the threshold on its mode's canvases: it clears the
+            # finding only if every canvas of the finding is one of them.
+            and set(finding.canvases) <= set(fix.reach.canvases)
         ):
             out.append(
                 Edit(

@@ -4,7 +4,9 @@ One way through for every command: a resolved
 :class:`~alpha_audit.load.config.ProjectConfig` (:func:`~alpha_audit.load.config.resolve_config`)
 -> themes and icon sets (YAML files, or one theme per design-token mode) -> each
 icon set's paints, rendered once -> one :func:`~alpha_audit.rows.audit` per
-theme x icon set -> the gate -> the fixes.  Nothing is printed.
+theme x icon set, whose findings are taken as it is made -> the gate, against a
+baseline file or the base revision's own findings (:func:`base_baseline`) -> the
+fixes.  Nothing is printed.
 """
 
 from __future__ import annotations
@@ -17,11 +19,12 @@ from typing import TYPE_CHECKING
 
 from alpha_audit.color import Pipeline
 from alpha_audit.color.metrics import preload_colour
-from alpha_audit.errors import SvgError, UsageError
+from alpha_audit.errors import AlphaAuditError, SvgError, UsageError
+from alpha_audit.findings import Finding
 from alpha_audit.fixes import with_fixes
-from alpha_audit.gate import evaluate
+from alpha_audit.gate import Baseline, collect, judge
 from alpha_audit.load.baseline import read_baseline
-from alpha_audit.load.config import ProjectConfig
+from alpha_audit.load.config import Overrides, ProjectConfig
 from alpha_audit.load.iconset import load_iconset
 from alpha_audit.load.paint_masks import PaintSet, measure_paints
 from alpha_audit.load.svg import IconProblem, RenderLimits
@@ -35,11 +38,20 @@ from alpha_audit.rows import (
     check_pipeline,
     resolve_pipeline,
 )
+from alpha_audit.rules import Level
 
 if TYPE_CHECKING:
     from alpha_audit.load.sandbox import RenderPool
 
-__all__ = ["Work", "audits", "check_project", "plan", "render_paints", "render_pool"]
+__all__ = [
+    "Work",
+    "audits",
+    "base_baseline",
+    "check_project",
+    "plan",
+    "render_paints",
+    "render_pool",
+]
 
 
 def render_paints(
@@ -137,7 +149,8 @@ def plan(project: ProjectConfig) -> tuple[list[Work], tuple[GamutAdjustment, ...
             pairs = [(t, iconset) for t in themes]
         icons = len(pairs[0][1].icons)
         canvases = sum(len(t.canvases) for t, _ in pairs)
-        check_combinations(icons, canvases, 1, pairs[0][1].path)  # each icon draws a paint
+        # Each icon draws a paint: refused before any icon is rendered.
+        check_combinations(icons, canvases, 1, pairs[0][1].path, project.max_combinations)
         chosen = []
         for theme, iconset in pairs:
             kind = resolve_pipeline(project.pipeline, iconset.pipeline, theme.pipeline)
@@ -154,17 +167,31 @@ def plan(project: ProjectConfig) -> tuple[list[Work], tuple[GamutAdjustment, ...
     return work, tuple(dict.fromkeys(moved))
 
 
+def _with_project_alpha(project: ProjectConfig, iconset: IconSet) -> IconSet:
+    """The set with the config's (or --alpha's) coefficient, located where the config writes it."""
+    if project.alpha is None:
+        return iconset
+    icons = tuple(
+        replace(i, alpha_span=project.alpha_span, alpha_line=None)
+        for i in iconset.with_alpha(project.alpha).icons
+    )
+    return replace(iconset, icons=icons)
+
+
 def audits(
     project: ProjectConfig,
     work: Sequence[Work],
     *,
     pool: RenderPool | None = None,
     progress: Progress | None = None,
-) -> list[AuditResult]:
-    """Render each icon set once and audit it on each of its themes."""
+) -> Iterator[AuditResult]:
+    """Render each icon set once and audit it on each of its themes, one audit at a time.
+
+    A generator, so a caller that keeps only what it needs of each audit (its
+    findings) holds one audit's arrays at a time.
+    """
     if progress is not None:
         progress[0](sum(len(w.pairs[0][1].icons) for w in work))
-    out = []
     for w in work:
         # The modes differ in colours only: the icons render once.
         paints = render_paints(
@@ -174,17 +201,15 @@ def audits(
             pool=pool,
         )
         for (theme, iconset), kind in zip(w.pairs, w.pipelines, strict=True):
-            out.append(
-                audit(
-                    theme,
-                    iconset,
-                    paints,
-                    alpha=project.alpha,
-                    threshold=project.threshold,
-                    pipeline=kind,
-                )
+            yield audit(
+                theme,
+                _with_project_alpha(project, iconset),
+                paints,
+                threshold=project.threshold,
+                pipeline=kind,
+                max_combinations=project.max_combinations,
             )
-    return out
+        del paints
 
 
 def check_project(
@@ -193,15 +218,20 @@ def check_project(
     pool: RenderPool | None = None,
     progress: Progress | None = None,
     use_baseline: bool = True,
+    baseline: Baseline | None = None,
+    record: bool = False,
 ) -> CheckReport:
     """Audit every icon set on every theme (or token mode) of ``project`` and gate it.
 
     Every file is loaded, and every input error raised, before any icon is
     rendered; each icon set is rendered once whatever the number of themes.
     The gate applies ``project.policy`` (the CLI passes the config with its
-    flags applied, :func:`~alpha_audit.load.config.resolve_config`); the
-    baseline file it names is read unless ``use_baseline`` is false (when a
-    new one is being written).  ``pool``: render workers started early.
+    flags applied, :func:`~alpha_audit.load.config.resolve_config`) against
+    ``baseline`` if given (the base revision's findings, :func:`base_baseline`),
+    else the baseline file the project names unless ``use_baseline`` is false.
+    With ``record`` (a baseline is being written from this run) the gate is
+    judged against this run's own findings: they are all baselined, none stale.
+    ``pool``: render workers started early.
 
     >>> from alpha_audit.bundled import bundled_iconset, bundled_theme
     >>> paper, vibrant = bundled_theme("paper16"), bundled_iconset("vibrant")
@@ -209,15 +239,90 @@ def check_project(
     True
     """
     work, moved = plan(project)
-    known = None
-    if use_baseline and project.baseline is not None:
+    known = baseline
+    if known is None and use_baseline and not record and project.baseline is not None:
         known = read_baseline(project.baseline)
+    results: list[AuditResult] = []
+    found: list[Finding] = []
     with contextlib.ExitStack() as stack:
         if pool is None:
             pool = stack.enter_context(render_pool())
-        results = audits(project, work, pool=pool, progress=progress)
-    gate = evaluate(results, project.policy, baseline=known)
+        for result in audits(project, work, pool=pool, progress=progress):
+            found += collect([result], project.policy, seen=found)
+            results.append(result)
+    if record:
+        name = str(project.baseline) if project.baseline is not None else "this run"
+        keys = frozenset(f.key for f in found if f.level is Level.FAIL and f.exemption is None)
+        known = Baseline(keys=keys, kind="file", name=name)
+    gate = judge(results, project.policy, found, known)
     return with_fixes(CheckReport(audits=tuple(results), gate=gate, gamut=moved))
+
+
+def base_baseline(
+    overrides: Overrides,
+    start: Path,
+    ref: str,
+    *,
+    pool: RenderPool | None = None,
+) -> tuple[Baseline, str | None]:
+    """The findings of the project as it is at git revision ``ref``, as a baseline.
+
+    The revision's tree is exported into a temporary folder (never into the
+    checkout, :mod:`alpha_audit.load.git`), the config is resolved there from
+    the same place and with the same ``overrides`` (paths given inside the
+    repository point at the revision's files), and every failing-rule
+    finding's key is kept.  Returns the baseline and, when the revision cannot
+    be audited (no config, a broken file), the reason (its baseline is empty:
+    every finding is new).
+    """
+    import tempfile
+
+    from alpha_audit.load.config import resolve_config
+    from alpha_audit.load.git import export_revision, git_toplevel, resolve_commit
+
+    with tempfile.TemporaryDirectory(prefix="alpha-audit-base-") as tmp:
+        home = Path(tmp) / "home"
+        home.mkdir()
+        top = git_toplevel(start, home)
+        # The repository's own folder name: a set or theme named after its folder
+        # (no name: key) keeps its name, and with it its findings' keys.
+        tree = Path(tmp) / "revision" / top.name
+        tree.mkdir(parents=True)
+        commit = resolve_commit(top, ref, home)
+        export_revision(top, commit, tree, home)
+        (tree / ".git").mkdir(exist_ok=True)  # the project root, as in the checkout
+
+        def moved(path: str | Path) -> str | Path:
+            """A path inside the repository, in the revision's tree; anything else as given."""
+            full = (start / path).resolve()
+            if not (start / path).exists() or not full.is_relative_to(top):
+                return path  # a bundled name, or outside the repository
+            return tree / full.relative_to(top)
+
+        here = tree / start.resolve().relative_to(top)
+        config = overrides.config
+        mapped = replace(
+            overrides,
+            config=None if config is None else Path(moved(config)),
+            themes=tuple(moved(t) for t in overrides.themes),
+            iconsets=tuple(moved(s) for s in overrides.iconsets),
+            baseline=None,
+        )
+        try:
+            project = resolve_config(mapped, here if here.is_dir() else tree)
+            project = replace(project, baseline=None)
+            work, _ = plan(project)
+            with contextlib.ExitStack() as stack:
+                if pool is None:
+                    pool = stack.enter_context(render_pool())
+                found: list[Finding] = []
+                for result in audits(project, work, pool=pool):
+                    found += collect([result], project.policy, seen=found)
+        except AlphaAuditError as exc:
+            why = f"the base revision {ref} could not be audited ({exc}); every finding is new"
+            return Baseline(kind="base", name=ref), why
+    keys = frozenset(f.key for f in found if f.level is Level.FAIL)
+    return Baseline(keys=keys, kind="base", name=ref), None
 
 
 def _unique(paths: Sequence[str | Path]) -> list[Path]:

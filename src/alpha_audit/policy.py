@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from alpha_audit import ranges
 from alpha_audit.color import CONTRAST_TOLERANCE, DELTA_E_TOLERANCE
 from alpha_audit.errors import InputError, UsageError
 from alpha_audit.ranges import CONTRAST_LOSS, CONTRAST_RATIO, DELTA_E
@@ -24,6 +25,8 @@ from alpha_audit.rules import DEFAULT_RULES, DEFAULT_WARNINGS, Level, Rule, did_
 
 __all__ = [
     "CONTRAST_RULES",
+    "LOSS_TOLERANCE",
+    "VISIBILITY_FLOOR",
     "Exemption",
     "Policy",
     "confusion_breaks",
@@ -32,12 +35,22 @@ __all__ = [
     "contrast_floor",
     "drift_breaks",
     "drift_ceiling",
+    "loss_reported",
     "size_contrast_floor",
 ]
 
 
 # The per paint x canvas contrast rules, in the order the gate reports them.
 CONTRAST_RULES = (Rule.LOSS, Rule.NEWLY_FAILING, Rule.BELOW_THRESHOLD)
+# A paint below this contrast at alpha 1 is already all but invisible on the canvas
+# (a brand logo in the canvas's own colour): its further loss is reported, not gated.
+# 1.5:1 is half of WCAG 2.2 SC 1.4.11's 3:1 for graphical objects.
+VISIBILITY_FLOOR = 1.5
+# A loss smaller than this share of the contrast at alpha 1 is reported, not gated.
+# The smallest relative contrast change one 8-bit code step can make is 2.24e-5
+# (blue 0 -> 1 beside full red and green, luminance weights of WCAG 2.2), so 1e-6
+# tolerates no visible change, only float noise and sub-code losses (2e-10).
+LOSS_TOLERANCE = 1e-6
 
 
 @dataclass(frozen=True)
@@ -77,6 +90,10 @@ class Policy:
     max_drift: float = 10.0  # CIEDE2000; Rule.DRIFT
     min_size_contrast: float | None = None  # Rule.THIN_STROKES; None: the threshold
     warnings: frozenset[Rule] = DEFAULT_WARNINGS
+    # Rule.LOSS gates only paints at or above this contrast at alpha 1 ...
+    visibility_floor: float = VISIBILITY_FLOOR
+    # ... that lose more than this share of it (both: reported, not gated, below).
+    loss_tolerance: float = LOSS_TOLERANCE
 
     def __post_init__(self) -> None:
         # The ranges the config keys and the flags of the same names obey.
@@ -85,6 +102,8 @@ class Policy:
             ("min_delta_e", self.min_delta_e, DELTA_E),
             ("max_drift", self.max_drift, DELTA_E),
             ("min_size_contrast", self.min_size_contrast, CONTRAST_RATIO),
+            ("visibility_floor", self.visibility_floor, CONTRAST_RATIO),
+            ("loss_tolerance", self.loss_tolerance, ranges.LOSS_TOLERANCE),
         ]
         for name, value, allowed in limits:
             if value is not None and not allowed.allows(value):
@@ -100,12 +119,18 @@ class Policy:
         min_delta_e: float | None = None,
         max_drift: float | None = None,
         min_size_contrast: float | None = None,
+        visibility_floor: float | None = None,
+        loss_tolerance: float | None = None,
     ) -> Policy:
         """This policy with command-line overrides applied (``None`` keeps a field)."""
         return replace(
             self,
             rules=frozenset(Rule.parse(r) for r in rules) if rules else self.rules,
             warnings=self.warnings,
+            visibility_floor=(
+                self.visibility_floor if visibility_floor is None else visibility_floor
+            ),
+            loss_tolerance=self.loss_tolerance if loss_tolerance is None else loss_tolerance,
             max_loss=self.max_loss if max_loss is None else max_loss,
             min_delta_e=self.min_delta_e if min_delta_e is None else min_delta_e,
             max_drift=self.max_drift if max_drift is None else max_drift,
@@ -196,7 +221,8 @@ def contrast_breaks(
     ref = np.asarray(contrast_ref, dtype=np.float64)
     now = np.asarray(contrast, dtype=np.float64)
     if rule is Rule.LOSS:
-        return (now - ref) < -policy.loss_margin(tolerance)
+        margin = np.maximum(policy.loss_margin(tolerance), policy.loss_tolerance * ref)
+        return ((now - ref) < -margin) & (ref >= policy.visibility_floor)
     if rule is Rule.BELOW_THRESHOLD:
         return now < threshold
     if rule is Rule.NEWLY_FAILING:
@@ -219,12 +245,36 @@ def contrast_floor(
     """
     ref = np.asarray(contrast_ref, dtype=np.float64)
     if rule is Rule.LOSS:
-        return ref - policy.loss_margin(tolerance)
+        margin = np.maximum(policy.loss_margin(tolerance), policy.loss_tolerance * ref)
+        # Below the visibility floor a loss never gates: no contrast is below 1.
+        return np.where(ref >= policy.visibility_floor, ref - margin, 1.0)
     if rule is Rule.BELOW_THRESHOLD:
         return np.full_like(ref, threshold)
     if rule is Rule.NEWLY_FAILING:
         return np.where(ref >= threshold, threshold, 1.0)  # only icons passing at alpha = 1
     raise ValueError(f"{rule.value} is not a contrast rule")
+
+
+def loss_reported(
+    policy: Policy,
+    contrast_ref: ArrayLike,
+    contrast: ArrayLike,
+    tolerance: float = CONTRAST_TOLERANCE,
+) -> NDArray[np.bool_]:
+    """Where ``loss`` reports a loss without gating on it.
+
+    A loss beyond the policy's allowance (:meth:`Policy.loss_margin`) on a
+    paint already below the visibility floor at alpha 1, or within the
+    relative tolerance, is shown to the reviewer but fails nothing
+    (:func:`contrast_breaks` is where it fails).
+
+    >>> loss_reported(Policy(), [1.2, 4.0, 4.0], [1.1, 3.9, 4.0 - 2e-10]).tolist()
+    [True, False, True]
+    """
+    ref = np.asarray(contrast_ref, dtype=np.float64)
+    now = np.asarray(contrast, dtype=np.float64)
+    lost = (now - ref) < -policy.loss_margin(tolerance)
+    return lost & ~contrast_breaks(Rule.LOSS, policy, ref, now, 1.0, tolerance)
 
 
 def drift_breaks(drift: ArrayLike, limit: float) -> NDArray[np.bool_]:

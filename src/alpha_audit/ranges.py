@@ -17,10 +17,13 @@ from alpha_audit.color.metrics import THRESHOLD_RANGE, THRESHOLD_WHAT
 __all__ = [
     "ALPHA",
     "ALPHA_MAX",
+    "COMBINATIONS",
     "CONTRAST_LOSS",
     "CONTRAST_RATIO",
+    "DEFAULT_COMBINATIONS",
     "DELTA_E",
     "ICON_SIZE",
+    "LOSS_TOLERANCE",
     "MAX_ICON_SIZE",
     "MAX_PRECISION",
     "PAGE_SECONDS",
@@ -62,6 +65,14 @@ CONTRAST_RATIO = NumberRange(*THRESHOLD_RANGE, THRESHOLD_WHAT)
 # A contrast loss is a difference of two ratios, so it never exceeds 21 - 1; 21 keeps
 # the limit a round "anything".
 CONTRAST_LOSS = NumberRange(0.0, 21.0, "a contrast loss between 0 and 21")
+# A relative contrast loss (loss / contrast at alpha 1): 1 would tolerate every loss.
+LOSS_TOLERANCE = NumberRange(0.0, 1.0, "a relative tolerance between 0 and 1")
+# Paint rows x canvases one check audits (the resource bound a config may raise):
+# at least one; 10^9 rows would need hundreds of GB whatever the bound says.
+COMBINATIONS = NumberRange(1, 1_000_000_000, "whole paint x canvas rows, 1 to 1,000,000,000")
+# The bound by default: each row is a JSON row of about 600 bytes and a few
+# microseconds of work (docs/ci.md measures memory against it).
+DEFAULT_COMBINATIONS = 250_000
 # CIEDE2000 between sRGB colours stays well under 200 (black-white is 100, the widest
 # hue pairs ~125): a larger --min-delta-e or --max-drift can only be a typo.
 DELTA_E = NumberRange(0.0, 200.0, "a CIEDE2000 difference between 0 and 200")

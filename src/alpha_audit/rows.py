@@ -59,6 +59,7 @@ from alpha_audit.load.paint_masks import PaintSet
 from alpha_audit.load.paints import CURRENT_COLOR
 from alpha_audit.load.svg import IconProblem
 from alpha_audit.model import Icon, IconSet, Theme
+from alpha_audit.ranges import DEFAULT_COMBINATIONS
 
 __all__ = [
     "MAX_COMBINATIONS",
@@ -80,10 +81,11 @@ __all__ = [
     "with_alphas",
 ]
 
-# Paint rows x canvases in one check (all audits together): each is a JSON row
-# of about 600 bytes and a few microseconds of work, so this bounds time and
-# report size whatever a pull request puts in a theme or a manifest.
-MAX_COMBINATIONS = 250_000
+# Paint rows x canvases in one check by default (all audits together): each is a
+# JSON row of about 600 bytes and a few microseconds of work, so this bounds time
+# and report size whatever a pull request puts in a theme or a manifest; a project
+# raises it with max-combinations (ranges.DEFAULT_COMBINATIONS is this number).
+MAX_COMBINATIONS = DEFAULT_COMBINATIONS
 # Size figures hold a (rows, canvases, sizes, 3) float64 array and its
 # temporaries, ~200 MB at the cap.
 MAX_SIZE_CELLS = 2_000_000
@@ -139,13 +141,26 @@ def check_pipeline(iconset: IconSet, pipeline: Pipeline, alpha: float | None = N
             )
 
 
-def check_combinations(rows: int, canvases: int, sizes: int = 1, path: Path | None = None) -> None:
-    """Refuse an audit over :data:`MAX_COMBINATIONS` or :data:`MAX_SIZE_CELLS` before the work."""
-    if rows * canvases > MAX_COMBINATIONS or rows * canvases * sizes > MAX_SIZE_CELLS:
+def check_combinations(
+    rows: int,
+    canvases: int,
+    sizes: int = 1,
+    path: Path | None = None,
+    limit: int = MAX_COMBINATIONS,
+) -> None:
+    """Refuse an audit over ``limit`` paint rows (size figures: 8 per row) before the work.
+
+    ``limit`` is the project's resource bound (``max-combinations``, default
+    :data:`MAX_COMBINATIONS`); the size figures scale with it from
+    :data:`MAX_SIZE_CELLS`.
+    """
+    cells = max(MAX_SIZE_CELLS, limit * (MAX_SIZE_CELLS // MAX_COMBINATIONS))
+    if rows * canvases > limit or rows * canvases * sizes > cells:
         raise InputError(
             f"{rows:,} paints x {canvases:,} canvases x {sizes} sizes is more than one check "
-            f"audits ({MAX_COMBINATIONS:,} paint rows, {MAX_SIZE_CELLS:,} paint x canvas x "
-            "size figures); split the theme or the icon set, or give fewer sizes",
+            f"audits ({limit:,} paint rows, {cells:,} paint x canvas x size figures); raise "
+            "`max_combinations` if the memory is there (docs/ci.md), "
+            "split the theme or the icon set, or give fewer sizes",
             path=path,
         )
 
@@ -595,6 +610,7 @@ def audit(
     alpha: float | None = None,
     threshold: float | None = None,
     pipeline: Pipeline = "linear",
+    max_combinations: int = MAX_COMBINATIONS,
 ) -> AuditResult:
     """Composite every paint of every icon on every canvas of ``theme`` under ``pipeline``.
 
@@ -604,7 +620,8 @@ def audit(
     themselves, icons in ``paints.problems`` are left out.  Without ``paints``
     every icon is its manifest colour as one ``currentColor`` paint at opacity 1
     (no size figures).  ``alpha`` overrides every icon's coefficient,
-    ``threshold`` the theme's.  Under ``css`` an alpha outside [0, 1] raises.
+    ``threshold`` the theme's.  Under ``css`` an alpha outside [0, 1] raises;
+    more than ``max_combinations`` paint rows x canvases too (:func:`check_combinations`).
 
     >>> from alpha_audit.model import Canvas, Icon, IconSet, Theme
     >>> theme = Theme("t", (Canvas("paper", "#ffffff"),))
@@ -627,7 +644,7 @@ def audit(
         p = len(iconset.icons)
     else:
         p = sum(len(paints.icons[i.name].coverage) for i in iconset.icons if i.name in paints.icons)
-    check_combinations(p, m, k, iconset.path)
+    check_combinations(p, m, k, iconset.path, max_combinations)
     entries, linear, q50_rows, share_rows = _entries(iconset, paints)
     unaudited: tuple[Unaudited, ...] = ()
     if paints is not None:

@@ -102,7 +102,9 @@ _SPECS = (
         "AA001",
         "major",
         Level.FAIL,
-        "The paint's WCAG contrast on this canvas is lower at its alpha than at alpha 1.",
+        "The paint's WCAG contrast on this canvas is lower at its alpha than at alpha 1 "
+        "(a paint below visibility-floor at alpha 1, or a loss within loss-tolerance, is "
+        "reported, not gated).",
         "Lower the icon's `alpha` (`alpha-audit suggest` gives the largest safe value per "
         "colour), or exempt the canvas with a reason.",
     ),

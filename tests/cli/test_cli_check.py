@@ -32,7 +32,7 @@ def test_check_json_matches_library(paths: tuple[str, str]) -> None:
     result = runner.invoke(app, ["check", *paths, "--alpha", "1.1", "--format", "json"])
     assert result.exit_code == 0
     doc = json.loads(result.stdout)
-    assert doc["schema"] == "alpha-audit.check/3"
+    assert doc["schema"] == "alpha-audit.check/4"
     assert len(doc["rows"]) == 12 * 8
     orange_on_white = next(
         r for r in doc["rows"] if r["source"] == "#ee7733" and r["background"] == "#ffffff"

@@ -37,7 +37,7 @@ def test_each_output_goes_to_the_format_before_it(tmp_path: Path) -> None:
     assert result.exit_code == 0, result.output
     assert ET.parse(tmp_path / "j.xml").getroot().tag == "testsuites"
     assert json.loads((tmp_path / "a.sarif").read_text())["version"] == "2.1.0"
-    assert json.loads((tmp_path / "r.json").read_text())["schema"] == "alpha-audit.check/3"
+    assert json.loads((tmp_path / "r.json").read_text())["schema"] == "alpha-audit.check/4"
     assert "alpha-audit check" in result.stdout  # the table, on stdout
 
 

@@ -136,9 +136,12 @@ def test_primer_severe_and_danger_confuse_at_1_15(tmp_path: Path, repo: Path) ->
     result = runner.invoke(app, [*args, "--fail-on", "confusion", "-f", "json"])
     assert result.exit_code == 1
     failures = json.loads(result.stdout)["gate"]["failures"]
-    assert {f["canvas"] for f in failures} == {"light-default", "light-muted"}
-    assert all(f["numbers"]["roles"] == "danger,severe" for f in failures)
-    assert all(f["icons"] == ["alert", "stop"] for f in failures)
+    (confusion,) = failures  # one pair of roles: one root cause over the canvases
+    assert {"light-default", "light-muted"} <= set(confusion["canvases"])
+    assert confusion["numbers"]["roles"] == "danger,severe"
+    assert confusion["icons"] == ["alert", "stop"]
+    # Located at the palette entries of both roles (the manifest's line 2).
+    assert [(p["line"], p["what"]) for p in confusion["locations"]][:1] == [(2, "colour")]
 
 
 def test_lock_from_the_manifest(project: Path) -> None:

@@ -58,7 +58,7 @@ def test_exit_2_on_bad_input_in_one_line() -> None:
 @pytest.mark.parametrize(
     ("args", "message"),
     [
-        (["check", "--bogus"], "No such option: --bogus (see 'alpha-audit check --help')"),
+        (["check", "--zzz"], "No such option: --zzz (see 'alpha-audit check --help')"),
         (["nope"], "No such command 'nope' (see 'alpha-audit --help')"),
         (["--bogus"], "No such option: --bogus (see 'alpha-audit --help')"),
         (["pair"], "Missing argument 'COLOR'"),

@@ -23,6 +23,8 @@ POLICY = {
     "--min-delta-e": DELTA_E,
     "--max-drift": DELTA_E,
     "--min-size-contrast": CONTRAST,
+    "--visibility-floor": CONTRAST,
+    "--loss-tolerance": (0, 1, "a relative tolerance between 0 and 1"),
 }
 EXPECTED = {
     **{
@@ -31,6 +33,7 @@ EXPECTED = {
         for flag, allowed in POLICY.items()
     },
     ("check", "--alpha"): ALPHA,
+    ("check", "--max-combinations"): (1, 10**9, "whole paint x canvas rows, 1 to 1,000,000,000"),
     ("suggest", "--alpha-max"): (1, 100, "a coefficient between 1 and 100"),
     ("suggest", "--precision"): (0, 9, "0-9 decimals"),
     ("preview", "--alpha"): ALPHA,
@@ -42,6 +45,7 @@ EXPECTED = {
     ("render", "--workers"): (1, 16, "whole pages in parallel, 1-16"),
     ("render", "--timeout"): (1, 600, "seconds between 1 and 600"),
 }
+WHOLE = ("--precision", "--size", "--workers", "--max-combinations")  # integer flags
 # What a command needs besides the bad flag to get as far as checking it.
 REQUIRED = {"preview": ["t.yaml", "i.yaml"], "pair": ["red", "--on", "white"]}
 
@@ -81,7 +85,7 @@ def _bad_values(low: float, high: float, integer: bool) -> list[float]:
 CASES = [
     (command, flag, value, what)
     for (command, flag), (low, high, what) in EXPECTED.items()
-    for value in _bad_values(low, high, flag in ("--precision", "--size", "--workers"))
+    for value in _bad_values(low, high, flag in WHOLE)
 ]
 
 
@@ -89,7 +93,7 @@ CASES = [
 def test_a_bad_value_exits_2_naming_the_flag_and_the_range(
     command: str, flag: str, value: float, what: str
 ) -> None:
-    shown = f"{value:g}"
+    shown = str(int(value)) if flag in WHOLE else f"{value:g}"
     res = CliRunner().invoke(app, [command, *REQUIRED.get(command, []), flag, shown])
     assert res.exit_code == 2, res.output
     assert res.stderr.strip().splitlines() == [

@@ -29,10 +29,12 @@ def _audit(*icons: tuple[str, str]):
     return audit(theme, IconSet("s", tuple(Icon(n, f"{n}.svg", c, 1.4) for n, c in icons)))
 
 
-def test_round_trip_matches_by_icon_canvas_and_rule() -> None:
+def test_round_trip_matches_by_icon_and_rule() -> None:
     before = evaluate([_audit(("deep", "#0000cf"))], Policy())
     assert not before.passed
-    keys = parse_baseline(json.dumps(baseline_document(before)), Path("b.json"))
+    doc = baseline_document(before)
+    assert doc["entries"] == [{"theme": "t", "iconset": "s", "rule": "loss", "icons": ["deep"]}]
+    keys = parse_baseline(json.dumps(doc), Path("b.json"))
     # Same finding with other numbers (a different blue) is still the baselined one.
     after = evaluate([_audit(("deep", "#0000c0"), ("ok", "#ee7733"))], Policy(), baseline=keys)
     assert after.passed and [f.baselined for f in after.findings] == [True]
@@ -40,7 +42,33 @@ def test_round_trip_matches_by_icon_canvas_and_rule() -> None:
     worse = evaluate([_audit(("deep", "#0000cf"), ("navy", "#000080"))], Policy(), baseline=keys)
     assert [f.icons for f in worse.failures] == [("navy",)] and not worse.stale
     fixed = evaluate([_audit(("deep", "#ee7733"))], Policy(), baseline=keys)
-    assert fixed.passed and fixed.stale == (("t", "s", "loss", "sun", ("deep",)),)
+    assert fixed.passed and fixed.stale == (("t", "s", "loss", ("deep",)),)
+
+
+def _legacy(*cells: tuple[str, str]) -> str:
+    """A baseline/1 file (per-canvas entries, before findings were folded over canvases)."""
+    entries = [
+        {"theme": "t", "iconset": "s", "rule": r, "canvas": c, "icons": ["deep"]} for r, c in cells
+    ]
+    return json.dumps({"schema": "alpha-audit.baseline/1", "entries": entries})
+
+
+def test_a_per_canvas_baseline_covers_a_folded_finding_only_on_every_canvas() -> None:
+    result = _audit(("deep", "#0000cf"))  # loses contrast on sun only
+    (finding,) = evaluate([result], Policy()).failures
+    assert finding.canvases == ("sun",)
+    both = parse_baseline(_legacy(("loss", "sun"), ("loss", "paper")), Path("b.json"))
+    assert both.legacy
+    gate = evaluate([result], Policy(), baseline=both)
+    assert gate.passed and gate.stale == ()  # the paper entry still names this root cause
+    other = parse_baseline(_legacy(("loss", "paper")), Path("b.json"))
+    gate = evaluate([result], Policy(), baseline=other)
+    assert not gate.passed  # sun was never accepted
+    assert gate.stale == ()  # ... but the entry still names a finding that occurs
+    gone = parse_baseline(_legacy(("newly-failing", "sun")), Path("b.json"))
+    assert evaluate([result], Policy(), baseline=gone).stale == (
+        ("t", "s", "newly-failing", ("deep",)),
+    )
 
 
 @pytest.mark.parametrize(
@@ -51,6 +79,7 @@ def test_round_trip_matches_by_icon_canvas_and_rule() -> None:
         '{"schema": "other"}',
         '{"schema": "alpha-audit.baseline/1", "entries": [1]}',
         '{"schema": "alpha-audit.baseline/1", "entries": [{"theme": "t"}]}',
+        '{"schema": "alpha-audit.baseline/2", "entries": [{"theme": "t", "iconset": "s"}]}',
     ],
 )
 def test_bad_baseline(text: str) -> None:
@@ -89,8 +118,8 @@ def test_stale_count_is_grammatical(fmt: str) -> None:
     from alpha_audit.results import CheckReport
 
     result = _audit(("deep", "#ee7733"))
-    one = (("t", "s", "loss", "sun", ("deep",)),)
-    two = (*one, ("t", "s", "loss", "paper", ("deep",)))
+    one = (("t", "s", "loss", ("deep",)),)
+    two = (*one, ("t", "s", "newly-failing", ("deep",)))
     texts = []
     for keys in (one, two):
         report = CheckReport((result,), evaluate([result], Policy(), baseline=keys))
@@ -98,3 +127,33 @@ def test_stale_count_is_grammatical(fmt: str) -> None:
     assert "1 baseline entry no longer occurs" in texts[0]
     assert "entries" not in texts[0]
     assert "2 baseline entries no longer occur" in texts[1]
+
+
+def test_write_baseline_works_when_the_config_names_it_and_calls_nothing_stale(
+    tmp_path: Path,
+) -> None:
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "a.svg").write_text(SVG)
+    (tmp_path / "set.yaml").write_text('icons: "*.svg"\ncolor: "#0000cf"\nalpha: 1.4\n')
+    (tmp_path / "theme.yaml").write_text('canvases: [{name: sun, color: "#ffff00"}]\n')
+    (tmp_path / "alpha-audit.yaml").write_text(
+        "theme: theme.yaml\niconset: set.yaml\nbaseline: alpha-audit-baseline.json\n"
+    )
+    old = Path.cwd()
+    os.chdir(tmp_path)
+    try:
+        runner = CliRunner()
+        missing = runner.invoke(app, ["check"])
+        assert missing.exit_code == 2 and "--write-baseline" in missing.output
+        for extra in ([], ["--force"]):  # the first write, then writing it again over itself
+            wrote = runner.invoke(
+                app,
+                ["check", "--write-baseline", "alpha-audit-baseline.json", *extra, "-f", "json"],
+            )
+            assert wrote.exit_code == 0, wrote.output
+            gate = json.loads(wrote.stdout)["gate"]
+            assert gate["passed"] and gate["stale_baseline"] == []
+            assert [f["icons"] for f in gate["baselined"]] == [["a"]]
+        assert runner.invoke(app, ["check"]).exit_code == 0
+    finally:
+        os.chdir(old)

@@ -316,7 +316,15 @@ def test_pre_commit_hook_fails_on_a_loss_or_collision_and_passes_otherwise(
     write_repo(root, {"alert": "#ee7733", "info": "#0077bb", "deep": LOSING_BLUE}, alpha=1.1)
     loss = hook("--format", "github")
     assert loss.returncode == 1
-    assert "::error file=icons/deep.svg,title=alpha-audit loss::deep on sun (brand)" in loss.stdout
+    # Annotated on the line that sets the failing value (the set-wide alpha), so
+    # GitHub shows it in the diff; the SVG is named as a related place.
+    lines = (root / "icons" / "iconset.yaml").read_text().splitlines()
+    alpha_line = next(n for n, text in enumerate(lines, 1) if text.startswith("alpha:"))
+    assert (
+        f"::error file=icons/iconset.yaml,line={alpha_line},title=alpha-audit loss::"
+        "deep on sun (brand / brand-icons)"
+    ) in loss.stdout
+    assert "SVG icons/deep.svg" in loss.stdout
 
     # Another raises alpha so two pale icons collide on black (and nothing loses contrast).
     write_repo(root, {"pale": PALE_A, "paler": PALE_B}, alpha=2.0)

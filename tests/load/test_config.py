@@ -76,6 +76,13 @@ BAD = [
     ("max_loss: 1\nmax-loss: 1\n", "give it once"),
     ("strict-svg: yes please\n", "true or false"),
     ("- a\n- b\n", "expected an alpha-audit configuration"),
+    ("rules: {loss: fial}\n", "expected one of off, warn, fail"),
+    ("rules: {los: fail}\n", "unknown rule 'los'; did you mean 'loss'"),
+    ("rules: [loss]\n", "expected rules"),
+    ("rules: {loss: warn, newly-failing: off, new-collision: off, confusion: off}\n", "keep one"),
+    ("fail-on: [loss]\nrules: {drift: warn}\n", "not both"),
+    ("visibility-floor: 0.5\n", "contrast ratio between 1 and 21"),
+    ("loss-tolerance: 2\n", "relative tolerance between 0 and 1"),
 ]
 
 
@@ -139,3 +146,19 @@ def test_exemptions_naming_nothing_are_errors(
     assert res.exit_code == 2, res.output
     (line,) = res.stderr.strip().splitlines()
     assert "alpha-audit.yaml" in line and re.search(message, line), line
+
+
+def test_rules_set_each_rules_level_over_the_defaults(tmp_path: Path) -> None:
+    cfg = write(
+        tmp_path / "alpha-audit.yaml",
+        "rules: {drift: warn, collision: fail, unrenderable: off, loss: warn}\n"
+        "visibility-floor: 2\nloss-tolerance: 0.001\n",
+    )
+    policy = load_config(cfg).policy
+    assert policy.rules == (DEFAULT_RULES - {Rule.LOSS}) | {Rule.COLLISION}
+    assert Rule.DRIFT in policy.warnings and Rule.LOSS in policy.warnings
+    assert Rule.UNRENDERABLE not in policy.reported
+    assert (policy.visibility_floor, policy.loss_tolerance) == (2.0, 0.001)
+    # YAML 1.1 reads a bare off as false: it still means off.
+    write(tmp_path / "alpha-audit.yaml", "rules: {fixed-colour: off}\n")
+    assert Rule.FIXED_COLOUR not in load_config(cfg).policy.reported

@@ -232,3 +232,28 @@ def test_empty_overrides_means_none(project: Path, empty: str) -> None:
         project, "icons/iconset.yaml", "icons: svg/*.svg\ncolor: red\nalpha: 1.1\n" + empty
     )
     assert {(i.color, i.alpha) for i in load_iconset(path).icons} == {("#ff0000", 1.1)}
+
+
+def test_a_glob_may_name_icons_by_path_to_keep_variants_apart(tmp_path: Path) -> None:
+    (tmp_path / ".git").mkdir()
+    svg = '<svg xmlns="http://www.w3.org/2000/svg"/>'
+    for style in ("filled", "outline"):
+        write(tmp_path / "icons" / style, "x.svg", svg)
+    write(tmp_path / "icons" / "filled", "y.svg", svg)
+    by_stem = write(tmp_path / "icons", "stem.yaml", 'icons: "**/*.svg"\ncolor: red\n')
+    with pytest.raises(InputError, match=r"duplicate icon name 'x'.*name: path"):
+        load_iconset(by_stem)
+    by_path = write(
+        tmp_path / "icons",
+        "path.yaml",
+        'icons: {glob: "**/*.svg", name: path}\ncolor: red\noverrides: {outline/x: {alpha: 1.2}}\n',
+    )
+    icons = {i.name: i for i in load_iconset(by_path).icons}
+    assert set(icons) == {"filled/x", "filled/y", "outline/x"}
+    assert icons["outline/x"].alpha == 1.2 and icons["filled/x"].alpha == 1.0
+    assert icons["outline/x"].file == (tmp_path / "icons" / "outline" / "x.svg").resolve()
+    bad = write(
+        tmp_path / "icons", "bad.yaml", 'icons: {glob: "**/*.svg", name: file}\ncolor: red\n'
+    )
+    with pytest.raises(InputError, match=r"icons\.name: expected one of stem, path"):
+        load_iconset(bad)

@@ -72,7 +72,7 @@ def test_github_errors_never_exceed_what_github_shows(n: int) -> None:
         assert annotated == n and "more finding" not in verdict
     else:
         assert annotated == MAX_ANNOTATIONS - 1
-        assert f"{n - annotated} more finding(s) not annotated" in verdict
+        assert f"{n - annotated} more root cause(s) not annotated" in verdict
     assert "5 more note(s): icons that could not be rendered" in text  # 14 - 9
 
 
@@ -93,7 +93,12 @@ def _sarif(report: CheckReport) -> dict[str, Any]:
 
 
 def _locations(doc: dict[str, Any]) -> list[dict[str, Any]]:
-    return [loc["physicalLocation"] for r in doc["runs"][0]["results"] for loc in r["locations"]]
+    """Every place a result names: its location and its related locations."""
+    return [
+        loc["physicalLocation"]
+        for r in doc["runs"][0]["results"]
+        for loc in (*r["locations"], *r.get("relatedLocations", ()))
+    ]
 
 
 def test_sarif_has_no_absolute_path_anywhere() -> None:
@@ -120,10 +125,12 @@ def test_sarif_uris_are_percent_encoded_relative_references() -> None:
 def test_every_sarif_location_has_a_region_at_the_line_that_sets_the_colour() -> None:
     doc = _sarif(_many(3, color_line=11))
     for result in doc["runs"][0]["results"]:
-        first, *rest = (loc["physicalLocation"] for loc in result["locations"])
+        (first,) = (loc["physicalLocation"] for loc in result["locations"])
         assert first["artifactLocation"]["uri"] == "icons/iconset.yaml"
         assert first["region"]["startLine"] >= 11
-        assert all(loc["region"]["startLine"] == 1 for loc in rest)  # the SVG drawings
+        related = [loc["physicalLocation"] for loc in result["relatedLocations"]]
+        svgs = [loc for loc in related if loc["artifactLocation"]["uri"].endswith(".svg")]
+        assert svgs and all(loc["region"]["startLine"] == 1 for loc in svgs)  # the drawings
     assert all(loc["region"]["startLine"] >= 1 for loc in _locations(doc))
 
 
@@ -141,7 +148,7 @@ def test_sarif_rule_ids_are_opaque_and_every_rule_says_how_to_fix() -> None:
 def test_sarif_fingerprints_are_unique_and_survive_moved_lines() -> None:
     def prints(report: CheckReport) -> list[str]:
         return [
-            r["partialFingerprints"]["alphaAuditFinding/v1"]
+            r["partialFingerprints"]["alphaAuditFinding/v2"]
             for r in _sarif(report)["runs"][0]["results"]
         ]
 
@@ -172,8 +179,8 @@ def test_sarif_failure_messages_end_with_their_fix() -> None:
 
     report = check_project(
         ProjectConfig(
-            themes=tuple([bundled_theme("paper16")]),
-            iconsets=tuple([bundled_iconset("vibrant")]),
+            themes=(bundled_theme("paper16"),),
+            iconsets=(bundled_iconset("vibrant"),),
             policy=Policy(),
             alpha=1.5,
         )

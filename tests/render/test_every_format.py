@@ -166,8 +166,8 @@ def _every_rule_report() -> CheckReport:
     policy = Policy(rules=frozenset(Rule) - {Rule.LOCK}, min_delta_e=25.0, max_drift=5.0)
     return check_project(
         ProjectConfig(
-            themes=tuple([bundled_theme("paper16")]),
-            iconsets=tuple([bundled_iconset("vibrant")]),
+            themes=(bundled_theme("paper16"),),
+            iconsets=(bundled_iconset("vibrant"),),
             policy=policy,
             alpha=1.8,
         )

@@ -49,12 +49,17 @@ def test_every_format_renders_deterministically(fmt: CheckFormat) -> None:
 
 def test_json_gate_section() -> None:
     doc = json.loads(render_check(_report(), "json", OPTIONS))
-    assert doc["schema"] == "alpha-audit.check/3"
+    assert doc["schema"] == "alpha-audit.check/4"
     gate = doc["gate"]
     assert gate["passed"] is False and gate["counts"] == {"loss": 1, "new-collision": 1}
-    loss, collision = gate["failures"]
+    collision, loss = gate["failures"]  # worst first: a collision leads a loss
     assert (loss["rule"], loss["icons"], loss["canvas"]) == ("loss", ["deep"], "sun")
+    assert loss["canvases"] == ["sun"]
     assert loss["files"] == ["icons/deep.svg"] and loss["lines"] == [7, 8]
+    assert [(p["file"], p["line"], p["what"]) for p in loss["locations"]] == [
+        ("icons/iconset.yaml", 8, "alpha"),
+        ("icons/iconset.yaml", 7, "colour"),
+    ]
     assert loss["numbers"]["gain"] < 0
     assert collision["icons"] == ["pale", "paler"] and collision["numbers"]["output"] == "#ffffff"
 
@@ -92,14 +97,20 @@ def test_sarif_points_at_icon_and_manifest_line() -> None:
     ids = [r["id"] for r in run["tool"]["driver"]["rules"]]
     loss = next(r for r in run["results"] if r["ruleId"] == "AA001")
     assert ids[loss["ruleIndex"]] == "AA001" and loss["level"] == "error"
-    uris = [
-        (
-            loc["physicalLocation"]["artifactLocation"]["uri"],
-            loc["physicalLocation"].get("region", {}).get("startLine"),
-        )
-        for loc in loss["locations"]
-    ]
-    assert uris == [("icons/iconset.yaml", 7), ("icons/iconset.yaml", 8), ("icons/deep.svg", 1)]
+
+    def places(key: str) -> list[tuple[str, int]]:
+        return [
+            (
+                loc["physicalLocation"]["artifactLocation"]["uri"],
+                loc["physicalLocation"].get("region", {}).get("startLine"),
+            )
+            for loc in loss.get(key, [])
+        ]
+
+    # The loss is set by the alpha (line 8): that is the location; the colour's
+    # line and the drawing are related places.
+    assert places("locations") == [("icons/iconset.yaml", 8)]
+    assert places("relatedLocations") == [("icons/iconset.yaml", 7), ("icons/deep.svg", 1)]
     assert loss["properties"]["canvas"] == "sun" and loss["partialFingerprints"]
     assert "uri" not in run["originalUriBaseIds"]["%SRCROOT%"]  # no local absolute path
 
@@ -114,7 +125,7 @@ def test_sarif_suppresses_exempted_findings() -> None:
 def test_markdown_escapes_cells() -> None:
     text = render_check(_report(HOSTILE), "markdown", OPTIONS)
     row = next(line for line in text.splitlines() if " | loss | " in line)
-    assert row.count(" | ") == 5  # six cells: the pipe in the name is escaped
+    assert row.count(" | ") == 6  # seven cells: the pipe in the name is escaped
     assert "<b>@" not in text and "@team" not in text and "&#64;team" in text
     assert escape_cell("a|b\nc") == "a\\|b c"
 
@@ -123,11 +134,29 @@ def test_github_annotations_cannot_be_injected() -> None:
     text = render_check(_report(HOSTILE), "github", OPTIONS)
     lines = text.splitlines()
     assert all(line.startswith(("::error ", "::notice ", "::warning ")) for line in lines)
-    assert lines[0].startswith("::error file=icons/deep.svg,title=alpha-audit loss::evil")
-    assert "%0A::error::x%250A" in lines[0]
+    loss = next(line for line in lines if "title=alpha-audit loss" in line)
+    # At the manifest line that sets the alpha, not on the SVG (not in the diff).
+    assert loss.startswith("::error file=icons/iconset.yaml,line=8,title=alpha-audit loss::evil")
+    assert "%0A::error::x%250A" in loss
     assert escape_property("a:b,c") == "a%3Ab%2Cc"
 
 
 def test_table_shows_gate_verdict() -> None:
     text = render_check(_report(), "table", OPTIONS)
-    assert "Gate failed: 2 finding(s)" in text and "loss: deep on sun" in text
+    assert "Gate failed: 2 root cause(s)" in text and "loss: deep on sun" in text
+
+
+def test_junit_fails_every_canvas_of_a_folded_root_cause() -> None:
+    import xml.etree.ElementTree as ET
+
+    theme = Theme("t", tuple(Canvas(n, c) for n, c in (("sun", "#ffff00"), ("lemon", "#ffff40"))))
+    icons = (Icon("deep", BASE / "icons" / "deep.svg", "#0000cf", 1.4),)
+    result = audit(theme, IconSet("set", icons))
+    report = CheckReport(audits=(result,), gate=evaluate([result], Policy()))
+    (finding,) = report.gate.failures
+    assert finding.canvases == ("sun", "lemon")
+    root = ET.fromstring(render_check(report, "junit", OPTIONS))
+    failed = {
+        case.get("classname") for case in root.iter("testcase") if case.find("failure") is not None
+    }
+    assert failed == {"set.sun", "set.lemon"}

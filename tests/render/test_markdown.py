@@ -65,30 +65,37 @@ def test_comment_opens_with_the_marker_and_a_verdict() -> None:
     text = render_report(report(), OPTIONS)
     first, headline = text.splitlines()[:2]
     assert first == MARKER
-    failures = len(report().gate.failures)
-    assert headline.startswith(
-        "## ❌ alpha-audit: gate failed: 8 failing group(s)"
-    )  # 2 audits x 2 x 2
-    assert f"({failures} finding(s): {failures} loss)" in headline
+    failures = len(report().gate.failures)  # one root cause per icon, however many canvases
+    assert failures == 40  # 2 audits x 20 icons
+    assert headline == (
+        f"## ❌ alpha-audit: gate failed: {failures} root cause(s) ({failures} loss) "
+        "in 2 of 2 audit(s)"
+    )
+    # Then a line per rule: root causes, icons, and the worst one with its line.
+    (rule_row,) = _rows(text, "| rule | failing root causes |")
+    assert rule_row[:4] == ["`loss`", "40", "20", "0"]
+    assert rule_row[6].startswith("blue-0 on mid")
 
 
-def test_one_details_section_per_audit_grouped_by_colour_and_canvas() -> None:
+FAILING = "| colour | set at | canvases | rule |"
+
+
+def test_one_details_section_per_audit_grouped_by_colour() -> None:
     text = render_report(report(), OPTIONS)
     html = MarkdownIt("commonmark").enable("table").render(text)
     assert html.count("<details") == 2 and html.count("</details>") == 2
-    rows = _rows(text, "| colour | canvas | rule |")
-    # 2 audits x 2 colours x 2 canvases, not 40 icons x 2 canvases.
-    assert len(rows) == 8
-    pairs = [(r[0], r[1]) for r in rows[:4]]
-    assert pairs == [("blue #0000cc", "mid"), ("blue #0000cc", "mid-warm"),
-                     ("red #aa0000", "mid"), ("red #aa0000", "mid-warm")]  # fmt: skip
-    assert rows[0][4] == "10 icons: blue-0, blue-1, blue-2 +7 more"
+    rows = _rows(text, FAILING)
+    # 2 audits x 2 colours, not 40 icons x 2 canvases: each row folds both canvases.
+    assert len(rows) == 4
+    assert [r[0] for r in rows[:2]] == ["blue #0000cc", "red #aa0000"]  # the larger loss first
+    assert all(r[2].endswith("(worst) +1") for r in rows)
+    assert rows[0][5] == "10 icons: blue-0, blue-1, blue-2 +7 more"
 
 
 def test_each_failing_group_names_a_largest_safe_alpha_that_holds() -> None:
     text = render_report(report(), OPTIONS)
     for colour, hexcode in LOSING.items():
-        fixes = {r[5] for r in _rows(text, "| colour | canvas | rule |") if r[0].startswith(colour)}
+        fixes = {r[6] for r in _rows(text, FAILING) if r[0].startswith(colour)}
         (fix,) = fixes  # one answer per colour, on every canvas and audit
         # Safe on [1, a*]: "alpha 1 to a*", or "alpha 1" when a* is 1.
         found = re.match(rf"{colour}: alpha 1(?: to (\d+(?:\.\d+)?))?(?: |;|$)", fix)
@@ -108,9 +115,9 @@ def test_without_computed_fixes_the_fix_column_gives_the_rules_advice() -> None:
     from alpha_audit.rules import RULES
 
     bare = replace(report(), fixes=(), gate=evaluate(list(report().audits), report().gate.policy))
-    rows = _rows(render_markdown(bare, OPTIONS), "| colour | canvas | rule |")
+    rows = _rows(render_markdown(bare, OPTIONS), FAILING)
     assert rows and all(
-        r[5] == escape_markdown(RULES[Rule.LOSS].fix.replace("`", "")) for r in rows
+        r[6] == escape_markdown(RULES[Rule.LOSS].fix.replace("`", "")) for r in rows
     )
 
 
@@ -134,16 +141,17 @@ def test_exempted_groups_show_their_reason() -> None:
         rules=frozenset({Rule.LOSS}), exemptions=(Exemption("brand red", icon="red-0"),)
     )
     text = render_report(CheckReport(audits=audits, gate=evaluate(list(audits), policy)), OPTIONS)
-    rows = _rows(text, "| colour | canvas | rule | icons | reason |")
+    rows = _rows(text, "| colour | canvases | rule | icons | reason |")
     assert rows and all(r[4] == "brand red" and r[3].startswith("1 icon:") for r in rows)
 
 
 def test_a_huge_failing_run_fits_githubs_comment_limit_and_says_what_was_left_out() -> None:
     long = "surface-container-" + "x" * 60
     theme = Theme("huge", tuple(Canvas(f"{long}-{k}", f"#77{k:02x}77") for k in range(0, 200, 20)))
-    colours = [f"#0000{c:02x}" for c in range(0x80, 0xD0, 2)]  # 40 blues
+    # 400 blues, one per icon (a brand set): 400 root causes per audit, one row each.
+    colours = [f"#00{g:02x}{c:02x}" for g in range(10) for c in range(0x80, 0xD0, 2)]
     icons = tuple(
-        Icon(f"icon-{'n' * 40}-{k}", Path(f"i{k}.svg"), colours[k % 40], 1.6) for k in range(160)
+        Icon(f"icon-{'n' * 40}-{k}", Path(f"i{k}.svg"), colours[k], 1.6) for k in range(400)
     )
     audits = tuple(audit(replace(theme, name=n), IconSet("big", icons)) for n in ("a", "b", "c"))
     gate = evaluate(list(audits), Policy(rules=frozenset({Rule.LOSS})))
@@ -151,9 +159,9 @@ def test_a_huge_failing_run_fits_githubs_comment_limit_and_says_what_was_left_ou
     assert len(text) <= COMMENT_LIMIT
     html = MarkdownIt("commonmark").enable("table").render(text)
     assert html.count("<details") == 3  # every theme keeps its section
-    shown = len(_rows(text, "| colour | canvas | rule |"))
+    shown = len(_rows(text, FAILING))
     left_out = int(re.search(r"\*\*(\d+) row\(s\) left out\*\*", text).group(1))
-    groups = {(f.theme, f.canvas, f.numbers["source"]) for f in gate.failures}
+    groups = {(f.theme, f.canvas, f.canvases, f.numbers["source"]) for f in gate.failures}
     assert shown > 0 and shown + left_out == len(groups)
     assert "65,536-character comment limit" in text
 

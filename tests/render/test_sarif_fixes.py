@@ -63,18 +63,14 @@ def _project(root: Path, manifest: str = MANIFEST) -> Path:
 
 def _failures(root: Path) -> set[tuple[str, str | None, tuple[str, ...]]]:
     report = check_project(
-        ProjectConfig(
-            themes=tuple([root / "theme.yaml"]), iconsets=tuple([root / "set.yaml"]), policy=POLICY
-        )
+        ProjectConfig(themes=(root / "theme.yaml",), iconsets=(root / "set.yaml",), policy=POLICY)
     )
     return {(f.rule.value, f.canvas, f.icons) for f in report.gate.failures}
 
 
 def _sarif(root: Path) -> dict[str, Any]:
     report = check_project(
-        ProjectConfig(
-            themes=tuple([root / "theme.yaml"]), iconsets=tuple([root / "set.yaml"]), policy=POLICY
-        )
+        ProjectConfig(themes=(root / "theme.yaml",), iconsets=(root / "set.yaml",), policy=POLICY)
     )
     doc: dict[str, Any] = json.loads(CheckFormat.SARIF.renderer()(report, RenderOptions(base=root)))
     return doc
@@ -201,10 +197,7 @@ def test_alpha_from_the_command_line_gets_no_alpha_fix(tmp_path: Path) -> None:
     root = _project(tmp_path / "cli")
     report = check_project(
         ProjectConfig(
-            themes=tuple([root / "theme.yaml"]),
-            iconsets=tuple([root / "set.yaml"]),
-            policy=POLICY,
-            alpha=1.4,
+            themes=(root / "theme.yaml",), iconsets=(root / "set.yaml",), policy=POLICY, alpha=1.4
         )
     )
     doc = json.loads(CheckFormat.SARIF.renderer()(report, RenderOptions(base=root)))
@@ -315,9 +308,7 @@ def _token_check(root: Path) -> Any:
 
     project = load_config(root / "alpha-audit.yaml")
     return check_project(
-        ProjectConfig(
-            themes=tuple([]), iconsets=tuple(project.iconsets), policy=POLICY, tokens=project.tokens
-        )
+        ProjectConfig(iconsets=project.iconsets, policy=POLICY, tokens=project.tokens)
     )
 
 

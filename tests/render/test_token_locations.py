@@ -27,11 +27,7 @@ def _report():
     policy = Policy(rules=frozenset({Rule.BELOW_THRESHOLD}))
     return check_project(
         ProjectConfig(
-            themes=tuple([]),
-            iconsets=tuple(project.iconsets),
-            policy=policy,
-            threshold=21.0,
-            tokens=project.tokens,
+            iconsets=project.iconsets, policy=policy, threshold=21.0, tokens=project.tokens
         )
     )
 
@@ -45,10 +41,11 @@ def test_findings_carry_the_token_lines_of_icon_colour_and_canvas() -> None:
     found = [
         f
         for f in report.gate.findings
-        if f.icons == ("alert",) and f.canvas == "color.bg.canvas" and "light" in f.iconset
+        if f.icons == ("alert",) and "color.bg.canvas" in f.canvases and "light" in f.iconset
     ]
     assert found, "the light mode's alert on the canvas must fail threshold 21"
-    assert found[0].sources == (red, white)
+    # The icon's colour first, then the tokens of the canvases it fails on.
+    assert found[0].sources[0] == red and white in found[0].sources
     assert light not in {p for p, _ in found[0].sources}  # the alias is not where it is set
 
 
@@ -61,7 +58,7 @@ def test_sarif_locations_start_at_the_token_line_as_relative_uris() -> None:
         r
         for r in results
         if r["properties"]["icons"] == ["alert"]
-        and r["properties"]["canvas"] == "color.bg.canvas"
+        and "color.bg.canvas" in r["properties"]["canvases"]
         and "light" in r["properties"]["iconset"]
     )
     first = alert["locations"][0]["physicalLocation"]

@@ -331,7 +331,8 @@ def test_explicit_tags_on_bad_scalars_are_clean_input_errors(tmp_path: Path, val
     ("entries", "message"),
     [
         ('[{"theme": "t", "iconset": "s", "rule": "loss", "canvas": 1' + "0" * 5000 + "}]", "JSON"),
-        ('[{"theme": "t", "iconset": "s", "rule": "loss", "icons": []}]', "entries\\[0\\]"),
+        ('[{"theme": "t", "iconset": "s", "rule": "loss", "icons": [1]}]', "entries\\[0\\]"),
+        ('[{"theme": "t", "iconset": "s", "rule": "loss"}]', "entries\\[0\\]"),
         ('[{"theme": "t", "iconset": "s", "rule": "nope", "canvas": null, "icons": []}]', "rule"),
     ],
 )

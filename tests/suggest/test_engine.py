@@ -55,7 +55,10 @@ def broken_at(
     bad = np.zeros(alphas.shape, dtype=bool)
     mv = moving[None, :, None]
     if Rule.LOSS in policy.rules:
-        bad |= ((c - c_ref < -max(policy.max_loss, 1e-10)) & mv).any(axis=(1, 2))
+        # Gated above the visibility floor, beyond the allowance and the relative tolerance.
+        margin = np.maximum(max(policy.max_loss, 1e-10), policy.loss_tolerance * c_ref)
+        lost = (c - c_ref < -margin) & (c_ref >= policy.visibility_floor)
+        bad |= (lost & mv).any(axis=(1, 2))
     if Rule.NEWLY_FAILING in policy.rules:
         bad |= ((c_ref >= t) & (c < t) & mv).any(axis=(1, 2))
     if Rule.BELOW_THRESHOLD in policy.rules:

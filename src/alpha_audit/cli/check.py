@@ -16,6 +16,8 @@ from alpha_audit.cli.options import (
     ForceOption,
     GamutOption,
     IconsetArgument,
+    LossToleranceOption,
+    MaxCombinationsOption,
     MaxDriftOption,
     MaxLossOption,
     MinDeltaEOption,
@@ -25,6 +27,7 @@ from alpha_audit.cli.options import (
     StrictSvgOption,
     ThemeArgument,
     ThresholdOption,
+    VisibilityFloorOption,
     flag,
     given_order,
     in_range,
@@ -121,6 +124,9 @@ def check_command(
     min_delta_e: MinDeltaEOption = None,
     max_drift: MaxDriftOption = None,
     min_size_contrast: MinSizeContrastOption = None,
+    visibility_floor: VisibilityFloorOption = None,
+    loss_tolerance: LossToleranceOption = None,
+    max_combinations: MaxCombinationsOption = None,
     pipeline: PipelineOption = None,
     gamut: GamutOption = None,
     exit_zero: Annotated[
@@ -159,6 +165,16 @@ def check_command(
         Path | None,
         typer.Option("--write-baseline", help="Record today's findings as a baseline file."),
     ] = None,
+    base: Annotated[
+        str | None,
+        typer.Option(
+            "--base",
+            metavar="REF",
+            help="Fail only on what this change adds to git revision REF (a branch, tag or "
+            "commit, audited from git; the checkout is not touched).",
+            show_default="no base: every finding counts",
+        ),
+    ] = None,
     force: ForceOption = False,
     strict_svg: StrictSvgOption = False,
     no_cache: NoCacheOption = False,
@@ -179,51 +195,72 @@ def check_command(
     [bold]alpha-audit check themes/github-primer.yaml examples/vibrant/iconset.yaml -a 1.2[/]
     """
     from alpha_audit.errors import UsageError
-    from alpha_audit.gate import baseline_document
+    from alpha_audit.gate import LEGACY_BASELINE_SCHEMA, baseline_document
+    from alpha_audit.load.baseline import read_baseline
     from alpha_audit.load.config import Overrides, resolve_config
     from alpha_audit.load.paths import project_root
     from alpha_audit.output import Output, check_targets, write_files
-    from alpha_audit.pipeline import check_project
+    from alpha_audit.pipeline import base_baseline, check_project
     from alpha_audit.render.common import dumps
 
+    if base is not None and (baseline is not None or write_baseline is not None):
+        raise UsageError("give --base or a baseline file (--baseline, --write-baseline), not both")
     order = given_order(ctx.meta.get(ARGS, ()), _ORDER)
     pairs = pair_outputs(list(fmt or []), list(output or []), order)
     files = [out for _, out in pairs if out is not None] + [write_baseline] * bool(write_baseline)
     check_targets([f for f in files if f is not None], overwrite=force)  # before the work
     if (theme is None) != (iconset is None):
         raise UsageError("give both THEME and ICONSET, or neither (to use the project config)")
-    project = resolve_config(
-        Overrides(
-            config=config,
-            themes=(*([theme] if theme else []), *(themes or [])),
-            iconsets=(*([iconset] if iconset else []), *(iconsets or [])),
-            alpha=alpha,
-            threshold=threshold,
-            fail_on=tuple(fail_on or ()),
-            max_loss=max_loss,
-            min_delta_e=min_delta_e,
-            max_drift=max_drift,
-            min_size_contrast=min_size_contrast,
-            pipeline=pipeline,
-            gamut=gamut,
-            baseline=baseline,
-            strict_svg=strict_svg,
-        ),
-        Path.cwd(),
+    overrides = Overrides(
+        config=config,
+        themes=(*([theme] if theme else []), *(themes or [])),
+        iconsets=(*([iconset] if iconset else []), *(iconsets or [])),
+        alpha=alpha,
+        threshold=threshold,
+        fail_on=tuple(fail_on or ()),
+        max_loss=max_loss,
+        min_delta_e=min_delta_e,
+        max_drift=max_drift,
+        min_size_contrast=min_size_contrast,
+        visibility_floor=visibility_floor,
+        loss_tolerance=loss_tolerance,
+        max_combinations=max_combinations,
+        pipeline=pipeline,
+        gamut=gamut,
+        baseline=baseline,
+        strict_svg=strict_svg,
     )
+    project = resolve_config(overrides, Path.cwd())
+    known = None
+    if base is not None:
+        known, why = base_baseline(overrides, Path.cwd(), base, pool=ctx.obj)
+        stderr_note(why or f"base {base}: {len(known.keys)} failing root cause(s) there")
+    elif project.baseline is not None and write_baseline is None:
+        known = read_baseline(project.baseline)
+        if known.legacy:
+            stderr_note(
+                f"{project.baseline} is a per-canvas baseline ({LEGACY_BASELINE_SCHEMA}): "
+                "a root cause is covered when each of its canvases is; rewrite it with "
+                "--write-baseline --force to record root causes"
+            )
     with progress_bar("Rendering icons") as progress:
         report = check_project(
-            project, pool=ctx.obj, progress=progress, use_baseline=write_baseline is None
+            project,
+            pool=ctx.obj,
+            progress=progress,
+            baseline=known,
+            use_baseline=False,
+            record=write_baseline is not None,
         )
     # Paths in reports are relative to the repository (the folder with .git): what
     # GitHub annotations, SARIF's %SRCROOT% and GitLab expect, from any subfolder.
-    base = project_root(Path.cwd())
+    root = project_root(Path.cwd())
     outputs, stdout_text = [], None
     for kind, out in pairs:
         if out is None:
-            stdout_text = kind.renderer()(report, replace(stdout_options(), base=base))
+            stdout_text = kind.renderer()(report, replace(stdout_options(), base=root))
         else:
-            outputs.append(Output.text(out, kind.renderer()(report, RenderOptions(base=base))))
+            outputs.append(Output.text(out, kind.renderer()(report, RenderOptions(base=root))))
     if write_baseline is not None:
         outputs.append(Output.text(write_baseline, dumps(baseline_document(report.gate))))
     for path in write_files(outputs, overwrite=force):

@@ -26,6 +26,8 @@ FLAGS: dict[str, str] = {
     "gamut": "--gamut",
     "engines": "--engine",
     "pipeline": "--pipeline",
+    "max_combinations": "max-combinations (--max-combinations)",
+    "base": "--base",
 }
 """Backticked phrase in a library message -> what the command line says instead."""
 

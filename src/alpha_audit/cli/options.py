@@ -28,6 +28,8 @@ __all__ = [
     "ForceOption",
     "GamutOption",
     "IconsetArgument",
+    "LossToleranceOption",
+    "MaxCombinationsOption",
     "MaxDriftOption",
     "MaxLossOption",
     "MinDeltaEOption",
@@ -37,6 +39,7 @@ __all__ = [
     "StrictSvgOption",
     "ThemeArgument",
     "ThresholdOption",
+    "VisibilityFloorOption",
     "flag",
     "given_order",
     "in_range",
@@ -165,6 +168,45 @@ MaxDriftOption = Annotated[
         help="Largest CIEDE2000 colour drift for drift.",
         callback=in_range("--max-drift", ranges.DELTA_E),
         show_default=_policy_default("max_drift"),
+    ),
+]
+VisibilityFloorOption = Annotated[
+    float | None,
+    typer.Option(
+        "--visibility-floor",
+        help="Contrast at alpha 1 below which a loss is reported, not gated.",
+        callback=in_range("--visibility-floor", ranges.CONTRAST_RATIO),
+        show_default=_policy_default("visibility_floor"),
+    ),
+]
+LossToleranceOption = Annotated[
+    float | None,
+    typer.Option(
+        "--loss-tolerance",
+        help="Relative loss (loss / contrast at alpha 1) reported, not gated.",
+        callback=in_range("--loss-tolerance", ranges.LOSS_TOLERANCE),
+        show_default=_policy_default("loss_tolerance"),
+    ),
+]
+
+
+def _whole(name: str, allowed: ranges.NumberRange) -> Callable[[int | None], int | None]:
+    def check(value: int | None) -> int | None:
+        if value is not None and not allowed.allows(value):
+            raise UsageError(allowed.refusal(f"{name} {value}"))
+        return value
+
+    return check
+
+
+MaxCombinationsOption = Annotated[
+    int | None,
+    typer.Option(
+        "--max-combinations",
+        metavar="N",
+        help="Most paint x canvas rows one check audits (memory scales with it: docs/ci.md).",
+        callback=_whole("--max-combinations", ranges.COMBINATIONS),
+        show_default=f"the config's, else {ranges.DEFAULT_COMBINATIONS:,}",
     ),
 ]
 MinSizeContrastOption = Annotated[

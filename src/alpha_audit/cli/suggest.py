@@ -14,6 +14,7 @@ from alpha_audit.cli.options import (
     ForceOption,
     GamutOption,
     IconsetArgument,
+    LossToleranceOption,
     MaxDriftOption,
     MaxLossOption,
     MinDeltaEOption,
@@ -21,6 +22,7 @@ from alpha_audit.cli.options import (
     NoCacheOption,
     ThemeArgument,
     ThresholdOption,
+    VisibilityFloorOption,
     flag,
     in_range,
 )
@@ -81,6 +83,8 @@ def suggest_command(
     min_delta_e: MinDeltaEOption = None,
     max_drift: MaxDriftOption = None,
     min_size_contrast: MinSizeContrastOption = None,
+    visibility_floor: VisibilityFloorOption = None,
+    loss_tolerance: LossToleranceOption = None,
     fmt: Annotated[
         SuggestFormat,
         typer.Option("--format", "-f", help="table, json or markdown.", case_sensitive=False),
@@ -125,8 +129,10 @@ def suggest_command(
     Computed exactly from where contrast, 8-bit codes and separation change, not
     by a sweep: set-wide (one coefficient for every icon), per palette colour
     and per icon (the others keep their configured alpha), with the canvas,
-    rule and icons that stop each and the first unsafe alpha.  Nothing is
-    written unless --apply is given.
+    rule and icons that stop each and the first unsafe alpha.  Losses are judged
+    as check judges them (--visibility-floor, --loss-tolerance).  A big set's
+    table shows the smallest answers and each colour's worst icon; --format json
+    has every answer.  Nothing is written unless --apply is given.
 
     Example:
     [bold]alpha-audit suggest themes/paper16.yaml examples/vibrant/iconset.yaml --apply set[/]
@@ -155,6 +161,8 @@ def suggest_command(
             min_delta_e=min_delta_e,
             max_drift=max_drift,
             min_size_contrast=min_size_contrast,
+            visibility_floor=visibility_floor,
+            loss_tolerance=loss_tolerance,
             gamut=gamut,
         ),
         Path.cwd(),

@@ -31,8 +31,10 @@ from alpha_audit.load.files import read_text_capped
 from alpha_audit.load.paths import PathRefused, contain_argument, project_root
 from alpha_audit.load.tokens.themes import TokenConfig, token_config_from_mapping
 from alpha_audit.load.yamldoc import MAX_YAML_BYTES, KeyPath, YamlDoc, format_key, load_yaml
+from alpha_audit.model import Span
 from alpha_audit.policy import Exemption, Policy
-from alpha_audit.rules import DEFAULT_RULES, Rule
+from alpha_audit.rows import MAX_COMBINATIONS
+from alpha_audit.rules import DEFAULT_RULES, DEFAULT_WARNINGS, Level, Rule
 from alpha_audit.safe_text import is_safe, safe_text
 
 __all__ = [
@@ -56,17 +58,21 @@ CONFIG_KEYS = (
     "gamut",
     "iconset",
     "iconsets",
+    "loss-tolerance",
+    "max-combinations",
     "max-drift",
     "max-loss",
     "min-delta-e",
     "min-size-contrast",
     "pipeline",
     "render",  # alpha-audit render's table, read by alpha_audit.pages.config
+    "rules",
     "strict-svg",
     "theme",
     "themes",
     "threshold",
     "tokens",
+    "visibility-floor",
 )
 _EXEMPT_KEYS = ("canvas", "icon", "reason", "rule")
 _TOOL_TABLE = ("tool", "alpha-audit")
@@ -87,6 +93,12 @@ class ProjectConfig:
     tokens: TokenConfig | None = None
     pipeline: Pipeline | None = None
     gamut: GamutPolicy | None = None  # for theme and manifest colours; None: each file's own
+    # Paint rows x canvases one check audits: the resource bound (docs/ci.md says how
+    # memory scales with it).
+    max_combinations: int = MAX_COMBINATIONS
+    # Where the config writes ``alpha:`` (findings point there); None: not written, or
+    # overridden by --alpha.
+    alpha_span: Span | None = field(default=None, compare=False)
 
 
 def _has_tool_table(pyproject: Path) -> bool:
@@ -179,10 +191,13 @@ class Overrides:
     min_delta_e: float | None = None
     max_drift: float | None = None
     min_size_contrast: float | None = None
+    visibility_floor: float | None = None
+    loss_tolerance: float | None = None
     pipeline: str | None = None
     gamut: str | None = None
     baseline: Path | None = None
     strict_svg: bool = False
+    max_combinations: int | None = None
 
 
 def resolve_config(overrides: Overrides | None = None, start: str | Path = ".") -> ProjectConfig:
@@ -215,11 +230,17 @@ def resolve_config(overrides: Overrides | None = None, start: str | Path = ".") 
             min_delta_e=o.min_delta_e,
             max_drift=o.max_drift,
             min_size_contrast=o.min_size_contrast,
+            visibility_floor=o.visibility_floor,
+            loss_tolerance=o.loss_tolerance,
         ),
         pipeline=project.pipeline if o.pipeline is None else o.pipeline.strip().lower(),  # type: ignore[arg-type]  # checked against PIPELINES above
         gamut=project.gamut if o.gamut is None else o.gamut.strip().lower(),  # type: ignore[arg-type]  # checked against GAMUT_POLICIES above
         baseline=project.baseline if o.baseline is None else o.baseline,
         strict_svg=project.strict_svg or o.strict_svg,
+        max_combinations=(
+            project.max_combinations if o.max_combinations is None else o.max_combinations
+        ),
+        alpha_span=project.alpha_span if o.alpha is None else None,
     )
 
 
@@ -292,6 +313,35 @@ def _rules(doc: YamlDoc, keys: KeyPath, value: Any) -> frozenset[Rule]:
     return frozenset(rules)
 
 
+def _levels(doc: YamlDoc, keys: KeyPath, value: Any) -> tuple[frozenset[Rule], frozenset[Rule]]:
+    """``rules: {loss: fail, drift: warn, unrenderable: off}`` over the defaults.
+
+    Returns the failing and the reported rules.  A rule not named keeps its
+    default (docs/rules.md); YAML 1.1 reads a bare ``off`` as false, which
+    means ``off`` here too.
+    """
+    table = read_mapping(doc, keys, value, "rules {rule: off, warn or fail}")
+    fail, warn = set(DEFAULT_RULES), set(DEFAULT_WARNINGS)
+    allowed = ", ".join(level.value for level in Level)
+    for name, level in table.items():
+        try:
+            rule = Rule.parse(str(name))
+        except UsageError as exc:
+            raise doc.error((*keys, name), exc.message) from exc
+        if level is False:
+            level = "off"
+        if not isinstance(level, str) or level.strip().lower() not in {v.value for v in Level}:
+            raise doc.error((*keys, name), f"expected one of {allowed}, got {describe(level)}")
+        chosen = Level(level.strip().lower())
+        fail.discard(rule)
+        warn.discard(rule)
+        {Level.FAIL: fail, Level.WARN: warn, Level.OFF: set()}[chosen].add(rule)
+    if not fail:
+        # As with fail-on: [], a gate that can never fail must be asked for with --exit-zero.
+        raise doc.error(keys, "no rule is left at fail, which disables the gate; keep one")
+    return frozenset(fail), frozenset(warn)
+
+
 def _exemptions(doc: YamlDoc, keys: KeyPath, value: Any) -> tuple[Exemption, ...]:
     if not isinstance(value, list):
         raise doc.error(keys, f"expected a list of {{canvas/icon, reason}}, got {describe(value)}")
@@ -354,11 +404,35 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
     alpha = threshold = None
     if "alpha" in data:
         alpha = read_number(doc, at("alpha"), data["alpha"], allowed=ranges.ALPHA)
+    max_combinations = MAX_COMBINATIONS
+    if "max-combinations" in data:
+        value = data["max-combinations"]
+        number = read_number(doc, at("max-combinations"), value, allowed=ranges.COMBINATIONS)
+        if number != int(number):
+            raise doc.error(
+                at("max-combinations"), f"expected {ranges.COMBINATIONS.what}, got {value!r}"
+            )
+        max_combinations = int(number)
     if "threshold" in data:
         threshold = read_number(
             doc, at("threshold"), data["threshold"], allowed=ranges.CONTRAST_RATIO
         )
-    rules = _rules(doc, at("fail-on"), data["fail-on"]) if "fail-on" in data else DEFAULT_RULES
+    rules, warnings = DEFAULT_RULES, DEFAULT_WARNINGS
+    if "fail-on" in data and "rules" in data:
+        raise doc.error(
+            at("rules"), "give fail-on: or rules:, not both (rules: {loss: fail} says the same)"
+        )
+    if "fail-on" in data:
+        rules = _rules(doc, at("fail-on"), data["fail-on"])
+    if "rules" in data:
+        rules, warnings = _levels(doc, at("rules"), data["rules"])
+    limits = {}
+    for key, allowed in (
+        ("visibility-floor", ranges.CONTRAST_RATIO),
+        ("loss-tolerance", ranges.LOSS_TOLERANCE),
+    ):
+        if key in data:
+            limits[key.replace("-", "_")] = read_number(doc, at(key), data[key], allowed=allowed)
     max_loss = 0.0
     if "max-loss" in data:
         max_loss = read_number(doc, at("max-loss"), data["max-loss"], allowed=ranges.CONTRAST_LOSS)
@@ -408,10 +482,14 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
             exemptions=exemptions,
             max_drift=max_drift,
             min_size_contrast=min_size_contrast,
+            warnings=warnings,
+            **limits,
         ),
         baseline=baseline,
         strict_svg=strict_svg,
         tokens=tokens,
         pipeline=pipeline,
         gamut=gamut,
+        max_combinations=max_combinations,
+        alpha_span=doc.spans.get(at("alpha")),
     )

@@ -53,6 +53,11 @@ _MANIFEST_KEYS = (
     "gamut",
 )
 _ICON_KEYS = ("file", "name", "color", "alpha")
+_GLOB_KEYS = ("glob", "name")
+# How a glob names its icons: the file's stem (``x``), or its path from the
+# manifest's folder without the extension (``filled/x``), which keeps
+# ``filled/x`` and ``outline/x`` apart.
+_NAMINGS = ("stem", "path")
 _PALETTE_KEYS = ("color", "alpha")
 _OVERRIDE_KEYS = ("color", "alpha", "lock")
 
@@ -185,6 +190,29 @@ class _Manifest:
             raise self.doc.error(keys, f"{relative!r} {what} (looked in {self.base})")
         return path
 
+    def named_glob(self, raw: dict[str, Any]) -> list[tuple[KeyPath, Path, dict[str, Any]]]:
+        """``icons: {glob: "**/*.svg", name: path}``: a glob whose icons are named by path."""
+        keys: KeyPath = ("icons",)
+        check_keys(self.doc, keys, raw, _GLOB_KEYS)
+        pattern = raw.get("glob")
+        if not isinstance(pattern, str) or not pattern.strip():
+            raise self.doc.error(
+                (*keys, "glob"), f"expected a glob like svg/*.svg, got {describe(pattern)}"
+            )
+        naming = raw.get("name", "stem")
+        if naming not in _NAMINGS:
+            raise self.doc.error(
+                (*keys, "name"), f"expected one of {', '.join(_NAMINGS)}, got {describe(naming)}"
+            )
+        out: list[tuple[KeyPath, Path, dict[str, Any]]] = []
+        for path in self.glob(pattern):
+            if naming == "stem":
+                out.append((keys, path, {}))
+                continue
+            within = path.relative_to(self.base) if path.is_relative_to(self.base) else path
+            out.append((keys, path, {"name": within.with_suffix("").as_posix()}))
+        return out
+
     def glob(self, pattern: str) -> list[Path]:
         keys: KeyPath = ("icons",)
         try:
@@ -200,9 +228,13 @@ class _Manifest:
         raw = self.data.get("icons")
         if isinstance(raw, str):
             return [(("icons",), path, {}) for path in self.glob(raw)]
+        if isinstance(raw, dict):
+            return self.named_glob(raw)
         if not isinstance(raw, list) or not raw:
             raise self.doc.error(
-                ("icons",), "expected a glob like svg/*.svg or a list of files / {file: ...}"
+                ("icons",),
+                "expected a glob like svg/*.svg, {glob: ..., name: path} or a list of files / "
+                "{file: ...}",
             )
         if len(raw) > MAX_ICONS:
             raise self.doc.error(("icons",), f"{len(raw)} icons; at most {MAX_ICONS} are allowed")
@@ -251,7 +283,7 @@ def iconset_from_doc(doc: YamlDoc, *, root: Path, gamut: GamutPolicy | None = No
             raise doc.error(
                 keys,
                 f"duplicate icon name {icon_name!r} ({seen[icon_name]} and {where}); "
-                "give one a name:",
+                "give one a name:, or name a glob's icons by path: icons: {glob: ..., name: path}",
             )
         seen[icon_name] = where
         color: str | None

@@ -31,7 +31,8 @@ if TYPE_CHECKING:
     from rich.console import RenderableType
     from rich.table import Table
 
-    from alpha_audit.findings import Finding
+    from alpha_audit.findings import Finding, Location
+    from alpha_audit.gate import GateResult
     from alpha_audit.model import GamutAdjustment
     from alpha_audit.results import CheckReport, ColorFix, Fix, SafeAlpha
 
@@ -40,6 +41,7 @@ __all__ = [
     "Records",
     "RenderOptions",
     "Renderer",
+    "baselined_text",
     "check_suffix",
     "display_path",
     "dumps",
@@ -50,12 +52,14 @@ __all__ = [
     "fix_text",
     "fix_to_dict",
     "gamut_line",
+    "location_text",
     "name_column",
     "number_column",
     "records",
     "safe_span",
     "shorten_names",
     "to_text",
+    "where_text",
     "wrap_name",
 ]
 
@@ -532,6 +536,48 @@ def fitted_table(
 
     donors = [k for k, c in enumerate(columns) if c.shrink_first]
     return _Fitted(build, donors, [columns[k].min_width for k in donors])
+
+
+# ------------------------------------------------------------------ where
+
+
+def where_text(finding: Finding, names: int = 3) -> str:
+    """The icons and canvases of a finding: ``alert on paper`` or ``alert on paper and 8 more``.
+
+    A finding folded over canvases names its worst canvas first; a finding
+    about icons, not canvases, names only the icons.
+    """
+    icons = shorten_names(list(finding.icons), names)
+    if finding.canvas is None:
+        return icons
+    others = len(finding.canvases) - 1
+    if others <= 0:
+        return f"{icons} on {finding.canvas}"
+    return f"{icons} on {finding.canvas} (worst) and {others} more canvas{'es' * (others > 1)}"
+
+
+def baselined_text(gate: GateResult) -> str:
+    """Why a baselined finding does not fail: a baseline file, or the base revision.
+
+    >>> from alpha_audit.gate import Baseline, GateResult
+    >>> from alpha_audit.policy import Policy
+    >>> baselined_text(GateResult(Policy(), (), baseline=Baseline(kind="base", name="main")))
+    'already on the base revision main'
+    """
+    b = gate.baseline
+    if b is not None and b.kind == "base":
+        return f"already on the base revision {b.name}"
+    return "in the baseline"
+
+
+def location_text(location: Location, base: Path | None) -> str:
+    """``file:line`` of a location, the file relative to ``base`` where inside it.
+
+    >>> from alpha_audit.findings import Location
+    >>> location_text(Location(Path("/r/set.yaml"), 12, "alpha"), Path("/r"))
+    'set.yaml:12'
+    """
+    return f"{display_path(location.file, base)}:{location.line}"
 
 
 # ------------------------------------------------------------------ fixes in words

@@ -11,7 +11,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from alpha_audit.findings import Finding
-from alpha_audit.render.common import RenderOptions, display_path
+from alpha_audit.render.common import RenderOptions, display_path, location_text, where_text
 from alpha_audit.results import CheckReport
 from alpha_audit.rules import RULES, Rule
 from alpha_audit.safe_text import safe_text
@@ -45,18 +45,26 @@ def _command(level: str, message: str, *, file: str | None, line: int | None, ti
 
 
 def _annotation(f: Finding, base: Path | None) -> str:
-    manifest = display_path(f.manifest, base)
-    where = f"{', '.join(f.icons)} on {f.canvas}" if f.canvas else ", ".join(f.icons)
-    message = f"{where} ({f.theme}): {f.message}"
-    if manifest and f.lines:
-        message += f" [colour/alpha set in {manifest} line {', '.join(map(str, f.lines))}]"
-    if f.sources:
-        shown = ", ".join(f"{display_path(p, base)} line {n}" for p, n in f.sources)
-        message += f" [colour set by tokens in {shown}]"
-    file = display_path(f.files[0], base) if f.files else manifest
-    line = None if f.files else (f.lines[0] if f.lines else None)
-    if f.sources:  # the annotation goes where the colour is set
-        file, line = display_path(f.sources[0][0], base), f.sources[0][1]
+    """One failing root cause, annotated on the line that sets its failing value.
+
+    That line (an ``alpha:`` or colour in the manifest, a design token, the
+    config's ``alpha:``) is what a pull request changes, so GitHub shows the
+    annotation inline in the diff; an SVG alone (its drawing is the cause)
+    gets its file.
+    """
+    message = f"{where_text(f)} ({f.theme} / {f.iconset}): {f.message}"
+    related = [f"{loc.what} at {location_text(loc, base)}" for loc in f.locations[1:]] + [
+        f"SVG {display_path(p, base)}" for p in f.files[:3]
+    ]
+    if related:
+        message += f" [{'; '.join(related)}]"
+    file: str | None
+    line: int | None
+    if f.locations:
+        file, line = display_path(f.locations[0].file, base), f.locations[0].line
+    else:
+        file = display_path(f.files[0], base) if f.files else display_path(f.manifest, base)
+        line = None
     return _command("error", message, file=file, line=line, title=f"alpha-audit {f.rule.value}")
 
 
@@ -82,9 +90,10 @@ def _capped(level: str, annotations: list[str], rollup: str) -> list[str]:
 def render_report(report: CheckReport, options: RenderOptions) -> str:
     """Annotations GitHub displays: failures and warnings each capped at 10, with a roll-up.
 
-    Up to 9 failing findings (10 when they fit) are annotated on their files;
-    the last error line is the verdict, naming how many findings were left out
-    (the job summary, written from ``--format markdown``, lists them all).
+    Up to 9 failing root causes, worst first (10 when they fit), are annotated
+    on the lines that set them; the last error line is the verdict, naming how
+    many were left out (the job summary, written from ``--format markdown``,
+    lists them).
     Warnings for unrenderable icons are capped the same way.
     """
     gate = report.gate
@@ -92,12 +101,17 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     warnings = [
         _command(
             "warning" if w.rule is Rule.UNRENDERABLE else "notice",
-            f"{', '.join(w.icons)}: {w.message}",
-            file=display_path(w.files[0], options.base) if w.files else None,
-            line=None,
+            f"{where_text(w)}: {w.message}",
+            file=display_path(w.locations[0].file if w.locations else w.files[0], options.base)
+            if w.locations or w.files
+            else None,
+            line=w.locations[0].line if w.locations else None,
             title=f"alpha-audit {w.rule.value}: {RULES[w.rule].help}",
         )
         for w in gate.warnings
+        # A loss reported but not gated (an invisible paint, a sub-tolerance loss) is
+        # in the JSON and SARIF reports; an annotation slot is for what needs a look.
+        if w.numbers.get("gated") != "false"
     ]
     lines: list[str] = []
     if gate.passed:
@@ -107,10 +121,10 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
         counts = ", ".join(f"{n} {rule}" for rule, n in gate.counts().items())
         # The verdict is an error line too: the findings get the other nine.
         shown = errors if len(errors) < MAX_ANNOTATIONS else errors[: MAX_ANNOTATIONS - 1]
-        verdict = f"gate failed: {counts}"
+        verdict = f"gate failed: {len(errors)} root cause(s): {counts}"
         if len(shown) < len(errors):
             verdict += (
-                f"; {len(errors) - len(shown)} more finding(s) not annotated "
+                f"; {len(errors) - len(shown)} more root cause(s) not annotated "
                 "(GitHub shows 10 per step): see the job summary, and the JSON or SARIF "
                 "report for every finding"
             )

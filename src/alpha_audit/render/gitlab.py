@@ -7,8 +7,10 @@ of info, minor, major, critical, blocker), ``location.path`` (relative to the
 repository root) and ``location.lines.begin``.  GitLab shows issues with the
 same fingerprint as one, and compares fingerprints between the merge request
 and its target branch to say what is new, so a fingerprint is built from what
-a baseline matches on (theme, icon set, rule, canvas, icons) -- never a line
-number -- and made unique within the report.
+a baseline matches on (theme, icon set, rule, icons: one root cause, whatever
+its canvases) -- never a line number -- and made unique within the report.
+``location`` is the line that sets the failing value (the ``alpha:`` or
+colour a change edits), so the issue lands on the diff.
 
 Only what fails the gate is an issue: exempted and baselined findings are
 decisions already taken, and Code Quality has no "dismissed" state.  The
@@ -23,7 +25,13 @@ from pathlib import Path, PurePosixPath
 from typing import Any
 
 from alpha_audit.findings import Finding
-from alpha_audit.render.common import RenderOptions, display_path, dumps, finding_fix
+from alpha_audit.render.common import (
+    RenderOptions,
+    display_path,
+    dumps,
+    finding_fix,
+    where_text,
+)
 from alpha_audit.results import CheckReport
 from alpha_audit.rules import RULES
 
@@ -44,7 +52,9 @@ def _relative(path: Path | None, base: Path | None) -> str:
 
 
 def _where(f: Finding, base: Path | None) -> tuple[str, int]:
-    """The manifest line that sets the colour or alpha, else the SVG's first line."""
+    """The line that sets the failing value (:attr:`Finding.locations`), else the SVG's first."""
+    if f.locations:
+        return _relative(f.locations[0].file, base), f.locations[0].line
     if f.manifest is not None and f.lines:
         return _relative(f.manifest, base), f.lines[0]
     if f.files:
@@ -63,20 +73,19 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     issues: list[dict[str, Any]] = []
     seen: set[str] = set()
     for f, severity in entries:
-        theme, iconset, rule, canvas, icons = f.key
-        identity = "\x1f".join([theme, iconset, rule, canvas or "", *icons])
+        theme, iconset, rule, icons = f.key
+        identity = "\x1f".join([theme, iconset, rule, *icons])
         fingerprint = _fingerprint(identity)
         n = 1
         while fingerprint in seen:  # an icon unrenderable in two themes, say
             n += 1
             fingerprint = _fingerprint(f"{identity}\x1e{n}")
         seen.add(fingerprint)
-        where = f"{', '.join(f.icons)} on {f.canvas}" if f.canvas else ", ".join(f.icons)
         path, line = _where(f, options.base)
         issues.append(
             {
                 "type": "issue",
-                "description": f"{where} ({f.theme} / {f.iconset}): {f.message}. "
+                "description": f"{where_text(f)} ({f.theme} / {f.iconset}): {f.message}. "
                 f"Fix: {finding_fix(f, report)}.",
                 "check_name": _CHECK_PREFIX + f.rule.value,
                 "fingerprint": fingerprint,

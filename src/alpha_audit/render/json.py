@@ -1,4 +1,4 @@
-"""``alpha-audit.check/3`` JSON: every number at full float precision.
+"""``alpha-audit.check/4`` JSON: every number at full float precision.
 
 One audit: the audit's fields at the top level plus ``gate``.  Several
 audits (themes x icon sets): ``audits`` lists each audit's fields, and
@@ -27,9 +27,10 @@ __all__ = [
     "report_to_dict",
 ]
 
-# /3: every figure from the paint rows (summary, collisions and separation under the
-# audit's pipeline), warnings (reported rules) and group fixes (docs/json.md).
-CHECK_SCHEMA = "alpha-audit.check/3"
+# /4: findings are root causes folded over canvases (``canvases``, the worst in
+# ``canvas``), located where their failing value is set (``locations``), worst
+# first; baselines match (theme, icon set, rule, icons) (docs/json.md).
+CHECK_SCHEMA = "alpha-audit.check/4"
 
 
 def check_to_dict(result: AuditResult, base: Path | None = None) -> dict[str, Any]:
@@ -142,12 +143,17 @@ def finding_to_dict(finding: Finding, base: Path | None = None) -> dict[str, Any
         "theme": finding.theme,
         "iconset": finding.iconset,
         "canvas": finding.canvas,
+        "canvases": list(finding.canvases),
         "icons": list(finding.icons),
         "message": finding.message,
         "numbers": dict(finding.numbers),
         "files": [display_path(f, base) for f in finding.files],
         "manifest": display_path(finding.manifest, base),
         "lines": list(finding.lines),
+        "locations": [
+            {"file": display_path(loc.file, base), "line": loc.line, "what": loc.what}
+            for loc in finding.locations
+        ],
         "sources": [{"file": display_path(p, base), "line": n} for p, n in finding.sources],
         "exemption": None if finding.exemption is None else finding.exemption.reason,
         "baselined": finding.baselined,
@@ -178,6 +184,8 @@ def gate_to_dict(gate: GateResult, base: Path | None = None) -> dict[str, Any]:
             "min_delta_e": policy.min_delta_e,
             "max_drift": policy.max_drift,
             "min_size_contrast": policy.min_size_contrast,
+            "visibility_floor": policy.visibility_floor,
+            "loss_tolerance": policy.loss_tolerance,
             "exemptions": [
                 {
                     "canvas": e.canvas,
@@ -193,9 +201,11 @@ def gate_to_dict(gate: GateResult, base: Path | None = None) -> dict[str, Any]:
         "exempted": [finding_to_dict(f, base) for f in gate.exempted],
         "baselined": [finding_to_dict(f, base) for f in gate.baselined],
         "warnings": [finding_to_dict(f, base) for f in gate.warnings],
+        "baseline": None
+        if gate.baseline is None
+        else {"kind": gate.baseline.kind, "name": gate.baseline.name},
         "stale_baseline": [
-            {"theme": t, "iconset": s, "rule": r, "canvas": c, "icons": list(i)}
-            for t, s, r, c, i in gate.stale
+            {"theme": t, "iconset": s, "rule": r, "icons": list(i)} for t, s, r, i in gate.stale
         ],
     }
 
@@ -236,5 +246,5 @@ def report_to_dict(report: CheckReport, base: Path | None = None) -> dict[str, A
 
 
 def render_report(report: CheckReport, options: RenderOptions) -> str:
-    """Render a report as ``alpha-audit.check/3`` JSON."""
+    """Render a report as ``alpha-audit.check/4`` JSON."""
     return dumps(report_to_dict(report, options.base))

@@ -1,5 +1,8 @@
 """JUnit XML: one test case per icon x canvas, failures carry the gate's reason.
 
+A finding folded over canvases fails the case of each of its canvases (its
+figures are the worst canvas's).
+
 Suites are audits (``theme / icon set``); a case is named after the icon, its
 class after the icon set and canvas, which is how CI test viewers (GitLab,
 Jenkins, Azure, dorny/test-reporter) group them.  Exempted or baselined
@@ -52,8 +55,9 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     """The report as a JUnit XML document (``<testsuites>``)."""
     by_cell: dict[tuple[str, str, str | None, str], list[Finding]] = defaultdict(list)
     for f in report.gate.findings:
-        for icon_name in f.icons:
-            by_cell[(f.theme, f.iconset, f.canvas, icon_name)].append(f)
+        for name in f.canvases or (f.canvas,):  # a root cause fails each of its canvases
+            for icon_name in f.icons:
+                by_cell[(f.theme, f.iconset, name, icon_name)].append(f)
     unrenderable_fails = report.gate.policy.level(Rule.UNRENDERABLE) is Level.FAIL
 
     root = ET.Element("testsuites", {"name": "alpha-audit"})

@@ -1,10 +1,14 @@
 """Markdown: a pull-request comment (and CI job summary) a reviewer can act on.
 
 Layout: a hidden marker (:data:`MARKER`, so a bot updates one sticky comment),
-a headline verdict, one summary row per audit, then per audit (theme x icon
-set) a ``<details>`` section with the failing groups, each a colour (role) on
-a canvas under one rule, its icons shortened to a count and the first names,
-and its fix (computed in the pipeline, :mod:`alpha_audit.fixes`, worded by
+a headline verdict counting root causes, one line per rule (how many root
+causes fail, how many icons, what is only reported, and the worst one), one
+summary row per audit, then per audit (theme x icon set) a ``<details>``
+section with the failing groups worst first (collisions of many colours,
+confusions, newly failing paints, then losses by size), each a colour (role)
+under one rule with the line that sets it, its canvases, its icons shortened
+to a count and the first names, and its fix (computed in the pipeline,
+:mod:`alpha_audit.fixes`, worded by
 :func:`~alpha_audit.render.common.finding_fix`); then what improved (newly
 passing), exemptions, the baseline, and the notes (hard-coded paints, icons that
 could not be rendered).  The whole text stays within GitHub's comment limit
@@ -22,12 +26,16 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 from alpha_audit.findings import Finding
+from alpha_audit.gate import rule_summary
 from alpha_audit.render.common import (
     RenderOptions,
+    baselined_text,
     escape_markdown,
     finding_fix,
     gamut_line,
+    location_text,
     shorten_names,
+    where_text,
 )
 from alpha_audit.results import CheckReport
 from alpha_audit.rows import AuditResult
@@ -51,11 +59,12 @@ _FRAME = 600  # room kept per audit for its <details> lines and summary (names a
 
 @dataclass
 class _Group:
-    """Findings of one rule for one colour (or colour set) on one canvas."""
+    """Findings of one rule for one colour (or colour set) over the same canvases."""
 
     rule: Rule
     colour: str
     canvas: str
+    canvases: int
     numbers: str
     first: Finding
     icons: list[str] = field(default_factory=list)
@@ -72,13 +81,14 @@ def _numbers(f: Finding) -> str:
         under = f" ({n['deficiency']})" if "deficiency" in n else ""
         return f"ΔE00 {n['delta_e']:.2f} (α=1: {n['delta_e_ref']:.2f}){floor}{under}"
     if "output" in n and "sources" in n:  # the colours are in the colour column already
-        give = "both give" if len(str(n["sources"]).split(", ")) == 2 else "all give"
+        count = len(str(n["sources"]).split(", "))
+        give = "both give" if count == 2 else f"{count} colours all give"
         return f"{give} {n['output']}" + ("" if n.get("new") != "false" else " (also at α=1)")
     return f.message
 
 
 def _groups(findings: Sequence[Finding], roles: dict[str, str]) -> list[_Group]:
-    """Findings that differ only by icon merged; colour (first seen) then canvas order."""
+    """Findings that differ only by icon merged, in the order given (worst first)."""
     groups: dict[tuple[object, ...], _Group] = {}
     for f in findings:
         n = f.numbers
@@ -86,12 +96,20 @@ def _groups(findings: Sequence[Finding], roles: dict[str, str]) -> list[_Group]:
         role = roles.get(f.icons[0], "") if "source" in n else ""
         # confusion names its two roles (the numbers' "roles", comma-separated)
         colour = f"{role} {source}".strip() or str(n.get("roles", "")).replace(",", " / ")
-        key = (f.rule, colour, f.canvas, n.get("alpha"), n.get("output"))
+        key = (f.rule, colour, f.canvas, f.canvases, n.get("alpha"), n.get("output"))
         if key not in groups:
-            groups[key] = _Group(f.rule, colour, f.canvas or "", _numbers(f), f)
+            groups[key] = _Group(f.rule, colour, f.canvas or "", len(f.canvases), _numbers(f), f)
         groups[key].icons.extend(f.icons)
-    order = {c: k for k, c in enumerate(dict.fromkeys(g.colour for g in groups.values()))}
-    return sorted(groups.values(), key=lambda g: order[g.colour])  # stable: canvas order kept
+    return list(groups.values())
+
+
+def _where(f: Finding, options: RenderOptions) -> str:
+    """The line to edit: ``set.yaml:12`` (the finding's first location), or nothing."""
+    return location_text(f.locations[0], options.base) if f.locations else ""
+
+
+def _canvases(g: _Group) -> str:
+    return g.canvas if g.canvases <= 1 else f"{g.canvas} (worst) +{g.canvases - 1}"
 
 
 def _icons(names: Sequence[str]) -> str:
@@ -167,7 +185,6 @@ def render_markdown(
         key: _groups([f for f in gate.failures if (f.theme, f.iconset) == key], roles)
         for key, roles in all_roles.items()
     }
-    group_count = sum(map(len, per_audit.values()))
     if gate.passed:
         improved = sum(s.summary.newly_pass for s in audits)
         head = f"## ✅ alpha-audit: gate passed ({len(audits)} audit(s)"
@@ -175,11 +192,33 @@ def render_markdown(
     else:
         counts = ", ".join(f"{n} {escape_markdown(rule)}" for rule, n in gate.counts().items())
         head = (
-            f"## ❌ alpha-audit: gate failed: {group_count} failing group(s) "
-            f"({len(gate.failures)} finding(s): {counts}) in {len(failing_audits)} of "
-            f"{len(audits)} audit(s)"
+            f"## ❌ alpha-audit: gate failed: {len(gate.failures)} root cause(s) ({counts}) "
+            f"in {len(failing_audits)} of {len(audits)} audit(s)"
         )
     budget.add(MARKER, head, "", f"Rules: {rules}; max loss {gate.policy.max_loss:g}.", "")
+    by_rule = rule_summary(gate)
+    if by_rule:
+        budget.add(
+            "| rule | failing root causes | icons | reported, not gated | exempted | "
+            f"{'on the base' if _on_base(report) else 'baselined'} | worst |",
+            "|---|--:|--:|--:|--:|--:|---|",
+        )
+        for rs in by_rule:
+            worst = ""
+            if rs.worst is not None:
+                at = _where(rs.worst, options)
+                worst = f"{where_text(rs.worst)}: {_numbers(rs.worst)}" + (f" ({at})" if at else "")
+            cells = [
+                f"`{rs.rule.value}`",
+                str(rs.failing),
+                str(rs.icons),
+                str(rs.reported),
+                str(rs.exempted),
+                str(rs.baselined),
+                escape_markdown(worst),
+            ]
+            budget.add("| " + " | ".join(cells) + " |")
+        budget.add("")
     budget.add(
         "| theme | icon set | icons | α | verdict | failing groups | newly passing paint×canvas "
         "| collisions | unrendered |",
@@ -228,7 +267,8 @@ def render_markdown(
                 + " | ".join(
                     [
                         escape_markdown(g.colour),
-                        escape_markdown(g.canvas),
+                        escape_markdown(_where(g.first, options)),
+                        escape_markdown(_canvases(g)),
                         escape_markdown(g.rule.value),
                         escape_markdown(g.numbers),
                         escape_markdown(_icons(g.icons)),
@@ -239,8 +279,8 @@ def render_markdown(
             )
         _table(
             section,
-            "**Failing** (colour on canvas)",
-            "| colour | canvas | rule | numbers | icons | fix |",
+            "**Failing**, worst first (colour, the line that sets it, canvases)",
+            "| colour | set at | canvases | rule | numbers | icons | fix |",
             rows,
             left_out,
         )
@@ -260,14 +300,14 @@ def render_markdown(
         _table(
             section,
             "**Exempted**",
-            "| colour | canvas | rule | icons | reason |",
+            "| colour | canvases | rule | icons | reason |",
             [
                 "| "
                 + " | ".join(
                     escape_markdown(c)
                     for c in (
                         g.colour,
-                        g.canvas,
+                        _canvases(g),
                         g.rule.value,
                         _icons(g.icons),
                         g.first.exemption.reason if g.first.exemption else "",
@@ -280,7 +320,7 @@ def render_markdown(
         )
         baselined = sum(1 for f in gate.baselined if (f.theme, f.iconset) == key)
         if baselined:
-            section.add("", f"{baselined} finding(s) already in the baseline.")
+            section.add("", f"{baselined} root cause(s) {baselined_text(gate)}.")
         budget.force(*section.lines, "", "</details>")
 
     if report.gamut:
@@ -291,9 +331,11 @@ def render_markdown(
                 break
     if gate.stale:
         n = len(gate.stale)
-        budget.add(
-            "", f"{n} baseline {'entry no longer occurs' if n == 1 else 'entries no longer occur'}."
-        )
+        if _on_base(report):
+            budget.add("", f"{n} root cause(s) of the base revision fixed by this change.")
+        else:
+            gone = "entry no longer occurs" if n == 1 else "entries no longer occur"
+            budget.add("", f"{n} baseline {gone}.")
     for rule, title in (
         (Rule.UNRENDERABLE, "Icons that could not be rendered"),
         (Rule.FIXED_COLOUR, "Hard-coded paints (they will not follow the theme)"),
@@ -316,6 +358,11 @@ def render_markdown(
             "(`--format json`) and SARIF reports.",
         ]
     return "\n".join(lines) + "\n"
+
+
+def _on_base(report: CheckReport) -> bool:
+    """Whether the baseline is the base revision's findings (``check --base``)."""
+    return report.gate.baseline is not None and report.gate.baseline.kind == "base"
 
 
 def _groups_of_rows(

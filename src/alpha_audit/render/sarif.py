@@ -1,23 +1,27 @@
 """SARIF 2.1.0 for code-scanning dashboards (GitHub, GitLab, Azure DevOps).
 
-Each finding is a result pointing first at the line of each design token
-that sets a colour of the finding (icon colour, then canvas), then at the
-value that sets each icon's colour (its palette entry or token value, with
-columns), then at the manifest line that sets the icon's colour or alpha,
-then at the icon's SVG file (line 1: a drawing has no better line).  URIs are
-relative to ``%SRCROOT%`` and percent-encoded (RFC 3986); no absolute path
-of the machine appears.  Rule ids are opaque (``AA001`` ...), names
-readable, and each rule has ``help.markdown``.
+Each finding (one root cause, folded over canvases) is a result whose
+location is the line that sets its failing value
+(:attr:`~alpha_audit.findings.Finding.locations`: the ``alpha:`` that
+applies, the palette entry, colour or design token of its colour, the
+palette entries of both roles of a confusion), with the value's exact region
+where the loader knows it.  The other places (the other values, the manifest
+lines, the tokens of the canvas, the icon's SVG file at line 1: a drawing has no
+better line) are ``relatedLocations``.  URIs are relative to ``%SRCROOT%`` and
+percent-encoded (RFC 3986); no absolute path of the machine appears.  Rule
+ids are opaque (``AA001`` ...), names readable, and each rule has
+``help.markdown``.
 Exempted and baselined findings stay in the log with a ``suppressions`` entry
 (so dashboards show them as dismissed, with the reason), and every result has a
 ``partialFingerprints`` entry built from what a baseline matches on (theme,
-icon set, rule, canvas, icons), never from line numbers.
-Reported rules (hard-coded paints, icons that could not be rendered) are
-results of level ``note`` and ``warning``.  A failing finding whose fix is an
-exact edit of a written value (:attr:`~alpha_audit.findings.Finding.edits`: the
-icon's alpha, or the palette entry or token value of its colour) carries SARIF
-``fixes`` (3.55): one fix per answer, each replacing that value's region with
-the new value, quoted as it was.
+icon set, rule, icons), never from canvases or line numbers.
+Reported rules (hard-coded paints, icons that could not be rendered, losses
+that are reported but not gated) are results of level ``note`` and
+``warning``.  A failing finding whose fix is an exact edit of a written value
+(:attr:`~alpha_audit.findings.Finding.edits`: the icon's alpha, or the palette
+entry or token value of its colour) carries SARIF ``fixes`` (3.55): one fix
+per answer, each replacing that value's region with the new value, quoted as
+it was.
 Columns count Unicode code points (``run.columnKind``, 3.14.27).
 """
 
@@ -29,9 +33,15 @@ from pathlib import Path
 from typing import Any
 from urllib.parse import quote
 
-from alpha_audit.findings import Finding
-from alpha_audit.model import Edit, Icon, Span
-from alpha_audit.render.common import RenderOptions, dumps, finding_fix
+from alpha_audit.findings import Finding, Location
+from alpha_audit.model import Edit, Span
+from alpha_audit.render.common import (
+    RenderOptions,
+    baselined_text,
+    dumps,
+    finding_fix,
+    where_text,
+)
 from alpha_audit.results import CheckReport
 from alpha_audit.rules import RULES, Level, Rule
 
@@ -139,33 +149,17 @@ def _unique(locations: list[dict[str, Any]]) -> list[dict[str, Any]]:
     return list(out.values())
 
 
-# Rules judging the manifest colours themselves (their value is where a fix goes).
-_OWN_COLOUR_RULES = frozenset(
-    {
-        Rule.LOSS,
-        Rule.BELOW_THRESHOLD,
-        Rule.NEWLY_FAILING,
-        Rule.COLLISION,
-        Rule.NEW_COLLISION,
-        Rule.SEPARATION,
-    }
-)
-
-
 def _fingerprint(f: Finding) -> str:
-    theme, iconset, rule, canvas, icons = f.key
-    text = "\x1f".join([theme, iconset, rule, canvas or "", *icons])
+    theme, iconset, rule, icons = f.key
+    text = "\x1f".join([theme, iconset, rule, *icons])
     return hashlib.sha256(text.encode("utf-8")).hexdigest()[:32]
 
 
-def _colour_spans(f: Finding, icons: dict[str, Icon]) -> list[Span]:
-    """Where each icon's colour is written, for findings about the icons' own colour."""
-    if f.rule not in _OWN_COLOUR_RULES:
-        return []
-    if f.numbers.get("paint", "currentColor") != "currentColor":  # a colour the SVG fixes
-        return []
-    spans = [icons[n].color_span for n in f.icons if n in icons]
-    return list(dict.fromkeys(s for s in spans if s is not None))
+def _place(loc: Location, base: Path | None) -> dict[str, Any]:
+    """A location with the value's exact region when known, else its line."""
+    if loc.span is not None:
+        return _span_location(loc.span, base)
+    return _location(loc.file, base, loc.line)
 
 
 def _result(
@@ -174,44 +168,45 @@ def _result(
     base: Path | None,
     level: str = "error",
     fix: str | None = None,
-    icons: dict[str, Icon] | None = None,
     edits: tuple[Edit, ...] = (),
+    baselined: str = "in the baseline",
 ) -> dict[str, Any]:
-    where = f"{', '.join(f.icons)} on {f.canvas}" if f.canvas else ", ".join(f.icons)
-    locations = [_location(p, base) for p in f.files]
+    places = [_place(loc, base) for loc in f.locations]
+    places += [_location(path, base, line) for path, line in f.sources]
     if f.manifest is not None:
-        # The manifest lines that set the colour or alpha come first: that is
-        # where a fix goes (the SVG file is line 1 of the drawing).
-        locations = [_location(f.manifest, base, line) for line in f.lines] + locations
-    # The value that sets the colour (palette entry or token value) before those.
-    locations = [_span_location(s, base) for s in _colour_spans(f, icons or {})] + locations
-    # A colour set by a design token is fixed at the token's line, before all else.
-    locations = [_location(path, base, line) for path, line in f.sources] + locations
-    locations = _unique(locations)
+        places += [_location(f.manifest, base, line) for line in f.lines]
+    places += [_location(p, base) for p in f.files]
+    places = _unique(places)
+    if not places and f.manifest is not None:
+        places = [_location(f.manifest, base)]
     result: dict[str, Any] = {
         "ruleId": RULES[f.rule].sarif_id,
         "ruleIndex": index,
         "level": level,
         "message": {
-            "text": f"{where} ({f.theme} / {f.iconset}): {f.message}"
+            "text": f"{where_text(f)} ({f.theme} / {f.iconset}): {f.message}"
             + (f". Fix: {fix}" if fix else "")
         },
-        "locations": locations or ([_location(f.manifest, base)] if f.manifest else []),
-        "partialFingerprints": {"alphaAuditFinding/v1": _fingerprint(f)},
+        "locations": places[:1],
+        "partialFingerprints": {"alphaAuditFinding/v2": _fingerprint(f)},
         "properties": {
             "theme": f.theme,
             "iconset": f.iconset,
             "canvas": f.canvas,
+            "canvases": list(f.canvases),
             "icons": list(f.icons),
             **dict(f.numbers),
         },
     }
+    if len(places) > 1:
+        # 3.27.22: ids unique within the result; a reviewer's other places to look.
+        result["relatedLocations"] = [{"id": k, **loc} for k, loc in enumerate(places[1:], 1)]
     if edits:
         result["fixes"] = [_fix(e, base) for e in edits]
     if f.exemption is not None:
         result["suppressions"] = [{"kind": "external", "justification": f.exemption.reason}]
     elif f.baselined:
-        result["suppressions"] = [{"kind": "external", "justification": "in the baseline"}]
+        result["suppressions"] = [{"kind": "external", "justification": baselined}]
     return result
 
 
@@ -243,9 +238,7 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     rules = list(Rule)
     index = {r: i for i, r in enumerate(rules)}
     policy = report.gate.policy
-    icons = {
-        (a.theme.name, a.iconset.name): {i.name: i for i in a.iconset.icons} for a in report.audits
-    }
+    why = baselined_text(report.gate)
     results = [
         _result(
             f,
@@ -253,8 +246,8 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
             options.base,
             # Each failure's message ends with its fix, in the PR comment's words.
             fix=finding_fix(f, report) if f.fails else None,
-            icons=icons.get((f.theme, f.iconset)),
             edits=f.edits if f.fails else (),
+            baselined=why,
         )
         for f in report.gate.findings
     ]

@@ -3,11 +3,15 @@
 ``table`` (rich, fixed width), ``json`` (schema ``alpha-audit.suggest/2``,
 documented in ``docs/suggest.md``) and ``markdown`` (a pull-request comment).
 Output order is stable: canvases in theme order, colours in palette order,
-icons in manifest order.
+icons in manifest order.  A big set (more than :data:`MAX_ROWS` colours, pairs
+or icons) is summarised in the table and the comment: the colours and pairs
+with the smallest answers first, and per colour its worst icon; the JSON
+document always has every answer.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
 
 from rich import box
@@ -24,9 +28,17 @@ from alpha_audit.render.common import (
     shorten_names,
     to_text,
 )
-from alpha_audit.results import Limit, SafeAlpha, SuggestResult
+from alpha_audit.results import (
+    ColorSuggestion,
+    IconSuggestion,
+    Limit,
+    PairSuggestion,
+    SafeAlpha,
+    SuggestResult,
+)
 
 __all__ = [
+    "MAX_ROWS",
     "SCHEMA",
     "render_json",
     "render_markdown",
@@ -36,6 +48,9 @@ __all__ = [
 
 SCHEMA = "alpha-audit.suggest/2"
 _MAX_NAMES = 3  # icon names shown per cell in table and markdown; JSON has all
+# Rows per section of the table and the comment before it is summarised (Lucide's
+# 1,500 icons were 16,468 lines): the worst answers first, the rest in the JSON.
+MAX_ROWS = 25
 
 
 def _limit(limit: Limit | None) -> dict[str, Any] | None:
@@ -69,6 +84,8 @@ def suggest_document(result: SuggestResult) -> dict[str, Any]:
             "min_delta_e": policy.min_delta_e,
             "max_drift": policy.max_drift,
             "min_size_contrast": policy.min_size_contrast,
+            "visibility_floor": policy.visibility_floor,
+            "loss_tolerance": policy.loss_tolerance,
         },
         "threshold": result.threshold,
         "alpha_max": result.alpha_max,
@@ -127,6 +144,56 @@ def _headline(result: SuggestResult) -> str:
     )
 
 
+def _worst_first(alpha: float | None) -> tuple[bool, float]:
+    """Sort key: no safe alpha first, then the smallest answer."""
+    return (alpha is not None, alpha if alpha is not None else 0.0)
+
+
+@dataclass(frozen=True)
+class _Shown:
+    """What a big set's table and comment show: the worst answers, and what they leave out."""
+
+    colors: tuple[ColorSuggestion, ...]
+    pairs: tuple[PairSuggestion, ...]
+    icons: tuple[IconSuggestion, ...]
+    notes: tuple[str, ...]
+
+
+def _summarised(result: SuggestResult) -> _Shown:
+    """Every answer of a small set; of a big one, the worst per section and per colour.
+
+    Sections of at most :data:`MAX_ROWS` rows are shown whole, in their stable
+    order.  A longer one keeps its smallest answers; icons keep the worst icon
+    of each colour (the colours with the smallest first).
+    """
+    notes: list[str] = []
+
+    def worst(rows: tuple[Any, ...], what: str, alpha: Any) -> tuple[Any, ...]:
+        if len(rows) <= MAX_ROWS:
+            return rows
+        kept = tuple(sorted(rows, key=lambda r: _worst_first(alpha(r)))[:MAX_ROWS])
+        notes.append(f"{len(rows) - len(kept)} more {what} with larger answers: see --format json")
+        return kept
+
+    colors = worst(result.per_color, "colours", lambda c: c.safe.alpha)
+    pairs = worst(result.per_pair, "pairs of roles", lambda c: c.safe.alpha)
+    icons = result.per_icon
+    if len(icons) > MAX_ROWS:
+        per_colour: dict[str, IconSuggestion] = {}
+        for i in icons:
+            best = per_colour.get(i.color)
+            if best is None or _worst_first(i.safe.alpha) < _worst_first(best.safe.alpha):
+                per_colour[i.color] = i
+        chosen = sorted(per_colour.values(), key=lambda i: _worst_first(i.safe.alpha))
+        kept = tuple(chosen[:MAX_ROWS])
+        notes.append(
+            f"icons: the worst of each colour shown ({len(kept)} of {len(icons)} icons in "
+            f"{len(per_colour)} colours); every icon is in --format json"
+        )
+        icons = kept
+    return _Shown(colors, pairs, icons, tuple(notes))
+
+
 def literal(*cells: str) -> list[Text]:
     """Table cells shown as written: names from input files are never rich markup."""
     return [Text(c) for c in cells]
@@ -176,27 +243,29 @@ def render_table(result: SuggestResult, options: RenderOptions) -> str:
         ],
         with_canvas=False,
     )
+    shown = _summarised(result)
     colors = table(
         "Per colour (the others keep their alpha)",
         "colour",
         [[f"{c.color} {c.source}", _alpha(c.safe.alpha, p), *cells(c.safe.limit)]
-         for c in result.per_color],
+         for c in shown.colors],
     )  # fmt: skip
     pairs = table(
         "Per pair of roles that pull each other together (both move)",
         "colours",
         [[" and ".join(c.colors), _alpha(c.safe.alpha, p), *cells(c.safe.limit)]
-         for c in result.per_pair],
+         for c in shown.pairs],
     )  # fmt: skip
     icons = table(
         "Per icon (the others keep their alpha)",
         "icon",
-        [[i.icon, _alpha(i.safe.alpha, p), *cells(i.safe.limit)] for i in result.per_icon],
+        [[i.icon, _alpha(i.safe.alpha, p), *cells(i.safe.limit)] for i in shown.icons],
     )
     if result.overall.per_canvas:
         parts.append(canvases)
-    parts += [t for t, rows in ((colors, result.per_color), (pairs, result.per_pair),
-                               (icons, result.per_icon)) if rows]  # fmt: skip
+    parts += [t for t, rows in ((colors, shown.colors), (pairs, shown.pairs),
+                               (icons, shown.icons)) if rows]  # fmt: skip
+    parts += [Text(note) for note in shown.notes]
     if result.left_out:
         parts.append(Text(_left_out(result)))
     return to_text(Group(*parts), options)
@@ -230,15 +299,16 @@ def render_markdown(result: SuggestResult, options: RenderOptions) -> str:
     section(
         "Per canvas", "canvas", [(c.canvas, c.alpha, c.limit) for c in result.overall.per_canvas]
     )
-    section(
-        "Per colour", "colour", [(c.color, c.safe.alpha, c.safe.limit) for c in result.per_color]
-    )
+    shown = _summarised(result)
+    section("Per colour", "colour", [(c.color, c.safe.alpha, c.safe.limit) for c in shown.colors])
     section(
         "Per pair of roles (both move)",
         "colours",
-        [(" and ".join(c.colors), c.safe.alpha, c.safe.limit) for c in result.per_pair],
+        [(" and ".join(c.colors), c.safe.alpha, c.safe.limit) for c in shown.pairs],
     )
-    section("Per icon", "icon", [(i.icon, i.safe.alpha, i.safe.limit) for i in result.per_icon])
+    section("Per icon", "icon", [(i.icon, i.safe.alpha, i.safe.limit) for i in shown.icons])
+    if shown.notes:
+        lines += ["", *(escape_markdown(note) for note in shown.notes)]
     if result.left_out:
         lines += ["", escape_markdown(_left_out(result))]
     return "\n".join(lines) + "\n"

@@ -14,16 +14,19 @@ from rich.console import Group, RenderableType
 from rich.padding import Padding
 from rich.text import Text
 
-from alpha_audit.gate import GateResult
+from alpha_audit.gate import GateResult, rule_summary
 from alpha_audit.render.common import (
     RenderOptions,
+    baselined_text,
     display_path,
     finding_fix,
     fitted_table,
     gamut_line,
+    location_text,
     name_column,
     number_column,
     to_text,
+    where_text,
 )
 from alpha_audit.render.common import shorten_names as icons_label
 from alpha_audit.results import CheckReport
@@ -249,47 +252,67 @@ def _drift_note(result: AuditResult) -> str:
     return f"; colour drift up to {result.drift[p, j]:.1f} CIEDE2000 ({where} on {canvas})"
 
 
-def gate_renderable(gate: GateResult) -> RenderableType:
-    """The gate verdict: failures with rule, icon, canvas and numbers; exemptions; baseline."""
+def gate_renderable(gate: GateResult, base: Path | None = None) -> RenderableType:
+    """The verdict: one line per rule, then the failing root causes worst first.
+
+    Each root cause names its icons, its worst canvas (and how many more), the
+    line that sets its failing value and its numbers; then exemptions, the
+    baseline (or the base revision) and the notes the policy reports.
+    """
     out: list[RenderableType] = []
     rules = ", ".join(sorted(r.value for r in gate.policy.rules))
     failures = gate.failures
     if gate.vacuous:
         out.append(Text(f"Gate failed: no icon could be audited [{rules}]", style="bold red"))
     elif failures:
-        out.append(Text(f"Gate failed: {len(failures)} finding(s) [{rules}]", style="bold red"))
+        out.append(Text(f"Gate failed: {len(failures)} root cause(s) [{rules}]", style="bold red"))
+    else:
+        out.append(Text(f"Gate passed [{rules}]", style="bold green"))
+    for s in rule_summary(gate):
+        parts = [f"{s.failing} failing ({s.icons} icon{'s' * (s.icons != 1)})"]
+        parts += [
+            f"{n} {what}"
+            for n, what in (
+                (s.reported, "reported, not gated"),
+                (s.exempted, "exempted"),
+                (s.baselined, "baselined"),
+            )
+            if n
+        ]
+        out.append(Text(f"  {s.rule.value}: {', '.join(parts)}", style="bold" if s.failing else ""))
+    if failures:
+        out.append(Text("Worst first:"))
         for f in failures[:MAX_FINDINGS]:
-            where = f"{icons_label(f.icons)} on {f.canvas}" if f.canvas else icons_label(f.icons)
-            out.append(Text(f"  {f.rule.value}: {where} ({f.theme}): {f.message}"))
+            at = f" [{location_text(f.locations[0], base)}]" if f.locations else ""
+            out.append(
+                Text(safe_text(f"  {f.rule.value}: {where_text(f)} ({f.theme}){at}: {f.message}"))
+            )
         if len(failures) > MAX_FINDINGS:
             more = len(failures) - MAX_FINDINGS
             out.append(Text(f"  … and {more} more (see --format json or markdown)"))
-    else:
-        out.append(Text(f"Gate passed [{rules}]", style="bold green"))
     exempt, baselined = gate.exempted, gate.baselined
     if exempt and exempt[0].exemption is not None:
         reason = exempt[0].exemption.reason
-        out.append(Text(f"  {len(exempt)} exempted finding(s), e.g. {reason}"))
+        out.append(Text(f"  {len(exempt)} exempted root cause(s), e.g. {reason}"))
     if baselined:
-        out.append(Text(f"  {len(baselined)} finding(s) already in the baseline"))
+        out.append(Text(f"  {len(baselined)} root cause(s) {baselined_text(gate)}"))
     # Unrenderable icons are listed with their audit; the other warnings here.
     notes = [f for f in gate.warnings if f.rule is not Rule.UNRENDERABLE]
     if notes:
         out.append(Text(f"Notes ({len(notes)}), reported without failing the gate:"))
         for f in notes[:MAX_FINDINGS]:
-            out.append(Text(f"  {f.rule.value}: {icons_label(f.icons)}: {f.message}"))
+            out.append(Text(safe_text(f"  {f.rule.value}: {where_text(f)}: {f.message}")))
         if len(notes) > MAX_FINDINGS:
             more = len(notes) - MAX_FINDINGS
             out.append(Text(f"  … and {more} more (see --format json)"))
     if gate.stale:
-        out.append(
-            Text(
-                f"  {len(gate.stale)} baseline "
-                f"{'entry no longer occurs' if len(gate.stale) == 1 else 'entries no longer occur'}"
-                "; rewrite the baseline with --write-baseline",
-                style="yellow",
-            )
-        )
+        n = len(gate.stale)
+        if gate.baseline is not None and gate.baseline.kind == "base":
+            line = f"  {n} root cause(s) of the base revision fixed by this change"
+        else:
+            gone = "entry no longer occurs" if n == 1 else "entries no longer occur"
+            line = f"  {n} baseline {gone}; rewrite the baseline with --write-baseline"
+        out.append(Text(line, style="yellow"))
     return Group(*out)
 
 
@@ -314,13 +337,13 @@ def fixes_renderable(report: CheckReport) -> RenderableType | None:
 
 
 def render_report(report: CheckReport, options: RenderOptions) -> str:
-    """Every audit of the report, then the gate and how to fix it, at ``options.width``."""
-    parts: list[RenderableType] = []
+    """The gate, every audit of the report, then how to fix it, at ``options.width``."""
+    # The verdict and the worst root causes lead; each audit's figures follow.
+    parts: list[RenderableType] = [gate_renderable(report.gate, options.base), Text("")]
     for result in report.audits:
         parts += [check_renderable(result, options.base), Text("")]
     if report.gamut:
         parts += [gamut_renderable(report, options), Text("")]
-    parts.append(gate_renderable(report.gate))
     fixes = fixes_renderable(report)
     if fixes is not None:
         parts.append(fixes)
