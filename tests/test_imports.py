@@ -147,6 +147,27 @@ def test_import_alpha_audit_loads_nothing_else() -> None:
     ]
 
 
+def test_a_command_imports_only_its_own_module() -> None:
+    """``alpha-audit check`` starts without the browser drivers, the page audit or coloraide."""
+    code = (
+        "import sys\n"
+        "from alpha_audit.cli import main\n"
+        "try:\n"
+        "    main(['check', '--help'])\n"
+        "except SystemExit:\n"
+        "    pass\n"
+        "print(','.join(sorted(sys.modules)), file=sys.stderr)\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True, timeout=120
+    )
+    loaded = set(done.stderr.strip().split(","))
+    assert "alpha_audit.cli.check" in loaded and "Usage: alpha-audit check" in done.stdout
+    commands = {f"alpha_audit.cli.{name}" for name in ("render", "preview", "reproduce", "export")}
+    assert not loaded & commands
+    assert not {"alpha_audit.pages", "alpha_audit.browser", "coloraide", "websockets"} & loaded
+
+
 def test_every_public_name_resolves() -> None:
     for name in alpha_audit.__all__:
         assert getattr(alpha_audit, name) is not None, name

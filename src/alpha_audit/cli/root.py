@@ -18,8 +18,11 @@ from __future__ import annotations
 
 import errno
 import re
+import sys
 import traceback
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
+from functools import cache
+from importlib import import_module
 from typing import Annotated, Any, NoReturn
 
 import typer
@@ -27,22 +30,16 @@ from rich.text import Text
 from typer.core import TyperGroup
 
 from alpha_audit import __version__
-from alpha_audit.cli.check import check_command
 from alpha_audit.cli.console import stderr_console
-from alpha_audit.cli.export import export_command
 from alpha_audit.cli.flags import cli_message
 from alpha_audit.cli.options import ARGS, Command, untyped_flags
-from alpha_audit.cli.pair import pair_command
-from alpha_audit.cli.preview import preview_command
-from alpha_audit.cli.render import render_command
-from alpha_audit.cli.reproduce import reproduce_command
 from alpha_audit.cli.status import ExitStatus
-from alpha_audit.cli.suggest import suggest_command
-from alpha_audit.cli.themes import themes_command
 from alpha_audit.errors import AlphaAuditError
 from alpha_audit.safe_text import safe_text
 
-__all__ = ["ExitStatus", "app", "main"]
+__all__ = ["COMMANDS", "ExitStatus", "app", "application", "main"]
+
+app: typer.Typer  # every command, built on first use (module __getattr__ below)
 
 DEBUG_ENV = "ALPHA_AUDIT_DEBUG"
 
@@ -185,7 +182,33 @@ class _Group(TyperGroup):
         raise typer.Exit(status)
 
 
-app = typer.Typer(
+# Every command: its module and function, imported only when the command runs
+# (``render`` alone would add the browser drivers and coloraide to every start-up).
+COMMANDS = {
+    "check": "alpha_audit.cli.check:check_command",
+    "suggest": "alpha_audit.cli.suggest:suggest_command",
+    "preview": "alpha_audit.cli.preview:preview_command",
+    "pair": "alpha_audit.cli.pair:pair_command",
+    "reproduce": "alpha_audit.cli.reproduce:reproduce_command",
+    "themes": "alpha_audit.cli.themes:themes_command",
+    "export": "alpha_audit.cli.export:export_command",
+    "render": "alpha_audit.cli.render:render_command",
+}
+
+
+def application(commands: Iterable[str] = COMMANDS) -> typer.Typer:
+    """The ``alpha-audit`` application with ``commands`` registered, in :data:`COMMANDS` order."""
+    built = typer.Typer(**_SETTINGS)
+    built.callback()(_root)
+    wanted = set(commands)
+    for name, target in COMMANDS.items():
+        if name in wanted:
+            module, function = target.split(":")
+            built.command(name, cls=Command)(getattr(import_module(module), function))
+    return built
+
+
+_SETTINGS: dict[str, Any] = dict(
     cls=_Group,
     name="alpha-audit",
     help=(
@@ -216,7 +239,6 @@ def _version(value: bool) -> None:
 _RENDERING = frozenset({"check", "suggest"})
 
 
-@app.callback()
 def _root(
     ctx: typer.Context,
     version: Annotated[
@@ -243,16 +265,26 @@ def _root(
         ctx.obj = ctx.with_resource(render_pool())
 
 
-app.command("check", cls=Command)(check_command)
-app.command("suggest", cls=Command)(suggest_command)
-app.command("preview", cls=Command)(preview_command)
-app.command("pair", cls=Command)(pair_command)
-app.command("reproduce", cls=Command)(reproduce_command)
-app.command("themes", cls=Command)(themes_command)
-app.command("export", cls=Command)(export_command)
-app.command("render", cls=Command)(render_command)
+@cache
+def _every_command() -> typer.Typer:
+    return application()
+
+
+def __getattr__(name: str) -> Any:
+    """``app``: the application with every command (for typer's test runner and the docs)."""
+    if name == "app":
+        return _every_command()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def main(argv: Sequence[str] | None = None) -> None:
-    """Console-script entry point: run one command and exit with its status."""
-    app(args=None if argv is None else list(argv), prog_name="alpha-audit")
+    """Console-script entry point: run one command and exit with its status.
+
+    Only the command named is imported (the root options take no values, so it
+    is the first argument not starting with ``-``); anything else, help and
+    unknown names included, gets the application with every command.
+    """
+    args = sys.argv[1:] if argv is None else list(argv)
+    name = next((a for a in args if not a.startswith("-")), None)
+    chosen = application([name]) if name in COMMANDS else _every_command()
+    chosen(args=args, prog_name="alpha-audit")
