@@ -41,9 +41,11 @@ fixtures: $(STAMP)
 	@command -v npm >/dev/null 2>&1 && $(BIN)/python tools/page_fixtures.py >/dev/null \
 	  || echo "note: npm (Node.js 20.19+) is needed to build the test Storybook; tests/pages skips without it"
 
-## test: install, then lint (ruff and mypy), build and check the distributions, and run the whole test suite
+## test: install, then lint (ruff and mypy), build and check the distributions, and run the whole
+## test suite on one pytest-xdist worker per core (TEST_WORKERS=0: in one process, no xdist)
+TEST_WORKERS ?= auto
 test: lint browser dist fixtures
-	$(BIN)/pytest
+	ALPHA_AUDIT_DIST=$(CURDIR)/dist $(BIN)/pytest -n $(TEST_WORKERS) --dist loadgroup
 
 ## lint: ruff's lint and format checks, then mypy --strict on src/alpha_audit ([tool.mypy])
 lint: $(STAMP)

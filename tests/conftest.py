@@ -19,6 +19,35 @@ settings.register_profile("dev", deadline=None)
 settings.load_profile("ci" if os.environ.get("CI") else "dev")
 
 
+# Parallel runs (`make test`: pytest-xdist's `-n auto --dist loadgroup`): the tests of each
+# of these run on one worker, in order, so that what their module-scoped fixtures build is
+# built once: the distributions and their venvs, a browser per engine (the browser and
+# page tests share one group: engines are multi-threaded and their timeouts wall-clock),
+# a reproduction run, the hostile corpus's render, the example's masks.  Everything else
+# is handed out test by test.
+ONE_WORKER = {
+    "packaging/test_dists.py": "dists",
+    "browser/": "browsers",
+    "pages/": "browsers",
+    "reproduce/test_paper_figures.py": "reproduce-run",
+    "security/test_hostile.py": "hostile-corpus",
+    "preview/test_sheets.py": "example-masks",
+    "render/test_sarif_fixes.py": "sarif-fixes",
+}
+TESTS = Path(__file__).resolve().parent
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    for item in items:
+        if not item.path.is_relative_to(TESTS):
+            continue  # the doctests in src/
+        where = item.path.relative_to(TESTS).as_posix()
+        for prefix, group in ONE_WORKER.items():
+            if where.startswith(prefix):
+                item.add_marker(pytest.mark.xdist_group(group))
+                break
+
+
 @pytest.fixture(autouse=True, scope="session")
 def _own_render_cache(tmp_path_factory: pytest.TempPathFactory) -> None:
     """The suite's render cache: one folder for the session, never the user's."""

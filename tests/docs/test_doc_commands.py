@@ -11,6 +11,7 @@ purpose), never 2 or 3, and every file it writes must parse as its format.
 from __future__ import annotations
 
 import json
+import os
 import re
 import shlex
 import shutil
@@ -21,6 +22,8 @@ from pathlib import Path
 
 import pytest
 from PIL import Image
+
+from alpha_audit.load.render_cache import CACHE_DIR_ENV
 
 REPO = Path(__file__).resolve().parents[2]
 DOCS = [REPO / "README.md", *sorted((REPO / "docs").glob("*.md"))]
@@ -126,7 +129,14 @@ def test_documented_command_runs(where: str, folder: str, command: str, tmp_path
         capture_output=True,
         text=True,
         timeout=300,
-        env={"PATH": "/usr/bin:/bin", "HOME": str(tmp_path), "NO_COLOR": "1"},
+        # The session's render cache (conftest.py), so that the same icons are not drawn
+        # again for every command; HOME is the fresh folder, so nothing else carries over.
+        env={
+            "PATH": "/usr/bin:/bin",
+            "HOME": str(tmp_path),
+            "NO_COLOR": "1",
+            CACHE_DIR_ENV: os.environ[CACHE_DIR_ENV],
+        },
     )
     assert proc.returncode in (0, 1), f"{where}: {command}\n{proc.stderr}"
     assert "Traceback" not in proc.stderr

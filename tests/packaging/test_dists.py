@@ -44,12 +44,20 @@ def _ok(proc: subprocess.CompletedProcess[str]) -> subprocess.CompletedProcess[s
 
 @pytest.fixture(scope="module")
 def built(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
-    """``python -m build``'s sdist and wheel, and a wheelhouse of what they declare."""
+    """``python -m build``'s sdist and wheel, and a wheelhouse of what they declare.
+
+    ``make test`` has just built them (``make dist``: ``python -m build``, then ``twine
+    check``) and names the folder in ``$ALPHA_AUDIT_DIST``, so they are not built twice;
+    run alone, the test builds them itself.
+    """
     root = tmp_path_factory.mktemp("dist")
     dist, house = root / "dist", root / "wheelhouse"
-    _ok(_run([sys.executable, "-m", "build", "--outdir", str(dist), str(REPO)], cwd=root))
-    (sdist,) = dist.glob("alpha_audit-*.tar.gz")
-    (wheel,) = dist.glob("alpha_audit-*-py3-none-any.whl")
+    if os.environ.get("ALPHA_AUDIT_DIST"):
+        dist = Path(os.environ["ALPHA_AUDIT_DIST"])
+    else:
+        _ok(_run([sys.executable, "-m", "build", "--outdir", str(dist), str(REPO)], cwd=root))
+    (sdist,) = dist.glob(f"alpha_audit-{__version__}.tar.gz")
+    (wheel,) = dist.glob(f"alpha_audit-{__version__}-py3-none-any.whl")
     backend = tomllib.loads((REPO / "pyproject.toml").read_text())["build-system"]["requires"]
     pip = [sys.executable, "-m", "pip"]
     _ok(_run([*pip, "wheel", "-q", "-w", str(house), str(wheel)], cwd=root))

@@ -243,17 +243,22 @@ def _confused(
     alphas: np.ndarray,
     level: float,
     moving: int,
-) -> bool:
+) -> np.ndarray:
     """The gate's confusion rule written out, for the pairs of icon ``moving``: roles apart
-    with every icon at alpha 1, not at ``alphas``."""
-    shown = np.clip(bg[None] + alphas[:, None, None] * (linear[:, None, :] - bg[None]), 0, 1)
+    with every icon at alpha 1, not at ``alphas``.  ``alphas`` is ``(n,)`` (one set of
+    coefficients) or ``(steps, n)`` (a sweep, judged in one vectorised pass); the verdict
+    has the leading shape."""
+    alphas = np.asarray(alphas, dtype=np.float64)
+    k = alphas[..., :, None, None]  # (..., n, 1, 1) against (n, m, 3)
+    shown = np.clip(bg[None] + k * (linear[:, None, :] - bg[None]), 0, 1)  # (..., n, m, 3)
+    out = np.zeros(alphas.shape[:-1], dtype=bool)
     for i in range(len(roles)):
         for j in range(i + 1, len(roles)):
             if roles[i] != roles[j] and moving in (i, j):
                 d_ref = _de(*(np.broadcast_to(linear[x], bg.shape) for x in (i, j)))
-                if ((d_ref >= level) & (_de(shown[i], shown[j]) < level - TOL_DE)).any():
-                    return True
-    return False
+                d_now = _de(shown[..., i, :, :], shown[..., j, :, :])  # (..., m)
+                out |= ((d_ref >= level) & (d_now < level - TOL_DE)).any(axis=-1)
+    return out
 
 
 @pytest.mark.parametrize("seed", range(8))
@@ -278,7 +283,8 @@ def test_one_colour_moving_is_judged_against_every_role_at_alpha_1(seed: int) ->
             alphas[k] = 1.0
             assert _confused(linear, roles, theme.backgrounds, alphas, level + TOL_DE, k)
             continue
-        for a in np.append(np.arange(1.0, safe.alpha, 5e-3), safe.alpha):
-            alphas = held.copy()
-            alphas[k] = a
-            assert not _confused(linear, roles, theme.backgrounds, alphas, level, k), (k, a)
+        sweep = np.append(np.arange(1.0, safe.alpha, 5e-3), safe.alpha)
+        alphas = np.tile(held, (len(sweep), 1))
+        alphas[:, k] = sweep
+        confused = _confused(linear, roles, theme.backgrounds, alphas, level, k)
+        assert not confused.any(), (k, sweep[confused])
