@@ -136,6 +136,9 @@ def test_a_signal_mid_run_leaves_no_process_and_no_profile(project, tmp_path, si
         stdout=subprocess.DEVNULL,
         stderr=subprocess.PIPE,
         start_new_session=True,
+        # As from a terminal: a shell starts background jobs (a CI step run with &) with
+        # SIGINT ignored, and a program that finds it ignored keeps ignoring it.
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
     )  # fmt: skip
     # Mid-run: both browsers are up (their folders are in the run's TMPDIR).
     deadline = time.monotonic() + 60

@@ -124,6 +124,7 @@ class _Worker:
         self.guard = _Guard(config.timeout, config.memory_mb << 20)
         self.browser: Browser | None = None
         self.versions: dict[str, str] = {}
+        self._closing = threading.Lock()
 
     def _browser(self, job: Job) -> Browser:
         scheme = job.state.color_scheme
@@ -142,11 +143,15 @@ class _Worker:
         return self.browser
 
     def close_browser(self) -> None:
-        if self.browser is not None:
+        # The run's thread closes every worker on the way out (a signal, a failure)
+        # while the worker's own thread may be closing the same browser after the
+        # error that closing caused: only one of them takes it.
+        with self._closing:
+            browser, self.browser = self.browser, None
+        if browser is not None:
             # End the processes first: another thread may be mid-call on this browser.
-            self.browser.processes.close()
-            self.browser.close()
-            self.browser = None
+            browser.processes.close()
+            browser.close()
 
     def run(
         self, job: Job, index: ManifestIndex, threshold: float
