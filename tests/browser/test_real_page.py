@@ -28,7 +28,8 @@ from alpha_audit import load_iconset, load_theme, rasterize_icons
 from alpha_audit.browser import ENGINES, Browser
 from alpha_audit.color import parse_color, srgb_decode, to_8bit
 from alpha_audit.model import Icon, IconSet
-from alpha_audit.preview import composite_masks
+from alpha_audit.preview.compose import composite_drawings, solid_drawing
+from alpha_audit.preview.figures import solid_rows
 from alpha_audit.preview.html import preview_html
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -138,6 +139,13 @@ def _view(browser: Browser, limits: dict) -> dict:
     return view
 
 
+def _reference(iconset, stacks, size, linear, alpha, only=None):
+    """The CPU reference (float64, rounded half to even) of each icon drawn as one mask."""
+    keep = range(len(iconset.icons)) if only is None else [only]
+    drawings = [solid_drawing(iconset.icons[k], {size: stacks[size][k]}) for k in keep]
+    return composite_drawings(drawings, size, np.array(linear), alpha)
+
+
 def _check_view(view, iconset, stacks, size, canvases, alpha):
     """Every icon in its own box, exactly the CPU reference; gutters flat; labels name icons."""
     image = view["image"]
@@ -149,7 +157,7 @@ def _check_view(view, iconset, stacks, size, canvases, alpha):
         band = view["bands"][b]
         y0, y1 = round(band["y"]), round(band["y"] + band["h"])
         expected[y0:y1] = _hex_codes(hex_color)
-        cpu = composite_masks(stacks[size], iconset.sources, np.array(linear), alpha)
+        cpu = _reference(iconset, stacks, size, linear, alpha)
         for k in range(n):
             hit = view["hits"][f"{b}:{k}"]
             x, y = round(hit["x"]), round(hit["y"])
@@ -171,9 +179,7 @@ def _check_view(view, iconset, stacks, size, canvases, alpha):
         k = by_name[label["name"]]
         x = round(label["x"]) + (round(label["w"]) - size) // 2
         y = round(label["y"]) - 2 - size
-        cpu = composite_masks(
-            stacks[size][k : k + 1], iconset.sources[k : k + 1], np.array(canvases[b][0]), alpha
-        )[0]
+        cpu = _reference(iconset, stacks, size, canvases[b][0], alpha, only=k)[0]
         block = image[y : y + size, x : x + size].astype(np.int16)
         assert np.abs(block - cpu.astype(np.int16)).max() <= TOLERANCE, (
             f"label {label['name']} is not under it"
@@ -253,7 +259,8 @@ def many_icons(tmp_path_factory: pytest.TempPathFactory, generated_svgs):
     stacks = {s: np.stack([rendered.masks[(i.name, s)] for i in icons]) for s in (size, 48)}
     page = folder / "preview.html"
     page.write_text(
-        preview_html(theme, iconset, rendered.masks, sizes=[size, 48]), encoding="utf-8"
+        preview_html(theme, iconset, solid_rows(theme, iconset, rendered.masks), sizes=[size, 48]),
+        encoding="utf-8",
     )
     return theme, iconset, stacks, size, page
 
@@ -325,7 +332,10 @@ def three_thousand(tmp_path_factory: pytest.TempPathFactory):
         icons.append(Icon(name, Path(f"{name}.svg"), f"#{int(rng.integers(0, 1 << 24)):06x}", 1))
     iconset = IconSet("three-thousand", tuple(icons), sizes=(size,))
     page = tmp_path_factory.mktemp("three-thousand") / "big.html"
-    page.write_text(preview_html(theme, iconset, masks, sizes=[size]), encoding="utf-8")
+    page.write_text(
+        preview_html(theme, iconset, solid_rows(theme, iconset, masks), sizes=[size]),
+        encoding="utf-8",
+    )
     stacks = {size: np.stack([masks[(i.name, size)] for i in icons])}
     return theme, iconset, stacks, size, page
 

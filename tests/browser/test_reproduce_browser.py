@@ -152,7 +152,7 @@ def test_timing_is_the_preview_pages_renderer():
     loop = resources.files("alpha_audit.reproduce").joinpath("runtime.js").read_text()
     script = runtime_script()
     assert renderer in script and renderer in page_script()
-    for setup in ("getContext", "createProgram", "createShader", "#version", "texImage2D"):
+    for setup in ("getContext", "createProgram", "createShader", "#version", "texImage3D"):
         assert setup not in loop, setup
         assert script.count(setup) == renderer.count(setup) >= 1, setup
     assert "u_alpha * (s - b)" in script  # the paper's expression, Appendix A.2
