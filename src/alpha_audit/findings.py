@@ -54,6 +54,8 @@ __all__ = [
     "Finding",
     "FindingKey",
     "Location",
+    "alpha_location",
+    "colour_location",
     "cvd_collision_groups",
     "findings_for",
     "locked_rows",
@@ -142,6 +144,30 @@ class Finding:
         return self.level is Level.FAIL and self.exemption is None and not self.baselined
 
 
+def alpha_location(icon: Icon, manifest: Path | None) -> Location | None:
+    """Where ``icon``'s alpha is written: its own or override's, palette's, set's, config's."""
+    if icon.alpha_span is not None:
+        s = icon.alpha_span
+        return Location(s.file, s.start_line, "alpha", s)
+    if icon.alpha_line is not None and manifest is not None:
+        return Location(manifest, icon.alpha_line, "alpha")
+    return None
+
+
+def colour_location(icon: Icon, manifest: Path | None) -> Location | None:
+    """Where ``icon``'s colour is written: its design token, else its manifest value."""
+    span = icon.color_span
+    if icon.token_file is not None and icon.token_line is not None:
+        file = Path(icon.token_file)
+        exact = span if span is not None and span.file == file else None
+        return Location(file, icon.token_line, "token", exact)
+    if span is not None:
+        return Location(span.file, span.start_line, "colour", span)
+    if icon.color_line is not None and manifest is not None:
+        return Location(manifest, icon.color_line, "colour")
+    return None
+
+
 def _icon_refs(
     by_name: Mapping[str, Icon], names: Sequence[str]
 ) -> tuple[tuple[Path, ...], tuple[int, ...]]:
@@ -177,31 +203,16 @@ class _Collector:
     def alpha_at(self, name: str) -> Location | None:
         """Where the alpha of icon ``name`` is written (its own, palette's, set's, config's)."""
         if name not in self._alpha_at:
-            icon, manifest = self.by_name.get(name), self.result.iconset.path
-            found = None
-            if icon is not None and icon.alpha_span is not None:
-                s = icon.alpha_span
-                found = Location(s.file, s.start_line, "alpha", s)
-            elif icon is not None and icon.alpha_line is not None and manifest is not None:
-                found = Location(manifest, icon.alpha_line, "alpha")
+            icon = self.by_name.get(name)
+            found = None if icon is None else alpha_location(icon, self.result.iconset.path)
             self._alpha_at[name] = found
         return self._alpha_at[name]
 
     def colour_at(self, name: str) -> Location | None:
         """Where the colour of icon ``name`` is written: its token, else its manifest value."""
         if name not in self._colour_at:
-            icon, manifest = self.by_name.get(name), self.result.iconset.path
-            found = None
-            if icon is not None:
-                span = icon.color_span
-                if icon.token_file is not None and icon.token_line is not None:
-                    file = Path(icon.token_file)
-                    exact = span if span is not None and span.file == file else None
-                    found = Location(file, icon.token_line, "token", exact)
-                elif span is not None:
-                    found = Location(span.file, span.start_line, "colour", span)
-                elif icon.color_line is not None and manifest is not None:
-                    found = Location(manifest, icon.color_line, "colour")
+            icon = self.by_name.get(name)
+            found = None if icon is None else colour_location(icon, self.result.iconset.path)
             self._colour_at[name] = found
         return self._colour_at[name]
 
@@ -333,7 +344,7 @@ def findings_for(result: AuditResult, policy: Policy) -> list[Finding]:
     c = _Collector(result, policy)
     reported = policy.reported
     for rule in Rule:
-        if rule in reported:
+        if rule in reported and rule in _RULES:  # not those only a browser's pixels raise
             _RULES[rule](c, rule)
     return c.out
 
@@ -853,7 +864,7 @@ def severity(finding: Finding) -> tuple[int, float]:
         return 2, float(n.get("contrast", 0.0))
     if rule is Rule.LOSS:
         return 3, float(n.get("gain", 0.0))
-    if rule in (Rule.LOCK, Rule.DRIFT):
+    if rule in (Rule.LOCK, Rule.DRIFT, Rule.RENDER_DRIFT):
         return 4, -float(n.get("drift", 0.0))
     if rule in (Rule.SEPARATION, Rule.THIN_STROKES):
         return 5, float(n.get("delta_e", n.get("size_contrast", 0.0)))

@@ -21,6 +21,9 @@ from alpha_audit.errors import UsageError
 __all__ = [
     "DEFAULT_RULES",
     "DEFAULT_WARNINGS",
+    "RENDER_DEFAULT_RULES",
+    "RENDER_DEFAULT_WARNINGS",
+    "RENDER_RULES",
     "RULES",
     "Level",
     "Rule",
@@ -48,6 +51,7 @@ class Rule(StrEnum):
     THIN_STROKES = "thin-strokes"
     CVD_COLLISION = "cvd-collision"
     CVD_CONFUSION = "cvd-confusion"
+    RENDER_DRIFT = "render-drift"
 
     @classmethod
     def parse(cls, text: str, flag: str | None = None) -> Rule:
@@ -82,8 +86,10 @@ class RuleSpec:
     ``sarif_id`` is opaque and stable (SARIF 2.1.0, 3.49.3: ``ruleId`` should
     not be the readable name, which lives in ``name``): never renumber,
     dashboards key on it.  ``severity`` is GitLab Code Quality's; ``default``
-    what the gate does without a policy; ``help`` one line for ``--help`` and
-    code-scanning dashboards; ``fix`` what to do about a finding.
+    what ``check``'s gate does without a policy, ``render`` what ``alpha-audit
+    render``'s gate does (``None``: rows measured in a browser never raise it);
+    ``help`` one line for ``--help`` and code-scanning dashboards; ``fix`` what
+    to do about a finding.
     """
 
     rule: Rule
@@ -92,6 +98,7 @@ class RuleSpec:
     default: Level
     help: str
     fix: str
+    render: Level | None = None
 
 
 # Contrast that no longer meets the threshold is what the gate exists for;
@@ -116,6 +123,8 @@ _SPECS = (
         "The paint is below the contrast threshold on this canvas at its alpha.",
         "Raise the icon's `alpha` above 1 where that helps, or pick a source colour with "
         "more contrast on this canvas.",
+        # On a page the worst measured pixel is the contrast shown: the gate exists for it.
+        render=Level.FAIL,
     ),
     RuleSpec(
         Rule.NEWLY_FAILING,
@@ -226,10 +235,29 @@ _SPECS = (
         "Two roles are no longer told apart under simulated colour blindness.",
         "Separate the two roles in lightness (CVD keeps lightness), or lower the `alpha`.",
     ),
+    # Only a browser draws it (render); reported by default: a page drawing another
+    # colour than the manifest's is often meant (a themed override), and the contrast
+    # rules judge what it draws either way.
+    RuleSpec(
+        Rule.RENDER_DRIFT,
+        "AA016",
+        "minor",
+        Level.OFF,
+        "The browser draws the icon in another colour than the model predicts from the "
+        "manifest (CIEDE2000 above the render-drift tolerance): a CSS override, a hard-coded "
+        "fill, a color-mix() chain.",
+        "Paint the icon with the manifest's colour (`currentColor` from the theme token), or "
+        "write the colour the page draws into the manifest so `check` audits it.",
+        render=Level.WARN,
+    ),
 )
 RULES: dict[Rule, RuleSpec] = {spec.rule: spec for spec in _SPECS}
 DEFAULT_RULES = frozenset(r for r, s in RULES.items() if s.default is Level.FAIL)
 DEFAULT_WARNINGS = frozenset(r for r, s in RULES.items() if s.default is Level.WARN)
+# The rules ``alpha-audit render`` can raise from measured paints, and its defaults.
+RENDER_RULES = tuple(r for r, s in RULES.items() if s.render is not None)
+RENDER_DEFAULT_RULES = frozenset(r for r, s in RULES.items() if s.render is Level.FAIL)
+RENDER_DEFAULT_WARNINGS = frozenset(r for r, s in RULES.items() if s.render is Level.WARN)
 
 
 def did_you_mean(name: str, known: Iterable[str]) -> str:
@@ -241,12 +269,14 @@ def did_you_mean(name: str, known: Iterable[str]) -> str:
 def rules_table() -> str:
     """The Markdown table of every rule (``docs/rules.md`` holds it; a test compares)."""
     lines = [
-        "| rule | SARIF id | default | GitLab severity | what it objects to | the fix |",
-        "| --- | --- | --- | --- | --- | --- |",
+        "| rule | SARIF id | default | in `render` | GitLab severity | what it objects to "
+        "| the fix |",
+        "| --- | --- | --- | --- | --- | --- | --- |",
     ]
     for s in _SPECS:
+        render = "—" if s.render is None else s.render.value
         lines.append(
-            f"| `{s.rule.value}` | {s.sarif_id} | {s.default.value} | {s.severity} | "
+            f"| `{s.rule.value}` | {s.sarif_id} | {s.default.value} | {render} | {s.severity} | "
             f"{s.help} | {s.fix} |"
         )
     return "\n".join(lines) + "\n"

@@ -54,6 +54,8 @@ def project(site: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
     (root / ".git").mkdir()
     shutil.copytree(site / "storybook-static", root / "storybook-static")
     shutil.copytree(site / "page", root / "page")
+    # The stories' sources, where index.json's importPath names them (findings point there).
+    shutil.copytree(site / "stories", root / "stories")
     (root / "icons" / "svg").mkdir(parents=True)
     for name in ICONS:
         shutil.copy(site / "node_modules/lucide-static/icons" / f"{name}.svg", root / "icons/svg")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, TypeVar, cast
 
 import typer
 
@@ -34,15 +34,21 @@ from alpha_audit.cli.options import (
 )
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.ranges import ALPHA
-from alpha_audit.render import CheckFormat, RenderOptions
+from alpha_audit.render import CheckFormat, Format, RenderOptions
 from alpha_audit.render.common import check_suffix
 
 __all__ = ["check_command", "pair_outputs"]
 
 
+FormatT = TypeVar("FormatT", bound=Format)
+
+
 def pair_outputs(
-    formats: list[CheckFormat], outputs: list[Path], order: list[str] | None = None
-) -> list[tuple[CheckFormat, Path | None]]:
+    formats: list[FormatT],
+    outputs: list[Path],
+    order: list[str] | None = None,
+    default: FormatT | None = None,
+) -> list[tuple[FormatT, Path | None]]:
     """Give each ``--output`` to the ``--format`` before it (``-`` or none: stdout).
 
     ``order`` is ``"format"`` / ``"output"`` per option as given on the command
@@ -54,7 +60,8 @@ def pair_outputs(
     """
     from alpha_audit.errors import UsageError
 
-    formats = formats or [CheckFormat.TABLE]
+    if not formats:  # check's table unless the command names its own default
+        formats = [default] if default is not None else cast(list[FormatT], [CheckFormat.TABLE])
     targets: list[Path | None] = [None] * len(formats)
     if (len(outputs) <= 1 and len(formats) == 1) or order is None:
         if len(outputs) > len(formats):

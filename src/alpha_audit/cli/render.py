@@ -1,75 +1,43 @@
-"""``alpha-audit render``: audit icons as a browser draws them (provisional).
+"""``alpha-audit render``: audit icons as a browser draws them, and gate on what they show.
 
-Prints the measured paints (:mod:`alpha_audit.pages`) as a table or as JSON
-(``alpha-audit.render/1``).  Until the measured paints become paint rows, this
-command has no gate: it exits 0 when every page and state was audited, 2 when
-the input is unusable or a page could not be audited (one line says which).
+Parses flags, runs the page audit (:func:`alpha_audit.pages.audit_pages`),
+judges it with the one gate (:func:`alpha_audit.pages.report.judge_pages`) and
+writes each ``--format`` with the renderers of :class:`RenderFormat`.  Exit 0
+passed, 1 the gate failed, 2 bad input or a page state that could not be
+audited (one line says which), 3 a bug.
 """
 
 from __future__ import annotations
 
-import enum
 from collections.abc import Sequence
+from dataclasses import replace
 from pathlib import Path
-from typing import Annotated, assert_never
+from typing import Annotated
 
 import typer
-from rich import box
 
 from alpha_audit import ranges
 from alpha_audit.browser import COLOR_SCHEMES
 from alpha_audit.cli.console import emit, progress_bar, stderr_note, stdout_options
-from alpha_audit.cli.options import ConfigOption, ForceOption, in_range
+from alpha_audit.cli.options import (
+    ARGS,
+    ConfigOption,
+    ForceOption,
+    flag,
+    given_order,
+    in_range,
+    rules_flag,
+)
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.errors import UsageError
 from alpha_audit.pages.states import State, state_matrix
+from alpha_audit.render import RenderFormat, RenderOptions
+from alpha_audit.rules import RENDER_DEFAULT_RULES, RENDER_RULES, RULES
 
-__all__ = ["RenderFormat", "render_command"]
+__all__ = ["render_command"]
 
-
-class RenderFormat(enum.StrEnum):
-    """What ``render`` prints."""
-
-    TABLE = "table"
-    JSON = "json"
-
-
-def _figure(value: float | None) -> str:
-    return "-" if value is None else f"{value:.2f}"
-
-
-def _table_text(result: object) -> str:
-    from alpha_audit.pages import RenderResult
-    from alpha_audit.render.common import fitted_table, name_column, number_column, to_text
-
-    assert isinstance(result, RenderResult)
-    rows = []
-    for p in result.paints:
-        linear, css = p.prediction("linear"), p.prediction("css")
-        rows.append(
-            (
-                p.source,
-                p.state,
-                p.icon or p.dom_path.rsplit(" > ", 1)[-1],
-                p.drawn or "-",
-                p.behind or "-",
-                _figure(p.contrast_worst),
-                _figure(p.contrast_median),
-                _figure(linear.contrast if linear else None),
-                _figure(css.contrast if css else None),
-                _figure(p.render_drift),
-            )
-        )
-    columns = [name_column("source", 8), name_column("state", 5), name_column("icon", 6)]
-    columns += [number_column(h, "left") for h in ("drawn", "behind")]
-    columns += [number_column(h) for h in ("worst", "median", "linear", "css", "drift")]
-    table = fitted_table(columns, rows, box=box.SIMPLE_HEAD, pad_edge=False)
-    summary = (
-        f"{result.audited} page states, {result.icons} icons, {len(result.paints)} paints; "
-        f"{len(result.failing)} below {result.paints[0].threshold if result.paints else 3:g}:1 "
-        f"at their worst pixel; {len(result.blocked)} requests blocked\n"
-    )
-    return to_text(table, stdout_options()) + summary
+_ORDER = {"format": ("-f", "--format"), "output": ("-o", "--output")}
+_NOT_RENDER = tuple(r.value for r in RULES if r not in RENDER_RULES)
 
 
 def parse_globals(text: str) -> tuple[tuple[str, str], ...]:
@@ -114,6 +82,7 @@ def states_from_flags(
 
 
 def render_command(
+    ctx: typer.Context,
     sources: Annotated[
         list[str] | None,
         typer.Argument(
@@ -170,33 +139,89 @@ def render_command(
             show_default="30",
         ),
     ] = None,
+    fail_on: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--fail-on",
+            metavar="RULE",
+            help="Rule that fails the gate (repeatable; replaces the policy): "
+            + ", ".join(r.value for r in RENDER_RULES)
+            + " (docs/rules.md).",
+            show_default="the render: table's, else "
+            + ", ".join(r.value for r in RENDER_RULES if r in RENDER_DEFAULT_RULES),
+            callback=rules_flag("--fail-on", _NOT_RENDER, "it is a rule of check"),
+        ),
+    ] = None,
+    exit_zero: Annotated[
+        bool, flag("--exit-zero", help="Report findings but exit 0 even if the gate fails.")
+    ] = False,
     fmt: Annotated[
-        RenderFormat,
-        typer.Option("--format", "-f", help="table or json.", case_sensitive=False),
-    ] = RenderFormat.TABLE,
+        list[RenderFormat] | None,
+        typer.Option(
+            "--format",
+            "-f",
+            metavar="FORMAT",
+            help=f"Report format (repeatable): {', '.join(RenderFormat)}.",
+            case_sensitive=False,
+            show_default=RenderFormat.TABLE.value,
+        ),
+    ] = None,
     output: Annotated[
-        Path | None, typer.Option("--output", "-o", help="Write the report to FILE.")
+        list[Path] | None,
+        typer.Option(
+            "--output",
+            "-o",
+            metavar="PATH",
+            help="File for the --format before it ('-' = stdout; repeatable).",
+            show_default="stdout",
+        ),
+    ] = None,
+    baseline: Annotated[
+        Path | None,
+        typer.Option(
+            "--baseline",
+            help="Fail only on findings not in this baseline file.",
+            show_default="the render: table's baseline:",
+        ),
+    ] = None,
+    write_baseline: Annotated[
+        Path | None,
+        typer.Option("--write-baseline", help="Record today's findings as a baseline file."),
     ] = None,
     config: ConfigOption = None,
     force: ForceOption = False,
 ) -> ExitStatus:
-    """Audit icons as a browser draws them, in every state (provisional: no gate yet).
+    """Audit icons as a browser draws them, in every state, and gate on the contrast shown.
 
     Each page or story is loaded in each state (Storybook globals,
     prefers-color-scheme, a class or attribute on <html>), captured twice at
     device scale 2 (icons drawn, icons hidden) and every icon paint measured
     from the pixels: drawn colour, backdrop, WCAG contrast (worst and median
     pixel), and the model's prediction under the linear and css pipelines.
+    below-threshold (worst pixel under 3:1) fails the gate; render-drift
+    (the page draws another colour than the manifest) is reported.
     Pages reach nothing but loopback.
+
+    Exit codes: 0 the gate passed, 1 the gate failed, 2 bad input or a page
+    that could not be audited, 3 a bug.
 
     [bold]alpha-audit render storybook-static --globals theme:light --globals theme:dark[/]
     """
+    from alpha_audit.cli.check import pair_outputs
+    from alpha_audit.gate import baseline_document
+    from alpha_audit.load.baseline import read_baseline
     from alpha_audit.load.iconset import load_iconset
+    from alpha_audit.load.paths import project_root
+    from alpha_audit.output import Output, check_targets, write_files
     from alpha_audit.pages import audit_pages
     from alpha_audit.pages.config import resolve_render_config
-    from alpha_audit.pages.report import render_document
+    from alpha_audit.pages.report import judge_pages
     from alpha_audit.render.common import dumps
 
+    order = given_order(ctx.meta.get(ARGS, ()), _ORDER)
+    pairs = pair_outputs(list(fmt or [RenderFormat.TABLE]), list(output or []), order)
+    files = [out for _, out in pairs if out is not None] + [write_baseline] * bool(write_baseline)
+    check_targets([f for f in files if f is not None], overwrite=force)  # before the work
     settings = resolve_render_config(
         sources or [],
         config_path=config,
@@ -205,12 +230,17 @@ def render_command(
         states=states_from_flags(
             globals_values or [], color_scheme or [], html_attribute or [], html_class or []
         ),
+        fail_on=fail_on or (),
         selector=selector,
         engines=tuple(dict.fromkeys(engine)) if engine else None,
         iconset=iconset,
         workers=workers,
         timeout=timeout,
+        baseline=baseline,
     )
+    known = None
+    if settings.baseline is not None and write_baseline is None:
+        known = read_baseline(settings.baseline)
     manifest = load_iconset(settings.iconset) if settings.iconset is not None else None
     with progress_bar("rendering") as (start, advance):
         started = False
@@ -223,13 +253,20 @@ def render_command(
             advance()
 
         result = audit_pages(settings, manifest, progress=progress)
-    match fmt:
-        case RenderFormat.TABLE:
-            emit(_table_text(result), output, force)
-        case RenderFormat.JSON:
-            emit(dumps(render_document(result)), output, force)
-        case _:
-            assert_never(fmt)
+    report = judge_pages(result, settings.policy, manifest, baseline=known)
+    root = project_root(Path.cwd())
+    outputs, stdout_text = [], None
+    for kind, out in pairs:
+        if out is None:
+            stdout_text = kind.renderer()(report, replace(stdout_options(), base=root))
+        else:
+            outputs.append(Output.text(out, kind.renderer()(report, RenderOptions(base=root))))
+    if write_baseline is not None:
+        outputs.append(Output.text(write_baseline, dumps(baseline_document(report.gate))))
+    for path in write_files(outputs, overwrite=force):
+        stderr_note(f"wrote {'baseline ' if path == write_baseline else ''}{path}")
+    if stdout_text is not None:
+        emit(stdout_text, None, force)
     if result.blocked:
         stderr_note(f"{len(result.blocked)} requests to anything but the pages' server blocked")
     if result.problems:
@@ -239,4 +276,10 @@ def render_command(
             f"audited; first: {first.source} [{first.state}, {first.engine}]: {first.message}"
         )
         return ExitStatus.INPUT_ERROR
-    return ExitStatus.OK
+    gate = report.gate
+    if write_baseline is not None or gate.passed:
+        stderr_note("gate passed" if gate.passed else "baseline written")
+        return ExitStatus.OK
+    counts = ", ".join(f"{n} {rule}" for rule, n in gate.counts().items())
+    stderr_note(f"gate failed: {counts}" + (" (--exit-zero)" if exit_zero else ""))
+    return ExitStatus.OK if exit_zero else ExitStatus.GATE_FAILED

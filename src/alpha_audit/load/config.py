@@ -46,6 +46,8 @@ __all__ = [
     "find_config",
     "load_config",
     "project_config",
+    "read_levels",
+    "read_rules",
     "resolve_config",
 ]
 
@@ -295,7 +297,8 @@ def _path(doc: YamlDoc, keys: KeyPath, value: Any, base: Path) -> Path:
     return resolved
 
 
-def _rules(doc: YamlDoc, keys: KeyPath, value: Any) -> frozenset[Rule]:
+def read_rules(doc: YamlDoc, keys: KeyPath, value: Any) -> frozenset[Rule]:
+    """A ``fail-on:`` list of rule names (at least one)."""
     items = [value] if isinstance(value, str) else value
     if not isinstance(items, list):
         raise doc.error(keys, f"expected a list of rules, got {describe(value)}")
@@ -313,15 +316,20 @@ def _rules(doc: YamlDoc, keys: KeyPath, value: Any) -> frozenset[Rule]:
     return frozenset(rules)
 
 
-def _levels(doc: YamlDoc, keys: KeyPath, value: Any) -> tuple[frozenset[Rule], frozenset[Rule]]:
+def read_levels(
+    doc: YamlDoc,
+    keys: KeyPath,
+    value: Any,
+    defaults: tuple[frozenset[Rule], frozenset[Rule]] = (DEFAULT_RULES, DEFAULT_WARNINGS),
+) -> tuple[frozenset[Rule], frozenset[Rule]]:
     """``rules: {loss: fail, drift: warn, unrenderable: off}`` over the defaults.
 
     Returns the failing and the reported rules.  A rule not named keeps its
-    default (docs/rules.md); YAML 1.1 reads a bare ``off`` as false, which
-    means ``off`` here too.
+    default (``defaults``: failing and reported; docs/rules.md); YAML 1.1 reads
+    a bare ``off`` as false, which means ``off`` here too.
     """
     table = read_mapping(doc, keys, value, "rules {rule: off, warn or fail}")
-    fail, warn = set(DEFAULT_RULES), set(DEFAULT_WARNINGS)
+    fail, warn = set(defaults[0]), set(defaults[1])
     allowed = ", ".join(level.value for level in Level)
     for name, level in table.items():
         try:
@@ -366,7 +374,7 @@ def _exemptions(doc: YamlDoc, keys: KeyPath, value: Any) -> tuple[Exemption, ...
             raise doc.error(ikeys, "an exemption names a canvas, an icon or both")
         rule = None
         if "rule" in item:
-            rule = next(iter(_rules(doc, (*ikeys, "rule"), [item["rule"]])))
+            rule = next(iter(read_rules(doc, (*ikeys, "rule"), [item["rule"]])))
         out.append(
             Exemption(
                 reason=reason.strip(),
@@ -423,9 +431,9 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
             at("rules"), "give fail-on: or rules:, not both (rules: {loss: fail} says the same)"
         )
     if "fail-on" in data:
-        rules = _rules(doc, at("fail-on"), data["fail-on"])
+        rules = read_rules(doc, at("fail-on"), data["fail-on"])
     if "rules" in data:
-        rules, warnings = _levels(doc, at("rules"), data["rules"])
+        rules, warnings = read_levels(doc, at("rules"), data["rules"])
     limits = {}
     for key, allowed in (
         ("visibility-floor", ranges.CONTRAST_RATIO),

@@ -14,7 +14,13 @@ render:
   selector: ".icon"                # more elements to treat as icons
   engines: [chromium]              # firefox and webkit on request
   iconset: icons/iconset.yaml      # the manifest icons are mapped to
+  rules: {render-drift: fail}      # the gate, over render's defaults (or fail-on: [...])
+  baseline: render-baseline.json   # findings accepted (alpha-audit.baseline/2)
 ```
+
+The gate's rules are render's own (``below-threshold`` fails, ``render-drift``
+is reported: each rule's ``render`` level in :mod:`alpha_audit.rules`); the
+top-level ``rules:``, ``fail-on:`` and ``baseline:`` are ``check``'s.
 
 Paths are relative to the config file and must stay inside its folder.
 """
@@ -32,6 +38,7 @@ from alpha_audit.errors import UsageError
 from alpha_audit.load.fields import check_keys, describe, read_mapping, read_name, read_number
 from alpha_audit.load.paths import PathRefused, contain_argument, project_root
 from alpha_audit.load.yamldoc import KeyPath, YamlDoc, load_yaml
+from alpha_audit.pages.report import RENDER_POLICY
 from alpha_audit.pages.sources import (
     FolderSource,
     Source,
@@ -40,6 +47,8 @@ from alpha_audit.pages.sources import (
     check_loopback_url,
 )
 from alpha_audit.pages.states import State, state_matrix
+from alpha_audit.policy import Policy
+from alpha_audit.rules import RENDER_RULES, Rule
 
 __all__ = [
     "RENDER_KEYS",
@@ -51,11 +60,14 @@ __all__ = [
 
 RENDER_KEYS = (
     "attribute",
+    "baseline",
     "engines",
+    "fail-on",
     "iconset",
     "max-icon-size",
     "memory-mb",
     "pages",
+    "rules",
     "scale",
     "selector",
     "states",
@@ -82,7 +94,9 @@ class RenderConfig:
     antialiasing finely enough for "fully covered" to mean something);
     ``timeout`` bounds each page and state in seconds, ``memory_mb`` each
     browser's resident memory (every process of it); ``max_icon_size`` in CSS
-    pixels keeps illustrations out of the icons.
+    pixels keeps illustrations out of the icons.  ``policy`` is the gate's
+    (render's defaults, the table's ``rules:`` or ``fail-on:``, ``--fail-on``)
+    and ``baseline`` the file of accepted findings.
     """
 
     sources: tuple[Source, ...]
@@ -99,6 +113,8 @@ class RenderConfig:
     memory_mb: int = 2048
     workers: int = field(default_factory=_default_workers)
     threshold: float = 3.0
+    policy: Policy = RENDER_POLICY
+    baseline: Path | None = None
 
     def with_overrides(self, **changes: Any) -> RenderConfig:
         """A copy with the given fields replaced where the value is not ``None``."""
@@ -130,13 +146,13 @@ def _list(doc: YamlDoc, keys: KeyPath, value: Any) -> list[Any]:
     return items
 
 
-def _folder(doc: YamlDoc, keys: KeyPath, value: Any, base: Path) -> Path:
+def _folder(doc: YamlDoc, keys: KeyPath, value: Any, base: Path, what: str = "folder") -> Path:
     if not isinstance(value, str) or not value.strip() or "\x00" in value:
-        raise doc.error(keys, f"expected a folder relative to the config, got {describe(value)}")
+        raise doc.error(keys, f"expected a {what} relative to the config, got {describe(value)}")
     pure = PurePosixPath(value.replace("\\", "/"))
     resolved = (base / pure).resolve()
     if pure.is_absolute() or not resolved.is_relative_to(base):
-        raise doc.error(keys, f"{value!r} is outside {base}; give a folder inside it")
+        raise doc.error(keys, f"{value!r} is outside {base}; give a {what} inside it")
     return resolved
 
 
@@ -221,6 +237,42 @@ def _states(doc: YamlDoc, keys: KeyPath, value: Any) -> tuple[State, ...]:
     )
 
 
+def render_rules(rules: frozenset[Rule], where: str) -> frozenset[Rule]:
+    """``rules`` if render can raise each of them, else a usage error naming ``where``."""
+    for rule in rules:
+        if rule not in RENDER_RULES:
+            raise UsageError(
+                f"{where}: {rule.value} is a rule of check; render's rules are "
+                f"{', '.join(r.value for r in RENDER_RULES)}"
+            )
+    return rules
+
+
+def _policy(doc: YamlDoc, keys: KeyPath, data: dict[str, Any]) -> Policy:
+    """The gate of the render table: render's defaults, its ``rules:`` or ``fail-on:``."""
+    from alpha_audit.load.config import read_levels, read_rules
+
+    if "fail-on" in data and "rules" in data:
+        raise doc.error((*keys, "rules"), "give fail-on: or rules:, not both")
+    policy = RENDER_POLICY
+    try:
+        if "fail-on" in data:
+            rules = read_rules(doc, (*keys, "fail-on"), data["fail-on"])
+            policy = replace(policy, rules=render_rules(rules, "fail-on"))
+        if "rules" in data:
+            defaults = (RENDER_POLICY.rules, RENDER_POLICY.warnings)
+            fail, warn = read_levels(doc, (*keys, "rules"), data["rules"], defaults)
+            policy = replace(
+                policy, rules=render_rules(fail, "rules"), warnings=render_rules(warn, "rules")
+            )
+    except UsageError as exc:
+        if exc.path is not None:
+            raise
+        key = "fail-on" if "fail-on" in data else "rules"
+        raise doc.error((*keys, key), exc.message) from exc
+    return policy
+
+
 def _whole(doc: YamlDoc, keys: KeyPath, value: Any, low: int, high: int) -> int:
     number = read_number(doc, keys, value, low=low, high=high, what=f"a whole number {low}-{high}")
     if number != int(number):
@@ -258,7 +310,9 @@ def config_from_yaml(path: Path) -> RenderConfig | None:
         except UsageError as exc:
             raise doc.error((*at("urls"), i), exc.message) from None
     config = RenderConfig(tuple(sources), root=project_root(base))
-    changes: dict[str, Any] = {}
+    changes: dict[str, Any] = {"policy": _policy(doc, keys, data)}
+    if "baseline" in data:
+        changes["baseline"] = _folder(doc, at("baseline"), data["baseline"], base, "file")
     if "states" in data:
         changes["states"] = _states(doc, at("states"), data["states"])
     if "selector" in data:
@@ -305,13 +359,15 @@ def resolve_render_config(
     start: Path,
     stories: Sequence[str] = (),
     states: tuple[State, ...] | None = None,
+    fail_on: Sequence[str] = (),
     **overrides: Any,
 ) -> RenderConfig:
     """The settings of one run: the project config's ``render:`` table, then the flags.
 
     ``arguments`` (folders or loopback URLs) replace the configured sources;
-    ``stories`` globs apply to every Storybook source; other ``overrides``
-    replace a field when not None.
+    ``stories`` globs apply to every Storybook source; ``fail_on`` rule names
+    replace the gate's failing rules; other ``overrides`` replace a field when
+    not None.
     """
     from alpha_audit.load.config import find_config
 
@@ -339,6 +395,11 @@ def resolve_render_config(
         )
     if states is not None:
         config = replace(config, states=states)
+    if fail_on:
+        rules = frozenset(Rule.parse(r, "--fail-on") for r in fail_on)
+        config = replace(
+            config, policy=replace(config.policy, rules=render_rules(rules, "--fail-on"))
+        )
     for engine in overrides.get("engines") or ():
         if engine not in ENGINES:
             raise UsageError(f"`engines` {engine!r}: choose from {', '.join(ENGINES)}")

@@ -28,6 +28,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 from coloraide import Color
@@ -73,6 +74,7 @@ class PageContext:
     state: str
     engine: str
     threshold: float = 3.0
+    file: Path | None = None  # the story's or page's source file
 
 
 def _parse(text: str) -> tuple[Linear, float] | None:
@@ -321,6 +323,7 @@ def _measure_icon(
                 render_drift=drift,
                 box=icon.box,
                 threshold=page.threshold,
+                file=page.file,
             )
         )
     return out

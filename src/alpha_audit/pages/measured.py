@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass
+from pathlib import Path
 
 __all__ = [
     "BlockedRequest",
@@ -79,7 +80,8 @@ class MeasuredPaint:
     model's output under ``linear`` and ``css`` (css only where ``alpha *
     opacity`` is in [0, 1]).  ``render_drift`` is the CIEDE2000 from the drawn
     colour to the nearer prediction; ``box`` the icon's crop box in CSS pixels
-    of the page (x, y, width, height).
+    of the page (x, y, width, height); ``file`` the story's source file
+    (``importPath``) or the HTML page, where known.
     """
 
     source: str  # story id or page URL path
@@ -110,6 +112,7 @@ class MeasuredPaint:
     render_drift: float | None
     box: tuple[float, float, float, float]
     threshold: float = 3.0
+    file: Path | None = None
 
     @property
     def passes(self) -> bool | None:
@@ -154,6 +157,7 @@ class RenderResult:
     audited: int  # source x state x engine combinations audited
     icons: int  # icon instances found over all of them
     engines: tuple[tuple[str, str], ...]  # (engine, version)
+    pages: tuple[tuple[str, str], ...] = ()  # (source, state) of each audited, in order
 
     @property
     def failing(self) -> tuple[MeasuredPaint, ...]:

@@ -178,7 +178,13 @@ class _Worker:
             problem = PageProblem(job.target.name, job.state.name, job.engine, url, reason)
             return [], problem, self.proxy.take(), 0
         page = PageContext(
-            job.target.name, job.target.kind, url, job.state.name, job.engine, threshold
+            job.target.name,
+            job.target.kind,
+            url,
+            job.state.name,
+            job.engine,
+            threshold,
+            job.target.file,
         )
         matches = [index.match(icon.keys) for icon in capture.icons]
         paints = measure_capture(capture, page, matches)
@@ -289,4 +295,5 @@ def audit_pages(
         len(jobs),
         icons,
         tuple(sorted(versions.items())),
+        tuple(dict.fromkeys((j.target.name, j.state.name) for j in jobs)),
     )

@@ -71,6 +71,9 @@ class Target:
 
     ``mount`` is the index of the folder on alpha-audit's server (``None`` for
     a URL source) and ``path`` the URL path below it, query included.
+    ``file`` is the source file a finding points at: the story's
+    ``importPath`` from ``index.json`` (where it exists beside the build), or
+    the HTML page; ``None`` for a URL.
     """
 
     kind: str  # "storybook", "page", "url"
@@ -78,6 +81,7 @@ class Target:
     mount: int | None
     path: str
     storybook: bool
+    file: Path | None = None
 
 
 def check_loopback_url(url: str) -> str:
@@ -91,8 +95,20 @@ def check_loopback_url(url: str) -> str:
     return url
 
 
-def _stories(source: StorybookSource) -> list[tuple[str, str]]:
-    """``(id, "Title/Name")`` of every story in the index, in its order."""
+def _story_file(source: StorybookSource, import_path: object) -> Path | None:
+    """A story's ``importPath`` (relative to where Storybook was built: the build's parent).
+
+    Only named, never read: kept when it is a file inside that folder.
+    """
+    if not isinstance(import_path, str) or not import_path or "\x00" in import_path:
+        return None
+    base = source.folder.parent.resolve()
+    path = (base / import_path).resolve()
+    return path if path.is_relative_to(base) and path.is_file() else None
+
+
+def _stories(source: StorybookSource) -> list[tuple[str, str, Path | None]]:
+    """``(id, "Title/Name", story file)`` of every story in the index, in its order."""
     index = source.folder / "index.json"
     if not index.is_file():
         raise UsageError(
@@ -117,7 +133,8 @@ def _stories(source: StorybookSource) -> list[tuple[str, str]]:
         if not isinstance(entry, dict) or entry.get("type", "story") != "story":
             continue  # docs pages draw no story of their own
         story = str(entry.get("id", key))
-        found.append((story, f"{entry.get('title', '')}/{entry.get('name', '')}"))
+        title = f"{entry.get('title', '')}/{entry.get('name', '')}"
+        found.append((story, title, _story_file(source, entry.get("importPath"))))
     return found
 
 
@@ -128,8 +145,8 @@ def targets(sources: Sequence[Source]) -> list[Target]:
         if isinstance(source, StorybookSource):
             stories = _stories(source)
             chosen = [
-                (story, path)
-                for story, path in stories
+                (story, file)
+                for story, path, file in stories
                 if any(fnmatch.fnmatchcase(story, g) or fnmatch.fnmatchcase(path, g)
                        for g in source.stories)
             ]  # fmt: skip
@@ -142,9 +159,9 @@ def targets(sources: Sequence[Source]) -> list[Target]:
                     else "the Storybook has no stories",
                     path=source.folder,
                 )
-            for story, _ in chosen:
+            for story, file in chosen:
                 path = f"iframe.html?id={quote(story, safe='')}&viewMode=story"
-                out.append(Target("storybook", story, mount, path, True))
+                out.append(Target("storybook", story, mount, path, True, file))
         elif isinstance(source, FolderSource):
             try:
                 pages = glob_contained(
@@ -156,7 +173,7 @@ def targets(sources: Sequence[Source]) -> list[Target]:
                 raise UsageError(f"no page matches {source.pattern!r}", path=source.folder)
             for page in pages:
                 relative = page.relative_to(source.folder).as_posix()
-                out.append(Target("page", relative, mount, quote(relative), False))
+                out.append(Target("page", relative, mount, quote(relative), False, page))
         else:
             check_loopback_url(source.url)
             out.append(Target("url", source.url, None, source.url, "iframe.html" in source.url))

@@ -13,6 +13,7 @@ result             formats                                            enum
 ``PairReport``     table, json                                         :class:`PairFormat`
 ``Reproduction``   table, json, markdown                               :class:`ReproduceFormat`
 bundled themes     table, json                                         :class:`ThemesFormat`
+``PageReport``     table, json, junit, sarif, markdown, github, gitlab  :class:`RenderFormat`
 =================  =================================================  ======================
 
 Shared helpers (escaping, JSON, text, fix wording) live once in
@@ -37,6 +38,7 @@ __all__ = [
     "CheckFormat",
     "Format",
     "PairFormat",
+    "RenderFormat",
     "RenderOptions",
     "Renderer",
     "ReproduceFormat",
@@ -60,6 +62,18 @@ class Format(StrEnum):
 
 class CheckFormat(Format):
     """Output formats of ``alpha-audit check``."""
+
+    TABLE = "table"
+    JSON = "json"
+    JUNIT = "junit"
+    SARIF = "sarif"
+    MARKDOWN = "markdown"
+    GITHUB = "github"
+    GITLAB = "gitlab"
+
+
+class RenderFormat(Format):
+    """Output formats of ``alpha-audit render`` (the page audit)."""
 
     TABLE = "table"
     JSON = "json"
@@ -111,6 +125,15 @@ RENDERERS: dict[type[Format], dict[str, str]] = {
         "markdown": "alpha_audit.render.markdown:render_report",
         "github": "alpha_audit.render.github:render_report",
         "gitlab": "alpha_audit.render.gitlab:render_report",
+    },
+    RenderFormat: {
+        "table": "alpha_audit.render.pages:render_table",
+        "json": "alpha_audit.render.pages:render_json",
+        "junit": "alpha_audit.render.pages:render_junit",
+        "sarif": "alpha_audit.render.pages:render_sarif",
+        "markdown": "alpha_audit.render.pages:render_markdown",
+        "github": "alpha_audit.render.pages:render_github",
+        "gitlab": "alpha_audit.render.pages:render_gitlab",
     },
     SuggestFormat: {
         "table": "alpha_audit.render.suggest:render_table",

@@ -11,12 +11,19 @@ from __future__ import annotations
 from pathlib import Path
 
 from alpha_audit.findings import Finding
+from alpha_audit.gate import GateResult
 from alpha_audit.render.common import RenderOptions, display_path, location_text, where_text
 from alpha_audit.results import CheckReport
 from alpha_audit.rules import RULES, Rule
 from alpha_audit.safe_text import safe_text
 
-__all__ = ["MAX_ANNOTATIONS", "escape_data", "escape_property", "render_report"]
+__all__ = [
+    "MAX_ANNOTATIONS",
+    "escape_data",
+    "escape_property",
+    "gate_annotations",
+    "render_report",
+]
 
 
 def escape_data(text: str) -> str:
@@ -96,7 +103,11 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     lists them).
     Warnings for unrenderable icons are capped the same way.
     """
-    gate = report.gate
+    return gate_annotations(report.gate, options, f"gate passed ({len(report.audits)} audit(s))")
+
+
+def gate_annotations(gate: GateResult, options: RenderOptions, passed: str) -> str:
+    """The annotations of ``gate`` (:func:`render_report`); ``passed`` is the passing verdict."""
     errors = [_annotation(f, options.base) for f in gate.failures]
     warnings = [
         _command(
@@ -115,8 +126,7 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     ]
     lines: list[str] = []
     if gate.passed:
-        summary = f"gate passed ({len(report.audits)} audit(s))"
-        lines.append(_command("notice", summary, file=None, line=None, title="alpha-audit"))
+        lines.append(_command("notice", passed, file=None, line=None, title="alpha-audit"))
     else:
         counts = ", ".join(f"{n} {rule}" for rule, n in gate.counts().items())
         # The verdict is an error line too: the findings get the other nine.

@@ -1,0 +1,131 @@
+"""The page audit's gate and reports on the real two-theme Storybook (tools/page_fixtures.py).
+
+One library run of every story in both themes feeds the report checks; the CLI
+runs (baseline written, accepted, then a new failure) audit two stories only.
+The Storybook's CSS (``.storybook/theme.css``) is the independent source: the
+dark theme's ``--danger`` is too dark on its surface (the alert fails in dark
+only), and the chips and mask icons draw ``--accent`` where the manifest says
+``#57606a`` (render drift), while the toolbar, sprite and light alert draw what
+the manifest says.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from alpha_audit.cli import app
+from alpha_audit.load.iconset import load_iconset
+from alpha_audit.pages import RenderConfig, StorybookSource, audit_pages, state_matrix
+from alpha_audit.pages.report import RENDER_POLICY, judge_pages
+from alpha_audit.render import RenderFormat, RenderOptions
+from alpha_audit.rules import RULES, Rule
+
+THEMES = [[("theme", "light")], [("theme", "dark")]]
+runner = CliRunner()
+
+
+@pytest.fixture(scope="module")
+def report(project: Path):
+    manifest = load_iconset(project / "icons/iconset.yaml")
+    config = RenderConfig(
+        (StorybookSource(project / "storybook-static"),),
+        states=state_matrix(THEMES),
+        root=project,
+        workers=2,
+    )
+    return judge_pages(audit_pages(config, manifest), RENDER_POLICY, manifest)
+
+
+def test_the_dark_only_alert_fails_the_gate_with_its_story_theme_and_manifest_line(report):
+    alert = [f for f in report.gate.failures if f.iconset == "icons--alert"]
+    assert [(f.rule, f.theme, f.icons) for f in alert] == [
+        (Rule.BELOW_THRESHOLD, "theme:dark", ("triangle-alert",))
+    ]
+    (f,) = alert
+    where = [(loc.file.name, loc.line, loc.what) for loc in f.locations]
+    assert where[0] == ("iconset.yaml", 6, "colour")  # overrides: triangle-alert: {color: ...}
+    assert where[-1] == ("icons.stories.js", 1, "story")  # index.json's importPath
+    assert not report.gate.passed
+
+
+def test_render_drift_fires_on_the_css_overrides_and_not_on_the_others(report):
+    drifted = {(f.iconset, f.theme, f.icons[0]) for f in report.gate.warnings
+               if f.rule is Rule.RENDER_DRIFT}  # fmt: skip
+    light = {(s, i) for s, t, i in drifted if t == "theme:light"}
+    # Light: chips and the mask draw --accent (#0969da), the <img> draws black (an SVG
+    # image's currentColor); the toolbar, sprite and alert draw the manifest's colour.
+    assert light == {("icons--chip", "check"), ("icons--chip", "info"),
+                     ("icons--images", "heart"), ("icons--images", "star")}  # fmt: skip
+    # Dark: every story overrides the manifest's (light) colours.
+    dark = {s for s, t, _ in drifted if t == "theme:dark"}
+    assert dark == {"icons--toolbar", "icons--chip", "icons--alert", "icons--sprite",
+                    "icons--images"}  # fmt: skip
+    assert all(not f.fails for f in report.gate.warnings)
+
+
+def test_sarif_locates_the_failure_at_the_manifest_line_with_the_story_related(report, project):
+    log = json.loads(RenderFormat.SARIF.renderer()(report, RenderOptions(base=project)))
+    (run,) = log["runs"]
+    alert = [r for r in run["results"] if r["properties"].get("story") == "icons--alert"
+             and r["ruleId"] == RULES[Rule.BELOW_THRESHOLD].sarif_id]  # fmt: skip
+    (result,) = alert
+    physical = result["locations"][0]["physicalLocation"]
+    assert physical["artifactLocation"]["uri"] == "icons/iconset.yaml"
+    assert physical["region"]["startLine"] == 6
+    related = [r["physicalLocation"]["artifactLocation"]["uri"] for r in result["relatedLocations"]]
+    assert "stories/icons.stories.js" in related
+    props = result["properties"]
+    assert (props["state"], props["dom_path"].endswith("svg")) == ("theme:dark", True)
+    assert "theme:dark / icons--alert" in result["message"]["text"]
+    assert result["level"] == "error" and "Fix:" in result["message"]["text"]
+    ids = {r["id"] for r in run["tool"]["driver"]["rules"]}
+    assert RULES[Rule.RENDER_DRIFT].sarif_id in ids
+
+
+def test_the_comment_has_the_story_by_theme_matrix_and_the_failing_icons(report, project):
+    text = RenderFormat.MARKDOWN.renderer()(report, RenderOptions(base=project))
+    lines = text.splitlines()
+    assert "| story or page | theme:light | theme:dark |" in lines
+    assert "| icons--alert | pass | **1 failing** |" in lines
+    assert "| icons--toolbar | pass | pass |" in lines
+    row = next(line for line in lines if line.startswith("| triangle-alert |"))
+    assert "theme:dark" in row and "#0d1117" in row and "icons/iconset.yaml:6" in row
+    assert "1.6" in row  # worst pixel 1.6x:1
+    assert len(text) < 65_536
+
+
+def _cli(project: Path, *args: str) -> tuple[int, str]:
+    cwd = Path.cwd()
+    os.chdir(project)
+    try:
+        result = runner.invoke(
+            app,
+            ["render", "storybook-static", "--globals", "theme:light", "--globals",
+             "theme:dark", "--iconset", "icons/iconset.yaml", "--workers", "2", *args],
+        )  # fmt: skip
+    finally:
+        os.chdir(cwd)
+    return result.exit_code, result.output
+
+
+def test_a_baseline_accepts_the_failure_and_a_new_one_still_fails(project):
+    code, out = _cli(project, "--stories", "icons--alert", "--write-baseline", "render.json")
+    assert code == 0, out
+    entries = json.loads((project / "render.json").read_text())["entries"]
+    assert entries == [{"theme": "theme:dark", "iconset": "icons--alert",
+                        "rule": "below-threshold", "icons": ["triangle-alert"]}]  # fmt: skip
+    code, out = _cli(project, "--stories", "icons--alert", "--baseline", "render.json")
+    assert code == 0, out
+    code, out = _cli(
+        project, "--stories", "icons--alert", "--stories", "icons--images",
+        "--baseline", "render.json", "-f", "json", "-o", "render-out.json",
+    )  # fmt: skip
+    assert code == 1, out
+    gate = json.loads((project / "render-out.json").read_text())["gate"]
+    assert [f["iconset"] for f in gate["failures"]] == ["icons--images"]  # the new one
+    assert [f["iconset"] for f in gate["baselined"]] == ["icons--alert"]
