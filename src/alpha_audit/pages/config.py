@@ -296,15 +296,17 @@ def config_from_yaml(path: Path) -> RenderConfig | None:
 
     sources: list[Source] = []
     stories = tuple(_text_list(doc, at("stories"), data["stories"])) if "stories" in data else None
-    for i, v in enumerate(_list(doc, at("storybook"), data.get("storybook", []) or [])):
+    for i, v in enumerate(
+        _list(doc, at("storybook"), data["storybook"]) if "storybook" in data else []
+    ):
         sources.append(
             StorybookSource(_folder(doc, (*at("storybook"), i), v, base), stories or ("*",))
         )
     if stories is not None and not any(isinstance(s, StorybookSource) for s in sources):
         raise doc.error(at("stories"), "stories select from a storybook: give storybook too")
-    for i, v in enumerate(_list(doc, at("pages"), data.get("pages", []) or [])):
+    for i, v in enumerate(_list(doc, at("pages"), data["pages"]) if "pages" in data else []):
         sources.append(FolderSource(_folder(doc, (*at("pages"), i), v, base)))
-    for i, v in enumerate(_list(doc, at("urls"), data.get("urls", []) or [])):
+    for i, v in enumerate(_list(doc, at("urls"), data["urls"]) if "urls" in data else []):
         try:
             sources.append(UrlSource(check_loopback_url(str(v))))
         except UsageError as exc:
