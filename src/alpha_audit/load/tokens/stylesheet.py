@@ -98,6 +98,7 @@ class _Contribution:
     p3: bool
     where: str  # for notes: "line 12 [data-theme=dark]"
     decls: list[_Decl] = field(default_factory=list)
+    line: int | None = None  # of the rule, for errors about its mode name
 
 
 @dataclass
@@ -396,7 +397,7 @@ def _add(
     layer = sheet.layer_key(layers)
     selector = " ".join(tinycss2.serialize(rule.prelude).split()) or "@theme"
     for mode, specificity in modes.items():
-        part = _Contribution(mode, scheme, p3, f"line {line} {selector[:60]}")
+        part = _Contribution(mode, scheme, p3, f"line {line} {selector[:60]}", line=line)
         for node in decls:
             if "*" in node.name:  # Tailwind's "--color-*: initial" resets a namespace
                 continue
@@ -679,7 +680,9 @@ def _modes(p: Path) -> TokenModes:
     for part in sheet.parts:
         by_mode.setdefault(part.mode, []).append(part)
     for mode in modes:
-        check_name(mode, path=p, what="mode name")
+        plain_mode = mode.removesuffix("-p3")
+        line = next((part.line for part in sheet.parts if part.mode == plain_mode), None)
+        check_name(mode, path=p, line=line, what="mode name")
         plain = "default" if mode == "p3" else mode.removesuffix("-p3")
         candidates = by_mode.get("default", []) + (
             by_mode.get(plain, []) if plain != "default" else []
