@@ -251,6 +251,22 @@ def test_names_with_controls_bidi_or_surrogates_are_refused_at_load(
         assert f"U+{ord(first_unsafe(name) or '?'):04X}" in message, (file, message)
 
 
+@pytest.mark.parametrize(
+    "name",
+    [
+        "👩\u200d💻",  # ZWJ sequence
+        "\U0001f3f4\U000e0067\U000e0062\U000e0077\U000e006c\U000e0073\U000e007f",  # Wales
+        "\u0646\u0627\u0645\u200c\u0647\u0627",  # Persian with ZWNJ
+    ],
+)
+def test_emoji_and_joiners_are_legal_in_every_source(tmp_path: Path, name: str) -> None:
+    for file, content in _named_sources(name):
+        text = content if isinstance(content, str) else json.dumps(content)
+        path = tmp_path / file
+        path.write_text(text, encoding="utf-8")
+        assert load_token_modes(path, root=tmp_path).modes, file
+
+
 def test_emoji_zwj_sequences_stay_legal(tmp_path: Path) -> None:
     name = "👩\u200d💻"
     modes = load_token_modes(
