@@ -98,7 +98,6 @@ class _Contribution:
     p3: bool
     where: str  # for notes: "line 12 [data-theme=dark]"
     decls: list[_Decl] = field(default_factory=list)
-    line: int | None = None  # of the rule, for errors about its mode name
 
 
 @dataclass
@@ -397,7 +396,7 @@ def _add(
     layer = sheet.layer_key(layers)
     selector = " ".join(tinycss2.serialize(rule.prelude).split()) or "@theme"
     for mode, specificity in modes.items():
-        part = _Contribution(mode, scheme, p3, f"line {line} {selector[:60]}", line=line)
+        part = _Contribution(mode, scheme, p3, f"line {line} {selector[:60]}")
         for node in decls:
             if "*" in node.name:  # Tailwind's "--color-*: initial" resets a namespace
                 continue
@@ -681,7 +680,10 @@ def _modes(p: Path) -> TokenModes:
         by_mode.setdefault(part.mode, []).append(part)
     for mode in modes:
         plain_mode = mode.removesuffix("-p3")
-        line = next((part.line for part in sheet.parts if part.mode == plain_mode), None)
+        # The first declaration of the first rule that names the mode.
+        line = next(
+            (d.line for part in sheet.parts if part.mode == plain_mode for d in part.decls), None
+        )
         check_name(mode, path=p, line=line, what="mode name")
         plain = "default" if mode == "p3" else mode.removesuffix("-p3")
         candidates = by_mode.get("default", []) + (
