@@ -21,7 +21,9 @@ from __future__ import annotations
 
 import base64
 import re
-from collections.abc import Iterable, Mapping
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 from alpha_audit.findings import Finding
@@ -123,7 +125,7 @@ def _figure(crop: IconCrop | None, icon: str, left_out: int) -> str:
     zoom = max(1, min(8, _SHOWN // max(crop.width, crop.height)))
     size = f"{crop.width * crop.step} × {crop.height * crop.step} device px (scale {crop.scale})"
     if crop.step > 1:
-        size += f", every {crop.step}th pixel"
+        size += f", 1 in {crop.step} pixels per row and column"
     size += f", shown {zoom}×"
     drawn = _image(crop.drawn, crop.width, crop.height, zoom, f"{icon} as drawn")
     hidden = _image(crop.hidden, crop.width, crop.height, zoom, f"{icon}: the backdrop")
@@ -146,29 +148,39 @@ def _model(n: Mapping[str, Any]) -> str:
     if isinstance(drift, float):
         drift_text = f"; CIEDE2000 {drift:.1f} from the drawn colour"
     return (
-        f"{given} → {_swatch(n['model_output'])} ({_e(n.get('pipeline', ''))}), "
-        f"{_ratio(n.get('model_contrast'))}{drift_text}"
+        f"{given} → {_swatch(n['model_output'])} ({_e(n.get('pipeline', ''))}): "
+        f"contrast {_ratio(n.get('model_contrast'))}{drift_text}"
     )
 
 
-def _finding(
-    f: Finding,
-    kind: str,
-    check: CheckReport,
-    crops: Mapping[tuple[str, str, str, str], IconCrop],
-    paints: Mapping[tuple[str, str, str, str], MeasuredPaint],
-    report: PageReport,
-    options: RenderOptions,
-) -> list[str]:
+@dataclass(frozen=True)
+class _Lookups:
+    """What every finding's entry reads, built once per report."""
+
+    check: CheckReport
+    crops: Mapping[tuple[str, str, str, str], IconCrop]
+    paints: Mapping[tuple[str, str, str, str], MeasuredPaint]
+    crops_left_out: int
+    base: Path | None
+
+    @classmethod
+    def of(cls, report: PageReport, options: RenderOptions) -> _Lookups:
+        paints: dict[tuple[str, str, str, str], MeasuredPaint] = {}
+        for p in report.result.paints:
+            paints.setdefault((p.source, p.state, p.engine, p.dom_path), p)
+        crops = {c.key: c for c in report.result.crops}
+        return cls(report.as_check(), crops, paints, report.result.crops_left_out, options.base)
+
+
+def _finding(f: Finding, kind: str, look: _Lookups) -> list[str]:
+    """One finding: heading, message, the two crops and its figures."""
     n = f.numbers
     source_kind = "story" if "story" in n else "page"
     engine, dom_path = str(n.get("engine", "")), str(n.get("dom_path", ""))
     key = (f.iconset, f.theme, engine, dom_path)
     icon = f.icons[0]
-    paint = paints.get(key)
     where = "<br>".join(
-        f"<code>{_e(location_text(loc, options.base))}</code> ({_e(loc.what)})"
-        for loc in f.locations
+        f"<code>{_e(location_text(loc, look.base))}</code> ({_e(loc.what)})" for loc in f.locations
     )
     contrast = (
         f"worst {_ratio(n.get('contrast'))}, median {_ratio(n.get('contrast_median'))}; "
@@ -186,9 +198,10 @@ def _finding(
         ("drawn", _swatch(n.get("drawn"))),
         ("backdrop", backdrop),
         ("model", _model(n)),
-        ("fix", _e(finding_fix(f, check))),
+        ("fix", _e(finding_fix(f, look.check))),
         ("manifest", where or "—"),
     ]
+    paint = look.paints.get(key)
     if paint is not None:
         rows.append(("URL", f"<code>{_e(paint.url)}</code>"))
     return [
@@ -196,27 +209,18 @@ def _finding(
         f"<h3><code>{_e(icon)}</code> in <code>{_e(f.iconset)}</code> "
         f"[<code>{_e(f.theme)}</code>]: {_e(f.rule.value)}</h3>",
         f'<p class="message">{_e(f.message)}</p>',
-        _figure(crops.get(key), icon, report.result.crops_left_out),
+        _figure(look.crops.get(key), icon, look.crops_left_out),
         "<dl>" + "".join(f"<dt>{_e(k)}</dt><dd>{v}</dd>" for k, v in rows) + "</dl>",
         "</article>",
     ]
 
 
-def _section(
-    title: str, kind: str, findings: Iterable[Finding], report: PageReport, options: RenderOptions
-) -> list[str]:
-    found = list(findings)
-    if not found:
+def _section(title: str, kind: str, findings: Sequence[Finding], look: _Lookups) -> list[str]:
+    if not findings:
         return []
-    result = report.result
-    crops = {c.key: c for c in result.crops}
-    paints: dict[tuple[str, str, str, str], MeasuredPaint] = {}
-    for p in result.paints:
-        paints.setdefault((p.source, p.state, p.engine, p.dom_path), p)
-    check = report.as_check()
-    out = [f"<h2>{title} ({len(found)})</h2>"]
-    for f in found:
-        out += _finding(f, kind, check, crops, paints, report, options)
+    out = [f"<h2>{title} ({len(findings)})</h2>"]
+    for f in findings:
+        out += _finding(f, kind, look)
     return out
 
 
@@ -240,10 +244,12 @@ def render_html(report: PageReport, options: RenderOptions) -> str:
     ]
     notes = summary_notes(report)
     if notes:
-        lines.append(f"<p>{_e('; '.join(notes).capitalize())}.</p>")
+        said = "; ".join(notes)
+        lines.append(f"<p>{_e(said[:1].upper() + said[1:])}.</p>")
     lines += ["<h2>Stories and pages by state</h2>", *_matrix(report)]
-    lines += _section("Failing", "fail", gate.failures, report, options)
-    lines += _section("Reported", "reported", gate.warnings, report, options)
+    look = _Lookups.of(report, options)
+    lines += _section("Failing", "fail", gate.failures, look)
+    lines += _section("Reported", "reported", gate.warnings, look)
     if result.problems:
         lines.append(f"<h2>Not audited ({len(result.problems)})</h2><ul>")
         lines += [
