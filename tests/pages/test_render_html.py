@@ -91,6 +91,11 @@ def has_colour(image: np.ndarray, hex_color: str) -> bool:
     return bool((np.abs(image - code(hex_color)).max(axis=-1) <= 1).any())
 
 
+def instances(found) -> set[tuple[str, str, str, str]]:
+    """The icon instance each finding takes its figures from: what its crop shows."""
+    return {(f.iconset, f.theme, f.numbers["engine"], f.numbers["dom_path"]) for f in found}
+
+
 @pytest.fixture(scope="module")
 def report(project: Path):
     manifest = load_iconset(project / "icons/iconset.yaml")
@@ -146,13 +151,27 @@ def test_the_dark_alert_failure_shows_both_crops_holding_the_colours_reported(re
 
 def test_a_crop_is_kept_for_each_finding_and_for_nothing_else(report):
     result = report.result
-    wanted = {
-        (f.iconset, f.theme, f.numbers["engine"], f.numbers["dom_path"])
-        for f in (*report.gate.findings, *report.gate.warnings)
-    }
+    wanted = instances(report.gate.findings) | instances(report.gate.warnings)
     assert {c.key for c in result.crops} == wanted  # one engine: a crop per worst instance
     assert len(result.crops) == len(wanted) and result.crops_left_out == 0
     assert all(max(c.width, c.height) <= 128 and c.step == 1 for c in result.crops)
+
+
+def test_the_crop_cap_holds_and_keeps_the_failing_icons_first(project: Path):
+    manifest = load_iconset(project / "icons/iconset.yaml")
+    config = RenderConfig(
+        (StorybookSource(project / "storybook-static"),),
+        states=state_matrix([[("theme", "dark")]]),
+        root=project,
+        workers=2,
+        crops=2,
+    )
+    result = audit_pages(config, manifest)
+    gate = judge_pages(result, RENDER_POLICY, manifest).gate
+    every = instances(gate.failures) | instances(gate.warnings)
+    assert len(gate.failures) == 2 and len(every) > 2  # the alert and the <img> star
+    assert len(result.crops) == 2 and result.crops_left_out == len(every) - 2
+    assert {c.key for c in result.crops} == instances(gate.failures)
 
 
 def test_every_finding_is_listed_failing_first_then_reported(report, page):
