@@ -3,12 +3,12 @@
 :func:`audit_pages` serves the source folders on loopback, starts one browser
 per worker (each behind its own blocking proxy, so refused requests are
 attributed to the page that made them), and runs the page x state jobs in
-parallel, one capture pair each (and, when the config asks for crops, the
-icons a finding may show cut out of it into one bounded
-:class:`~alpha_audit.pages.crops.CropStore`).  A guard thread per worker ends the browser
-when a page passes its time limit or the browser's processes together pass
-the memory cap; that page becomes a :class:`PageProblem` and the worker
-starts a fresh browser.  Browsers never outlive the call (nor alpha-audit:
+parallel, one capture pair each (when the config asks for crops, the icons a
+finding may show are cut out of it into one bounded
+:class:`~alpha_audit.pages.crops.CropStore`).  A guard thread per worker ends
+the browser when a page passes its time limit or the browser's processes
+together pass the memory cap; that page becomes a :class:`PageProblem` and the
+worker starts a fresh browser.  Browsers never outlive the call (nor alpha-audit:
 :mod:`alpha_audit.browser.lifecycle`).
 """
 
