@@ -239,3 +239,13 @@ def test_paint_audit_size_is_bounded(monkeypatch: pytest.MonkeyPatch) -> None:
         audit(two, iconset, paints)
     monkeypatch.setattr(pa, "MAX_SIZE_CELLS", 4 * 2 * 3)
     assert len(list(audit(two, iconset, paints).rows())) == 8
+
+
+def test_a_collision_of_many_colours_names_a_few_and_counts_the_rest() -> None:
+    from alpha_audit.findings import _colours
+
+    many = [f"#0000{k:02x}" for k in range(754)]
+    text = _colours(many)
+    assert text.startswith("754 distinct colours (#000000, ") and text.endswith("+746 more)")
+    assert text.count("#") == 8
+    assert _colours(many[:3]) == "distinct colours #000000, #000001, #000002"

@@ -434,6 +434,22 @@ def _quiet(build: Build, ref: NDArray[np.float64], cells: list[int], floor: floa
     return quiet
 
 
+def _colours(colours: Sequence[str], limit: int = 8) -> str:
+    """The colours a message names: all of a few, the first ``limit`` and a count of many.
+
+    (The JSON's ``sources`` keeps every one.)
+
+    >>> _colours(["#000000", "#010101"])
+    'distinct colours #000000, #010101'
+    >>> _colours([f"#0000{k:02x}" for k in range(10)], 2)
+    '10 distinct colours (#000000, #000001 +8 more)'
+    """
+    if len(colours) <= limit:
+        return f"distinct colours {', '.join(colours)}"
+    head = ", ".join(colours[:limit])
+    return f"{len(colours)} distinct colours ({head} +{len(colours) - limit} more)"
+
+
 def _collisions(c: _Collector, rule: Rule) -> None:
     """``collision`` (every shared output) or ``new-collision`` (not already at alpha 1).
 
@@ -455,7 +471,7 @@ def _collisions(c: _Collector, rule: Rule) -> None:
         def build(k: int, cols: list[Collision] = cols) -> tuple[str, dict[str, float | str]]:
             col = cols[k]
             give = "both give" if len(col.sources) == 2 else "all give"
-            message = f"distinct colours {', '.join(col.sources)} {give} {col.output}" + (
+            message = f"{_colours(col.sources)} {give} {col.output}" + (
                 "" if col.new else " (already at alpha 1)"
             )
             numbers: dict[str, float | str] = {
@@ -828,7 +844,7 @@ def _cvd_collision(c: _Collector, rule: Rule) -> None:
             colours: tuple[str, ...] = colours,
         ) -> tuple[str, dict[str, float | str]]:
             _, out, deficiency, _ = found[k]
-            message = f"{', '.join(colours)} all look like {out} under simulated {deficiency}"
+            message = f"{_colours(colours)} all look like {out} under simulated {deficiency}"
             every = sorted({d for _, _, d, _ in found})
             return message, {
                 "output": out,

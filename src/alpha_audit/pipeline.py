@@ -119,11 +119,14 @@ class Work:
     pipelines: tuple[Pipeline, ...]
 
 
-def plan(project: ProjectConfig) -> tuple[list[Work], tuple[GamutAdjustment, ...]]:
+def plan(
+    project: ProjectConfig,
+) -> tuple[list[Work], tuple[GamutAdjustment, ...], tuple[str, ...]]:
     """Every input loaded and checked before any icon is rendered.
 
     Returns the work per icon set (icon sets in order, then themes in order:
-    token modes first, then YAML themes) and the colours the gamut policy moved.
+    token modes first, then YAML themes), the colours the gamut policy moved and
+    what the token loader noted (one line each: the modes it found, tokens skipped).
     """
     from alpha_audit.load.tokens.project import token_audit_pairs
     from alpha_audit.load.tokens.themes import load_token_themes
@@ -162,9 +165,11 @@ def plan(project: ProjectConfig) -> tuple[list[Work], tuple[GamutAdjustment, ...
         (i.name for w in work for i in w.pairs[0][1].icons),
     )
     moved = [a for w in work for t, s in w.pairs for a in (*t.adjusted, *s.adjusted)]
+    notes: tuple[str, ...] = ()
     if token_themes is not None:
         moved += token_themes.adjusted
-    return work, tuple(dict.fromkeys(moved))
+        notes = token_themes.notes
+    return work, tuple(dict.fromkeys(moved)), notes
 
 
 def _with_project_alpha(project: ProjectConfig, iconset: IconSet) -> IconSet:
@@ -238,7 +243,7 @@ def check_project(
     >>> check_project(ProjectConfig(themes=(paper,), iconsets=(vibrant,))).gate.passed
     True
     """
-    work, moved = plan(project)
+    work, moved, notes = plan(project)
     known = baseline
     if known is None and use_baseline and not record and project.baseline is not None:
         known = read_baseline(project.baseline)
@@ -255,7 +260,7 @@ def check_project(
         keys = frozenset(f.key for f in found if f.level is Level.FAIL and f.exemption is None)
         known = Baseline(keys=keys, kind="file", name=name)
     gate = judge(results, project.policy, found, known)
-    return with_fixes(CheckReport(audits=tuple(results), gate=gate, gamut=moved))
+    return with_fixes(CheckReport(tuple(results), gate, gamut=moved, notes=notes))
 
 
 def base_baseline(
@@ -311,7 +316,7 @@ def base_baseline(
         try:
             project = resolve_config(mapped, here if here.is_dir() else tree)
             project = replace(project, baseline=None)
-            work, _ = plan(project)
+            work, _, _ = plan(project)
             with contextlib.ExitStack() as stack:
                 if pool is None:
                     pool = stack.enter_context(render_pool())

@@ -236,3 +236,4 @@ class CheckReport:
     fixes: tuple[Fix, ...] = ()
     fixes_left_out: int = 0
     gamut: tuple[GamutAdjustment, ...] = ()  # colours outside sRGB the gamut policy moved
+    notes: tuple[str, ...] = ()  # what the token loader noted: modes found, tokens skipped

@@ -46,3 +46,29 @@ def test_check_gamut_flag_overrides_the_tokens_table(project) -> None:
     error = runner.invoke(app, ["check", "--gamut", "error"])
     assert error.exit_code == ExitStatus.INPUT_ERROR
     assert "base.tokens.json:" in error.output and "outside sRGB" in error.output
+
+
+def test_check_says_on_stderr_which_rules_became_modes_and_which_canvases_are_layers(
+    tmp_path, monkeypatch
+) -> None:
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "tokens.css").write_text(
+        ":root { --bg: #ffffff; --chip: rgb(9 105 218 / 0.08); --fg: #0062ba; --gap: 4px }\n"
+        "@media (prefers-color-scheme: dark) { :root { --bg: #0d1117; --fg: #4493f8 } }\n",
+        encoding="utf-8",
+    )
+    (tmp_path / "icons").mkdir()
+    shutil.copy(REPO / "examples/vibrant/svg/bell.svg", tmp_path / "icons")
+    (tmp_path / "iconset.yaml").write_text("name: t\nicons: icons/*.svg\ncolor: fg\n")
+    (tmp_path / "alpha-audit.yaml").write_text(
+        "tokens: {file: tokens.css, canvases: [bg, chip], colors: [fg]}\niconset: iconset.yaml\n"
+    )
+    monkeypatch.chdir(tmp_path)
+    result = runner.invoke(app, ["check", "-f", "json"])
+    assert result.exit_code == ExitStatus.OK, result.output
+    assert "mode dark from tokens.css: line 2 @media (prefers-color-scheme: dark) :root" in (
+        result.stderr
+    )
+    assert "translucent canvases chip (0.08) audited as layers over bg" in result.stderr
+    assert "mode dark" not in result.stdout  # the report stays machine-readable
+    assert [a["theme"]["name"] for a in json.loads(result.stdout)["audits"]] == ["default", "dark"]

@@ -53,6 +53,11 @@ def test_the_dark_only_alert_fails_the_gate_with_its_story_theme_and_manifest_li
     assert not report.gate.passed
 
 
+def test_no_crops_are_cut_unless_a_report_asks_for_them(report):
+    assert report.gate.failures and report.result.crops == ()  # RenderConfig.crops is 0
+    assert report.result.crops_left_out == 0
+
+
 def test_render_drift_fires_on_the_css_overrides_and_not_on_the_others(report):
     drifted = {(f.iconset, f.theme, f.icons[0]) for f in report.gate.warnings
                if f.rule is Rule.RENDER_DRIFT}  # fmt: skip

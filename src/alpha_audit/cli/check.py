@@ -259,6 +259,8 @@ def check_command(
             use_baseline=False,
             record=write_baseline is not None,
         )
+    for note in report.notes:  # the token modes found, the tokens skipped
+        stderr_note(note)
     # Paths in reports are relative to the repository (the folder with .git): what
     # GitHub annotations, SARIF's %SRCROOT% and GitLab expect, from any subfolder.
     root = project_root(Path.cwd())

@@ -200,7 +200,8 @@ def render_command(
     pixel), and the model's prediction under the linear and css pipelines.
     below-threshold (worst pixel under 3:1) fails the gate; render-drift
     (the page draws another colour than the manifest) is reported.
-    Pages reach nothing but loopback.
+    Pages reach nothing but loopback.  -f html writes one page that runs
+    no script, with crops of each finding's icon as drawn and its backdrop.
 
     Exit codes: 0 the gate passed, 1 the gate failed, 2 bad input or a page
     that could not be audited, 3 a bug.
@@ -238,6 +239,10 @@ def render_command(
         timeout=timeout,
         baseline=baseline,
     )
+    if any(kind is RenderFormat.HTML for kind, _ in pairs):
+        from alpha_audit.pages.crops import MAX_CROPS
+
+        settings = replace(settings, crops=MAX_CROPS)  # cut while each page state is measured
     known = None
     if settings.baseline is not None and write_baseline is None:
         known = read_baseline(settings.baseline)

@@ -218,7 +218,7 @@ _SETTINGS: dict[str, Any] = dict(
         "as clip(Cb + a(Cs - Cb)) in linear sRGB. With a > 1 the icon moves away from whatever "
         "canvas it lands on. alpha-audit measures what that does to WCAG contrast, 8-bit "
         "collisions and CIEDE2000 separation on your icons and themes.\n\n"
-        "Exit codes: 0 ran (gate passed), 1 gate failed (check), 2 bad input or usage "
+        "Exit codes: 0 ran (gate passed), 1 gate failed (check, render), 2 bad input or usage "
         "(or a resource limit), 3 internal error (a bug)."
     ),
     no_args_is_help=True,

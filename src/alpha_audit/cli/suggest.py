@@ -185,7 +185,7 @@ def suggest_command(
             f"--apply rewrites the manifest in place and {iconset} is the bundled example; "
             f"copy {manifest.parent} into your project and give its {manifest.name}"
         )
-    work, _ = plan(project)
+    work, _, _ = plan(project)
     # The gate judges every paint of every SVG as drawn: suggest answers the same rows.
     (rows,) = audits(project, work, pool=ctx.obj)
     with progress_bar("Answering") as progress:

@@ -5,8 +5,10 @@ The library behind ``alpha-audit render``: sources (:mod:`.sources`) x states
 captured twice (icons drawn, icons hidden: :mod:`.capture`), and every paint
 of every icon measured from the pixels (:mod:`.measure`) into
 :class:`MeasuredPaint` records beside the model's prediction for the same
-paint and backdrop.  Pages are untrusted: :mod:`.server` serves them on
-loopback and refuses every other request, :mod:`.run` bounds time and memory.
+paint and backdrop; asked for (``RenderConfig.crops``), the icons a finding
+may show are cropped from both captures for the HTML report (:mod:`.crops`).
+Pages are untrusted: :mod:`.server` serves them on loopback and refuses every
+other request, :mod:`.run` bounds time and memory.
 
 Example (a built Storybook in the current folder)::
 
@@ -19,6 +21,7 @@ from alpha_audit.pages.config import RenderConfig, config_from_yaml, source_from
 from alpha_audit.pages.measured import (
     BlockedRequest,
     Coverage,
+    IconCrop,
     IconMatch,
     MeasuredPaint,
     PageProblem,
@@ -33,6 +36,7 @@ __all__ = [
     "BlockedRequest",
     "Coverage",
     "FolderSource",
+    "IconCrop",
     "IconMatch",
     "MeasuredPaint",
     "PageProblem",

@@ -96,7 +96,10 @@ class RenderConfig:
     browser's resident memory (every process of it); ``max_icon_size`` in CSS
     pixels keeps illustrations out of the icons.  ``policy`` is the gate's
     (render's defaults, the table's ``rules:`` or ``fail-on:``, ``--fail-on``)
-    and ``baseline`` the file of accepted findings.
+    and ``baseline`` the file of accepted findings.  ``crops`` is how many icon
+    crops the run keeps for a report to show (:mod:`alpha_audit.pages.crops`;
+    ``alpha-audit render -f html`` asks for
+    :data:`~alpha_audit.pages.crops.MAX_CROPS`); 0 cuts none.
     """
 
     sources: tuple[Source, ...]
@@ -115,6 +118,7 @@ class RenderConfig:
     threshold: float = 3.0
     policy: Policy = RENDER_POLICY
     baseline: Path | None = None
+    crops: int = 0
 
     def with_overrides(self, **changes: Any) -> RenderConfig:
         """A copy with the given fields replaced where the value is not ``None``."""

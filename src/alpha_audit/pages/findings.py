@@ -33,7 +33,13 @@ from alpha_audit.pages.measured import MeasuredPaint, Prediction
 from alpha_audit.policy import Policy, contrast_breaks, drift_breaks
 from alpha_audit.rules import Rule
 
-__all__ = ["RENDER_DRIFT_TOLERANCE", "nearer_prediction", "paint_findings", "paint_key"]
+__all__ = [
+    "RENDER_DRIFT_TOLERANCE",
+    "nearer_prediction",
+    "paint_findings",
+    "paint_key",
+    "worst_paints",
+]
 
 # CIEDE2000 between the drawn colour and the model's nearer prediction above which
 # the page draws another colour than the manifest says.  One 8-bit code step in one
@@ -164,6 +170,41 @@ def _locations(
     return tuple(dict.fromkeys(loc for loc in found if loc is not None))
 
 
+_BUILD = {Rule.BELOW_THRESHOLD: _below, Rule.RENDER_DRIFT: _drift}
+
+
+def _groups(
+    paints: Iterable[MeasuredPaint], policy: Policy
+) -> dict[tuple[str, str, Rule, str], list[MeasuredPaint]]:
+    """The paints of each root cause: (state, story or page, rule, icon), in paint order."""
+    groups: dict[tuple[str, str, Rule, str], list[MeasuredPaint]] = {}
+    paints = list(paints)
+    for rule in Rule:
+        if rule not in _BUILD or rule not in policy.reported:
+            continue
+        for p in paints:
+            if _breaks(rule, p, policy):
+                groups.setdefault((p.state, p.source, rule, paint_key(p)), []).append(p)
+    return groups
+
+
+def _worst(rule: Rule, found: Sequence[MeasuredPaint]) -> MeasuredPaint:
+    """The paint a finding folded over ``found`` takes its figures from (the first if tied)."""
+    return max(found, key=lambda p: _badness(rule, p))
+
+
+def worst_paints(
+    paints: Iterable[MeasuredPaint], policy: Policy
+) -> list[tuple[Rule, MeasuredPaint]]:
+    """The paint each finding of ``paints`` would take its figures from, with its rule.
+
+    What :func:`paint_findings` folds, without the findings: over the paints of
+    one page state, the instances a report may show (``render`` crops them).
+    """
+    groups = _groups(paints, policy)
+    return [(rule, _worst(rule, found)) for (_, _, rule, _), found in groups.items()]
+
+
 def paint_findings(
     paints: Iterable[MeasuredPaint], policy: Policy, iconset: IconSet | None = None
 ) -> list[Finding]:
@@ -184,19 +225,10 @@ def paint_findings(
     """
     by_name: Mapping[str, Icon] = {i.name: i for i in iconset.icons} if iconset else {}
     manifest = iconset.path if iconset is not None else None
-    build = {Rule.BELOW_THRESHOLD: _below, Rule.RENDER_DRIFT: _drift}
-    groups: dict[tuple[str, str, Rule, str], list[MeasuredPaint]] = {}
-    paints = list(paints)
-    for rule in Rule:
-        if rule not in build or rule not in policy.reported:
-            continue
-        for p in paints:
-            if _breaks(rule, p, policy):
-                groups.setdefault((p.state, p.source, rule, paint_key(p)), []).append(p)
     out: list[Finding] = []
-    for (state, source, rule, name), found in groups.items():
-        worst = max(found, key=lambda p: _badness(rule, p))
-        message, numbers = build[rule](worst)
+    for (state, source, rule, name), found in _groups(paints, policy).items():
+        worst = _worst(rule, found)
+        message, numbers = _BUILD[rule](worst)
         canvases = tuple(dict.fromkeys(p.behind for p in found if p.behind is not None))
         icon = by_name.get(worst.icon) if worst.icon is not None else None
         lines = () if icon is None else (icon.color_line, icon.alpha_line)

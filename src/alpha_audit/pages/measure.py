@@ -48,7 +48,14 @@ from alpha_audit.model import Icon
 from alpha_audit.pages.capture import Capture, FoundIcon
 from alpha_audit.pages.measured import Coverage, IconMatch, MeasuredPaint, Prediction
 
-__all__ = ["DeclaredPaint", "PageContext", "declared_paints", "measure_capture"]
+__all__ = [
+    "DeclaredPaint",
+    "PageContext",
+    "declared_paints",
+    "icon_region",
+    "measure_capture",
+    "ring_width",
+]
 
 Linear = tuple[float, float, float]
 
@@ -205,11 +212,18 @@ def _encode(linear: NDArray[np.float64]) -> NDArray[np.float64]:
     return srgb_encode(linear)
 
 
-def _region(capture: Capture, icon: FoundIcon, pad: int) -> tuple[slice, slice, slice, slice]:
-    """Rows/columns of the icon's box (and the box grown by ``pad`` device px) in the capture."""
+def ring_width(scale: int) -> int:
+    """Device pixels of backdrop measured around an icon (the "around" ring): 2 CSS px."""
+    return 2 * scale
+
+
+def icon_region(
+    capture: Capture, box: tuple[float, float, float, float], pad: int
+) -> tuple[slice, slice, slice, slice]:
+    """Rows/columns of ``box`` (CSS px of the page) and of it grown by ``pad`` device px."""
     assert capture.clip is not None
     s = capture.scale
-    x, y, w, h = icon.box
+    x, y, w, h = box
     h_px, w_px = capture.drawn.shape[:2]
     x0 = max(0, math.floor((x - capture.clip.x) * s))
     y0 = max(0, math.floor((y - capture.clip.y) * s))
@@ -230,8 +244,8 @@ def _measure_icon(
     manifest_icon: Icon | None,
     match: IconMatch,
 ) -> list[MeasuredPaint]:
-    ring = 2 * capture.scale
-    rows, cols, grown_rows, grown_cols = _region(capture, icon, ring)
+    ring = ring_width(capture.scale)
+    rows, cols, grown_rows, grown_cols = icon_region(capture, icon.box, ring)
     drawn_all = capture.drawn[grown_rows, grown_cols].astype(np.float64)
     hidden_all = capture.hidden[grown_rows, grown_cols].astype(np.float64)
     inside = np.zeros(drawn_all.shape[:2], dtype=bool)

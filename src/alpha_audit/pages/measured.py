@@ -15,6 +15,7 @@ from pathlib import Path
 __all__ = [
     "BlockedRequest",
     "Coverage",
+    "IconCrop",
     "IconMatch",
     "MeasuredPaint",
     "PageProblem",
@@ -127,6 +128,37 @@ class MeasuredPaint:
 
 
 @dataclass(frozen=True)
+class IconCrop:
+    """One icon instance cut out of both captures, as PNG: what the HTML report shows.
+
+    ``drawn`` and ``hidden`` are PNG files (8-bit sRGB, no colour profile) of
+    the same pixels: the icon's box grown by the ring the backdrop "around" it
+    is measured in, icons drawn and icons hidden.  Every pixel is a pixel of the
+    capture: ``step`` is 1, or for an icon too large for the crop side every
+    ``step``-th device pixel of each row and column (nothing is interpolated).
+    ``width`` x ``height`` are the PNGs' pixels, ``scale`` the capture's device
+    pixels per CSS pixel.  ``source``, ``state``, ``engine`` and ``dom_path``
+    name the instance, as in its :class:`MeasuredPaint` records.
+    """
+
+    source: str
+    state: str
+    engine: str
+    dom_path: str
+    drawn: bytes
+    hidden: bytes
+    width: int
+    height: int
+    scale: int
+    step: int = 1
+
+    @property
+    def key(self) -> tuple[str, str, str, str]:
+        """(source, state, engine, DOM path): the instance this crop shows."""
+        return self.source, self.state, self.engine, self.dom_path
+
+
+@dataclass(frozen=True)
 class BlockedRequest:
     """A request a page made that was refused: it was not to the page's own server."""
 
@@ -149,7 +181,12 @@ class PageProblem:
 
 @dataclass(frozen=True)
 class RenderResult:
-    """Everything one run found, in a stable order (source, state, engine, DOM order)."""
+    """Everything one run found, in a stable order (source, state, engine, DOM order).
+
+    ``crops`` (kept only when the run was asked for them) show the paints a
+    finding may name as its worst, failing rules' first, at most
+    ``RenderConfig.crops`` of them; ``crops_left_out`` counts the rest.
+    """
 
     paints: tuple[MeasuredPaint, ...]
     problems: tuple[PageProblem, ...]
@@ -158,6 +195,8 @@ class RenderResult:
     icons: int  # icon instances found over all of them
     engines: tuple[tuple[str, str], ...]  # (engine, version)
     pages: tuple[tuple[str, str], ...] = ()  # (source, state) of each audited, in order
+    crops: tuple[IconCrop, ...] = ()  # kept only when asked (RenderConfig.crops)
+    crops_left_out: int = 0  # crops wanted beyond RenderConfig.crops
 
     @property
     def failing(self) -> tuple[MeasuredPaint, ...]:

@@ -3,10 +3,12 @@
 :func:`audit_pages` serves the source folders on loopback, starts one browser
 per worker (each behind its own blocking proxy, so refused requests are
 attributed to the page that made them), and runs the page x state jobs in
-parallel, one capture pair each.  A guard thread per worker ends the browser
-when a page passes its time limit or the browser's processes together pass
-the memory cap; that page becomes a :class:`PageProblem` and the worker
-starts a fresh browser.  Browsers never outlive the call (nor alpha-audit:
+parallel, one capture pair each (when the config asks for crops, the icons a
+finding may show are cut out of it into one bounded
+:class:`~alpha_audit.pages.crops.CropStore`).  A guard thread per worker ends
+the browser when a page passes its time limit or the browser's processes
+together pass the memory cap; that page becomes a :class:`PageProblem` and the
+worker starts a fresh browser.  Browsers never outlive the call (nor alpha-audit:
 :mod:`alpha_audit.browser.lifecycle`).
 """
 
@@ -26,6 +28,7 @@ from alpha_audit.errors import AlphaAuditError, UsageError
 from alpha_audit.model import IconSet
 from alpha_audit.pages.capture import capture_page
 from alpha_audit.pages.config import RenderConfig
+from alpha_audit.pages.crops import CropStore
 from alpha_audit.pages.mapping import ManifestIndex
 from alpha_audit.pages.measure import PageContext, measure_capture
 from alpha_audit.pages.measured import BlockedRequest, MeasuredPaint, PageProblem, RenderResult
@@ -154,7 +157,7 @@ class _Worker:
             browser.close()
 
     def run(
-        self, job: Job, index: ManifestIndex, threshold: float
+        self, job: Job, index: ManifestIndex, crops: CropStore | None, rank: int
     ) -> tuple[list[MeasuredPaint], PageProblem | None, list[str], int]:
         url = job.url(self.server)
         self.proxy.take()
@@ -183,11 +186,13 @@ class _Worker:
             url,
             job.state.name,
             job.engine,
-            threshold,
+            self.config.threshold,
             job.target.file,
         )
         matches = [index.match(icon.keys) for icon in capture.icons]
         paints = measure_capture(capture, page, matches)
+        if crops is not None:
+            crops.keep(capture, paints, rank)
         return paints, None, self.proxy.take(), len(capture.icons)
 
     def close(self) -> None:
@@ -223,6 +228,9 @@ def audit_pages(
             cls = engine_class(engine)
             raise UsageError(f"{cls.LABEL} is not installed: {cls.INSTALL_HINT}")
     jobs = plan_jobs(config)
+    ordered = sorted(jobs, key=lambda j: (j.target.name, j.state.name, j.engine))  # the report's
+    rank = {job.order: k for k, job in enumerate(ordered)}
+    crops = CropStore(config.crops, config.policy) if config.crops > 0 else None
     index = ManifestIndex.of(iconset)
     results: dict[int, tuple[list[MeasuredPaint], PageProblem | None, list[str], int]] = {}
     todo: queue.Queue[Job] = queue.Queue()
@@ -248,7 +256,7 @@ def audit_pages(
                 except queue.Empty:
                     return
                 try:
-                    outcome = worker.run(job, index, config.threshold)
+                    outcome = worker.run(job, index, crops, rank[job.order])
                 except BaseException as exc:  # handed to the caller's thread below
                     failure.append(exc)
                     return
@@ -279,7 +287,7 @@ def audit_pages(
     problems: list[PageProblem] = []
     blocked: list[BlockedRequest] = []
     icons = 0
-    for job in sorted(jobs, key=lambda j: (j.target.name, j.state.name, j.engine)):
+    for job in ordered:
         found, problem, refused, count = results[job.order]
         paints.extend(found)
         icons += count
@@ -296,4 +304,6 @@ def audit_pages(
         icons,
         tuple(sorted(versions.items())),
         tuple(dict.fromkeys((j.target.name, j.state.name) for j in jobs)),
+        crops.crops if crops is not None else (),
+        crops.left_out if crops is not None else 0,
     )

@@ -5,16 +5,16 @@ whose :meth:`Format.renderer` loads one
 :class:`~alpha_audit.render.common.Renderer` from :data:`RENDERERS`, so a new
 format is one module and one line.  The result types and their enums:
 
-=================  =================================================  ======================
-result             formats                                            enum
-=================  =================================================  ======================
+=================  ===================================================  ========================
+result             formats                                              enum
+=================  ===================================================  ========================
 ``CheckReport``    table, json, junit, sarif, markdown, github, gitlab  :class:`CheckFormat`
-``SuggestResult``  table, json, markdown                               :class:`SuggestFormat`
-``PairReport``     table, json                                         :class:`PairFormat`
-``Reproduction``   table, json, markdown                               :class:`ReproduceFormat`
-bundled themes     table, json                                         :class:`ThemesFormat`
-``PageReport``     table, json, junit, sarif, markdown, github, gitlab  :class:`RenderFormat`
-=================  =================================================  ======================
+``SuggestResult``  table, json, markdown                                :class:`SuggestFormat`
+``PairReport``     table, json                                          :class:`PairFormat`
+``Reproduction``   table, json, markdown                                :class:`ReproduceFormat`
+bundled themes     table, json                                          :class:`ThemesFormat`
+``PageReport``     check's seven, and html                              :class:`RenderFormat`
+=================  ===================================================  ========================
 
 Shared helpers (escaping, JSON, text, fix wording) live once in
 :mod:`alpha_audit.render.common`.  A renderer never probes its destination (no
@@ -82,6 +82,7 @@ class RenderFormat(Format):
     MARKDOWN = "markdown"
     GITHUB = "github"
     GITLAB = "gitlab"
+    HTML = "html"
 
 
 class SuggestFormat(Format):
@@ -134,6 +135,7 @@ RENDERERS: dict[type[Format], dict[str, str]] = {
         "markdown": "alpha_audit.render.pages:render_markdown",
         "github": "alpha_audit.render.pages:render_github",
         "gitlab": "alpha_audit.render.pages:render_gitlab",
+        "html": "alpha_audit.render.pages_html:render_html",
     },
     SuggestFormat: {
         "table": "alpha_audit.render.suggest:render_table",

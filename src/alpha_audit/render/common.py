@@ -107,6 +107,7 @@ SUFFIXES: Mapping[str, tuple[str, ...]] = {
     "markdown": (".md", ".markdown"),
     "github": (".txt", ".log"),
     "gitlab": (".json",),  # GitLab's artifact is gl-code-quality-report.json
+    "html": (".html", ".htm"),
 }
 
 

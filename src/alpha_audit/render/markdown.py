@@ -92,11 +92,21 @@ def _groups(findings: Sequence[Finding], roles: dict[str, str]) -> list[_Group]:
     groups: dict[tuple[object, ...], _Group] = {}
     for f in findings:
         n = f.numbers
-        source = str(n.get("source", n.get("sources", "")))
+        source = str(n.get("source", ""))
+        if "sources" in n:  # a collision's colours: a few named, the rest counted
+            source = shorten_names(str(n["sources"]).split(", "), 8)
         role = roles.get(f.icons[0], "") if "source" in n else ""
         # confusion names its two roles (the numbers' "roles", comma-separated)
         colour = f"{role} {source}".strip() or str(n.get("roles", "")).replace(",", " / ")
-        key = (f.rule, colour, f.canvas, f.canvases, n.get("alpha"), n.get("output"))
+        key = (
+            f.rule,
+            colour,
+            n.get("sources"),
+            f.canvas,
+            f.canvases,
+            n.get("alpha"),
+            n.get("output"),
+        )
         if key not in groups:
             groups[key] = _Group(f.rule, colour, f.canvas or "", len(f.canvases), _numbers(f), f)
         groups[key].icons.extend(f.icons)

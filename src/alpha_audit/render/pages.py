@@ -9,7 +9,8 @@ properties; GitLab Code Quality and GitHub annotations likewise.  What is
 page-specific is here: the table and JSON (``alpha-audit.render/1``: the
 measured paints, then the gate), JUnit (a suite per story or page, a case per
 icon and state) and the pull-request comment, a story x state matrix followed
-by the failing icons with their worst contrast, backdrop and fix.
+by the failing icons with their worst contrast, backdrop and fix.  The HTML
+report (:mod:`alpha_audit.render.pages_html`) shares the matrix and verdict.
 """
 
 from __future__ import annotations
@@ -43,6 +44,7 @@ from alpha_audit.render.common import (
 __all__ = [
     "MARKER",
     "RENDER_SCHEMA",
+    "headline",
     "paint_record",
     "render_github",
     "render_gitlab",
@@ -51,6 +53,8 @@ __all__ = [
     "render_markdown",
     "render_sarif",
     "render_table",
+    "state_matrix_cells",
+    "summary_notes",
 ]
 
 RENDER_SCHEMA = "alpha-audit.render/1"
@@ -256,8 +260,14 @@ def render_junit(report: PageReport, options: RenderOptions) -> str:
 # ------------------------------------------------------------------ Markdown
 
 
-def _matrix(report: PageReport) -> list[str]:
-    """Stories or pages x states: pass, the number of failing icons, or not audited."""
+def state_matrix_cells(
+    report: PageReport,
+) -> tuple[list[str], list[tuple[str, list[int | str]]]]:
+    """Stories or pages x states: the states, then per source a cell per state.
+
+    A cell is the number of failing icons there (0: passed), ``"not audited"``
+    (the page state is a problem) or ``"—"`` (the state was not asked of it).
+    """
     result = report.result
     pages = list(result.pages) or list(dict.fromkeys((p.source, p.state) for p in result.paints))
     sources = list(dict.fromkeys(s for s, _ in pages))
@@ -266,40 +276,45 @@ def _matrix(report: PageReport) -> list[str]:
     for f in report.gate.failures:
         failing.setdefault((f.iconset, f.theme), set()).update(f.icons)
     broken = {(q.source, q.state) for q in result.problems}
-    lines = [
-        "| story or page | " + " | ".join(escape_markdown(t) for t in states) + " |",
-        "|---|" + "---|" * len(states),
-    ]
+    rows: list[tuple[str, list[int | str]]] = []
     for source in sources:
-        cells = []
+        cells: list[int | str] = []
         for state in states:
             if (source, state) in broken:
                 cells.append("not audited")
             elif (source, state) not in pages:
                 cells.append("—")
-            elif failing.get((source, state)):
-                n = len(failing[(source, state)])
-                cells.append(f"**{n} failing**")
             else:
-                cells.append("pass")
-        lines.append(f"| {escape_markdown(source)} | " + " | ".join(cells) + " |")
+                cells.append(len(failing.get((source, state), ())))
+        rows.append((source, cells))
+    return states, rows
+
+
+def _matrix(report: PageReport) -> list[str]:
+    """The story x state matrix as a Markdown table: pass, **n failing**, not audited."""
+    states, rows = state_matrix_cells(report)
+    lines = [
+        "| story or page | " + " | ".join(escape_markdown(t) for t in states) + " |",
+        "|---|" + "---|" * len(states),
+    ]
+    for source, cells in rows:
+        shown = [c if isinstance(c, str) else (f"**{c} failing**" if c else "pass") for c in cells]
+        lines.append(f"| {escape_markdown(source)} | " + " | ".join(shown) + " |")
     return lines
 
 
-def render_markdown(report: PageReport, options: RenderOptions) -> str:
-    """The pull-request comment: verdict, story x state matrix, failing icons with their fixes."""
+def headline(report: PageReport) -> str:
+    """The verdict in one line: ``gate passed (10 page states)`` or ``gate failed: ...``."""
     gate, result = report.gate, report.result
-    check = report.as_check()
-    failures = gate.failures
     if gate.passed:
-        head = f"### ✅ alpha-audit render: gate passed ({result.audited} page states)"
-    else:
-        icons = len({(f.iconset, f.theme, f.icons) for f in failures})
-        head = (
-            f"### ❌ alpha-audit render: gate failed: {icons} failing icon(s) in "
-            f"{result.audited} page states"
-        )
-    lines = [MARKER, head, ""]
+        return f"gate passed ({result.audited} page states)"
+    icons = len({(f.iconset, f.theme, f.icons) for f in gate.failures})
+    return f"gate failed: {icons} failing icon(s) in {result.audited} page states"
+
+
+def summary_notes(report: PageReport) -> list[str]:
+    """What else the reader should know: reported, baselined, page states not audited."""
+    gate, result = report.gate, report.result
     notes = []
     if gate.warnings:
         rules = sorted({f.rule.value for f in gate.warnings})
@@ -308,6 +323,17 @@ def render_markdown(report: PageReport, options: RenderOptions) -> str:
         notes.append(f"{len(gate.baselined)} {baselined_text(gate)}")
     if result.problems:
         notes.append(f"{len(result.problems)} page state(s) could not be audited")
+    return notes
+
+
+def render_markdown(report: PageReport, options: RenderOptions) -> str:
+    """The pull-request comment: verdict, story x state matrix, failing icons with their fixes."""
+    gate = report.gate
+    check = report.as_check()
+    failures = gate.failures
+    head = f"### {'✅' if gate.passed else '❌'} alpha-audit render: {headline(report)}"
+    lines = [MARKER, head, ""]
+    notes = summary_notes(report)
     if notes:
         lines += ["; ".join(notes).capitalize() + ".", ""]
     lines += _matrix(report)

@@ -86,7 +86,7 @@ def test_dark_modes_written_the_common_ways(tmp_path: Path, dark: str) -> None:
         "default": {"bg": "#ffffff", "fg": "#0062ba"},
         "dark": {"bg": "#111111", "fg": "#99ccff"},
     }
-    assert any(note.startswith("mode dark: line 2") for note in themes.notes)
+    assert any(note.startswith("mode dark from tokens.css: line 2") for note in themes.notes)
 
 
 def test_light_dark_values_give_both_modes(tmp_path: Path) -> None:

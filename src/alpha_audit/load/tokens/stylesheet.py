@@ -396,7 +396,8 @@ def _add(
     layer = sheet.layer_key(layers)
     selector = " ".join(tinycss2.serialize(rule.prelude).split()) or "@theme"
     for mode, specificity in modes.items():
-        part = _Contribution(mode, scheme, p3, f"line {line} {selector[:60]}")
+        media = f"@media (prefers-color-scheme: {scheme}) " if scheme else ""
+        part = _Contribution(mode, scheme, p3, f"line {line} {media}{selector[:60]}")
         for node in decls:
             if "*" in node.name:  # Tailwind's "--color-*: initial" resets a namespace
                 continue
@@ -696,7 +697,8 @@ def _modes(p: Path) -> TokenModes:
         out[mode] = {paths[name]: _token(sheet, resolver, name) for name in props}
         own = [part.where for part in applied if part.mode != "default" or part.scheme or part.p3]
         if mode != "default":
-            notes.append(f"mode {mode}: {'; '.join(dict.fromkeys(own)) or 'light-dark() values'}")
+            found = "; ".join(dict.fromkeys(own)) or "light-dark() values"
+            notes.append(f"mode {mode} from {p.name}: {found}")
     if not any(t.type == "color" for tokens in out.values() for t in tokens.values()):
         raise InputError(
             "has no custom property that is a colour in a @theme block or a rule for the root "

@@ -1,0 +1,270 @@
+"""The page audit as one self-contained HTML file, with crops of the icons it finds.
+
+``alpha-audit render -f html -o render.html``: the verdict, the story x state
+matrix (:func:`~alpha_audit.render.pages.state_matrix_cells`, the comment's
+own), then each failing finding and, in a second section, each reported one:
+story or page, state, icon, worst and median contrast against the threshold,
+the drawn colour and the backdrop as swatches, the model's prediction, the fix
+the other formats give (:func:`~alpha_audit.render.common.finding_fix`), the
+manifest line, and the worst instance twice, side by side, as drawn and with
+the icons hidden (:class:`~alpha_audit.pages.measured.IconCrop`), enlarged
+without smoothing so each device pixel shows.
+
+The file runs nothing and loads nothing: no script, images as ``data:`` URIs,
+and a Content-Security-Policy that forbids anything else, so a story's name
+holding markup stays text (every input string goes through
+:func:`~alpha_audit.render.common.escape_html`) and the report can be opened
+from a CI artifact safely.
+"""
+
+from __future__ import annotations
+
+import base64
+import re
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from alpha_audit.findings import Finding
+from alpha_audit.pages.measured import IconCrop, MeasuredPaint
+from alpha_audit.pages.report import PageReport
+from alpha_audit.render.common import RenderOptions, escape_html, finding_fix, location_text
+from alpha_audit.render.pages import headline, state_matrix_cells, summary_notes
+from alpha_audit.results import CheckReport
+
+__all__ = ["CSP", "render_html"]
+
+# Nothing but inline style and data: images (CSP Level 3, 'default-src' the fallback of
+# every fetch directive): the report must not load or run anything, whatever it quotes.
+CSP = "default-src 'none'; img-src data:; style-src 'unsafe-inline'"
+_SHOWN = 192  # CSS px a crop is enlarged towards (in whole multiples, at most 8x)
+_HEX = re.compile(r"#[0-9a-fA-F]{6}")
+
+_STYLE = """
+body { font: 14px/1.45 system-ui, sans-serif; margin: 2em auto; max-width: 1100px;
+  padding: 0 1em; color: #1f2328; background: #fff; }
+h1 { font-size: 1.4em; } h2 { font-size: 1.15em; margin-top: 2em; }
+h1.fail { color: #b3261e; } h1.pass { color: #1a7f37; }
+code { font: 0.92em ui-monospace, monospace; overflow-wrap: anywhere; }
+table.matrix { border-collapse: collapse; }
+table.matrix th, table.matrix td { border: 1px solid #d0d7de; padding: 0.25em 0.6em;
+  text-align: left; }
+td.fail { background: #ffebe9; font-weight: 600; } td.pass { color: #1a7f37; }
+td.none { color: #656d76; }
+article { border: 1px solid #d0d7de; border-radius: 6px; padding: 0.8em 1em;
+  margin: 1em 0; display: flex; gap: 1.5em; flex-wrap: wrap; }
+article.fail { border-left: 6px solid #cf222e; }
+article.reported { border-left: 6px solid #bf8700; }
+article h3 { flex-basis: 100%; margin: 0; font-size: 1.05em; }
+article p.message { flex-basis: 100%; margin: 0; }
+figure { margin: 0; display: flex; gap: 0.8em; align-items: flex-start; }
+figure div { text-align: center; font-size: 0.85em; color: #656d76; }
+figure img { display: block; image-rendering: pixelated; image-rendering: crisp-edges;
+  border: 1px solid #d0d7de; }
+p.size { font-size: 0.8em; color: #656d76; margin: 0.3em 0 0; }
+dl { display: grid; grid-template-columns: max-content 1fr; gap: 0.2em 1em; margin: 0;
+  flex: 1; min-width: 320px; }
+dt { color: #656d76; } dd { margin: 0; }
+.swatch { display: inline-block; width: 1.1em; height: 1.1em; vertical-align: -0.2em;
+  border: 1px solid #8c959f; margin-right: 0.3em; }
+.nocrop { color: #656d76; font-style: italic; max-width: 14em; }
+footer { margin-top: 2em; color: #656d76; font-size: 0.9em; }
+"""
+
+
+def _e(text: object) -> str:
+    return escape_html(text)
+
+
+def _swatch(color: object) -> str:
+    """A colour as a swatch and its hex; only a measured ``#rrggbb`` reaches the style."""
+    if not isinstance(color, str):
+        return "—"
+    if _HEX.fullmatch(color) is None:
+        return f"<code>{_e(color)}</code>"
+    return f'<span class="swatch" style="background:{color}"></span><code>{color}</code>'
+
+
+def _ratio(value: object) -> str:
+    return f"{value:.2f}:1" if isinstance(value, float) else "—"
+
+
+def _matrix(report: PageReport) -> list[str]:
+    states, rows = state_matrix_cells(report)
+    out = ['<table class="matrix">', "<tr><th>story or page</th>"]
+    out[-1] += "".join(f"<th>{_e(s)}</th>" for s in states) + "</tr>"
+    for source, cells in rows:
+        shown = []
+        for cell in cells:
+            if isinstance(cell, str):
+                shown.append(f'<td class="none">{_e(cell)}</td>')
+            elif cell:
+                shown.append(f'<td class="fail">{cell} failing</td>')
+            else:
+                shown.append('<td class="pass">pass</td>')
+        out.append(f"<tr><th>{_e(source)}</th>{''.join(shown)}</tr>")
+    out.append("</table>")
+    return out
+
+
+def _image(png: bytes, width: int, height: int, zoom: int, alt: str) -> str:
+    data = base64.b64encode(png).decode("ascii")
+    return (
+        f'<img src="data:image/png;base64,{data}" width="{width * zoom}" '
+        f'height="{height * zoom}" alt="{_e(alt)}">'
+    )
+
+
+def _figure(crop: IconCrop | None, icon: str, left_out: int) -> str:
+    if crop is None:
+        why = "no crop kept"
+        if left_out:
+            why += f": the run reached its limit of crops ({left_out} left out)"
+        return f'<p class="nocrop">{why}</p>'
+    zoom = max(1, min(8, _SHOWN // max(crop.width, crop.height)))
+    size = f"{crop.width * crop.step} × {crop.height * crop.step} device px (scale {crop.scale})"
+    if crop.step > 1:
+        size += f", 1 in {crop.step} pixels per row and column"
+    size += f", shown {zoom}×"
+    drawn = _image(crop.drawn, crop.width, crop.height, zoom, f"{icon} as drawn")
+    hidden = _image(crop.hidden, crop.width, crop.height, zoom, f"{icon}: the backdrop")
+    return (
+        "<div><figure>"
+        f"<div>{drawn}as drawn</div>"
+        f"<div>{hidden}backdrop (icons hidden)</div>"
+        f'</figure><p class="size">{size}</p></div>'
+    )
+
+
+def _model(n: Mapping[str, Any]) -> str:
+    if "model_output" not in n:
+        return "—"
+    given = f"<code>{_e(n.get('source', '?'))}</code> at alpha {n.get('alpha', 1.0):g}"
+    if n.get("opacity", 1.0) != 1.0:
+        given += f", opacity {n['opacity']:g}"
+    drift = n.get("render_drift")
+    drift_text = ""
+    if isinstance(drift, float):
+        drift_text = f"; CIEDE2000 {drift:.1f} from the drawn colour"
+    return (
+        f"{given} → {_swatch(n['model_output'])} ({_e(n.get('pipeline', ''))}): "
+        f"contrast {_ratio(n.get('model_contrast'))}{drift_text}"
+    )
+
+
+@dataclass(frozen=True)
+class _Lookups:
+    """What every finding's entry reads, built once per report."""
+
+    check: CheckReport
+    crops: Mapping[tuple[str, str, str, str], IconCrop]
+    paints: Mapping[tuple[str, str, str, str], MeasuredPaint]
+    crops_left_out: int
+    base: Path | None
+
+    @classmethod
+    def of(cls, report: PageReport, options: RenderOptions) -> _Lookups:
+        paints: dict[tuple[str, str, str, str], MeasuredPaint] = {}
+        for p in report.result.paints:
+            paints.setdefault((p.source, p.state, p.engine, p.dom_path), p)
+        crops = {c.key: c for c in report.result.crops}
+        return cls(report.as_check(), crops, paints, report.result.crops_left_out, options.base)
+
+
+def _finding(f: Finding, kind: str, look: _Lookups) -> list[str]:
+    """One finding: heading, message, the two crops and its figures."""
+    n = f.numbers
+    source_kind = "story" if "story" in n else "page"
+    engine, dom_path = str(n.get("engine", "")), str(n.get("dom_path", ""))
+    key = (f.iconset, f.theme, engine, dom_path)
+    icon = f.icons[0]
+    where = "<br>".join(
+        f"<code>{_e(location_text(loc, look.base))}</code> ({_e(loc.what)})" for loc in f.locations
+    )
+    contrast = (
+        f"worst {_ratio(n.get('contrast'))}, median {_ratio(n.get('contrast_median'))}; "
+        f"threshold {float(n.get('threshold', 3.0)):g}:1"
+    )
+    backdrop = _swatch(n.get("background")) + " behind"
+    if isinstance(n.get("around"), str) and n["around"] != n.get("background"):
+        backdrop += f", {_swatch(n['around'])} around"
+    rows = [
+        (source_kind, f"<code>{_e(f.iconset)}</code>"),
+        ("state", f"<code>{_e(f.theme)}</code> ({_e(engine)})"),
+        ("icon", f"<code>{_e(icon)}</code> ({_e(n.get('element', ''))}, {_e(n.get('match', ''))})"),
+        ("DOM path", f"<code>{_e(dom_path)}</code>"),
+        ("contrast", contrast),
+        ("drawn", _swatch(n.get("drawn"))),
+        ("backdrop", backdrop),
+        ("model", _model(n)),
+        ("fix", _e(finding_fix(f, look.check))),
+        ("manifest", where or "—"),
+    ]
+    paint = look.paints.get(key)
+    if paint is not None:
+        rows.append(("URL", f"<code>{_e(paint.url)}</code>"))
+    return [
+        f'<article class="{kind}">',
+        f"<h3><code>{_e(icon)}</code> in <code>{_e(f.iconset)}</code> "
+        f"[<code>{_e(f.theme)}</code>]: {_e(f.rule.value)}</h3>",
+        f'<p class="message">{_e(f.message)}</p>',
+        _figure(look.crops.get(key), icon, look.crops_left_out),
+        "<dl>" + "".join(f"<dt>{_e(k)}</dt><dd>{v}</dd>" for k, v in rows) + "</dl>",
+        "</article>",
+    ]
+
+
+def _section(title: str, kind: str, findings: Sequence[Finding], look: _Lookups) -> list[str]:
+    if not findings:
+        return []
+    out = [f"<h2>{title} ({len(findings)})</h2>"]
+    for f in findings:
+        out += _finding(f, kind, look)
+    return out
+
+
+def render_html(report: PageReport, options: RenderOptions) -> str:
+    """The report as one HTML page that runs no script and loads nothing (crops inline)."""
+    gate, result = report.gate, report.result
+    title = f"alpha-audit render: {headline(report)}"
+    lines = [
+        "<!DOCTYPE html>",
+        '<html lang="en">',
+        "<head>",
+        '<meta charset="utf-8">',
+        f'<meta http-equiv="Content-Security-Policy" content="{CSP}">',
+        '<meta name="referrer" content="no-referrer">',
+        '<meta name="viewport" content="width=device-width, initial-scale=1">',
+        f"<title>{_e(title)}</title>",
+        f"<style>{_STYLE}</style>",
+        "</head>",
+        "<body>",
+        f'<h1 class="{"pass" if gate.passed else "fail"}">{_e(title)}</h1>',
+    ]
+    notes = summary_notes(report)
+    if notes:
+        said = "; ".join(notes)
+        lines.append(f"<p>{_e(said[:1].upper() + said[1:])}.</p>")
+    lines += ["<h2>Stories and pages by state</h2>", *_matrix(report)]
+    look = _Lookups.of(report, options)
+    lines += _section("Failing", "fail", gate.failures, look)
+    lines += _section("Reported", "reported", gate.warnings, look)
+    if result.problems:
+        lines.append(f"<h2>Not audited ({len(result.problems)})</h2><ul>")
+        lines += [
+            f"<li><code>{_e(q.source)}</code> [<code>{_e(q.state)}</code>, {_e(q.engine)}]: "
+            f"{_e(q.message)}</li>"
+            for q in result.problems
+        ]
+        lines.append("</ul>")
+    footer = [
+        f"{result.audited} page states, {result.icons} icons, {len(result.paints)} paints",
+        f"{len(result.blocked)} requests blocked",
+        "engines: " + (", ".join(f"{n} {v}" for n, v in result.engines) or "none"),
+        f"{len(result.crops)} crops",
+    ]
+    if result.crops_left_out:
+        footer[-1] += f" ({result.crops_left_out} more not kept: a run keeps a bounded number)"
+    lines += [f"<footer>{_e('; '.join(footer))}.</footer>", "</body>", "</html>"]
+    return "\n".join(lines) + "\n"
