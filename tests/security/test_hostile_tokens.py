@@ -479,3 +479,32 @@ def test_css_aliases_of_a_long_value_serialise_it_once_per_mode(
     modes = load_token_modes(_write(tmp_path, "t.css", css))
     assert len(modes.modes) == 6 and modes.modes["m4"]["f499"].problem is not None
     assert long_ones[0] <= 6 * 2, long_ones  # once per mode (and once for its span)
+
+
+def test_figma_alias_hops_over_every_mode_count_toward_the_step_budget(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from alpha_audit.load.tokens import model
+
+    def variable(i: int) -> dict:
+        value = {"type": "VARIABLE_ALIAS", "id": f"V:{i - 1}"} if i else {"r": 1, "g": 1, "b": 1}
+        return {
+            "name": f"t{i}",
+            "variableCollectionId": "C:1",
+            "resolvedType": "COLOR",
+            "valuesByMode": {str(m): value for m in range(20)},
+        }
+
+    modes = [{"modeId": str(i), "name": f"m{i}"} for i in range(20)]
+    collection = {"name": "T", "defaultModeId": "0", "modes": modes}
+    doc = {
+        "meta": {
+            "variableCollections": {"C:1": collection},
+            "variables": {f"V:{i}": variable(i) for i in range(10)},  # chains of 1..10 hops
+        }
+    }
+    path = _write(tmp_path, "figma.json", doc)
+    assert len(load_token_modes(path).modes) == 20  # 20 modes x 55 hops = 1,100
+    monkeypatch.setattr(model, "MAX_EXPANSION", 1_000)
+    with pytest.raises(InputError, match=r"figma\.json.*resolving aliases takes more than 1,000"):
+        load_token_modes(path)

@@ -88,7 +88,10 @@ class TokenTree:
 
     def count(self, n: int, doc: JsonDoc, keys: JsonPath, path: str | None) -> None:
         """Count ``n`` steps; past :data:`~.model.MAX_EXPANSION` an error naming the file."""
-        place: TokenPlace = {"file": doc.path, "line": doc.line(keys), "path": path}
+
+        def place() -> TokenPlace:
+            return {"file": doc.path, "line": doc.line(keys), "path": path}
+
         self.steps.take(n, "resolving ($ref, aliases, $extends, groups)", place)
 
     # ---------------------------------------------------------------- reading

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TypedDict
@@ -102,13 +103,14 @@ class Steps:
 
     taken: int = 0
 
-    def take(self, n: int, what: str, place: TokenPlace) -> None:
-        """Take ``n`` steps of ``what``; past :data:`MAX_EXPANSION`, an error at ``place``."""
+    def take(self, n: int, what: str, place: Callable[[], TokenPlace]) -> None:
+        """Take ``n`` steps of ``what``; past :data:`MAX_EXPANSION`, an error at ``place()``
+        (called only then: a step costs an addition)."""
         self.taken += n
         if self.taken > MAX_EXPANSION:
             raise token_error(
                 f"{what} takes more than {MAX_EXPANSION:,} steps; the file expands without bound",
-                **place,
+                **place(),
             )
 
 

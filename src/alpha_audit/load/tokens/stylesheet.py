@@ -519,11 +519,9 @@ class _Resolver:
         self.cycles: dict[str, str] = {}
 
     def count(self, n: int, name: str) -> None:
-        place: TokenPlace = {
-            "file": self.sheet.path,
-            "line": self.props[name].line,
-            "path": _dots(name),
-        }
+        def place() -> TokenPlace:
+            return {"file": self.sheet.path, "line": self.props[name].line, "path": _dots(name)}
+
         self.steps.take(n, "var() substitution", place)
 
     def resolve(self, name: str) -> tuple[list[Any] | None, tuple[str, ...]]:
@@ -715,9 +713,10 @@ def _modes(p: Path) -> TokenModes:
         )
         applied = [part for part in candidates if _applies(part, mode)]
         # Each mode applies every root declaration again: counted before the sort.
-        place: TokenPlace = {"file": p, "line": None, "path": None}
         steps.take(
-            len(candidates) + sum(len(part.decls) for part in applied), "cascading modes", place
+            len(candidates) + sum(len(part.decls) for part in applied),
+            "cascading modes",
+            lambda: {"file": p, "line": None, "path": None},
         )
         decls = sorted((d for part in applied for d in part.decls), key=lambda d: d.order)
         props = {d.name: d for d in decls}  # the last in cascade order wins
