@@ -164,7 +164,7 @@ def _check_count(sheets: int, source: Path | None) -> None:
     if sheets > MAX_SHEETS:
         raise InputError(
             f"would write more than {MAX_SHEETS} PNG sheets (one per canvas and size, pages "
-            "included); preview fewer canvases or sizes, or write the --html page",
+            "included); preview fewer canvases or `sizes`, or write the page (`html_path`)",
             path=source,
         )
 
