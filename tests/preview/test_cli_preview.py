@@ -95,3 +95,25 @@ def test_page_data_carries_the_theme_and_sizes(tmp_path):
     assert data["alpha"] == 1.3
     assert data["sizes"] == [16, 24, 48]
     assert len(data["canvases"]) == 16
+
+
+@pytest.mark.parametrize("many", ["canvases", "sizes"])
+def test_more_sheets_than_the_cap_are_refused_before_any_icon_is_drawn(tmp_path, monkeypatch, many):
+    from alpha_audit.preview import files
+    from alpha_audit.preview.sheets import MAX_SHEETS
+
+    def never(*args, **kwargs):
+        raise AssertionError("icons were rendered before the sheet count was checked")
+
+    monkeypatch.setattr(files, "paint_masks", never)
+    theme, sizes = THEME, [f"-s{s}" for s in range(1, MAX_SHEETS // 16 + 2)]  # 16 canvases
+    if many == "canvases":
+        theme, sizes = str(tmp_path / "wide.yaml"), []
+        rows = "".join(f'  - {{name: c{i}, color: "#{i:06x}"}}\n' for i in range(4096))
+        Path(theme).write_text(f"name: wide\ncanvases:\n{rows}")
+    out = tmp_path / "sheets"
+    result = CliRunner().invoke(app, ["preview", theme, ICONSET, "-o", str(out), *sizes])
+    assert result.exit_code == 2, result.output
+    assert f"would write more than {MAX_SHEETS} PNG sheets" in result.output
+    assert Path(theme).name in result.output and "--html" in result.output
+    assert not any(out.glob("*.png"))

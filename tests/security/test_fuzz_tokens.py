@@ -125,6 +125,10 @@ INSERTS = [
     *(b"var(--blue)", b"light-dark(", b"@layer x {", b"@media (prefers-color-scheme: dark) {"),
     *(b"color-mix(in oklab, ", b"oklch(from var(--blue) l c h / 50%)", b"\\2e ", b"--a: var(--a);"),
     *(b'"VARIABLE_ALIAS"', b'"selectedTokenSets": {"x": "enabled"}', b"1e999", b"NaN"),
+    # Round 3 of hostile input: expansions the readers count.
+    *(b'"hex": [[1], {"$ref": "#/color"}],', b'{"$ref": "#/' + b"a/" * 80 + b'"}'),
+    *(b'"$extends": "{color.alt}",', b"--b: var(--a) var(--a); --a: var(--b);"),
+    *(b'"$metadata": {"tokenSetOrder": [[], "light", "core", "light"]},',),
 ]
 
 

@@ -359,3 +359,216 @@ def test_css_nested_too_deeply_names_its_file(tmp_path: Path) -> None:
     path = _write(tmp_path, "deep.css", ":root { --bg: #fff; --x: " + "a(" * 5000 + " }")
     with pytest.raises(InputError, match=r"deep\.css: CSS nested too deeply"):
         load_token_modes(path)
+
+
+# --- bounds, round 3: work counted, so the cost is linear in the file ------------------------
+def _empty_groups_source(tmp_path: Path, kind: str, modes: int, groups: int) -> Path:
+    """A source whose every mode walks ``groups`` empty groups again (no tokens in them)."""
+    bg = {"$type": "color", "$value": "#fff"}
+    empty = {f"g{i}": {} for i in range(groups)}
+    if kind == "resolver":
+        contexts = {f"m{i}": [{"bg": bg}] for i in range(modes)}
+        doc: dict = {
+            "defs": {"big": empty},
+            "resolutionOrder": [
+                {"type": "set", "sources": [{"$ref": "#/defs/big"}] * 10},
+                {"type": "modifier", "name": "m", "contexts": contexts, "default": "m0"},
+            ],
+        }
+    else:
+        doc = {
+            "core": {"bg": {"value": "#fff", "type": "color"}, **empty},
+            "$themes": [
+                {"name": f"t{i}", "selectedTokenSets": {"core": "enabled"}} for i in range(modes)
+            ],
+        }
+    return _write(tmp_path, f"{kind}.json", doc)
+
+
+@pytest.mark.parametrize("kind", ["resolver", "studio"])
+def test_modes_share_one_step_budget_so_rewalking_sets_is_refused(
+    tmp_path: Path, kind: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # Two modes x 1 token pass the modes x tokens cap; the groups walked per mode do not.
+    from alpha_audit.load.tokens import model
+
+    monkeypatch.setattr(model, "MAX_EXPANSION", 20_000)
+    one_mode = _empty_groups_source(tmp_path, kind, modes=1, groups=900)
+    assert load_token_modes(one_mode, root=tmp_path).modes  # 9,000 (or 900) keys: within
+    path = _empty_groups_source(tmp_path, kind, modes=40, groups=900)
+    with pytest.raises(InputError, match=r"takes more than 20,000 steps") as info:
+        load_token_modes(path, root=tmp_path)
+    assert path.name in str(info.value)
+
+
+def test_a_large_value_aliased_many_times_is_measured_once(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from alpha_audit.load.tokens import dtcg
+
+    defs: dict = {"d0": 0}
+    for i in range(1, 13):  # 2^12 leaves: 8,191 JSON values, under MAX_VALUE_NODES
+        defs[f"d{i}"] = [{"$ref": f"#/defs/d{i - 1}"}, {"$ref": f"#/defs/d{i - 1}"}]
+    doc: dict = {"defs": defs, "big": {"$type": "other", "$value": {"$ref": "#/defs/d12"}}}
+    doc |= {f"a{i}": {"$value": "{big}"} for i in range(2_000)}
+    doc |= {f"p{i}": {"$value": {"$ref": "#/big/$value"}} for i in range(2_000)}
+    calls = {"value": 0, "size": 0}
+    value, size = dtcg.TokenTree._value, dtcg._size
+
+    def counted_value(self, *args):  # type: ignore[no-untyped-def]
+        calls["value"] += 1
+        return value(self, *args)
+
+    def counted_size(v):  # type: ignore[no-untyped-def]
+        calls["size"] += 1
+        return size(v)
+
+    monkeypatch.setattr(dtcg.TokenTree, "_value", counted_value)
+    monkeypatch.setattr(dtcg, "_size", counted_size)
+    tokens = load_token_modes(_write(tmp_path, "t.tokens.json", doc)).modes["default"]
+    assert tokens["a1999"].value is tokens["big"].value
+    # Linear: each written value once, each alias and pointer once (before: 8,191 each).
+    assert calls["value"] <= 2 * (12 * 3 + 4_002) and calls["size"] == 0, calls
+
+
+def test_a_pointer_longer_than_the_file_nests_is_refused_before_it_is_split(
+    tmp_path: Path,
+) -> None:
+    doc = {"bg": {"$type": "color", "$value": {"$ref": "#/" + "/".join(["a"] * 200_000)}}}
+    with pytest.raises(InputError, match=r"has more parts than the file nests \(64 levels\)"):
+        load_token_modes(_write(tmp_path, "t.tokens.json", doc))
+
+
+def test_extends_chains_stop_at_the_alias_bound_in_any_order(tmp_path: Path) -> None:
+    n = 3_000  # deeper than Python's recursion limit: was an error naming no file
+    doc: dict = {f"g{n}": {"$type": "color", "t": {"$value": "#fff"}}}
+    doc |= {f"g{i}": {"$extends": f"{{g{i + 1}}}"} for i in range(n)}
+    with pytest.raises(InputError, match=r"\$extends chain longer than 64") as info:
+        load_token_modes(_write(tmp_path, "t.tokens.json", doc))
+    assert "t.tokens.json" in str(info.value)
+
+
+def test_references_through_deeply_nested_values_name_the_file(tmp_path: Path) -> None:
+    defs: dict = {}
+    for i in range(64):
+        value: object = {"$ref": f"#/defs/d{i + 1}"} if i < 63 else 1
+        for _ in range(55):
+            value = [value]
+        defs[f"d{i}"] = value
+    doc = {"defs": defs, "x": {"$type": "other", "$value": {"$ref": "#/defs/d0"}}}
+    with pytest.raises(InputError, match=r"t\.tokens\.json: references nest too deeply"):
+        load_token_modes(_write(tmp_path, "t.tokens.json", doc))
+
+
+def test_a_colour_object_with_a_large_hex_is_refused_not_serialised(tmp_path: Path) -> None:
+    defs: dict = {"d0": 0}
+    for i in range(1, 13):
+        defs[f"d{i}"] = [{"$ref": f"#/defs/d{i - 1}"}, {"$ref": f"#/defs/d{i - 1}"}]
+    bg = {"colorSpace": "srgb", "components": [1, 1, 1], "hex": {"$ref": "#/defs/d12"}}
+    doc = {"defs": defs, "bg": {"$type": "color", "$value": bg}}
+    modes = load_token_modes(_write(tmp_path, "t.tokens.json", doc), root=tmp_path)
+    with pytest.raises(InputError, match="hex must be a string"):
+        token_themes(modes, TokenConfig(file=modes.source, canvases=("bg",)))
+
+
+def test_css_modes_layers_and_selector_lists_are_indexed_not_rescanned(tmp_path: Path) -> None:
+    import tinycss2
+
+    from alpha_audit.load.tokens import stylesheet
+
+    hops = [0]
+
+    class Counted(dict):  # type: ignore[type-arg]
+        def __getitem__(self, key: str) -> str:
+            hops[0] += 1
+            return str(super().__getitem__(key))
+
+    n = 3_000
+    css = ":root { --bg: #fff }\n"
+    css += "".join(f".m{i + 1}, .m{i} {{ --bg: #000 }}\n" for i in range(n))
+    css += "@layer " + ", ".join(f"l{i}" for i in range(n)) + ";\n"
+    sheet = stylesheet._Sheet(tmp_path / "t.css", None)
+    sheet.parent = Counted()
+
+    rules = tinycss2.parse_stylesheet(css, skip_comments=True, skip_whitespace=True)
+    stylesheet._walk(sheet, rules, layers=(), scheme=None, p3=False, skip=None, depth=0)
+    sheet.finish()
+    assert len({part.mode for part in sheet.parts}) == 2  # :root and one chained mode
+    assert hops[0] <= 6 * n, hops  # path compression: was n^2/2 parent hops
+    assert [sheet.layer_ranks[(f"l{i}",)] for i in range(n)] == list(range(n))
+
+
+def test_css_declarations_applied_per_mode_count_toward_the_step_budget(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from alpha_audit.load.tokens import model
+
+    monkeypatch.setattr(model, "MAX_EXPANSION", 20_000)
+    css = ":root { --c: #000; " + "--bg: #fff; " * 2_000 + "}\n"
+    css += "".join(f".m{i} {{ --c: #{i:06x} }}\n" for i in range(20))
+    with pytest.raises(InputError, match=r"t\.css: cascading modes takes more than 20,000 steps"):
+        load_token_modes(_write(tmp_path, "t.css", css))
+
+
+@pytest.mark.parametrize("reverse", [False, True], ids=["forward", "reverse"])
+def test_css_var_chains_stop_at_the_alias_bound(tmp_path: Path, reverse: bool) -> None:
+    n = 2_000
+    if reverse:
+        props = [f"--v{i}: var(--v{i + 1});" for i in range(n)] + [f"--v{n}: #fff;"]
+    else:
+        props = ["--v0: #fff;"] + [f"--v{i}: var(--v{i - 1});" for i in range(1, n + 1)]
+    css = ":root { --bg: #fff; " + " ".join(props) + " }"
+    with pytest.raises(InputError, match=r"t\.css:1: v\d+: var\(\) chain longer than 64"):
+        load_token_modes(_write(tmp_path, "t.css", css))
+
+
+def test_css_aliases_of_a_long_value_serialise_it_once_per_mode(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import tinycss2
+
+    big = " ".join(["x"] * 400)
+    css = f":root {{ --bg: #fff; --big: {big}; "
+    css += " ".join(f"--f{i}: var(--big);" for i in range(500)) + " }\n"
+    css += "".join(f".m{i} {{ --bg: #{i:06x} }}\n" for i in range(5))
+    long_ones = [0]
+    serialize = tinycss2.serialize
+
+    def counted(nodes):  # type: ignore[no-untyped-def]
+        nodes = list(nodes)
+        long_ones[0] += len(nodes) > 500
+        return serialize(nodes)
+
+    monkeypatch.setattr(tinycss2, "serialize", counted)
+    modes = load_token_modes(_write(tmp_path, "t.css", css))
+    assert len(modes.modes) == 6 and modes.modes["m4"]["f499"].problem is not None
+    assert long_ones[0] <= 6 * 2, long_ones  # once per mode (and once for its span)
+
+
+def test_figma_alias_hops_over_every_mode_count_toward_the_step_budget(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from alpha_audit.load.tokens import model
+
+    def variable(i: int) -> dict:
+        value = {"type": "VARIABLE_ALIAS", "id": f"V:{i - 1}"} if i else {"r": 1, "g": 1, "b": 1}
+        return {
+            "name": f"t{i}",
+            "variableCollectionId": "C:1",
+            "resolvedType": "COLOR",
+            "valuesByMode": {str(m): value for m in range(20)},
+        }
+
+    modes = [{"modeId": str(i), "name": f"m{i}"} for i in range(20)]
+    collection = {"name": "T", "defaultModeId": "0", "modes": modes}
+    doc = {
+        "meta": {
+            "variableCollections": {"C:1": collection},
+            "variables": {f"V:{i}": variable(i) for i in range(10)},  # chains of 1..10 hops
+        }
+    }
+    path = _write(tmp_path, "figma.json", doc)
+    assert len(load_token_modes(path).modes) == 20  # 20 modes x 55 hops = 1,100
+    monkeypatch.setattr(model, "MAX_EXPANSION", 1_000)
+    with pytest.raises(InputError, match=r"figma\.json.*resolving aliases takes more than 1,000"):
+        load_token_modes(path)

@@ -18,6 +18,7 @@ if TYPE_CHECKING:
     )
     from alpha_audit.preview.sheets import (
         ICON_ALPHA,
+        MAX_SHEETS,
         PIXEL_BUDGET,
         SWATCH_ALPHAS,
         Layout,
@@ -37,6 +38,7 @@ if TYPE_CHECKING:
 __all__ = [
     "ICON_ALPHA",
     "MAX_NEAR_SOURCE_COLORS",
+    "MAX_SHEETS",
     "PIXEL_BUDGET",
     "SWATCH_ALPHAS",
     "Blend",
@@ -71,6 +73,7 @@ __getattr__ = lazy_exports(
         "composite_drawings": "alpha_audit.preview.compose",
         "near_source_canvases": "alpha_audit.preview.compose",
         "ICON_ALPHA": "alpha_audit.preview.sheets",
+        "MAX_SHEETS": "alpha_audit.preview.sheets",
         "PIXEL_BUDGET": "alpha_audit.preview.sheets",
         "SWATCH_ALPHAS": "alpha_audit.preview.sheets",
         "Layout": "alpha_audit.preview.sheets",

@@ -121,6 +121,7 @@ def preview_files(
             alphas=list(alphas) or None,
             threshold=theme.threshold,
             title=title,
+            source=iconset.path if near_source else theme.path,
         )
         targets += [folder / s.name for s in specs]
     if html_path is not None:

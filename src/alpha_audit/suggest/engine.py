@@ -38,6 +38,7 @@ import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
 from decimal import ROUND_FLOOR, Decimal
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -129,6 +130,19 @@ _RULE_ORDER = {rule: k for k, rule in enumerate(Rule)}
 Found = tuple[Rule, int, tuple[int, ...], float, bool]
 
 
+class _TrackIcons:
+    """Each track's icon indices, built when asked for (most tracks never are)."""
+
+    def __init__(self, icons: NDArray[np.intp], bounds: NDArray[np.intp]) -> None:
+        self._icons, self._bounds = icons, bounds  # track t: icons[bounds[t]:bounds[t + 1]]
+
+    def __getitem__(self, t: int | np.integer[Any]) -> tuple[int, ...]:
+        return tuple(self._icons[self._bounds[t] : self._bounds[t + 1]].tolist())
+
+    def __len__(self) -> int:
+        return len(self._bounds) - 1
+
+
 @dataclass(frozen=True)
 class _Tracks:
     """Rows grouped by what they show: moving ones by paint, fixed ones by (paint, alpha)."""
@@ -138,7 +152,7 @@ class _Tracks:
     alpha: NDArray[np.float64]  # (T,) nan when moving
     moving: NDArray[np.bool_]  # (T,)
     label: NDArray[np.intp]  # (T,) equal labels are never a pair (one paint, or one role)
-    icons: tuple[tuple[int, ...], ...]  # icon indices per track
+    icons: _TrackIcons  # icon indices per track
 
 
 def _round_down(value: float, precision: int) -> float:
@@ -296,24 +310,29 @@ class _Engine:
         """
         r = self.result
         roles = rows is not None
-        chosen = np.arange(len(r.entries)) if rows is None else rows
-        groups: dict[tuple[int, int, float], list[int]] = {}
-        for p in chosen.tolist():
-            moving = bool(moving_icons[self.row_icon[p]])
-            alpha = -math.inf if moving else float(r.alpha[p])
-            role = int(self.role_label[p]) if roles else -1
-            groups.setdefault((role, int(self.keys[p]), alpha), []).append(p)
-        labels = sorted(groups, key=lambda g: (g[2] != -math.inf, groups[g][0]))
-        first = np.array([groups[g][0] for g in labels], dtype=np.intp)
-        is_moving = np.array([g[2] == -math.inf for g in labels], dtype=bool)
-        label = [g[0] if roles else g[1] for g in labels]
+        chosen = np.arange(len(r.entries)) if rows is None else np.asarray(rows, dtype=np.intp)
+        moving = moving_icons[self.row_icon[chosen]]
+        role = self.role_label[chosen] if roles else np.full(chosen.size, -1)
+        alpha = np.where(moving, -math.inf, r.alpha[chosen])
+        columns = np.stack([role.astype(np.float64), self.keys[chosen].astype(np.float64), alpha])
+        # One group per (role, paint, alpha); ``first`` is each group's first row in order.
+        _, first_at, group = np.unique(columns.T, axis=0, return_index=True, return_inverse=True)
+        group = group.reshape(-1)
+        is_moving = moving[first_at]
+        order = np.lexsort((first_at, ~is_moving))  # moving groups first, then by first row
+        rank = np.empty_like(order)
+        rank[order] = np.arange(order.size)
+        track = rank[group]  # each chosen row's track
+        first = chosen[first_at[order]]
+        pairs = np.unique(np.stack([track, self.row_icon[chosen]]), axis=1)  # sorted (track, icon)
+        bounds = np.searchsorted(pairs[0], np.arange(order.size + 1))
         return _Tracks(
             source=r.sources[first].reshape(-1, 3),
             opacity=np.ones(first.size) if roles else r.opacity[first],
-            alpha=np.where(is_moving, math.nan, [g[2] for g in labels]),
-            moving=is_moving,
-            label=np.array(label, dtype=np.intp).reshape(-1),
-            icons=tuple(tuple(sorted({int(self.row_icon[p]) for p in groups[g]})) for g in labels),
+            alpha=np.where(is_moving[order], math.nan, alpha[first_at[order]]),
+            moving=is_moving[order],
+            label=(role if roles else self.keys[chosen])[first_at[order]].astype(np.intp),
+            icons=_TrackIcons(pairs[1], bounds),
         )
 
     def shown(

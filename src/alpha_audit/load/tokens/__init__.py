@@ -113,6 +113,18 @@ def load_token_modes(
         return modes_from_stylesheet(p)
     doc = load_json(p)
     kind = detect_format(doc) if format == "auto" else format
+    try:
+        return _modes_of(doc, kind, bound, modifier)
+    except RecursionError as exc:  # $ref or $extends chains through values nested deep
+        from alpha_audit.errors import InputError
+
+        raise InputError(
+            "references nest too deeply ($ref or $extends through nested values)", path=p
+        ) from exc
+
+
+def _modes_of(doc: JsonDoc, kind: str, bound: Path, modifier: str | None) -> TokenModes:
+    p = doc.path
     if kind == "figma":
         return modes_from_figma(doc, collection=modifier)
     if kind == "resolver":
@@ -124,4 +136,4 @@ def load_token_modes(
         return TokenModes(p, kind, {"default": tokens}, "default")
     from alpha_audit.errors import UsageError
 
-    raise UsageError(f"token format {format!r} is not one of {', '.join(TOKEN_FORMATS)}")
+    raise UsageError(f"token format {kind!r} is not one of {', '.join(TOKEN_FORMATS)}")

@@ -43,6 +43,8 @@ def token_color(
             components = value["components"]
             if not isinstance(components, list):
                 raise ColorSyntaxError(f"components must be a list, got {components!r:.40}")
+            if not isinstance(value.get("hex", ""), str):
+                raise ColorSyntaxError(f"hex must be a string, got {value['hex']!r:.40}")
             return color_from_components(
                 value["colorSpace"],
                 components,

@@ -25,11 +25,11 @@ from typing import Any
 
 from alpha_audit.errors import InputError
 from alpha_audit.load.names import check_name
-from alpha_audit.load.tokens.jsondoc import JsonDoc, JsonPath
+from alpha_audit.load.tokens.jsondoc import MAX_JSON_DEPTH, JsonDoc, JsonPath
 from alpha_audit.load.tokens.model import (
     MAX_ALIAS_CHAIN,
-    MAX_EXPANSION,
     MAX_TOKENS,
+    Steps,
     Token,
     TokenPlace,
     token_error,
@@ -73,25 +73,26 @@ class _Group:
 
 @dataclass
 class TokenTree:
-    """Token documents merged in order (last wins), resolved on demand."""
+    """Token documents merged in order (last wins), resolved on demand.
+
+    ``steps`` counts the work (keys walked, ``$extends`` copies, alias and
+    pointer lookups, values measured) against :data:`~.model.MAX_EXPANSION`;
+    the trees of one source's modes share it.
+    """
 
     legacy: bool = False
     raw: dict[str, _Raw] = field(default_factory=dict)
     groups: dict[str, _Group] = field(default_factory=dict)
     docs: list[JsonDoc] = field(default_factory=list)
-    steps: int = 0  # counted expansion steps (MAX_EXPANSION)
+    steps: Steps = field(default_factory=Steps)
 
     def count(self, n: int, doc: JsonDoc, keys: JsonPath, path: str | None) -> None:
-        """Count ``n`` expansion steps; past :data:`MAX_EXPANSION` an error naming the file."""
-        self.steps += n
-        if self.steps > MAX_EXPANSION:
-            raise token_error(
-                f"resolving takes more than {MAX_EXPANSION:,} steps ($ref, aliases, $extends); "
-                "the file expands without bound",
-                file=doc.path,
-                line=doc.line(keys),
-                path=path,
-            )
+        """Count ``n`` steps; past :data:`~.model.MAX_EXPANSION` an error naming the file."""
+
+        def place() -> TokenPlace:
+            return {"file": doc.path, "line": doc.line(keys), "path": path}
+
+        self.steps.take(n, "resolving ($ref, aliases, $extends, groups)", place)
 
     # ---------------------------------------------------------------- reading
     def add(self, doc: JsonDoc, data: Any = None, keys: JsonPath = ()) -> None:
@@ -114,6 +115,9 @@ class TokenTree:
         group_type: str | None,
     ) -> None:
         here = ".".join(names)
+        # Every key is walked: a source added again and again (a Resolver's sets
+        # in each of its modes, a pointer named by many sources) costs each time.
+        self.count(len(node) or 1, doc, keys, here or None)
         gtype = node.get("$type", group_type)
         if "$type" in node and not isinstance(node["$type"], str):
             raise token_error(
@@ -193,6 +197,14 @@ class TokenTree:
                     line=group.doc.line((*group.keys, "$extends")),
                     path=group.path,
                 )
+            if len(stack) >= MAX_ALIAS_CHAIN:
+                raise token_error(
+                    f"$extends chain longer than {MAX_ALIAS_CHAIN}: "
+                    f"{' -> '.join(stack[:4])} -> ...",
+                    file=group.doc.path,
+                    line=group.doc.line((*group.keys, "$extends")),
+                    path=group.path,
+                )
             prefix = group.extends + "."
             # The target and its subgroups get their own inherited tokens first.
             for other in subgroups.get(group.extends, []):
@@ -234,6 +246,7 @@ class TokenTree:
         """Every token with aliases and ``$ref`` followed and its type resolved."""
         self._apply_extends()
         self._cache: dict[str, Token] = {}
+        self._sizes: dict[str, int] = {}  # JSON values in each resolved token's value
         self._pointers: dict[tuple[int, str], tuple[Any, int]] = {}
         return {path: self._token(path, []) for path in self.raw}
 
@@ -267,7 +280,7 @@ class TokenTree:
             )
         except _Unresolved as exc:
             token = self._broken(raw, path, exc.problem, exc.line)
-            self._cache[path] = token
+            self._cache[path], self._sizes[path] = token, 1
             return token
         if size > MAX_VALUE_NODES:
             raise token_error(
@@ -317,7 +330,7 @@ class TokenTree:
             span=target.span if target else raw.doc.span((*raw.keys, value_key)),
             problem=problem,
         )
-        self._cache[path] = token
+        self._cache[path], self._sizes[path] = token, size
         return token
 
     def _broken(self, raw: _Raw, path: str, problem: str, line: int | None) -> Token:
@@ -350,7 +363,7 @@ class TokenTree:
                     raw.doc.line(keys),
                 )
             target = self._token(name, stack)
-            return target.value, target, _size(target.value)
+            return target.value, target, self._sizes[name]
         if isinstance(value, dict) and "$ref" in value:
             return self._pointer(raw, value["$ref"], keys, stack)
         if isinstance(value, dict):
@@ -392,6 +405,12 @@ class TokenTree:
         if pointer in stack:
             chain = " -> ".join([*stack[stack.index(pointer) :], pointer])
             raise token_error(f"$ref cycle: {chain}", **where)
+        if pointer.count("/") > MAX_JSON_DEPTH + 1:  # + "/$value" after the deepest key
+            raise token_error(
+                f"$ref {pointer[:40]}... has more parts than the file nests "
+                f"({MAX_JSON_DEPTH} levels); it points at nothing",
+                **where,
+            )
         self.count(1, raw.doc, keys, raw.path)
         parts = [p.replace("~1", "/").replace("~0", "~") for p in pointer[1:].split("/")[1:]]
         # A pointer at a token (in any merged source: the last one wins, as for
@@ -403,12 +422,14 @@ class TokenTree:
             rest = parts[i:]
             target = self._token(token_path, stack)
             if not rest or rest == ["$value"] or (self.legacy and rest == ["value"]):
-                return target.value, target, _size(target.value)
+                return target.value, target, self._sizes[token_path]
             if rest[0] not in ("$value", "value"):
                 raise token_error(
                     f"$ref {pointer} points into token {token_path} but not at its $value",
                     **where,
                 )
+            # Measuring the part pointed at walks at most the whole value: counted first.
+            self.count(self._sizes[token_path], raw.doc, keys, raw.path)
             node: Any = target.value
             for part in rest[1:]:
                 if isinstance(node, dict) and part in node:

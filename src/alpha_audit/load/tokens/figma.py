@@ -24,6 +24,7 @@ from alpha_audit.load.names import check_name
 from alpha_audit.load.tokens.jsondoc import JsonDoc, JsonPath
 from alpha_audit.load.tokens.model import (
     MAX_ALIAS_CHAIN,
+    Steps,
     Token,
     TokenModes,
     TokenPlace,
@@ -74,7 +75,11 @@ def modes_from_figma(doc: JsonDoc, *, collection: str | None = None) -> TokenMod
             path=None,
         )
 
+    known: dict[str, dict[str, str]] = {}  # each collection's modes, read once
+
     def coll_modes(cid: str) -> dict[str, str]:
+        if cid in known:
+            return known[cid]
         c = collections.get(cid)
         if not isinstance(c, dict) or not isinstance(c.get("modes"), list):
             raise token_error(
@@ -100,6 +105,7 @@ def modes_from_figma(doc: JsonDoc, *, collection: str | None = None) -> TokenMod
                 line=doc.line((*top, "variableCollections", cid)),
                 path=None,
             )
+        known[cid] = modes
         return modes
 
     if collection is None:
@@ -143,7 +149,10 @@ def modes_from_figma(doc: JsonDoc, *, collection: str | None = None) -> TokenMod
         default = collections[cid].get("defaultModeId")
         return str(default) if default is not None else next(iter(modes.values()))
 
+    steps = Steps()  # alias hops over every mode: linear in modes x variables, capped
+
     def resolve(vid: str, mode_name: str, stack: list[str]) -> tuple[Any, str, str]:
+        steps.take(1, "resolving aliases", lambda: where(stack[0] if stack else vid))
         if vid not in variables or not isinstance(variables[vid], dict):
             raise _Missing(
                 f"alias to variable {vid!r}, which this response does not hold (a library "
@@ -164,25 +173,32 @@ def modes_from_figma(doc: JsonDoc, *, collection: str | None = None) -> TokenMod
             raise _Missing(f"has no value for mode {mode_name!r}", where(vid))
         return value, vid, mode_id
 
+    # What does not depend on the mode is read once per variable, not once per mode.
+    read: list[tuple[str, dict[str, Any], str, str]] = []  # vid, variable, path, type
+    paths: set[str] = set()
+    for vid, var in variables.items():
+        if not isinstance(var, dict) or not isinstance(var.get("name"), str):
+            raise token_error("a variable needs a name", **where(vid))
+        ttype = _TYPES.get(str(var.get("resolvedType")))
+        if ttype is None:
+            raise token_error(
+                f"resolvedType {var.get('resolvedType')!r} is not one of {', '.join(_TYPES)}",
+                **where(vid),
+            )
+        check_name(var["name"], **_named(where(vid)), what="variable name")
+        path = _path(var["name"])
+        if path in paths:
+            raise token_error(
+                f"two variables are named {var['name']!r}; token paths must be unique",
+                **where(vid),
+            )
+        paths.add(path)
+        read.append((vid, var, path, ttype))
+
     modes: dict[str, dict[str, Token]] = {}
     for mode_name in names:
         tokens: dict[str, Token] = {}
-        for vid, var in variables.items():
-            if not isinstance(var, dict) or not isinstance(var.get("name"), str):
-                raise token_error("a variable needs a name", **where(vid))
-            ttype = _TYPES.get(str(var.get("resolvedType")))
-            if ttype is None:
-                raise token_error(
-                    f"resolvedType {var.get('resolvedType')!r} is not one of {', '.join(_TYPES)}",
-                    **where(vid),
-                )
-            check_name(var["name"], **_named(where(vid)), what="variable name")
-            path = _path(var["name"])
-            if path in tokens:
-                raise token_error(
-                    f"two variables are named {var['name']!r}; token paths must be unique",
-                    **where(vid),
-                )
+        for vid, var, path, ttype in read:
             try:
                 value, origin, origin_mode = resolve(vid, mode_name, [])
             except _Missing as exc:
@@ -195,9 +211,9 @@ def modes_from_figma(doc: JsonDoc, *, collection: str | None = None) -> TokenMod
                     problem=exc.problem,
                 )
                 continue
-            if ttype == "color":
-                value = _color(value, where(origin, origin_mode))
             loc = where(origin, origin_mode)
+            if ttype == "color":
+                value = _color(value, loc)
             tokens[path] = Token(
                 path=path,
                 type=ttype,

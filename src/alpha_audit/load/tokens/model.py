@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TypedDict
@@ -15,6 +16,7 @@ __all__ = [
     "MAX_MODES",
     "MAX_MODE_TOKENS",
     "MAX_TOKENS",
+    "Steps",
     "Token",
     "TokenModes",
     "TokenPlace",
@@ -31,9 +33,12 @@ MAX_MODES = 4096
 # hundred times the largest real set while bounding a small file that asks
 # for thousands of modes of thousands of tokens (each mode re-resolves them).
 MAX_MODE_TOKENS = 1_000_000
-# Steps of one expansion (JSON Pointer and alias lookups, $extends copies,
-# CSS var() substitutions) in one file: every step is counted, so a few
-# kilobytes that double at every level stop here with an error, never hang.
+# Steps of one expansion (JSON Pointer and alias lookups, groups walked,
+# $extends copies, CSS var() substitutions and declarations applied) in one
+# token source, all its modes together: every step is counted, so a few
+# kilobytes that double at every level, or that a thousand modes each walk
+# again, stop here with an error, never hang.  Twice MAX_MODE_TOKENS: each
+# resolution is a step, and a real source takes one or two per token.
 MAX_EXPANSION = 2_000_000
 
 
@@ -86,6 +91,27 @@ class TokenModes:
     default: str | None = None
     notes: tuple[str, ...] = ()
     skipped: dict[str, str] = field(default_factory=dict)
+
+
+@dataclass
+class Steps:
+    """Expansion steps taken for one token source, shared by every mode it resolves.
+
+    The one counter behind :data:`MAX_EXPANSION`: each reader takes its steps
+    *before* the work they stand for, so the refusal comes first.
+    """
+
+    taken: int = 0
+
+    def take(self, n: int, what: str, place: Callable[[], TokenPlace]) -> None:
+        """Take ``n`` steps of ``what``; past :data:`MAX_EXPANSION`, an error at ``place()``
+        (called only then: a step costs an addition)."""
+        self.taken += n
+        if self.taken > MAX_EXPANSION:
+            raise token_error(
+                f"{what} takes more than {MAX_EXPANSION:,} steps; the file expands without bound",
+                **place(),
+            )
 
 
 def check_mode_budget(path: Path, modes: int, tokens: int) -> None:

@@ -21,7 +21,7 @@ from alpha_audit.load.names import check_name
 from alpha_audit.load.paths import PathRefused, contain
 from alpha_audit.load.tokens.dtcg import TokenTree
 from alpha_audit.load.tokens.jsondoc import JsonDoc, load_json
-from alpha_audit.load.tokens.model import TokenModes, check_mode_budget, token_error
+from alpha_audit.load.tokens.model import Steps, TokenModes, check_mode_budget, token_error
 
 __all__ = ["MAX_SOURCES", "is_resolver", "modes_from_resolver"]
 
@@ -167,8 +167,9 @@ def modes_from_resolver(
         line = doc.line((*context_keys, context))
         check_name(context, path=doc.path, line=line, what="context name")
     modes = {}
+    steps = Steps()  # every mode walks the sets again: one budget for the file
     for context in contexts:
-        tree = TokenTree(legacy=legacy)
+        tree = TokenTree(legacy=legacy, steps=steps)
         for kind, node, keys in entries:
             if kind == "set":
                 r.sources(tree, (*keys, "sources"), node.get("sources"))

@@ -25,7 +25,7 @@ from alpha_audit.load.names import check_name
 from alpha_audit.load.paths import PathRefused, contain
 from alpha_audit.load.tokens.dtcg import TokenTree
 from alpha_audit.load.tokens.jsondoc import JsonDoc, load_json
-from alpha_audit.load.tokens.model import TokenModes, check_mode_budget, token_error
+from alpha_audit.load.tokens.model import Steps, TokenModes, check_mode_budget, token_error
 
 __all__ = ["is_studio_file", "modes_from_studio"]
 
@@ -85,13 +85,21 @@ def modes_from_studio(doc: JsonDoc, *, root: Path) -> TokenModes:
             sets[name] = (loaded, loaded.data)
         return sets[name]
 
+    # Each set's first place in tokenSetOrder, looked up once (not a list scan per set).
+    rank: dict[Any, int] = {}
+    for place, set_name in enumerate(order if isinstance(order, list) else []):
+        if isinstance(set_name, str):
+            rank.setdefault(set_name, place)
+
     def ordered(names: list[str]) -> list[str]:
         if not isinstance(order, list):
             return names
-        return sorted(names, key=lambda s: order.index(s) if s in order else len(order))
+        return sorted(names, key=lambda s: rank.get(s, len(order)))
+
+    steps = Steps()  # every theme walks its sets again: one budget for the source
 
     def build(selected: list[str], keys: tuple[str | int, ...]) -> dict[str, Any]:
-        tree = TokenTree(legacy=True)
+        tree = TokenTree(legacy=True, steps=steps)
         for name in selected:
             sdoc, data = load_set(name, keys)
             tree.add(sdoc, data, (name,) if sdoc is doc else ())

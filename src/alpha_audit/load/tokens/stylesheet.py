@@ -35,9 +35,13 @@ Modes come from where rules apply:
   ``@container`` and ``@scope`` are not a colour mode: their rules are
   skipped, and a selected token they would set is warned about.
 
-Every ``var()`` substitution is counted (:data:`~.model.MAX_EXPANSION`) and a
-resolved value is at most :data:`MAX_VALUE_TOKENS` component values, so a few
-kilobytes of properties that double at every level end in an error.
+Every ``var()`` substitution and every declaration applied to a mode is
+counted (:data:`~.model.MAX_EXPANSION`, all modes together), a ``var()``
+chain is at most :data:`~.model.MAX_ALIAS_CHAIN` long and a resolved value at
+most :data:`MAX_VALUE_TOKENS` component values, so a few kilobytes of
+properties that double at every level, or thousands of modes that each apply
+every declaration, end in an error.  Modes, layers and selector lists are
+indexed once, so the walk is linear in the sheet.
 """
 
 from __future__ import annotations
@@ -52,10 +56,12 @@ from alpha_audit.load.files import read_capped
 from alpha_audit.load.names import check_name
 from alpha_audit.load.spans import LineIndex
 from alpha_audit.load.tokens.model import (
-    MAX_EXPANSION,
+    MAX_ALIAS_CHAIN,
     MAX_TOKENS,
+    Steps,
     Token,
     TokenModes,
+    TokenPlace,
     check_mode_budget,
     token_error,
 )
@@ -87,6 +93,7 @@ class _Decl:
     line: int
     span: Span | None
     order: tuple[tuple[int, ...], tuple[int, int, int], int]  # layer, specificity, source
+    literal: bool  # no var() or light-dark(): the value can be rewritten in place
 
 
 @dataclass
@@ -109,15 +116,19 @@ class _Sheet:
     parts: list[_Contribution] = field(default_factory=list)
     skipped: dict[str, str] = field(default_factory=dict)  # property -> why not read
     layer_ranks: dict[tuple[str, ...], int] = field(default_factory=dict)
+    layer_children: dict[tuple[str, ...], int] = field(default_factory=dict)  # per parent
     anonymous: int = 0
     source: int = 0
     light_dark: bool = False
     parent: dict[str, str] = field(default_factory=dict)  # mode names of one selector list
 
     def find(self, name: str) -> str:
-        while self.parent.get(name, name) != name:
-            name = self.parent[name]
-        return name
+        root = name
+        while self.parent.get(root, root) != root:
+            root = self.parent[root]
+        while name != root:  # path compression: the next find is one step
+            self.parent[name], name = root, self.parent[name]
+        return root
 
     def union(self, names: Sequence[str]) -> None:
         """One selector list is one mode (``.dark, .dark-theme``); with the root, the default."""
@@ -146,7 +157,8 @@ class _Sheet:
         for i in range(len(layers)):
             path = layers[: i + 1]
             if path not in self.layer_ranks:
-                siblings = sum(1 for p in self.layer_ranks if len(p) == i + 1 and p[:i] == path[:i])
+                siblings = self.layer_children.get(path[:i], 0)
+                self.layer_children[path[:i]] = siblings + 1
                 self.layer_ranks[path] = siblings
             ranks.append(self.layer_ranks[path])
         return (*ranks, _LAST)
@@ -414,6 +426,7 @@ def _add(
                     node.source_line,
                     _value_span(value, sheet.index),
                     (layer, specificity, sheet.source),
+                    _literal(value),
                 )
             )
         sheet.parts.append(part)
@@ -483,10 +496,11 @@ def _mode_names(sheet: _Sheet) -> list[str]:
             names.setdefault(part.mode, None)
     if sheet.light_dark:
         names.setdefault("dark", None)
+    wide = {p.mode for p in sheet.parts if p.p3}
     out = []
     for name in names:
         out.append(name)
-        if any(p.p3 and p.mode == name for p in sheet.parts):
+        if name in wide:
             out.append("p3" if name == "default" else f"{name}-p3")
     return out
 
@@ -495,26 +509,21 @@ def _mode_names(sheet: _Sheet) -> list[str]:
 class _Resolver:
     """``var()`` substitution for one mode, memoised, every step counted."""
 
-    def __init__(self, sheet: _Sheet, props: dict[str, _Decl], scheme: str, budget: list[int]):
+    def __init__(self, sheet: _Sheet, props: dict[str, _Decl], scheme: str, steps: Steps):
         self.sheet = sheet
         self.props = props
         self.scheme = scheme
-        self.budget = budget  # shared across modes: [steps left]
+        self.steps = steps  # shared across modes
         self.done: dict[str, tuple[list[Any] | None, tuple[str, ...]]] = {}
+        self.texts: dict[str, str] = {}  # serialised value per property (see _token)
         self.active: list[str] = []
         self.cycles: dict[str, str] = {}
 
     def count(self, n: int, name: str) -> None:
-        self.budget[0] -= n
-        if self.budget[0] < 0:
-            decl = self.props[name]
-            raise token_error(
-                f"var() substitution takes more than {MAX_EXPANSION:,} steps; "
-                "the properties expand each other without bound",
-                file=self.sheet.path,
-                line=decl.line,
-                path=_dots(name),
-            )
+        def place() -> TokenPlace:
+            return {"file": self.sheet.path, "line": self.props[name].line, "path": _dots(name)}
+
+        self.steps.take(n, "var() substitution", place)
 
     def resolve(self, name: str) -> tuple[list[Any] | None, tuple[str, ...]]:
         """The substituted value of ``--name`` (None: invalid) and its alias chain."""
@@ -527,6 +536,15 @@ class _Resolver:
             for n in loop[:-1]:
                 self.cycles.setdefault(n, " -> ".join(_dots(x) for x in loop))
             return None, ()
+        if len(self.active) >= MAX_ALIAS_CHAIN:
+            raise token_error(
+                f"var() chain longer than {MAX_ALIAS_CHAIN}: "
+                f"{' -> '.join(_dots(n) for n in self.active[:4])} -> ...",
+                file=self.sheet.path,
+                line=self.props[self.active[0]].line,
+                path=_dots(self.active[0]),
+            )
+        self.count(1, name)
         self.active.append(name)
         try:
             decl = self.props[name]
@@ -541,6 +559,14 @@ class _Resolver:
                 and not _var_fallback(value[0])
             ):
                 resolved, rest = self.resolve(target)
+                if len(rest) >= MAX_ALIAS_CHAIN:
+                    raise token_error(
+                        f"var() chain longer than {MAX_ALIAS_CHAIN}: {_dots(name)} -> "
+                        f"{' -> '.join(_dots(n) for n in (target, *rest[:2]))} -> ...",
+                        file=self.sheet.path,
+                        line=decl.line,
+                        path=_dots(name),
+                    )
                 chain = (target, *rest)
                 out = resolved
             else:
@@ -673,7 +699,8 @@ def _modes(p: Path) -> TokenModes:
     paths = _token_paths(sheet, names)
     modes = _mode_names(sheet)
     check_mode_budget(p, len(modes), len(names))
-    budget = [MAX_EXPANSION]
+    steps = Steps()
+    colors: dict[str, bool] = {}  # _is_color per value text: modes share most values
     out: dict[str, dict[str, Token]] = {}
     notes = []
     by_mode: dict[str, list[_Contribution]] = {}
@@ -691,10 +718,16 @@ def _modes(p: Path) -> TokenModes:
             by_mode.get(plain, []) if plain != "default" else []
         )
         applied = [part for part in candidates if _applies(part, mode)]
+        # Each mode applies every root declaration again: counted before the sort.
+        steps.take(
+            len(candidates) + sum(len(part.decls) for part in applied),
+            "cascading modes",
+            lambda: {"file": p, "line": None, "path": None},
+        )
         decls = sorted((d for part in applied for d in part.decls), key=lambda d: d.order)
         props = {d.name: d for d in decls}  # the last in cascade order wins
-        resolver = _Resolver(sheet, props, _scheme_of(mode), budget)
-        out[mode] = {paths[name]: _token(sheet, resolver, name) for name in props}
+        resolver = _Resolver(sheet, props, _scheme_of(mode), steps)
+        out[mode] = {paths[name]: _token(sheet, resolver, name, colors) for name in props}
         own = [part.where for part in applied if part.mode != "default" or part.scheme or part.p3]
         if mode != "default":
             found = "; ".join(dict.fromkeys(own)) or "light-dark() values"
@@ -731,14 +764,24 @@ def _token_paths(sheet: _Sheet, names: set[str]) -> dict[str, str]:
     return {name: path for path, name in seen.items()}
 
 
-def _token(sheet: _Sheet, resolver: _Resolver, name: str) -> Token:
-    """One property of one mode as a token (a colour, or a non-colour with its reason)."""
+def _token(sheet: _Sheet, resolver: _Resolver, name: str, colors: dict[str, bool]) -> Token:
+    """One property of one mode as a token (a colour, or a non-colour with its reason).
+
+    An alias shares its target's value: serialised once per mode (a thousand
+    aliases of a long value are not a thousand serialisations), and whether a
+    text is a colour is decided once per sheet (``colors``).
+    """
     import tinycss2
 
     decl = resolver.props[name]
     value, chain = resolver.resolve(name)
-    end = resolver.props[chain[-1]] if chain else decl
-    text = tinycss2.serialize(value).strip() if value is not None else ""
+    end_name = chain[-1] if chain else name
+    end = resolver.props[end_name]
+    if end_name not in resolver.texts:
+        resolver.texts[end_name] = tinycss2.serialize(value).strip() if value is not None else ""
+    text = resolver.texts[end_name]
+    if text not in colors:
+        colors[text] = _is_color(text)
     path = _dots(name)
     problem = None
     if name in resolver.cycles:
@@ -748,7 +791,7 @@ def _token(sheet: _Sheet, resolver: _Resolver, name: str) -> Token:
             f"{tinycss2.serialize(decl.value).strip()[:60]} names a custom property this "
             "sheet does not set (and gives no fallback)"
         )
-    elif not _is_color(text):
+    elif not colors[text]:
         via = " -> ".join(_dots(n) for n in (name, *chain))
         problem = f"is {text[:40]!r}" + (f" (via {via})" if chain else "") + ", not a colour"
     return Token(
@@ -761,15 +804,13 @@ def _token(sheet: _Sheet, resolver: _Resolver, name: str) -> Token:
         alias_file=sheet.path if chain else None,
         alias_line=decl.line if chain else None,
         # Only a value written out literally can be rewritten in place.
-        span=end.span if _literal(end) else None,
+        span=end.span if end.literal else None,
         problem=problem,
     )
 
 
-def _literal(decl: _Decl) -> bool:
-    return not any(
-        t.type == "function" and t.lower_name in ("var", "light-dark") for t in decl.value
-    )
+def _literal(value: Sequence[Any]) -> bool:
+    return not any(t.type == "function" and t.lower_name in ("var", "light-dark") for t in value)
 
 
 def _dots(name: str) -> str:

@@ -203,6 +203,24 @@ def _selection(source: TokenModes, config: TokenConfig) -> dict[str, tuple[bool,
     return out
 
 
+def _color_key(value: Any) -> str | None:
+    """``value`` as a key for parsing each colour once, or None when it is too large to be
+    one (a string, or an object of scalars and one list of three): that value is parsed,
+    to be refused, without first serialising thousands of JSON values per mode.
+    """
+    if isinstance(value, str):
+        return json.dumps(value)
+    if not isinstance(value, dict) or len(value) > 4:
+        return None
+    for item in value.values():
+        if isinstance(item, dict) or (
+            isinstance(item, list)
+            and (len(item) > 3 or any(isinstance(i, list | dict) for i in item))
+        ):
+            return None
+    return json.dumps(value, sort_keys=True)
+
+
 def _parse_all(
     source: TokenModes, config: TokenConfig
 ) -> tuple[dict[str, ParsedColor], list[tuple[str, str, str, Token, bool, bool]]]:
@@ -222,9 +240,11 @@ def _parse_all(
             if path not in chosen:
                 continue
             is_canvas, is_color = chosen[path]
-            key = json.dumps(token.value, sort_keys=True)
-            if key not in seen or token.type != "color" or token.problem is not None:
-                seen[key] = token_color(token, gamut=parse_as, allow_alpha=True)
+            key = _color_key(token.value)
+            if key is None or key not in seen or token.type != "color" or token.problem is not None:
+                parsed = token_color(token, gamut=parse_as, allow_alpha=True)
+                key = key or json.dumps(token.value, sort_keys=True)  # not reached: no colour
+                seen[key] = parsed
             selected.append((name, path, key, token, is_canvas, is_color))
     if config.gamut == "map":
         seen = dict(zip(seen, map_parsed(list(seen.values())), strict=True))

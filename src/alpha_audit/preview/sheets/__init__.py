@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING
 from alpha_audit.lazy import lazy_exports
 
 if TYPE_CHECKING:
-    from alpha_audit.preview.sheets.pages import paginate
+    from alpha_audit.preview.sheets.pages import MAX_SHEETS, paginate
     from alpha_audit.preview.sheets.plan import (
         ICON_ALPHA,
         SWATCH_ALPHAS,
@@ -39,6 +39,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "ICON_ALPHA",
+    "MAX_SHEETS",
     "PIXEL_BUDGET",
     "SWATCH_ALPHAS",
     "Alpha",
@@ -60,6 +61,7 @@ __all__ = [
 __getattr__ = lazy_exports(
     __name__,
     {
+        "MAX_SHEETS": "alpha_audit.preview.sheets.pages",
         "paginate": "alpha_audit.preview.sheets.pages",
         "ICON_ALPHA": "alpha_audit.preview.sheets.plan",
         "SWATCH_ALPHAS": "alpha_audit.preview.sheets.plan",

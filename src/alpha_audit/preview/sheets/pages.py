@@ -9,6 +9,11 @@ for grid and compare, colours for swatches; canvases too for compare), so the
 same inputs always give the same pages; icons that fail to render only leave
 gaps, never make a page larger.  A sheet too large even for one item a page is
 refused with a :class:`~alpha_audit.errors.UsageError`.
+
+At most :data:`MAX_SHEETS` files come out of one run, counted as the pages are
+planned: each file costs its drawing, labels and encoding whatever it holds,
+so a theme of thousands of canvases is refused at once (the ``--html`` page
+draws any number), not after minutes of small files.
 """
 
 from __future__ import annotations
@@ -16,10 +21,11 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import replace
+from pathlib import Path
 from typing import NoReturn, assert_never
 
 from alpha_audit.color import NON_TEXT_THRESHOLD
-from alpha_audit.errors import UsageError
+from alpha_audit.errors import InputError, UsageError
 from alpha_audit.model import IconSet
 from alpha_audit.preview.sheets.compare import compare_frame
 from alpha_audit.preview.sheets.grid import grid_frame
@@ -35,7 +41,12 @@ from alpha_audit.preview.sheets.render import DEFAULT_MAX_WIDTH
 from alpha_audit.preview.sheets.surface import PIXEL_BUDGET
 from alpha_audit.preview.sheets.swatches import swatch_colors, swatch_frame
 
-__all__ = ["paginate"]
+__all__ = ["MAX_SHEETS", "paginate"]
+
+# PNG files one preview writes: a sheet per canvas and size (pages included).
+# A 40-canvas theme at three sizes is 120; each small sheet takes some tens of
+# milliseconds, so this many finish in well under a minute.
+MAX_SHEETS = 512
 
 Span = tuple[int, int]
 
@@ -118,16 +129,20 @@ def paginate(
     max_width: int = DEFAULT_MAX_WIDTH,
     title: str | None = None,
     budget: int = PIXEL_BUDGET,
+    source: Path | None = None,
 ) -> list[SheetSpec]:
     """Planned sheets split into pages of at most ``budget`` pixels each.
 
     Takes the same ``alphas``, ``threshold``, ``max_width`` and ``title`` as
     :func:`~alpha_audit.preview.sheets.render.render_sheet` will be given;
     ``budget`` may only be lower than :data:`~.surface.PIXEL_BUDGET`, which
-    every drawn sheet is held to.
+    every drawn sheet is held to.  More than :data:`MAX_SHEETS` pages is an
+    input error naming ``source`` (the theme whose canvases they are), raised
+    as soon as the count passes it.
     """
     label = title or iconset.name
     out: list[SheetSpec] = []
+    _check_count(len(specs), source)
     for spec in specs:
         rows = sheet_rows(spec.layout, iconset, alphas)
         match spec.layout:
@@ -141,7 +156,17 @@ def paginate(
             case _:
                 assert_never(spec.layout)
         out += _paged(spec, parts)
+        _check_count(len(out), source)
     return _distinct(out)
+
+
+def _check_count(sheets: int, source: Path | None) -> None:
+    if sheets > MAX_SHEETS:
+        raise InputError(
+            f"would write more than {MAX_SHEETS} PNG sheets (one per canvas and size, pages "
+            "included); preview fewer canvases or `sizes`, or write the page (`html_path`)",
+            path=source,
+        )
 
 
 Parts = list[tuple[SheetSpec, Span, str]]
