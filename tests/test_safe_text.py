@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import unicodedata
 
 import pytest
@@ -58,24 +59,68 @@ def test_github_escape_keeps_newline_escaping_and_drops_escape_sequences() -> No
     assert "\x1b" not in out and "\u202e" not in out and "%0A" not in out
 
 
-@pytest.mark.parametrize("name", ["a\u202eb", "\ud800", "x\u2066y", "bell\x07", "c1\x9b"])
-def test_names_and_reasons_with_unsafe_characters_are_refused(tmp_path, name: str) -> None:
+@pytest.mark.parametrize(
+    ("name", "said"),
+    [
+        ("a\u202eb", "the bidi control U+202E (RIGHT-TO-LEFT OVERRIDE)"),
+        ("\ud800", "the lone surrogate U+D800"),
+        ("x\u2066y", "the bidi control U+2066 (LEFT-TO-RIGHT ISOLATE)"),
+        ("bell\x07", "the control character U+0007"),
+        ("c1\x9b", "the control character U+009B"),
+        ("zw\u200bsp", "the invisible format character U+200B (ZERO WIDTH SPACE)"),
+    ],
+)
+def test_names_and_reasons_with_unsafe_characters_are_refused(
+    tmp_path, name: str, said: str
+) -> None:
     from alpha_audit.load.config import config_from_doc
     from alpha_audit.load.theme import theme_from_doc
     from alpha_audit.load.yamldoc import parse_yaml
 
     escaped = name.encode("unicode_escape").decode("ascii")
-    theme = parse_yaml(f'name: "{escaped}"\ncanvases: []\n', tmp_path / "t.yaml")
-    with pytest.raises(InputError, match="not a usable name") as info:
+    theme = parse_yaml(
+        f'name: t\ncanvases: [{{name: "{escaped}", color: "#fff"}}]\n', tmp_path / "t.yaml"
+    )
+    with pytest.raises(InputError) as info:
         theme_from_doc(theme)
-    assert first_unsafe(str(info.value)) is None
+    message = str(info.value)
+    assert message.startswith(f"{tmp_path / 't.yaml'}:2: canvases[0].name: '")
+    assert f"has {said}; names may not hold control" in message
+    assert first_unsafe(message) is None and escaped.lower() in message.lower()
     config = parse_yaml(
         f'exempt:\n  - {{icon: a, reason: "{escaped}"}}\n', tmp_path / "alpha-audit.yaml"
     )
-    with pytest.raises(InputError, match="not a usable reason") as info:
+    with pytest.raises(InputError, match=f"reason '.*' has {re.escape(said)}") as info:
         config_from_doc(config)
     assert first_unsafe(str(info.value)) is None
 
 
 def test_emoji_joiners_are_text() -> None:
     assert safe_text("👩\u200d💻") == "👩\u200d💻" and first_unsafe("a\u200cb") is None
+
+
+def test_emoji_tag_sequences_are_text_and_stray_tags_are_not() -> None:
+    scotland = "\U0001f3f4\U000e0067\U000e0062\U000e0073\U000e0063\U000e0074\U000e007f"
+    assert first_unsafe(f"flag {scotland}") is None and safe_text(scotland) == scotland
+    hidden = "ok\U000e0069\U000e0067\U000e006e"  # tag letters smuggling "ign" invisibly
+    assert first_unsafe(hidden) == "\U000e0069"
+    assert safe_text(f"{scotland}{hidden}") == f"{scotland}ok\\U000e0069\\U000e0067\\U000e006e"
+    # A flag followed by an upper-case tag is no subdivision flag (UTS #51, ED-14a).
+    assert first_unsafe("\U0001f3f4\U000e0047\U000e0042\U000e007f") == "\U000e0047"
+
+
+@pytest.mark.parametrize(
+    ("ch", "said"),
+    [
+        ("\x1b", "the control character U+001B"),
+        ("\u200f", "the bidi control U+200F (RIGHT-TO-LEFT MARK)"),
+        ("\u061c", "the bidi control U+061C (ARABIC LETTER MARK)"),
+        ("\ufeff", "the invisible format character U+FEFF (ZERO WIDTH NO-BREAK SPACE)"),
+        ("\udfff", "the lone surrogate U+DFFF"),
+        ("\u2029", "the paragraph separator U+2029"),
+    ],
+)
+def test_refused_characters_are_described_by_kind_and_code_point(ch: str, said: str) -> None:
+    from alpha_audit.safe_text import describe_char
+
+    assert first_unsafe(f"a{ch}") == ch and describe_char(ch) == said

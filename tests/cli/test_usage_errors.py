@@ -29,6 +29,27 @@ def test_usage_errors_are_one_line(args: list[str], says: str) -> None:
     assert res.stdout == ""
 
 
+OSC52 = "\x1b]52;c;SGVsbG8=\x07"
+
+
+@pytest.mark.parametrize(
+    ("args", "says"),
+    [
+        # A backslash in the value was read as a regex group escape: a traceback, no exit code.
+        (["check", "-a", "1\\x2"], "'1\\\\x2' is not a number"),
+        (["check", "-f", f"x{OSC52}\n::stop-commands::t"], "'x\\x1b]52;c;SGVsbG8=\\x07\\n::stop"),
+        (["check", "--fail-on", f"\u202e{OSC52}"], "unknown rule"),
+        ([f"ch{OSC52}eck"], "No such command"),
+    ],
+)
+def test_hostile_values_on_the_command_line_come_back_escaped(args: list[str], says: str) -> None:
+    res = CliRunner().invoke(app, args)
+    assert res.exit_code == 2, res.output
+    line = res.stderr.rstrip("\n")
+    assert "\n" not in line and line.startswith("alpha-audit: error: ") and says in line
+    assert not any(c in line for c in "\x1b\x07\u202e"), repr(line)
+
+
 def test_help_is_still_rich() -> None:
     res = CliRunner().invoke(app, ["check", "-h"])
     assert res.exit_code == 0

@@ -180,3 +180,27 @@ def test_a_killed_run_is_cleaned_up_by_the_reaper(project, tmp_path):
         time.sleep(0.1)
     assert _processes_naming(temp) == []
     assert list(temp.iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    ("story_id", "said"),
+    [("a\x1b]52;c;SGVsbG8=\x07", "U+001B"), ("x\n::add-mask::y", "U+000A"), ("e\u202ev", "U+202E")],
+)
+def test_a_story_id_holding_a_control_or_bidi_character_is_refused(tmp_path, story_id, said):
+    import json
+
+    from alpha_audit.errors import InputError
+    from alpha_audit.pages.sources import StorybookSource, targets
+    from alpha_audit.safe_text import first_unsafe
+
+    build = tmp_path / "storybook-static"
+    build.mkdir()
+    (build / "iframe.html").write_text("<html></html>")
+    entries = {
+        "ok--one": {"type": "story", "id": "ok--one", "title": "Ok", "name": "One"},
+        "evil": {"type": "story", "id": story_id, "title": "Evil", "name": "Two"},
+    }
+    (build / "index.json").write_text(json.dumps({"v": 5, "entries": entries}))
+    with pytest.raises(InputError, match=rf"story id '.*' has the .* U\+{said[2:]}") as info:
+        targets([StorybookSource(build)])
+    assert "index.json" in str(info.value) and first_unsafe(str(info.value)) is None

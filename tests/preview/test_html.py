@@ -70,3 +70,25 @@ def test_a_page_over_the_mask_budget_is_refused_before_packing(monkeypatch):
     monkeypatch.setattr(page_html, "MAX_PAGE_MASK_BYTES", 1000)
     with pytest.raises(UsageError, match=r"MiB of coverage masks .* fewer sizes"):
         page_html._check_page_bytes(4, [16, 48])
+
+
+@pytest.mark.parametrize(
+    "title",
+    ["__ALPHA_AUDIT_SCRIPT__", "__ALPHA_AUDIT_DATA__", "</title><script>alert(1)</script>\u202e"],
+)
+def test_a_name_is_text_in_the_page_even_when_it_reads_like_a_placeholder(tmp_path, title):
+    import dataclasses
+    import html
+
+    theme_path, manifest = write_multipaint(tmp_path)
+    theme, iconset = load_theme(theme_path), load_iconset(manifest)
+    theme = dataclasses.replace(theme, name=title)
+    masks = paint_masks([(i.name, i.file) for i in iconset.icons], [16], cache=False)
+    page = preview_html(theme, iconset, preview_rows(theme, iconset, masks, [16]), sizes=[16])
+    # One script and one data block: a theme named like a placeholder once pulled the whole
+    # script into the page's title and heading (chained str.replace).
+    assert page.count("<script") == 2 and page.count('"use strict"') == 1
+    shown = re.search(r'<h1 id="title">(.*?)</h1>', page, re.S).group(1)
+    assert "<" not in shown and "\u202e" not in shown
+    assert title.split("\u202e")[0] in html.unescape(shown)
+    assert title in _page_data(page)["title"]  # the data keeps the name as it is

@@ -71,14 +71,14 @@ def test_json_refuses_nan() -> None:
         dumps({"x": math.nan})
 
 
-def test_junit_loads_and_strips_control_characters() -> None:
+def test_junit_loads_and_shows_control_characters_as_escapes() -> None:
     text = render_check(_report(HOSTILE), "junit", OPTIONS)
     root = ET.fromstring(text.encode())
     assert root.get("tests") == "6" and root.get("failures") == "3"
     cases = root.findall(".//testcase")
     assert {c.get("classname") for c in cases} == {"set.sun", "set.ink"}
     names = {c.get("name") for c in cases}
-    assert "evil|name<b>@team\n::error::x%0A*" in names  # \x07 gone, the rest kept as text
+    assert "evil|name\\x07<b>@team\n::error::x%0A*" in names  # BEL shown, the rest kept as text
     failure = next(c for c in cases if c.find("failure") is not None).find("failure")
     assert "loss" in failure.get("type") and "contrast_ref=" in failure.text
 

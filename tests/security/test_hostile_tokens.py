@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 from pathlib import Path
 
 import pytest
@@ -178,9 +179,53 @@ def _named_sources(name: str) -> list[tuple[str, object]]:
                 "$themes": [{"name": name, "selectedTokenSets": {"core": "enabled"}}],
             },
         ),
+        (
+            "sets.json",
+            {
+                name: {"bg": {"value": "#fff", "type": "color"}},
+                "$themes": [{"name": "t", "selectedTokenSets": {name: "enabled"}}],
+            },
+        ),
+        (
+            "modifier.resolver.json",
+            {
+                "resolutionOrder": [
+                    {"type": "modifier", "name": name, "contexts": {"c": [{"bg": bg}]}}
+                ]
+            },
+        ),
+        (
+            "set.resolver.json",
+            {
+                "sets": {name: {"sources": [{"bg": bg}]}},
+                "resolutionOrder": [{"$ref": f"#/sets/{name}"}],
+            },
+        ),
+        ("figma.json", _figma_collection(name)),
         ("sheet.css", f":root {{ --bg: #fff; --{_css_escape(name)}: #000 }}"),
-        ("modes.css", f":root {{ --bg: #fff }} .{_css_escape(name)} {{ --bg: #000 }}"),
+        ("modes.css", f":root {{ --bg: #fff }}\n.{_css_escape(name)} {{ --bg: #000 }}"),
     ]
+
+
+def _figma_collection(name: str) -> dict[str, object]:
+    """A Figma variables export whose one collection is called ``name``."""
+    white = {"r": 1, "g": 1, "b": 1, "a": 1}
+    return {
+        "meta": {
+            "variableCollections": {
+                "C:1": {"id": "C:1", "name": name, "modes": [{"modeId": "1:0", "name": "Light"}]}
+            },
+            "variables": {
+                "V:1": {
+                    "id": "V:1",
+                    "name": "bg",
+                    "resolvedType": "COLOR",
+                    "variableCollectionId": "C:1",
+                    "valuesByMode": {"1:0": white},
+                }
+            },
+        }
+    }
 
 
 def _css_escape(name: str) -> str:
@@ -200,7 +245,26 @@ def test_names_with_controls_bidi_or_surrogates_are_refused_at_load(
         with pytest.raises(InputError, match="names may not hold control") as info:
             load_token_modes(path, root=tmp_path)
         message = str(info.value)
-        assert first_unsafe(message) is None and file in message, (file, message)
+        assert first_unsafe(message) is None, (file, message)
+        # The file, a line and the refused character by code point (load/names.py).
+        assert re.match(rf".*{re.escape(file)}:\d+: ", message), (file, message)
+        assert f"U+{ord(first_unsafe(name) or '?'):04X}" in message, (file, message)
+
+
+@pytest.mark.parametrize(
+    "name",
+    [
+        "👩\u200d💻",  # ZWJ sequence
+        "\U0001f3f4\U000e0067\U000e0062\U000e0077\U000e006c\U000e0073\U000e007f",  # Wales
+        "\u0646\u0627\u0645\u200c\u0647\u0627",  # Persian with ZWNJ
+    ],
+)
+def test_emoji_and_joiners_are_legal_in_every_source(tmp_path: Path, name: str) -> None:
+    for file, content in _named_sources(name):
+        text = content if isinstance(content, str) else json.dumps(content)
+        path = tmp_path / file
+        path.write_text(text, encoding="utf-8")
+        assert load_token_modes(path, root=tmp_path).modes, file
 
 
 def test_emoji_zwj_sequences_stay_legal(tmp_path: Path) -> None:

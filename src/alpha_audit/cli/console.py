@@ -17,11 +17,13 @@ from rich.text import Text
 
 from alpha_audit.output import write_text
 from alpha_audit.render import RenderOptions
+from alpha_audit.safe_text import safe_text
 
 __all__ = [
     "emit",
     "progress_bar",
     "stderr_console",
+    "stderr_line",
     "stderr_note",
     "stdout_console",
     "stdout_options",
@@ -66,9 +68,20 @@ def progress_bar(label: str) -> Iterator[tuple[Callable[[int], None], Callable[[
         yield (lambda total: progress.update(task, total=total)), (lambda: progress.advance(task))
 
 
+def stderr_line(text: str) -> None:
+    """One line on stderr, printed literally and inert.
+
+    Names from input files are not markup, and a control, bidi or surrogate
+    character in them (or in a path or value from the command line) is shown
+    as an escape: a newline cannot start a workflow command of its own, ESC
+    cannot drive the terminal (:func:`~alpha_audit.safe_text.safe_text`).
+    """
+    stderr_console().print(Text(safe_text(text)), soft_wrap=True)
+
+
 def stderr_note(message: str) -> None:
-    """One status line on stderr, printed literally (names from input files are not markup)."""
-    stderr_console().print(Text(f"alpha-audit: {message}"), soft_wrap=True)
+    """One status line on stderr (:func:`stderr_line`), after ``alpha-audit:``."""
+    stderr_line(f"alpha-audit: {message}")
 
 
 def emit(text: str, output: Path | None, force: bool) -> None:
@@ -78,4 +91,4 @@ def emit(text: str, output: Path | None, force: bool) -> None:
         sys.stdout.flush()
     else:
         write_text(output, text, overwrite=force)
-        stderr_console().print(f"wrote {output}", soft_wrap=True, markup=False)
+        stderr_line(f"wrote {output}")

@@ -7,7 +7,7 @@ from typing import Annotated
 
 import typer
 
-from alpha_audit.cli.console import progress_bar, stderr_console
+from alpha_audit.cli.console import progress_bar, stderr_line
 from alpha_audit.cli.options import (
     ForceOption,
     GamutOption,
@@ -124,13 +124,8 @@ def preview_command(
             gamut=gamut_policy,
             pipeline=project.pipeline,
         )
-    err = stderr_console()
     for problem in result.problems:
-        err.print(
-            f"skipped {problem.icon}: {problem.file}: {problem.message}",
-            soft_wrap=True,
-            markup=False,
-        )
+        stderr_line(f"skipped {problem.icon}: {problem.file}: {problem.message}")
     for path in result.written:
-        err.print(f"wrote {path}", soft_wrap=True, markup=False)
+        stderr_line(f"wrote {path}")
     return ExitStatus.OK

@@ -26,11 +26,10 @@ from importlib import import_module
 from typing import Annotated, Any, NoReturn
 
 import typer
-from rich.text import Text
 from typer.core import TyperGroup
 
 from alpha_audit import __version__
-from alpha_audit.cli.console import stderr_console
+from alpha_audit.cli.console import stderr_line
 from alpha_audit.cli.flags import cli_message
 from alpha_audit.cli.options import ARGS, Command, untyped_flags
 from alpha_audit.cli.status import ExitStatus
@@ -45,8 +44,8 @@ DEBUG_ENV = "ALPHA_AUDIT_DEBUG"
 
 
 def _error_line(message: str) -> None:
-    """``alpha-audit: error: ...`` on stderr, printed literally (messages quote input)."""
-    stderr_console().print(Text(f"alpha-audit: error: {message}"), soft_wrap=True)
+    """``alpha-audit: error: ...`` on stderr, one line printed literally (messages quote input)."""
+    stderr_line(f"alpha-audit: error: {message}")
 
 
 def _usage_error(exc: typer.TyperException) -> NoReturn:
@@ -74,7 +73,9 @@ def _plain_words(message: str, value: str | None) -> str:
     """``message`` without pydantic's phrasing, naming the value given where it is known."""
     shown = repr(value) if value is not None else "the value given"
     for pattern, words in _PYDANTIC_WORDS:
-        message = pattern.sub(words.format(value=shown), message)
+        # Split and joined, not pattern.sub(template): a backslash in the value
+        # (``-a '1\x2'``) would be read as a group escape and crash.
+        message = words.format(value=shown).join(pattern.split(message))
     return message
 
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from alpha_audit.errors import InputError
-from alpha_audit.export.escape import css_comment, css_ident, css_string
+from alpha_audit.export.escape import css_comment, css_ident, css_name, css_string
 from alpha_audit.export.table import ExportMode, ExportTable, exported_path
 
 __all__ = ["DEFAULT_SELECTOR", "css_properties", "mode_properties", "render_css"]
@@ -26,7 +26,7 @@ def css_properties(mode: ExportMode, prefix: str = "") -> list[tuple[str, str]]:
             path = exported_path(color.token, canvas, mode)
             if prefix and not path.startswith(prefix):
                 path = prefix + path
-            prop = "--" + css_ident(path.replace(".", "-"))
+            prop = "--" + css_name(path.replace(".", "-"))
             if prop in owner and owner[prop] != path:
                 raise InputError(
                     f"tokens {owner[prop]} and {path} (mode {mode.name}) both become the CSS "

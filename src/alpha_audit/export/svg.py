@@ -14,7 +14,7 @@ up to 18/255 off (docs/export.md measures it; the CSS colours are exact).
 
 from __future__ import annotations
 
-from alpha_audit.export.escape import xml_attr, xml_id
+from alpha_audit.export.escape import xml_attr, xml_id, xml_text
 from alpha_audit.export.table import ExportTable
 
 __all__ = ["filter_id", "render_svg"]
@@ -41,7 +41,9 @@ def render_svg(table: ExportTable) -> str:
                     f'    <filter id={xml_attr(fid)} color-interpolation-filters="linearRGB" '
                     f'x="0" y="0" width="100%" height="100%">'
                 )
-                lines.append(f"      <desc>{_text(canvas.token)} {canvas.hex}, alpha {a!r}</desc>")
+                lines.append(
+                    f"      <desc>{xml_text(canvas.token)} {canvas.hex}, alpha {a!r}</desc>"
+                )
                 lines.append("      <feComponentTransfer>")
                 for channel, cb in zip("RGB", canvas.linear, strict=True):
                     intercept = (1 - a) * cb
@@ -53,7 +55,3 @@ def render_svg(table: ExportTable) -> str:
                 lines.append("    </filter>")
     lines += ["  </defs>", "</svg>"]
     return "\n".join(lines) + "\n"
-
-
-def _text(text: str) -> str:
-    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")

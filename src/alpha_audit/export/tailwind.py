@@ -9,7 +9,7 @@ the form alpha-audit's Tailwind reader takes back.
 from __future__ import annotations
 
 from alpha_audit.export.css import css_properties
-from alpha_audit.export.escape import css_ident, css_string
+from alpha_audit.export.escape import css_comment, css_string
 from alpha_audit.export.table import ExportMode, ExportTable
 
 __all__ = ["render_tailwind"]
@@ -22,7 +22,7 @@ def _props(mode: ExportMode) -> list[tuple[str, str]]:
 def render_tailwind(table: ExportTable) -> str:
     """``@theme { --color-...: #rrggbb; }`` plus per-mode overrides."""
     first, *rest = table.modes
-    lines = [f"/* alpha-audit export, mode {css_ident(first.name)} in @theme */", "@theme {"]
+    lines = [f"/* alpha-audit export, mode {css_comment(first.name)} in @theme */", "@theme {"]
     lines.extend(f"  {p}: {v};" for p, v in _props(first))
     lines.append("}")
     for mode in rest:

@@ -35,7 +35,7 @@ from alpha_audit.model import Span
 from alpha_audit.policy import Exemption, Policy
 from alpha_audit.rows import MAX_COMBINATIONS
 from alpha_audit.rules import DEFAULT_RULES, DEFAULT_WARNINGS, Level, Rule
-from alpha_audit.safe_text import is_safe, safe_text
+from alpha_audit.safe_text import describe_char, first_unsafe, safe_text
 
 __all__ = [
     "CONFIG_KEYS",
@@ -361,12 +361,14 @@ def _exemptions(doc: YamlDoc, keys: KeyPath, value: Any) -> tuple[Exemption, ...
         reason = item.get("reason")
         if not isinstance(reason, str) or not reason.strip():
             raise doc.error((*ikeys, "reason"), "every exemption needs a reason: (why it is fine)")
-        if not is_safe(reason) or len(reason) > 500:
+        bad = first_unsafe(reason)
+        if bad is not None or len(reason) > 500:
             # Reasons are printed with findings: the same rule as names.
             raise doc.error(
                 (*ikeys, "reason"),
-                f"{safe_text(reason[:40])!r} is not a usable reason: at most 500 characters, "
-                "no control, format (bidi) or surrogate characters",
+                f"reason '{safe_text(reason[:40])}' has "
+                f"{describe_char(bad) if bad else 'more than 500 characters'}; a reason is at "
+                "most 500 characters, with no control, bidi or other invisible format character",
             )
         canvas = read_name(doc, (*ikeys, "canvas"), item["canvas"]) if "canvas" in item else None
         icon = read_name(doc, (*ikeys, "icon"), item["icon"]) if "icon" in item else None

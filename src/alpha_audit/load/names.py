@@ -1,18 +1,18 @@
 """The load-side half of the name policy: every name read from any input is checked here.
 
-YAML names, token paths, CSS custom properties, Figma variables, Resolver
-contexts and Tokens Studio themes and sets pass :func:`check_name`, which
-refuses what :func:`~alpha_audit.safe_text.safe_text` would escape, with one
-message naming the file and the place.
+YAML names and keys, token paths, CSS custom properties and modes, Figma
+variables, collections and modes, Resolver sets, modifiers and contexts,
+Tokens Studio themes and sets pass :func:`check_name`, which refuses what
+:func:`~alpha_audit.safe_text.safe_text` would escape, with one message naming
+the file, the place and the character.
 """
 
 from __future__ import annotations
 
-import unicodedata
 from pathlib import Path
 
 from alpha_audit.errors import InputError
-from alpha_audit.safe_text import MAX_NAME, escape_char, first_unsafe, safe_text
+from alpha_audit.safe_text import MAX_NAME, describe_char, first_unsafe, safe_text
 
 __all__ = ["check_name"]
 
@@ -30,29 +30,31 @@ def check_name(
     A usable name has 1-:data:`MAX_NAME` characters and none that
     :func:`safe_text` escapes (controls, bidi and other format characters,
     lone surrogates, line separators); emoji joiners are fine.  The error
-    names ``path``, ``line`` and ``key`` and shows the name escaped.
+    names ``path``, ``line`` and ``key``, shows the name escaped and says which
+    character is refused, by code point.
 
     >>> check_name("👩\u200d💻")
     '👩\u200d💻'
     >>> try:
     ...     check_name("a\u202eb", key="color.x")
     ... except Exception as exc:
-    ...     print(str(exc)[:56])
-    color.x: name 'a\\u202eb' has the format (bidi) character
+    ...     print(str(exc)[:68])
+    color.x: name 'a\\u202eb' has the bidi control U+202E (RIGHT-TO-LEFT
     """
     bad = first_unsafe(text)
     if bad is None and 0 < len(text) <= MAX_NAME:
         return text
     shown = safe_text(text[:40]) + ("..." if len(text) > 40 else "")
+    named = f"{what} '{shown}'" if what else f"'{shown}'"
     if bad is None:
-        reason = f"is empty or longer than {MAX_NAME} characters"
+        message = f"{named} is empty or longer than {MAX_NAME} characters; a name has 1-{MAX_NAME}"
     else:
-        kind = {"Cc": "control", "Cf": "format (bidi)", "Cs": "lone surrogate"}.get(
-            unicodedata.category(bad), "line separator"
+        message = (
+            f"{named} has {describe_char(bad)}; names may not hold control, bidi, "
+            "invisible format or surrogate characters"
         )
-        reason = f"has the {kind} character {escape_char(bad)}"
     raise InputError(
-        f"{what} '{shown}' {reason}; names may not hold control, bidi or surrogate characters",
+        message,
         path=None if path is None else Path(str(path)),
         line=line,
         key=None if key is None else safe_text(key),

@@ -17,6 +17,7 @@ from urllib.parse import quote, urlsplit
 
 from alpha_audit.errors import InputError, UsageError
 from alpha_audit.load.files import read_text_capped
+from alpha_audit.load.names import check_name
 from alpha_audit.load.paths import PathRefused, glob_contained
 
 __all__ = [
@@ -132,7 +133,8 @@ def _stories(source: StorybookSource) -> list[tuple[str, str, Path | None]]:
     for key, entry in entries.items():
         if not isinstance(entry, dict) or entry.get("type", "story") != "story":
             continue  # docs pages draw no story of their own
-        story = str(entry.get("id", key))
+        # Ids reach every report and the page's URL: the one name policy of every input.
+        story = check_name(str(entry.get("id", key)), path=index, key=str(key), what="story id")
         title = f"{entry.get('title', '')}/{entry.get('name', '')}"
         found.append((story, title, _story_file(source, entry.get("importPath"))))
     return found

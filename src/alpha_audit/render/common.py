@@ -10,25 +10,31 @@
 - :func:`shorten_names`: long icon lists kept to a few names and a count.
 - :data:`SUFFIXES`: which file extensions each format's reports may carry.
 
-Only the standard library and rich (for :func:`to_text`) are imported here, so
-every renderer can use it without pulling in the audit or the gate.
+Only the standard library, :mod:`alpha_audit.safe_text` (the one name policy,
+which every escaper here starts from) and rich (for :func:`to_text`) are
+imported here, so every renderer can use it without pulling in the audit or the
+gate.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 import html
 import json
 import os
 import re
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from io import StringIO
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal, Protocol, TypeVar
 
+from alpha_audit.safe_text import escape_char, safe_text
+
 if TYPE_CHECKING:
-    from rich.console import RenderableType
+    from rich.console import Console, ConsoleOptions, RenderableType
+    from rich.segment import Segment
     from rich.table import Table
 
     from alpha_audit.findings import Finding, Location
@@ -43,6 +49,7 @@ __all__ = [
     "Renderer",
     "baselined_text",
     "check_suffix",
+    "digest",
     "display_path",
     "dumps",
     "escape_html",
@@ -61,6 +68,7 @@ __all__ = [
     "to_text",
     "where_text",
     "wrap_name",
+    "xml_safe",
 ]
 
 
@@ -166,12 +174,15 @@ def display_path(path: Path | str | None, base: Path | None) -> str | None:
 # What changes meaning inside a GFM table cell: emphasis, code, links, pipes,
 # strikethrough (GFM spec 0.29, sections 4.10, 6.1-6.7).
 _MARKDOWN_SPECIAL = re.compile(r"([\\`*_\[\]|~])")
-# C0/C1 controls, and the bidirectional overrides and isolates (Unicode UAX #9)
-# that reorder how a line reads (Trojan Source, CVE-2021-42574).
-_CONTROL = re.compile(r"[\x00-\x1f\x7f-\x9f\u061c\u200e\u200f\u202a-\u202e\u2066-\u2069]+")
+# What ends a line or a table row to Markdown or to a browser (CommonMark 0.30,
+# "line ending"; the Unicode line and paragraph separators, NEL).
+_LINE_BREAK = re.compile("[\r\n\t\x0b\x0c\x85\u2028\u2029]+")
 # GFM autolinks (extension, section 6.9) start at "www." or a scheme's "://";
 # an entity there leaves a text GitHub no longer turns into a link.
 _AUTOLINK = re.compile(r"(?i)(?<=www)\.|:(?=//)")
+# Characters outside XML 1.0's Char production (https://www.w3.org/TR/xml/#charsets):
+# what is left of them after safe_text (U+FFFE, U+FFFF) would make the file unparsable.
+_XML_INVALID = re.compile("[^\t\n\r\x20-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]")
 
 
 def escape_markdown(text: object) -> str:
@@ -179,17 +190,20 @@ def escape_markdown(text: object) -> str:
 
     HTML is escaped (no ``<img>``, ``<details>``), ``@`` cannot mention anyone,
     punctuation that starts emphasis, code, links or cells is backslash-escaped,
-    line breaks, control characters and bidirectional overrides become one
-    space, and bare URLs are broken so GitHub does not autolink them.
+    line breaks become one space, other control, bidi and invisible format
+    characters are shown as escapes (:func:`~alpha_audit.safe_text.safe_text`),
+    and bare URLs are broken so GitHub does not autolink them.
 
     >>> escape_markdown("a|b <script> @team\\n*x*")
     'a\\\\|b &lt;script&gt; &#64;team \\\\*x\\\\*'
     >>> escape_markdown("see https://x.io or www.x.io")
     'see https&#58;//x.io or www&#46;x.io'
+    >>> escape_markdown("evil\\u202e")
+    'evil\\\\\\\\u202e'
     """
-    s = str(text).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+    s = safe_text(_LINE_BREAK.sub(" ", str(text)))
+    s = s.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
     s = s.replace("@", "&#64;")
-    s = _CONTROL.sub(" ", s)
     s = _AUTOLINK.sub(lambda m: "&#58;" if m.group() == ":" else "&#46;", s)
     return _MARKDOWN_SPECIAL.sub(r"\\\1", s).strip()
 
@@ -200,7 +214,30 @@ def escape_html(text: object) -> str:
     >>> escape_html('<a href="x">')
     '&lt;a href=&quot;x&quot;&gt;'
     """
-    return html.escape(str(text), quote=True)
+    return html.escape(safe_text(text, newlines=True), quote=True)
+
+
+def xml_safe(text: object) -> str:
+    """``text`` as a string XML 1.0 carries, every unsafe character shown as an escape.
+
+    Controls, bidi and invisible format characters and lone surrogates become
+    escapes (:func:`~alpha_audit.safe_text.safe_text`; a newline is kept), and
+    the non-characters XML forbids too, so the document always parses.
+
+    >>> xml_safe("bell\\x07 and\\x1b[31m escape\\ufffe")
+    'bell\\\\x07 and\\\\x1b[31m escape\\\\ufffe'
+    """
+    s = safe_text(text, newlines=True)
+    return _XML_INVALID.sub(lambda m: escape_char(m.group()), s)
+
+
+def digest(text: str) -> str:
+    """A stable 32-hex-digit fingerprint of ``text`` (lone surrogates included).
+
+    >>> digest("a") == digest("a") != digest("\\ud800")
+    True
+    """
+    return hashlib.sha256(text.encode("utf-8", "surrogatepass")).hexdigest()[:32]
 
 
 # ------------------------------------------------------------------ JSON
@@ -304,8 +341,29 @@ def records(rows: Iterable[Any]) -> Records:
 # ------------------------------------------------------------------ text
 
 
+class _Inert:
+    """A renderable whose text reaches the terminal with no instruction character.
+
+    Every segment rich lays out is passed through
+    :func:`~alpha_audit.safe_text.safe_text` (line ends kept): whatever a
+    renderer forgot to escape -- ESC, C1, bidi controls, a lone surrogate in a
+    name built by a library caller -- is shown as an escape, never sent.
+    Colour is in the segments' styles, written by rich afterwards, so it stays.
+    """
+
+    def __init__(self, inner: RenderableType) -> None:
+        self.inner = inner
+
+    def __rich_console__(self, console: Console, options: ConsoleOptions) -> Iterator[Segment]:
+        from rich.segment import Segment
+
+        for segment in console.render(self.inner, options):
+            shown = segment.text if segment.control else safe_text(segment.text, newlines=True)
+            yield segment if shown == segment.text else Segment(shown, segment.style)
+
+
 def to_text(renderable: RenderableType, options: RenderOptions) -> str:
-    """Render at ``options.width`` columns, with or without ANSI colour."""
+    """Render at ``options.width`` columns, with or without ANSI colour (text made inert)."""
     from rich.console import Console
 
     buffer = StringIO()
@@ -318,7 +376,7 @@ def to_text(renderable: RenderableType, options: RenderOptions) -> str:
         highlight=False,
         emoji=False,
     )
-    console.print(renderable)
+    console.print(_Inert(renderable))
     return buffer.getvalue()
 
 

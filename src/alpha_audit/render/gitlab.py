@@ -20,13 +20,13 @@ paints) are ``info`` issues.  The description ends with the finding's fix.
 
 from __future__ import annotations
 
-import hashlib
 from pathlib import Path, PurePosixPath
 from typing import Any
 
 from alpha_audit.findings import Finding
 from alpha_audit.render.common import (
     RenderOptions,
+    digest,
     display_path,
     dumps,
     finding_fix,
@@ -62,10 +62,6 @@ def _where(f: Finding, base: Path | None) -> tuple[str, int]:
     return _relative(f.manifest, base), 1
 
 
-def _fingerprint(text: str) -> str:
-    return hashlib.sha256(text.encode("utf-8")).hexdigest()[:32]
-
-
 def render_report(report: CheckReport, options: RenderOptions) -> str:
     """Every failing finding as one GitLab Code Quality issue, in the gate's order."""
     entries: list[tuple[Finding, str]] = [(f, RULES[f.rule].severity) for f in report.gate.failures]
@@ -75,11 +71,11 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     for f, severity in entries:
         theme, iconset, rule, icons = f.key
         identity = "\x1f".join([theme, iconset, rule, *icons])
-        fingerprint = _fingerprint(identity)
+        fingerprint = digest(identity)
         n = 1
         while fingerprint in seen:  # an icon unrenderable in two themes, say
             n += 1
-            fingerprint = _fingerprint(f"{identity}\x1e{n}")
+            fingerprint = digest(f"{identity}\x1e{n}")
         seen.add(fingerprint)
         path, line = _where(f, options.base)
         issues.append(

@@ -13,28 +13,15 @@ Control characters that XML 1.0 forbids are removed from every string.
 
 from __future__ import annotations
 
-import re
 import xml.etree.ElementTree as ET
 from collections import defaultdict
 
 from alpha_audit.findings import Finding
-from alpha_audit.render.common import RenderOptions, display_path
+from alpha_audit.render.common import RenderOptions, display_path, xml_safe
 from alpha_audit.results import CheckReport
 from alpha_audit.rules import Level, Rule
 
 __all__ = ["render_report", "xml_safe"]
-
-# Characters outside XML 1.0's Char production (https://www.w3.org/TR/xml/#charsets).
-_XML_INVALID = re.compile("[^\t\n\r\x20-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]")
-
-
-def xml_safe(text: object) -> str:
-    """``text`` as a string XML 1.0 can carry (forbidden control characters removed).
-
-    >>> xml_safe("bell\\x07 and\\x1b[31m escape")
-    'bell and[31m escape'
-    """
-    return _XML_INVALID.sub("", str(text))
 
 
 def _element(parent: ET.Element, tag: str, text: str | None = None, **attrs: object) -> ET.Element:

@@ -40,6 +40,7 @@ from alpha_audit.render.common import (
     number_column,
     to_text,
 )
+from alpha_audit.safe_text import safe_text
 
 __all__ = [
     "MARKER",
@@ -162,7 +163,7 @@ def render_table(report: PageReport, options: RenderOptions) -> str:
         f"{len(result.blocked)} requests blocked",
     ]
     for f in report.gate.failures:
-        lines.append(f"  {f.rule.value}: {_where(f)}: {f.message}")
+        lines.append(safe_text(f"  {f.rule.value}: {_where(f)}: {f.message}"))
     lines.append(_verdict(report))
     return to_text(table, options) + "\n".join(lines) + "\n"
 

@@ -27,7 +27,6 @@ Columns count Unicode code points (``run.columnKind``, 3.14.27).
 
 from __future__ import annotations
 
-import hashlib
 import os
 from pathlib import Path
 from typing import Any
@@ -38,6 +37,7 @@ from alpha_audit.model import Edit, Span
 from alpha_audit.render.common import (
     RenderOptions,
     baselined_text,
+    digest,
     dumps,
     finding_fix,
     where_text,
@@ -73,6 +73,8 @@ def relative_uri(path: Path | str, base: Path | None) -> str:
 
     >>> relative_uri("/repo/icons/a #1%.svg", Path("/repo"))
     'icons/a%20%231%25.svg'
+    >>> relative_uri("bad\\udcff.svg", None)
+    'bad%FF.svg'
     """
     p = Path(path)
     if base is not None and not p.is_absolute():
@@ -81,7 +83,11 @@ def relative_uri(path: Path | str, base: Path | None) -> str:
         text = Path(os.path.relpath(p, base)).as_posix() if base is not None else p.name
     else:
         text = p.as_posix()
-    return quote(text, safe=_URI_SAFE)
+    try:  # a file name that is not UTF-8 holds its bytes as surrogates (PEP 383)
+        raw = text.encode("utf-8", "surrogateescape")
+    except UnicodeEncodeError:  # a lone surrogate that is no byte: encoded, not a crash
+        raw = text.encode("utf-8", "surrogatepass")
+    return quote(raw, safe=_URI_SAFE)
 
 
 def _artifact(path: Path | None, base: Path | None) -> dict[str, Any]:
@@ -152,7 +158,7 @@ def _unique(locations: list[dict[str, Any]]) -> list[dict[str, Any]]:
 def _fingerprint(f: Finding) -> str:
     theme, iconset, rule, icons = f.key
     text = "\x1f".join([theme, iconset, rule, *icons])
-    return hashlib.sha256(text.encode("utf-8")).hexdigest()[:32]
+    return digest(text)
 
 
 def _place(loc: Location, base: Path | None) -> dict[str, Any]:

@@ -120,6 +120,10 @@ def modes_from_figma(doc: JsonDoc, *, collection: str | None = None) -> TokenMod
                 path=None,
             )
         main = by_name[collection]
+    for cid, coll in collections.items():
+        if isinstance(coll, dict) and "name" in coll:
+            line = doc.line((*top, "variableCollections", cid))
+            check_name(str(coll["name"]), path=doc.path, line=line, what="collection name")
     names = list(coll_modes(main))
     check_mode_budget(doc.path, len(names), len(variables))
     for name in names:

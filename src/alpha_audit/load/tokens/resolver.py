@@ -147,17 +147,25 @@ def modes_from_resolver(
             raise r.error(("modifiers",), f"no modifier {modifier!r}; have {', '.join(names)}")
         chosen = modifier
     contexts: list[str] = ["default"]
+    context_keys: tuple[str | int, ...] = ("modifiers",)
     default: str | None = None
+    for kind, node, keys in entries:
+        if kind == "set":
+            set_name = str(node.get("name", keys[-1]))
+            check_name(set_name, path=doc.path, line=doc.line(keys), what="set name")
     for (node, keys), name in zip(modifiers, names, strict=True):
+        check_name(name, path=doc.path, line=doc.line(keys), what="modifier name")
         ctx = node.get("contexts")
         if not isinstance(ctx, dict) or not ctx:
             raise r.error((*keys, "contexts"), "expected a mapping of contexts to sources")
         if name == chosen:
             contexts = list(ctx)
+            context_keys = (*keys, "contexts")
             default = node.get("default") if isinstance(node.get("default"), str) else None
     check_mode_budget(doc.path, len(contexts), 0)
     for context in contexts:
-        check_name(context, path=doc.path, line=doc.line(("modifiers",)), what="context name")
+        line = doc.line((*context_keys, context))
+        check_name(context, path=doc.path, line=line, what="context name")
     modes = {}
     steps = Steps()  # every mode walks the sets again: one budget for the file
     for context in contexts:

@@ -54,7 +54,11 @@ def modes_from_studio(doc: JsonDoc, *, root: Path) -> TokenModes:
     else:
         themes = doc.data.get("$themes", [])
         meta = doc.data.get("$metadata", {})
-        sets = {k: (doc, v) for k, v in doc.data.items() if not k.startswith("$")}
+        sets = {
+            check_name(k, path=doc.path, line=doc.line((k,)), what="token set"): (doc, v)
+            for k, v in doc.data.items()
+            if not k.startswith("$")
+        }
     if not isinstance(themes, list):
         raise token_error("$themes must be a list of themes", file=doc.path, line=1, path=None)
     order = meta.get("tokenSetOrder") if isinstance(meta, dict) else None
@@ -117,6 +121,9 @@ def modes_from_studio(doc: JsonDoc, *, root: Path) -> TokenModes:
             str(theme.get("name", i)), path=doc.path, line=doc.line(keys), what="theme name"
         )
         states = theme["selectedTokenSets"]
+        for set_name in states:
+            set_keys = (*keys, "selectedTokenSets", set_name)
+            check_name(str(set_name), path=doc.path, line=doc.line(set_keys), what="token set")
         chosen = ordered([s for s, st in states.items() if st == "source"])
         chosen += ordered([s for s, st in states.items() if st == "enabled"])
         modes[name] = build(chosen, (*keys, "selectedTokenSets"))

@@ -707,7 +707,12 @@ def _modes(p: Path) -> TokenModes:
     for part in sheet.parts:
         by_mode.setdefault(part.mode, []).append(part)
     for mode in modes:
-        check_name(mode, path=p, what="mode name")
+        plain_mode = mode.removesuffix("-p3")
+        # The first declaration of the first rule that names the mode.
+        line = next(
+            (d.line for part in sheet.parts if part.mode == plain_mode for d in part.decls), None
+        )
+        check_name(mode, path=p, line=line, what="mode name")
         plain = "default" if mode == "p3" else mode.removesuffix("-p3")
         candidates = by_mode.get("default", []) + (
             by_mode.get(plain, []) if plain != "default" else []
