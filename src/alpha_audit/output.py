@@ -71,19 +71,19 @@ def check_targets(targets: Iterable[str | Path], *, overwrite: bool) -> None:
     (without ``overwrite``), is not a regular file, sits in a missing folder,
     or is given twice (the same file reached by two names counts too).
     """
-    from alpha_audit.load.paths import project_root
+    from alpha_audit.load.paths import enclosing_roots
 
     seen: dict[Path, Path] = {}
-    root = Path(os.path.abspath(project_root(Path.cwd())))
     for given in targets:
         target = Path(given)
-        folder = Path(os.path.abspath(_folder(target)))
-        if folder.is_relative_to(root) and not folder.resolve().is_relative_to(root.resolve()):
-            raise UsageError(
-                f"folder {_folder(target)} leads outside the project ({folder.resolve()}) "
-                "through a link; refusing to write there",
-                path=target,
-            )
+        folder = _folder(target).resolve()
+        for root in enclosing_roots(target):
+            if not folder.is_relative_to(root):
+                raise UsageError(
+                    f"folder {_folder(target)} leads outside the project {root} ({folder}) "
+                    "through a link; refusing to write there",
+                    path=target,
+                )
         key = _folder(target).resolve() / target.name
         if key in seen:
             raise UsageError(f"is the target of two outputs (also {seen[key]})", path=target)

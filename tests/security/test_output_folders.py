@@ -1,4 +1,4 @@
-"""Issue 21: an output folder committed as a link cannot aim a report outside the checkout."""
+"""Issue 21: a folder committed as a link cannot aim a report, or a read, outside the checkout."""
 
 from __future__ import annotations
 
@@ -52,6 +52,47 @@ def test_a_path_given_outside_the_project_is_the_users_choice(project: Path) -> 
     )
     assert result.exit_code == 0, result.output
     assert target.is_file()
+
+
+def test_a_linked_folder_is_refused_when_run_from_outside_the_project(project: Path) -> None:
+    # The project is where the name lies, not only the working folder's: run from above it.
+    for args in (
+        ["check", "paper16", "vibrant", "-f", "json", "-o", "proj/reports/r.json"],
+        ["export", "--config", "proj/alpha-audit.yaml", "-o", "proj/reports"],
+    ):
+        (project / "proj" / "alpha-audit.yaml").write_text(TOKENS_CONFIG)
+        (project / "proj" / "t.tokens.json").write_text(TOKENS)
+        result = _run(args, project)
+        assert result.exit_code == ExitStatus.INPUT_ERROR, (args, result.output)
+        assert "leads outside the project" in result.stderr
+        assert list((project / "outside").iterdir()) == []
+
+
+TOKENS = '{"bg": {"$type": "color", "$value": "#fff"}, "c": {"$type": "color", "$value": "#000"}}'
+TOKENS_CONFIG = "tokens:\n  file: t.tokens.json\n  canvases: bg\n  colors: c\nalpha: 1.1\n"
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["check", "reports/t.yaml", "vibrant"],
+        ["check", "paper16", "reports/s.yaml"],
+        ["check", "paper16", "vibrant", "--baseline", "reports/b.json"],
+        ["check", "--config", "reports/c.yaml"],
+    ],
+    ids=["theme", "manifest", "baseline", "config"],
+)
+def test_a_file_named_through_a_linked_folder_is_refused_before_reading(
+    project: Path, args: list[str]
+) -> None:
+    outside = project / "outside"
+    (outside / "t.yaml").write_text("name: t\ncanvases: [{color: '#fff'}]\n")
+    (outside / "s.yaml").write_text("icons: svg/*.svg\ncolor: '#000'\n")
+    (outside / "b.json").write_text('{"schema": "alpha-audit.baseline/2", "entries": []}')
+    (outside / "c.yaml").write_text("themes: [paper16]\niconsets: [vibrant]\n")
+    result = _run(args, project / "proj")
+    assert result.exit_code == ExitStatus.INPUT_ERROR, result.output
+    assert "leads through a symlink to a file outside the project root" in result.stderr
 
 
 @pytest.mark.parametrize("code", [errno.ENOSPC, errno.EIO, errno.EPIPE])
