@@ -163,6 +163,7 @@ def modes_from_figma(doc: JsonDoc, *, collection: str | None = None) -> TokenMod
     modes: dict[str, dict[str, Token]] = {}
     for mode_name in names:
         tokens: dict[str, Token] = {}
+        named: dict[str, str] = {}
         for vid, var in variables.items():
             if not isinstance(var, dict) or not isinstance(var.get("name"), str):
                 raise token_error("a variable needs a name", **where(vid))
@@ -174,9 +175,11 @@ def modes_from_figma(doc: JsonDoc, *, collection: str | None = None) -> TokenMod
                 )
             check_name(var["name"], **_named(where(vid)), what="variable name")
             path = _path(var["name"])
+            first = named.setdefault(path, var["name"])
             if path in tokens:
                 raise token_error(
-                    f"two variables are named {var['name']!r}; token paths must be unique",
+                    f"variables {first!r} and {var['name']!r} both name the token {path}; "
+                    "token paths must be unique, rename one",
                     **where(vid),
                 )
             try:
