@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import errno
 import os
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -104,3 +106,43 @@ def test_a_failing_output_stream_is_exit_2_not_a_bug(code: int) -> None:
 def test_a_file_name_in_an_os_error_is_shown_escaped() -> None:
     status, line = _classify(PermissionError(13, "Permission denied", "a\x1b]52;c;x\x07b"))
     assert status is ExitStatus.INPUT_ERROR and "\x1b" not in line and "\x07" not in line
+
+
+def _closed_pipe() -> int:
+    read, write = os.pipe()
+    os.close(read)  # every write now fails with EPIPE, as into `| head -c 10` once head is gone
+    return write
+
+
+CASES = [
+    (args, stream)
+    for args in (["check", "paper16", "vibrant", "-f", "json"], ["themes"], ["--version"])
+    for stream in ("closed pipe", "/dev/full")
+]
+# typer prints --help through rich, which turns a closed pipe into its own exit 1.
+CASES.append((["check", "--help"], "/dev/full"))
+
+
+@pytest.mark.parametrize(("args", "stream"), CASES, ids=lambda v: str(v))
+def test_stdout_that_cannot_be_written_is_exit_2_with_one_line(
+    tmp_path: Path, args: list[str], stream: str
+) -> None:
+    if stream == "/dev/full" and not Path("/dev/full").exists():
+        pytest.skip("no /dev/full here")
+    out = _closed_pipe() if stream == "closed pipe" else os.open("/dev/full", os.O_WRONLY)
+    exe = Path(sys.executable).with_name("alpha-audit")
+    try:
+        run = subprocess.run(
+            [str(exe), *args],
+            cwd=tmp_path,
+            stdout=out,
+            stderr=subprocess.PIPE,
+            text=True,
+            env={**os.environ, "NO_COLOR": "1"},
+            timeout=120,
+        )
+    finally:
+        os.close(out)
+    assert run.returncode == ExitStatus.INPUT_ERROR, run.stderr
+    assert run.stderr.startswith("alpha-audit: error: cannot write the output: "), run.stderr
+    assert "Traceback" not in run.stderr and "Exception ignored" not in run.stderr
