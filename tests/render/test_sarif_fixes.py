@@ -400,6 +400,37 @@ def test_no_colour_fix_for_a_token_value_that_also_sets_a_canvas(tmp_path: Path)
     assert not [fx for _, fx in _fixed(doc) if fx["description"]["text"].startswith("use #")]
 
 
+def test_no_colour_fix_for_a_token_value_that_is_another_modes_canvas(tmp_path: Path) -> None:
+    # --color-base-sun is light's icon colour and, through an alias, dark's canvas: the
+    # nearest-colour edit would move dark's canvas, so it is not offered.
+    text = (
+        ":root {\n  --color-base-sun: #ffcc00;\n  --color-bg-canvas: #ffffff;\n"
+        "  --color-icon-warn: var(--color-base-sun);\n}\n"
+        '[data-theme="dark"] {\n  --color-bg-canvas: {canvas};\n  --color-icon-warn: #000000;\n}\n'
+    )
+    offered = []
+    for dark_canvas in ("#222222", "var(--color-base-sun)"):
+        root = _token_project(
+            tmp_path / str(len(offered)), "t.css", text.replace("{canvas}", dark_canvas)
+        )
+        (root / "alpha-audit.yaml").write_text(
+            (root / "alpha-audit.yaml").read_text().replace("  modes: {default: light}\n", "")
+            + "alpha: 1.0\n"
+        )
+        report = _token_check(root)
+        assert report.gate.failures  # the yellow icon on white is below 3:1
+        doc = json.loads(CheckFormat.SARIF.renderer()(report, RenderOptions(base=root)))
+        sun = [
+            fx
+            for _, fx in _fixed(doc)
+            for change in fx["artifactChanges"]
+            for rep in change["replacements"]
+            if rep["deletedRegion"]["snippet"]["text"] == "#ffcc00"
+        ]
+        offered.append(sun)
+    assert offered[0] and not offered[1]
+
+
 def test_a_locked_colour_gets_no_colour_fix(tmp_path: Path) -> None:
     root = _project(
         tmp_path / "locked", MANIFEST.replace("color: cycle\n", "color: cycle\nlock: [navy]\n")
