@@ -594,8 +594,9 @@ def _edits(
     alpha ``below-threshold`` and ``newly-failing`` (not ``loss``: contrast can
     stay lower than at 1); the nearest colour all three.  A colour edit is not
     offered for a locked colour, nor for a token value that also sets a canvas
-    of any mode audited (``canvas_spans``: the edit would move the canvas).  The value must be written in a file: a
-    default alpha, ``--alpha`` or a DTCG colour object give no edit.
+    of any mode audited (``canvas_spans``: the edit would move the canvas).  The
+    value must be written in a file: a default alpha, ``--alpha`` or a DTCG
+    colour object give no edit.
     """
     if result is None or finding.rule not in CONTRAST_RULES or len(finding.icons) != 1:
         return ()
