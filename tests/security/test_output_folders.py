@@ -70,6 +70,40 @@ def test_a_linked_folder_is_refused_when_run_from_outside_the_project(project: P
         assert list((project / "outside").iterdir()) == []
 
 
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["export", "-f", "dtcg", "-o", "reports/new/deeper"],
+        ["preview", "paper16", "vibrant", "-o", "reports/sheets"],
+    ],
+    ids=["export", "preview"],
+)
+def test_an_output_folder_to_create_through_a_link_is_refused_before_it_is_made(
+    project: Path, args: list[str]
+) -> None:
+    (project / "proj" / "alpha-audit.yaml").write_text(TOKENS_CONFIG)
+    (project / "proj" / "t.tokens.json").write_text(TOKENS)
+    result = _run(args, project / "proj")
+    assert result.exit_code == ExitStatus.INPUT_ERROR, result.output
+    assert "leads outside the project" in result.stderr
+    assert list((project / "outside").iterdir()) == []  # not even an empty folder
+
+
+def test_make_folder_refuses_a_link_on_the_way_before_making_anything(project: Path) -> None:
+    from alpha_audit.errors import UsageError
+    from alpha_audit.output import make_folder
+
+    old = Path.cwd()
+    os.chdir(project / "proj")
+    try:
+        with pytest.raises(UsageError, match="leads outside the project"):
+            make_folder("reports/results/figures")  # reproduce --out, preview -o, export -o
+        assert make_folder("deep/results").is_dir()
+    finally:
+        os.chdir(old)
+    assert list((project / "outside").iterdir()) == []
+
+
 TOKENS = '{"bg": {"$type": "color", "$value": "#fff"}, "c": {"$type": "color", "$value": "#000"}}'
 TOKENS_CONFIG = "tokens:\n  file: t.tokens.json\n  canvases: bg\n  colors: c\nalpha: 1.1\n"
 
