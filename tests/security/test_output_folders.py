@@ -153,8 +153,8 @@ CASES = [
     for args in (["check", "paper16", "vibrant", "-f", "json"], ["themes"], ["--version"])
     for stream in ("closed pipe", "/dev/full")
 ]
-# typer prints --help through rich, which turns a closed pipe into its own exit 1.
-CASES.append((["check", "--help"], "/dev/full"))
+CASES += [(["check", "--help"], "/dev/full"), (["check", "--help"], "closed pipe")]
+CASES += [(["--help"], "closed pipe")]  # help is printed through rich: its own pipe handling
 
 
 @pytest.mark.parametrize(("args", "stream"), CASES, ids=lambda v: str(v))

@@ -161,6 +161,24 @@ def _detach_stdout() -> None:
         pass
 
 
+def _help_into_closed_pipe(exc: SystemExit) -> None:
+    """Exit 2 with one line if rich ended the run because help met a closed pipe.
+
+    typer prints help through rich, whose ``Console.on_broken_pipe`` (documented
+    behaviour) points stdout at ``/dev/null`` and raises ``SystemExit(1)``: the
+    gate's code.  Commands never raise ``SystemExit(1)`` themselves.
+    """
+    if exc.code != 1:
+        return
+    try:
+        detached = os.path.samestat(os.fstat(sys.stdout.fileno()), os.stat(os.devnull))
+    except (OSError, ValueError):
+        return
+    if detached:
+        _error_line("cannot write the output: Broken pipe")
+        raise typer.Exit(ExitStatus.INPUT_ERROR) from exc
+
+
 def _exit_code(exc: Exception, *, debug: bool) -> ExitStatus:
     """Report ``exc`` on stderr in one line (plus the traceback with ``debug``)."""
     status, line = _classify(exc)
@@ -193,6 +211,9 @@ class _Group(TyperGroup):
             if not _stdout_failed(exc):
                 raise
             raise typer.Exit(_exit_code(exc, debug=False)) from exc
+        except SystemExit as exc:
+            _help_into_closed_pipe(exc)
+            raise
 
     def invoke(self, ctx: Any) -> Any:
         # The command's own arguments, seen here before the group hands them on.
@@ -204,6 +225,9 @@ class _Group(TyperGroup):
                 raise TypeError(f"command returned {status!r}, not an ExitStatus")
         except (typer.Exit, typer.Abort):
             raise  # typer's own ways out (--help, Ctrl-C) keep their meaning
+        except SystemExit as exc:  # a command's --help into a closed pipe
+            _help_into_closed_pipe(exc)
+            raise
         except typer.TyperException as exc:
             _usage_error(exc)
         except Exception as exc:  # the boundary: nothing else turns exceptions into exit codes
