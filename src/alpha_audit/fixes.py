@@ -50,7 +50,7 @@ from alpha_audit.color import (
 )
 from alpha_audit.color.oklch import linear_to_oklch, oklch_to_linear
 from alpha_audit.findings import Finding
-from alpha_audit.model import Edit, Icon
+from alpha_audit.model import Edit, Icon, Span
 from alpha_audit.policy import CONTRAST_RULES, Policy, contrast_breaks
 from alpha_audit.results import (
     CheckReport,
@@ -515,6 +515,11 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
         (r.theme.name, r.iconset.name): _Audit(r, policy, alpha_max, precision)
         for r in report.audits
     }
+    # Every written canvas value of every audit: a token that is one mode's icon colour
+    # and another mode's canvas (an alias in a dark block) is never rewritten.
+    canvas_spans = frozenset(
+        c.span for r in report.audits for c in r.theme.canvases if c.span is not None
+    )
     fixes: list[Fix] = []
     index: dict[object, int] = {}
     budget = MAX_FIXED_COLORS
@@ -568,13 +573,18 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
                 )
             if key in index:
                 found.append(index[key])
-        edits = _edits(f, [fixes[k] for k in found], a.result if a else None)
+        edits = _edits(f, [fixes[k] for k in found], a.result if a else None, canvas_spans)
         findings.append(replace(f, fixes=tuple(found), edits=edits))
     gate = replace(gate, findings=tuple(findings))
     return replace(report, gate=gate, fixes=tuple(fixes), fixes_left_out=len(left_out))
 
 
-def _edits(finding: Finding, fixes: Sequence[Fix], result: AuditResult | None) -> tuple[Edit, ...]:
+def _edits(
+    finding: Finding,
+    fixes: Sequence[Fix],
+    result: AuditResult | None,
+    canvas_spans: frozenset[Span],
+) -> tuple[Edit, ...]:
     """The fixes of ``finding`` as text edits, where applying one is known to clear it.
 
     Offered only for one icon's contrast on one canvas, judged on its own
@@ -584,8 +594,9 @@ def _edits(finding: Finding, fixes: Sequence[Fix], result: AuditResult | None) -
     alpha ``below-threshold`` and ``newly-failing`` (not ``loss``: contrast can
     stay lower than at 1); the nearest colour all three.  A colour edit is not
     offered for a locked colour, nor for a token value that also sets a canvas
-    (the edit would move the canvas).  The value must be written in a file: a
-    default alpha, ``--alpha`` or a DTCG colour object give no edit.
+    of any mode audited (``canvas_spans``: the edit would move the canvas).  The
+    value must be written in a file: a default alpha, ``--alpha`` or a DTCG
+    colour object give no edit.
     """
     if result is None or finding.rule not in CONTRAST_RULES or len(finding.icons) != 1:
         return ()
@@ -642,7 +653,7 @@ def _edits(finding: Finding, fixes: Sequence[Fix], result: AuditResult | None) -
             and color_span is not None
             and icon.name not in locked
             and (icon.color_name or "") not in locked
-            and all(c.span != color_span for c in result.theme.canvases if c.span is not None)
+            and color_span not in canvas_spans
         ):
             out.append(
                 Edit(

@@ -31,7 +31,7 @@ from typing import BinaryIO
 
 from alpha_audit.errors import UsageError
 
-__all__ = ["Output", "check_targets", "write_bytes", "write_files", "write_text"]
+__all__ = ["Output", "check_targets", "make_folder", "write_bytes", "write_files", "write_text"]
 
 
 @dataclass(frozen=True)
@@ -64,6 +64,34 @@ def _folder(target: Path) -> Path:
     return target.parent if str(target.parent) else Path(".")
 
 
+def _refuse_leaving(folder: Path, named: Path) -> None:
+    """Refuse ``folder`` (of ``named``) if, resolved, it leaves a project its name is in."""
+    from alpha_audit.load.paths import enclosing_roots
+
+    real = folder.resolve()
+    for root in enclosing_roots(folder / "-"):
+        if not real.is_relative_to(root):
+            raise UsageError(
+                f"folder {folder} leads outside the project {root} ({real}) "
+                "through a link; refusing to write there",
+                path=named,
+            )
+
+
+def make_folder(folder: str | Path) -> Path:
+    """Create an output folder (and its parents), checked like a target's folder first.
+
+    ``dist/new`` with ``dist -> /elsewhere`` is refused before any folder is made.
+    """
+    path = Path(folder)
+    _refuse_leaving(path, path)
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise UsageError(f"cannot create the folder: {exc.strerror or exc}", path=path) from exc
+    return path
+
+
 def check_targets(targets: Iterable[str | Path], *, overwrite: bool) -> None:
     """Refuse, before anything is written, a set of targets that cannot all be written.
 
@@ -71,19 +99,10 @@ def check_targets(targets: Iterable[str | Path], *, overwrite: bool) -> None:
     (without ``overwrite``), is not a regular file, sits in a missing folder,
     or is given twice (the same file reached by two names counts too).
     """
-    from alpha_audit.load.paths import project_root
-
     seen: dict[Path, Path] = {}
-    root = Path(os.path.abspath(project_root(Path.cwd())))
     for given in targets:
         target = Path(given)
-        folder = Path(os.path.abspath(_folder(target)))
-        if folder.is_relative_to(root) and not folder.resolve().is_relative_to(root.resolve()):
-            raise UsageError(
-                f"folder {_folder(target)} leads outside the project ({folder.resolve()}) "
-                "through a link; refusing to write there",
-                path=target,
-            )
+        _refuse_leaving(_folder(target), target)
         key = _folder(target).resolve() / target.name
         if key in seen:
             raise UsageError(f"is the target of two outputs (also {seen[key]})", path=target)

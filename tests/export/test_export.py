@@ -319,6 +319,46 @@ def test_export_refuses_two_token_paths_that_become_one_property(tmp_path: Path)
     assert len(render_export(table, "dtcg")) == 1  # DTCG keeps the two paths apart
     for fmt in ("css", "tailwind"):
         with pytest.raises(
-            InputError, match=r"tokens (color\.)?a\.b-c and (color\.)?a-b\.c .*both become"
+            InputError, match=r"token (color\.)?a\.b-c and token (color\.)?a-b\.c both become"
         ):
+            render_export(table, fmt)
+
+
+def _css_table(tmp_path: Path, css: str, colors: str, canvases: str = "bg"):  # type: ignore[no-untyped-def]
+    from alpha_audit.export import table_from_config
+
+    project = _css_project(tmp_path, colors, css)
+    config = project / "alpha-audit.yaml"
+    config.write_text(config.read_text().replace("canvases: bg", f"canvases: {canvases!r}"))
+    return table_from_config(load_config(config))
+
+
+def test_export_refuses_two_modes_that_become_one_file_or_filter_id(tmp_path: Path) -> None:
+    css = ':root { --bg: #fff; --fg: #0062ba } [data-theme="a b"] { --bg: #000 } '
+    css += '[data-theme="a_b"] { --bg: #111 }'
+    table = _css_table(tmp_path, css, "fg")
+    assert len(table.modes) == 3
+    with pytest.raises(InputError, match=r"mode a b and mode a_b both become the DTCG file a_b"):
+        render_export(table, "dtcg")
+    with pytest.raises(InputError, match=r"mode a b on bg .* and mode a_b on bg .* filter id"):
+        render_export(table, "svg")
+    assert render_export(table, "resolver")  # contexts keep the names themselves
+
+
+def test_dtcg_export_refuses_a_token_that_would_have_to_be_a_group(tmp_path: Path) -> None:
+    # The token fg.on.bg (from --fg-on-bg) drawn on bg is fg.on.bg.on.bg, and fg drawn
+    # on bg is fg.on.bg: in DTCG one token would have to hold the other.
+    css = ":root { --bg: #fff; --bg2: #eee; --fg: #0062ba; --fg-on-bg: #123456 }"
+    table = _css_table(tmp_path, css, "fg*", "bg*")
+    with pytest.raises(InputError, match=r"DTCG tokens fg\.on\.bg and fg\.on\.bg\.on\.bg"):
+        render_export(table, "dtcg")
+    assert "--fg-on-bg-on-bg: " in render_export(table, "css")["colors.css"]
+
+
+def test_export_refuses_two_outputs_that_meet_in_one_token_path(tmp_path: Path) -> None:
+    # a on the canvas b.on.c and a.on.b on the canvas c are both a.on.b.on.c
+    css = ":root { --x-b-on-c: #fff; --x-c: #eee; --a: #0062ba; --a-on-b: #123456 }"
+    table = _css_table(tmp_path, css, "a*", "x.*")
+    for fmt in ("css", "dtcg", "tailwind"):
+        with pytest.raises(InputError, match=r"a on x\.b\.on\.c and a\.on\.b on x\.c both"):
             render_export(table, fmt)

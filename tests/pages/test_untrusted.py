@@ -1,8 +1,9 @@
 """Untrusted pages: loopback only (the rest refused and reported), time limits, the root,
-and no browser process or profile left after SIGTERM mid-run."""
+and no browser process or profile left after SIGTERM mid-run, in every engine."""
 
 from __future__ import annotations
 
+import contextlib
 import os
 import signal
 import socket
@@ -16,6 +17,7 @@ from pathlib import Path
 
 import pytest
 
+from alpha_audit.browser import ENGINES
 from alpha_audit.pages import FolderSource, RenderConfig, audit_pages
 from alpha_audit.pages.server import PageServer
 
@@ -204,3 +206,87 @@ def test_a_story_id_holding_a_control_or_bidi_character_is_refused(tmp_path, sto
     with pytest.raises(InputError, match=rf"story id '.*' has the .* U\+{said[2:]}") as info:
         targets([StorybookSource(build)])
     assert "index.json" in str(info.value) and first_unsafe(str(info.value)) is None
+
+
+_PR_SET_CHILD_SUBREAPER = 36  # prctl(2): orphaned descendants are re-parented to the caller
+
+
+def _children() -> list[tuple[int, str]]:
+    """Live children of this process (``/proc``), with their command lines."""
+    found = []
+    for entry in os.scandir("/proc"):
+        if not entry.name.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry.name}/stat", "rb") as fh:
+                fields = fh.read().rsplit(b")", 1)[1].split()
+            with open(f"/proc/{entry.name}/cmdline", "rb") as fh:
+                command = fh.read().replace(b"\0", b" ").decode(errors="replace")
+        except OSError:
+            continue
+        if int(fields[1]) == os.getpid() and fields[0] != b"Z":
+            found.append((int(entry.name), command[:120]))
+    return found
+
+
+def _reap() -> None:
+    with contextlib.suppress(ChildProcessError):
+        while os.waitpid(-1, os.WNOHANG)[0]:
+            pass
+
+
+@pytest.fixture
+def subreaper():
+    """This process as a child subreaper for the test: every process the run starts, at
+    any depth and in any session (each engine runs in a session of its own), is
+    re-parented here when its parent goes, so the process tree says what survived."""
+    import ctypes
+
+    libc = ctypes.CDLL(None, use_errno=True)
+    if libc.prctl(_PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0) != 0:
+        pytest.skip("prctl(PR_SET_CHILD_SUBREAPER) is not available")
+    try:
+        yield
+    finally:
+        libc.prctl(_PR_SET_CHILD_SUBREAPER, 0, 0, 0, 0)
+        _reap()
+
+
+@pytest.mark.parametrize("engine", sorted(ENGINES))
+def test_sigterm_mid_run_leaves_no_process_of_any_engine_and_no_profile(
+    project, tmp_path, subreaper, engine
+):
+    if ENGINES[engine].find() is None:
+        pytest.skip(f"{engine} is not installed")
+    temp = tmp_path / "run-tmp"
+    temp.mkdir()
+    exe = Path(sys.executable).with_name("alpha-audit")
+    before = {pid for pid, _ in _children()}
+    run = subprocess.Popen(
+        [str(exe), "render", "storybook-static", "--engine", engine, "--workers", "2",
+         "-f", "json"],
+        cwd=project,
+        env={**os.environ, "TMPDIR": str(temp), "NO_COLOR": "1"},
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        start_new_session=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+    )  # fmt: skip
+    # Mid-run: both browsers are up, each with its programs (a browser and its content
+    # processes; WebKitWebDriver, MiniBrowser and Xvfb; Chromium and its helpers).
+    deadline = time.monotonic() + 90
+    while len(list(temp.glob(f"alpha-audit-{engine}-*"))) < 2 or len(_processes_naming(temp)) < 4:
+        assert run.poll() is None and time.monotonic() < deadline, run.stderr.read()
+        time.sleep(0.05)
+    time.sleep(1.0)
+    run.send_signal(signal.SIGTERM)
+    assert run.wait(timeout=30) == -signal.SIGTERM  # it died of the signal, after cleaning up
+    deadline = time.monotonic() + 15
+    left = [c for c in _children() if c[0] not in before]
+    while (left or list(temp.iterdir())) and time.monotonic() < deadline:
+        _reap()
+        time.sleep(0.1)
+        left = [c for c in _children() if c[0] not in before]
+    assert left == []  # nothing the run started, at any depth, is alive
+    assert _processes_naming(temp) == []
+    assert list(temp.iterdir()) == []  # no profile, no org.chromium.Chromium.* folder

@@ -327,7 +327,20 @@ def _token_check(root: Path) -> Any:
             "@theme {\n  --color-bg-canvas: #ffffff;\n  --color-base-sun:   #ffcc00;\n"
             "  --color-icon-warn: var(--color-base-sun);\n}\n",
         ),
+        # A byte-order mark is a code point of line 1: the region starts one column later.
+        (
+            "tokens.json",
+            '\ufeff{"color": {"$type": "color", "bg": {"canvas": {"$value": "#ffffff"}}, '
+            '"base": {"sun": {"$value": "#ffcc00"}}, "icon": {"warn": {"$value": '
+            '"{color.base.sun}"}}}}\n',
+        ),
+        (
+            "theme.css",
+            "\ufeff@theme { --color-bg-canvas: #ffffff; --color-base-sun: #ffcc00; "
+            "--color-icon-warn: var(--color-base-sun); }\n",
+        ),
     ],
+    ids=["json", "css", "json-bom", "css-bom"],
 )
 def test_a_token_colour_fix_edits_the_token_value(tmp_path: Path, file: str, text: str) -> None:
     root = _token_project(tmp_path / "tokens", file, text)
@@ -387,6 +400,37 @@ def test_no_colour_fix_for_a_token_value_that_also_sets_a_canvas(tmp_path: Path)
     assert not [fx for _, fx in _fixed(doc) if fx["description"]["text"].startswith("use #")]
 
 
+def test_no_colour_fix_for_a_token_value_that_is_another_modes_canvas(tmp_path: Path) -> None:
+    # --color-base-sun is light's icon colour and, through an alias, dark's canvas: the
+    # nearest-colour edit would move dark's canvas, so it is not offered.
+    text = (
+        ":root {\n  --color-base-sun: #ffcc00;\n  --color-bg-canvas: #ffffff;\n"
+        "  --color-icon-warn: var(--color-base-sun);\n}\n"
+        '[data-theme="dark"] {\n  --color-bg-canvas: {canvas};\n  --color-icon-warn: #000000;\n}\n'
+    )
+    offered = []
+    for dark_canvas in ("#222222", "var(--color-base-sun)"):
+        root = _token_project(
+            tmp_path / str(len(offered)), "t.css", text.replace("{canvas}", dark_canvas)
+        )
+        (root / "alpha-audit.yaml").write_text(
+            (root / "alpha-audit.yaml").read_text().replace("  modes: {default: light}\n", "")
+            + "alpha: 1.0\n"
+        )
+        report = _token_check(root)
+        assert report.gate.failures  # the yellow icon on white is below 3:1
+        doc = json.loads(CheckFormat.SARIF.renderer()(report, RenderOptions(base=root)))
+        sun = [
+            fx
+            for _, fx in _fixed(doc)
+            for change in fx["artifactChanges"]
+            for rep in change["replacements"]
+            if rep["deletedRegion"]["snippet"]["text"] == "#ffcc00"
+        ]
+        offered.append(sun)
+    assert offered[0] and not offered[1]
+
+
 def test_a_locked_colour_gets_no_colour_fix(tmp_path: Path) -> None:
     root = _project(
         tmp_path / "locked", MANIFEST.replace("color: cycle\n", "color: cycle\nlock: [navy]\n")
@@ -397,3 +441,19 @@ def test_a_locked_colour_gets_no_colour_fix(tmp_path: Path) -> None:
         if r["properties"]["icons"] == ["wave"]
     ]
     assert wave and not any(t.startswith("use #") for t in wave)  # the alpha fix stays
+
+
+def test_a_fix_on_line_1_of_a_manifest_with_a_byte_order_mark_counts_it(tmp_path: Path) -> None:
+    manifest = "alpha: 1.4   # set-wide\n" + MANIFEST.replace("alpha: 1.4   # set-wide\n", "")
+    root = _project(tmp_path / "bom", "\ufeff" + manifest)
+    text = (root / "set.yaml").read_text("utf-8")
+    replaced = [
+        (rep, _apply(text, rep))
+        for _, fx in _fixed(_sarif(root))
+        for rep in fx["artifactChanges"][0]["replacements"]
+        if rep["deletedRegion"]["startLine"] == 1
+    ]
+    assert replaced  # the set-wide alpha's fix
+    for rep, (_, start, end) in replaced:
+        assert rep["deletedRegion"]["startColumn"] == len("\ufeffalpha: ") + 1
+        assert text[start:end] == rep["deletedRegion"]["snippet"]["text"] == "1.4"

@@ -327,6 +327,12 @@ MALFORMED = [
     {"c": {"$type": "color", "$value": "oklch(from red calc(l + 0.1) c h)"}},
     {"c": {"$type": "color", "$value": "color-mix(" * 200}},
     {"c": {"$type": ["color"], "$value": "#fff"}},
+    # finite channels whose conversion overflows or meets a domain error (were exit 3)
+    {"c": {"$type": "color", "$value": "lab(50 1e308 1e308)"}},
+    {"c": {"$type": "color", "$value": "oklch(0.5 0.1 1e400)"}},
+    {"c": {"$type": "color", "$value": {"colorSpace": "lab", "components": [50, 1e308, 1e308]}}},
+    {"c": {"$type": "color", "$value": "color-mix(in lab, lab(50 1e308 1e308), red)"}},
+    {"c": {"$type": "color", "$value": {"colorSpace": "srgb", "components": [1, 0, 0], "hex": 5}}},
     {"c": {"$type": "color", "$value": "#fff", "$extensions": {"com.alpha-audit": {"alpha": "x"}}}},
 ]
 

@@ -17,6 +17,7 @@ Command modules never import this module (they import :mod:`.console`,
 from __future__ import annotations
 
 import errno
+import os
 import re
 import sys
 import traceback
@@ -141,9 +142,49 @@ def _classify(exc: Exception) -> tuple[ExitStatus, str]:
     )
 
 
+def _stdout_failed(exc: BaseException) -> bool:
+    """Whether ``exc`` is a failed write to a stream, not to a named file."""
+    return isinstance(exc, OSError) and exc.filename is None and exc.errno in _WRITE_ERRORS
+
+
+def _detach_stdout() -> None:
+    """Point stdout at ``/dev/null``, so that the flush at exit cannot fail a second time.
+
+    Python flushes ``sys.stdout`` as it exits; into a closed pipe that is another
+    ``BrokenPipeError``, printed as "Exception ignored" and exit 120 (the recipe of
+    the ``signal`` module's documentation, "Note on SIGPIPE").
+    """
+    try:
+        null = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(null, sys.stdout.fileno())
+        os.close(null)
+    except (OSError, ValueError):  # no stdout descriptor (an embedding host): nothing to flush
+        pass
+
+
+def _help_into_closed_pipe(exc: SystemExit) -> None:
+    """Exit 2 with one line if rich ended the run because help met a closed pipe.
+
+    typer prints help through rich, whose ``Console.on_broken_pipe`` (documented
+    behaviour) points stdout at ``/dev/null`` and raises ``SystemExit(1)``: the
+    gate's code.  Commands never raise ``SystemExit(1)`` themselves.
+    """
+    if exc.code != 1:
+        return
+    try:
+        detached = os.path.samestat(os.fstat(sys.stdout.fileno()), os.stat(os.devnull))
+    except (OSError, ValueError):
+        return
+    if detached:
+        _error_line("cannot write the output: Broken pipe")
+        raise typer.Exit(ExitStatus.INPUT_ERROR) from exc
+
+
 def _exit_code(exc: Exception, *, debug: bool) -> ExitStatus:
     """Report ``exc`` on stderr in one line (plus the traceback with ``debug``)."""
     status, line = _classify(exc)
+    if _stdout_failed(exc):
+        _detach_stdout()
     if status is ExitStatus.INTERNAL_ERROR and not debug:
         line += f" (--debug or {DEBUG_ENV}=1 for details)"
     _error_line(line)
@@ -159,12 +200,21 @@ class _Group(TyperGroup):
         return untyped_flags(super().get_params(ctx))
 
     def parse_args(self, ctx: Any, args: list[str]) -> list[str]:
-        if not args and self.no_args_is_help:
-            return super().parse_args(ctx, args)  # ``alpha-audit`` alone: typer shows the help
+        alone = not args and self.no_args_is_help  # parsing consumes ``args``
         try:
-            return super().parse_args(ctx, args)
-        except typer.TyperException as exc:
-            _usage_error(exc)
+            try:
+                return super().parse_args(ctx, args)
+            except typer.TyperException as exc:
+                if alone:
+                    raise  # ``alpha-audit`` alone: typer shows the help
+                _usage_error(exc)
+        except OSError as exc:  # --help or --version into a full disk or a closed pipe
+            if not _stdout_failed(exc):
+                raise
+            raise typer.Exit(_exit_code(exc, debug=False)) from exc
+        except SystemExit as exc:
+            _help_into_closed_pipe(exc)
+            raise
 
     def invoke(self, ctx: Any) -> Any:
         # The command's own arguments, seen here before the group hands them on.
@@ -174,8 +224,11 @@ class _Group(TyperGroup):
             status = super().invoke(ctx)
             if not isinstance(status, ExitStatus):
                 raise TypeError(f"command returned {status!r}, not an ExitStatus")
-        except (typer.Exit, typer.Abort, BrokenPipeError):
-            raise  # typer's own ways out (--help, Ctrl-C, a closed pipe) keep their meaning
+        except (typer.Exit, typer.Abort):
+            raise  # typer's own ways out (--help, Ctrl-C) keep their meaning
+        except SystemExit as exc:  # a command's --help into a closed pipe
+            _help_into_closed_pipe(exc)
+            raise
         except typer.TyperException as exc:
             _usage_error(exc)
         except Exception as exc:  # the boundary: nothing else turns exceptions into exit codes

@@ -30,7 +30,8 @@ CIEDE2000 between them, so a report can say which colours moved and how far.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import cached_property
 from typing import TYPE_CHECKING, Any, Literal, get_args
@@ -145,6 +146,25 @@ def _rgb(values: Sequence[float]) -> tuple[float, float, float]:
     return r, g, b
 
 
+@contextmanager
+def _too_large(text: str) -> Iterator[None]:
+    """Arithmetic on finite but huge channels as a colour error, not a crash.
+
+    ``lab(50 1e308 1e308)`` overflows its conversion and a hue of ``1e400``
+    (inf) is a domain error: bad input, which coloraide reports as
+    ``OverflowError`` or ``ValueError``.
+    """
+    try:
+        yield
+    except ColorSyntaxError:
+        raise
+    except (ArithmeticError, ValueError) as exc:
+        raise ColorSyntaxError(
+            f"{text[:60]!r} has a channel too large to convert to sRGB; give channels "
+            "in their CSS Color 4 ranges"
+        ) from exc
+
+
 def _resolve(
     color: Color, text: str, space: str, *, gamut: GamutPolicy, allow_alpha: bool
 ) -> ParsedColor:
@@ -158,8 +178,9 @@ def _resolve(
         raise ColorSyntaxError(f"{text!r} has an alpha that is not a number")
     if alpha < 1.0 and not allow_alpha:
         raise ColorSyntaxError(f"{text!r} {_OWN_ALPHA}")
-    srgb = color.convert("srgb", norm=False)
-    unmapped = _rgb(srgb.coords(nans=False))
+    with _too_large(text):
+        srgb = color.convert("srgb", norm=False)
+        unmapped = _rgb(srgb.coords(nans=False))
     if not all(math.isfinite(v) for v in unmapped):
         raise ColorSyntaxError(f"{text!r} has a channel that is not a finite number")
     in_gamut = bool(srgb.in_gamut(tolerance=_GAMUT_TOLERANCE))
@@ -392,7 +413,8 @@ def parse_css_color(
     value = text.strip()
     if len(value) > MAX_COLOR_TEXT or "--" in value:  # "--": coloraide's non-CSS space syntax
         raise ColorSyntaxError(f"{value[:40]!r} is not a colour; {_ALLOWED}")
-    color = _match(value, 0)
+    with _too_large(value):
+        color = _match(value, 0)
     space = color.space()
     if space not in CSS_SPACES.values():
         raise ColorSyntaxError(f"{value!r} uses colour space {space!r}; {_ALLOWED}")

@@ -81,7 +81,7 @@ def write_export(
     Every target is checked first (:func:`alpha_audit.output.check_targets`), so
     nothing is written if any would be refused; each file is replaced atomically.
     """
-    from alpha_audit.output import Output, check_targets, write_files
+    from alpha_audit.output import Output, check_targets, make_folder, write_files
 
     out = Path(folder)
     if out.exists() and not out.is_dir():
@@ -89,7 +89,7 @@ def write_export(
     targets = [out / name for name in files]
     if out.is_dir():
         check_targets(targets, overwrite=overwrite)
-    out.mkdir(parents=True, exist_ok=True)
+    make_folder(out)
     return write_files([Output.text(t, files[t.name]) for t in targets], overwrite=overwrite)
 
 

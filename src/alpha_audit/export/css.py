@@ -2,9 +2,8 @@
 
 from __future__ import annotations
 
-from alpha_audit.errors import InputError
 from alpha_audit.export.escape import css_comment, css_ident, css_name, css_string
-from alpha_audit.export.table import ExportMode, ExportTable, exported_path
+from alpha_audit.export.table import ExportMode, ExportTable, OneOwner, exported_paths
 
 __all__ = ["DEFAULT_SELECTOR", "css_properties", "mode_properties", "render_css"]
 
@@ -20,20 +19,13 @@ def css_properties(mode: ExportMode, prefix: str = "") -> list[tuple[str, str]]:
     both, never one value silently written over the other.
     """
     out = []
-    owner: dict[str, str] = {}
-    for color in mode.colors:
-        for canvas, hex_ in zip(mode.canvases, color.outputs, strict=True):
-            path = exported_path(color.token, canvas, mode)
-            if prefix and not path.startswith(prefix):
-                path = prefix + path
-            prop = "--" + css_name(path.replace(".", "-"))
-            if prop in owner and owner[prop] != path:
-                raise InputError(
-                    f"tokens {owner[prop]} and {path} (mode {mode.name}) both become the CSS "
-                    f"property {prop}; rename one so that each colour keeps its own property"
-                )
-            owner[prop] = path
-            out.append((prop, hex_))
+    owners = OneOwner(f"CSS property (mode {mode.name})")
+    for path, _color, _canvas, hex_ in exported_paths(mode):
+        if prefix and not path.startswith(prefix):
+            path = prefix + path
+        prop = "--" + css_name(path.replace(".", "-"))
+        owners.claim(prop, f"token {path}")
+        out.append((prop, hex_))
     return out
 
 

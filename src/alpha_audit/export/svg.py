@@ -15,7 +15,7 @@ up to 18/255 off (docs/export.md measures it; the CSS colours are exact).
 from __future__ import annotations
 
 from alpha_audit.export.escape import xml_attr, xml_id, xml_text
-from alpha_audit.export.table import ExportTable
+from alpha_audit.export.table import ExportTable, OneOwner
 
 __all__ = ["filter_id", "render_svg"]
 
@@ -23,7 +23,7 @@ __all__ = ["filter_id", "render_svg"]
 def filter_id(mode: str, canvas: str, alpha: float, distinct_alphas: int) -> str:
     """The filter's id: mode and canvas, plus the coefficient when a mode has several."""
     base = xml_id(f"alpha-{mode}-{canvas}")
-    return base if distinct_alphas == 1 else xml_id(f"{base}-a{alpha:g}".replace(".", "_"))
+    return base if distinct_alphas == 1 else xml_id(f"{base}-a{alpha!r}".replace(".", "_"))
 
 
 def render_svg(table: ExportTable) -> str:
@@ -32,11 +32,13 @@ def render_svg(table: ExportTable) -> str:
         '<svg xmlns="http://www.w3.org/2000/svg" width="0" height="0" aria-hidden="true">',
         "  <defs>",
     ]
+    ids = OneOwner("SVG filter id")
     for mode in table.modes:
         alphas = sorted({c.alpha for c in mode.colors})
         for canvas in mode.canvases:
             for a in alphas:
                 fid = filter_id(mode.name, canvas.short, a, len(alphas))
+                ids.claim(fid, f"mode {mode.name} on {canvas.token} at alpha {a!r}")
                 lines.append(
                     f'    <filter id={xml_attr(fid)} color-interpolation-filters="linearRGB" '
                     f'x="0" y="0" width="100%" height="100%">'

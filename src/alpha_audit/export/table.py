@@ -13,12 +13,20 @@ from pathlib import Path
 
 import numpy as np
 
-from alpha_audit.errors import UsageError
+from alpha_audit.errors import InputError, UsageError
 from alpha_audit.load.tokens.themes import GamutAdjustment, TokenThemes
 from alpha_audit.model import Icon, IconSet
 from alpha_audit.rows import audit
 
-__all__ = ["ExportCanvas", "ExportColor", "ExportMode", "ExportTable", "export_table"]
+__all__ = [
+    "ExportCanvas",
+    "ExportColor",
+    "ExportMode",
+    "ExportTable",
+    "OneOwner",
+    "export_table",
+    "exported_paths",
+]
 
 
 @dataclass(frozen=True)
@@ -130,6 +138,52 @@ def export_table(
     return ExportTable(
         themes.source.name, themes.gamut, tuple(modes), themes.adjusted, themes.notes
     )
+
+
+class OneOwner:
+    """Output names and what each was made from: two sources meeting in one name are an error.
+
+    Every export format turns untrusted names into its own names (properties,
+    ids, file names); where two meet, one would silently overwrite the other,
+    so the error names both.
+
+    >>> ids = OneOwner("SVG filter id")
+    >>> ids.claim("a_b", "mode a b")
+    >>> ids.claim("a_b", "mode a_b")
+    Traceback (most recent call last):
+    ...
+    alpha_audit.errors.InputError: mode a b and mode a_b both become the SVG filter id a_b; \
+rename one so that each keeps its own
+    """
+
+    def __init__(self, what: str) -> None:
+        self.what = what
+        self.owners: dict[str, str] = {}
+
+    def claim(self, name: str, owner: str) -> None:
+        """Record ``name`` as made from ``owner``; another owner of it is an error."""
+        first = self.owners.setdefault(name, owner)
+        if first != owner:
+            raise InputError(
+                f"{first} and {owner} both become the {self.what} {name}; "
+                "rename one so that each keeps its own"
+            )
+
+
+def exported_paths(mode: ExportMode) -> list[tuple[str, ExportColor, ExportCanvas, str]]:
+    """``(token path, colour, canvas, hex)`` of every output of a mode, each path once.
+
+    ``<color>.on.<canvas>`` can meet another colour's path (``a`` on ``b.on.c``
+    and ``a.on.b`` on ``c``): an error naming both, never one value lost.
+    """
+    owners = OneOwner(f"exported token path (mode {mode.name})")
+    out = []
+    for color in mode.colors:
+        for canvas, hex_ in zip(mode.canvases, color.outputs, strict=True):
+            path = exported_path(color.token, canvas, mode)
+            owners.claim(path, f"{color.token} on {canvas.token}")
+            out.append((path, color, canvas, hex_))
+    return out
 
 
 def exported_path(color: str, canvas: ExportCanvas, mode: ExportMode) -> str:

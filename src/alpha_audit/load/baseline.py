@@ -16,6 +16,7 @@ from alpha_audit.errors import AlphaAuditError, InputError, UsageError
 from alpha_audit.findings import FindingKey
 from alpha_audit.gate import BASELINE_SCHEMA, LEGACY_BASELINE_SCHEMA, Baseline, CanvasKey
 from alpha_audit.load.files import read_text_capped
+from alpha_audit.load.paths import PathRefused, contain_argument
 from alpha_audit.rules import Rule
 
 __all__ = ["MAX_BASELINE_BYTES", "parse_baseline", "read_baseline"]
@@ -72,5 +73,9 @@ def read_baseline(path: str | Path) -> Baseline:
     p = Path(path)
     if not p.exists() and not p.is_symlink():
         raise UsageError("baseline file not found (record one with `baseline_document`)", path=p)
+    try:
+        contain_argument(p)  # before a byte is read
+    except PathRefused as err:
+        raise InputError(str(err), path=p) from err
     text = read_text_capped(p, MAX_BASELINE_BYTES, InputError, "an alpha-audit baseline")
     return parse_baseline(text, p)

@@ -29,16 +29,14 @@ def read_capped(path: str | Path, limit: int, error: type[InputError], kind: str
     return data
 
 
-def read_text_capped(
-    path: str | Path, limit: int, error: type[InputError], kind: str, *, bom: bool = False
-) -> str:
-    """:func:`read_capped`, decoded as UTF-8 (a leading BOM dropped with ``bom=True``).
+def read_text_capped(path: str | Path, limit: int, error: type[InputError], kind: str) -> str:
+    """:func:`read_capped`, decoded as UTF-8 (a leading BOM kept: parsers drop it and count it).
 
     Text that is not UTF-8 or holds NUL bytes raises ``error`` naming the byte.
     """
     raw = read_capped(path, limit, error, kind)
     try:
-        text = raw.decode("utf-8-sig" if bom else "utf-8")
+        text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:
         raise error(f"not UTF-8 text (byte {exc.start}); not {kind}", path=Path(path)) from exc
     if "\x00" in text:

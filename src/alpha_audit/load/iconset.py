@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import difflib
 import itertools
+import os
 from dataclasses import replace
 from pathlib import Path
 from typing import Any
@@ -20,7 +21,13 @@ from alpha_audit.load.fields import (
     read_number,
     read_pipeline,
 )
-from alpha_audit.load.paths import PathRefused, contain, contain_argument, glob_contained
+from alpha_audit.load.paths import (
+    PathRefused,
+    contain,
+    contain_argument,
+    glob_contained,
+    resolve,
+)
 from alpha_audit.load.yamldoc import KeyPath, YamlDoc, load_yaml
 from alpha_audit.model import GamutAdjustment, Icon, IconSet, Span
 from alpha_audit.ranges import ALPHA, ICON_SIZE, MAX_ICON_SIZE
@@ -66,13 +73,14 @@ def find_project_root(start: Path) -> Path:
     """Nearest ancestor of ``start`` holding a repository or project marker.
 
     Icon files must resolve inside it; without a marker the manifest's own
-    folder is the root.
+    folder is the root.  The ancestors are those of ``start``'s name, never of
+    where a link points (a link does not pick its own root).
     """
-    start = start.resolve()
-    for folder in (start, *start.parents):
+    name = Path(os.path.abspath(start))
+    for folder in (name, *name.parents):
         if any((folder / marker).exists() for marker in _ROOT_MARKERS):
-            return folder
-    return start
+            return resolve(folder)
+    return resolve(name)
 
 
 def load_iconset(
@@ -87,8 +95,9 @@ def load_iconset(
     # The root is found from where the manifest's name is, not where a link points.
     folder = Path(path).absolute().parent
     chosen = Path(root).resolve() if root else find_project_root(folder)
-    try:
-        contain_argument(path, chosen)  # before a byte is read
+    try:  # before a byte is read: inside every project its name lies in, and inside ``root``
+        contain_argument(path)
+        contain_argument(path, chosen)
     except PathRefused as err:
         raise InputError(str(err), path=path) from err
     return iconset_from_doc(load_yaml(path), root=chosen, gamut=gamut)

@@ -25,6 +25,7 @@ __all__ = [
     "PathRefused",
     "contain",
     "contain_argument",
+    "enclosing_roots",
     "glob_contained",
     "project_root",
     "resolve",
@@ -87,23 +88,41 @@ def project_root(start: Path, markers: tuple[str, ...] = (".git",)) -> Path:
     return start
 
 
+def enclosing_roots(path: str | Path, markers: tuple[str, ...] = (".git",)) -> list[Path]:
+    """Every project root ``path``'s *name* lies in, nearest first, each resolved.
+
+    The name is made absolute and normalised as text (``os.path.abspath``),
+    never resolved: a folder committed as a link (``reports -> /``) does not
+    choose the root it is measured against.  The roots are the ancestors that
+    hold a marker, and the working folder's project root when the name lies
+    under it; with none, the name's own folder (resolved).
+    """
+    name = Path(os.path.abspath(path))
+    found = [resolve(a) for a in name.parents if any((a / m).exists() for m in markers)]
+    here = project_root(Path.cwd(), markers)
+    if name.is_relative_to(here) and here not in found:
+        found.append(here)
+    return found or [resolve(name.parent)]
+
+
 def contain_argument(path: str | Path, root: Path | None = None) -> Path:
     """A file named by the user or found by discovery, resolved and inside its project root.
 
-    The root comes from where the *name* is (its folder, resolved), never
-    from where a symlink points, so a link cannot pick its own base:
-    ``theme.yaml -> /etc/passwd`` is refused before a byte is read.
+    The root comes from where the *name* is (:func:`enclosing_roots`), never
+    from where a link points, so a link cannot pick its own base:
+    ``theme.yaml -> /etc/passwd`` and ``linked/theme.yaml`` with
+    ``linked -> /elsewhere`` are refused before a byte is read.
     """
     p = Path(path)
     if first_unsafe(str(p)) is not None:
         raise PathRefused(f"{_shown(str(p))} has a control or format character; not allowed")
-    folder = resolve(p.absolute().parent)
-    root = resolve(root) if root is not None else project_root(folder)
-    target = resolve(folder / p.name)
-    if not target.is_relative_to(root):
-        raise PathRefused(
-            f"{_shown(str(p))} is a symlink to a file outside the project root {root}; not allowed"
-        )
+    target = resolve(p.absolute())
+    for base in [resolve(root)] if root is not None else enclosing_roots(p):
+        if not target.is_relative_to(base):
+            raise PathRefused(
+                f"{_shown(str(p))} leads through a symlink to a file outside the project "
+                f"root {base}; not allowed"
+            )
     return target
 
 

@@ -79,9 +79,9 @@ _NOT_A_VALUE = ("&", "!", "*")
 
 
 class _Converter:
-    def __init__(self, path: Path, text: str) -> None:
+    def __init__(self, path: Path, text: str, *, bom: bool) -> None:
         self.path = path
-        self.index = LineIndex(text, path, "yaml")
+        self.index = LineIndex(text, path, "yaml", bom=bom)
         self.lines: dict[KeyPath, int] = {}
         self.spans: dict[KeyPath, Span] = {}
         self.budget = MAX_YAML_NODES
@@ -181,7 +181,12 @@ class _Converter:
 
 
 def parse_yaml(text: str, path: Path) -> YamlDoc:
-    """Parse YAML text safely; errors name ``path`` and the line."""
+    """Parse YAML text safely; errors name ``path`` and the line.
+
+    A leading byte-order mark is dropped (and still counted in line 1's columns).
+    """
+    bom = text.startswith("\ufeff")
+    text = text.removeprefix("\ufeff")
     try:
         root = yaml.compose(text, Loader=yaml.SafeLoader)
     except yaml.MarkedYAMLError as exc:
@@ -197,7 +202,7 @@ def parse_yaml(text: str, path: Path) -> YamlDoc:
         raise InputError("YAML is nested too deeply", path=path) from exc
     if root is None:
         return YamlDoc(path, None, {})
-    converter = _Converter(path, text)
+    converter = _Converter(path, text, bom=bom)
     try:
         data = converter.convert(root, ())
     except RecursionError as exc:
@@ -209,5 +214,5 @@ def load_yaml(path: str | Path) -> YamlDoc:
     """Read and parse a YAML file of at most :data:`MAX_YAML_BYTES`."""
     p = Path(path)
     kind = "a YAML theme, manifest or config"
-    text = read_text_capped(p, MAX_YAML_BYTES, InputError, kind, bom=True)
+    text = read_text_capped(p, MAX_YAML_BYTES, InputError, kind)  # a BOM: parse_yaml
     return parse_yaml(text, p)

@@ -13,7 +13,7 @@ from alpha_audit.load.paint_masks import paint_masks
 from alpha_audit.load.svg import IconProblem
 from alpha_audit.load.theme import load_theme
 from alpha_audit.model import Canvas, IconSet, Theme
-from alpha_audit.output import write_text
+from alpha_audit.output import make_folder, write_text
 from alpha_audit.preview.compose import near_source_canvases
 from alpha_audit.preview.figures import preview_rows
 from alpha_audit.preview.html import preview_html
@@ -127,7 +127,7 @@ def preview_files(
     if html_path is not None:
         targets.append(Path(html_path))
     if out_dir is not None:
-        Path(out_dir).mkdir(parents=True, exist_ok=True)
+        make_folder(out_dir)
     check_writable(targets, overwrite=overwrite)
 
     raster_sizes = sorted({*(sheet_sizes if specs else ()), *(page_sizes if html_path else ())})

@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from pathlib import Path
 
-from alpha_audit.output import Output, check_targets, write_files
+from alpha_audit.output import Output, check_targets, make_folder, write_files
 from alpha_audit.reproduce.figures import FIGURES, figure_outputs
 from alpha_audit.reproduce.report import render_json, render_markdown
 from alpha_audit.reproduce.run import Experiment, Reproduction
@@ -59,5 +59,5 @@ def write_results(run: Reproduction, folder: str | Path, *, overwrite: bool = Fa
         outputs += figure_outputs(run.sweep, folder)
     if run.runtime is not None:
         outputs.append(runtime_figure_output(run.runtime, folder / RUNTIME_FIGURE))
-    folder.mkdir(parents=True, exist_ok=True)
+    make_folder(folder)
     return write_files(outputs, overwrite=overwrite)

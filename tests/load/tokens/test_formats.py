@@ -280,3 +280,15 @@ def test_formats_that_are_not_read_are_named(tmp_path: Path, data, shape: str) -
     path.write_text(json.dumps(data))
     with pytest.raises(InputError, match=f"looks like .*{shape}.*which alpha-audit does not read"):
         load_token_modes(path)
+
+
+def test_figma_variables_meeting_in_one_token_path_are_both_named(tmp_path: Path) -> None:
+    white = {"2:0": {"r": 1, "g": 1, "b": 1}, "2:1": {"r": 0, "g": 0, "b": 0}}
+    values = {
+        **_var("V:1", "color/bg", THEME, white),
+        **_var("V:2", "color / bg", THEME, white),  # Figma trims each part: one path
+    }
+    with pytest.raises(
+        InputError, match=r"'color/bg' and 'color / bg' both name the token color\.bg"
+    ):
+        load_token_modes(_figma(tmp_path, values))

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 from alpha_audit.color.css import GamutPolicy, ParsedColor, color_from_components, parse_css_color
@@ -11,6 +12,9 @@ from alpha_audit.load.tokens.model import Token, TokenPlace, token_error
 __all__ = ["token_color"]
 
 _OBJECT_KEYS = frozenset({"colorSpace", "components", "alpha", "hex"})
+# The fallback is #rrggbb (DTCG Color Module 2025.10, hex); shorter and alpha forms seen in
+# the wild are let through, anything else is a malformed value.
+_HEX = re.compile(r"#(?:[0-9a-fA-F]{3,4}|[0-9a-fA-F]{6}|[0-9a-fA-F]{8})")
 
 
 def token_color(
@@ -39,6 +43,11 @@ def token_color(
                 raise ColorSyntaxError(
                     "a colour object has colorSpace, components, alpha (optional) and hex "
                     f"(optional); got keys {', '.join(sorted(value))}"
+                )
+            fallback = value.get("hex", "#000000")
+            if not isinstance(fallback, str) or not _HEX.fullmatch(fallback):
+                raise ColorSyntaxError(
+                    f"hex must be a #rrggbb string (DTCG Color Module), got {fallback!r:.40}"
                 )
             components = value["components"]
             if not isinstance(components, list):

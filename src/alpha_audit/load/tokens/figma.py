@@ -175,7 +175,7 @@ def modes_from_figma(doc: JsonDoc, *, collection: str | None = None) -> TokenMod
 
     # What does not depend on the mode is read once per variable, not once per mode.
     read: list[tuple[str, dict[str, Any], str, str]] = []  # vid, variable, path, type
-    paths: set[str] = set()
+    named: dict[str, str] = {}  # token path: the variable name that made it
     for vid, var in variables.items():
         if not isinstance(var, dict) or not isinstance(var.get("name"), str):
             raise token_error("a variable needs a name", **where(vid))
@@ -187,12 +187,13 @@ def modes_from_figma(doc: JsonDoc, *, collection: str | None = None) -> TokenMod
             )
         check_name(var["name"], **_named(where(vid)), what="variable name")
         path = _path(var["name"])
-        if path in paths:
+        if path in named:
             raise token_error(
-                f"two variables are named {var['name']!r}; token paths must be unique",
+                f"variables {named[path]!r} and {var['name']!r} both name the token {path}; "
+                "token paths must be unique, rename one",
                 **where(vid),
             )
-        paths.add(path)
+        named[path] = var["name"]
         read.append((vid, var, path, ttype))
 
     modes: dict[str, dict[str, Token]] = {}

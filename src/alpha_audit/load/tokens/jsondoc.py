@@ -54,6 +54,7 @@ class JsonDoc:
     lines: dict[JsonPath, int]
     offsets: dict[JsonPath, tuple[int, int]] = field(default_factory=dict, repr=False)
     text: str = field(default="", repr=False, compare=False)
+    bom: bool = field(default=False, repr=False, compare=False)  # the file began with one
 
     def line(self, keys: JsonPath) -> int | None:
         """Line of ``keys`` or of its nearest recorded parent."""
@@ -64,7 +65,7 @@ class JsonDoc:
 
     @cached_property
     def _index(self) -> LineIndex:
-        return LineIndex(self.text, self.path, "json")
+        return LineIndex(self.text, self.path, "json", bom=self.bom)
 
     def span(self, keys: JsonPath) -> Span | None:
         """The exact span of the string value at ``keys`` (``None``: not a string)."""
@@ -184,12 +185,14 @@ def parse_json(text: str, path: str | Path = "<string>") -> JsonDoc:
     ({'a': {'b': [1, 2]}}, 3)
     """
     p = Path(path)
+    bom = text.startswith("\ufeff")  # dropped; line 1's columns still count it
+    text = text.removeprefix("\ufeff")
     parser = _Parser(text, p)
     data, end = parser.value(0, ())
     end = parser.skip(end)
     if end != len(text):
         raise parser.fail(end, "extra data after the document")
-    return JsonDoc(p, data, parser.lines, parser.offsets, text)
+    return JsonDoc(p, data, parser.lines, parser.offsets, text, bom)
 
 
 def load_json(path: str | Path, *, limit: int = MAX_JSON_BYTES) -> JsonDoc:
@@ -197,7 +200,7 @@ def load_json(path: str | Path, *, limit: int = MAX_JSON_BYTES) -> JsonDoc:
     p = Path(path)
     raw = read_capped(p, limit, InputError, "a token file")
     try:
-        text = raw.decode("utf-8-sig")
+        text = raw.decode("utf-8")  # a BOM: parse_json
     except UnicodeDecodeError as exc:
         raise InputError(f"not UTF-8 text (byte {exc.start})", path=p) from exc
     return parse_json(text, p)

@@ -58,7 +58,7 @@ def token_audit_pairs(
     ``gamut`` is the project's policy for the manifest's own colours.
     """
     doc = load_yaml(manifest)
-    root = find_project_root(Path(manifest).resolve().parent)
+    root = find_project_root(Path(manifest).absolute().parent)
     pairs = []
     for mode in themes.modes:
         iconset = iconset_from_doc(_with_palette(doc, mode.theme_palette()), root=root, gamut=gamut)

@@ -677,13 +677,15 @@ def _modes(p: Path) -> TokenModes:
 
     raw = read_capped(p, MAX_CSS_BYTES, InputError, "a stylesheet")
     try:
-        text = raw.decode("utf-8-sig")
+        text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:
         raise InputError(f"not UTF-8 text (byte {exc.start})", path=p) from exc
+    bom = text.startswith("\ufeff")  # dropped; line 1's columns still count it
+    text = text.removeprefix("\ufeff")
     # CSS Syntax 3.3 counts a lone CR or a form feed as a newline, SARIF does
     # not (its default newlineSequences are LF and CRLF): lines would disagree.
     lf_only = "\r" not in text.replace("\r\n", "\n") and "\f" not in text
-    sheet = _Sheet(p, LineIndex(text, p, "css") if lf_only else None)
+    sheet = _Sheet(p, LineIndex(text, p, "css", bom=bom) if lf_only else None)
     rules = tinycss2.parse_stylesheet(text, skip_comments=True, skip_whitespace=True)
     _walk(sheet, rules, layers=(), scheme=None, p3=False, skip=None, depth=0)
     sheet.finish()
