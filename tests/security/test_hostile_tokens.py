@@ -473,7 +473,7 @@ def test_a_colour_object_with_a_large_hex_is_refused_not_serialised(tmp_path: Pa
     bg = {"colorSpace": "srgb", "components": [1, 1, 1], "hex": {"$ref": "#/defs/d12"}}
     doc = {"defs": defs, "bg": {"$type": "color", "$value": bg}}
     modes = load_token_modes(_write(tmp_path, "t.tokens.json", doc), root=tmp_path)
-    with pytest.raises(InputError, match="hex must be a string"):
+    with pytest.raises(InputError, match=r"hex must be a #rrggbb string .*got a list$"):
         token_themes(modes, TokenConfig(file=modes.source, canvases=("bg",)))
 
 

@@ -45,15 +45,18 @@ def token_color(
                     f"(optional); got keys {', '.join(sorted(value))}"
                 )
             fallback = value.get("hex", "#000000")
-            if not isinstance(fallback, str) or not _HEX.fullmatch(fallback):
+            if not isinstance(fallback, str):  # named by its type: a big value is never printed
                 raise ColorSyntaxError(
-                    f"hex must be a #rrggbb string (DTCG Color Module), got {fallback!r:.40}"
+                    "hex must be a #rrggbb string (DTCG Color Module), got a "
+                    f"{type(fallback).__name__}"
+                )
+            if not _HEX.fullmatch(fallback):
+                raise ColorSyntaxError(
+                    f"hex must be a #rrggbb string (DTCG Color Module), got {fallback[:40]!r}"
                 )
             components = value["components"]
             if not isinstance(components, list):
                 raise ColorSyntaxError(f"components must be a list, got {components!r:.40}")
-            if not isinstance(value.get("hex", ""), str):
-                raise ColorSyntaxError(f"hex must be a string, got {value['hex']!r:.40}")
             return color_from_components(
                 value["colorSpace"],
                 components,
