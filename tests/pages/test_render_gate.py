@@ -134,3 +134,30 @@ def test_a_baseline_accepts_the_failure_and_a_new_one_still_fails(project):
     gate = json.loads((project / "render-out.json").read_text())["gate"]
     assert [f["iconset"] for f in gate["failures"]] == ["icons--images"]  # the new one
     assert [f["iconset"] for f in gate["baselined"]] == ["icons--alert"]
+
+
+@pytest.mark.parametrize("engine", ["firefox", "webkit"])
+def test_firefox_and_webkit_audit_the_storybook_and_see_the_same_dark_failure(project, engine):
+    """The probe runs in Firefox's isolated world too (no TypedArray read across its Xrays)."""
+    from alpha_audit.browser import ENGINES
+
+    if ENGINES[engine].find() is None:
+        pytest.skip(f"{engine} is not installed")
+    manifest = load_iconset(project / "icons/iconset.yaml")
+    config = RenderConfig(
+        (StorybookSource(project / "storybook-static", ("icons--alert",)),),
+        states=state_matrix(THEMES),
+        root=project,
+        engines=(engine,),
+        workers=1,
+        timeout=120,  # a page state's limit, generous for a loaded machine
+    )
+    result = audit_pages(config, manifest)
+    assert list(result.problems) == [], result.problems
+    worst = {(p.state, p.icon, p.match.value): p.contrast_worst for p in result.paints}
+    assert set(worst) == {
+        ("theme:light", "triangle-alert", "data-attribute"),
+        ("theme:dark", "triangle-alert", "data-attribute"),
+    }
+    assert worst[("theme:dark", "triangle-alert", "data-attribute")] < 3.0
+    assert worst[("theme:light", "triangle-alert", "data-attribute")] >= 3.0

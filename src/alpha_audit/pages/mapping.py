@@ -117,6 +117,8 @@ class ManifestIndex:
                 known = stem if stem in self.icons else self.stems.get(stem)
                 if known is not None:
                     return self.icons[known], IconMatch.FILE_NAME
-        if isinstance(geometry, str) and geometry in self.hashes:
-            return self.icons[self.hashes[geometry]], IconMatch.PATH_HASH
+        if isinstance(geometry, str):  # the probe's geometry text, hashed as the files are
+            digest = hashlib.sha256(geometry.encode("utf-8", "replace")).hexdigest()[:16]
+            if digest in self.hashes:
+                return self.icons[self.hashes[digest]], IconMatch.PATH_HASH
         return None, IconMatch.NONE

@@ -18,12 +18,11 @@
 
   const norm = (v) => String(v).replace(/[\s,]+/g, " ").trim();
 
-  async function sha256(text) {
-    const data = new TextEncoder().encode(text);
-    const digest = await crypto.subtle.digest("SHA-256", data);
-    return Array.from(new Uint8Array(digest), (b) => b.toString(16).padStart(2, "0"))
-      .join("").slice(0, 16);
-  }
+  // The geometry travels as text and is hashed by pages/mapping.py: hashing here
+  // (crypto.subtle) would read a TypedArray across Firefox's Xray wrappers, which the
+  // isolated world forbids ("Accessing TypedArray data over Xrays is ... forbidden").
+  const MAX_GEOMETRY = 262144; // characters; a larger drawing is no icon to map by shape
+  const geometryKey = (text) => (text.length <= MAX_GEOMETRY ? text : null);
 
   function shapesOf(root) {
     const out = [];
@@ -157,7 +156,7 @@
       }
       const doc = new DOMParser().parseFromString(text, "image/svg+xml");
       if (doc.documentElement.localName !== "svg") return null;
-      return await sha256(geometryText(shapesOf(doc.documentElement)));
+      return geometryKey(geometryText(shapesOf(doc.documentElement)));
     } catch (e) {
       return null;
     }
@@ -211,7 +210,7 @@
       if (dataOwner) keys.data = dataOwner.getAttribute(attribute);
       if (kind === "svg") {
         const shapes = shapesOf(el);
-        keys.geometry = await sha256(geometryText(shapes));
+        keys.geometry = geometryKey(geometryText(shapes));
         paints = declaredPaints(shapes, el, false);
       } else if (kind === "use") {
         const use = el.querySelector("use");
@@ -222,7 +221,7 @@
           || document.getElementById(keys.sprite) : null;
         if (target) {
           const shapes = SHAPES.has(target.localName) ? [target] : shapesOf(target);
-          keys.geometry = await sha256(geometryText(shapes));
+          keys.geometry = geometryKey(geometryText(shapes));
           paints = declaredPaints(shapes, use, true);
         }
       } else if (kind === "img") {
