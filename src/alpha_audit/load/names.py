@@ -38,7 +38,7 @@ def check_name(
     >>> try:
     ...     check_name("a\u202eb", key="color.x")
     ... except Exception as exc:
-    ...     print(str(exc)[:68])
+    ...     print(str(exc)[:67])
     color.x: name 'a\\u202eb' has the bidi control U+202E (RIGHT-TO-LEFT
     """
     bad = first_unsafe(text)
