@@ -23,11 +23,13 @@ from alpha_audit.cli.options import (
     MinDeltaEOption,
     MinSizeContrastOption,
     NoCacheOption,
+    OutputsOption,
     PipelineOption,
     StrictSvgOption,
     ThemeArgument,
     ThresholdOption,
     VisibilityFloorOption,
+    WriteBaselineOption,
     flag,
     given_order,
     in_range,
@@ -150,16 +152,7 @@ def check_command(
             show_default=CheckFormat.TABLE.value,
         ),
     ] = None,
-    output: Annotated[
-        list[Path] | None,
-        typer.Option(
-            "--output",
-            "-o",
-            metavar="PATH",
-            help="File for the --format before it ('-' = stdout; repeatable).",
-            show_default="stdout",
-        ),
-    ] = None,
+    output: OutputsOption = None,
     baseline: Annotated[
         Path | None,
         typer.Option(
@@ -168,10 +161,7 @@ def check_command(
             show_default="the config's baseline:",
         ),
     ] = None,
-    write_baseline: Annotated[
-        Path | None,
-        typer.Option("--write-baseline", help="Record today's findings as a baseline file."),
-    ] = None,
+    write_baseline: WriteBaselineOption = None,
     base: Annotated[
         str | None,
         typer.Option(

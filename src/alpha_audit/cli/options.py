@@ -65,6 +65,22 @@ IconsetArgument = Annotated[
         show_default="what the project config names",
     ),
 ]
+# The report files of check and render: each --output belongs to the --format before it.
+OutputsOption = Annotated[
+    list[Path] | None,
+    typer.Option(
+        "--output",
+        "-o",
+        metavar="PATH",
+        help="File for the --format before it ('-' = stdout; repeatable).",
+        show_default="stdout",
+    ),
+]
+WriteBaselineOption = Annotated[
+    Path | None,
+    typer.Option("--write-baseline", help="Record today's findings as a baseline file."),
+]
+
 ConfigOption = Annotated[
     Path | None,
     typer.Option(

@@ -23,6 +23,8 @@ from alpha_audit.cli.options import (
     ARGS,
     ConfigOption,
     ForceOption,
+    OutputsOption,
+    WriteBaselineOption,
     flag,
     given_order,
     in_range,
@@ -166,16 +168,7 @@ def render_command(
             show_default=RenderFormat.TABLE.value,
         ),
     ] = None,
-    output: Annotated[
-        list[Path] | None,
-        typer.Option(
-            "--output",
-            "-o",
-            metavar="PATH",
-            help="File for the --format before it ('-' = stdout; repeatable).",
-            show_default="stdout",
-        ),
-    ] = None,
+    output: OutputsOption = None,
     baseline: Annotated[
         Path | None,
         typer.Option(
@@ -184,10 +177,7 @@ def render_command(
             show_default="the render: table's baseline:",
         ),
     ] = None,
-    write_baseline: Annotated[
-        Path | None,
-        typer.Option("--write-baseline", help="Record today's findings as a baseline file."),
-    ] = None,
+    write_baseline: WriteBaselineOption = None,
     config: ConfigOption = None,
     force: ForceOption = False,
 ) -> ExitStatus:
