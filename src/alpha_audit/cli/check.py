@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import replace
 from pathlib import Path
-from typing import Annotated, TypeVar, cast
+from typing import Annotated, Any, TypeVar, cast
 
 import typer
 
@@ -192,13 +193,11 @@ def check_command(
     [bold]alpha-audit check themes/github-primer.yaml examples/vibrant/iconset.yaml -a 1.2[/]
     """
     from alpha_audit.errors import UsageError
-    from alpha_audit.gate import LEGACY_BASELINE_SCHEMA, baseline_document
+    from alpha_audit.gate import LEGACY_BASELINE_SCHEMA
     from alpha_audit.load.baseline import read_baseline
     from alpha_audit.load.config import Overrides, resolve_config
-    from alpha_audit.load.paths import project_root
-    from alpha_audit.output import Output, check_targets, write_files
+    from alpha_audit.output import check_targets
     from alpha_audit.pipeline import base_baseline, check_project
-    from alpha_audit.render.common import dumps
 
     if base is not None and (baseline is not None or write_baseline is not None):
         raise UsageError("give --base or a baseline file (--baseline, --write-baseline), not both")
@@ -251,8 +250,31 @@ def check_command(
         )
     for note in report.notes:  # the token modes found, the tokens skipped
         stderr_note(note)
-    # Paths in reports are relative to the repository (the folder with .git): what
-    # GitHub annotations, SARIF's %SRCROOT% and GitLab expect, from any subfolder.
+    write_reports(report, pairs, write_baseline, force)
+    gate = report.gate
+    if write_baseline is not None:
+        return ExitStatus.OK
+    if gate.passed:
+        stderr_note("gate passed")
+        return ExitStatus.OK
+    counts = ", ".join(f"{n} {rule}" for rule, n in gate.counts().items())
+    stderr_note(f"gate failed: {counts}" + (" (--exit-zero)" if exit_zero else ""))
+    return ExitStatus.OK if exit_zero else ExitStatus.GATE_FAILED
+
+
+def write_reports(
+    report: Any, pairs: Sequence[tuple[Any, Path | None]], write_baseline: Path | None, force: bool
+) -> None:
+    """Each ``(format, file)`` rendered and written (None: stdout, last), and the baseline.
+
+    Paths in reports are relative to the repository (the folder with .git): what
+    GitHub annotations, SARIF's %SRCROOT% and GitLab expect, from any subfolder.
+    """
+    from alpha_audit.gate import baseline_document
+    from alpha_audit.load.paths import project_root
+    from alpha_audit.output import Output, write_files
+    from alpha_audit.render.common import dumps
+
     root = project_root(Path.cwd())
     outputs, stdout_text = [], None
     for kind, out in pairs:
@@ -266,12 +288,3 @@ def check_command(
         stderr_note(f"wrote {'baseline ' if path == write_baseline else ''}{path}")
     if stdout_text is not None:
         emit(stdout_text, None, force)
-    gate = report.gate
-    if write_baseline is not None:
-        return ExitStatus.OK
-    if gate.passed:
-        stderr_note("gate passed")
-        return ExitStatus.OK
-    counts = ", ".join(f"{n} {rule}" for rule, n in gate.counts().items())
-    stderr_note(f"gate failed: {counts}" + (" (--exit-zero)" if exit_zero else ""))
-    return ExitStatus.OK if exit_zero else ExitStatus.GATE_FAILED

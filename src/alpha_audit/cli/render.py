@@ -18,7 +18,7 @@ import typer
 
 from alpha_audit import ranges
 from alpha_audit.browser import COLOR_SCHEMES
-from alpha_audit.cli.console import emit, progress_bar, stderr_note, stdout_options
+from alpha_audit.cli.console import progress_bar, stderr_note
 from alpha_audit.cli.options import (
     ARGS,
     ConfigOption,
@@ -33,7 +33,7 @@ from alpha_audit.cli.options import (
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.errors import UsageError
 from alpha_audit.pages.states import State, state_matrix
-from alpha_audit.render import RenderFormat, RenderOptions
+from alpha_audit.render import RenderFormat
 from alpha_audit.rules import RENDER_DEFAULT_RULES, RENDER_RULES, RULES
 
 __all__ = ["render_command"]
@@ -198,16 +198,13 @@ def render_command(
 
     [bold]alpha-audit render storybook-static --globals theme:light --globals theme:dark[/]
     """
-    from alpha_audit.cli.check import pair_outputs
-    from alpha_audit.gate import baseline_document
+    from alpha_audit.cli.check import pair_outputs, write_reports
     from alpha_audit.load.baseline import read_baseline
     from alpha_audit.load.iconset import load_iconset
-    from alpha_audit.load.paths import project_root
-    from alpha_audit.output import Output, check_targets, write_files
+    from alpha_audit.output import check_targets
     from alpha_audit.pages import audit_pages
     from alpha_audit.pages.config import resolve_render_config
     from alpha_audit.pages.report import judge_pages
-    from alpha_audit.render.common import dumps
 
     order = given_order(ctx.meta.get(ARGS, ()), _ORDER)
     pairs = pair_outputs(list(fmt or [RenderFormat.TABLE]), list(output or []), order)
@@ -249,19 +246,7 @@ def render_command(
 
         result = audit_pages(settings, manifest, progress=progress)
     report = judge_pages(result, settings.policy, manifest, baseline=known)
-    root = project_root(Path.cwd())
-    outputs, stdout_text = [], None
-    for kind, out in pairs:
-        if out is None:
-            stdout_text = kind.renderer()(report, replace(stdout_options(), base=root))
-        else:
-            outputs.append(Output.text(out, kind.renderer()(report, RenderOptions(base=root))))
-    if write_baseline is not None:
-        outputs.append(Output.text(write_baseline, dumps(baseline_document(report.gate))))
-    for path in write_files(outputs, overwrite=force):
-        stderr_note(f"wrote {'baseline ' if path == write_baseline else ''}{path}")
-    if stdout_text is not None:
-        emit(stdout_text, None, force)
+    write_reports(report, pairs, write_baseline, force)
     if result.blocked:
         stderr_note(f"{len(result.blocked)} requests to anything but the pages' server blocked")
     if result.problems:
