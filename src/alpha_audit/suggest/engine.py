@@ -153,6 +153,8 @@ class _Tracks:
     moving: NDArray[np.bool_]  # (T,)
     label: NDArray[np.intp]  # (T,) equal labels are never a pair (one paint, or one role)
     icons: _TrackIcons  # icon indices per track
+    first: NDArray[np.intp]  # (T,) each track's first row: what it shows is that row's
+    row_track: NDArray[np.intp]  # (rows,) each row's track, -1 for a row not chosen
 
 
 def _round_down(value: float, precision: int) -> float:
@@ -288,6 +290,10 @@ class _Engine:
         self.role_label = np.unique(np.array(roles or [""], dtype=object), return_inverse=True)[1]
         self.role_label = self.role_label.reshape(-1)[: len(roles)]
         self._per_row: list[Found] | None = None
+        self._fixed_codes: NDArray[np.int32] | None = None
+        self._code_index: tuple[NDArray[np.int32], NDArray[np.int32]] | None = None
+        self._last_tracks: dict[bool, tuple[bytes, _Tracks]] = {}
+        self._group_ids: dict[bool, tuple[NDArray[np.intp], ...]] = {}
         self._timelines: dict[tuple[bytes, int], tuple[NDArray[np.float64], NDArray[np.int64]]] = {}
         self._timeline_bytes = 0
 
@@ -300,23 +306,48 @@ class _Engine:
     def icon_names(self, icons: Iterable[int]) -> tuple[str, ...]:
         return tuple(sorted({self.names[i] for i in icons}))
 
-    def tracks(
-        self, moving_icons: NDArray[np.bool_], rows: NDArray[np.intp] | None = None
-    ) -> _Tracks:
+    def tracks(self, moving_icons: NDArray[np.bool_], roles: bool = False) -> _Tracks:
         """Rows grouped: moving rows by paint, fixed rows by (paint, alpha); moving first.
 
-        ``rows`` (default: every row) are the roles' rows for the role rules,
-        grouped by role as well, drawn solid.
+        With ``roles``, the roles' rows for the role rules, grouped by role as
+        well, drawn solid.  A question asks for the same grouping again when it
+        re-checks its answer, so the last one of each kind is kept.
         """
+        key = moving_icons.tobytes()
+        kept = self._last_tracks.get(roles)
+        if kept is None or kept[0] != key:
+            kept = (key, self._group(moving_icons, roles))
+            self._last_tracks[roles] = kept
+        return kept[1]
+
+    def _ids(self, roles: bool) -> tuple[NDArray[np.intp], ...]:
+        """The chosen rows and, per row, its (role, paint) and (role, paint, alpha) group ids.
+
+        The same for every question (only which rows move changes), so computed once.
+        """
+        found = self._group_ids.get(roles)
+        if found is None:
+            r = self.result
+            chosen = np.flatnonzero(self.role_row) if roles else np.arange(len(r.entries))
+            role = self.role_label[chosen] if roles else np.full(chosen.size, -1)
+            columns = np.stack([role, self.keys[chosen]]).astype(np.float64)
+            by_paint = np.unique(columns.T, axis=0, return_inverse=True)[1].reshape(-1)
+            with_alpha = np.vstack([columns, r.alpha[chosen]]).T
+            by_alpha = np.unique(with_alpha, axis=0, return_inverse=True)[1].reshape(-1)
+            found = (chosen, by_paint, by_alpha)
+            self._group_ids[roles] = found
+        return found
+
+    def _group(self, moving_icons: NDArray[np.bool_], roles: bool) -> _Tracks:
         r = self.result
-        roles = rows is not None
-        chosen = np.arange(len(r.entries)) if rows is None else np.asarray(rows, dtype=np.intp)
+        chosen, by_paint, by_alpha = self._ids(roles)
         moving = moving_icons[self.row_icon[chosen]]
         role = self.role_label[chosen] if roles else np.full(chosen.size, -1)
         alpha = np.where(moving, -math.inf, r.alpha[chosen])
-        columns = np.stack([role.astype(np.float64), self.keys[chosen].astype(np.float64), alpha])
-        # One group per (role, paint, alpha); ``first`` is each group's first row in order.
-        _, first_at, group = np.unique(columns.T, axis=0, return_index=True, return_inverse=True)
+        # One group per moving (role, paint) and per fixed (role, paint, alpha); ``first``
+        # is each group's first row in order.
+        ids = np.where(moving, by_paint, by_paint.size + by_alpha)
+        _, first_at, group = np.unique(ids, return_index=True, return_inverse=True)
         group = group.reshape(-1)
         is_moving = moving[first_at]
         order = np.lexsort((first_at, ~is_moving))  # moving groups first, then by first row
@@ -324,15 +355,20 @@ class _Engine:
         rank[order] = np.arange(order.size)
         track = rank[group]  # each chosen row's track
         first = chosen[first_at[order]]
-        pairs = np.unique(np.stack([track, self.row_icon[chosen]]), axis=1)  # sorted (track, icon)
-        bounds = np.searchsorted(pairs[0], np.arange(order.size + 1))
+        row_track = np.full(len(r.entries), -1, dtype=np.intp)
+        row_track[chosen] = track
+        n_icons = len(self.names)
+        pairs = np.unique(track * n_icons + self.row_icon[chosen])  # sorted (track, icon)
+        bounds = np.searchsorted(pairs // n_icons, np.arange(order.size + 1))
         return _Tracks(
             source=r.sources[first].reshape(-1, 3),
             opacity=np.ones(first.size) if roles else r.opacity[first],
             alpha=np.where(is_moving[order], math.nan, alpha[first_at[order]]),
             moving=is_moving[order],
             label=(role if roles else self.keys[chosen])[first_at[order]].astype(np.intp),
-            icons=_TrackIcons(pairs[1], bounds),
+            icons=_TrackIcons(pairs % n_icons, bounds),
+            first=first,
+            row_track=row_track,
         )
 
     def shown(
@@ -496,18 +532,65 @@ class _Engine:
 
     # -- 8-bit collisions, exactly ----------------------------------------------
 
+    def fixed_codes(self) -> NDArray[np.int32]:
+        """Every row's packed 8-bit output on every canvas at its own alpha: (rows, canvases).
+
+        What a track that does not move ships never depends on the question,
+        so it is computed once (a sixth of the memory of the audit's own
+        reference colours).
+        """
+        if self._fixed_codes is None:
+            r = self.result
+            self._fixed_codes = pack_8bit(
+                to_8bit(
+                    composite_paint(
+                        r.sources.reshape(-1, 1, 3),
+                        self.backgrounds[np.newaxis, :, :],
+                        r.alpha.reshape(-1, 1),
+                        r.opacity.reshape(-1, 1),
+                        self.pipeline,
+                    )
+                )
+            ).astype(np.int32)
+        return self._fixed_codes
+
+    def _near(
+        self, tracks: _Tracks, moving_codes: NDArray[np.int64], j: int
+    ) -> tuple[NDArray[np.intp], NDArray[np.int64]]:
+        """The fixed tracks whose code on canvas ``j`` is one of ``moving_codes``, and
+        those codes: no other fixed track can share a code with a moving one.
+
+        Found through each canvas's rows sorted by code, so a question costs what its
+        own codes match, not the number of rows (rows of one fixed track ship one code).
+        """
+        if self._code_index is None:
+            codes = self.fixed_codes().T  # (canvases, rows)
+            order = np.argsort(codes, axis=1, kind="stable").astype(np.int32)
+            self._code_index = (np.take_along_axis(codes, order, axis=1), order)
+        ordered, order = self._code_index[0][j], self._code_index[1][j]
+        want = np.unique(moving_codes)
+        lo = np.searchsorted(ordered, want, side="left")
+        count = np.searchsorted(ordered, want, side="right") - lo
+        at = np.repeat(lo - np.cumsum(count) + count, count) + np.arange(count.sum())
+        track = tracks.row_track[order[at]]
+        track = track[track >= 0]
+        near = np.unique(track[~tracks.moving[track]])
+        return near, self.fixed_codes()[tracks.first[near], j].astype(np.int64)
+
     def collision_group(
-        self, tracks: _Tracks, codes: NDArray[np.int64], j: int
+        self, tracks: _Tracks, subset: NDArray[np.intp], codes: NDArray[np.int64], j: int
     ) -> tuple[int, ...] | None:
         """Icons of the first unsafe collision group (holding a moving track), if any.
 
-        ``codes`` are every track's packed 8-bit outputs on canvas ``j`` at one
-        coefficient; the verdict is :mod:`alpha_audit.findings`', group by group.
+        ``codes`` are the packed 8-bit outputs of tracks ``subset`` (ascending,
+        every moving track and at least every fixed one sharing a code with
+        one) on canvas ``j`` at one coefficient; the verdict is
+        :mod:`alpha_audit.findings`', group by group.
         """
         rule = self.collision_rule
         assert rule is not None
-        for t in np.flatnonzero(tracks.moving):
-            members = np.flatnonzero(codes == codes[t])
+        for k in np.flatnonzero(tracks.moving[subset]):
+            members = subset[codes == codes[k]]
             keys = frozenset(tracks.label[members].tolist())
             if len(keys) < 2 or (rule is Rule.NEW_COLLISION and keys in self.ref_groups[j]):
                 continue
@@ -553,21 +636,9 @@ class _Engine:
         mv = np.flatnonzero(tracks.moving)
         if rule is None or mv.size == 0 or len(tracks.label) < 2 or self.a_hi <= ALPHA_LO:
             return out
-        fixed = np.flatnonzero(~tracks.moving)
-        fixed_codes = pack_8bit(
-            to_8bit(
-                composite_paint(
-                    tracks.source[fixed, np.newaxis, :],
-                    self.backgrounds[np.newaxis, :, :],
-                    tracks.alpha[fixed, np.newaxis],
-                    tracks.opacity[fixed, np.newaxis],
-                    self.pipeline,
-                )
-            )
-        )  # (F, m)
-        n_tracks = len(tracks.label)
         for j in range(len(self.canvases)):
             own = [self.track_segments(tracks.source[t], float(tracks.opacity[t]), j) for t in mv]
+            fixed, fixed_codes = self._near(tracks, np.concatenate([c for _, c in own]), j)
             points = np.unique(np.concatenate([p for p, _ in own]))  # every event of canvas j
             last = 2 * (points.size - 1)  # global elements 0..last: point, gap, point, ...
             seg_track, seg_lo, seg_hi, seg_code = [], [], [], []
@@ -584,7 +655,7 @@ class _Engine:
             seg_track.append(fixed)
             seg_lo.append(np.zeros(fixed.size, dtype=np.int64))
             seg_hi.append(np.full(fixed.size, last, dtype=np.int64))
-            seg_code.append(fixed_codes[:, j])
+            seg_code.append(fixed_codes)
             track = np.concatenate(seg_track)
             lo, hi, code = (np.concatenate(x) for x in (seg_lo, seg_hi, seg_code))
             candidates = _shared_code_starts(lo, hi, code)
@@ -593,10 +664,11 @@ class _Engine:
             # Every track's code at a candidate element: its segment by track then start.
             order = np.lexsort((lo, track))
             sorted_key = track[order] * (last + 2) + lo[order]
-            everyone = np.arange(n_tracks) * (last + 2)
+            subset = np.concatenate([mv, fixed])  # ascending: moving tracks come first
+            everyone = subset * (last + 2)
             for e in candidates.tolist():
                 at = order[np.searchsorted(sorted_key, everyone + e, side="right") - 1]
-                icons = self.collision_group(tracks, code[at], j)
+                icons = self.collision_group(tracks, subset, code[at], j)
                 if icons is not None:
                     start, is_point = float(points[e // 2]), e % 2 == 0
                     out.append((rule, j, icons, start, is_point))
@@ -843,17 +915,19 @@ class _Engine:
                         return (rule, int(j), icon, a, True)
         tracks = self.tracks(moving_icons)
         if self.collision_rule is not None and tracks.moving.any():
-            every = np.arange(len(tracks.label))
+            mv = np.flatnonzero(tracks.moving)
             for j in range(len(self.canvases)):
-                codes = pack_8bit(to_8bit(self.shown(tracks, every, np.array([a]), j)[:, 0]))
-                group = self.collision_group(tracks, codes, j)
+                codes = pack_8bit(to_8bit(self.shown(tracks, mv, np.array([a]), j)[:, 0]))
+                fixed, fixed_codes = self._near(tracks, codes, j)
+                subset, codes = np.concatenate([mv, fixed]), np.concatenate([codes, fixed_codes])
+                group = self.collision_group(tracks, subset, codes, j)
                 if group is not None:
                     return (self.collision_rule, j, group, a, True)
         if Rule.SEPARATION in rules:
             found = self._pairs_below_at(tracks, a, None, Rule.SEPARATION)
             if found is not None:
                 return found
-        roles = self.tracks(moving_icons, np.flatnonzero(self.role_row))
+        roles = self.tracks(moving_icons, roles=True)
         if Rule.CONFUSION in rules:
             found = self._pairs_below_at(roles, a, None, Rule.CONFUSION)
             if found is not None:
@@ -936,7 +1010,7 @@ class _Engine:
         rules = self.policy.rules
         if self.a_hi > ALPHA_LO:
             found += self.separation_limits(tracks, caps)
-            roles = self.tracks(moving_icons, np.flatnonzero(self.role_row))
+            roles = self.tracks(moving_icons, roles=True)
             shrink = not per_canvas_needed
             if Rule.CONFUSION in rules:
                 found += self.confusion_limits(roles, caps, None, shrink)
