@@ -34,6 +34,7 @@ can be drawn, so the question is alpha 1 itself.  Pure computation.
 
 from __future__ import annotations
 
+import hashlib
 import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
@@ -293,6 +294,7 @@ class _Engine:
         self._fixed_codes: NDArray[np.int32] | None = None
         self._code_index: tuple[NDArray[np.int32], NDArray[np.int32]] | None = None
         self._last_tracks: dict[bool, tuple[bytes, _Tracks]] = {}
+        self._answers: dict[tuple[bytes, int, bool], SafeAlpha] = {}
         self._group_ids: dict[bool, tuple[NDArray[np.intp], ...]] = {}
         self._timelines: dict[tuple[bytes, int], tuple[NDArray[np.float64], NDArray[np.int64]]] = {}
         self._timeline_bytes = 0
@@ -992,7 +994,22 @@ class _Engine:
     def answer(
         self, moving_icons: NDArray[np.bool_], precision: int, per_canvas_needed: bool = True
     ) -> SafeAlpha:
-        """Largest safe alpha when the icons in ``moving_icons`` share one coefficient."""
+        """Largest safe alpha when the icons in ``moving_icons`` share one coefficient.
+
+        The same question is answered once: a colour with one icon asks what
+        that icon asks (most brand colours have one logo).
+        """
+        moving = hashlib.blake2b(np.packbits(moving_icons).tobytes(), digest_size=16).digest()
+        key = (moving, precision, per_canvas_needed)  # 16 bytes a question, whatever the set
+        found = self._answers.get(key)
+        if found is None:
+            found = self._answer(moving_icons, precision, per_canvas_needed)
+            self._answers[key] = found
+        return found
+
+    def _answer(
+        self, moving_icons: NDArray[np.bool_], precision: int, per_canvas_needed: bool
+    ) -> SafeAlpha:
         m = len(self.canvases)
         found: list[Found] = []
         for rule, icons in self.static:
