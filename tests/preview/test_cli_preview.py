@@ -117,3 +117,36 @@ def test_more_sheets_than_the_cap_are_refused_before_any_icon_is_drawn(tmp_path,
     assert f"would write more than {MAX_SHEETS} PNG sheets" in result.output
     assert Path(theme).name in result.output and "--html" in result.output
     assert not any(out.glob("*.png"))
+
+
+def test_webp_sheets_hold_the_same_pixels_as_png_and_are_smaller(tmp_path):
+    """--format webp is lossless: every sheet decodes to the PNG's pixels, in fewer bytes."""
+    from PIL import Image
+
+    png, webp = tmp_path / "png", tmp_path / "webp"
+    assert run("-o", str(png), "-s", "24").exit_code == 0
+    result = run("-o", str(webp), "-s", "24", "--format", "webp")
+    assert result.exit_code == 0, result.output
+    assert sorted(p.stem for p in webp.glob("*.webp")) == sorted(p.stem for p in png.iterdir())
+    assert not list(webp.glob("*.png"))
+    for sheet in png.iterdir():
+        twin = webp / f"{sheet.stem}.webp"
+        with Image.open(sheet) as a, Image.open(twin) as b:
+            assert b.format == "WEBP"
+            assert a.size == b.size
+            assert a.convert("RGBA").tobytes() == b.convert("RGBA").tobytes()
+    assert sum(f.stat().st_size for f in webp.iterdir()) < sum(
+        f.stat().st_size for f in png.iterdir()
+    )
+    listed = re.findall(r"wrote (\S+)", result.output)
+    assert all(p.endswith(".webp") for p in listed) and len(listed) == 16
+
+
+def test_existing_webp_sheet_is_not_replaced_without_force(tmp_path):
+    assert run("-o", str(tmp_path), "-l", "compare", "-f", "webp").exit_code == 0
+    target = tmp_path / "paper16-compare-48px.webp"
+    before = target.read_bytes()
+    result = run("-o", str(tmp_path), "-l", "compare", "-f", "webp", "-a", "1.4")
+    assert result.exit_code == 2
+    assert "already exists; pass --force" in result.output
+    assert target.read_bytes() == before

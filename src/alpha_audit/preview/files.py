@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+from collections import deque
 from collections.abc import Callable, Sequence
+from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -20,6 +22,7 @@ from alpha_audit.preview.html import preview_html
 from alpha_audit.preview.sheets import (
     SWATCH_ALPHAS,
     Alpha,
+    ImageFormat,
     Layout,
     check_writable,
     default_alphas,
@@ -77,8 +80,9 @@ def preview_files(
     on_step: Callable[[], None] | None = None,
     gamut: GamutPolicy | None = None,
     pipeline: str | None = None,
+    image_format: ImageFormat = ImageFormat.PNG,
 ) -> PreviewResult:
-    """Load, render every paint group once, audit, then write PNG sheets and/or a page.
+    """Load, render every paint group once, audit, then write sheets and/or a page.
 
     Sheets go to ``out_dir``, the page to ``html_path``.  Icons are drawn as
     their audit rows draw them (each paint group in its colour and opacity,
@@ -88,11 +92,17 @@ def preview_files(
     existing file is an error unless ``overwrite``.  ``on_start(n)`` and
     ``on_step()`` report progress over icons rendered plus files written;
     ``gamut`` decides colours outside sRGB (else each file's ``gamut:``,
-    else they are an error).
+    else they are an error).  Sheets are PNG files, or lossless WebP with
+    ``image_format``.
     """
     if out_dir is None and html_path is None:
         raise UsageError("nothing to write: give `out_dir` for PNG sheets and/or `html_path`")
     _check_options(alphas, sizes)
+    if out_dir is not None and image_format is ImageFormat.WEBP:
+        from PIL import features
+
+        if not features.check("webp"):
+            raise UsageError("this Pillow was built without WebP; write PNG sheets instead")
     theme = load_theme(theme_path, gamut=gamut)
     iconset = load_iconset(iconset_path, gamut=gamut)
     if threshold is not None:
@@ -123,7 +133,7 @@ def preview_files(
             title=title,
             source=iconset.path if near_source else theme.path,
         )
-        targets += [folder / s.name for s in specs]
+        targets += [folder / image_format.file_name(s.name) for s in specs]
     if html_path is not None:
         targets.append(Path(html_path))
     if out_dir is not None:
@@ -145,17 +155,36 @@ def preview_files(
     drawn = preview_rows(replace(theme, canvases=canvases), iconset, masks, raster_sizes, kind)
 
     written: list[Path] = []
-    for sheet in render_all(
+    sheets = render_all(
         specs,
         iconset,  # pages index the manifest's icons; icons not drawn are left out
         drawn,
         alphas=rows if (alphas or layout is not Layout.SWATCHES) else swatch_rows,
         threshold=theme.threshold,
         title=title,
-    ):
-        written.append(write_sheet(sheet, out_dir or ".", overwrite=overwrite))
-        if on_step is not None:
-            on_step()
+    )
+    # Each sheet is compressed on a second thread while the next one is drawn (Pillow's
+    # encoder and numpy release the GIL); at most two sheets are held at once.
+    with ThreadPoolExecutor(max_workers=1, thread_name_prefix="alpha-audit-png") as writer:
+        pending: deque[Future[Path]] = deque()
+        for sheet in sheets:
+            pending.append(
+                writer.submit(
+                    write_sheet,
+                    sheet,
+                    out_dir or ".",
+                    overwrite=overwrite,
+                    image_format=image_format,
+                )
+            )
+            while len(pending) > 1:
+                written.append(pending.popleft().result())
+                if on_step is not None:
+                    on_step()
+        while pending:
+            written.append(pending.popleft().result())
+            if on_step is not None:
+                on_step()
     if html_path is not None:
         page = preview_html(
             replace(theme, canvases=canvases),
