@@ -13,6 +13,7 @@ from collections.abc import Sequence
 from dataclasses import replace
 from pathlib import Path
 from typing import Annotated
+from urllib.parse import urlsplit
 
 import typer
 
@@ -32,6 +33,7 @@ from alpha_audit.cli.options import (
 )
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.errors import UsageError
+from alpha_audit.pages.measured import BlockedRequest
 from alpha_audit.pages.states import State, state_matrix
 from alpha_audit.render import RenderFormat
 from alpha_audit.rules import RENDER_DEFAULT_RULES, RENDER_RULES, RULES
@@ -248,7 +250,7 @@ def render_command(
     report = judge_pages(result, settings.policy, manifest, baseline=known)
     write_reports(report, pairs, write_baseline, force)
     if result.blocked:
-        stderr_note(f"{len(result.blocked)} requests to anything but the pages' server blocked")
+        stderr_note(blocked_summary(result.blocked))
     if result.problems:
         first = result.problems[0]
         stderr_note(
@@ -263,3 +265,28 @@ def render_command(
     counts = ", ".join(f"{n} {rule}" for rule, n in gate.counts().items())
     stderr_note(f"gate failed: {counts}" + (" (--exit-zero)" if exit_zero else ""))
     return ExitStatus.OK if exit_zero else ExitStatus.GATE_FAILED
+
+
+def blocked_summary(blocked: Sequence[BlockedRequest], shown: int = 3) -> str:
+    """The stderr line for the requests a run refused: how many, and to which hosts.
+
+    >>> from alpha_audit.pages.measured import BlockedRequest as B
+    >>> line = blocked_summary([B("s", "dark", "chromium", "https://fonts.example/a.css"),
+    ...                         B("s", "light", "chromium", "https://fonts.example/b.css"),
+    ...                         B("s", "dark", "firefox", "cdn.example:443")])
+    >>> line.startswith("3 requests to anything but the pages' server blocked, ")
+    True
+    >>> line.endswith("to cdn.example:443 and fonts.example (every one in the JSON report)")
+    True
+    """
+    hosts = sorted({urlsplit(b.url).netloc if "://" in b.url else b.url for b in blocked})
+    named = ", ".join(hosts[:shown])
+    if len(hosts) > shown:
+        named += f" and {len(hosts) - shown} more hosts"
+    elif len(hosts) > 1:
+        head, _, last = named.rpartition(", ")
+        named = f"{head} and {last}"
+    return (
+        f"{len(blocked)} requests to anything but the pages' server blocked, to {named} "
+        "(every one in the JSON report)"
+    )

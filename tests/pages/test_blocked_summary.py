@@ -1,0 +1,26 @@
+"""The stderr line for blocked requests names the hosts, a few at most, and no raw text."""
+
+from __future__ import annotations
+
+from alpha_audit.cli.render import blocked_summary
+from alpha_audit.pages.measured import BlockedRequest
+
+
+def _blocked(*urls: str) -> list[BlockedRequest]:
+    return [BlockedRequest("stories/a", "dark", "chromium", u) for u in urls]
+
+
+def test_one_host_is_named_once_however_many_requests() -> None:
+    line = blocked_summary(_blocked(*(f"http://fonts.example/{k}.woff2" for k in range(7))))
+    assert line.startswith("7 requests ")
+    assert "to fonts.example (" in line
+
+
+def test_many_hosts_are_cut_to_three_with_a_count() -> None:
+    line = blocked_summary(_blocked(*(f"https://h{k}.example/x" for k in range(5))))
+    assert "to h0.example, h1.example, h2.example and 2 more hosts (" in line
+
+
+def test_https_tunnels_are_named_by_host_and_port() -> None:
+    line = blocked_summary(_blocked("tracker.example:443"))
+    assert "to tracker.example:443 (" in line
