@@ -19,14 +19,20 @@ from pathlib import Path
 
 import numpy as np
 
-from alpha_audit.color import composite_extended, contrast_ratio, delta_e_2000, linear_to_hex
+from alpha_audit.color import (
+    composite_extended,
+    contrast_ratio,
+    delta_e_2000,
+    linear_to_hex,
+    shipped,
+)
 from alpha_audit.color.oklch import linear_to_oklch, oklch_to_linear
-from alpha_audit.fixes import fixes_for, passes_everywhere
+from alpha_audit.fixes import passes_everywhere, with_fixes
 from alpha_audit.gate import evaluate
 from alpha_audit.load.theme import load_theme
 from alpha_audit.model import Icon, IconSet
 from alpha_audit.policy import Policy
-from alpha_audit.results import CheckReport
+from alpha_audit.results import CheckReport, ColorFix
 from alpha_audit.rows import audit
 from alpha_audit.rules import Rule
 
@@ -48,11 +54,12 @@ def iconset(n: int = 300, colours: int = 40) -> IconSet:
 
 
 def sweep_reaching(source, backgrounds, threshold: float, step: float = 1e-4) -> float | None:
-    """The straightforward smallest alpha: composite at every grid point."""
+    """The straightforward smallest alpha: composite at every grid point, judged as the
+    fixes are, on what ships (the 8-bit colour on the 8-bit canvas)."""
+    canvases = shipped(backgrounds)
     for a in np.arange(1.0, 2.0 + step / 2, step):
-        if np.all(
-            contrast_ratio(composite_extended(source, backgrounds, a), backgrounds) >= threshold
-        ):
+        shown = shipped(composite_extended(source, backgrounds, a))
+        if np.all(contrast_ratio(shown, canvases) >= threshold):
             return float(a)
     return None
 
@@ -73,9 +80,10 @@ def main() -> None:
     icons = iconset()
     result = audit(theme, icons)
     report = CheckReport((result,), evaluate([result], POLICY))
-    fixes_for(CheckReport((result,), evaluate([audit(theme, iconset(14, 2))], POLICY)))  # warm up
+    small = audit(theme, iconset(14, 2))
+    with_fixes(CheckReport((small,), evaluate([small], POLICY)))  # warm up
     t0 = time.perf_counter()
-    fixes = fixes_for(report)
+    fixes = [f for f in with_fixes(report).fixes if isinstance(f, ColorFix)]
     ours = time.perf_counter() - t0
     colours = sorted({f.color for f in fixes})
     print(

@@ -1,15 +1,23 @@
-"""Run every benchmark in this folder (``make bench``)."""
+"""Run every benchmark in this folder (``make bench``), each in a process of its own.
+
+A benchmark may set environment variables (``bench_brands.py`` turns the render
+cache off); a process each keeps that from reaching the next one.  Every script
+runs even when one fails; the exit code says whether any did.
+"""
 
 from __future__ import annotations
 
-import runpy
+import subprocess
 import sys
 from pathlib import Path
 
 HERE = Path(__file__).parent
 
 if __name__ == "__main__":
-    sys.path.insert(0, str(HERE))
+    failed = []
     for script in sorted(HERE.glob("bench_*.py")):
-        print(f"== {script.name}")
-        runpy.run_path(str(script), run_name="__main__")
+        print(f"== {script.name}", flush=True)
+        if subprocess.run([sys.executable, str(script)], check=False).returncode != 0:
+            failed.append(script.name)
+    if failed:
+        raise SystemExit(f"failed: {', '.join(failed)}")
