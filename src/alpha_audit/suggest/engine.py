@@ -103,6 +103,7 @@ from alpha_audit.suggest.events import (
     first_below,
     first_in_luminance_band,
     luminance_band,
+    luminance_band_pieces,
 )
 
 __all__ = [
@@ -208,12 +209,16 @@ def _first_unsafe_code(
     a_hi: float,
     y_screen: NDArray[np.float64],
     floor: NDArray[np.float64],
+    windows: NDArray[np.float64],
 ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
     """For each candidate, the first ``a`` in ``[a_lo, a_hi]`` where what ships is below ``floor``.
 
     ``(start, attained)``, ``nan`` where none: every code crossing of the
     displayed channels and every gap between two is judged once (the codes are
     constant on a gap), in order.  A gap's start is its left end, not attained.
+    ``windows`` ``(K, W, 2)`` are closed intervals outside which what ships
+    cannot be below ``floor`` (the float luminance is outside the widened band
+    there): only the crossings and gaps meeting one are computed.
     """
     crossings = code_crossings(source, background, coverage[:, None]).reshape(len(source), -1)
     inside = (crossings > a_lo[:, None]) & (crossings < a_hi)
@@ -226,14 +231,17 @@ def _first_unsafe_code(
     elements[:, 0::2] = points
     elements[:, 1::2] = 0.5 * (points[:, :-1] + points[:, 1:])
     valid = np.isfinite(elements)  # the rest is padding
-    shown = composite_coverage(
-        source[:, None, :],
-        background[:, None, :],
-        np.where(valid, elements, a_hi),
-        coverage[:, None],
-    )
+    w_lo, w_hi = windows[:, None, :, 0], windows[:, None, :, 1]  # (K, 1, W)
+    at_point = (w_lo <= points[:, :, None]) & (points[:, :, None] <= w_hi)
+    on_gap = (w_lo < points[:, 1:, None]) & (w_hi > points[:, :-1, None])
+    near = np.empty(elements.shape, dtype=bool)
+    near[:, 0::2] = at_point.any(axis=2)
+    near[:, 1::2] = on_gap.any(axis=2)
+    k, e = np.nonzero(valid & near)  # NaN padding compares False: never judged
+    shown = composite_coverage(source[k], background[k], elements[k, e], coverage[k])
     y = relative_luminance(shipped(shown))
-    unsafe = valid & (contrast_from_luminance(y, y_screen[:, None]) < floor[:, None])
+    unsafe = np.zeros(elements.shape, dtype=bool)
+    unsafe[k, e] = contrast_from_luminance(y, y_screen[k]) < floor[k]
     hit = unsafe.any(axis=1)
     k = np.argmax(unsafe, axis=1)
     is_point = k % 2 == 0
@@ -449,6 +457,16 @@ class _Engine:
         s = np.broadcast_to(self.result.sources.reshape(p, 1, *([1] * extra), 3), shape)
         b = np.broadcast_to(self.backgrounds.reshape(1, m, *([1] * extra), 3), shape)
         bound, _ = first_in_luminance_band(s, b, lo_c, hi_c, ALPHA_LO, self.a_hi)
+        # Where the float luminance is in the widened band at all: at most one interval
+        # per linear piece of Y(a); what ships can be unsafe nowhere else.
+        windows = np.full((*floor.shape, 4, 2), [np.inf, -np.inf])
+        for w, (p_, q_, lower, upper) in enumerate(
+            luminance_band_pieces(s, b, lo_c, hi_c, ALPHA_LO, self.a_hi)
+        ):
+            start_w, end_w = np.maximum(lower, p_), np.minimum(upper, q_)
+            meets = (q_ >= p_) & (start_w <= end_w)
+            windows[..., w, 0] = np.where(meets, start_w, np.inf)
+            windows[..., w, 1] = np.where(meets, end_w, -np.inf)
         start = np.full(floor.shape, np.nan)
         attained = np.zeros(floor.shape, dtype=bool)
         y_screen = np.broadcast_to(self.y_screen.reshape(shape_bg), floor.shape)
@@ -457,7 +475,7 @@ class _Engine:
             at = tuple(cells[chunk : chunk + _CANDIDATES].T)
             first, point = _first_unsafe_code(
                 s[at], b[at], np.broadcast_to(o, floor.shape)[at], bound[at], self.a_hi,
-                y_screen[at], floor[at],
+                y_screen[at], floor[at], windows[at],
             )  # fmt: skip
             start[at], attained[at] = first, point
         return start, attained
@@ -565,6 +583,8 @@ class _Engine:
         Found through each canvas's rows sorted by code, so a question costs what its
         own codes match, not the number of rows (rows of one fixed track ship one code).
         """
+        if tracks.moving.all():  # a set-wide question: nothing stays
+            return np.zeros(0, dtype=np.intp), np.zeros(0, dtype=np.int64)
         if self._code_index is None:
             codes = self.fixed_codes().T  # (canvases, rows)
             order = np.argsort(codes, axis=1, kind="stable").astype(np.int32)
