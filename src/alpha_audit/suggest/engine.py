@@ -127,6 +127,8 @@ _TIMELINE_CACHE_BYTES = 64 << 20
 ALPHA_LO = 1.0  # the reference coefficient; the safe interval starts here
 _RULE_ORDER = {rule: k for k, rule in enumerate(Rule)}
 
+# One paint's code timeline on one canvas: (points, packed codes of its elements).
+_Timeline = tuple[NDArray[np.float64], NDArray[np.int64]]
 # A limit found: (rule, canvas index or -1 for every canvas, icon indices, first unsafe alpha,
 # attained).
 Found = tuple[Rule, int, tuple[int, ...], float, bool]
@@ -304,7 +306,7 @@ class _Engine:
         self._last_tracks: dict[bool, tuple[bytes, _Tracks]] = {}
         self._answers: dict[tuple[bytes, int, bool], SafeAlpha] = {}
         self._group_ids: dict[bool, tuple[NDArray[np.intp], ...]] = {}
-        self._timelines: dict[tuple[bytes, int], tuple[NDArray[np.float64], NDArray[np.int64]]] = {}
+        self._timelines: dict[tuple[bytes, int, float, float], _Timeline] = {}
         self._timeline_bytes = 0
 
     # -- helpers -----------------------------------------------------------------
@@ -622,17 +624,18 @@ class _Engine:
         return None
 
     def track_segments(
-        self, source: NDArray[np.float64], opacity: float, j: int
-    ) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
-        """One moving paint's own timeline on canvas ``j``: (points, packed element codes).
+        self, source: NDArray[np.float64], opacity: float, j: int, a_lo: float, a_hi: float
+    ) -> _Timeline:
+        """One moving paint's own timeline on canvas ``j`` over ``[a_lo, a_hi]``: (points,
+        packed element codes).
 
-        Cached per (paint, canvas): the set-wide, per-colour and per-icon
+        Cached per (paint, canvas, window): the set-wide, per-colour and per-icon
         questions move the same paints again and again.
         """
-        key = (source.tobytes() + np.float64(opacity).tobytes(), j)
+        key = (source.tobytes() + np.float64(opacity).tobytes(), j, a_lo, a_hi)
         found = self._timelines.get(key)
         if found is None:
-            timeline = code_timeline(source, self.backgrounds[j], ALPHA_LO, self.a_hi, opacity)
+            timeline = code_timeline(source, self.backgrounds[j], a_lo, a_hi, opacity)
             codes = timeline.elements()[2]  # (3, 2K + 1)
             found = (timeline.points, pack_8bit(codes.T))
             size = found[0].nbytes + found[1].nbytes
@@ -652,50 +655,76 @@ class _Engine:
         every place where two or more share a code; only those places are
         judged, in order, by :meth:`collision_group`.  Cost and memory are linear
         in the number of segments, never tracks x tracks x events.
+
+        The coefficients up to the moving icons' own alpha come first: where they
+        already collide there (a failing check's fixes ask exactly that), the
+        rest of the range up to ``alpha_max`` is never built.  Both windows share
+        their end point, whose codes are those of the gap around it, so the first
+        unsafe element is the one a single window finds.
         """
         out: list[Found] = []
         rule = self.collision_rule
         mv = np.flatnonzero(tracks.moving)
         if rule is None or mv.size == 0 or len(tracks.label) < 2 or self.a_hi <= ALPHA_LO:
             return out
+        chosen = tracks.row_track >= 0
+        rows = np.flatnonzero(chosen)[tracks.moving[tracks.row_track[chosen]]]
+        own_alpha = float(self.result.alpha[rows].max()) if rows.size else self.a_hi
+        windows = [(ALPHA_LO, self.a_hi)]
+        if ALPHA_LO < own_alpha < self.a_hi:
+            windows = [(ALPHA_LO, own_alpha), (own_alpha, self.a_hi)]
         for j in range(len(self.canvases)):
-            own = [self.track_segments(tracks.source[t], float(tracks.opacity[t]), j) for t in mv]
-            fixed, fixed_codes = self._near(tracks, np.concatenate([c for _, c in own]), j)
-            points = np.unique(np.concatenate([p for p, _ in own]))  # every event of canvas j
-            last = 2 * (points.size - 1)  # global elements 0..last: point, gap, point, ...
-            seg_track, seg_lo, seg_hi, seg_code = [], [], [], []
-            for t, (p, codes) in zip(mv, own, strict=True):
-                g = 2 * np.searchsorted(points, p)  # this track's points as global elements
-                lo = np.empty(codes.size, dtype=np.int64)
-                hi = np.empty(codes.size, dtype=np.int64)
-                lo[0::2], hi[0::2] = g, g
-                lo[1::2], hi[1::2] = g[:-1] + 1, g[1:] - 1
-                seg_track.append(np.full(codes.size, t))
-                seg_lo.append(lo)
-                seg_hi.append(hi)
-                seg_code.append(codes)
-            seg_track.append(fixed)
-            seg_lo.append(np.zeros(fixed.size, dtype=np.int64))
-            seg_hi.append(np.full(fixed.size, last, dtype=np.int64))
-            seg_code.append(fixed_codes)
-            track = np.concatenate(seg_track)
-            lo, hi, code = (np.concatenate(x) for x in (seg_lo, seg_hi, seg_code))
-            candidates = _shared_code_starts(lo, hi, code)
-            if candidates.size == 0:
-                continue
-            # Every track's code at a candidate element: its segment by track then start.
-            order = np.lexsort((lo, track))
-            sorted_key = track[order] * (last + 2) + lo[order]
-            subset = np.concatenate([mv, fixed])  # ascending: moving tracks come first
-            everyone = subset * (last + 2)
-            for e in candidates.tolist():
-                at = order[np.searchsorted(sorted_key, everyone + e, side="right") - 1]
-                icons = self.collision_group(tracks, subset, code[at], j)
-                if icons is not None:
-                    start, is_point = float(points[e // 2]), e % 2 == 0
-                    out.append((rule, j, icons, start, is_point))
+            for a_lo, a_hi in windows:
+                found = self._first_collision(tracks, mv, j, a_lo, a_hi)
+                if found is not None:
+                    out.append(found)
                     break
         return out
+
+    def _first_collision(
+        self, tracks: _Tracks, mv: NDArray[np.intp], j: int, a_lo: float, a_hi: float
+    ) -> Found | None:
+        """The first unsafe collision on canvas ``j`` with ``a`` in ``[a_lo, a_hi]``, if any."""
+        rule = self.collision_rule
+        assert rule is not None
+        own = [
+            self.track_segments(tracks.source[t], float(tracks.opacity[t]), j, a_lo, a_hi)
+            for t in mv
+        ]
+        fixed, fixed_codes = self._near(tracks, np.concatenate([c for _, c in own]), j)
+        points = np.unique(np.concatenate([p for p, _ in own]))  # every event of canvas j
+        last = 2 * (points.size - 1)  # global elements 0..last: point, gap, point, ...
+        seg_track, seg_lo, seg_hi, seg_code = [], [], [], []
+        for t, (p, codes) in zip(mv, own, strict=True):
+            g = 2 * np.searchsorted(points, p)  # this track's points as global elements
+            lo = np.empty(codes.size, dtype=np.int64)
+            hi = np.empty(codes.size, dtype=np.int64)
+            lo[0::2], hi[0::2] = g, g
+            lo[1::2], hi[1::2] = g[:-1] + 1, g[1:] - 1
+            seg_track.append(np.full(codes.size, t))
+            seg_lo.append(lo)
+            seg_hi.append(hi)
+            seg_code.append(codes)
+        seg_track.append(fixed)
+        seg_lo.append(np.zeros(fixed.size, dtype=np.int64))
+        seg_hi.append(np.full(fixed.size, last, dtype=np.int64))
+        seg_code.append(fixed_codes)
+        track = np.concatenate(seg_track)
+        lo, hi, code = (np.concatenate(x) for x in (seg_lo, seg_hi, seg_code))
+        candidates = _shared_code_starts(lo, hi, code)
+        if candidates.size == 0:
+            return None
+        # Every track's code at a candidate element: its segment by track then start.
+        order = np.lexsort((lo, track))
+        sorted_key = track[order] * (last + 2) + lo[order]
+        subset = np.concatenate([mv, fixed])  # ascending: moving tracks come first
+        everyone = subset * (last + 2)
+        for e in candidates.tolist():
+            at = order[np.searchsorted(sorted_key, everyone + e, side="right") - 1]
+            icons = self.collision_group(tracks, subset, code[at], j)
+            if icons is not None:
+                return (rule, j, icons, float(points[e // 2]), e % 2 == 0)
+        return None
 
     # -- pairs: separation and the role rules, bracketed --------------------------
 
