@@ -6,10 +6,10 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from alpha_audit.color import composite_extended, relative_luminance, to_8bit
+from alpha_audit.color import composite_extended, pack_8bit, relative_luminance, to_8bit
 from alpha_audit.suggest.events import (
     CODE_THRESHOLDS,
-    code_timeline,
+    code_timelines,
     first_in_luminance_band,
     luminance_band,
 )
@@ -18,41 +18,71 @@ unit = st.floats(0.0, 1.0, allow_nan=False)
 WIDE = 1e-12  # a gap between events wider than float noise on a coefficient near 1
 
 
+def _direct(s: np.ndarray, b: np.ndarray, a: np.ndarray, o: np.ndarray) -> np.ndarray:
+    """Packed 8-bit codes of paints ``s`` (P, 3) at opacity ``o`` on ``b`` at ``a`` (P, N)."""
+    shown = b + o[:, None, None] * (np.clip(b + a[..., None] * (s - b)[:, None, :], 0, 1) - b)
+    return pack_8bit(to_8bit(shown))
+
+
 @settings(max_examples=60, deadline=None)
-@given(st.lists(st.tuples(unit, unit), min_size=1, max_size=6))
-def test_code_timeline_matches_to_8bit_between_events(channels: list) -> None:
-    s, b = np.array(channels).T
-    t = code_timeline(s, b, 1.0, 2.0)
-    mids = 0.5 * (t.points[:-1] + t.points[1:])
-    # Crossings are computed to about an ulp, so two channels' events a few ulps apart
-    # leave a gap whose midpoint the direct formula may put on either side: only gaps wider
-    # than float noise are compared (the engine re-checks its rounded answer directly).
-    inside = np.diff(t.points) > WIDE
-    direct = to_8bit(np.clip(b[:, None] + mids[None, :] * (s - b)[:, None], 0, 1))
-    assert inside.sum() >= 1
-    assert np.array_equal(direct[:, inside], t.between[:, inside])
+@given(
+    st.lists(st.tuples(unit, unit, unit, unit), min_size=1, max_size=8),
+    st.tuples(unit, unit, unit),
+    st.sampled_from([(1.0, 2.0), (1.1, 1.3), (1.0, 1.02)]),
+)
+def test_code_timelines_match_to_8bit_between_events(paints: list, background, window) -> None:
+    """Every gap's code is what direct compositing and to_8bit give inside it."""
+    s, o = np.array(paints)[:, :3], np.array(paints)[:, 3]
+    b = np.array(background)
+    for k, (points, codes) in enumerate(code_timelines(s, b, *window, o)):
+        assert points[0] == window[0] and points[-1] == window[1]
+        assert codes.size == 2 * points.size - 1
+        mids = 0.5 * (points[:-1] + points[1:])
+        # Crossings are computed to about an ulp, so two channels' events a few ulps apart
+        # leave a gap whose midpoint the direct formula may put on either side: only gaps
+        # wider than float noise are compared (the engine re-checks its rounded answer
+        # directly).
+        wide = np.diff(points) > WIDE
+        direct = _direct(s[k : k + 1], b, mids[None, :], o[k : k + 1])[0]
+        assert np.array_equal(direct[wide], codes[1::2][wide])
 
 
-def test_code_timeline_gap_narrower_than_a_float() -> None:
+def test_code_timelines_gap_narrower_than_a_float() -> None:
     """Two channels whose events are 1e-15 apart (hypothesis found it): the wider gaps hold."""
-    t = code_timeline([0.5, 0.5], [0.0, 1.4348070227260641e-15], 1.0, 2.0)
-    mids = 0.5 * (t.points[:-1] + t.points[1:])
-    inside = np.diff(t.points) > WIDE
-    assert not inside.all()  # the case is real: some gaps are a few ulps wide
-    assert inside.sum() > 30
-    s, b = np.array([0.5, 0.5]), np.array([0.0, 1.4348070227260641e-15])
-    direct = to_8bit(np.clip(b[:, None] + mids[None, :] * (s - b)[:, None], 0, 1))
-    assert np.array_equal(direct[:, inside], t.between[:, inside])
+    s, b = np.array([[0.5, 0.5, 0.0]]), np.array([0.0, 1.4348070227260641e-15, 0.0])
+    points, codes = code_timelines(s, b, 1.0, 2.0)[0]
+    mids = 0.5 * (points[:-1] + points[1:])
+    wide = np.diff(points) > WIDE
+    assert not wide.all()  # the case is real: some gaps are a few ulps wide
+    assert wide.sum() > 30
+    direct = _direct(s, b, mids[None, :], np.ones(1))[0]
+    assert np.array_equal(direct[wide], codes[1::2][wide])
+
+
+def test_paints_are_independent_of_each_other() -> None:
+    """A paint's timeline is the same alone and among others (chunks included)."""
+    rng = np.random.default_rng(7)
+    s, o, b = rng.random((600, 3)), rng.random(600), rng.random(3)
+    together = code_timelines(s, b, 1.0, 1.5, o)
+    for k in (0, 255, 256, 599):
+        alone = code_timelines(s[k : k + 1], b, 1.0, 1.5, o[k : k + 1])[0]
+        assert np.array_equal(alone[0], together[k][0])
+        assert np.array_equal(alone[1], together[k][1])
+
+
+def test_a_paint_that_never_moves_keeps_the_canvas_code() -> None:
+    points, codes = code_timelines([[0.2, 0.4, 0.6]], [0.2, 0.4, 0.6], 1.0, 2.0)[0]
+    assert points.tolist() == [1.0, 2.0]
+    assert codes.tolist() == [int(pack_8bit(to_8bit(np.array([0.2, 0.4, 0.6]))))] * 3
 
 
 def test_half_way_rounds_to_even() -> None:
-    # Channel from 0 on black: at the event for threshold n the code is the even one.
-    t = code_timeline([CODE_THRESHOLDS[100] / 1.5], [0.0], 1.0, 2.0)
-    k = int(np.flatnonzero(np.isclose(t.points, 1.5))[0])
-    assert t.at_points[0, k] == 100 and t.between[0, k - 1] == 100 and t.between[0, k] == 101
-    t = code_timeline([CODE_THRESHOLDS[101] / 1.5], [0.0], 1.0, 2.0)
-    k = int(np.flatnonzero(np.isclose(t.points, 1.5))[0])
-    assert t.at_points[0, k] == 102 and t.between[0, k - 1] == 101
+    # Red from 0 on black: at the event for threshold n the code is the even one.
+    for n, at, before, after in ((100, 100, 100, 101), (101, 102, 101, 102)):
+        points, codes = code_timelines([[CODE_THRESHOLDS[n] / 1.5, 0, 0]], [0.0] * 3, 1.0, 2.0)[0]
+        k = int(np.flatnonzero(np.isclose(points, 1.5))[0])
+        red = codes >> 16
+        assert (red[2 * k], red[2 * k - 1], red[2 * k + 1]) == (at, before, after)
 
 
 @settings(max_examples=60, deadline=None)
@@ -115,3 +145,13 @@ def test_first_below_brackets_each_items_crossing(crossings, slope, budget) -> N
         assert all(shape[-1] == 1 for shape in calls[1:])  # plain bisection
     else:
         assert len(calls) <= 1 + 5  # 1e-3 to 1e-9 in 16-fold steps
+
+
+def test_one_background_per_paint_is_each_paint_on_its_own_canvas() -> None:
+    rng = np.random.default_rng(11)
+    s, b, o = rng.random((40, 3)), rng.random((40, 3)), rng.random(40)
+    together = code_timelines(s, b, 1.0, 2.0, o)
+    for k in (0, 13, 39):
+        alone = code_timelines(s[k : k + 1], b[k], 1.0, 2.0, o[k : k + 1])[0]
+        assert np.array_equal(alone[0], together[k][0])
+        assert np.array_equal(alone[1], together[k][1])

@@ -18,7 +18,7 @@ Exact, from events (:mod:`alpha_audit.suggest.events`):
   contrast band on it is a luminance band on the clipped composite, piecewise
   linear in ``a``;
 * 8-bit collisions: every track's codes are step functions of ``a`` known
-  exactly (:func:`~alpha_audit.suggest.events.code_timeline`).
+  exactly (:func:`~alpha_audit.suggest.events.code_timelines`).
 
 Bracketed on a grid of :data:`GRID_STEP` (plus every clip breakpoint), bisected
 to :data:`~alpha_audit.suggest.events.BISECTION_TOLERANCE` and re-checked
@@ -99,7 +99,7 @@ from alpha_audit.suggest import SCOPES
 from alpha_audit.suggest.events import (
     clip_breakpoints,
     code_crossings,
-    code_timeline,
+    code_timelines,
     first_below,
     first_in_luminance_band,
     luminance_band,
@@ -124,6 +124,8 @@ _STATIC_RULES = frozenset({Rule.FIXED_COLOUR, Rule.NOT_AUDITED})
 _CHUNK = 1 << 20
 # Code timelines kept between questions (a few KB per paint and canvas).
 _TIMELINE_CACHE_BYTES = 64 << 20
+# A question moving few paints builds their timelines on every canvas in one batch.
+_TIMELINES_AT_ONCE = 1024
 ALPHA_LO = 1.0  # the reference coefficient; the safe interval starts here
 _RULE_ORDER = {rule: k for k, rule in enumerate(Rule)}
 
@@ -624,27 +626,43 @@ class _Engine:
         return None
 
     def track_segments(
-        self, source: NDArray[np.float64], opacity: float, j: int, a_lo: float, a_hi: float
-    ) -> _Timeline:
-        """One moving paint's own timeline on canvas ``j`` over ``[a_lo, a_hi]``: (points,
-        packed element codes).
+        self,
+        tracks: _Tracks,
+        moving: NDArray[np.intp],
+        canvases: Sequence[int],
+        a_lo: float,
+        a_hi: float,
+    ) -> list[_Timeline]:
+        """The moving tracks' own timelines over ``[a_lo, a_hi]`` on each of ``canvases``
+        (canvas by canvas, tracks in order): (points, packed element codes) each.
 
         Cached per (paint, canvas, window): the set-wide, per-colour and per-icon
-        questions move the same paints again and again.
+        questions move the same paints again and again.  The ones not cached are
+        computed together (:func:`~alpha_audit.suggest.events.code_timelines`).
         """
-        key = (source.tobytes() + np.float64(opacity).tobytes(), j, a_lo, a_hi)
-        found = self._timelines.get(key)
-        if found is None:
-            timeline = code_timeline(source, self.backgrounds[j], a_lo, a_hi, opacity)
-            codes = timeline.elements()[2]  # (3, 2K + 1)
-            found = (timeline.points, pack_8bit(codes.T))
-            size = found[0].nbytes + found[1].nbytes
-            if self._timeline_bytes + size > _TIMELINE_CACHE_BYTES:
-                self._timelines.clear()  # memory stays bounded; recomputing is exact
-                self._timeline_bytes = 0
-            self._timelines[key] = found
-            self._timeline_bytes += size
-        return found
+        paint = [
+            tracks.source[t].tobytes() + np.float64(tracks.opacity[t]).tobytes()
+            for t in moving.tolist()
+        ]
+        keys = [(p, j, a_lo, a_hi) for j in canvases for p in paint]
+        found = [self._timelines.get(key) for key in keys]
+        missing = [k for k, f in enumerate(found) if f is None]
+        if missing:
+            at = np.asarray(missing)
+            t = moving[at % moving.size]
+            j = np.asarray(canvases)[at // moving.size]
+            fresh = code_timelines(
+                tracks.source[t], self.backgrounds[j], a_lo, a_hi, tracks.opacity[t]
+            )
+            for k, timeline in zip(missing, fresh, strict=True):
+                found[k] = timeline
+                size = timeline[0].nbytes + timeline[1].nbytes
+                if self._timeline_bytes + size > _TIMELINE_CACHE_BYTES:
+                    self._timelines.clear()  # memory stays bounded; recomputing is exact
+                    self._timeline_bytes = 0
+                self._timelines[keys[k]] = timeline
+                self._timeline_bytes += size
+        return [f for f in found if f is not None]
 
     def collision_limits(self, tracks: _Tracks) -> list[Found]:
         """Per canvas, where the first unsafe 8-bit collision starts (exact).
@@ -673,13 +691,19 @@ class _Engine:
         windows = [(ALPHA_LO, self.a_hi)]
         if ALPHA_LO < own_alpha < self.a_hi:
             windows = [(ALPHA_LO, own_alpha), (own_alpha, self.a_hi)]
-        for j in range(len(self.canvases)):
-            for a_lo, a_hi in windows:
+        pending = list(range(len(self.canvases)))
+        for a_lo, a_hi in windows:
+            if mv.size * len(pending) <= _TIMELINES_AT_ONCE:  # one batch for every canvas
+                self.track_segments(tracks, mv, pending, a_lo, a_hi)
+            left = []
+            for j in pending:
                 found = self._first_collision(tracks, mv, j, a_lo, a_hi)
-                if found is not None:
+                if found is None:
+                    left.append(j)
+                else:
                     out.append(found)
-                    break
-        return out
+            pending = left
+        return sorted(out, key=lambda f: f[1])
 
     def _first_collision(
         self, tracks: _Tracks, mv: NDArray[np.intp], j: int, a_lo: float, a_hi: float
@@ -687,10 +711,7 @@ class _Engine:
         """The first unsafe collision on canvas ``j`` with ``a`` in ``[a_lo, a_hi]``, if any."""
         rule = self.collision_rule
         assert rule is not None
-        own = [
-            self.track_segments(tracks.source[t], float(tracks.opacity[t]), j, a_lo, a_hi)
-            for t in mv
-        ]
+        own = self.track_segments(tracks, mv, [j], a_lo, a_hi)
         fixed, fixed_codes = self._near(tracks, np.concatenate([c for _, c in own]), j)
         points = np.unique(np.concatenate([p for p, _ in own]))  # every event of canvas j
         last = 2 * (points.size - 1)  # global elements 0..last: point, gap, point, ...
