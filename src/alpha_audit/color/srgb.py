@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from alpha_audit.color.css import GamutPolicy, parse_css_color
-from alpha_audit.color.transfer import srgb_decode, srgb_encode
+from alpha_audit.color.transfer import srgb_decode, srgb_encode, srgb_encode_unit
 
 __all__ = [
     "from_8bit",
@@ -44,8 +44,9 @@ def to_8bit(linear: ArrayLike) -> NDArray[np.uint8]:
     >>> to_8bit([1.0, 0.21404114048223255, 0.0]).tolist()
     [255, 128, 0]
     """
-    encoded = srgb_encode(np.clip(np.asarray(linear, dtype=np.float64), 0.0, 1.0))
-    return np.rint(encoded * 255.0).astype(np.uint8)  # np.rint rounds half to even
+    encoded = srgb_encode_unit(np.clip(np.asarray(linear, dtype=np.float64), 0.0, 1.0))
+    encoded *= 255.0
+    return np.rint(encoded, out=encoded).astype(np.uint8)  # np.rint rounds half to even
 
 
 def pack_8bit(codes: ArrayLike) -> NDArray[np.int64]:

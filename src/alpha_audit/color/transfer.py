@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["srgb_decode", "srgb_encode"]
+__all__ = ["srgb_decode", "srgb_encode", "srgb_encode_unit"]
 
 # CSS Color 4, 10.2 (lin_sRGB / gam_sRGB).
 _DECODE_BREAK = 0.04045
@@ -39,5 +39,31 @@ def srgb_encode(linear: ArrayLike) -> NDArray[np.float64]:
     """
     v = np.asarray(linear, dtype=np.float64)
     magnitude = np.abs(v)
-    curve = np.sign(v) * ((1 + _OFFSET) * magnitude ** (1 / _GAMMA) - _OFFSET)
-    return np.where(magnitude > _ENCODE_BREAK, curve, v * _LINEAR_SLOPE)
+    # sign(v) * (1.055 |v|^(1/2.4) - 0.055), in place: on large grids the temporaries,
+    # not the power, were most of the cost.  The same operations in the same order.
+    out = np.power(magnitude, 1 / _GAMMA, out=np.empty_like(magnitude))
+    out *= 1 + _OFFSET
+    out -= _OFFSET
+    np.copysign(out, v, out=out)
+    linear_part = magnitude <= _ENCODE_BREAK
+    out[linear_part] = v[linear_part] * _LINEAR_SLOPE
+    return out
+
+
+def srgb_encode_unit(linear: ArrayLike) -> NDArray[np.float64]:
+    """:func:`srgb_encode` of values already in ``[0, 1]`` (bitwise the same), in a new array.
+
+    For the 8-bit quantisation, which clips first: no sign to carry, so two fewer
+    passes over large grids.
+
+    >>> x = np.linspace(0.0, 1.0, 1001)
+    >>> bool(np.array_equal(srgb_encode_unit(x), srgb_encode(x)))
+    True
+    """
+    v = np.asarray(linear, dtype=np.float64)
+    out = np.power(v, 1 / _GAMMA, out=np.empty_like(v))
+    out *= 1 + _OFFSET
+    out -= _OFFSET
+    linear_part = v <= _ENCODE_BREAK
+    out[linear_part] = v[linear_part] * _LINEAR_SLOPE
+    return out
