@@ -38,23 +38,17 @@ def srgb_encode(linear: ArrayLike) -> NDArray[np.float64]:
     0.5
     """
     v = np.asarray(linear, dtype=np.float64)
-    magnitude = np.abs(v)
-    # sign(v) * (1.055 |v|^(1/2.4) - 0.055), in place: on large grids the temporaries,
-    # not the power, were most of the cost.  The same operations in the same order.
-    out = np.power(magnitude, 1 / _GAMMA, out=np.empty_like(magnitude))
-    out *= 1 + _OFFSET
-    out -= _OFFSET
-    np.copysign(out, v, out=out)
-    linear_part = magnitude <= _ENCODE_BREAK
-    out[linear_part] = v[linear_part] * _LINEAR_SLOPE
-    return out
+    # The curve of |v|, signed again: multiplying by the sign is exact, so these are
+    # the formula's own bits (an extended value below -1 encodes below -1).
+    out = srgb_encode_unit(np.abs(v))
+    return np.copysign(out, v, out=out)
 
 
 def srgb_encode_unit(linear: ArrayLike) -> NDArray[np.float64]:
-    """:func:`srgb_encode` of values already in ``[0, 1]`` (bitwise the same), in a new array.
+    """:func:`srgb_encode` of non-negative values (bitwise the same), in a new array.
 
-    For the 8-bit quantisation, which clips first: no sign to carry, so two fewer
-    passes over large grids.
+    For the 8-bit quantisation, which clips first: no sign to carry.  In place,
+    because on large grids the temporaries, not the power, were most of the cost.
 
     >>> x = np.linspace(0.0, 1.0, 1001)
     >>> bool(np.array_equal(srgb_encode_unit(x), srgb_encode(x)))

@@ -559,23 +559,11 @@ class _Engine:
     def fixed_codes(self) -> NDArray[np.int32]:
         """Every row's packed 8-bit output on every canvas at its own alpha: (rows, canvases).
 
-        What a track that does not move ships never depends on the question,
-        so it is computed once (a sixth of the memory of the audit's own
-        reference colours).
+        What a track that does not move ships never depends on the question:
+        it is the row's own output (:attr:`~alpha_audit.rows.AuditResult.output_codes`).
         """
         if self._fixed_codes is None:
-            r = self.result
-            self._fixed_codes = pack_8bit(
-                to_8bit(
-                    composite_paint(
-                        r.sources.reshape(-1, 1, 3),
-                        self.backgrounds[np.newaxis, :, :],
-                        r.alpha.reshape(-1, 1),
-                        r.opacity.reshape(-1, 1),
-                        self.pipeline,
-                    )
-                )
-            ).astype(np.int32)
+            self._fixed_codes = pack_8bit(self.result.output_codes).astype(np.int32)
         return self._fixed_codes
 
     def _near(

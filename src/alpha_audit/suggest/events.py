@@ -26,7 +26,7 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from alpha_audit.color import LUMINANCE_WEIGHTS, srgb_decode, to_8bit
+from alpha_audit.color import LUMINANCE_WEIGHTS, pack_8bit, srgb_decode, to_8bit
 
 __all__ = [
     "BISECTION_TOLERANCE",
@@ -317,8 +317,8 @@ def _timelines(
     still = to_8bit(b).astype(np.int64)[row]
     elements = np.stack(
         [
-            _pack(np.where(moves, at_points, still)),
-            _pack(np.where(moves, between, still)),
+            pack_8bit(np.where(moves, at_points, still)),
+            pack_8bit(np.where(moves, between, still)),
         ],
         axis=1,
     ).reshape(-1)
@@ -327,10 +327,6 @@ def _timelines(
     codes = np.split(elements[keep], np.cumsum(2 * sizes - 1)[:-1])
     points = np.split(values[row, at_first], np.cumsum(sizes)[:-1])
     return list(zip(points, codes, strict=True))
-
-
-def _pack(codes: NDArray[np.int64]) -> NDArray[np.int64]:
-    return (codes[..., 0] << 16) | (codes[..., 1] << 8) | codes[..., 2]
 
 
 def _pick(values: NDArray[np.float64], index: NDArray[np.intp]) -> NDArray[np.float64]:
