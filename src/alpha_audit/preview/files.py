@@ -6,6 +6,7 @@ from collections import deque
 from collections.abc import Callable, Sequence
 from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import dataclass, replace
+from functools import partial
 from pathlib import Path
 
 from alpha_audit.color import GamutPolicy
@@ -165,26 +166,21 @@ def preview_files(
     )
     # Each sheet is compressed on a second thread while the next one is drawn (Pillow's
     # encoder and numpy release the GIL); at most two sheets are held at once.
-    with ThreadPoolExecutor(max_workers=1, thread_name_prefix="alpha-audit-png") as writer:
-        pending: deque[Future[Path]] = deque()
+    pending: deque[Future[Path]] = deque()
+
+    def collect() -> None:
+        written.append(pending.popleft().result())
+        if on_step is not None:
+            on_step()
+
+    with ThreadPoolExecutor(max_workers=1, thread_name_prefix="alpha-audit-sheet") as writer:
+        save = partial(write_sheet, overwrite=overwrite, image_format=image_format)
         for sheet in sheets:
-            pending.append(
-                writer.submit(
-                    write_sheet,
-                    sheet,
-                    out_dir or ".",
-                    overwrite=overwrite,
-                    image_format=image_format,
-                )
-            )
-            while len(pending) > 1:
-                written.append(pending.popleft().result())
-                if on_step is not None:
-                    on_step()
+            pending.append(writer.submit(save, sheet, out_dir or "."))
+            if len(pending) > 1:
+                collect()
         while pending:
-            written.append(pending.popleft().result())
-            if on_step is not None:
-                on_step()
+            collect()
     if html_path is not None:
         page = preview_html(
             replace(theme, canvases=canvases),
