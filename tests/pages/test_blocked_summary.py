@@ -21,6 +21,20 @@ def test_many_hosts_are_cut_to_three_with_a_count() -> None:
     assert "to h0.example, h1.example, h2.example and 2 more hosts (" in line
 
 
-def test_https_tunnels_are_named_by_host_and_port() -> None:
+def test_https_tunnels_are_named_by_host() -> None:
     line = blocked_summary(_blocked("tracker.example:443"))
-    assert "to tracker.example:443 (" in line
+    assert "to tracker.example (" in line
+
+
+def test_one_host_over_http_and_https_is_one_host() -> None:
+    """Chromium's own update check goes out over both (seen on a real Storybook run)."""
+    line = blocked_summary(
+        _blocked("https://update.googleapis.com:443", "http://update.googleapis.com/service/u")
+    )
+    assert line.startswith("2 requests ")
+    assert "to update.googleapis.com (" in line
+
+
+def test_an_unusual_port_is_named() -> None:
+    line = blocked_summary(_blocked("http://cdn.example:8080/x.js", "cdn.example:443"))
+    assert "to cdn.example and cdn.example:8080 (" in line

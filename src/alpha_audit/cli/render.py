@@ -276,10 +276,10 @@ def blocked_summary(blocked: Sequence[BlockedRequest], shown: int = 3) -> str:
     ...                         B("s", "dark", "firefox", "cdn.example:443")])
     >>> line.startswith("3 requests to anything but the pages' server blocked, ")
     True
-    >>> line.endswith("to cdn.example:443 and fonts.example (every one in the JSON report)")
+    >>> line.endswith("to cdn.example and fonts.example (every one in the JSON report)")
     True
     """
-    hosts = sorted({urlsplit(b.url).netloc if "://" in b.url else b.url for b in blocked})
+    hosts = sorted({_host(b.url) for b in blocked})
     named = ", ".join(hosts[:shown])
     if len(hosts) > shown:
         named += f" and {len(hosts) - shown} more hosts"
@@ -290,3 +290,15 @@ def blocked_summary(blocked: Sequence[BlockedRequest], shown: int = 3) -> str:
         f"{len(blocked)} requests to anything but the pages' server blocked, to {named} "
         "(every one in the JSON report)"
     )
+
+
+def _host(url: str) -> str:
+    """The host a blocked request went to, its port only when not the scheme's usual one
+    (an HTTPS tunnel is recorded as ``host:443``, with or without a scheme)."""
+    parts = urlsplit(url if "://" in url else f"//{url}")
+    host = parts.hostname or url
+    try:
+        port = parts.port
+    except ValueError:  # a port that is not a number: name what was recorded
+        return url
+    return host if port in (None, 80, 443) else f"{host}:{port}"
