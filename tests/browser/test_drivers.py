@@ -122,3 +122,60 @@ def test_viewport_and_screenshot_show_the_page_pixel_for_pixel(engine):
             assert np.array_equal(shot, expected), f"{name}: {np.argwhere(shot != expected)[:3]}"
         with pytest.raises(BrowserError, match="viewport 0 x 10"):
             browser.set_viewport(0, 10)
+
+
+def _flaky_engine(failures: int):
+    """A Browser whose first ``failures`` launches fail after starting a real process."""
+    import sys
+    from pathlib import Path
+    from typing import ClassVar
+
+    from alpha_audit.browser.interface import Browser, Installation
+
+    class Flaky(Browser):
+        NAME = LABEL = INSTALL_HINT = "flaky"
+        starts: ClassVar[list[tuple[Path, int, float]]] = []
+
+        @classmethod
+        def find(cls):
+            return Installation("flaky", Path(sys.executable))
+
+        def _start(self):
+            child = self.processes.start([sys.executable, "-c", "import time; time.sleep(60)"])
+            Flaky.starts.append((self.workdir, child.pid, self.timeout))
+            if len(Flaky.starts) <= failures:
+                raise BrowserError("POST /session: timed out")
+
+        def _navigate(self, *args):
+            raise NotImplementedError
+
+        def _evaluate_text(self, expression, timeout, isolated):
+            raise NotImplementedError
+
+        _set_viewport = _screenshot = _shutdown = _navigate
+
+    return Flaky
+
+
+def test_a_launch_that_fails_is_started_again_from_nothing():
+    from alpha_audit.browser.interface import LAUNCH_TIMEOUT
+
+    flaky = _flaky_engine(failures=1)
+    with flaky(timeout=LAUNCH_TIMEOUT * 3) as browser:
+        (first_dir, first_pid, first_wait), (second_dir, _, _) = flaky.starts
+        assert first_dir != second_dir == browser.workdir
+        assert not first_dir.exists() and _groups_gone([first_pid])  # nothing of it is left
+        assert first_wait == LAUNCH_TIMEOUT  # a hanging launch is not waited on for long
+        assert browser.timeout == LAUNCH_TIMEOUT * 3  # pages still get the whole timeout
+
+
+def test_a_launch_that_keeps_failing_raises_its_error_after_the_last_attempt():
+    from alpha_audit.browser.interface import LAUNCH_ATTEMPTS
+
+    flaky = _flaky_engine(failures=LAUNCH_ATTEMPTS)
+    with pytest.raises(BrowserError, match="POST /session: timed out"):
+        flaky(timeout=5)
+    assert len(flaky.starts) == LAUNCH_ATTEMPTS
+    assert [w for w, _, _ in flaky.starts if w.exists()] == []
+    assert [t for _, _, t in flaky.starts] == [5.0] * LAUNCH_ATTEMPTS
+    assert _groups_gone([pid for _, pid, _ in flaky.starts])

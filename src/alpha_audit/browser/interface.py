@@ -57,6 +57,10 @@ _TWO_FRAMES = (
 )
 # PNG, section 5.2 (ISO/IEC 15948).
 _PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+# A launch is tried this many times; each of its calls waits at most LAUNCH_TIMEOUT seconds
+# (or the browser's own timeout, if less).
+LAUNCH_ATTEMPTS = 2
+LAUNCH_TIMEOUT = 60.0
 
 
 @dataclass(frozen=True)
@@ -140,20 +144,31 @@ class Browser(abc.ABC):
         if found is None:
             raise BrowserError(f"{self.LABEL} is not installed: {self.INSTALL_HINT}")
         self.installation = found
-        self.timeout = float(timeout)
         self.options = options or LaunchOptions()
-        self.workdir = Path(tempfile.mkdtemp(prefix=f"alpha-audit-{self.NAME}-"))
-        self.processes = ProcessGroup(self.workdir)
         self.version = ""
         self.scale = 1.0
         self.viewport: tuple[int, int] | None = None  # the last size asked for
-        self._closed = False
-        try:
-            (self.workdir / "tmp").mkdir()
-            self._start()
-        except BaseException:
-            self.close()
-            raise
+        for attempt in range(1, LAUNCH_ATTEMPTS + 1):
+            # Every call of a launch waits at most LAUNCH_TIMEOUT: an engine that hangs
+            # while starting (a CI run once saw WebKitWebDriver's POST /session never
+            # answer) is started again, from nothing, rather than waited on.
+            self.timeout = min(float(timeout), LAUNCH_TIMEOUT)
+            self.workdir = Path(tempfile.mkdtemp(prefix=f"alpha-audit-{self.NAME}-"))
+            self.processes = ProcessGroup(self.workdir)
+            self._closed = False
+            try:
+                (self.workdir / "tmp").mkdir()
+                self._start()
+            except BrowserError:
+                self.close()
+                if attempt == LAUNCH_ATTEMPTS:
+                    raise
+            except BaseException:
+                self.close()
+                raise
+            else:
+                break
+        self.timeout = float(timeout)
 
     def child_env(self, base: dict[str, str] | None = None) -> dict[str, str]:
         """The environment for the engine's programs: temporary files in our folder.
