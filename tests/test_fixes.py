@@ -17,7 +17,12 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from alpha_audit.fixes import nearest_passing_color, smallest_alpha_reaching, with_fixes
+from alpha_audit.fixes import (
+    nearest_passing_color,
+    passes_everywhere,
+    smallest_alpha_reaching,
+    with_fixes,
+)
 from alpha_audit.gate import evaluate
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
 from alpha_audit.policy import Policy
@@ -124,6 +129,25 @@ def passes(c: np.ndarray, canvases: np.ndarray, alphas, threshold: float, loss: 
 hexes = st.integers(0, 0xFFFFFF).map(lambda n: f"#{n:06x}")
 LIGHT = ["#ffffff", "#f6f8fa", "#fff8e1", "#e8eaed", "#dddddd"]
 DARK = ["#000000", "#0d1117", "#1e1e2e", "#202124", "#3a3a3a"]
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    canvases=st.lists(st.sampled_from([*LIGHT, *DARK, "#777777", "#3366cc"]), min_size=1),
+    alphas=st.lists(st.sampled_from([1.0, 0.8, 1.25, 1.6]), min_size=1, max_size=3),
+    seed=st.integers(0, 2**32 - 1),
+)
+def test_passes_everywhere_is_the_reference_on_every_canvas(
+    canvases: list[str], alphas: list[float], seed: int
+) -> None:
+    """Colours dropped after a failing canvas (the hardest canvases are tried first) get
+    the verdict of compositing each colour on every canvas in every style."""
+    rng = np.random.default_rng(seed)
+    colours = np.vstack([rng.uniform(-0.05, 1.05, (3000, 3)), rng.uniform(0, 0.02, (1000, 3))])
+    bgs = np.array([from_hex(c) for c in canvases])
+    only = Policy(rules=frozenset({Rule.BELOW_THRESHOLD}))
+    got = passes_everywhere(colours, bgs, alphas, 3.0, only)
+    assert got.tolist() == passes(colours, bgs, alphas, 3.0, loss=False).tolist()
 
 
 @settings(max_examples=150)
