@@ -218,3 +218,38 @@ def test_the_sets_minimum_at_alpha_1_is_its_own_closest_pair() -> None:
         assert abs(s.set_delta_e_ref - brute) < 1e-9
     doc = check_to_dict(result)
     assert all(abs(s["set_min_delta_e_ref"] - brute) < 1e-9 for s in doc["separation"])
+
+
+def test_json_rows_are_the_row_objects_field_for_field(tmp_path: Path) -> None:
+    """The JSON writer reads the result's columns; rows() makes objects of the same columns.
+    Both must give every row's every field in the same order (multi-paint icons, two sizes,
+    fixed paints with an achromatic hue)."""
+    from alpha_audit.pipeline import render_paints
+    from multipaint import write_multipaint
+
+    theme_path, manifest = write_multipaint(tmp_path, alpha=1.3)
+    iconset = load_iconset(manifest)
+    result = audit(load_theme(theme_path), iconset, render_paints(iconset))
+    doc = json.loads(dumps(check_to_dict(result)))
+    rows = list(result.rows())
+    assert len(doc["rows"]) == len(rows) == len(result.columns()) > 8
+    assert any(r.hue_shift is None for r in rows) and any(r.fixed for r in rows)
+    for written, row in zip(doc["rows"], rows, strict=True):
+        expected = {
+            name: getattr(row, name)
+            for name in written
+            if name not in {"kinds", "sizes", "newly_passes", "newly_fails"}
+        }
+        assert {k: written[k] for k in expected} == expected
+        assert written["kinds"] == list(row.kinds)
+        assert (written["newly_passes"], written["newly_fails"]) == (
+            row.newly_passes,
+            row.newly_fails,
+        )
+        assert written["sizes"] == {
+            str(s): {
+                k: (v if math.isfinite(v) else None)
+                for k, v in (("q50", f.q50), ("full_share", f.full_share), ("contrast", f.contrast))
+            }
+            for s, f in row.sizes.items()
+        }

@@ -28,6 +28,7 @@ from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -69,6 +70,7 @@ __all__ = [
     "Collision",
     "PaintEntry",
     "Row",
+    "RowColumns",
     "Separation",
     "SizeFigures",
     "Summary",
@@ -214,6 +216,43 @@ class Row:
     def newly_fails(self) -> bool:
         """At or above the threshold at alpha = 1, below it at the icon's alpha."""
         return self.passes_ref and not self.passes
+
+
+@dataclass(frozen=True)
+class RowColumns:
+    """The rows of :meth:`AuditResult.rows` as columns: one list per :class:`Row` field, in
+    row order, and per raster size one list per size figure.
+
+    For writers of every row (the JSON report): no object per row until they make one.
+    """
+
+    icon: list[str]
+    paint: list[str]
+    kinds: list[tuple[str, ...]]
+    source: list[str]
+    opacity: list[float]
+    canvas: list[str]
+    background: list[str]
+    alpha: list[float]
+    pipeline: Pipeline
+    output: list[str]
+    contrast_ref: list[float]
+    contrast: list[float]
+    gain: list[float]
+    drift: list[float]
+    hue_shift: list[float | None]
+    passes_ref: list[bool]
+    passes: list[bool]
+    loss: list[bool]
+    contrast_ref_float: list[float]
+    contrast_float: list[float]
+    sizes: tuple[int, ...]
+    q50: list[list[float]]  # [size][row]
+    full_share: list[list[float]]
+    size_contrast: list[list[float]]
+
+    def __len__(self) -> int:
+        return len(self.icon)
 
 
 @dataclass(frozen=True)
@@ -449,45 +488,78 @@ class AuditResult:
         """Closest pair of distinct paints per canvas, computed on first use only."""
         return tuple(_separations(self))
 
+    def columns(self) -> RowColumns:
+        """Every row's figures, column by column, in :meth:`rows` order."""
+        m, p = len(self.theme.canvases), len(self.entries)
+
+        def by_row(a: NDArray[Any]) -> list[Any]:  # (p, m) -> canvas-major, as rows()
+            return np.asarray(a).T.reshape(-1).tolist()
+
+        def per_entry(values: list[Any]) -> list[Any]:
+            return values * m
+
+        def per_canvas(values: list[Any]) -> list[Any]:
+            return [v for v in values for _ in range(p)]
+
+        entries = self.entries
+        hue = by_row(self.hue_shift)
+        return RowColumns(
+            icon=per_entry([e.icon.name for e in entries]),
+            paint=per_entry([e.paint for e in entries]),
+            kinds=per_entry([e.kinds for e in entries]),
+            source=per_entry([e.source for e in entries]),
+            opacity=per_entry([e.opacity for e in entries]),
+            canvas=per_canvas([c.name for c in self.theme.canvases]),
+            background=per_canvas([c.color for c in self.theme.canvases]),
+            alpha=per_entry(self.alpha.tolist()),
+            pipeline=self.pipeline,
+            output=[_hex(c) for c in by_row(pack_8bit(self.output_codes))],
+            contrast_ref=by_row(self.contrast_ref),
+            contrast=by_row(self.contrast),
+            gain=by_row(self.contrast - self.contrast_ref),
+            drift=by_row(self.drift),
+            hue_shift=[None if math.isnan(h) else h for h in hue],
+            passes_ref=by_row(self.passes_ref),
+            passes=by_row(self.passes),
+            loss=by_row(self.loss),
+            contrast_ref_float=by_row(self.contrast_ref_float),
+            contrast_float=by_row(self.contrast_float),
+            sizes=tuple(self.sizes),
+            q50=[per_entry(self.q50[:, k].tolist()) for k in range(len(self.sizes))],
+            full_share=[per_entry(self.full_share[:, k].tolist()) for k in range(len(self.sizes))],
+            size_contrast=[by_row(self.size_contrast[:, :, k]) for k in range(len(self.sizes))],
+        )
+
     def rows(self) -> Iterator[Row]:
         """Rows in stable order: canvas order, then icon order, then paint order."""
-        # Python lists, indexed once per cell: numpy scalar indexing costs ten times more.
-        codes = pack_8bit(self.output_codes).tolist()
-        contrast_ref, contrast = self.contrast_ref.tolist(), self.contrast.tolist()
-        drift, hue, alpha = self.drift.tolist(), self.hue_shift.tolist(), self.alpha.tolist()
-        q50, full_share = self.q50.tolist(), self.full_share.tolist()
-        size_contrast = self.size_contrast.tolist()
-        passes_ref, passes, loss = (a.tolist() for a in (self.passes_ref, self.passes, self.loss))
-        ref_float, now_float = self.contrast_ref_float.tolist(), self.contrast_float.tolist()
-        for j, canvas in enumerate(self.theme.canvases):
-            for p, e in enumerate(self.entries):
-                shift = hue[p][j]
-                yield Row(
-                    icon=e.icon.name,
-                    paint=e.paint,
-                    kinds=e.kinds,
-                    source=e.source,
-                    opacity=e.opacity,
-                    canvas=canvas.name,
-                    background=canvas.color,
-                    alpha=alpha[p],
-                    pipeline=self.pipeline,
-                    output=_hex(codes[p][j]),
-                    contrast_ref=contrast_ref[p][j],
-                    contrast=contrast[p][j],
-                    gain=contrast[p][j] - contrast_ref[p][j],
-                    drift=drift[p][j],
-                    hue_shift=None if math.isnan(shift) else shift,
-                    sizes={
-                        s: SizeFigures(q50[p][k], full_share[p][k], size_contrast[p][j][k])
-                        for k, s in enumerate(self.sizes)
-                    },
-                    passes_ref=passes_ref[p][j],
-                    passes=passes[p][j],
-                    loss=loss[p][j],
-                    contrast_ref_float=ref_float[p][j],
-                    contrast_float=now_float[p][j],
-                )
+        c = self.columns()
+        for n in range(len(c)):
+            yield Row(
+                icon=c.icon[n],
+                paint=c.paint[n],
+                kinds=c.kinds[n],
+                source=c.source[n],
+                opacity=c.opacity[n],
+                canvas=c.canvas[n],
+                background=c.background[n],
+                alpha=c.alpha[n],
+                pipeline=c.pipeline,
+                output=c.output[n],
+                contrast_ref=c.contrast_ref[n],
+                contrast=c.contrast[n],
+                gain=c.gain[n],
+                drift=c.drift[n],
+                hue_shift=c.hue_shift[n],
+                sizes={
+                    s: SizeFigures(c.q50[k][n], c.full_share[k][n], c.size_contrast[k][n])
+                    for k, s in enumerate(c.sizes)
+                },
+                passes_ref=c.passes_ref[n],
+                passes=c.passes[n],
+                loss=c.loss[n],
+                contrast_ref_float=c.contrast_ref_float[n],
+                contrast_float=c.contrast_float[n],
+            )
 
     @cached_property
     def summary(self) -> Summary:

@@ -95,45 +95,65 @@ def _finite(value: float) -> float | None:
     return value if math.isfinite(value) else None
 
 
+def _finite_list(values: list[float]) -> list[float | None]:
+    return [v if math.isfinite(v) else None for v in values]
+
+
 def _rows(result: AuditResult) -> list[dict[str, Any]]:
-    """Per paint x canvas, in :meth:`~alpha_audit.rows.AuditResult.rows` order."""
-    out = Records()
-    for row in result.rows():
-        out.append(
-            {
-                "icon": row.icon,
-                "canvas": row.canvas,
-                "paint": row.paint,
-                "kinds": list(row.kinds),
-                "source": row.source,
-                "opacity": row.opacity,
-                "background": row.background,
-                "alpha": row.alpha,
-                "pipeline": row.pipeline,
-                "output": row.output,
-                "contrast_ref": row.contrast_ref,
-                "contrast": row.contrast,
-                "gain": row.gain,
-                "contrast_ref_float": row.contrast_ref_float,
-                "contrast_float": row.contrast_float,
-                "passes_ref": row.passes_ref,
-                "passes": row.passes,
-                "newly_passes": row.newly_passes,
-                "loss": row.loss,
-                "newly_fails": row.newly_fails,
-                "drift": row.drift,
-                "hue_shift": row.hue_shift,
-                "sizes": {
-                    str(size): {
-                        "q50": _finite(f.q50),
-                        "full_share": _finite(f.full_share),
-                        "contrast": _finite(f.contrast),
-                    }
-                    for size, f in row.sizes.items()
-                },
-            }
+    """Per paint x canvas, in :meth:`~alpha_audit.rows.AuditResult.rows` order, written
+    from the result's columns (no row object is made)."""
+    c = result.columns()
+    sizes = [
+        [
+            {"q50": q, "full_share": f, "contrast": x}
+            for q, f, x in zip(
+                _finite_list(c.q50[k]),
+                _finite_list(c.full_share[k]),
+                _finite_list(c.size_contrast[k]),
+                strict=True,
+            )
+        ]
+        for k in range(len(c.sizes))
+    ]
+    names = [str(s) for s in c.sizes]
+    kinds = {k: list(k) for k in set(c.kinds)}  # one list per distinct value
+    return Records(
+        {
+            "icon": icon,
+            "canvas": canvas,
+            "paint": paint,
+            "kinds": kinds[kind],
+            "source": source,
+            "opacity": opacity,
+            "background": background,
+            "alpha": alpha,
+            "pipeline": c.pipeline,
+            "output": output,
+            "contrast_ref": contrast_ref,
+            "contrast": contrast,
+            "gain": gain,
+            "contrast_ref_float": ref_float,
+            "contrast_float": now_float,
+            "passes_ref": passes_ref,
+            "passes": passes,
+            "newly_passes": passes and not passes_ref,
+            "loss": loss,
+            "newly_fails": passes_ref and not passes,
+            "drift": drift,
+            "hue_shift": hue,
+            "sizes": dict(zip(names, figures, strict=True)),
+        }
+        for (
+            icon, canvas, paint, kind, source, opacity, background, alpha, output,
+            contrast_ref, contrast, gain, ref_float, now_float, passes_ref, passes, loss,
+            drift, hue, figures,
+        ) in zip(
+            c.icon, c.canvas, c.paint, c.kinds, c.source, c.opacity, c.background, c.alpha,
+            c.output, c.contrast_ref, c.contrast, c.gain, c.contrast_ref_float,
+            c.contrast_float, c.passes_ref, c.passes, c.loss, c.drift, c.hue_shift,
+            zip(*sizes, strict=True) if sizes else ((),) * len(c), strict=True,
         )
-    return out
+    )  # fmt: skip
 
 
 def finding_to_dict(finding: Finding, base: Path | None = None) -> dict[str, Any]:
