@@ -88,6 +88,7 @@ REFINE_ROUNDS = 4
 REFINE_RAYS = 24
 BISECTION_STEPS = 48  # along a ray of length <= ~1.2: 1.2 / 2**48 < 1e-14
 _CHUNK = 1 << 15  # colours per vectorised evaluation (bounded memory)
+_ELIMINATE_FROM = 2048  # colours judged at once from which failing ones are dropped early
 # Fixes cost about 0.1 s per failing colour (a suggest question and, for contrast
 # failures, a nearest-colour search).  A brand set can fail thousands of colours at
 # once; the first MAX_FIXED_COLORS per check (audits in order, colours in row order)
@@ -222,11 +223,14 @@ def passes_everywhere(
     out = np.empty(flat.shape[0], dtype=bool)
     step = max(1, _CHUNK // max(1, bgs.shape[0] * a.size))
     screen = shipped(bgs)  # judged as it ships: 8-bit colours on the 8-bit canvas
-    groups = _hardest_first(screen)
+    # Many colours (a search's scan): a colour failing one canvas is not composited on the
+    # others. A few (a bisection step): every canvas at once costs fewer numpy calls.
+    every = [np.arange(bgs.shape[0])]
+    groups = _hardest_first(screen) if flat.shape[0] >= _ELIMINATE_FROM else every
     for start in range(0, flat.shape[0], step):
         chunk = flat[start : start + step]
         ok = np.all((chunk >= 0.0) & (chunk <= 1.0), axis=-1)
-        for group in groups:  # a colour failing one canvas is not composited on the others
+        for group in groups:
             alive = np.flatnonzero(ok)
             if alive.size == 0:
                 break
