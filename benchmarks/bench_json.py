@@ -1,9 +1,9 @@
 """Benchmark the check JSON report on 300 icons x 17 canvases (5,100 rows; issue 10).
 
-The straightforward version is what the report did before: ``dataclasses.asdict``
-on every row and ``json.dumps(..., indent=2)``, which falls back to the
-pure-Python encoder.  Ours: rows copied field by field and each flat record
-encoded by json's C encoder (:func:`alpha_audit.render.common.dumps`).  Both
+The straightforward version: a ``Row`` object and ``dataclasses.asdict`` for every
+row, and ``json.dumps(..., indent=2)``, which falls back to the pure-Python encoder.
+Ours: each row's record made from the result's columns (no object per row) and each
+flat record encoded by json's C encoder (:func:`alpha_audit.render.common.dumps`).  Both
 documents must parse to the same data.  Run as a script:
 
     .venv/bin/python benchmarks/bench_json.py
@@ -12,9 +12,11 @@ documents must parse to the same data.  Run as a script:
 from __future__ import annotations
 
 import json
+import math
 import time
 from dataclasses import asdict
 from pathlib import Path
+from typing import Any
 
 from alpha_audit.gate import evaluate
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
@@ -23,7 +25,7 @@ from alpha_audit.render import json as render_json
 from alpha_audit.render.common import RenderOptions
 from alpha_audit.render.json import render_report, report_to_dict
 from alpha_audit.results import CheckReport
-from alpha_audit.rows import audit
+from alpha_audit.rows import Row, audit
 
 
 def report(icons: int = 300, canvases: int = 17) -> CheckReport:
@@ -42,14 +44,26 @@ def report(icons: int = 300, canvases: int = 17) -> CheckReport:
     return CheckReport((result,), evaluate([result], Policy()))
 
 
+def _row_dict(row: Row) -> dict[str, Any]:
+    """One row as the report writes it, from ``asdict`` (NaN size figures: null)."""
+    doc = asdict(row)
+    doc["kinds"] = list(row.kinds)
+    doc["newly_passes"], doc["newly_fails"] = row.newly_passes, row.newly_fails
+    doc["sizes"] = {
+        str(size): {k: (v if math.isfinite(v) else None) for k, v in asdict(f).items()}
+        for size, f in row.sizes.items()
+    }
+    return doc
+
+
 def straightforward(r: CheckReport) -> str:
-    """The same document built with ``asdict`` per row, encoded with ``indent=2``."""
-    original = render_json.records
-    render_json.records = lambda rows: [asdict(row) for row in rows]
+    """The same document with a ``Row`` and ``asdict`` per row, encoded with ``indent=2``."""
+    original = render_json._rows
+    render_json._rows = lambda result: [_row_dict(row) for row in result.rows()]
     try:
         doc = report_to_dict(r)
     finally:
-        render_json.records = original
+        render_json._rows = original
     return json.dumps(doc, indent=2, allow_nan=False, ensure_ascii=False) + "\n"
 
 
