@@ -701,6 +701,9 @@ class _Engine:
         assert rule is not None
         own = self.track_segments(tracks, mv, [j], a_lo, a_hi)
         fixed, fixed_codes = self._near(tracks, np.concatenate([c for _, c in own]), j)
+        labels = tracks.label[mv]
+        if fixed.size == 0 and bool((labels == labels[0]).all()):
+            return None  # one paint alone never collides (most per-colour questions, canvases)
         points = np.unique(np.concatenate([p for p, _ in own]))  # every event of canvas j
         last = 2 * (points.size - 1)  # global elements 0..last: point, gap, point, ...
         seg_track, seg_lo, seg_hi, seg_code = [], [], [], []
