@@ -704,25 +704,27 @@ class _Engine:
         labels = tracks.label[mv]
         if fixed.size == 0 and bool((labels == labels[0]).all()):
             return None  # one paint alone never collides (most per-colour questions, canvases)
-        points = np.unique(np.concatenate([p for p, _ in own]))  # every event of canvas j
+        own_points = np.concatenate([p for p, _ in own])  # track by track
+        points = np.unique(own_points)  # every event of canvas j
         last = 2 * (points.size - 1)  # global elements 0..last: point, gap, point, ...
-        seg_track, seg_lo, seg_hi, seg_code = [], [], [], []
-        for t, (p, codes) in zip(mv, own, strict=True):
-            g = 2 * np.searchsorted(points, p)  # this track's points as global elements
-            lo = np.empty(codes.size, dtype=np.int64)
-            hi = np.empty(codes.size, dtype=np.int64)
-            lo[0::2], hi[0::2] = g, g
-            lo[1::2], hi[1::2] = g[:-1] + 1, g[1:] - 1
-            seg_track.append(np.full(codes.size, t))
-            seg_lo.append(lo)
-            seg_hi.append(hi)
-            seg_code.append(codes)
-        seg_track.append(fixed)
-        seg_lo.append(np.zeros(fixed.size, dtype=np.int64))
-        seg_hi.append(np.full(fixed.size, last, dtype=np.int64))
-        seg_code.append(fixed_codes)
-        track = np.concatenate(seg_track)
-        lo, hi, code = (np.concatenate(x) for x in (seg_lo, seg_hi, seg_code))
+        # Each track's elements alternate point, gap, point ...: a point is one global
+        # element, a gap the elements strictly between its two points.
+        n_points = np.array([p.size for p, _ in own])
+        n_codes = 2 * n_points - 1
+        g = 2 * np.searchsorted(points, own_points)  # the tracks' points as global elements
+        track_start = np.cumsum(n_codes) - n_codes  # each track's first code
+        point_start = np.cumsum(n_points) - n_points  # each track's first point
+        at = np.repeat(track_start - 2 * point_start, n_points) + 2 * np.arange(g.size)
+        lo = np.empty(int(n_codes.sum()), dtype=np.int64)
+        hi = np.empty_like(lo)
+        lo[at], hi[at] = g, g
+        inner = np.ones(g.size, dtype=bool)
+        inner[np.cumsum(n_points) - 1] = False  # a track's last point has no gap after it
+        lo[at[inner] + 1], hi[at[inner] + 1] = g[inner] + 1, g[1:][inner[:-1]] - 1
+        track = np.concatenate([np.repeat(mv, n_codes), fixed])
+        lo = np.concatenate([lo, np.zeros(fixed.size, dtype=np.int64)])
+        hi = np.concatenate([hi, np.full(fixed.size, last, dtype=np.int64)])
+        code = np.concatenate([*(c for _, c in own), fixed_codes])
         candidates = _shared_code_starts(lo, hi, code)
         if candidates.size == 0:
             return None
