@@ -195,7 +195,24 @@ def pairs_below(
     order = np.argsort(z, kind="stable")
     zs = z[order]
     radius = level * (1.0 + _PRUNE_SLACK)
-    found_a, found_b, found_d = [], [], []
+    found_a: list[NDArray[np.intp]] = []
+    found_b: list[NDArray[np.intp]] = []
+    found_d: list[NDArray[np.float64]] = []
+    waiting: list[tuple[NDArray[np.intp], NDArray[np.intp]]] = []  # pairs not yet measured
+    held = 0
+
+    def measure() -> None:
+        # One distance call for the pairs of several offsets: a call costs more than a pair.
+        lo = np.concatenate([w[0] for w in waiting])
+        hi = np.concatenate([w[1] for w in waiting])
+        waiting.clear()
+        for start in range(0, lo.size, chunk):
+            values = np.asarray(distance(lo[start : start + chunk], hi[start : start + chunk]))
+            below = values < level
+            found_a.append(lo[start : start + chunk][below])
+            found_b.append(hi[start : start + chunk][below])
+            found_d.append(values[below])
+
     for d in range(1, k):
         i = np.arange(k - d)
         near = zs[i + d] - zs[i] <= radius
@@ -205,17 +222,18 @@ def pairs_below(
         if lab is not None:
             differ = lab[a] != lab[b]
             a, b = a[differ], b[differ]
-        lo, hi = np.minimum(a, b), np.maximum(a, b)
-        for start in range(0, lo.size, chunk):
-            values = np.asarray(distance(lo[start : start + chunk], hi[start : start + chunk]))
-            below = values < level
-            found_a.append(lo[start : start + chunk][below])
-            found_b.append(hi[start : start + chunk][below])
-            found_d.append(values[below])
+        waiting.append((np.minimum(a, b), np.maximum(a, b)))
+        held += a.size
+        if held >= chunk:
+            measure()
+            held = 0
+    if waiting:
+        measure()
     if not found_a:
         empty = np.zeros(0, dtype=np.intp)
         return empty, empty, np.zeros(0)
-    first, second, values = (np.concatenate(x) for x in (found_a, found_b, found_d))
+    first, second = np.concatenate(found_a), np.concatenate(found_b)
+    values = np.concatenate(found_d)
     order2 = np.lexsort((second, first))
     return first[order2], second[order2], values[order2]
 
