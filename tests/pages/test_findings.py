@@ -212,3 +212,29 @@ def test_below_threshold_is_off_in_check_and_fails_in_render() -> None:
     assert RENDER_POLICY.level(Rule.BELOW_THRESHOLD) is Level.FAIL
     assert RENDER_POLICY.level(Rule.RENDER_DRIFT) is Level.WARN
     assert Policy().level(Rule.RENDER_DRIFT) is Level.OFF
+
+
+def test_the_table_is_a_tree_of_story_state_and_icon_with_every_figure_whole(manifest) -> None:
+    """At 80 columns a long story id and state keep their own lines; figures are never cut."""
+    story = "design-system-components-navigation--toolbar-with-overflow-menu"
+    paints = [
+        paint(source=story, state="theme:dark", icon="triangle-alert",
+              drawn="#6e1a1f", behind="#0d1117", contrast_worst=1.63, contrast_median=1.65),
+        paint(source=story, state="theme:dark", icon="bell"),
+        paint(source=story, state="theme:light", icon="bell"),
+        paint(icon="triangle-alert"),
+    ]  # fmt: skip
+    report = judge_pages(_result(*paints), RENDER_POLICY, manifest, fixes=False)
+    text = RenderFormat.TABLE.renderer()(report, RenderOptions(width=80))
+    lines = text.splitlines()
+    lines = lines[: next(k for k, line in enumerate(lines) if "page states" in line)]
+    assert max(len(line) for line in lines) <= 80  # the table (findings' lines follow it)
+    names = [line.split("  #")[0].strip() for line in lines if line.strip()]
+    tree = [n for n in names if n in {"theme:light", "theme:dark", "bell", "triangle-alert",
+                                       "icons--alert"}]  # fmt: skip
+    assert tree == ["theme:dark", "triangle-alert", "bell", "theme:light",
+                    "bell", "icons--alert", "theme:light", "triangle-alert"]  # fmt: skip
+    first = next(line for line in lines if "#6e1a1f" in line)
+    assert first.split() == ["triangle-alert", "#6e1a1f", "#0d1117", "1.63", "1.65", "5.36",
+                             "5.36", "0.00"]  # fmt: skip
+    assert story in "".join(line.strip() for line in lines)  # wrapped, never cut

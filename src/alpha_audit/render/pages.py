@@ -22,6 +22,7 @@ from pathlib import Path
 from typing import Any
 
 from rich import box
+from rich.text import Text
 
 from alpha_audit.findings import Finding
 from alpha_audit.pages.measured import MeasuredPaint
@@ -133,16 +134,23 @@ def _verdict(report: PageReport) -> str:
 
 
 def render_table(report: PageReport, options: RenderOptions) -> str:
-    """Every measured paint, one row each, then the counts and the gate's verdict."""
+    """Every measured paint, one row each, as a tree in one name column (story or page,
+    then state, then icon: a narrow terminal wraps names least), then the counts and the
+    gate's verdict."""
     result = report.result
-    rows = []
+    rows: list[tuple[str | Text, ...]] = []
+    source = state = None
     for p in result.paints:
+        if p.source != source:
+            rows.append((Text(p.source, style="bold"), *[""] * 7))
+            source, state = p.source, None
+        if p.state != state:
+            rows.append(("  " + p.state, *[""] * 7))
+            state = p.state
         linear, css = p.prediction("linear"), p.prediction("css")
         rows.append(
             (
-                p.source,
-                p.state,
-                p.icon or p.dom_path.rsplit(" > ", 1)[-1],
+                "    " + (p.icon or p.dom_path.rsplit(" > ", 1)[-1]),
                 p.drawn or "-",
                 p.behind or "-",
                 _figure(p.contrast_worst),
@@ -152,7 +160,7 @@ def render_table(report: PageReport, options: RenderOptions) -> str:
                 _figure(p.render_drift),
             )
         )
-    columns = [name_column("source", 8), name_column("state", 5), name_column("icon", 6)]
+    columns = [name_column("source / state / icon", 12)]
     columns += [number_column(h, "left") for h in ("drawn", "behind")]
     columns += [number_column(h) for h in ("worst", "median", "linear", "css", "drift")]
     table = fitted_table(columns, rows, box=box.SIMPLE_HEAD, pad_edge=False)
