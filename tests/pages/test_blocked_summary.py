@@ -38,3 +38,22 @@ def test_one_host_over_http_and_https_is_one_host() -> None:
 def test_an_unusual_port_is_named() -> None:
     line = blocked_summary(_blocked("http://cdn.example:8080/x.js", "cdn.example:443"))
     assert "to cdn.example and cdn.example:8080 (" in line
+
+
+def test_chromium_s_own_hosts_are_said_to_be_its_own() -> None:
+    """A page that requests nothing still shows Chromium's update and sign-in checks."""
+    line = blocked_summary(
+        _blocked("https://update.googleapis.com:443", "https://accounts.google.com:443")
+    )
+    assert line.endswith(
+        "to accounts.google.com and update.googleapis.com (every one in the JSON report; "
+        "Chromium asks accounts.google.com and update.googleapis.com by itself, whatever the page)"
+    )
+
+
+def test_a_host_another_engine_asked_is_not_called_chromium_s_own() -> None:
+    firefox = BlockedRequest("stories/a", "dark", "firefox", "https://accounts.google.com/x")
+    line = blocked_summary([*_blocked("https://update.googleapis.com:443"), firefox])
+    assert "Chromium asks update.googleapis.com by itself" in line
+    assert "asks accounts" not in line and "and update.googleapis.com by itself" not in line
+    assert "by itself" not in blocked_summary(_blocked("https://fonts.example/a.css"))

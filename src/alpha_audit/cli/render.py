@@ -267,6 +267,13 @@ def render_command(
     return ExitStatus.OK if exit_zero else ExitStatus.GATE_FAILED
 
 
+# Hosts an engine asks by itself despite its flags (Debian's Chromium 156: the component
+# updater and the sign-in check), so a page that requests nothing still shows them.
+_ENGINES_OWN: dict[str, frozenset[str]] = {
+    "chromium": frozenset({"update.googleapis.com", "accounts.google.com"}),
+}
+
+
 def blocked_summary(blocked: Sequence[BlockedRequest], shown: int = 3) -> str:
     """The stderr line for the requests a run refused: how many, and to which hosts.
 
@@ -280,16 +287,28 @@ def blocked_summary(blocked: Sequence[BlockedRequest], shown: int = 3) -> str:
     True
     """
     hosts = sorted({_host(b.url) for b in blocked})
-    named = ", ".join(hosts[:shown])
-    if len(hosts) > shown:
-        named += f" and {len(hosts) - shown} more hosts"
-    elif len(hosts) > 1:
-        head, _, last = named.rpartition(", ")
-        named = f"{head} and {last}"
-    return (
-        f"{len(blocked)} requests to anything but the pages' server blocked, to {named} "
-        "(every one in the JSON report)"
+    # A host every request to which came from an engine that asks it by itself.
+    own = sorted(
+        host
+        for host in hosts
+        if all(host in _ENGINES_OWN.get(b.engine, ()) for b in blocked if _host(b.url) == host)
     )
+    tail = f"; Chromium asks {_and(own)} by itself, whatever the page" if own else ""
+    return (
+        f"{len(blocked)} requests to anything but the pages' server blocked, to "
+        f"{_and(hosts, shown)} (every one in the JSON report{tail})"
+    )
+
+
+def _and(names: Sequence[str], shown: int = 3) -> str:
+    """``a``, ``a and b``, ``a, b and c``, or the first ``shown`` and a count of the rest."""
+    named = ", ".join(names[:shown])
+    if len(names) > shown:
+        return named + f" and {len(names) - shown} more hosts"
+    if len(names) > 1:
+        head, _, last = named.rpartition(", ")
+        return f"{head} and {last}"
+    return named
 
 
 def _host(url: str) -> str:
