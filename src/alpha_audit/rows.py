@@ -516,7 +516,7 @@ class AuditResult:
             output=[_hex(c) for c in by_row(pack_8bit(self.output_codes))],
             contrast_ref=by_row(self.contrast_ref),
             contrast=by_row(self.contrast),
-            gain=by_row(self.contrast - self.contrast_ref),
+            gain=by_row(self.gain),
             drift=by_row(self.drift),
             hue_shift=[None if math.isnan(h) else h for h in hue],
             passes_ref=by_row(self.passes_ref),

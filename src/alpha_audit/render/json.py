@@ -95,10 +95,6 @@ def _finite(value: float) -> float | None:
     return value if math.isfinite(value) else None
 
 
-def _finite_list(values: list[float]) -> list[float | None]:
-    return [v if math.isfinite(v) else None for v in values]
-
-
 def _rows(result: AuditResult) -> list[dict[str, Any]]:
     """Per paint x canvas, in :meth:`~alpha_audit.rows.AuditResult.rows` order, written
     from the result's columns (no row object is made)."""
@@ -107,9 +103,9 @@ def _rows(result: AuditResult) -> list[dict[str, Any]]:
         [
             {"q50": q, "full_share": f, "contrast": x}
             for q, f, x in zip(
-                _finite_list(c.q50[k]),
-                _finite_list(c.full_share[k]),
-                _finite_list(c.size_contrast[k]),
+                map(_finite, c.q50[k]),
+                map(_finite, c.full_share[k]),
+                map(_finite, c.size_contrast[k]),
                 strict=True,
             )
         ]
