@@ -243,6 +243,8 @@ class RowColumns:
     hue_shift: list[float | None]
     passes_ref: list[bool]
     passes: list[bool]
+    newly_passes: list[bool]
+    newly_fails: list[bool]
     loss: list[bool]
     contrast_ref_float: list[float]
     contrast_float: list[float]
@@ -521,6 +523,8 @@ class AuditResult:
             hue_shift=[None if math.isnan(h) else h for h in hue],
             passes_ref=by_row(self.passes_ref),
             passes=by_row(self.passes),
+            newly_passes=by_row(self.newly_passes),
+            newly_fails=by_row(self.newly_fails),
             loss=by_row(self.loss),
             contrast_ref_float=by_row(self.contrast_ref_float),
             contrast_float=by_row(self.contrast_float),

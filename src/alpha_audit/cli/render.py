@@ -18,7 +18,7 @@ from urllib.parse import urlsplit
 import typer
 
 from alpha_audit import ranges
-from alpha_audit.browser import COLOR_SCHEMES
+from alpha_audit.browser import COLOR_SCHEMES, engine_class
 from alpha_audit.cli.console import progress_bar, stderr_note
 from alpha_audit.cli.options import (
     ARGS,
@@ -287,13 +287,19 @@ def blocked_summary(blocked: Sequence[BlockedRequest], shown: int = 3) -> str:
     True
     """
     hosts = sorted({_host(b.url) for b in blocked})
-    # A host every request to which came from an engine that asks it by itself.
-    own = sorted(
-        host
-        for host in hosts
-        if all(host in _ENGINES_OWN.get(b.engine, ()) for b in blocked if _host(b.url) == host)
+    engines: dict[str, set[str]] = {}  # each host's engines
+    for b in blocked:
+        engines.setdefault(_host(b.url), set()).add(b.engine)
+    # Per engine, the hosts that it alone asked and that it asks by itself.
+    own: dict[str, list[str]] = {}
+    for host in hosts:
+        (engine, *others) = engines[host]
+        if not others and host in _ENGINES_OWN.get(engine, ()):
+            own.setdefault(engine, []).append(host)
+    tail = "".join(
+        f"; {engine_class(engine).LABEL} asks {_and(names)} by itself, whatever the page"
+        for engine, names in sorted(own.items())
     )
-    tail = f"; Chromium asks {_and(own)} by itself, whatever the page" if own else ""
     return (
         f"{len(blocked)} requests to anything but the pages' server blocked, to "
         f"{_and(hosts, shown)} (every one in the JSON report{tail})"

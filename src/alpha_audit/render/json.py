@@ -132,21 +132,22 @@ def _rows(result: AuditResult) -> list[dict[str, Any]]:
             "contrast_float": now_float,
             "passes_ref": passes_ref,
             "passes": passes,
-            "newly_passes": passes and not passes_ref,
+            "newly_passes": newly_passes,
             "loss": loss,
-            "newly_fails": passes_ref and not passes,
+            "newly_fails": newly_fails,
             "drift": drift,
             "hue_shift": hue,
             "sizes": dict(zip(names, figures, strict=True)),
         }
         for (
             icon, canvas, paint, kind, source, opacity, background, alpha, output,
-            contrast_ref, contrast, gain, ref_float, now_float, passes_ref, passes, loss,
-            drift, hue, figures,
+            contrast_ref, contrast, gain, ref_float, now_float, passes_ref, passes,
+            newly_passes, loss, newly_fails, drift, hue, figures,
         ) in zip(
             c.icon, c.canvas, c.paint, c.kinds, c.source, c.opacity, c.background, c.alpha,
             c.output, c.contrast_ref, c.contrast, c.gain, c.contrast_ref_float,
-            c.contrast_float, c.passes_ref, c.passes, c.loss, c.drift, c.hue_shift,
+            c.contrast_float, c.passes_ref, c.passes, c.newly_passes, c.loss, c.newly_fails,
+            c.drift, c.hue_shift,
             zip(*sizes, strict=True) if sizes else ((),) * len(c), strict=True,
         )
     )  # fmt: skip

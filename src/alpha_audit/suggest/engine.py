@@ -460,13 +460,12 @@ class _Engine:
         shape = (*floor.shape, 3)  # cells index every axis, sizes included
         s = np.broadcast_to(self.result.sources.reshape(p, 1, *([1] * extra), 3), shape)
         b = np.broadcast_to(self.backgrounds.reshape(1, m, *([1] * extra), 3), shape)
-        bound, _ = first_in_luminance_band(s, b, lo_c, hi_c, ALPHA_LO, self.a_hi)
+        pieces = luminance_band_pieces(s, b, lo_c, hi_c, ALPHA_LO, self.a_hi)
+        bound, _ = first_in_luminance_band(s, b, lo_c, hi_c, ALPHA_LO, self.a_hi, pieces=pieces)
         # Where the float luminance is in the widened band at all: at most one interval
         # per linear piece of Y(a); what ships can be unsafe nowhere else.
         windows = np.full((*floor.shape, 4, 2), [np.inf, -np.inf])
-        for w, (p_, q_, lower, upper) in enumerate(
-            luminance_band_pieces(s, b, lo_c, hi_c, ALPHA_LO, self.a_hi)
-        ):
+        for w, (p_, q_, lower, upper) in enumerate(pieces):
             start_w, end_w = np.maximum(lower, p_), np.minimum(upper, q_)
             meets = (q_ >= p_) & (start_w <= end_w)
             windows[..., w, 0] = np.where(meets, start_w, np.inf)

@@ -172,6 +172,8 @@ def first_in_luminance_band(
     y_hi: ArrayLike,
     a_lo: float,
     a_hi: float,
+    *,
+    pieces: list[tuple[NDArray[np.float64], ...]] | None = None,
 ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
     """Infimum of ``{a in [a_lo, a_hi] : y_lo < Y(a) < y_hi}`` and whether it is attained.
 
@@ -179,7 +181,8 @@ def first_in_luminance_band(
     ``background`` broadcast with channels last, the bands over the leading
     shape.  The infimum is ``nan`` when the set is empty.  Because the band is
     open and ``Y`` continuous, the set is open in ``[a_lo, a_hi]`` and its
-    infimum is attained only at ``a_lo`` itself.
+    infimum is attained only at ``a_lo`` itself.  ``pieces``: what
+    :func:`luminance_band_pieces` gives for the same arguments, if the caller has it.
 
     >>> # Paper, Section 4: sRGB (0, 0, 0.8125) on yellow loses contrast as soon as a > 1.
     >>> from alpha_audit.color import contrast_ratio, relative_luminance, srgb_decode
@@ -191,7 +194,8 @@ def first_in_luminance_band(
     """
     s, b, lo, hi, shape = _broadcast_band(source, background, y_lo, y_hi)
     d = s - b
-    pieces = luminance_band_pieces(s, b, lo, hi, a_lo, a_hi)
+    if pieces is None:
+        pieces = luminance_band_pieces(s, b, lo, hi, a_lo, a_hi)
     start = np.full(shape, np.inf)
     for p, q, lower, upper in pieces:
         hit = (q > p) & (lower < q) & (upper > p) & (lower < upper)
