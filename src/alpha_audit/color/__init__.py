@@ -38,6 +38,7 @@ from alpha_audit.color.metrics import (
     contrast_ratio,
     delta_e_2000,
     delta_e_2000_lab,
+    judged_contrast,
     linear_to_lab,
     relative_luminance,
 )
@@ -89,6 +90,7 @@ __all__ = [
     "full_share",
     "hex_to_linear",
     "hue_shift",
+    "judged_contrast",
     "linear_to_hex",
     "linear_to_lab",
     "linear_to_oklch",
