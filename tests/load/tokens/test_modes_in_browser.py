@@ -31,6 +31,8 @@ from alpha_audit.browser import Chromium
 from alpha_audit.load.tokens import load_token_modes, token_color
 from alpha_audit.load.tokens.model import ModeConditions, TokenModes
 
+from .test_css_modes import MINIMAL
+
 pytestmark = pytest.mark.xdist_group("token-packages")
 REPO = Path(__file__).resolve().parents[3]
 
@@ -239,5 +241,16 @@ def test_every_colour_of_every_mode_is_what_chromium_computes(
         f"{case}: {len(modes.modes)} modes ({result.modes} with aliases), "
         f"{result.exact} / {result.colours} colours exact"
     )
+    assert result.wrong == []
+    assert result.exact == result.colours > 0
+
+
+@pytest.mark.parametrize("case", sorted(MINIMAL))
+def test_minimal_sheets_are_what_chromium_computes(
+    case: str, chromium: Chromium, tmp_path: Path
+) -> None:
+    sheet = tmp_path / f"{case}.css"
+    sheet.write_text(MINIMAL[case][0], encoding="utf-8")
+    _, result = compare(chromium, sheet)
     assert result.wrong == []
     assert result.exact == result.colours > 0

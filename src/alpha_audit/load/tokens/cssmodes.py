@@ -74,13 +74,16 @@ _Side = tuple[frozenset[str], tuple[tuple[str, str], ...]]
 class Item:
     """One selector of a selector list: its tree, specificity and least states.
 
-    ``states`` holds ``(root side, body side)`` pairs; ``keys`` the class and
-    attribute names each needs (to find, for a state, the items that may match).
+    ``states`` holds ``(root side, body side)`` pairs and ``words`` the class
+    names and attribute values of each in selector order (a mode's name);
+    ``keys`` the class and attribute names each needs (to find, for a state,
+    the items that may match).
     """
 
     tree: Any
     specificity: tuple[int, int, int]
     states: tuple[tuple[_Side, _Side], ...]
+    words: tuple[tuple[str, ...], ...]
 
     @property
     def keys(self) -> tuple[frozenset[str], ...]:
@@ -202,7 +205,8 @@ def _host_argument(simple: Any) -> list[Any] | None:
 
 
 # ------------------------------------------------------------ least states
-_Least = tuple[frozenset[str], tuple[tuple[str, str], ...], str]  # classes, attributes, element
+# classes, attributes, element ("html", "body" or "any") and the names in selector order
+_Least = tuple[frozenset[str], tuple[tuple[str, str], ...], str, tuple[str, ...]]
 
 
 def analyse(selector: Any) -> Item | None:
@@ -211,15 +215,19 @@ def analyse(selector: Any) -> Item | None:
         return None
     tree = selector.parsed_tree
     states: list[tuple[_Side, _Side]] = []
+    words: list[tuple[str, ...]] = []
     empty: _Side = (frozenset(), ())
-    for classes, attributes, on in _least(tree):
+    for classes, attributes, on, named in _least(tree):
         # A condition of an item that names no element (".dark") goes on the root.
-        side: _Side = (classes, attributes)
+        side: _Side = (classes, tuple(sorted(attributes)))
         state = (empty, side) if on == "body" else (side, empty)
         html, body = state_elements(least_conditions(state))
         if matches(tree, body if on == "body" else html) and state not in states:
             states.append(state)
-    return Item(tree, _specificity(selector), tuple(states)) if states else None
+            words.append(named)
+    if not states:
+        return None
+    return Item(tree, _specificity(selector), tuple(states), tuple(words))
 
 
 def least_conditions(state: tuple[_Side, _Side]) -> ModeConditions:
@@ -234,13 +242,15 @@ def _least(tree: Any) -> list[_Least]:
 
     if not isinstance(tree, sel.CompoundSelector):
         return []
-    alternatives: list[tuple[frozenset[str], dict[str, str], str]] = [(frozenset(), {}, "any")]
+    alternatives: list[tuple[frozenset[str], dict[str, str], str, tuple[str, ...]]] = [
+        (frozenset(), {}, "any", ())
+    ]
     for simple in tree.simple_selectors:
         options = _least_simple(simple)
         if options is None:
             return []
         merged = []
-        for (classes, attrs, on), (c2, a2, on2) in product(alternatives, options):
+        for (classes, attrs, on, named), (c2, a2, on2, n2) in product(alternatives, options):
             where = on if on2 == "any" else on2 if on in ("any", on2) else None
             if where is None:
                 continue  # html and body at once
@@ -248,10 +258,11 @@ def _least(tree: Any) -> list[_Least]:
             for k, v in a2:
                 if joined.get(k, "") == "":  # a value beats mere presence ([data-x])
                     joined[k] = v
-            merged.append((classes | c2, joined, where))
+            merged.append((classes | c2, joined, where, named + n2))
         alternatives = merged[:_MAX_ALTERNATIVES]
     return [
-        (c, tuple(sorted(a.items())), "html" if on == "any" else on) for c, a, on in alternatives
+        (c, tuple(a.items()), "html" if on == "any" else on, named)
+        for c, a, on, named in alternatives
     ]
 
 
@@ -261,17 +272,20 @@ def _least_simple(simple: Any) -> list[_Least] | None:
 
     if isinstance(simple, sel.LocalNameSelector):
         tag = simple.lower_local_name
-        return [(frozenset(), (), tag)] if tag in ("html", "body") else None
+        return [(frozenset(), (), tag, ())] if tag in ("html", "body") else None
     if isinstance(simple, sel.ClassSelector):
-        return [(frozenset({str(simple.class_name)}), (), "any")]
+        name = str(simple.class_name)
+        return [(frozenset({name}), (), "any", (name,))]
     if isinstance(simple, sel.AttributeSelector):
         name = str(simple.lower_name)
         if not name.startswith("data-"):
             return None  # [role=search], [type=checkbox], [dir=rtl]: elements, not modes
-        value = "" if simple.operator is None else str(simple.value)
-        return [(frozenset(), ((name, value),), "any")]
+        if simple.operator is None:
+            return [(frozenset(), ((name, ""),), "any", ())]  # presence: no name of a mode
+        return [(frozenset(), ((name, str(simple.value)),), "any", (str(simple.value),))]
     if isinstance(simple, sel.PseudoClassSelector):
-        return [(frozenset(), (), "html")] if simple.name in ("root", "host", "scope") else None
+        root = simple.name in ("root", "host", "scope")
+        return [(frozenset(), (), "html", ())] if root else None
     if isinstance(simple, sel.FunctionalPseudoClassSelector):
         inner = _host_argument(simple) if simple.name == "host" else None
         found = [x for tree in inner or [] for x in _least(tree) if x[2] == "html"]
@@ -279,7 +293,8 @@ def _least_simple(simple: Any) -> list[_Least] | None:
     if isinstance(simple, sel.MatchesAnySelector | sel.SpecificityAdjustmentSelector):
         return [x for tree in _trees(simple.selector_list) for x in _least(tree)] or None
     if isinstance(simple, sel.NegationSelector | sel.NamespaceSelector):
-        return [(frozenset(), (), "any")]  # :not() asks for an absence: the least state has none
+        # :not() asks for an absence: the least state has none of it
+        return [(frozenset(), (), "any", ())]
     return None
 
 

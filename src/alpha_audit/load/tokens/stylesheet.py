@@ -629,13 +629,22 @@ def _modes(p: Path) -> TokenModes:
     aliases: dict[str, str] = {}
     same: dict[tuple[Any, ...], str] = {}  # every computed value -> the first mode with them
     wheres: dict[str, str] = {}
-    for state, first in states.items():
+    kept: dict[ModeConditions, tuple[_Part, tuple[str, ...], dict[str, Token]]] = {}
+    for state, (first, words) in states.items():
         tokens = default if state == base else cascade.resolve(state, paths)
-        if not cascade.sets_colour(state, tokens, default):
-            continue  # rules that set no colour (sizes, fonts) are no mode
-        name = _mode_name(state, conditions)
+        if cascade.sets_colour(state, tokens, default):  # else sizes, fonts: no mode
+            kept[state] = (first, words, tokens)
+    # States named by their own rules first, then the scheme and P3 variants.
+    named: dict[ModeConditions, str] = {}
+    taken: set[str] = set()
+    for state in sorted(kept, key=lambda s: s.scheme == "dark" or s.p3):
+        first, words, _ = kept[state]
+        named[state] = _mode_name(state, words, taken)
+        taken.add(named[state])
         line = first.decls[0].line if first.decls else None
-        check_name(name, path=p, line=line, what="mode name")
+        check_name(named[state], path=p, line=line, what="mode name")
+    for state, (_, _, tokens) in kept.items():
+        name = named[state]
         conditions[name] = state
         if state != base:
             wheres[name] = "; ".join(dict.fromkeys(part.where for part in cascade.own(state)))
@@ -727,29 +736,27 @@ class _Cascade:
         base = set(map(id, (p for side in self.parts(ModeConditions()) for p in side)))
         return [p for side in self.parts(state) for p in side if id(p) not in base]
 
-    def candidates(self) -> dict[ModeConditions, _Part]:
+    def candidates(self) -> dict[ModeConditions, tuple[_Part, tuple[str, ...]]]:
         """Every least state of an item, with its scheme and gamut variants (first part each).
 
         The page without conditions comes first.  A state gets a dark variant
         when a rule under ``prefers-color-scheme`` applies in it (or the sheet
         uses ``light-dark()``), and a wide-gamut one when a P3 rule does.
         """
-        first: dict[ModeConditions, _Part] = {}
+        first: dict[ModeConditions, tuple[_Part, tuple[str, ...]]] = {}
         sheet = self.sheet
         if not sheet.parts:
             return first
         base = ModeConditions()
-        first[base] = sheet.parts[0]
+        first[base] = (sheet.parts[0], ())
         for part in sheet.parts:
-            if not any(self._may_be_colour(d) for d in part.decls):
-                continue
-            for least in part.item.states:
-                first.setdefault(least_conditions(least), part)
+            for least, words in zip(part.item.states, part.item.words, strict=True):
+                first.setdefault(least_conditions(least), (part, words))
         schemed = [p for p in sheet.parts if p.scheme is not None]
         wide = [p for p in sheet.parts if p.p3]
-        ordered: dict[ModeConditions, _Part] = {}
-        for state, part in first.items():
-            ordered[state] = part
+        ordered: dict[ModeConditions, tuple[_Part, tuple[str, ...]]] = {}
+        for state, (part, words) in first.items():
+            ordered[state] = (part, words)
             elements = state_elements(state)
 
             def applies(parts: list[_Part], elements: tuple[Element, Element] = elements) -> Any:
@@ -766,18 +773,8 @@ class _Cascade:
                 variants += [(dark, found or part), (replace(dark, p3=True), found_wide)]
             for variant, cause in variants:
                 if cause is not None:
-                    ordered.setdefault(variant, cause)
+                    ordered.setdefault(variant, (cause, words))
         return ordered
-
-    def _may_be_colour(self, decl: _Decl) -> bool:
-        import tinycss2
-
-        if not decl.literal or any(t.type == "function" for t in decl.value):
-            return True  # var(), light-dark(), color-mix() ...: decided when resolved
-        text = tinycss2.serialize(decl.value).strip()
-        if text not in self.colors:
-            self.colors[text] = _is_color(text)
-        return self.colors[text]
 
     def resolve(self, state: ModeConditions, paths: dict[str, str]) -> dict[str, Token]:
         """Every custom property as ``<body>`` computes it in ``state``, by property name."""
@@ -825,24 +822,16 @@ class _Cascade:
         return False
 
 
-def _mode_name(state: ModeConditions, taken: dict[str, ModeConditions]) -> str:
+def _mode_name(state: ModeConditions, words: tuple[str, ...], taken: set[str]) -> str:
     """A short name for ``state`` (``dark``, ``pf-v6-theme-dark-pf-v6-theme-felt``).
 
-    The words are the classes and attribute values of the state (an attribute
-    given without a value: its name); a dark scheme adds ``-dark`` (the page
+    The words are the class names and attribute values of the selector that
+    gave the state, in its order, each once; a dark scheme adds ``-dark`` (the page
     without conditions is ``dark``), a wide-gamut display ``-p3``.  A name an
     earlier state has already taken is written out in full instead
     (``data-color-mode=auto+data-dark-theme=dark+prefers-dark``).
     """
-    words: list[str] = []
-    for classes, attributes in (
-        (state.root_classes, state.root_attributes),
-        (state.body_classes, state.body_attributes),
-    ):
-        for word in (*classes, *(v or a for a, v in attributes)):
-            if word not in words:
-                words.append(word)
-    name = "-".join(words) or "default"
+    name = "-".join(dict.fromkeys(words)) or "default"
     if state.scheme == "dark":
         name = "dark" if name == "default" else name if name.endswith("dark") else f"{name}-dark"
     if state.p3:
