@@ -24,7 +24,7 @@ PACKAGES: tuple[tuple[str, str], ...] = (
     ("@carbon/styles", "1.116.0"),
     ("@twilio-paste/design-tokens", "10.15.0"),
     ("@primer/primitives", "11.10.0"),
-    ("@snack-uikit/figma-tokens", "19.0.5"),
+    ("@tokens-studio/sd-transforms", "2.0.3"),
 )
 
 

@@ -9,6 +9,7 @@ under a gamut policy.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -100,12 +101,14 @@ def load_token_modes(
     root: str | Path | None = None,
     modifier: str | None = None,
     format: str = "auto",
+    groups: Sequence[str] | None = None,
 ) -> TokenModes:
     """Load a token file of any supported format.
 
     ``root`` bounds the files a resolver or ``$themes.json`` may name
     (default: the file's folder).  ``modifier`` picks the Resolver modifier
-    (or Figma collection) whose contexts are the modes.
+    (or Figma collection) whose contexts are the modes; ``groups`` the Tokens
+    Studio theme groups combined into modes (default: every group; ``()``: none).
     """
     p = Path(path)
     bound = Path(root).resolve() if root is not None else p.resolve().parent
@@ -114,7 +117,7 @@ def load_token_modes(
     doc = load_json(p)
     kind = detect_format(doc) if format == "auto" else format
     try:
-        return _modes_of(doc, kind, bound, modifier)
+        return _modes_of(doc, kind, bound, modifier, groups)
     except RecursionError as exc:  # $ref or $extends chains through values nested deep
         from alpha_audit.errors import InputError
 
@@ -123,14 +126,16 @@ def load_token_modes(
         ) from exc
 
 
-def _modes_of(doc: JsonDoc, kind: str, bound: Path, modifier: str | None) -> TokenModes:
+def _modes_of(
+    doc: JsonDoc, kind: str, bound: Path, modifier: str | None, groups: Sequence[str] | None
+) -> TokenModes:
     p = doc.path
     if kind == "figma":
         return modes_from_figma(doc, collection=modifier)
     if kind == "resolver":
         return modes_from_resolver(doc, root=bound, modifier=modifier)
     if kind == "tokens-studio":
-        return modes_from_studio(doc, root=bound)
+        return modes_from_studio(doc, root=bound, groups=groups)
     if kind in ("dtcg", "style-dictionary"):
         tokens = tokens_from_docs([doc], legacy=kind == "style-dictionary")
         return TokenModes(p, kind, {"default": tokens}, "default")
