@@ -64,6 +64,14 @@ def _not_read(doc: JsonDoc) -> str | None:
         return "a JSON list, not an object of token groups"
     if not isinstance(data, dict):
         return "a single JSON value, not an object of token groups"
+    flat = data.get("tokens")
+    if isinstance(data.get("name"), str) and isinstance(flat, dict) and flat:
+        first = next(iter(flat))
+        if "/" in first and isinstance(flat[first], dict) and "value" in flat[first]:
+            return (
+                'Atlassian\'s Figma sync JSON ({"name", "tokens": {"<theme>/<path>": {value, '
+                "attributes}}}, @atlaskit/tokens figma/*.json)"
+            )
     for value in list(data.values())[:50]:
         sets = value.get("sets") if isinstance(value, dict) else None
         if isinstance(sets, dict) and any(isinstance(v, dict) for v in sets.values()):
