@@ -254,3 +254,41 @@ def test_minimal_sheets_are_what_chromium_computes(
     _, result = compare(chromium, sheet)
     assert result.wrong == []
     assert result.exact == result.colours > 0
+
+
+# (canvases, colours, audited modes) of a check on each package: every mode a browser
+# shows is audited or named as an alias of an audited one; none is refused.
+AUDITS = {
+    "patternfly": (
+        (
+            "pf.t..global..background..color..100",
+            "pf.t..global..background..color..primary..default",
+        ),
+        ("pf.t..global..icon..color..regular",),
+        12,
+    ),
+    "mantine": (("mantine.color.body",), ("mantine.color.text",), 2),
+    "carbon": (("cds.background",), ("cds.icon.primary",), 5),
+    "twilio-paste": (("color.background.body",), ("color.text.icon",), 6),
+    "primer-dark-dimmed": (("bgColor.default", "bgColor.neutral.muted"), ("fgColor.muted",), 3),
+}
+
+
+@pytest.mark.parametrize("case", sorted(AUDITS))
+def test_check_audits_every_mode_of_the_real_sheet(case: str, fetch: Any, tmp_path: Path) -> None:
+    from alpha_audit.load.tokens.themes import TokenConfig, token_themes
+
+    package, version, files = PACKAGES[case]
+    root = fetch(package, version)
+    sheet = tmp_path / f"{case}.css"
+    sheet.write_text("\n".join((root / f).read_text(encoding="utf-8") for f in files))
+    canvases, colors, count = AUDITS[case]
+    source = load_token_modes(sheet)
+    themes = token_themes(source, TokenConfig(sheet, canvases, colors))
+    audited = [m.name for m in themes.modes]
+    named = set(audited) | set(themes.aliases) | set(themes.skipped)
+    assert named == set(source.conditions)  # every state is accounted for
+    assert len(set(audited) | set(themes.aliases)) == count
+    for mode in themes.modes:
+        for canvas in mode.theme.canvases:
+            assert canvas.blend == ("css" if canvas.over else None)

@@ -380,9 +380,12 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
                 colors[path] = TokenColor(token, parsed, _alpha(token, config.alpha_extension))
         if not canvases:
             if layers:
+                shown = ", ".join(f"{c.name} (alpha {c.opacity:.3g})" for c in layers[:2])
                 raise InputError(
-                    f"mode {name!r} has no opaque token matching canvases "
-                    f"{', '.join(config.canvases)} (only translucent ones)",
+                    f"mode {name!r}: the tokens matching canvases {', '.join(config.canvases)} "
+                    f"are translucent ({shown}) and nothing says what they are drawn over; "
+                    "add the opaque canvas below them to canvases, or leave the mode out "
+                    "(tokens: {modes: {audit: [...]}})",
                     path=source.source,
                 )
             unset.append(name)  # the mode sets no selected canvas: nothing to audit on
