@@ -17,7 +17,7 @@ from alpha_audit.load.tokens.colors import token_color
 from alpha_audit.load.tokens.dtcg import TokenTree, tokens_from_docs
 from alpha_audit.load.tokens.figma import is_figma, modes_from_figma
 from alpha_audit.load.tokens.jsondoc import JsonDoc, load_json, parse_json
-from alpha_audit.load.tokens.model import Token, TokenModes
+from alpha_audit.load.tokens.model import ModeConditions, Token, TokenModes
 from alpha_audit.load.tokens.resolver import is_resolver, modes_from_resolver
 from alpha_audit.load.tokens.studio import is_studio_file, modes_from_studio
 from alpha_audit.load.tokens.stylesheet import modes_from_stylesheet
@@ -25,6 +25,7 @@ from alpha_audit.load.tokens.stylesheet import modes_from_stylesheet
 __all__ = [
     "TOKEN_FORMATS",
     "JsonDoc",
+    "ModeConditions",
     "Token",
     "TokenModes",
     "TokenTree",

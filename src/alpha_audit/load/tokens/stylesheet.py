@@ -899,8 +899,8 @@ def _token(sheet: _Sheet, resolver: _Resolver, name: str, colors: dict[str, bool
         problem = f"var() cycle: {resolver.cycles[name]} (every property in it is invalid)"
     elif value is None:
         problem = (
-            f"{tinycss2.serialize(decl.value).strip()[:60]} names a custom property this "
-            "sheet does not set (and gives no fallback)"
+            f"{tinycss2.serialize(decl.value).strip()[:60]} names a custom property no "
+            "rule of this sheet sets in this mode (and gives no fallback)"
         )
     elif not colors[text]:
         via = " -> ".join(_dots(n) for n in (name, *chain))
