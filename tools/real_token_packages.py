@@ -1,7 +1,7 @@
 """Load real public token packages as shipped and compare every colour with coloraide.
 
 Not part of the suite (it downloads): ``python tools/real_token_packages.py``
-runs ``npm pack`` for each package into ``~/.cache/alpha-audit-tokens`` (once),
+runs ``npm pack`` for each package (tools/token_fixtures.py, cached outside the repository),
 loads each file with :func:`alpha_audit.load_token_modes` and resolves the same
 colours independently: JSON by a plain walk that follows ``{a.b}`` aliases
 (and Style Dictionary's ``{a.b.value}``), CSS by collecting the declarations of
@@ -13,9 +13,7 @@ both parsed by coloraide.  A colour matches when the encoded sRGB channels
 from __future__ import annotations
 
 import json
-import subprocess
 import sys
-import tarfile
 from pathlib import Path
 from typing import Any
 
@@ -24,7 +22,8 @@ from coloraide import Color
 
 from alpha_audit.load.tokens import load_token_modes, token_color
 
-CACHE = Path.home() / ".cache" / "alpha-audit-tokens"
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from token_fixtures import fetch  # a tool beside this one
 
 # (package, version, file in the package, {mode: [selectors in cascade order]} for CSS)
 PACKAGES: list[tuple[str, str, str, dict[str, list[str]]]] = [
@@ -75,23 +74,6 @@ PACKAGES: list[tuple[str, str, str, dict[str, list[str]]]] = [
     ("@terrazzo/tokens", "0.1.0", "tokens.json", {}),
     ("@altinn/figma-design-tokens", "6.0.1", "dist/tokens.json", {}),
 ]
-
-
-def fetch(package: str, version: str) -> Path:
-    folder = CACHE / f"{package.replace('@', '').replace('/', '-')}-{version}"
-    if not folder.is_dir():
-        CACHE.mkdir(parents=True, exist_ok=True)
-        name = subprocess.run(
-            ["npm", "pack", f"{package}@{version}", "--silent"],
-            cwd=CACHE,
-            check=True,
-            capture_output=True,
-            text=True,
-        ).stdout.split()[-1]
-        folder.mkdir()
-        with tarfile.open(CACHE / name) as tar:
-            tar.extractall(folder, filter="data")
-    return folder / "package"
 
 
 def srgb(color: Color) -> tuple[float, ...]:

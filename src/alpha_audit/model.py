@@ -160,8 +160,10 @@ class Canvas:
 
     A layer (``opacity`` below 1) names the canvas it sits ``over``: a surface or
     hover tint at 8% over the page.  The audit sees it as the stack it is,
-    composited in its pipeline (:meth:`Theme.flattened`); ``stack`` then says
-    what it was made of.
+    composited in its pipeline (:meth:`Theme.flattened`), or in ``blend`` when
+    the layer says how it is drawn whatever draws the icons (a surface from a
+    CSS sheet is painted by the browser: ``css``); ``stack`` then says what it
+    was made of.
     """
 
     name: str
@@ -176,6 +178,7 @@ class Canvas:
     span: Span | None = field(default=None, compare=False, repr=False)
     over: str | None = None  # the canvas a translucent layer sits on
     opacity: float = 1.0  # the layer's own alpha (1: an opaque canvas)
+    blend: Pipeline | None = None  # how the layer is composited; None: the audit's pipeline
     stack: str | None = field(default=None, compare=False)  # "8% #0969da over paper"
     linear: tuple[float, float, float] = field(init=False, compare=False)
 
@@ -206,13 +209,18 @@ class Theme:
 
         ``linear``: ``o Cl + (1 - o) Cb`` in linear light; ``css``: what a browser
         does with an ``rgba()`` surface, the encoded blend rounded to 8 bits.  A
-        layer over a layer is composited from the bottom up.  Each flattened
-        canvas is opaque, keeps its name and says in ``stack`` what it is.
+        layer with its own ``blend`` (a CSS surface: ``css``) is drawn that way
+        in every pipeline.  A layer over a layer is composited from the bottom
+        up.  Each flattened canvas is opaque, keeps its name and says in
+        ``stack`` what it is.
 
         >>> t = Theme("t", (Canvas("page", "#ffffff"), Canvas("chip", "#0969da", over="page",
         ...     opacity=0.5)))
         >>> t.flattened("css").canvases[1].color, t.flattened("css").canvases[1].stack
         ('#84b4ec', '50% #0969da over page')
+        >>> muted = Canvas("muted", "rgb(101 108 118)", over="page", opacity=0.2, blend="css")
+        >>> Theme("t", (Canvas("page", "#212830"), muted)).flattened("linear").canvases[1].color
+        '#2f363e'
         """
         if all(c.over is None for c in self.canvases):
             return self
@@ -230,8 +238,9 @@ class Theme:
                     line=canvas.line,
                 )
             base = flat(by_name[canvas.over], (*below, canvas.name))
+            drawn = canvas.blend or pipeline
             shown = composite_paint(
-                np.array(canvas.linear), np.array(base.linear), 1.0, canvas.opacity, pipeline
+                np.array(canvas.linear), np.array(base.linear), 1.0, canvas.opacity, drawn
             )
             r, g, b = (float(v) for v in shown)
             done[canvas.name] = replace(
@@ -241,6 +250,7 @@ class Theme:
                 mode=canvas.mode or infer_mode(shown),
                 over=None,
                 opacity=1.0,
+                blend=None,
                 stack=f"{canvas.opacity:.0%} {canvas.color} over {canvas.over}",
             )
             return done[canvas.name]

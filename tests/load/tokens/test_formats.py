@@ -273,6 +273,18 @@ def test_tokens_studio_metadata_outside_the_root_is_not_opened(tmp_path: Path) -
         ),
         ([{"name": "a/b", "value": 0, "mode": "dark", "type": "FLOAT"}], "Primer"),
         ([1, 2], "JSON list"),
+        (  # @atlaskit/tokens 20.7.0, figma/atlassian-dark.json (its first entry)
+            {
+                "name": "Dark",
+                "tokens": {
+                    "Dark/color.background.accent.lime.subtlest": {
+                        "value": "#28311B",
+                        "attributes": {"group": "paint", "state": "active"},
+                    }
+                },
+            },
+            "Atlassian's Figma sync JSON",
+        ),
     ],
 )
 def test_formats_that_are_not_read_are_named(tmp_path: Path, data, shape: str) -> None:

@@ -9,6 +9,7 @@ under a gamut policy.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -16,7 +17,7 @@ from alpha_audit.load.tokens.colors import token_color
 from alpha_audit.load.tokens.dtcg import TokenTree, tokens_from_docs
 from alpha_audit.load.tokens.figma import is_figma, modes_from_figma
 from alpha_audit.load.tokens.jsondoc import JsonDoc, load_json, parse_json
-from alpha_audit.load.tokens.model import Token, TokenModes
+from alpha_audit.load.tokens.model import ModeConditions, Token, TokenModes
 from alpha_audit.load.tokens.resolver import is_resolver, modes_from_resolver
 from alpha_audit.load.tokens.studio import is_studio_file, modes_from_studio
 from alpha_audit.load.tokens.stylesheet import modes_from_stylesheet
@@ -24,6 +25,7 @@ from alpha_audit.load.tokens.stylesheet import modes_from_stylesheet
 __all__ = [
     "TOKEN_FORMATS",
     "JsonDoc",
+    "ModeConditions",
     "Token",
     "TokenModes",
     "TokenTree",
@@ -63,6 +65,14 @@ def _not_read(doc: JsonDoc) -> str | None:
         return "a JSON list, not an object of token groups"
     if not isinstance(data, dict):
         return "a single JSON value, not an object of token groups"
+    flat = data.get("tokens")
+    if isinstance(data.get("name"), str) and isinstance(flat, dict) and flat:
+        first = next(iter(flat))
+        if "/" in first and isinstance(flat[first], dict) and "value" in flat[first]:
+            return (
+                'Atlassian\'s Figma sync JSON ({"name", "tokens": {"<theme>/<path>": {value, '
+                "attributes}}}, @atlaskit/tokens figma/*.json)"
+            )
     for value in list(data.values())[:50]:
         sets = value.get("sets") if isinstance(value, dict) else None
         if isinstance(sets, dict) and any(isinstance(v, dict) for v in sets.values()):
@@ -100,12 +110,14 @@ def load_token_modes(
     root: str | Path | None = None,
     modifier: str | None = None,
     format: str = "auto",
+    groups: Sequence[str] | None = None,
 ) -> TokenModes:
     """Load a token file of any supported format.
 
     ``root`` bounds the files a resolver or ``$themes.json`` may name
     (default: the file's folder).  ``modifier`` picks the Resolver modifier
-    (or Figma collection) whose contexts are the modes.
+    (or Figma collection) whose contexts are the modes; ``groups`` the Tokens
+    Studio theme groups combined into modes (default: every group; ``()``: none).
     """
     p = Path(path)
     bound = Path(root).resolve() if root is not None else p.resolve().parent
@@ -114,7 +126,7 @@ def load_token_modes(
     doc = load_json(p)
     kind = detect_format(doc) if format == "auto" else format
     try:
-        return _modes_of(doc, kind, bound, modifier)
+        return _modes_of(doc, kind, bound, modifier, groups)
     except RecursionError as exc:  # $ref or $extends chains through values nested deep
         from alpha_audit.errors import InputError
 
@@ -123,14 +135,16 @@ def load_token_modes(
         ) from exc
 
 
-def _modes_of(doc: JsonDoc, kind: str, bound: Path, modifier: str | None) -> TokenModes:
+def _modes_of(
+    doc: JsonDoc, kind: str, bound: Path, modifier: str | None, groups: Sequence[str] | None
+) -> TokenModes:
     p = doc.path
     if kind == "figma":
         return modes_from_figma(doc, collection=modifier)
     if kind == "resolver":
         return modes_from_resolver(doc, root=bound, modifier=modifier)
     if kind == "tokens-studio":
-        return modes_from_studio(doc, root=bound)
+        return modes_from_studio(doc, root=bound, groups=groups)
     if kind in ("dtcg", "style-dictionary"):
         tokens = tokens_from_docs([doc], legacy=kind == "style-dictionary")
         return TokenModes(p, kind, {"default": tokens}, "default")

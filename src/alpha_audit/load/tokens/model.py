@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, TypedDict
+from typing import Any, Literal, TypedDict
 
 from alpha_audit.errors import InputError
 from alpha_audit.model import Span
@@ -16,6 +16,7 @@ __all__ = [
     "MAX_MODES",
     "MAX_MODE_TOKENS",
     "MAX_TOKENS",
+    "ModeConditions",
     "Steps",
     "Token",
     "TokenModes",
@@ -73,6 +74,49 @@ class Token:
 
 
 @dataclass(frozen=True)
+class ModeConditions:
+    """The browser state a CSS mode stands for: what a page sets to show it.
+
+    Classes and ``data-*`` attributes on the root element (``<html>``, or a
+    shadow host) and on ``<body>``, the ``prefers-color-scheme`` and whether the
+    display is wide-gamut (``color-gamut: p3``).  A page in this state computes
+    the mode's values on ``<body>``.
+
+    >>> ModeConditions(root_classes=("dark", "felt")).selector()
+    ':root.dark.felt'
+    >>> ModeConditions(body_attributes=(("data-theme", "dark"),), scheme="dark").selector()
+    'body[data-theme="dark"] @media (prefers-color-scheme: dark)'
+    """
+
+    root_classes: tuple[str, ...] = ()
+    root_attributes: tuple[tuple[str, str], ...] = ()
+    body_classes: tuple[str, ...] = ()
+    body_attributes: tuple[tuple[str, str], ...] = ()
+    scheme: Literal["light", "dark"] = "light"
+    p3: bool = False
+
+    def selector(self) -> str:
+        """The state as a selector for the element the values are read on, then the media."""
+
+        def side(classes: tuple[str, ...], attributes: tuple[tuple[str, str], ...]) -> str:
+            return "".join(f".{c}" for c in classes) + "".join(
+                f"[{a}]" if not v else f'[{a}="{v}"]' for a, v in attributes
+            )
+
+        root = side(self.root_classes, self.root_attributes)
+        body = side(self.body_classes, self.body_attributes)
+        parts = [f":root{root}"] if root or not body else []
+        parts += [f"body{body}"] if body else []
+        text = " ".join(parts)
+        media = []
+        if self.scheme == "dark":
+            media.append("(prefers-color-scheme: dark)")
+        if self.p3:
+            media.append("(color-gamut: p3)")
+        return text + (f" @media {' and '.join(media)}" if media else "")
+
+
+@dataclass(frozen=True)
 class TokenModes:
     """Tokens per mode (a Resolver context, a Figma mode, a Tokens Studio theme).
 
@@ -83,6 +127,9 @@ class TokenModes:
     mode) for a line on stderr; ``skipped`` maps a token path to where a rule
     that was not read would also set it (a ``min-width`` media query, a
     ``:has()`` state), so a selected token can be warned about.
+    ``conditions`` gives, for a CSS source, the browser state of each mode and
+    alias; ``aliases`` maps a state that computes exactly what an earlier mode
+    computes (``.dark-theme`` beside ``.dark``) to that mode.
     """
 
     source: Path
@@ -91,6 +138,8 @@ class TokenModes:
     default: str | None = None
     notes: tuple[str, ...] = ()
     skipped: dict[str, str] = field(default_factory=dict)
+    conditions: dict[str, ModeConditions] = field(default_factory=dict)
+    aliases: dict[str, str] = field(default_factory=dict)
 
 
 @dataclass

@@ -18,6 +18,9 @@ the project root (:func:`alpha_audit.load.paths.contain`), symlinks included.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from dataclasses import dataclass
+from itertools import product
 from pathlib import Path
 from typing import Any
 
@@ -39,8 +42,17 @@ def is_studio_file(doc: JsonDoc) -> bool:
     )
 
 
-def modes_from_studio(doc: JsonDoc, *, root: Path) -> TokenModes:
-    """One mode per Tokens Studio theme (all sets in one mode when there are no themes)."""
+def modes_from_studio(
+    doc: JsonDoc, *, root: Path, groups: Sequence[str] | None = None
+) -> TokenModes:
+    """One mode per Tokens Studio theme (all sets in one mode when there are no themes).
+
+    Themes with a ``group`` are combined, one theme of each group, as Tokens
+    Studio applies them (and as ``permutateThemes`` of
+    ``@tokens-studio/sd-transforms`` names them: ``<theme>-<theme>``, groups in
+    the order they first appear).  ``groups`` picks the groups combined, in
+    that order (``()``: none, each theme alone).
+    """
     folder = doc.path.name == "$themes.json"
     base = doc.path.resolve().parent
     if folder:
@@ -107,7 +119,7 @@ def modes_from_studio(doc: JsonDoc, *, root: Path) -> TokenModes:
 
     if len(themes) > 0:
         check_mode_budget(doc.path, len(themes), 0)
-    modes = {}
+    read: list[_Theme] = []
     for i, theme in enumerate(themes):
         keys: tuple[str | int, ...] = ("$themes", i) if not folder else (i,)
         if not isinstance(theme, dict) or not isinstance(theme.get("selectedTokenSets"), dict):
@@ -124,10 +136,15 @@ def modes_from_studio(doc: JsonDoc, *, root: Path) -> TokenModes:
         for set_name in states:
             set_keys = (*keys, "selectedTokenSets", set_name)
             check_name(str(set_name), path=doc.path, line=doc.line(set_keys), what="token set")
+        group = theme.get("group")
+        read.append(_Theme(name, group if isinstance(group, str) else None, states, keys))
+    combined = _combined(doc, read, groups)
+    modes = {}
+    for name, states, keys in combined:
         chosen = ordered([s for s, st in states.items() if st == "source"])
         chosen += ordered([s for s, st in states.items() if st == "enabled"])
         modes[name] = build(chosen, (*keys, "selectedTokenSets"))
-        check_mode_budget(doc.path, len(themes), len(modes[name]))
+        check_mode_budget(doc.path, len(combined), len(modes[name]))
     if not modes:
         names = ordered(list(sets))
         _no_overlap(doc, names, sets)
@@ -153,3 +170,62 @@ def _no_overlap(doc: JsonDoc, names: list[str], sets: dict[str, tuple[JsonDoc, A
                     path=path,
                 )
             owner[path] = name
+
+
+@dataclass(frozen=True)
+class _Theme:
+    name: str
+    group: str | None
+    states: dict[str, Any]  # set name -> enabled | source | disabled
+    keys: tuple[str | int, ...]  # where the theme is in the file
+
+
+def _combined(
+    doc: JsonDoc, themes: list[_Theme], groups: Sequence[str] | None
+) -> list[tuple[str, dict[str, Any], tuple[str | int, ...]]]:
+    """``(mode name, set states, keys)``: each theme, or one theme of each group combined.
+
+    A set enabled in any theme of a combination is enabled, else a source set
+    in any is a source.
+    """
+    order = list(dict.fromkeys(t.group for t in themes if t.group is not None))
+    chosen = order if groups is None else list(groups)
+    if not chosen or (groups is None and len(order) < 2):
+        return [(t.name, t.states, t.keys) for t in themes]
+    by_group: dict[str, list[_Theme]] = {g: [] for g in chosen}
+    for theme in themes:
+        if theme.group is None and groups is None:
+            raise token_error(
+                f"theme {theme.name!r} has no group, and themes of groups "
+                f"{', '.join(chosen)} are combined; give it a group, or set the config's "
+                "tokens: {modes: {groups: false}} to audit each theme alone",
+                file=doc.path,
+                line=doc.line(theme.keys),
+                path=".".join(map(str, theme.keys)),
+            )
+        if theme.group is not None and theme.group in by_group:
+            by_group[theme.group].append(theme)
+    for group, members in by_group.items():
+        if not members:
+            raise token_error(
+                f"tokens.modes.groups names {group!r}, which no theme has; groups: "
+                f"{', '.join(order)}",
+                file=doc.path,
+                line=None,
+                path=None,
+            )
+    count = 1
+    for members in by_group.values():
+        count *= len(members)
+    check_mode_budget(doc.path, count, 0)
+    out = []
+    for combination in product(*by_group.values()):
+        states: dict[str, Any] = {}
+        for theme in combination:
+            for set_name, state in theme.states.items():
+                if state == "enabled" or (state == "source" and states.get(set_name) != "enabled"):
+                    states[set_name] = state
+        name = "-".join(t.name for t in combination)
+        check_name(name, path=doc.path, line=doc.line(combination[0].keys), what="theme name")
+        out.append((name, states, combination[0].keys))
+    return out

@@ -12,28 +12,31 @@ inverse of the export's naming); the name is unescaped first (CSS Syntax 3,
 4.3.7), so ``--color-icon\\2e fg`` is ``color-icon.fg`` and two properties
 that map to one token path are an error naming both.
 
-Modes come from where rules apply:
+Modes are the states a browser can be in (:mod:`.cssmodes`): classes and
+``data-*`` attributes on the root element (``:root``, ``html``, ``:host(...)``)
+and on ``<body>``, ``prefers-color-scheme`` and a wide-gamut display.  Every
+selector item of every rule gives the least state in which it matches (a
+selector list is read item by item); a state whose rules set no colour is no
+mode.  A mode's values are the custom properties ``<body>`` computes in that
+state: every rule matching ``<html>`` (inherited) or ``<body>`` (its own
+declarations win), in cascade order, so a compound theme
+``:root:where(.dark.felt)`` gets ``:root:where(.dark)`` too.
 
-- ``@theme`` and rules for the root element (``:root``, ``html``,
-  ``:host``, ``:where(html)``, ``*``) are the mode ``default``;
-- a rule whose selector is a class or a ``[data-*="name"]`` attribute (alone
-  or on the root: ``:root.dark``, ``html[data-theme=dark]``) names a mode,
-  when it sets custom properties; a selector with a combinator
-  (``.dark .card``), an element other than the root or a state (``:hover``,
-  ``:has()``) applies to part of a page and is no mode;
-- ``@media (prefers-color-scheme: dark)`` is the mode ``dark`` (a named
-  mode inside it is ``<name>-dark``); ``light`` applies to every mode that is
-  not dark; ``light-dark(a, b)`` values take ``a`` or ``b`` by the mode's
-  scheme and add a ``dark`` mode when the sheet has none;
-- ``@media (color-gamut: p3)``, ``(dynamic-range: high)`` and ``@supports``
-  on ``display-p3`` hold what a wide-gamut display uses: the modes ``p3``
-  and ``<name>-p3``;
+- the page without conditions is the mode ``default`` (``@theme`` is the root);
+- a state is named by its classes and attribute values (``dark``,
+  ``pf-v6-theme-dark-pf-v6-theme-felt``); ``prefers-color-scheme: dark`` adds
+  ``-dark`` (the page without conditions: ``dark``), a wide-gamut display
+  ``-p3``; a name taken by another state is written out in full;
+- a state that computes every property exactly as an earlier one (``.dark,
+  .dark-theme``) is an alias of it (:attr:`~.model.TokenModes.aliases`);
+- ``light-dark(a, b)`` values take ``a`` or ``b`` by the mode's scheme and give
+  every state a dark variant;
 - ``@layer`` blocks are read in layer order (CSS Cascade 5: later layers
-  win, unlayered rules beat layered ones), then specificity, then source
-  order, so each mode's value is the one a browser computes on the root;
-- other ``@media`` conditions (widths, print, motion), ``@supports not``,
-  ``@container`` and ``@scope`` are not a colour mode: their rules are
-  skipped, and a selected token they would set is warned about.
+  win, unlayered rules beat layered ones), then specificity, then source order;
+- what a static state cannot decide (``:hover``, ``:has()``, a combinator, an
+  element other than the root or body, other ``@media`` conditions such as
+  widths, print or motion, ``@supports not``, ``@container``, ``@scope``) is no
+  mode: its rules are skipped, and a selected token they would set is warned about.
 
 Every ``var()`` substitution and every declaration applied to a mode is
 counted (:data:`~.model.MAX_EXPANSION`, all modes together), a ``var()``
@@ -47,7 +50,7 @@ indexed once, so the walk is linear in the sheet.
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -55,9 +58,20 @@ from alpha_audit.errors import InputError
 from alpha_audit.load.files import read_capped
 from alpha_audit.load.names import check_name
 from alpha_audit.load.spans import LineIndex
+from alpha_audit.load.tokens.cssmodes import (
+    Element,
+    Item,
+    analyse,
+    least_conditions,
+    matches,
+    state_elements,
+    state_keys,
+    subsets,
+)
 from alpha_audit.load.tokens.model import (
     MAX_ALIAS_CHAIN,
     MAX_TOKENS,
+    ModeConditions,
     Steps,
     Token,
     TokenModes,
@@ -97,10 +111,10 @@ class _Decl:
 
 
 @dataclass
-class _Contribution:
-    """The declarations a rule gives one mode (``default``: the root element)."""
+class _Part:
+    """The custom properties one selector item of a rule sets (``@theme``: the root)."""
 
-    mode: str
+    item: Item
     scheme: str | None  # only under this prefers-color-scheme
     p3: bool
     where: str  # for notes: "line 12 [data-theme=dark]"
@@ -113,44 +127,13 @@ class _Sheet:
 
     path: Path
     index: LineIndex | None
-    parts: list[_Contribution] = field(default_factory=list)
+    parts: list[_Part] = field(default_factory=list)
     skipped: dict[str, str] = field(default_factory=dict)  # property -> why not read
     layer_ranks: dict[tuple[str, ...], int] = field(default_factory=dict)
     layer_children: dict[tuple[str, ...], int] = field(default_factory=dict)  # per parent
     anonymous: int = 0
     source: int = 0
     light_dark: bool = False
-    parent: dict[str, str] = field(default_factory=dict)  # mode names of one selector list
-
-    def find(self, name: str) -> str:
-        root = name
-        while self.parent.get(root, root) != root:
-            root = self.parent[root]
-        while name != root:  # path compression: the next find is one step
-            self.parent[name], name = root, self.parent[name]
-        return root
-
-    def union(self, names: Sequence[str]) -> None:
-        """One selector list is one mode (``.dark, .dark-theme``); with the root, the default."""
-        roots = [self.find(n) for n in names]
-        target = "default" if "default" in roots else roots[0]
-        for r in roots:
-            if r != target:
-                self.parent[r] = target
-
-    def finish(self) -> None:
-        """Each contribution's mode by its canonical name (dark media renames it)."""
-        for part in self.parts:
-            name = self.find(part.mode)
-            if part.scheme == "dark":
-                name = (
-                    "dark"
-                    if name == "default"
-                    else name
-                    if name.endswith("dark")
-                    else f"{name}-dark"
-                )
-            part.mode = name
 
     def layer_key(self, layers: tuple[str, ...]) -> tuple[int, ...]:
         ranks = []
@@ -165,71 +148,24 @@ class _Sheet:
 
 
 # ----------------------------------------------------------------- selectors
-def _simple_kind(simple: Any) -> tuple[str, str | None]:
-    """``("root", None)``, ``("mode", name)``, ``("filter", None)`` or ``("no", None)``."""
+def _rule_items(prelude: Sequence[Any]) -> list[Item]:
+    """The items of a rule's selector list that can match the root or body (item by item)."""
     from cssselect2 import parser as sel
 
-    if isinstance(simple, sel.LocalNameSelector):
-        return ("root", None) if simple.lower_local_name == "html" else ("no", None)
-    if isinstance(simple, sel.PseudoClassSelector):
-        return ("root", None) if simple.name in _ROOT_NAMES else ("no", None)
-    if isinstance(simple, sel.FunctionalPseudoClassSelector):
-        return ("root", None) if simple.name == "host" else ("no", None)
-    if isinstance(simple, sel.ClassSelector):
-        return "mode", str(simple.class_name)
-    if isinstance(simple, sel.AttributeSelector):
-        if not str(simple.lower_name).startswith("data-"):
-            return "no", None  # [role=search], [type=checkbox]: elements, not modes
-        if simple.value is None or simple.operator not in ("=", "~="):
-            return "filter", None  # [data-color-scheme] alone: present in every mode
-        return "mode", str(simple.value)
-    if isinstance(simple, sel.NegationSelector | sel.NamespaceSelector):
-        return "filter", None  # :root:not([data-theme=dark]) is the root without that mode
-    if isinstance(simple, sel.MatchesAnySelector | sel.SpecificityAdjustmentSelector):
-        kinds = [_classify(getattr(s, "parsed_tree", s)) for s in simple.selector_list]
-        found = [k for k in kinds if k is not None]
-        if len(found) == 1:
-            return ("root", None) if found[0] == "default" else ("mode", found[0])
-        return "no", None
-    return "no", None  # an id, :hover, :has(), ...
-
-
-def _classify(tree: Any) -> str | None:
-    """The mode a complex selector applies to on the root element, or None."""
-    from cssselect2 import parser as sel
-
-    if not isinstance(tree, sel.CompoundSelector):
-        return None  # a combinator: part of the page, not the root
-    names: list[str] = []
-    root = not tree.simple_selectors  # "*" matches the root too
-    for simple in tree.simple_selectors:
-        kind, name = _simple_kind(simple)
-        if kind == "no":
-            return None
-        root = root or kind == "root"
-        if name is not None and name not in names:
-            names.append(name)
-    if names:
-        return "-".join(names)
-    return "default" if root else None
-
-
-def _rule_modes(prelude: Sequence[Any]) -> dict[str, tuple[int, int, int]] | None:
-    """``{mode: specificity}`` for a rule's selector list (None: not understood)."""
-    from cssselect2 import parser as sel
-
-    out: dict[str, tuple[int, int, int]] = {}
     try:
-        for selector in sel.parse(list(prelude)):
-            if selector.pseudo_element is not None:
-                continue
-            mode = _classify(selector.parsed_tree)
-            if mode is not None:
-                a, b, c = selector.specificity
-                out[mode] = max(out.get(mode, (0, 0, 0)), (a, b, c))
+        selectors = list(sel.parse(list(prelude)))
     except sel.SelectorError:
-        return None
-    return out
+        return []
+    return [item for s in selectors if (item := analyse(s)) is not None]
+
+
+def _theme_item() -> Item:
+    """Tailwind's ``@theme``: the root, with the specificity of ``:root``."""
+    from cssselect2 import parser as sel
+
+    item = analyse(next(iter(sel.parse(":root"))))
+    assert item is not None
+    return item
 
 
 # -------------------------------------------------------------- conditions
@@ -308,7 +244,7 @@ def _walk(
             elif rule.content is None:
                 continue
             elif keyword == "theme":  # Tailwind v4: theme variables on :root
-                _add(sheet, rule, {"default": (0, 1, 0)}, layers, scheme, p3, skip)
+                _add(sheet, rule, [_theme_item()], layers, scheme, p3, skip)
             elif keyword == "media":
                 found = _media(prelude)
                 why = skip or (
@@ -349,14 +285,10 @@ def _walk(
                     depth=depth + 1,
                 )
         elif rule.type == "qualified-rule":
-            modes = _rule_modes(rule.prelude)
+            items = _rule_items(rule.prelude)
             selector = " ".join(tinycss2.serialize(rule.prelude).split())
-            if not modes:
-                _add(sheet, rule, {}, layers, scheme, p3, skip or f"selector {selector[:60]}")
-            else:
-                if scheme is None and skip is None and _sets_properties(rule):
-                    sheet.union(list(modes))
-                _add(sheet, rule, modes, layers, scheme, p3, skip)
+            why = skip or (None if items else f"selector {selector[:60]}")
+            _add(sheet, rule, items, layers, scheme, p3, why)
 
 
 def _rule_list(content: Sequence[Any]) -> list[Any]:
@@ -382,13 +314,13 @@ def _layer_names(sheet: _Sheet, prelude: Sequence[Any]) -> list[tuple[str, ...]]
 def _add(
     sheet: _Sheet,
     rule: Any,
-    modes: dict[str, tuple[int, int, int]],
+    items: Sequence[Item],
     layers: tuple[str, ...],
     scheme: str | None,
     p3: bool,
     skip: str | None,
 ) -> None:
-    """Record the custom properties of ``rule`` for each of its modes (or as skipped)."""
+    """Record the custom properties of ``rule`` for each of its items (or as skipped)."""
     import tinycss2
 
     decls = [
@@ -406,34 +338,34 @@ def _add(
             sheet.skipped.setdefault(node.name[2:], f"line {node.source_line}, {skip}")
         return
     layer = sheet.layer_key(layers)
-    selector = " ".join(tinycss2.serialize(rule.prelude).split()) or "@theme"
-    for mode, specificity in modes.items():
-        media = f"@media (prefers-color-scheme: {scheme}) " if scheme else ""
-        part = _Contribution(mode, scheme, p3, f"line {line} {media}{selector[:60]}")
-        for node in decls:
-            if "*" in node.name:  # Tailwind's "--color-*: initial" resets a namespace
-                continue
-            value = _strip(node.value)
-            if len(value) == 1 and value[0].type == "ident" and value[0].lower_value == "initial":
-                continue
-            sheet.source += 1
-            if not sheet.light_dark and _uses_light_dark(value):
-                sheet.light_dark = True
+    read = []  # (node, value, source order): the same for every item of the list
+    for node in decls:
+        if "*" in node.name:  # Tailwind's "--color-*: initial" resets a namespace
+            continue
+        value = _strip(node.value)
+        if len(value) == 1 and value[0].type == "ident" and value[0].lower_value == "initial":
+            continue
+        sheet.source += 1
+        if not sheet.light_dark and _uses_light_dark(value):
+            sheet.light_dark = True
+        read.append((node, value, sheet.source))
+    media = f"@media (prefers-color-scheme: {scheme}) " if scheme else ""
+    shown = tinycss2.serialize(rule.prelude).split() if rule.type == "qualified-rule" else []
+    where = f"line {line} {media}{' '.join(shown)[:60] or '@theme'}"
+    for item in items:
+        part = _Part(item, scheme, p3, where)
+        for node, value, source in read:
             part.decls.append(
                 _Decl(
                     node.name[2:],
                     tuple(value),
                     node.source_line,
                     _value_span(value, sheet.index),
-                    (layer, specificity, sheet.source),
+                    (layer, item.specificity, source),
                     _literal(value),
                 )
             )
         sheet.parts.append(part)
-
-
-def _sets_properties(rule: Any) -> bool:
-    return any(t.type == "ident" and t.value.startswith("--") for t in rule.content)
 
 
 def _strip(tokens: Sequence[Any]) -> list[Any]:
@@ -470,54 +402,42 @@ def _value_span(value: Sequence[Any], index: LineIndex | None) -> Span | None:
     return index.span(start, start + len(text))
 
 
-# ------------------------------------------------------------------- modes
-def _scheme_of(mode: str) -> str:
-    plain = mode.removesuffix("-p3") if mode != "p3" else "default"
-    return "dark" if plain == "dark" or plain.endswith("-dark") else "light"
-
-
-def _applies(part: _Contribution, mode: str) -> bool:
-    """Whether a rule's declarations apply on the root in ``mode``."""
-    is_p3 = mode == "p3" or mode.endswith("-p3")
-    plain = "default" if mode == "p3" else mode.removesuffix("-p3") if is_p3 else mode
-    if part.p3 and not is_p3:
-        return False
-    if part.scheme is not None and part.scheme != _scheme_of(plain):
-        return False
-    return part.mode in ("default", plain)
-
-
-def _mode_names(sheet: _Sheet) -> list[str]:
-    # A sheet of one theme (Primer's dark.css, Radix's blue-dark.css) has no root rule.
-    has_root = any(part.mode == "default" for part in sheet.parts) or sheet.light_dark
-    names: dict[str, None] = {"default": None} if has_root else {}
-    for part in sheet.parts:
-        if not part.p3:
-            names.setdefault(part.mode, None)
-    if sheet.light_dark:
-        names.setdefault("dark", None)
-    wide = {p.mode for p in sheet.parts if p.p3}
-    out = []
-    for name in names:
-        out.append(name)
-        if name in wide:
-            out.append("p3" if name == "default" else f"{name}-p3")
-    return out
-
-
 # --------------------------------------------------------------- resolving
 class _Resolver:
     """``var()`` substitution for one mode, memoised, every step counted."""
 
-    def __init__(self, sheet: _Sheet, props: dict[str, _Decl], scheme: str, steps: Steps):
+    def __init__(
+        self,
+        sheet: _Sheet,
+        props: dict[str, _Decl],
+        scheme: str,
+        steps: Steps,
+        parent: _Resolver | None = None,
+    ):
         self.sheet = sheet
-        self.props = props
+        self.props = props  # the declarations that win on this element
         self.scheme = scheme
+        # The parent element's resolver: a property this element does not set
+        # inherits the parent's computed value (CSS Variables 1, 2: custom
+        # properties inherit), already substituted there.
+        self.parent = parent
         self.steps = steps  # shared across modes
         self.done: dict[str, tuple[list[Any] | None, tuple[str, ...]]] = {}
         self.texts: dict[str, str] = {}  # serialised value per property (see _token)
         self.active: list[str] = []
         self.cycles: dict[str, str] = {}
+
+    def owner(self, name: str) -> _Resolver | None:
+        """The resolver of the element whose declaration of ``--name`` applies here."""
+        if name in self.props:
+            return self
+        return self.parent.owner(name) if self.parent is not None else None
+
+    def decl(self, name: str) -> _Decl:
+        """The declaration of ``--name`` that applies here (on this element or inherited)."""
+        owner = self.owner(name)
+        assert owner is not None
+        return owner.props[name]
 
     def count(self, n: int, name: str) -> None:
         def place() -> TokenPlace:
@@ -555,10 +475,10 @@ class _Resolver:
                 and value[0].type == "function"
                 and value[0].lower_name == "var"
                 and (target := _var_name(value[0])) is not None
-                and target in self.props
+                and (owner := self.owner(target)) is not None
                 and not _var_fallback(value[0])
             ):
-                resolved, rest = self.resolve(target)
+                resolved, rest = owner.resolve(target)
                 if len(rest) >= MAX_ALIAS_CHAIN:
                     raise token_error(
                         f"var() chain longer than {MAX_ALIAS_CHAIN}: {_dots(name)} -> "
@@ -599,7 +519,8 @@ class _Resolver:
                 target = _var_name(t)
                 if target is None:
                     return None
-                got = self.resolve(target)[0] if target in self.props else None
+                owner = self.owner(target)
+                got = owner.resolve(target)[0] if owner is not None else None
                 if got is None:
                     fallback = _var_fallback(t)
                     if fallback is None:
@@ -688,60 +609,248 @@ def _modes(p: Path) -> TokenModes:
     sheet = _Sheet(p, LineIndex(text, p, "css", bom=bom) if lf_only else None)
     rules = tinycss2.parse_stylesheet(text, skip_comments=True, skip_whitespace=True)
     _walk(sheet, rules, layers=(), scheme=None, p3=False, skip=None, depth=0)
-    sheet.finish()
     names: set[str] = {d.name for part in sheet.parts for d in part.decls}
     if not sheet.parts:
         raise InputError(
             "has no @theme block and no rule for the root element (:root, html, "
-            ":where(html)) or a theme ([data-theme=dark], .dark) with custom properties",
+            ":where(html)), body or a theme ([data-theme=dark], .dark) with custom properties",
             path=p,
         )
     if len(names) > MAX_TOKENS:
         raise InputError(f"more than {MAX_TOKENS} custom properties", path=p)
     paths = _token_paths(sheet, names)
-    modes = _mode_names(sheet)
-    check_mode_budget(p, len(modes), len(names))
-    steps = Steps()
-    colors: dict[str, bool] = {}  # _is_color per value text: modes share most values
+    cascade = _Cascade(sheet, Steps())
+    states = cascade.candidates()
+    check_mode_budget(p, len(states), len(names))
+    base = ModeConditions()
+    default = cascade.resolve(base, paths)
     out: dict[str, dict[str, Token]] = {}
+    conditions: dict[str, ModeConditions] = {}
+    aliases: dict[str, str] = {}
+    same: dict[tuple[Any, ...], str] = {}  # every computed value -> the first mode with them
+    wheres: dict[str, str] = {}
+    kept: dict[ModeConditions, tuple[_Part, tuple[str, ...], dict[str, Token]]] = {}
+    for state, (first, words) in states.items():
+        tokens = default if state == base else cascade.resolve(state, paths)
+        if cascade.sets_colour(state, tokens, default):  # else sizes, fonts: no mode
+            kept[state] = (first, words, tokens)
+    # States named by their own rules first, then the scheme and P3 variants.
+    named: dict[ModeConditions, str] = {}
+    taken: set[str] = set()
+    for state in sorted(kept, key=lambda s: s.scheme == "dark" or s.p3):
+        first, words, _ = kept[state]
+        named[state] = _mode_name(state, words, taken)
+        taken.add(named[state])
+        line = first.decls[0].line if first.decls else None
+        check_name(named[state], path=p, line=line, what="mode name")
+    for state, (_, _, tokens) in kept.items():
+        name = named[state]
+        conditions[name] = state
+        if state != base:
+            wheres[name] = "; ".join(dict.fromkeys(part.where for part in cascade.own(state)))
+        # Another state computing every property alike (".dark, .dark-theme", Primer's
+        # "auto" forms) is the same theme under another name: an alias of the first.
+        signature = tuple((n, t.type, t.value, t.line) for n, t in tokens.items())
+        if signature in same:
+            aliases[name] = same[signature]
+            continue
+        same[signature] = name
+        out[name] = {paths[n]: t for n, t in tokens.items()}
     notes = []
-    by_mode: dict[str, list[_Contribution]] = {}
-    for part in sheet.parts:
-        by_mode.setdefault(part.mode, []).append(part)
-    for mode in modes:
-        plain_mode = mode.removesuffix("-p3")
-        # The first declaration of the first rule that names the mode.
-        line = next(
-            (d.line for part in sheet.parts if part.mode == plain_mode for d in part.decls), None
-        )
-        check_name(mode, path=p, line=line, what="mode name")
-        plain = "default" if mode == "p3" else mode.removesuffix("-p3")
-        candidates = by_mode.get("default", []) + (
-            by_mode.get(plain, []) if plain != "default" else []
-        )
-        applied = [part for part in candidates if _applies(part, mode)]
-        # Each mode applies every root declaration again: counted before the sort.
-        steps.take(
-            len(candidates) + sum(len(part.decls) for part in applied),
-            "cascading modes",
-            lambda: {"file": p, "line": None, "path": None},
-        )
-        decls = sorted((d for part in applied for d in part.decls), key=lambda d: d.order)
-        props = {d.name: d for d in decls}  # the last in cascade order wins
-        resolver = _Resolver(sheet, props, _scheme_of(mode), steps)
-        out[mode] = {paths[name]: _token(sheet, resolver, name, colors) for name in props}
-        own = [part.where for part in applied if part.mode != "default" or part.scheme or part.p3]
-        if mode != "default":
-            found = "; ".join(dict.fromkeys(own)) or "light-dark() values"
-            notes.append(f"mode {mode} from {p.name}: {found}")
+    for name in out:
+        if name in wheres:
+            also = [a for a, m in aliases.items() if m == name]
+            shown = f" (the same as {', '.join(also)})" if also else ""
+            notes.append(
+                f"mode {name} from {p.name}: {wheres[name] or 'light-dark() values'}{shown}"
+            )
     if not any(t.type == "color" for tokens in out.values() for t in tokens.values()):
         raise InputError(
             "has no custom property that is a colour in a @theme block or a rule for the root "
-            "element (:root, html, :where(html))",
+            "element (:root, html, :where(html)), body or a theme",
             path=p,
         )
     skipped = {paths.get(n, _dots(n)): why for n, why in sheet.skipped.items()}
-    return TokenModes(p, "css", out, next(iter(out)), notes=tuple(notes), skipped=skipped)
+    return TokenModes(
+        p,
+        "css",
+        out,
+        "default" if "default" in out else next(iter(out)),
+        notes=tuple(notes),
+        skipped=skipped,
+        conditions=conditions,
+        aliases=aliases,
+    )
+
+
+class _Cascade:
+    """The rules that match ``<html>`` and ``<body>`` in a state, and what they compute.
+
+    Parts are indexed by the class and attribute names their items need, so a
+    state looks only at the parts it can match (a state has a handful of
+    conditions: every subset of them is one look-up).
+    """
+
+    def __init__(self, sheet: _Sheet, steps: Steps) -> None:
+        self.sheet = sheet
+        self.steps = steps
+        self.by_keys: dict[frozenset[str], list[int]] = {}
+        for i, part in enumerate(sheet.parts):
+            for keys in dict.fromkeys(part.item.keys):
+                self.by_keys.setdefault(keys, []).append(i)
+        self.colors: dict[str, bool] = {}  # _is_color per value text: modes share most values
+        self.applied: dict[ModeConditions, tuple[list[_Part], list[_Part]]] = {}
+
+    def parts(self, state: ModeConditions) -> tuple[list[_Part], list[_Part]]:
+        """The parts that apply on ``<html>`` and on ``<body>`` in ``state``, in source order."""
+        if state in self.applied:
+            return self.applied[state]
+        keys = state_keys(state)
+        if len(keys) <= 10:
+            found = sorted({i for sub in subsets(keys) for i in self.by_keys.get(sub, ())})
+        else:  # not reached by a least state of a real selector; still exact
+            found = list(range(len(self.sheet.parts)))
+        html, body = state_elements(state)
+        on_root: list[_Part] = []
+        on_body: list[_Part] = []
+        for i in found:
+            part = self.sheet.parts[i]
+            if part.p3 and not state.p3:
+                continue
+            if part.scheme is not None and part.scheme != state.scheme:
+                continue
+            if matches(part.item.tree, html):
+                on_root.append(part)
+            if matches(part.item.tree, body):
+                on_body.append(part)
+        self.steps.take(
+            len(found) + sum(len(part.decls) for part in (*on_root, *on_body)),
+            "cascading modes",
+            lambda: {"file": self.sheet.path, "line": None, "path": None},
+        )
+        self.applied[state] = (on_root, on_body)
+        return on_root, on_body
+
+    def own(self, state: ModeConditions) -> list[_Part]:
+        """The parts that apply in ``state`` and not in the page without conditions."""
+        base = set(map(id, (p for side in self.parts(ModeConditions()) for p in side)))
+        return [p for side in self.parts(state) for p in side if id(p) not in base]
+
+    def candidates(self) -> dict[ModeConditions, tuple[_Part, tuple[str, ...]]]:
+        """Every least state of an item, with its scheme and gamut variants (first part each).
+
+        The page without conditions comes first.  A state gets a dark variant
+        when a rule under ``prefers-color-scheme`` applies in it (or the sheet
+        uses ``light-dark()``), and a wide-gamut one when a P3 rule does.
+        """
+        first: dict[ModeConditions, tuple[_Part, tuple[str, ...]]] = {}
+        sheet = self.sheet
+        if not sheet.parts:
+            return first
+        base = ModeConditions()
+        first[base] = (sheet.parts[0], ())
+        for part in sheet.parts:
+            for least, words in zip(part.item.states, part.item.words, strict=True):
+                first.setdefault(least_conditions(least), (part, words))
+        schemed = [p for p in sheet.parts if p.scheme is not None]
+        wide = [p for p in sheet.parts if p.p3]
+        ordered: dict[ModeConditions, tuple[_Part, tuple[str, ...]]] = {}
+        for state, (part, words) in first.items():
+            ordered[state] = (part, words)
+            elements = state_elements(state)
+
+            def applies(parts: list[_Part], elements: tuple[Element, Element] = elements) -> Any:
+                return next(
+                    (p for p in parts if any(matches(p.item.tree, e) for e in elements)), None
+                )
+
+            found, found_wide = applies(schemed), applies(wide)
+            dark = replace(state, scheme="dark")
+            variants: list[tuple[ModeConditions, _Part | None]] = [
+                (replace(state, p3=True), found_wide)
+            ]
+            if found is not None or sheet.light_dark:
+                variants += [(dark, found or part), (replace(dark, p3=True), found_wide)]
+            for variant, cause in variants:
+                if cause is not None:
+                    ordered.setdefault(variant, (cause, words))
+        return ordered
+
+    def resolve(self, state: ModeConditions, paths: dict[str, str]) -> dict[str, Token]:
+        """Every custom property as ``<body>`` computes it in ``state``, by property name."""
+        on_root, on_body = self.parts(state)
+
+        def winners(parts: list[_Part]) -> dict[str, _Decl]:
+            decls = sorted((d for part in parts for d in part.decls), key=lambda d: d.order)
+            return {d.name: d for d in decls}  # the last in cascade order wins
+
+        root = _Resolver(self.sheet, winners(on_root), state.scheme, self.steps)
+        body = _Resolver(self.sheet, winners(on_body), state.scheme, self.steps, parent=root)
+        names = dict.fromkeys([*root.props, *body.props])
+        return {
+            n: _token(self.sheet, body if n in body.props else root, n, self.colors) for n in names
+        }
+
+    def sets_colour(
+        self, state: ModeConditions, tokens: dict[str, Token], default: dict[str, Token]
+    ) -> bool:
+        """Whether ``state`` is a mode: some colour comes from its own rules or differs.
+
+        The page without conditions is a mode when it has any colour.  Another
+        state is one when a colour token wins by a declaration of a rule that
+        does not apply without its conditions, or computes another value
+        (``.x { --hue: 200 }`` changes ``--bg: oklch(... var(--hue))``).
+        """
+        if state == ModeConditions():
+            return any(t.type == "color" for t in tokens.values())
+        own = {id(d) for part in self.own(state) for d in part.decls}
+        if not own and state.scheme == "light" and not state.p3:
+            return False
+        root, body = self.parts(state)
+        won = {}
+        for part in (*root, *body):
+            for d in part.decls:
+                won[d.name] = d
+        for name, token in tokens.items():
+            if token.type != "color":
+                continue
+            before = default.get(name)
+            if before is None or before.value != token.value or before.line != token.line:
+                return True
+            if name in won and id(won[name]) in own:
+                return True
+        return False
+
+
+def _mode_name(state: ModeConditions, words: tuple[str, ...], taken: set[str]) -> str:
+    """A short name for ``state`` (``dark``, ``pf-v6-theme-dark-pf-v6-theme-felt``).
+
+    The words are the class names and attribute values of the selector that
+    gave the state, in its order, each once; a dark scheme adds ``-dark`` (the page
+    without conditions is ``dark``), a wide-gamut display ``-p3``.  A name an
+    earlier state has already taken is written out in full instead
+    (``data-color-mode=auto+data-dark-theme=dark+prefers-dark``).
+    """
+    name = "-".join(dict.fromkeys(words)) or "default"
+    if state.scheme == "dark":
+        name = "dark" if name == "default" else name if name.endswith("dark") else f"{name}-dark"
+    if state.p3:
+        name = "p3" if name == "default" else f"{name}-p3"
+    if name not in taken:
+        return name
+    full = [
+        *(f".{c}" for c in state.root_classes),
+        *(f"{a}={v}" if v else a for a, v in state.root_attributes),
+        *(f"body.{c}" for c in state.body_classes),
+        *(f"body:{a}={v}" if v else f"body:{a}" for a, v in state.body_attributes),
+        *(["prefers-dark"] if state.scheme == "dark" else []),
+        *(["p3"] if state.p3 else []),
+    ]
+    name = "+".join(full) or "default"
+    n, unique = 2, name
+    while unique in taken:
+        unique, n = f"{name}+{n}", n + 1
+    return unique
 
 
 def _token_paths(sheet: _Sheet, names: set[str]) -> dict[str, str]:
@@ -790,8 +899,8 @@ def _token(sheet: _Sheet, resolver: _Resolver, name: str, colors: dict[str, bool
         problem = f"var() cycle: {resolver.cycles[name]} (every property in it is invalid)"
     elif value is None:
         problem = (
-            f"{tinycss2.serialize(decl.value).strip()[:60]} names a custom property this "
-            "sheet does not set (and gives no fallback)"
+            f"{tinycss2.serialize(decl.value).strip()[:60]} names a custom property no "
+            "rule of this sheet sets in this mode (and gives no fallback)"
         )
     elif not colors[text]:
         via = " -> ".join(_dots(n) for n in (name, *chain))

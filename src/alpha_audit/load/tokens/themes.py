@@ -9,9 +9,15 @@ gamut policy, and the ``$extensions`` key holding a colour's coefficient::
       file: tokens/system.resolver.json
       canvases: "color.bg.*"
       colors: "color.icon.*"
-      modes: {light: light, dark: dark}
+      modes: {light: light, "*dark*": dark}   # mode (glob) -> light|dark
       gamut: map
       alpha-extension: com.alpha-audit
+      types: {"color.*": color}               # for sources without types
+
+``modes:`` may instead list the modes to audit (``[default, "theme-g*"]``) or
+be a table of lists: ``audit`` (globs of the modes to audit), ``light`` and
+``dark`` (globs of the modes of each scheme) and ``groups`` (the Tokens
+Studio theme groups combined into modes, one theme of each).
 
 A coefficient lives in ``$extensions`` because DTCG's own ``alpha`` is
 limited to 0-1: ``{"com.alpha-audit": {"alpha": 1.2}}`` (or the flat key
@@ -42,7 +48,7 @@ from alpha_audit.color.srgb import srgb_decode
 from alpha_audit.errors import InputError
 from alpha_audit.load.theme import MAX_CANVASES
 from alpha_audit.load.tokens import load_token_modes, token_color
-from alpha_audit.load.tokens.model import Token, TokenModes, token_error
+from alpha_audit.load.tokens.model import ModeConditions, Token, TokenModes, token_error
 from alpha_audit.model import Canvas, GamutAdjustment, Mode, Theme
 from alpha_audit.ranges import ALPHA
 
@@ -69,7 +75,9 @@ _CONFIG_KEYS = (
     "gamut",
     "alpha-extension",
     "format",
+    "types",
 )
+_MODE_KEYS = ("audit", "light", "dark", "groups")
 
 
 @dataclass(frozen=True)
@@ -79,12 +87,19 @@ class TokenConfig:
     file: Path
     canvases: tuple[str, ...]
     colors: tuple[str, ...] = ()
-    modes: dict[str, Mode] = field(default_factory=dict)
+    modes: dict[str, Mode] = field(default_factory=dict)  # mode glob -> light|dark
     modifier: str | None = None
     gamut: GamutPolicy = "error"
     alpha_extension: str = DEFAULT_ALPHA_EXTENSION
     format: str = "auto"
     root: Path | None = None
+    audit: tuple[str, ...] = ()  # globs of the modes to audit; () every mode
+    groups: tuple[str, ...] | None = None  # Tokens Studio groups combined; None: all
+    types: dict[str, str] = field(default_factory=dict)  # path glob -> type (untyped sets)
+
+    def mode_of(self, name: str) -> Mode | None:
+        """``light`` or ``dark`` as the first ``modes`` glob matching ``name`` says."""
+        return next((m for g, m in self.modes.items() if fnmatch.fnmatchcase(name, g)), None)
 
 
 @dataclass(frozen=True)
@@ -144,6 +159,13 @@ class TokenThemes:
     modes: tuple[TokenMode, ...]
     adjusted: tuple[GamutAdjustment, ...] = ()
     notes: tuple[str, ...] = ()  # one line each for stderr: modes found, tokens skipped
+    # Modes audited as another: a CSS state computing the same values, or a mode
+    # whose selected colours equal an earlier one's (name -> the audited mode).
+    aliases: dict[str, str] = field(default_factory=dict)
+    # Modes not audited: no selected token set in them, or not listed in modes.audit.
+    skipped: tuple[str, ...] = ()
+    # For a CSS source: the browser state of every mode and alias (what a page sets).
+    conditions: dict[str, ModeConditions] = field(default_factory=dict)
 
     @property
     def themes(self) -> tuple[Theme, ...]:
@@ -221,6 +243,30 @@ def _color_key(value: Any) -> str | None:
     return json.dumps(value, sort_keys=True)
 
 
+def _typed(token: Token, config: TokenConfig) -> Token:
+    """``token`` with the type the config's ``types`` gives an untyped token.
+
+    A source without types (Style Dictionary output, whose ``type`` may sit in
+    ``attributes`` or nowhere) is typed from the config, a glob per type, never
+    guessed; an untyped token the config does not type is refused naming the key.
+    """
+    if token.type != "unknown" or token.value is None or token.problem is None:
+        return token  # typed, or broken for another reason (an alias to nothing)
+    paths = (token.path, *token.chain)
+    found = next(
+        (t for g, t in config.types.items() for p in paths if fnmatch.fnmatchcase(p, g)), None
+    )
+    if found is None:
+        raise token_error(
+            f"{token.problem}; or type it in the config: tokens: {{types: "
+            f'{{"{token.path}": color}}}} (a glob per type)',
+            file=token.file,
+            line=token.line,
+            path=token.path,
+        )
+    return replace(token, type=found, problem=None)
+
+
 def _parse_all(
     source: TokenModes, config: TokenConfig
 ) -> tuple[dict[str, ParsedColor], list[tuple[str, str, str, Token, bool, bool]]]:
@@ -240,6 +286,7 @@ def _parse_all(
             if path not in chosen:
                 continue
             is_canvas, is_color = chosen[path]
+            token = _typed(token, config)
             key = _color_key(token.value)
             if key is None or key not in seen or token.type != "color" or token.problem is not None:
                 parsed = token_color(token, gamut=parse_as, allow_alpha=True)
@@ -261,10 +308,16 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
     ``$extensions``).  A CSS mode whose selected colours equal an earlier
     mode's is audited once, with a note.
     """
+    source, not_listed = _chosen_modes(source, config)
     seen, selected = _parse_all(source, config)
     modes: list[TokenMode] = []
     adjusted: list[tuple[str, Token, ParsedColor]] = []
     notes: list[str] = list(source.notes)
+    if not_listed:
+        notes.append(_names_note(not_listed, "not listed in the config's modes.audit"))
+    aliases = {a: m for a, m in source.aliases.items() if m in source.modes}
+    unset: list[str] = []
+    same_as: dict[str, list[str]] = {}
     by_mode: dict[str, list[tuple[str, str, Token, bool, bool]]] = {n: [] for n in source.modes}
     for name, *entry in selected:
         by_mode[name].append(tuple(entry))  # type: ignore[arg-type]  # the 4 fields after name
@@ -298,12 +351,15 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
                         Canvas(
                             path,
                             parsed.css,
-                            config.modes.get(name),
+                            config.mode_of(name),
                             line=token.line,
                             file=token.file,
                             span=token.span,
                             over="",  # set below: the mode's first opaque canvas
                             opacity=parsed.alpha,
+                            # A sheet's surface is painted by the browser, whatever
+                            # pipeline draws the icons.
+                            blend="css" if source.kind == "css" else None,
                         )
                     )
                 continue
@@ -314,7 +370,7 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
                     Canvas(
                         path,
                         parsed.css,
-                        config.modes.get(name),
+                        config.mode_of(name),
                         line=token.line,
                         file=token.file,
                         span=token.span,
@@ -323,17 +379,26 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
             if is_color:
                 colors[path] = TokenColor(token, parsed, _alpha(token, config.alpha_extension))
         if not canvases:
-            raise InputError(
-                f"mode {name!r} has no opaque token matching canvases {', '.join(config.canvases)}",
-                path=source.source,
-            )
+            if layers:
+                shown = ", ".join(f"{c.name} (alpha {c.opacity:.3g})" for c in layers[:2])
+                raise InputError(
+                    f"mode {name!r}: the tokens matching canvases {', '.join(config.canvases)} "
+                    f"are translucent ({shown}) and nothing says what they are drawn over; "
+                    "add the opaque canvas below them to canvases, or leave the mode out "
+                    "(tokens: {modes: {audit: [...]}})",
+                    path=source.source,
+                )
+            unset.append(name)  # the mode sets no selected canvas: nothing to audit on
+            continue
         if layers:
             base = canvases[0].name
             canvases += [replace(layer, over=base) for layer in layers]
             shown = ", ".join(f"{c.name} ({c.opacity:.3g})" for c in layers[:3])
             more = f" and {len(layers) - 3} more" if len(layers) > 3 else ""
+            how = " as a browser draws them" if source.kind == "css" else ""
             notes.append(
-                f"mode {name}: translucent canvases {shown}{more} audited as layers over {base}"
+                f"mode {name}: translucent canvases {shown}{more} audited as layers over "
+                f"{base}{how}"
             )
         signature = (
             tuple((c.name, c.color, c.mode) for c in canvases),
@@ -343,7 +408,8 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
         # property), so a sheet's identical modes are audited once; a format
         # that names its modes (Resolver, Figma, Tokens Studio) keeps them all.
         if source.kind == "css" and signature in distinct:
-            notes.append(f"mode {name}: the same selected colours as mode {distinct[signature]}")
+            aliases[name] = distinct[signature]
+            same_as.setdefault(distinct[signature], []).append(name)
             continue
         distinct[signature] = name
         total_canvases += len(canvases)
@@ -355,6 +421,18 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
             )
         theme = Theme(name, tuple(canvases), path=source.source)
         modes.append(TokenMode(name, theme, colors, translucent))
+    for first, names in same_as.items():
+        notes.append(_names_note(names, f"the same selected colours as mode {first}"))
+    if unset:
+        notes.append(_names_note(unset, f"no token matching canvases {', '.join(config.canvases)}"))
+    if not modes:
+        raise InputError(
+            f"no mode has an opaque token matching canvases {', '.join(config.canvases)} "
+            f"(modes: {', '.join(list(source.modes)[:8])})",
+            path=source.source,
+        )
+    audited = {m.name for m in modes}
+    aliases = {a: aliases.get(m, m) for a, m in aliases.items() if aliases.get(m, m) in audited}
     delta_e = gamut_delta_e([p for _, _, p in adjusted]) if adjusted else np.zeros(0)
     moved = tuple(
         GamutAdjustment(
@@ -369,7 +447,46 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
         )
         for (name, token, parsed), de in zip(adjusted, delta_e, strict=True)
     )
-    return TokenThemes(source.source, source.kind, config.gamut, tuple(modes), moved, tuple(notes))
+    skipped = (*not_listed, *unset, *(a for a in source.aliases if a not in aliases))
+    return TokenThemes(
+        source.source,
+        source.kind,
+        config.gamut,
+        tuple(modes),
+        moved,
+        tuple(notes),
+        aliases=aliases,
+        skipped=tuple(skipped),
+        conditions=dict(source.conditions),
+    )
+
+
+def _names_note(names: Sequence[str], why: str) -> str:
+    """One note for many modes: ``modes a, b and 3 more: why``."""
+    shown = ", ".join(names[:6]) + (f" and {len(names) - 6} more" if len(names) > 6 else "")
+    return f"mode {shown}: {why}" if len(names) == 1 else f"modes {shown}: {why}"
+
+
+def _chosen_modes(source: TokenModes, config: TokenConfig) -> tuple[TokenModes, list[str]]:
+    """``source`` with only the modes ``config.audit`` lists, and the names left out.
+
+    A mode is listed when a glob matches its name or an alias's; a glob that
+    matches nothing is an error (a typo would silently audit nothing).
+    """
+    if not config.audit:
+        return source, []
+    names = {m: [m, *(a for a, t in source.aliases.items() if t == m)] for m in source.modes}
+    for glob in config.audit:
+        if not any(fnmatch.fnmatchcase(n, glob) for ns in names.values() for n in ns):
+            raise InputError(
+                f"tokens.modes: {glob!r} matches no mode of {source.source.name}; modes: "
+                f"{', '.join(list(source.modes)[:12])}",
+                path=source.source,
+            )
+    kept = [m for m, ns in names.items() if any(_matches(n, config.audit) for n in ns)]
+    left = [m for m in source.modes if m not in kept]
+    modes = {m: source.modes[m] for m in kept}
+    return replace(source, modes=modes, default=kept[0]), left
 
 
 def _hex(parsed: ParsedColor) -> str:
@@ -380,7 +497,11 @@ def _hex(parsed: ParsedColor) -> str:
 def load_token_themes(config: TokenConfig) -> TokenThemes:
     """Load ``config.file`` and build its themes and icon colours."""
     source = load_token_modes(
-        config.file, root=config.root, modifier=config.modifier, format=config.format
+        config.file,
+        root=config.root,
+        modifier=config.modifier,
+        format=config.format,
+        groups=config.groups,
     )
     return token_themes(source, config)
 
@@ -414,11 +535,12 @@ def token_config_from_mapping(value: Any, *, base: Path, where: Any) -> TokenCon
             raise where((key,), 'expected a token-path pattern or a list, e.g. "color.bg.*"')
         return tuple(items)
 
-    modes_raw = data.get("modes", {})
-    if not isinstance(modes_raw, dict) or not all(
-        v in ("light", "dark") for v in modes_raw.values()
+    schemes, audit, groups = _modes_setting(data.get("modes", {}), where)
+    types_raw = data.get("types", {})
+    if not isinstance(types_raw, dict) or not all(
+        isinstance(k, str) and isinstance(v, str) and v for k, v in types_raw.items()
     ):
-        raise where(("modes",), "expected {context: light|dark, ...}")
+        raise where(("types",), 'expected {token-path glob: type, ...}, e.g. {"color.*": color}')
     gamut = data.get("gamut", "error")
     if gamut not in GAMUT_POLICIES:
         raise where(("gamut",), f"{gamut!r} is not a gamut policy; use {', '.join(GAMUT_POLICIES)}")
@@ -437,10 +559,53 @@ def token_config_from_mapping(value: Any, *, base: Path, where: Any) -> TokenCon
         file=path,
         canvases=patterns("canvases", True),
         colors=patterns("colors", False),
-        modes={str(k): v for k, v in modes_raw.items()},
+        modes=schemes,
         modifier=modifier,
         gamut=gamut,
         alpha_extension=ext,
         format=fmt,
         root=base,
+        audit=audit,
+        groups=groups,
+        types={str(k): str(v) for k, v in types_raw.items()},
     )
+
+
+_MODES_HELP = (
+    "expected {mode: light|dark, ...} (mode names or globs), a list of the modes to audit, "
+    "or {audit: [...], light: [...], dark: [...], groups: [...]}"
+)
+
+
+def _modes_setting(
+    raw: Any, where: Any
+) -> tuple[dict[str, Mode], tuple[str, ...], tuple[str, ...] | None]:
+    """``(mode glob -> light|dark, globs to audit, Tokens Studio groups)`` of ``modes:``."""
+
+    def globs(value: Any, key: tuple[str, ...]) -> tuple[str, ...]:
+        items = [value] if isinstance(value, str) else value
+        if not isinstance(items, list) or not all(isinstance(i, str) and i for i in items):
+            raise where(("modes", *key), "expected a list of mode names or globs")
+        return tuple(items)
+
+    if isinstance(raw, list | str):
+        return {}, globs(raw, ()), None
+    if not isinstance(raw, dict):
+        raise where(("modes",), _MODES_HELP)
+    if all(isinstance(v, str) for v in raw.values()):  # {mode: light|dark}
+        if not all(v in ("light", "dark") for v in raw.values()):
+            raise where(("modes",), _MODES_HELP)
+        return {str(k): v for k, v in raw.items()}, (), None
+    for key in raw:
+        if key not in _MODE_KEYS:
+            raise where(
+                ("modes", str(key)), f"unknown key {key!r}; allowed: {', '.join(_MODE_KEYS)}"
+            )
+    schemes: dict[str, Mode] = {}
+    for scheme in ("light", "dark"):
+        for glob in globs(raw.get(scheme, []), (scheme,)):
+            schemes[glob] = "light" if scheme == "light" else "dark"
+    groups = None
+    if "groups" in raw:
+        groups = () if raw["groups"] is False else globs(raw["groups"], ("groups",))
+    return schemes, globs(raw.get("audit", []), ("audit",)) if "audit" in raw else (), groups
