@@ -38,7 +38,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from alpha_audit.color import (
-    composite_coverage,
+    Pipeline,
+    composite_paint,
     contrast_from_luminance,
     contrast_ratio,
     delta_e_2000,
@@ -46,6 +47,7 @@ from alpha_audit.color import (
     linear_to_hex,
     relative_luminance,
     shipped,
+    srgb_encode,
     to_8bit,
 )
 from alpha_audit.color.oklch import linear_to_oklch, oklch_to_linear
@@ -137,6 +139,7 @@ def smallest_alpha_reaching(
     opacities: ArrayLike = 1.0,
     alpha_max: float = 2.0,
     precision: int = 3,
+    pipeline: Pipeline = "linear",
 ) -> tuple[float | None, float | None]:
     """``(rounded, exact)``: the smallest ``a >= 1`` reaching the threshold on every canvas.
 
@@ -148,6 +151,9 @@ def smallest_alpha_reaching(
     the first good one (a gap's left end is its infimum).  ``rounded`` is
     ``exact`` rounded up to ``precision`` decimals, stepped up until what ships
     passes everywhere; both are ``None`` when nothing up to ``alpha_max`` does.
+    Under ``css`` the coefficient multiplies the opacity and a browser clamps the
+    product to 1: ``a`` goes no further than ``1 / max(opacities)`` (a paint at
+    opacity 0.5 reaches the threshold, if at all, by an opacity up to 1).
 
     >>> # Linear grey 0.4 on white: 2.33:1 at alpha 1; darker with a > 1 (moved away from white).
     >>> rounded, exact = smallest_alpha_reaching([0.4] * 3, [[1.0, 1.0, 1.0]], 3.0)
@@ -163,17 +169,23 @@ def smallest_alpha_reaching(
     bg = np.repeat(bgs, o.size, axis=0)  # every (canvas, opacity)
     q = np.tile(o, bgs.shape[0])
     y_screen = relative_luminance(shipped(bg))
+    if pipeline == "css":
+        alpha_max = min(alpha_max, 1.0 / float(o.max()))
 
     def reaches(a: NDArray[np.float64]) -> NDArray[np.bool_]:
         """Whether what ships at each ``a`` (shape (N,)) reaches ``t`` on every canvas."""
-        shown = shipped(composite_coverage(s, bg[:, None, :], a[None, :], q[:, None]))
+        a = np.minimum(a, alpha_max)  # float noise at the css clamp
+        shown = shipped(composite_paint(s, bg[:, None, :], a[None, :], q[:, None], pipeline))
         y = relative_luminance(shown)
         ok: NDArray[np.bool_] = np.all(contrast_from_luminance(y, y_screen[:, None]) >= t, axis=0)
         return ok
 
     # What ships changes only where a displayed channel crosses a code threshold: judge
     # every crossing and every gap between two (the codes are constant on a gap).
-    crossings = code_crossings(np.broadcast_to(s, bg.shape), bg, q[:, None]).reshape(-1)
+    if pipeline == "css":
+        crossings = _css_crossings(s, bg, q).reshape(-1)
+    else:
+        crossings = code_crossings(np.broadcast_to(s, bg.shape), bg, q[:, None]).reshape(-1)
     inside = crossings[np.isfinite(crossings) & (crossings > ALPHA_LO) & (crossings < alpha_max)]
     points = np.unique(np.concatenate([[ALPHA_LO, alpha_max], inside]))
     elements = np.empty(2 * points.size - 1)
@@ -195,12 +207,31 @@ def smallest_alpha_reaching(
     return rounded, exact
 
 
+def _css_crossings(
+    source: NDArray[np.float64], backgrounds: NDArray[np.float64], opacity: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """Coefficients at which a css-composited channel crosses a code threshold.
+
+    A browser blends encoded values, ``b' + a o (s' - b')``, and rounds to a code:
+    linear in ``a``, so the crossing of ``(n + 0.5) / 255`` is at
+    ``((n + 0.5) / 255 - b') / (o (s' - b'))`` (``nan`` where the channel never
+    moves), shape ``(canvases, 3, 255)``.
+    """
+    s = srgb_encode(source)[np.newaxis, :, np.newaxis]
+    b = srgb_encode(backgrounds)[:, :, np.newaxis]
+    d = opacity[:, np.newaxis, np.newaxis] * (s - b)
+    edges = (np.arange(255) + 0.5) / 255.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(d != 0, (edges - b) / d, np.nan)
+
+
 def passes_everywhere(
     colors: ArrayLike,
     backgrounds: ArrayLike,
     styles: ArrayLike,
     threshold: float,
     policy: Policy | None = None,
+    pipeline: Pipeline = "linear",
 ) -> NDArray[np.bool_]:
     """Which linear colours ``(..., 3)`` pass on every canvas in every style.
 
@@ -208,8 +239,8 @@ def passes_everywhere(
     alphas means opacity 1).  Passing: in gamut (every channel in [0, 1]),
     contrast at least ``threshold``, and every contrast rule of the policy
     satisfied (:func:`~alpha_audit.policy.contrast_breaks`, their one
-    statement), against the same paint at alpha 1.  Evaluated in chunks, so
-    memory stays bounded.
+    statement), against the same paint at alpha 1, composited as ``pipeline``
+    draws it.  Evaluated in chunks, so memory stays bounded.
     """
     col = np.asarray(colors, dtype=np.float64)
     shape = col.shape[:-1]
@@ -236,8 +267,8 @@ def passes_everywhere(
                 break
             src = np.clip(chunk[alive], 0.0, 1.0)[:, np.newaxis, np.newaxis, :]
             b = bgs[group][np.newaxis, np.newaxis]  # (1, 1, g, 3)
-            shown = shipped(composite_coverage(src, b, a[None, :, None], o[None, :, None]))
-            ref = shipped(composite_coverage(src, b, 1.0, o[None, :, None]))
+            shown = shipped(composite_paint(src, b, a[None, :, None], o[None, :, None], pipeline))
+            ref = shipped(composite_paint(src, b, 1.0, o[None, :, None], pipeline))
             contrast = contrast_ratio(shown, screen[group])
             c_ref = contrast_ratio(ref, screen[group])
             for rule in rules:
@@ -278,6 +309,7 @@ def nearest_passing_color(
     styles: ArrayLike,
     threshold: float,
     policy: Policy | None = None,
+    pipeline: Pipeline = "linear",
 ) -> NearestColor | None:
     """The colour of the source's OKLCH hue nearest in CIEDE2000 that passes everywhere.
 
@@ -303,7 +335,7 @@ def nearest_passing_color(
     bgs = np.asarray(backgrounds, dtype=np.float64).reshape(-1, 3)
 
     def passing(lin: NDArray[np.float64]) -> NDArray[np.bool_]:
-        return passes_everywhere(lin, bgs, styles, threshold, policy)
+        return passes_everywhere(lin, bgs, styles, threshold, policy, pipeline)
 
     l0, c0, hue = (float(v) for v in linear_to_oklch(src))
     achromatic = c0 < ACHROMATIC_CHROMA
@@ -458,7 +490,12 @@ class _Audit:
         if role not in self.nearest:
             self.nearest[role] = (
                 nearest_passing_color(
-                    self.linear[role], theme.backgrounds, styles, r.threshold, self.policy
+                    self.linear[role],
+                    theme.backgrounds,
+                    styles,
+                    r.threshold,
+                    self.policy,
+                    r.pipeline,
                 )
                 if contrast
                 else None
@@ -472,6 +509,7 @@ class _Audit:
                 opacities=sorted({o for _, o in styles}),
                 alpha_max=self.alpha_max,
                 precision=self.precision,
+                pipeline=r.pipeline,
             )
             self.reach[role, mode] = ReachAlpha(
                 mode=mode,
@@ -481,6 +519,9 @@ class _Audit:
                 exact=exact,
             )
         fixed = role.startswith("#") and first.color_name != role and first.color != role
+        # A paint a browser drew with CSS: no coefficient above 1 exists there, so the
+        # answers are an opacity (the reaching alpha times its opacity) and a colour.
+        page = bool(r.observed) and r.pipeline == "css"
         return ColorFix(
             theme=theme.name,
             iconset=r.iconset.name,
@@ -490,11 +531,12 @@ class _Audit:
             mode=mode,
             icons=tuple(icons),
             rules=tuple(sorted(rules, key=list(Rule).index)),
-            largest_safe=self.largest_safe(None, [role]),
+            largest_safe=SafeAlpha(None, None, None) if page else self.largest_safe(None, [role]),
             reach=self.reach[role, mode],
             nearest=self.nearest[role],
             manifest=r.iconset.path,
             line=None if fixed else first.color_line,
+            opacity=max(o for _, o in styles) if page else None,
         )
 
 
@@ -538,10 +580,19 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
     """
     gate = report.gate
     policy = gate.policy
-    audits = {
-        (r.theme.name, r.iconset.name): _Audit(r, policy, alpha_max, precision)
-        for r in report.audits
+    # A finding's audit: its theme, icon set and worst canvas (a page's audits share a
+    # state and a story, one audit per backdrop).
+    audits = [_Audit(r, policy, alpha_max, precision) for r in report.audits]
+    owner = {
+        (r.theme.name, r.iconset.name, c.name): k
+        for k, r in enumerate(report.audits)
+        for c in r.theme.canvases
     }
+
+    def audit_of(f: Finding) -> _Audit | None:
+        k = owner.get((f.theme, f.iconset, f.canvas or ""))
+        return None if k is None else audits[k]
+
     # Every written canvas value of every audit: a token that is one mode's icon colour
     # and another mode's canvas (an alias in a dark block) is never rewritten.
     canvas_spans = frozenset(
@@ -555,7 +606,7 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
     canvas_of: dict[tuple[str, str, str, str], int] = {}
     left_out: set[tuple[str, str, str]] = set()
     for f in gate.failures:
-        a = audits.get((f.theme, f.iconset))
+        a = audit_of(f)
         if a is None or not f.canvases or f.rule not in _PER_PAINT:
             continue
         role = _role_of(f, a.by_name)
@@ -570,7 +621,7 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
         if not f.fails or not f.canvases:
             findings.append(f)
             continue
-        a = audits.get((f.theme, f.iconset))
+        a = audit_of(f)
         found: list[int] = []
         role = _role_of(f, a.by_name) if a is not None and f.rule in _PER_PAINT else None
         if a is not None and role is not None:

@@ -39,7 +39,12 @@ def _details(f: Finding) -> str:
 
 
 def render_report(report: CheckReport, options: RenderOptions) -> str:
-    """The report as a JUnit XML document (``<testsuites>``)."""
+    """The report as a JUnit XML document (``<testsuites>``; a page run's:
+    :func:`~alpha_audit.render.pages.page_junit`)."""
+    if report.pages is not None:
+        from alpha_audit.render.pages import page_junit
+
+        return page_junit(report, report.pages, options)
     by_cell: dict[tuple[str, str, str | None, str], list[Finding]] = defaultdict(list)
     for f in report.gate.findings:
         for name in f.canvases or (f.canvas,):  # a root cause fails each of its canvases
