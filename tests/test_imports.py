@@ -131,6 +131,7 @@ def test_import_color_loads_only_color_and_errors() -> None:
         "alpha_audit.color.coverage",
         "alpha_audit.color.cvd",
         "alpha_audit.color.drift",
+        "alpha_audit.color.judge",
         "alpha_audit.color.oklch",
         "alpha_audit.color.metrics",
         "alpha_audit.color.srgb",

@@ -27,6 +27,7 @@ from alpha_audit.color.css import (
 )
 from alpha_audit.color.cvd import DEFICIENCIES, Deficiency, cvd_matrix, simulate_cvd
 from alpha_audit.color.drift import ACHROMATIC_CHROMA, color_drift, hue_shift, oklch_degrees
+from alpha_audit.color.judge import judged_contrast
 from alpha_audit.color.metrics import (
     CONTRAST_TOLERANCE,
     DELTA_E_TOLERANCE,
@@ -38,7 +39,6 @@ from alpha_audit.color.metrics import (
     contrast_ratio,
     delta_e_2000,
     delta_e_2000_lab,
-    judged_contrast,
     linear_to_lab,
     relative_luminance,
 )

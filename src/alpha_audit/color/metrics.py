@@ -25,7 +25,6 @@ __all__ = [
     "contrast_ratio",
     "delta_e_2000",
     "delta_e_2000_lab",
-    "judged_contrast",
     "linear_to_lab",
     "relative_luminance",
 ]
@@ -114,24 +113,6 @@ def contrast_from_luminance(y1: ArrayLike, y2: ArrayLike) -> NDArray[np.float64]
 def contrast_ratio(linear1: ArrayLike, linear2: ArrayLike) -> NDArray[np.float64]:
     """WCAG contrast ratio of two linear sRGB colours (symmetric, >= 1)."""
     return contrast_from_luminance(relative_luminance(linear1), relative_luminance(linear2))
-
-
-def judged_contrast(shown: ArrayLike, canvas: ArrayLike) -> NDArray[np.float64]:
-    """The one judgement of a shown colour on a canvas: WCAG 2.2 contrast of what ships.
-
-    Both linear colours are taken to the 8-bit sRGB codes a screen shows
-    (:func:`~alpha_audit.color.srgb.shipped`: encoded, rounded half to even)
-    before the ratio: every verdict (rows, findings, ``pair``, fixes, a
-    browser's measured paints and the model's predictions for them) calls this,
-    so two formulas never disagree on one colour.  ``contrast_ratio`` of the
-    float colours is the paper's maths, kept beside it as ``*_float``.
-
-    >>> round(float(judged_contrast([0.5, 0.5, 0.5], [1.0, 1.0, 1.0])), 6)
-    1.899124
-    """
-    from alpha_audit.color.srgb import shipped
-
-    return contrast_ratio(shipped(shown), shipped(canvas))
 
 
 def linear_to_lab(linear: ArrayLike) -> NDArray[np.float64]:
