@@ -35,7 +35,7 @@ from alpha_audit.color import (
     to_8bit,
 )
 from alpha_audit.color.nearest import delta_e_2000_lightness_key, pairs_below
-from alpha_audit.model import Edit, Icon, Location, Span
+from alpha_audit.model import Edit, Icon, Location
 from alpha_audit.observed import MeasuredPaint
 from alpha_audit.policy import (
     RENDER_DRIFT_TOLERANCE,
@@ -443,9 +443,7 @@ def _observed_contrast(
     o: MeasuredPaint, numbers: dict[str, float | str], threshold: float
 ) -> tuple[str, dict[str, float | str]]:
     """``below-threshold`` of a row a browser drew: the pair that limits, and the model."""
-    message = (
-        f"draws {o.drawn} on {o.behind}: {numbers['contrast']:.2f}:1 is below {threshold:g}:1"
-    )
+    message = f"draws {o.drawn} on {o.behind}: {numbers['contrast']:.2f}:1 is below {threshold:g}:1"
     if o.declared_opacity < 1.0:
         message += f" (at opacity {o.declared_opacity:g})"
     near = o.nearer
@@ -469,7 +467,7 @@ def _render_drift(c: _Collector, rule: Rule) -> None:
             f"{o.model_source} at alpha {o.model_alpha:g}; CIEDE2000 {o.render_drift:.1f} > "
             f"{RENDER_DRIFT_TOLERANCE:g})"
         )
-        numbers = {
+        numbers: dict[str, float | str] = {
             **observed_figures(o),
             "drift": o.render_drift,
             "tolerance": RENDER_DRIFT_TOLERANCE,
@@ -478,12 +476,18 @@ def _render_drift(c: _Collector, rule: Rule) -> None:
             "paint": e.paint,
             "opacity": e.opacity,
         }
+
+        def build(
+            k: int, message: str = message, numbers: dict[str, float | str] = numbers
+        ) -> tuple[str, dict[str, float | str]]:
+            return message, numbers
+
         c.fold(
             rule,
             (e.icon.name,),
             list(range(len(r.theme.canvases))),
             [o.render_drift] * len(r.theme.canvases),
-            lambda k, message=message, numbers=numbers: (message, numbers),
+            build,
             locations=c.paint_locations(e, colour_first=True),
         )
 

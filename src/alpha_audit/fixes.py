@@ -33,12 +33,12 @@ import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from decimal import ROUND_CEILING, Decimal
+from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from alpha_audit.color import (
-    Pipeline,
     composite_paint,
     contrast_from_luminance,
     contrast_ratio,
@@ -50,6 +50,7 @@ from alpha_audit.color import (
     srgb_encode,
     to_8bit,
 )
+from alpha_audit.color.composite import composite_css_least
 from alpha_audit.color.oklch import linear_to_oklch, oklch_to_linear
 from alpha_audit.findings import Finding
 from alpha_audit.model import Edit, Icon, Span
@@ -116,6 +117,26 @@ _PAIR = frozenset({Rule.CONFUSION, Rule.CVD_CONFUSION})
 _REACH_RULES = frozenset({Rule.BELOW_THRESHOLD, Rule.NEWLY_FAILING})
 
 
+# How a fix's colours are drawn: an audit's pipeline, or ``css-least`` for a paint a
+# browser drew with CSS (of what engines may show, the colour nearest the backdrop:
+# :func:`~alpha_audit.color.composite.composite_css_least`), so a page's fix passes in
+# every engine, not only in the formula.
+Drawn = Literal["linear", "css", "css-least"]
+
+
+def _composite(
+    source: ArrayLike, background: ArrayLike, alpha: ArrayLike, opacity: ArrayLike, how: Drawn
+) -> NDArray[np.float64]:
+    """The shown colour of a paint at ``alpha`` and ``opacity`` drawn ``how``."""
+    if how == "linear":
+        return composite_paint(source, background, alpha, opacity, "linear")
+    # A browser multiplies opacities: only the product is bounded (by 1).
+    product = np.asarray(alpha, dtype=np.float64) * np.asarray(opacity, dtype=np.float64)
+    if how == "css-least":
+        return composite_css_least(source, background, product)
+    return composite_paint(source, background, 1.0, product, "css")
+
+
 def _round_up(value: float, precision: int) -> float:
     step = Decimal(1).scaleb(-precision)
     return float(Decimal(repr(value)).quantize(step, rounding=ROUND_CEILING))
@@ -139,7 +160,7 @@ def smallest_alpha_reaching(
     opacities: ArrayLike = 1.0,
     alpha_max: float = 2.0,
     precision: int = 3,
-    pipeline: Pipeline = "linear",
+    pipeline: Drawn = "linear",
 ) -> tuple[float | None, float | None]:
     """``(rounded, exact)``: the smallest ``a >= 1`` reaching the threshold on every canvas.
 
@@ -169,20 +190,24 @@ def smallest_alpha_reaching(
     bg = np.repeat(bgs, o.size, axis=0)  # every (canvas, opacity)
     q = np.tile(o, bgs.shape[0])
     y_screen = relative_luminance(shipped(bg))
-    if pipeline == "css":
+    if pipeline != "linear":
         alpha_max = min(alpha_max, 1.0 / float(o.max()))
 
     def reaches(a: NDArray[np.float64]) -> NDArray[np.bool_]:
         """Whether what ships at each ``a`` (shape (N,)) reaches ``t`` on every canvas."""
-        a = np.minimum(a, alpha_max)  # float noise at the css clamp
-        shown = shipped(composite_paint(s, bg[:, None, :], a[None, :], q[:, None], pipeline))
+        if pipeline != "linear":
+            a = np.minimum(a, 1.0 / q.max())  # float noise at a browser's clamp
+        shown = shipped(_composite(s, bg[:, None, :], a[None, :], q[:, None], pipeline))
         y = relative_luminance(shown)
         ok: NDArray[np.bool_] = np.all(contrast_from_luminance(y, y_screen[:, None]) >= t, axis=0)
         return ok
 
     # What ships changes only where a displayed channel crosses a code threshold: judge
     # every crossing and every gap between two (the codes are constant on a gap).
-    if pipeline == "css":
+    if pipeline == "css-least":
+        # The colour shown changes only where the 8-bit alpha does: every a o 255 whole.
+        crossings = (np.arange(256)[np.newaxis, :] / (255.0 * q[:, np.newaxis])).reshape(-1)
+    elif pipeline == "css":
         crossings = _css_crossings(s, bg, q).reshape(-1)
     else:
         crossings = code_crossings(np.broadcast_to(s, bg.shape), bg, q[:, None]).reshape(-1)
@@ -231,7 +256,7 @@ def passes_everywhere(
     styles: ArrayLike,
     threshold: float,
     policy: Policy | None = None,
-    pipeline: Pipeline = "linear",
+    pipeline: Drawn = "linear",
 ) -> NDArray[np.bool_]:
     """Which linear colours ``(..., 3)`` pass on every canvas in every style.
 
@@ -267,8 +292,8 @@ def passes_everywhere(
                 break
             src = np.clip(chunk[alive], 0.0, 1.0)[:, np.newaxis, np.newaxis, :]
             b = bgs[group][np.newaxis, np.newaxis]  # (1, 1, g, 3)
-            shown = shipped(composite_paint(src, b, a[None, :, None], o[None, :, None], pipeline))
-            ref = shipped(composite_paint(src, b, 1.0, o[None, :, None], pipeline))
+            shown = shipped(_composite(src, b, a[None, :, None], o[None, :, None], pipeline))
+            ref = shipped(_composite(src, b, 1.0, o[None, :, None], pipeline))
             contrast = contrast_ratio(shown, screen[group])
             c_ref = contrast_ratio(ref, screen[group])
             for rule in rules:
@@ -309,7 +334,7 @@ def nearest_passing_color(
     styles: ArrayLike,
     threshold: float,
     policy: Policy | None = None,
-    pipeline: Pipeline = "linear",
+    pipeline: Drawn = "linear",
 ) -> NearestColor | None:
     """The colour of the source's OKLCH hue nearest in CIEDE2000 that passes everywhere.
 
@@ -448,6 +473,8 @@ class _Audit:
 
     def __post_init__(self) -> None:
         r = self.result
+        # A paint a browser drew with CSS is fixed for every engine (see Drawn).
+        self.drawn: Drawn = "css-least" if r.observed and r.pipeline == "css" else r.pipeline
         self.by_name = {i.name: i for i in r.iconset.icons}
         # Which icons draw each colour, and the (alpha, opacity) styles it is drawn in.
         self.members: dict[str, list[str]] = {}
@@ -495,7 +522,7 @@ class _Audit:
                     styles,
                     r.threshold,
                     self.policy,
-                    r.pipeline,
+                    self.drawn,
                 )
                 if contrast
                 else None
@@ -509,7 +536,7 @@ class _Audit:
                 opacities=sorted({o for _, o in styles}),
                 alpha_max=self.alpha_max,
                 precision=self.precision,
-                pipeline=r.pipeline,
+                pipeline=self.drawn,
             )
             self.reach[role, mode] = ReachAlpha(
                 mode=mode,
@@ -521,7 +548,7 @@ class _Audit:
         fixed = role.startswith("#") and first.color_name != role and first.color != role
         # A paint a browser drew with CSS: no coefficient above 1 exists there, so the
         # answers are an opacity (the reaching alpha times its opacity) and a colour.
-        page = bool(r.observed) and r.pipeline == "css"
+        page = self.drawn == "css-least"
         return ColorFix(
             theme=theme.name,
             iconset=r.iconset.name,

@@ -842,7 +842,9 @@ def observed_audit(
     alpha = np.asarray(alphas, dtype=np.float64).reshape(p)
     bg = theme.backgrounds[np.newaxis, :, :]
     output = np.asarray(shown, dtype=np.float64).reshape(p, m, 3)
-    model_ref = composite_paint(sources[:, None, :], bg, np.ones((p, 1)), opacity[:, None], pipeline)
+    model_ref = composite_paint(
+        sources[:, None, :], bg, np.ones((p, 1)), opacity[:, None], pipeline
+    )
     reference = np.where((alpha == 1.0)[:, None, None], output, model_ref)
     shown_out, shown_ref = shipped(output), shipped(reference)
     return AuditResult(

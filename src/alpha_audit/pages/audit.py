@@ -29,7 +29,7 @@ Pure computation: nothing is printed.
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -37,6 +37,7 @@ import numpy as np
 from alpha_audit.color import Pipeline, from_8bit
 from alpha_audit.findings import colour_location
 from alpha_audit.gate import Baseline, CanvasKey, collect, judge
+from alpha_audit.load.paints import CURRENT_COLOR
 from alpha_audit.model import Canvas, Icon, IconSet, Location, Theme
 from alpha_audit.observed import MEASURED, MeasuredPaint, PageRun
 from alpha_audit.policy import (
@@ -47,7 +48,6 @@ from alpha_audit.policy import (
     drift_breaks,
 )
 from alpha_audit.results import CheckReport
-from alpha_audit.load.paints import CURRENT_COLOR
 from alpha_audit.rows import AuditResult, PaintEntry, Unaudited, observed_audit
 from alpha_audit.rules import Rule
 
@@ -56,6 +56,7 @@ __all__ = [
     "page_report",
     "shown_rule",
 ]
+
 
 @dataclass(frozen=True)
 class _Row:
@@ -80,7 +81,9 @@ def _page_places(paint: MeasuredPaint) -> tuple[Location, ...]:
     """Where the page sets the paint (its CSS declarations), then its story or page file."""
     found = list(paint.locations)
     if paint.file is not None:
-        found.append(Location(paint.file, 1, "story" if paint.source_kind == "storybook" else "page"))
+        found.append(
+            Location(paint.file, 1, "story" if paint.source_kind == "storybook" else "page")
+        )
     return tuple(dict.fromkeys(found))
 
 
@@ -104,11 +107,14 @@ def _row(paint: MeasuredPaint, manifest: IconSet | None, icons: dict[str, Icon])
     colour = paint.declared if paint.declared is not None else paint.drawn
     assert colour is not None  # measured paints have a drawn colour
     opacity = paint.declared_opacity if paint.declared is not None else 1.0
-    places = _page_places(paint)
-    if mapped is not None and manifest is not None:
-        said = colour_location(mapped, manifest.path)  # what the manifest says, related
-        places = tuple(dict.fromkeys([*places, *([said] if said else [])]))
-    file = paint.file if paint.file is not None else Path(paint.source)
+    # The page's own declaration of the colour first (it is what draws); for a mapped
+    # icon the manifest's colour next (the icon's source, where the page follows it),
+    # then the story or page file.
+    said = colour_location(mapped, manifest.path) if mapped and manifest else None
+    file_place = _page_places(replace(paint, locations=()))
+    places = tuple(dict.fromkeys([*paint.locations, *([said] if said else []), *file_place]))
+    # The file that draws it: the manifest's SVG when it maps to one, else the story or page.
+    file = mapped.file if mapped is not None else (paint.file or Path(paint.source))
     icon = Icon(paint.name, file, colour, 1.0)
     paint_label = CURRENT_COLOR if paint.paint == CURRENT_COLOR else icon.color
     entry = PaintEntry(icon, paint_label, paint.kinds, icon.color, float(opacity), where=places)
@@ -198,9 +204,7 @@ def _codes(text: str | None) -> list[int]:
     return [int(text[k : k + 2], 16) for k in (1, 3, 5)]
 
 
-def _unaudited(
-    left: Sequence[tuple[MeasuredPaint, Icon]], own: dict[str, Icon]
-) -> list[Unaudited]:
+def _unaudited(left: Sequence[tuple[MeasuredPaint, Icon]], own: dict[str, Icon]) -> list[Unaudited]:
     """Paints no pixel shows at full coverage: not judged, said so (``not-audited``)."""
     out = []
     for paint, icon in left:
@@ -260,4 +264,3 @@ def page_report(
     gate = judge(audits, policy, collect(audits, policy), baseline)
     report = CheckReport(tuple(audits), gate, pages=run)
     return with_fixes(report) if fixes else report
-

@@ -46,7 +46,6 @@ from alpha_audit.color import (
     srgb_decode,
 )
 from alpha_audit.model import Icon
-from alpha_audit.pages.capture import Capture, FoundIcon
 from alpha_audit.observed import (
     MEASURED,
     NO_INTERIOR,
@@ -55,6 +54,7 @@ from alpha_audit.observed import (
     MeasuredPaint,
     Prediction,
 )
+from alpha_audit.pages.capture import Capture, FoundIcon
 
 __all__ = [
     "DeclaredPaint",

@@ -21,24 +21,32 @@ import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import NamedTuple
 
 from alpha_audit.browser import Browser, BrowserError, LaunchOptions, engine_class
 from alpha_audit.browser.lifecycle import ending_on_signals
 from alpha_audit.errors import AlphaAuditError, UsageError
 from alpha_audit.model import IconSet
+from alpha_audit.observed import BlockedRequest, MeasuredPaint, PageProblem, PageRun
 from alpha_audit.pages.capture import capture_page
 from alpha_audit.pages.config import RenderConfig
 from alpha_audit.pages.crops import CropStore
 from alpha_audit.pages.mapping import ManifestIndex
 from alpha_audit.pages.measure import PageContext, measure_capture
-from alpha_audit.observed import BlockedRequest, MeasuredPaint, PageProblem, PageRun
 from alpha_audit.pages.server import BlockingProxy, PageServer
 from alpha_audit.pages.sources import FolderSource, StorybookSource, Target, targets
 from alpha_audit.pages.states import State, globals_param
 
-__all__ = ["Job", "audit_pages", "plan_jobs"]
+__all__ = ["Job", "PageAudit", "audit_pages", "plan_jobs"]
 
 _GUARD_PERIOD = 0.25  # seconds between checks of a page's time and its browser's memory
+
+
+class PageAudit(NamedTuple):
+    """What :func:`audit_pages` measured: the run, and every paint in report order."""
+
+    run: PageRun
+    paints: tuple[MeasuredPaint, ...]
 
 
 @dataclass(frozen=True)
@@ -209,7 +217,7 @@ def audit_pages(
     iconset: IconSet | None = None,
     *,
     progress: Callable[[int, int], None] | None = None,
-) -> tuple[PageRun, tuple[MeasuredPaint, ...]]:
+) -> PageAudit:
     """Measure every source x state x engine of ``config``; ``progress(done, total)`` per job.
 
     Returns what the run saw and every paint it measured, in report order
@@ -301,9 +309,9 @@ def audit_pages(
         icons=icons,
         paints=len(paints),
         engines=tuple(sorted(versions.items())),
-        pages=tuple(dict.fromkeys((j.target.name, j.state.name) for j in ordered)),
+        pages=tuple(dict.fromkeys((j.target.name, j.state.name) for j in jobs)),
         files=tuple(dict.fromkeys((j.target.name, j.target.file) for j in ordered)),
         crops=crops.crops if crops is not None else (),
         crops_left_out=crops.left_out if crops is not None else 0,
     )
-    return run, tuple(paints)
+    return PageAudit(run, tuple(paints))

@@ -38,9 +38,8 @@ if TYPE_CHECKING:
     from rich.table import Table
 
     from alpha_audit.findings import Finding
-    from alpha_audit.model import Location
     from alpha_audit.gate import GateResult
-    from alpha_audit.model import GamutAdjustment
+    from alpha_audit.model import GamutAdjustment, Location
     from alpha_audit.results import CheckReport, ColorFix, Fix, SafeAlpha
 
 __all__ = [
@@ -215,7 +214,7 @@ def escape_html(text: object) -> str:
     >>> escape_html('<a href="x">')
     '&lt;a href=&quot;x&quot;&gt;'
     """
-    return html.escape(safe_text(text, newlines=True), quote=True)
+    return html.escape(safe_text(text), quote=True)  # a newline too: a page is printed to CI logs
 
 
 def xml_safe(text: object) -> str:

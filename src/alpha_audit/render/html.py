@@ -190,8 +190,10 @@ def _finding(f: Finding, kind: str, look: _Lookups) -> list[str]:
         rows += [
             (source_kind, f"<code>{_e(f.iconset)}</code>"),
             ("state", f"<code>{_e(f.theme)}</code> ({_e(engine)})"),
-            ("icon", f"<code>{_e(icon)}</code> ({_e(n.get('element', ''))}, "
-                     f"{_e(n.get('match', ''))})"),  # fmt: skip
+            (
+                "icon",
+                f"<code>{_e(icon)}</code> ({_e(n.get('element', ''))}, {_e(n.get('match', ''))})",
+            ),
             ("DOM path", f"<code>{_e(dom_path)}</code>"),
         ]
     else:

@@ -179,7 +179,7 @@ def where(f: Finding) -> str:
 
 def paint_record(paint: MeasuredPaint, base: Path | None = None) -> dict[str, Any]:
     """One measured paint as JSON data (every field of :class:`MeasuredPaint`)."""
-    record = _finite(asdict(paint))
+    record: dict[str, Any] = _finite(asdict(paint))
     record["match"] = str(paint.match)
     record["file"] = display_path(paint.file, base)
     record["locations"] = [
@@ -239,7 +239,7 @@ def page_junit(report: CheckReport, run: PageRun, options: RenderOptions) -> str
     for source in sources:
         suite = ET.SubElement(root, "testsuite", {"name": xml_safe(source)})
         counts = dict.fromkeys(totals, 0)
-        for (state, name), r in cases.get(source, {}).items():
+        for state, name in cases.get(source, {}):
             case = ET.SubElement(
                 suite,
                 "testcase",
