@@ -164,3 +164,19 @@ def test_firefox_and_webkit_audit_the_storybook_and_see_the_same_dark_failure(pr
     }
     assert worst[("theme:dark", "triangle-alert", "data-attribute")] < 3.0
     assert worst[("theme:light", "triangle-alert", "data-attribute")] >= 3.0
+
+
+def test_a_globals_value_the_toolbar_does_not_offer_is_refused_naming_the_values(project):
+    """theme:purple is no theme of the Storybook (addon-themes offers light and dark): an
+    unstyled story would be audited without a word, so the run stops with exit 2."""
+    cwd = Path.cwd()
+    os.chdir(project)
+    try:
+        result = runner.invoke(
+            app, ["render", "storybook-static", "--stories", "icons--alert", "--globals",
+                  "theme:purple", "--workers", "1"],
+        )  # fmt: skip
+    finally:
+        os.chdir(cwd)
+    assert result.exit_code == 2, result.output
+    assert "theme:purple" in result.output and "light, dark" in result.output

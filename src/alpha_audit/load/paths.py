@@ -118,11 +118,17 @@ def contain_argument(path: str | Path, root: Path | None = None) -> Path:
         raise PathRefused(f"{_shown(str(p))} has a control or format character; not allowed")
     target = resolve(p.absolute())
     for base in [resolve(root)] if root is not None else enclosing_roots(p):
-        if not target.is_relative_to(base):
+        if target.is_relative_to(base):
+            continue
+        if not resolve(Path(os.path.abspath(p)).parent).is_relative_to(base):
             raise PathRefused(
-                f"{_shown(str(p))} leads through a symlink to a file outside the project "
-                f"root {base}; not allowed"
+                f"{_shown(str(p))} is outside the project root {base}: alpha-audit reads "
+                "files of the project it runs in only; run it from the project holding it"
             )
+        raise PathRefused(
+            f"{_shown(str(p))} leads through a symlink to a file outside the project "
+            f"root {base}; not allowed"
+        )
     return target
 
 
