@@ -190,10 +190,11 @@ def render_command(
     Each page or story is loaded in each state (Storybook globals,
     prefers-color-scheme, a class or attribute on <html>), captured twice at
     device scale 2 (icons drawn, icons hidden) and every icon paint measured
-    from the pixels: drawn colour, backdrop, WCAG contrast (worst and median
-    pixel), and the model's prediction under the linear and css pipelines.
-    below-threshold (worst pixel under 3:1) fails the gate; render-drift
-    (the page draws another colour than the manifest) is reported.
+    from the pixels: its colour at full coverage and the backdrop under it
+    (the pair that limits), and the model's prediction under the linear and
+    css pipelines.  Each paint is a row judged as check judges its rows:
+    below-threshold fails the gate; render-drift (the page draws another
+    colour than the manifest) and paints too thin to measure are reported.
     Pages reach nothing but loopback.  -f html writes one page that runs
     no script, with crops of each finding's icon as drawn and its backdrop.
 
