@@ -11,7 +11,6 @@ commands is one renderer:
   a narrow terminal wraps names least), an engine column when several ran,
   then the counts and the verdict;
 * JSON: ``check``'s document with each row's measurement and a ``pages`` block;
-* JUnit: a suite per story or page, a case per icon and state;
 * the pull-request comment: the story x state matrix, then the failing icons
   with the pair that limits, where to change it and the fix.
 
@@ -22,7 +21,6 @@ Pure functions of the report; every name a page supplies is printed through
 from __future__ import annotations
 
 import math
-import xml.etree.ElementTree as ET
 from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
@@ -43,7 +41,6 @@ from alpha_audit.render.common import (
     name_column,
     number_column,
     to_text,
-    xml_safe,
 )
 from alpha_audit.results import CheckReport
 from alpha_audit.safe_text import safe_text
@@ -53,7 +50,6 @@ __all__ = [
     "PageRow",
     "headline",
     "page_json",
-    "page_junit",
     "page_markdown",
     "page_rows",
     "page_table",
@@ -126,9 +122,13 @@ def page_table(report: CheckReport, run: PageRun, options: RenderOptions) -> str
     cells: list[tuple[str | Text, ...]] = []
     source = state = None
     rows = page_rows(report)
+    files = dict(run.files)
     for r in rows:
         if r.source != source:
             cells.append((Text(safe_text(r.source), style="bold"), *[""] * width))
+            file = display_path(files.get(r.source), options.base)
+            if file is not None:  # the story's source (importPath) or the page
+                cells.append((Text(f"  ({safe_text(file)})", style="dim"), *[""] * width))
             source, state = r.source, None
         if r.state != state:
             cells.append(("  " + safe_text(r.state), *[""] * width))
@@ -219,66 +219,6 @@ def page_json(run: PageRun, base: Path | None = None) -> dict[str, Any]:
         "blocked": [asdict(b) for b in run.blocked],
         "crops_left_out": run.crops_left_out,
     }
-
-
-# ------------------------------------------------------------------ JUnit
-
-
-def page_junit(report: CheckReport, run: PageRun, options: RenderOptions) -> str:
-    """JUnit XML: a suite per story or page, a case per icon and state, failing or not."""
-    failing: dict[tuple[str, str, str], list[Finding]] = {}
-    for f in report.gate.findings:
-        failing.setdefault((f.iconset, f.theme, f.icons[0]), []).append(f)
-    cases: dict[str, dict[tuple[str, str], PageRow]] = {}
-    for r in page_rows(report):
-        cases.setdefault(r.source, {}).setdefault((r.state, r.name), r)
-    files = dict(run.files)
-    root = ET.Element("testsuites", {"name": "alpha-audit render"})
-    totals = {"tests": 0, "failures": 0, "errors": 0, "skipped": 0}
-    sources = list(dict.fromkeys([*cases, *(q.source for q in run.problems)]))
-    for source in sources:
-        suite = ET.SubElement(root, "testsuite", {"name": xml_safe(source)})
-        counts = dict.fromkeys(totals, 0)
-        for state, name in cases.get(source, {}):
-            case = ET.SubElement(
-                suite,
-                "testcase",
-                {
-                    "name": xml_safe(f"{name} [{state}]"),
-                    "classname": xml_safe(f"{source}.{state}"),
-                    "file": xml_safe(display_path(files.get(source), options.base) or ""),
-                    "time": "0",
-                },
-            )
-            counts["tests"] += 1
-            found = failing.get((source, state, name), [])
-            fails = [f for f in found if f.fails]
-            if fails:
-                counts["failures"] += 1
-                said = "; ".join(f"{f.rule.value}: {f.message}" for f in fails)
-                kinds = ",".join(sorted({f.rule.value for f in fails}))
-                failure = ET.SubElement(case, "failure", {"message": xml_safe(said), "type": kinds})
-                failure.text = xml_safe("\n".join(f.message for f in fails))
-            elif any(f.baselined for f in found):
-                counts["skipped"] += 1
-                ET.SubElement(case, "skipped", {"message": "in the baseline"})
-        for q in run.problems:
-            if q.source != source:
-                continue
-            case = ET.SubElement(
-                suite, "testcase", {"name": xml_safe(f"[{q.state}]"), "classname": xml_safe(source)}
-            )
-            counts["tests"] += 1
-            counts["errors"] += 1
-            error = ET.SubElement(case, "error", {"message": xml_safe(q.message), "type": "page"})
-            error.text = xml_safe(q.message)
-        for k, v in counts.items():
-            suite.set(k, str(v))
-            totals[k] += v
-    for k, v in totals.items():
-        root.set(k, str(v))
-    ET.indent(root)
-    return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, "unicode") + "\n"
 
 
 # ------------------------------------------------------------------ Markdown
