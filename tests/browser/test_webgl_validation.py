@@ -20,11 +20,11 @@ import pytest
 
 from alpha_audit import load_iconset, load_theme, rasterize_icons
 from alpha_audit.browser import ENGINES
-from alpha_audit.reproduce.validate import PAPER_CONFIGURATIONS, Configuration, validate_page
 from alpha_audit.load.paint_masks import paint_masks
 from alpha_audit.model import Icon, IconSet
 from alpha_audit.preview import Blend
 from alpha_audit.preview.figures import preview_rows, solid_rows
+from alpha_audit.reproduce.validate import PAPER_CONFIGURATIONS, Configuration, validate_page
 from multipaint import write_multipaint
 
 ROOT = Path(__file__).resolve().parents[2]

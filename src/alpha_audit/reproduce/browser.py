@@ -22,12 +22,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from alpha_audit.browser import ENGINES, engine_class, installed_engines
-from alpha_audit.reproduce.validate import PAPER_CONFIGURATIONS, PageValidation, validate_page
 from alpha_audit.errors import UsageError
 from alpha_audit.load.svg import rasterize_icons
 from alpha_audit.model import Icon, IconSet, Theme
 from alpha_audit.preview.figures import solid_rows
 from alpha_audit.reproduce.grids import VIBRANT
+from alpha_audit.reproduce.validate import PAPER_CONFIGURATIONS, PageValidation, validate_page
 
 __all__ = [
     "PAPER_ICONS",
