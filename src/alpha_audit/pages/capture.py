@@ -79,7 +79,7 @@ def check_globals(browser: Browser, state: State) -> None:
         if value not in allowed:
             raise UsageError(
                 safe_text(
-                    f"--globals {name}:{value}: the Storybook's {name} is one of "
+                    f"`globals` {name}:{value}: the Storybook's {name} is one of "
                     f"{', '.join(allowed)}; a value it does not offer would audit an "
                     "unstyled story"
                 )
