@@ -22,7 +22,13 @@ import time
 from pathlib import Path
 
 from alpha_audit.browser import Chromium, Clip, LaunchOptions
-from alpha_audit.pages import RenderConfig, StorybookSource, audit_pages, state_matrix
+from alpha_audit.pages import (
+    RenderConfig,
+    StorybookSource,
+    audit_pages,
+    page_report,
+    state_matrix,
+)
 from alpha_audit.pages.capture import _PROBE, _SETTLED, _STORY_READY, _probe_source
 from alpha_audit.pages.server import BlockingProxy, PageServer
 from alpha_audit.pages.sources import targets
@@ -106,14 +112,16 @@ def main() -> None:
             workers=2,
         )
         started = time.perf_counter()
-        result = audit_pages(config)
+        run, paints = audit_pages(config)
+        report = page_report(run, paints)  # the rows and the gate: what render does after
         ours = time.perf_counter() - started
-        states = result.audited
-        assert not result.problems, result.problems[:3]
+        states = run.audited
+        assert not run.problems, run.problems[:3]
+        assert report.audits
         base = _baseline(folder, root, args.baseline)
     rate, base_rate = states / ours, args.baseline / base
     print(
-        f"render: {states} story-states, {result.icons} icons in {ours:.1f} s "
+        f"render: {states} story-states, {run.icons} icons in {ours:.1f} s "
         f"({rate:.2f} story-states/s; target {TARGET_S:.0f} s for 500: "
         f"{'met' if 500 / rate < TARGET_S else 'NOT met'}, {500 / rate:.0f} s projected)"
     )

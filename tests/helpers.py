@@ -60,3 +60,56 @@ def spec_contrast(a, b) -> float:  # type: ignore[no-untyped-def]
 
     la, lb = (float(np.dot(np.asarray(c, dtype=float), [0.2126, 0.7152, 0.0722])) for c in (a, b))
     return (max(la, lb) + 0.05) / (min(la, lb) + 0.05)
+
+
+def _lin(text: str):  # type: ignore[no-untyped-def]
+    r, g, b = (float(v) for v in spec_hex(text))
+    return r, g, b
+
+
+def measured_paint(**changes):  # type: ignore[no-untyped-def]
+    """A measured paint (alpha_audit.observed.MeasuredPaint) for tests without a browser:
+    a red alert icon drawn as a manifest says (#cf222e) on white, 5.36:1 by the specs.
+    ``drawn`` and ``behind`` set the pair (and its contrast, by spec_contrast)."""
+    from dataclasses import replace
+
+    from alpha_audit.observed import Coverage, IconMatch, MeasuredPaint, Prediction
+
+    drawn = str(changes.pop("drawn", "#cf222e"))
+    behind = str(changes.pop("behind", "#ffffff"))
+    contrast = spec_contrast(spec_hex(drawn), spec_hex(behind))
+    base = MeasuredPaint(
+        source="icons--alert",
+        source_kind="storybook",
+        state="theme:light",
+        engine="chromium",
+        name="div.alert > svg",
+        icon=None,
+        match=IconMatch.NONE,
+        element="svg",
+        dom_path="div.alert > svg",
+        paint="currentColor",
+        kinds=("stroke",),
+        declared=drawn,
+        declared_opacity=1.0,
+        drawn=drawn,
+        drawn_linear=_lin(drawn),
+        behind=behind,
+        behind_linear=_lin(behind),
+        around=behind,
+        around_linear=_lin(behind),
+        coverage=Coverage(100, 40, 60.0, 1.0, 0.6),
+        contrast=contrast,
+        contrast_worst=contrast,
+        contrast_median=contrast,
+        model_source="#cf222e",
+        model_alpha=1.0,
+        model_opacity=1.0,
+        predictions=(
+            Prediction("linear", "#cf222e", _lin("#cf222e"), 5.36, 0.0),
+            Prediction("css", "#cf222e", _lin("#cf222e"), 5.36, 0.0),
+        ),
+        render_drift=0.0,
+        box=(0.0, 0.0, 24.0, 24.0),
+    )
+    return replace(base, **changes)

@@ -35,8 +35,10 @@ from alpha_audit.color import (
     to_8bit,
 )
 from alpha_audit.color.nearest import delta_e_2000_lightness_key, pairs_below
-from alpha_audit.model import Edit, Icon, Span
+from alpha_audit.model import Edit, Icon, Location
+from alpha_audit.observed import MeasuredPaint
 from alpha_audit.policy import (
+    RENDER_DRIFT_TOLERANCE,
     Exemption,
     Policy,
     confusion_breaks,
@@ -53,12 +55,12 @@ __all__ = [
     "MAX_LOCATIONS",
     "Finding",
     "FindingKey",
-    "Location",
     "alpha_location",
     "colour_location",
     "cvd_collision_groups",
     "findings_for",
     "locked_rows",
+    "observed_figures",
     "ranked",
     "role_rows",
     "severity",
@@ -76,24 +78,6 @@ MAX_LOCATIONS = 12
 # root cause.  Never a canvas (a finding folds every canvas where it occurs), a
 # line number or a value, so editing a manifest does not invalidate a baseline.
 FindingKey = tuple[str, str, str, tuple[str, ...]]
-
-
-@dataclass(frozen=True)
-class Location:
-    """A line that sets a value of a finding: ``what`` says which value.
-
-    ``what`` is ``alpha`` (the ``alpha:`` that applies: the icon's own or
-    override, its palette entry's, the set's, or the project config's),
-    ``colour`` (the palette entry or colour written on the icon), ``token``
-    (the design token at the end of the colour's alias chain), ``paint`` (an
-    SVG element's hard-coded colour) or ``svg`` (the drawing itself).
-    ``span`` is the value's exact region where the loader knows it.
-    """
-
-    file: Path
-    line: int
-    what: str
-    span: Span | None = None
 
 
 @dataclass(frozen=True)
@@ -217,15 +201,16 @@ class _Collector:
         return self._colour_at[name]
 
     def paint_locations(self, e: PaintEntry, *, colour_first: bool = False) -> tuple[Location, ...]:
-        """Where one paint's alpha and colour are set (a hard-coded colour: its SVG element)."""
+        """Where one paint's alpha and colour are set (a hard-coded colour: its SVG element),
+        then the places the rows know besides (a page's CSS declarations, its story)."""
         colour = (
             Location(Path(e.icon.file), e.line or 1, "paint")
-            if e.fixed
+            if e.fixed and not e.where
             else self.colour_at(e.icon.name)
         )
         alpha = self.alpha_at(e.icon.name)
         found = (colour, alpha) if colour_first else (alpha, colour)
-        return tuple(loc for loc in found if loc is not None)
+        return tuple(dict.fromkeys([*(loc for loc in found if loc is not None), *e.where]))
 
     def group_locations(
         self, names: Iterable[str], *, colour_first: bool = False
@@ -344,7 +329,7 @@ def findings_for(result: AuditResult, policy: Policy) -> list[Finding]:
     c = _Collector(result, policy)
     reported = policy.reported
     for rule in Rule:
-        if rule in reported and rule in _RULES:  # not those only a browser's pixels raise
+        if rule in reported and rule in _RULES:
             _RULES[rule](c, rule)
     return c.out
 
@@ -395,6 +380,8 @@ def _contrast(c: _Collector, rule: Rule) -> None:
                     "paint": e.paint,
                     "opacity": e.opacity,
                 }
+                if r.observed:
+                    return _observed_contrast(r.observed[p], numbers, r.threshold)
                 message = _CONTRAST_TEMPLATES[rule].format(
                     ref=numbers["contrast_ref"],
                     now=numbers["contrast"],
@@ -418,6 +405,91 @@ def _contrast(c: _Collector, rule: Rule) -> None:
                 locations=locations,
                 level=level,
             )
+
+
+def observed_figures(o: MeasuredPaint) -> dict[str, float | str]:
+    """What every finding of a row a browser drew carries besides the row's own figures."""
+    numbers: dict[str, float | str] = {
+        "story" if o.source_kind == "storybook" else "page": o.source,
+        "state": o.state,
+        "engine": o.engine,
+        "dom_path": o.dom_path,
+        "element": o.element,
+        "match": str(o.match),
+    }
+    optional: dict[str, float | str | None] = {
+        "drawn": o.drawn,
+        "around": o.around,
+        "contrast_worst": o.contrast_worst,
+        "contrast_median": o.contrast_median,
+        "declared": o.declared,
+        "declared_opacity": o.declared_opacity,
+        "model_source": o.model_source,
+        "model_alpha": o.model_alpha,
+        "model_opacity": o.model_opacity,
+        "render_drift": o.render_drift,
+    }
+    near = o.nearer
+    if near is not None:
+        optional |= {
+            "model_contrast": near.contrast,
+            "model_output": near.output,
+            "model_pipeline": near.pipeline,
+        }
+    return numbers | {k: v for k, v in optional.items() if v is not None}
+
+
+def _observed_contrast(
+    o: MeasuredPaint, numbers: dict[str, float | str], threshold: float
+) -> tuple[str, dict[str, float | str]]:
+    """``below-threshold`` of a row a browser drew: the pair that limits, and the model."""
+    message = f"draws {o.drawn} on {o.behind}: {numbers['contrast']:.2f}:1 is below {threshold:g}:1"
+    if o.declared_opacity < 1.0:
+        message += f" (at opacity {o.declared_opacity:g})"
+    near = o.nearer
+    if near is not None:
+        message += f"; the model predicts {near.contrast:.2f}:1 ({near.pipeline})"
+    return message, numbers | observed_figures(o)
+
+
+def _render_drift(c: _Collector, rule: Rule) -> None:
+    """A page draws another colour than the model predicts for its manifest colour."""
+    r = c.result
+    for p, o in enumerate(r.observed):
+        near = o.nearer
+        if near is None or o.render_drift is None:
+            continue
+        if not drift_breaks(o.render_drift, RENDER_DRIFT_TOLERANCE):
+            continue
+        e = r.entries[p]
+        message = (
+            f"draws {o.drawn} where the model predicts {near.output} ({near.pipeline}, from "
+            f"{o.model_source} at alpha {o.model_alpha:g}; CIEDE2000 {o.render_drift:.1f} > "
+            f"{RENDER_DRIFT_TOLERANCE:g})"
+        )
+        numbers: dict[str, float | str] = {
+            **observed_figures(o),
+            "drift": o.render_drift,
+            "tolerance": RENDER_DRIFT_TOLERANCE,
+            "background": r.theme.canvases[0].color,
+            "source": e.source,
+            "paint": e.paint,
+            "opacity": e.opacity,
+        }
+
+        def build(
+            k: int, message: str = message, numbers: dict[str, float | str] = numbers
+        ) -> tuple[str, dict[str, float | str]]:
+            return message, numbers
+
+        c.fold(
+            rule,
+            (e.icon.name,),
+            list(range(len(r.theme.canvases))),
+            [o.render_drift] * len(r.theme.canvases),
+            build,
+            locations=c.paint_locations(e, colour_first=True),
+        )
 
 
 def _quiet(build: Build, ref: NDArray[np.float64], cells: list[int], floor: float) -> Build:
@@ -908,4 +980,5 @@ _RULES = {
     Rule.THIN_STROKES: _thin_strokes,
     Rule.CVD_COLLISION: _cvd_collision,
     Rule.CVD_CONFUSION: _confusion,
+    Rule.RENDER_DRIFT: _render_drift,
 }

@@ -33,12 +33,13 @@ import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from decimal import ROUND_CEILING, Decimal
+from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from alpha_audit.color import (
-    composite_coverage,
+    composite_paint,
     contrast_from_luminance,
     contrast_ratio,
     delta_e_2000,
@@ -46,8 +47,10 @@ from alpha_audit.color import (
     linear_to_hex,
     relative_luminance,
     shipped,
+    srgb_encode,
     to_8bit,
 )
+from alpha_audit.color.composite import composite_css_least
 from alpha_audit.color.oklch import linear_to_oklch, oklch_to_linear
 from alpha_audit.findings import Finding
 from alpha_audit.model import Edit, Icon, Span
@@ -114,6 +117,26 @@ _PAIR = frozenset({Rule.CONFUSION, Rule.CVD_CONFUSION})
 _REACH_RULES = frozenset({Rule.BELOW_THRESHOLD, Rule.NEWLY_FAILING})
 
 
+# How a fix's colours are drawn: an audit's pipeline, or ``css-least`` for a paint a
+# browser drew with CSS (of what engines may show, the colour nearest the backdrop:
+# :func:`~alpha_audit.color.composite.composite_css_least`), so a page's fix passes in
+# every engine, not only in the formula.
+Drawn = Literal["linear", "css", "css-least"]
+
+
+def _composite(
+    source: ArrayLike, background: ArrayLike, alpha: ArrayLike, opacity: ArrayLike, how: Drawn
+) -> NDArray[np.float64]:
+    """The shown colour of a paint at ``alpha`` and ``opacity`` drawn ``how``."""
+    if how == "linear":
+        return composite_paint(source, background, alpha, opacity, "linear")
+    # A browser multiplies opacities: only the product is bounded (by 1).
+    product = np.asarray(alpha, dtype=np.float64) * np.asarray(opacity, dtype=np.float64)
+    if how == "css-least":
+        return composite_css_least(source, background, product)
+    return composite_paint(source, background, 1.0, product, "css")
+
+
 def _round_up(value: float, precision: int) -> float:
     step = Decimal(1).scaleb(-precision)
     return float(Decimal(repr(value)).quantize(step, rounding=ROUND_CEILING))
@@ -137,6 +160,7 @@ def smallest_alpha_reaching(
     opacities: ArrayLike = 1.0,
     alpha_max: float = 2.0,
     precision: int = 3,
+    pipeline: Drawn = "linear",
 ) -> tuple[float | None, float | None]:
     """``(rounded, exact)``: the smallest ``a >= 1`` reaching the threshold on every canvas.
 
@@ -148,6 +172,9 @@ def smallest_alpha_reaching(
     the first good one (a gap's left end is its infimum).  ``rounded`` is
     ``exact`` rounded up to ``precision`` decimals, stepped up until what ships
     passes everywhere; both are ``None`` when nothing up to ``alpha_max`` does.
+    Under ``css`` the coefficient multiplies the opacity and a browser clamps the
+    product to 1: ``a`` goes no further than ``1 / max(opacities)`` (a paint at
+    opacity 0.5 reaches the threshold, if at all, by an opacity up to 1).
 
     >>> # Linear grey 0.4 on white: 2.33:1 at alpha 1; darker with a > 1 (moved away from white).
     >>> rounded, exact = smallest_alpha_reaching([0.4] * 3, [[1.0, 1.0, 1.0]], 3.0)
@@ -163,17 +190,27 @@ def smallest_alpha_reaching(
     bg = np.repeat(bgs, o.size, axis=0)  # every (canvas, opacity)
     q = np.tile(o, bgs.shape[0])
     y_screen = relative_luminance(shipped(bg))
+    if pipeline != "linear":
+        alpha_max = min(alpha_max, 1.0 / float(o.max()))
 
     def reaches(a: NDArray[np.float64]) -> NDArray[np.bool_]:
         """Whether what ships at each ``a`` (shape (N,)) reaches ``t`` on every canvas."""
-        shown = shipped(composite_coverage(s, bg[:, None, :], a[None, :], q[:, None]))
+        if pipeline != "linear":
+            a = np.minimum(a, 1.0 / q.max())  # float noise at a browser's clamp
+        shown = shipped(_composite(s, bg[:, None, :], a[None, :], q[:, None], pipeline))
         y = relative_luminance(shown)
         ok: NDArray[np.bool_] = np.all(contrast_from_luminance(y, y_screen[:, None]) >= t, axis=0)
         return ok
 
     # What ships changes only where a displayed channel crosses a code threshold: judge
     # every crossing and every gap between two (the codes are constant on a gap).
-    crossings = code_crossings(np.broadcast_to(s, bg.shape), bg, q[:, None]).reshape(-1)
+    if pipeline == "css-least":
+        # The colour shown changes only where the 8-bit alpha does: every a o 255 whole.
+        crossings = (np.arange(256)[np.newaxis, :] / (255.0 * q[:, np.newaxis])).reshape(-1)
+    elif pipeline == "css":
+        crossings = _css_crossings(s, bg, q).reshape(-1)
+    else:
+        crossings = code_crossings(np.broadcast_to(s, bg.shape), bg, q[:, None]).reshape(-1)
     inside = crossings[np.isfinite(crossings) & (crossings > ALPHA_LO) & (crossings < alpha_max)]
     points = np.unique(np.concatenate([[ALPHA_LO, alpha_max], inside]))
     elements = np.empty(2 * points.size - 1)
@@ -195,12 +232,31 @@ def smallest_alpha_reaching(
     return rounded, exact
 
 
+def _css_crossings(
+    source: NDArray[np.float64], backgrounds: NDArray[np.float64], opacity: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """Coefficients at which a css-composited channel crosses a code threshold.
+
+    A browser blends encoded values, ``b' + a o (s' - b')``, and rounds to a code:
+    linear in ``a``, so the crossing of ``(n + 0.5) / 255`` is at
+    ``((n + 0.5) / 255 - b') / (o (s' - b'))`` (``nan`` where the channel never
+    moves), shape ``(canvases, 3, 255)``.
+    """
+    s = srgb_encode(source)[np.newaxis, :, np.newaxis]
+    b = srgb_encode(backgrounds)[:, :, np.newaxis]
+    d = opacity[:, np.newaxis, np.newaxis] * (s - b)
+    edges = (np.arange(255) + 0.5) / 255.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(d != 0, (edges - b) / d, np.nan)
+
+
 def passes_everywhere(
     colors: ArrayLike,
     backgrounds: ArrayLike,
     styles: ArrayLike,
     threshold: float,
     policy: Policy | None = None,
+    pipeline: Drawn = "linear",
 ) -> NDArray[np.bool_]:
     """Which linear colours ``(..., 3)`` pass on every canvas in every style.
 
@@ -208,8 +264,8 @@ def passes_everywhere(
     alphas means opacity 1).  Passing: in gamut (every channel in [0, 1]),
     contrast at least ``threshold``, and every contrast rule of the policy
     satisfied (:func:`~alpha_audit.policy.contrast_breaks`, their one
-    statement), against the same paint at alpha 1.  Evaluated in chunks, so
-    memory stays bounded.
+    statement), against the same paint at alpha 1, composited as ``pipeline``
+    draws it.  Evaluated in chunks, so memory stays bounded.
     """
     col = np.asarray(colors, dtype=np.float64)
     shape = col.shape[:-1]
@@ -236,8 +292,8 @@ def passes_everywhere(
                 break
             src = np.clip(chunk[alive], 0.0, 1.0)[:, np.newaxis, np.newaxis, :]
             b = bgs[group][np.newaxis, np.newaxis]  # (1, 1, g, 3)
-            shown = shipped(composite_coverage(src, b, a[None, :, None], o[None, :, None]))
-            ref = shipped(composite_coverage(src, b, 1.0, o[None, :, None]))
+            shown = shipped(_composite(src, b, a[None, :, None], o[None, :, None], pipeline))
+            ref = shipped(_composite(src, b, 1.0, o[None, :, None], pipeline))
             contrast = contrast_ratio(shown, screen[group])
             c_ref = contrast_ratio(ref, screen[group])
             for rule in rules:
@@ -278,6 +334,7 @@ def nearest_passing_color(
     styles: ArrayLike,
     threshold: float,
     policy: Policy | None = None,
+    pipeline: Drawn = "linear",
 ) -> NearestColor | None:
     """The colour of the source's OKLCH hue nearest in CIEDE2000 that passes everywhere.
 
@@ -303,7 +360,7 @@ def nearest_passing_color(
     bgs = np.asarray(backgrounds, dtype=np.float64).reshape(-1, 3)
 
     def passing(lin: NDArray[np.float64]) -> NDArray[np.bool_]:
-        return passes_everywhere(lin, bgs, styles, threshold, policy)
+        return passes_everywhere(lin, bgs, styles, threshold, policy, pipeline)
 
     l0, c0, hue = (float(v) for v in linear_to_oklch(src))
     achromatic = c0 < ACHROMATIC_CHROMA
@@ -416,6 +473,8 @@ class _Audit:
 
     def __post_init__(self) -> None:
         r = self.result
+        # A paint a browser drew with CSS is fixed for every engine (see Drawn).
+        self.drawn: Drawn = "css-least" if r.observed and r.pipeline == "css" else r.pipeline
         self.by_name = {i.name: i for i in r.iconset.icons}
         # Which icons draw each colour, and the (alpha, opacity) styles it is drawn in.
         self.members: dict[str, list[str]] = {}
@@ -458,7 +517,12 @@ class _Audit:
         if role not in self.nearest:
             self.nearest[role] = (
                 nearest_passing_color(
-                    self.linear[role], theme.backgrounds, styles, r.threshold, self.policy
+                    self.linear[role],
+                    theme.backgrounds,
+                    styles,
+                    r.threshold,
+                    self.policy,
+                    self.drawn,
                 )
                 if contrast
                 else None
@@ -472,6 +536,7 @@ class _Audit:
                 opacities=sorted({o for _, o in styles}),
                 alpha_max=self.alpha_max,
                 precision=self.precision,
+                pipeline=self.drawn,
             )
             self.reach[role, mode] = ReachAlpha(
                 mode=mode,
@@ -481,6 +546,9 @@ class _Audit:
                 exact=exact,
             )
         fixed = role.startswith("#") and first.color_name != role and first.color != role
+        # A paint a browser drew with CSS: no coefficient above 1 exists there, so the
+        # answers are an opacity (the reaching alpha times its opacity) and a colour.
+        page = self.drawn == "css-least"
         return ColorFix(
             theme=theme.name,
             iconset=r.iconset.name,
@@ -490,11 +558,12 @@ class _Audit:
             mode=mode,
             icons=tuple(icons),
             rules=tuple(sorted(rules, key=list(Rule).index)),
-            largest_safe=self.largest_safe(None, [role]),
+            largest_safe=SafeAlpha(None, None, None) if page else self.largest_safe(None, [role]),
             reach=self.reach[role, mode],
             nearest=self.nearest[role],
             manifest=r.iconset.path,
             line=None if fixed else first.color_line,
+            opacity=max(o for _, o in styles) if page else None,
         )
 
 
@@ -538,10 +607,19 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
     """
     gate = report.gate
     policy = gate.policy
-    audits = {
-        (r.theme.name, r.iconset.name): _Audit(r, policy, alpha_max, precision)
-        for r in report.audits
+    # A finding's audit: its theme, icon set and worst canvas (a page's audits share a
+    # state and a story, one audit per backdrop).
+    audits = [_Audit(r, policy, alpha_max, precision) for r in report.audits]
+    owner = {
+        (r.theme.name, r.iconset.name, c.name): k
+        for k, r in enumerate(report.audits)
+        for c in r.theme.canvases
     }
+
+    def audit_of(f: Finding) -> _Audit | None:
+        k = owner.get((f.theme, f.iconset, f.canvas or ""))
+        return None if k is None else audits[k]
+
     # Every written canvas value of every audit: a token that is one mode's icon colour
     # and another mode's canvas (an alias in a dark block) is never rewritten.
     canvas_spans = frozenset(
@@ -555,7 +633,7 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
     canvas_of: dict[tuple[str, str, str, str], int] = {}
     left_out: set[tuple[str, str, str]] = set()
     for f in gate.failures:
-        a = audits.get((f.theme, f.iconset))
+        a = audit_of(f)
         if a is None or not f.canvases or f.rule not in _PER_PAINT:
             continue
         role = _role_of(f, a.by_name)
@@ -570,7 +648,7 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
         if not f.fails or not f.canvases:
             findings.append(f)
             continue
-        a = audits.get((f.theme, f.iconset))
+        a = audit_of(f)
         found: list[int] = []
         role = _role_of(f, a.by_name) if a is not None and f.rule in _PER_PAINT else None
         if a is not None and role is not None:

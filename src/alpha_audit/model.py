@@ -32,6 +32,7 @@ __all__ = [
     "GamutAdjustment",
     "Icon",
     "IconSet",
+    "Location",
     "Mode",
     "Span",
     "Theme",
@@ -113,6 +114,26 @@ class Span:
         if self.syntax == "yaml" and value.startswith("#"):
             return f'"{value}"'
         return value
+
+
+@dataclass(frozen=True)
+class Location:
+    """A line that sets a value a finding is about: ``what`` says which value.
+
+    ``what`` is ``alpha`` (the ``alpha:`` that applies: the icon's own or
+    override, its palette entry's, the set's, or the project config's),
+    ``colour`` (the palette entry or colour written on the icon), ``token``
+    (the design token at the end of the colour's alias chain), ``paint`` (an
+    SVG element's hard-coded colour), ``svg`` (the drawing itself), and on a
+    page ``css-colour``/``css-backdrop`` (the CSS declaration that sets the
+    paint's colour or its backdrop), ``story`` or ``page`` (the source file).
+    ``span`` is the value's exact region where the loader knows it.
+    """
+
+    file: Path
+    line: int
+    what: str
+    span: Span | None = None
 
 
 @dataclass(frozen=True)

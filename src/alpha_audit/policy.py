@@ -21,11 +21,21 @@ from alpha_audit import ranges
 from alpha_audit.color import CONTRAST_TOLERANCE, DELTA_E_TOLERANCE
 from alpha_audit.errors import InputError, UsageError
 from alpha_audit.ranges import CONTRAST_LOSS, CONTRAST_RATIO, DELTA_E
-from alpha_audit.rules import DEFAULT_RULES, DEFAULT_WARNINGS, Level, Rule, did_you_mean
+from alpha_audit.rules import (
+    DEFAULT_RULES,
+    DEFAULT_WARNINGS,
+    RENDER_DEFAULT_RULES,
+    RENDER_DEFAULT_WARNINGS,
+    Level,
+    Rule,
+    did_you_mean,
+)
 
 __all__ = [
     "CONTRAST_RULES",
     "LOSS_TOLERANCE",
+    "RENDER_DRIFT_TOLERANCE",
+    "RENDER_POLICY",
     "VISIBILITY_FLOOR",
     "Exemption",
     "Policy",
@@ -202,6 +212,11 @@ class Policy:
         return None
 
 
+# render's gate without a config: below-threshold fails, render-drift and not-audited
+# are reported (rules.py: each rule's ``render`` level).
+RENDER_POLICY = Policy(rules=RENDER_DEFAULT_RULES, warnings=RENDER_DEFAULT_WARNINGS)
+
+
 def contrast_breaks(
     rule: Rule,
     policy: Policy,
@@ -275,6 +290,17 @@ def loss_reported(
     now = np.asarray(contrast, dtype=np.float64)
     lost = (now - ref) < -policy.loss_margin(tolerance)
     return lost & ~contrast_breaks(Rule.LOSS, policy, ref, now, 1.0, tolerance)
+
+
+# CIEDE2000 between the colour a browser drew and the model's nearer prediction
+# above which the page draws another colour than the manifest says (``render-drift``).
+# One 8-bit code step in one channel moves a colour by at most 1.21 (200,000 random
+# sRGB colours, green), and a browser rounds each composite to a code, so a paint
+# drawn as predicted measures within about one step; the fixture Storybook's icons
+# that draw the manifest colour measure 0.00, its CSS overrides 17.7 to 28.6.  2.0
+# (two of ``lock``'s just-noticeable differences) leaves rounding a margin and misses
+# no override a reviewer could see.
+RENDER_DRIFT_TOLERANCE = 2.0
 
 
 def drift_breaks(drift: ArrayLike, limit: float) -> NDArray[np.bool_]:

@@ -13,6 +13,7 @@ from pathlib import Path
 
 from alpha_audit.gate import GateResult
 from alpha_audit.model import GamutAdjustment, IconSet, Theme
+from alpha_audit.observed import PageRun
 from alpha_audit.policy import Policy
 from alpha_audit.rows import AuditResult
 from alpha_audit.rules import Rule
@@ -202,6 +203,9 @@ class ColorFix:
     nearest: NearestColor | None
     manifest: Path | None = None
     line: int | None = None  # manifest line that sets the colour (first icon), if known
+    # A paint a browser drew with CSS at this opacity: the answers are an opacity
+    # (``reach.alpha`` times it) and a colour, not a coefficient.  None: the model's.
+    opacity: float | None = None
 
 
 @dataclass(frozen=True)
@@ -224,7 +228,12 @@ Fix = ColorFix | GroupFix
 
 @dataclass(frozen=True)
 class CheckReport:
-    """What ``check`` produces: one audit per theme x icon set, the gate over all, the fixes.
+    """What ``check`` and ``render`` produce: the audits, the gate over all, the fixes.
+
+    ``check``'s audits are one per theme x icon set; ``render``'s one per story
+    or page, state, engine and backdrop, their rows measured in a browser
+    (:attr:`~alpha_audit.rows.AuditResult.observed`), with ``pages`` saying what
+    the run saw besides (page states, problems, blocked requests, crops).
 
     Each failing finding names the fixes that answer it by index
     (:attr:`~alpha_audit.findings.Finding.fixes`); ``fixes_left_out`` counts
@@ -237,3 +246,4 @@ class CheckReport:
     fixes_left_out: int = 0
     gamut: tuple[GamutAdjustment, ...] = ()  # colours outside sRGB the gamut policy moved
     notes: tuple[str, ...] = ()  # what the token loader noted: modes found, tokens skipped
+    pages: PageRun | None = None  # render: what the page run saw besides its paints

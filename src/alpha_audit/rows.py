@@ -44,6 +44,7 @@ from alpha_audit.color import (
     delta_e_2000_lab,
     hex_to_linear,
     hue_shift,
+    judged_contrast,
     linear_to_lab,
     pack_8bit,
     shipped,
@@ -59,7 +60,8 @@ from alpha_audit.errors import InputError, UsageError
 from alpha_audit.load.paint_masks import PaintSet
 from alpha_audit.load.paints import CURRENT_COLOR
 from alpha_audit.load.svg import IconProblem
-from alpha_audit.model import Icon, IconSet, Theme
+from alpha_audit.model import Icon, IconSet, Location, Theme
+from alpha_audit.observed import MeasuredPaint
 from alpha_audit.ranges import DEFAULT_COMBINATIONS
 
 __all__ = [
@@ -79,6 +81,7 @@ __all__ = [
     "check_combinations",
     "check_pipeline",
     "find_collisions",
+    "observed_audit",
     "resolve_pipeline",
     "with_alphas",
 ]
@@ -262,7 +265,10 @@ class PaintEntry:
     """What one row index draws: a paint group of an icon (the same on every canvas).
 
     ``element`` and ``line`` name the first element drawing a fixed paint
-    (for the ``fixed-colour`` note); ``None`` for ``currentColor``.
+    (for the ``fixed-colour`` note); ``None`` for ``currentColor``.  ``where``
+    are the places that set this paint where the rows know them better than
+    the manifest does (a page's CSS declarations, its story file), most
+    specific first; empty: the manifest's lines.
     """
 
     icon: Icon
@@ -272,6 +278,7 @@ class PaintEntry:
     opacity: float
     element: str | None = None
     line: int | None = None
+    where: tuple[Location, ...] = ()
 
     @property
     def fixed(self) -> bool:
@@ -439,6 +446,7 @@ class AuditResult:
     problems: tuple[IconProblem, ...] = ()
     unaudited: tuple[Unaudited, ...] = ()
     tolerance: float = CONTRAST_TOLERANCE
+    observed: tuple[MeasuredPaint, ...] = ()
 
     @cached_property
     def gain(self) -> NDArray[np.float64]:
@@ -802,6 +810,67 @@ def _compose(
     )
     object.__setattr__(result, "collisions", _collisions(result))
     return result
+
+
+def observed_audit(
+    theme: Theme,
+    iconset: IconSet,
+    entries: Sequence[PaintEntry],
+    alphas: Sequence[float],
+    shown: NDArray[np.float64],
+    observed: Sequence[MeasuredPaint],
+    *,
+    pipeline: Pipeline,
+    threshold: float,
+    unaudited: Sequence[Unaudited] = (),
+) -> AuditResult:
+    """Paint rows a browser drew: ``entries`` on ``theme``'s canvases, as measured.
+
+    ``shown`` ``(p, m, 3)`` are the colours the screen showed (linear, from
+    8-bit pixels), ``observed[r]`` the measured paint row ``r`` carries.  The
+    row's paint (``entries``' sources and opacities, ``alphas``) is the model
+    of what drew it; its output is what was measured, judged by
+    :func:`~alpha_audit.color.judged_contrast` as every row is, and its
+    reference (alpha 1) the model's own where ``alphas`` is not 1.
+    """
+    p, m = len(entries), len(theme.canvases)
+    sources = np.array(
+        [e.icon.linear if not e.fixed else hex_to_linear(e.source) for e in entries],
+        dtype=np.float64,
+    ).reshape(p, 3)
+    opacity = np.array([e.opacity for e in entries], dtype=np.float64).reshape(p)
+    alpha = np.asarray(alphas, dtype=np.float64).reshape(p)
+    bg = theme.backgrounds[np.newaxis, :, :]
+    output = np.asarray(shown, dtype=np.float64).reshape(p, m, 3)
+    model_ref = composite_paint(
+        sources[:, None, :], bg, np.ones((p, 1)), opacity[:, None], pipeline
+    )
+    reference = np.where((alpha == 1.0)[:, None, None], output, model_ref)
+    shown_out, shown_ref = shipped(output), shipped(reference)
+    return AuditResult(
+        theme=theme,
+        iconset=iconset,
+        pipeline=pipeline,
+        threshold=threshold,
+        entries=tuple(entries),
+        sizes=(),
+        sources=sources,
+        opacity=opacity,
+        alpha=alpha,
+        output=output,
+        reference=reference,
+        contrast_ref=judged_contrast(reference, bg),
+        contrast=judged_contrast(output, bg),
+        contrast_ref_float=contrast_ratio(reference, bg),
+        contrast_float=contrast_ratio(output, bg),
+        drift=delta_e_2000(shown_ref, shown_out).reshape(p, m),
+        hue_shift=hue_shift(shown_ref, shown_out).reshape(p, m),
+        q50=np.zeros((p, 0)),
+        full_share=np.zeros((p, 0)),
+        size_contrast=np.zeros((p, m, 0)),
+        unaudited=tuple(unaudited),
+        observed=tuple(observed),
+    )
 
 
 def with_alphas(result: AuditResult, alphas: Mapping[str, float]) -> AuditResult:

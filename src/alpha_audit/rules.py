@@ -182,8 +182,12 @@ _SPECS = (
         "AA009",
         "info",
         Level.OFF,
-        "The SVG draws something the audit cannot judge (gradient, text, image).",
-        "Audit the element by hand, or draw it with plain fills and strokes the audit can read.",
+        "The SVG draws something the audit cannot judge (gradient, text, image); on a page, "
+        "no pixel shows a paint at full coverage (a hairline), so its colour is not judged.",
+        "Audit the element by hand, or draw it with plain fills and strokes the audit can read "
+        "(on a page: strokes of at least 1 CSS px).",
+        # A paint a browser drew too thin to measure is said, never passed in silence.
+        render=Level.WARN,
     ),
     RuleSpec(
         Rule.DRIFT,

@@ -2,7 +2,7 @@
 
 The real ``--html`` page is opened in each engine, which renders the icon set
 through its shader for every canvas, sizes 16/24/48 and the paper's nine
-configurations (plus alpha = -1); :func:`alpha_audit.browser.validate.validate_page`
+configurations (plus alpha = -1); :func:`alpha_audit.reproduce.validate.validate_page`
 compares every pixel with nonzero coverage against the float64 CPU reference.
 The paper reports at most 1/255 over 388,800 instances in three browsers; we
 require the same bound in each engine.
@@ -20,11 +20,11 @@ import pytest
 
 from alpha_audit import load_iconset, load_theme, rasterize_icons
 from alpha_audit.browser import ENGINES
-from alpha_audit.browser.validate import PAPER_CONFIGURATIONS, Configuration, validate_page
 from alpha_audit.load.paint_masks import paint_masks
 from alpha_audit.model import Icon, IconSet
 from alpha_audit.preview import Blend
 from alpha_audit.preview.figures import preview_rows, solid_rows
+from alpha_audit.reproduce.validate import PAPER_CONFIGURATIONS, Configuration, validate_page
 from multipaint import write_multipaint
 
 ROOT = Path(__file__).resolve().parents[2]

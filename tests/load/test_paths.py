@@ -141,3 +141,16 @@ def test_glob_refuses_control_characters_in_folders_on_the_way(root: Path) -> No
     with pytest.raises(PathRefused, match="control or format character") as info:
         glob_contained(root, root, "svg/*/*.svg", limit=10)
     assert "\x1b" not in str(info.value)
+
+
+def test_a_name_outside_the_root_is_said_to_be_outside_not_a_symlink(root: Path) -> None:
+    """``render ../sb`` from a project: no link is involved, and the message says so."""
+    from alpha_audit.load.paths import contain_argument
+
+    (root.parent / "sb").mkdir()
+    with pytest.raises(PathRefused, match="is outside the project root") as info:
+        contain_argument(root / ".." / "sb", root)
+    assert "symlink" not in str(info.value)
+    os.symlink(root.parent / "sb", root / "linked")
+    with pytest.raises(PathRefused, match="leads through a symlink"):
+        contain_argument(root / "linked", root)

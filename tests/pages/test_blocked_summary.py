@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from alpha_audit.cli.render import blocked_summary
-from alpha_audit.pages.measured import BlockedRequest
+from alpha_audit.observed import BlockedRequest
 
 
 def _blocked(*urls: str) -> list[BlockedRequest]:

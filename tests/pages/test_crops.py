@@ -20,10 +20,9 @@ from PIL import Image
 from alpha_audit.browser import Clip
 from alpha_audit.pages.capture import Capture
 from alpha_audit.pages.crops import CROP_SIDE, CropStore, crop_icon
-from alpha_audit.pages.measured import Coverage, IconMatch, MeasuredPaint
-from alpha_audit.pages.report import RENDER_POLICY
-from alpha_audit.policy import Policy
+from alpha_audit.policy import RENDER_POLICY, Policy
 from alpha_audit.rules import Rule
+from helpers import measured_paint
 
 
 def capture(width: int = 200, height: int = 120, scale: int = 2) -> Capture:
@@ -35,11 +34,10 @@ def capture(width: int = 200, height: int = 120, scale: int = 2) -> Capture:
 
 
 def paint(source: str = "icons--a", x: float = 20, y: float = 30, **changes: object):
-    base = MeasuredPaint(
-        source, "storybook", "u", "theme:dark", "chromium", "l", None, IconMatch.NONE, "svg",
-        f"div > svg:nth-of-type({int(x)})", "currentColor", ("stroke",), "#6e1a1f", None,
-        "#0d1117", None, None, None, Coverage(1, 1, 1.0, 1.0, 1.0), 1.6, 1.7, None, None,
-        None, (), None, (x, y, 24.0, 24.0),
+    """A dark red icon on the dark surface (1.65:1): below the threshold unless changed."""
+    base = measured_paint(
+        source=source, state="theme:dark", drawn="#6e1a1f", behind="#0d1117",
+        dom_path=f"div > svg:nth-of-type({int(x)})", box=(x, y, 24.0, 24.0), render_drift=None,
     )  # fmt: skip
     return replace(base, **changes)
 
@@ -76,9 +74,9 @@ def test_a_box_off_the_capture_has_no_crop():
 
 def test_only_what_may_become_a_finding_is_cut():
     store = CropStore(10, RENDER_POLICY)
-    passing = paint(x=20, contrast_worst=4.5, contrast_median=5.0)
+    passing = paint(x=20, contrast=4.5)
     failing = paint(x=60)
-    drifting = paint(x=100, contrast_worst=4.5, render_drift=12.0, predictions=())
+    drifting = paint(x=100, contrast=4.5, render_drift=12.0)
     store.keep(capture(), [passing, failing, drifting], rank=0)
     assert [c.dom_path for c in store.crops] == [failing.dom_path, drifting.dom_path]
     # A policy that reports neither rule cuts nothing.
@@ -115,7 +113,7 @@ def test_the_cap_holds_and_keeps_the_same_crops_whatever_order_pages_finish_in()
 
 def test_failing_rules_crops_come_before_reported_ones():
     store = CropStore(1, RENDER_POLICY)
-    drifting = paint("icons--a", x=20, contrast_worst=4.5, render_drift=12.0)
+    drifting = paint("icons--a", x=20, contrast=4.5, render_drift=12.0)
     failing = paint("icons--b", x=60)
     store.keep(capture(), [drifting], rank=0)
     store.keep(capture(), [failing], rank=1)

@@ -10,8 +10,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from alpha_audit.model import Icon, IconSet
+from alpha_audit.observed import IconMatch
 from alpha_audit.pages.mapping import ManifestIndex
-from alpha_audit.pages.measured import IconMatch
 
 
 def _index(tmp_path: Path) -> ManifestIndex:

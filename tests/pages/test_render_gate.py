@@ -20,9 +20,9 @@ from typer.testing import CliRunner
 
 from alpha_audit.cli import app
 from alpha_audit.load.iconset import load_iconset
-from alpha_audit.pages import RenderConfig, StorybookSource, audit_pages, state_matrix
-from alpha_audit.pages.report import RENDER_POLICY, judge_pages
-from alpha_audit.render import RenderFormat, RenderOptions
+from alpha_audit.pages import RenderConfig, StorybookSource, audit_pages, page_report, state_matrix
+from alpha_audit.policy import RENDER_POLICY
+from alpha_audit.render import CheckFormat, RenderOptions
 from alpha_audit.rules import RULES, Rule
 
 THEMES = [[("theme", "light")], [("theme", "dark")]]
@@ -38,7 +38,8 @@ def report(project: Path):
         root=project,
         workers=2,
     )
-    return judge_pages(audit_pages(config, manifest), RENDER_POLICY, manifest)
+    run, paints = audit_pages(config, manifest)
+    return page_report(run, paints, RENDER_POLICY, manifest)
 
 
 def test_the_dark_only_alert_fails_the_gate_with_its_story_theme_and_manifest_line(report):
@@ -48,14 +49,17 @@ def test_the_dark_only_alert_fails_the_gate_with_its_story_theme_and_manifest_li
     ]
     (f,) = alert
     where = [(loc.file.name, loc.line, loc.what) for loc in f.locations]
-    assert where[0] == ("iconset.yaml", 6, "colour")  # overrides: triangle-alert: {color: ...}
-    assert where[-1] == ("icons.stories.js", 1, "story")  # index.json's importPath
+    # The page overrides the manifest's colour (--danger): the page's declaration leads
+    # where it is found; the manifest's line (overrides: triangle-alert: {color: ...})
+    # and the story file (index.json's importPath) follow.
+    assert ("iconset.yaml", 6, "colour") in where
+    assert where[-1] == ("icons.stories.js", 1, "story")
     assert not report.gate.passed
 
 
 def test_no_crops_are_cut_unless_a_report_asks_for_them(report):
-    assert report.gate.failures and report.result.crops == ()  # RenderConfig.crops is 0
-    assert report.result.crops_left_out == 0
+    assert report.gate.failures and report.pages.crops == ()  # RenderConfig.crops is 0
+    assert report.pages.crops_left_out == 0
 
 
 def test_render_drift_fires_on_the_css_overrides_and_not_on_the_others(report):
@@ -74,16 +78,15 @@ def test_render_drift_fires_on_the_css_overrides_and_not_on_the_others(report):
 
 
 def test_sarif_locates_the_failure_at_the_manifest_line_with_the_story_related(report, project):
-    log = json.loads(RenderFormat.SARIF.renderer()(report, RenderOptions(base=project)))
+    log = json.loads(CheckFormat.SARIF.renderer()(report, RenderOptions(base=project)))
     (run,) = log["runs"]
     alert = [r for r in run["results"] if r["properties"].get("story") == "icons--alert"
              and r["ruleId"] == RULES[Rule.BELOW_THRESHOLD].sarif_id]  # fmt: skip
     (result,) = alert
-    physical = result["locations"][0]["physicalLocation"]
-    assert physical["artifactLocation"]["uri"] == "icons/iconset.yaml"
-    assert physical["region"]["startLine"] == 6
-    related = [r["physicalLocation"]["artifactLocation"]["uri"] for r in result["relatedLocations"]]
-    assert "stories/icons.stories.js" in related
+    places = [result["locations"][0], *result["relatedLocations"]]
+    where = [(r["physicalLocation"]["artifactLocation"]["uri"],
+              r["physicalLocation"]["region"]["startLine"]) for r in places]  # fmt: skip
+    assert ("icons/iconset.yaml", 6) in where and ("stories/icons.stories.js", 1) in where
     props = result["properties"]
     assert (props["state"], props["dom_path"].endswith("svg")) == ("theme:dark", True)
     assert "theme:dark / icons--alert" in result["message"]["text"]
@@ -93,14 +96,14 @@ def test_sarif_locates_the_failure_at_the_manifest_line_with_the_story_related(r
 
 
 def test_the_comment_has_the_story_by_theme_matrix_and_the_failing_icons(report, project):
-    text = RenderFormat.MARKDOWN.renderer()(report, RenderOptions(base=project))
+    text = CheckFormat.MARKDOWN.renderer()(report, RenderOptions(base=project))
     lines = text.splitlines()
     assert "| story or page | theme:light | theme:dark |" in lines
     assert "| icons--alert | pass | **1 failing** |" in lines
     assert "| icons--toolbar | pass | pass |" in lines
     row = next(line for line in lines if line.startswith("| triangle-alert |"))
-    assert "theme:dark" in row and "#0d1117" in row and "icons/iconset.yaml:6" in row
-    assert "1.6" in row  # worst pixel 1.6x:1
+    assert "theme:dark" in row and "#6e1a1f on #0d1117" in row
+    assert "1.65:1" in row  # --danger #6e1a1f on the dark surface #0d1117, by the specs
     assert len(text) < 65_536
 
 
@@ -152,12 +155,28 @@ def test_firefox_and_webkit_audit_the_storybook_and_see_the_same_dark_failure(pr
         workers=1,
         timeout=120,  # a page state's limit, generous for a loaded machine
     )
-    result = audit_pages(config, manifest)
-    assert list(result.problems) == [], result.problems
-    worst = {(p.state, p.icon, p.match.value): p.contrast_worst for p in result.paints}
+    run, paints = audit_pages(config, manifest)
+    assert list(run.problems) == [], run.problems
+    worst = {(p.state, p.icon, p.match.value): p.contrast for p in paints}
     assert set(worst) == {
         ("theme:light", "triangle-alert", "data-attribute"),
         ("theme:dark", "triangle-alert", "data-attribute"),
     }
     assert worst[("theme:dark", "triangle-alert", "data-attribute")] < 3.0
     assert worst[("theme:light", "triangle-alert", "data-attribute")] >= 3.0
+
+
+def test_a_globals_value_the_toolbar_does_not_offer_is_refused_naming_the_values(project):
+    """theme:purple is no theme of the Storybook (addon-themes offers light and dark): an
+    unstyled story would be audited without a word, so the run stops with exit 2."""
+    cwd = Path.cwd()
+    os.chdir(project)
+    try:
+        result = runner.invoke(
+            app, ["render", "storybook-static", "--stories", "icons--alert", "--globals",
+                  "theme:purple", "--workers", "1"],
+        )  # fmt: skip
+    finally:
+        os.chdir(cwd)
+    assert result.exit_code == 2, result.output
+    assert "theme:purple" in result.output and "light, dark" in result.output

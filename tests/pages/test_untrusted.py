@@ -59,7 +59,7 @@ def test_requests_beyond_the_pages_server_are_refused_and_reported(site, tmp_pat
     )
     result = audit_pages(RenderConfig((FolderSource(pages),), root=tmp_path, workers=1))
     service.close()
-    urls = [b.url for b in result.blocked]
+    urls = [b.url for b in result.run.blocked]
     assert "http://example.com/pixel.png" in urls
     assert f"http://127.0.0.1:{port}/session" in urls
     assert "https://example.org:443" in urls
@@ -78,9 +78,9 @@ def test_a_page_that_never_settles_is_a_problem_within_its_time_limit(site, tmp_
     )
     (pages / "fine.html").write_text(f"<!doctype html><body>{ICON}", encoding="utf-8")
     result = audit_pages(RenderConfig((FolderSource(pages),), root=tmp_path, workers=1, timeout=3))
-    assert [(p.source, "limit" in p.message or "time" in p.message) for p in result.problems] == [
-        ("busy.html", True)
-    ]
+    assert [
+        (p.source, "limit" in p.message or "time" in p.message) for p in result.run.problems
+    ] == [("busy.html", True)]
     assert [p.source for p in result.paints] == ["fine.html"]  # the next page ran afresh
 
 

@@ -10,9 +10,11 @@ from __future__ import annotations
 
 import json
 import xml.etree.ElementTree as ET
+from collections import Counter
 from collections.abc import Callable
 from enum import StrEnum
 from functools import cache
+from html.parser import HTMLParser
 from pathlib import Path
 from typing import Any
 
@@ -104,6 +106,17 @@ def _markdown(text: str) -> str:
     return html
 
 
+class _Tags(HTMLParser):
+    """Counts the start tags of an HTML document."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.tags: Counter[str] = Counter()
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        self.tags[tag] += 1
+
+
 def _check(fmt: str, text: str) -> None:
     if fmt == "json":
         assert isinstance(_strict_json(text), dict)
@@ -123,6 +136,13 @@ def _check(fmt: str, text: str) -> None:
         prints = [i["fingerprint"] for i in issues]
         assert len(set(prints)) == len(prints)
         assert all(not i["location"]["path"].startswith("/") for i in issues)
+    elif fmt == "html":
+        parser = _Tags()
+        parser.feed(text)
+        parser.close()
+        assert parser.tags["html"] == 1 and "script" not in parser.tags and "a" not in parser.tags
+        assert "img" not in parser.tags  # a check report has no crops: a name never becomes one
+        assert 'http-equiv="Content-Security-Policy"' in text
     else:  # pragma: no cover - a new format needs its parse check here
         raise AssertionError(f"no parse check for format {fmt!r}")
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import replace
 from pathlib import Path
-from typing import Annotated, Any, TypeVar, cast
+from typing import TYPE_CHECKING, Annotated, TypeVar, cast
 
 import typer
 
@@ -39,6 +39,9 @@ from alpha_audit.cli.status import ExitStatus
 from alpha_audit.ranges import ALPHA
 from alpha_audit.render import CheckFormat, Format, RenderOptions
 from alpha_audit.render.common import check_suffix
+
+if TYPE_CHECKING:
+    from alpha_audit.results import CheckReport
 
 __all__ = ["check_command", "pair_outputs"]
 
@@ -263,7 +266,10 @@ def check_command(
 
 
 def write_reports(
-    report: Any, pairs: Sequence[tuple[Any, Path | None]], write_baseline: Path | None, force: bool
+    report: CheckReport,
+    pairs: Sequence[tuple[CheckFormat, Path | None]],
+    write_baseline: Path | None,
+    force: bool,
 ) -> None:
     """Each ``(format, file)`` rendered and written (None: stdout, last), and the baseline.
 

@@ -28,6 +28,7 @@ FLAGS: dict[str, str] = {
     "pipeline": "--pipeline",
     "max_combinations": "max-combinations (--max-combinations)",
     "base": "--base",
+    "globals": "--globals",
 }
 """Backticked phrase in a library message -> what the command line says instead."""
 

@@ -1,8 +1,9 @@
 """``alpha-audit render``: audit icons as a browser draws them, and gate on what they show.
 
 Parses flags, runs the page audit (:func:`alpha_audit.pages.audit_pages`),
-judges it with the one gate (:func:`alpha_audit.pages.report.judge_pages`) and
-writes each ``--format`` with the renderers of :class:`RenderFormat`.  Exit 0
+makes its paints rows and judges them with the one gate
+(:func:`alpha_audit.pages.page_report`) and writes each ``--format`` with
+``check``'s renderers (:class:`~alpha_audit.render.CheckFormat`).  Exit 0
 passed, 1 the gate failed, 2 bad input or a page state that could not be
 audited (one line says which), 3 a bug.
 """
@@ -33,10 +34,11 @@ from alpha_audit.cli.options import (
 )
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.errors import UsageError
-from alpha_audit.pages.measured import BlockedRequest
+from alpha_audit.observed import BlockedRequest
 from alpha_audit.pages.states import State, state_matrix
-from alpha_audit.render import RenderFormat
+from alpha_audit.render import CheckFormat
 from alpha_audit.rules import RENDER_DEFAULT_RULES, RENDER_RULES, RULES
+from alpha_audit.safe_text import safe_text
 
 __all__ = ["render_command"]
 
@@ -160,14 +162,14 @@ def render_command(
         bool, flag("--exit-zero", help="Report findings but exit 0 even if the gate fails.")
     ] = False,
     fmt: Annotated[
-        list[RenderFormat] | None,
+        list[CheckFormat] | None,
         typer.Option(
             "--format",
             "-f",
             metavar="FORMAT",
-            help=f"Report format (repeatable): {', '.join(RenderFormat)}.",
+            help=f"Report format (repeatable): {', '.join(CheckFormat)}.",
             case_sensitive=False,
-            show_default=RenderFormat.TABLE.value,
+            show_default=CheckFormat.TABLE.value,
         ),
     ] = None,
     output: OutputsOption = None,
@@ -188,10 +190,11 @@ def render_command(
     Each page or story is loaded in each state (Storybook globals,
     prefers-color-scheme, a class or attribute on <html>), captured twice at
     device scale 2 (icons drawn, icons hidden) and every icon paint measured
-    from the pixels: drawn colour, backdrop, WCAG contrast (worst and median
-    pixel), and the model's prediction under the linear and css pipelines.
-    below-threshold (worst pixel under 3:1) fails the gate; render-drift
-    (the page draws another colour than the manifest) is reported.
+    from the pixels: its colour at full coverage and the backdrop under it
+    (the pair that limits), and the model's prediction under the linear and
+    css pipelines.  Each paint is a row judged as check judges its rows:
+    below-threshold fails the gate; render-drift (the page draws another
+    colour than the manifest) and paints too thin to measure are reported.
     Pages reach nothing but loopback.  -f html writes one page that runs
     no script, with crops of each finding's icon as drawn and its backdrop.
 
@@ -204,12 +207,11 @@ def render_command(
     from alpha_audit.load.baseline import read_baseline
     from alpha_audit.load.iconset import load_iconset
     from alpha_audit.output import check_targets
-    from alpha_audit.pages import audit_pages
+    from alpha_audit.pages import audit_pages, page_report
     from alpha_audit.pages.config import resolve_render_config
-    from alpha_audit.pages.report import judge_pages
 
     order = given_order(ctx.meta.get(ARGS, ()), _ORDER)
-    pairs = pair_outputs(list(fmt or [RenderFormat.TABLE]), list(output or []), order)
+    pairs = pair_outputs(list(fmt or [CheckFormat.TABLE]), list(output or []), order)
     files = [out for _, out in pairs if out is not None] + [write_baseline] * bool(write_baseline)
     check_targets([f for f in files if f is not None], overwrite=force)  # before the work
     settings = resolve_render_config(
@@ -228,7 +230,7 @@ def render_command(
         timeout=timeout,
         baseline=baseline,
     )
-    if any(kind is RenderFormat.HTML for kind, _ in pairs):
+    if any(kind is CheckFormat.HTML for kind, _ in pairs):
         from alpha_audit.pages.crops import MAX_CROPS
 
         settings = replace(settings, crops=MAX_CROPS)  # cut while each page state is measured
@@ -246,16 +248,20 @@ def render_command(
                 started = True
             advance()
 
-        result = audit_pages(settings, manifest, progress=progress)
-    report = judge_pages(result, settings.policy, manifest, baseline=known)
+        run, paints = audit_pages(settings, manifest, progress=progress)
+    report = page_report(
+        run, paints, settings.policy, manifest, threshold=settings.threshold, baseline=known
+    )
     write_reports(report, pairs, write_baseline, force)
-    if result.blocked:
-        stderr_note(blocked_summary(result.blocked))
-    if result.problems:
-        first = result.problems[0]
+    if run.blocked:
+        stderr_note(blocked_summary(run.blocked))
+    if run.problems:
+        first = run.problems[0]
         stderr_note(
-            f"error: {len(result.problems)} of {result.audited} page states could not be "
-            f"audited; first: {first.source} [{first.state}, {first.engine}]: {first.message}"
+            safe_text(
+                f"error: {len(run.problems)} of {run.audited} page states could not be "
+                f"audited; first: {first.source} [{first.state}, {first.engine}]: {first.message}"
+            )
         )
         return ExitStatus.INPUT_ERROR
     gate = report.gate
@@ -277,7 +283,7 @@ _ENGINES_OWN: dict[str, frozenset[str]] = {
 def blocked_summary(blocked: Sequence[BlockedRequest], shown: int = 3) -> str:
     """The stderr line for the requests a run refused: how many, and to which hosts.
 
-    >>> from alpha_audit.pages.measured import BlockedRequest as B
+    >>> from alpha_audit.observed import BlockedRequest as B
     >>> line = blocked_summary([B("s", "dark", "chromium", "https://fonts.example/a.css"),
     ...                         B("s", "light", "chromium", "https://fonts.example/b.css"),
     ...                         B("s", "dark", "firefox", "cdn.example:443")])

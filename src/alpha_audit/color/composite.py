@@ -29,6 +29,7 @@ __all__ = [
     "Pipeline",
     "composite_coverage",
     "composite_css",
+    "composite_css_least",
     "composite_extended",
     "composite_paint",
     "composite_raw",
@@ -112,6 +113,37 @@ def composite_css(
     b = srgb_encode(np.asarray(background, dtype=np.float64))
     encoded = np.clip(b + a[..., np.newaxis] * (s - b), 0.0, 1.0)
     return srgb_decode(np.rint(encoded * 255.0) / 255.0)  # np.rint rounds half to even
+
+
+def composite_css_least(
+    source: ArrayLike, background: ArrayLike, alpha: ArrayLike
+) -> NDArray[np.float64]:
+    """Of what browsers may show for CSS ``opacity: a``, the colour nearest the backdrop.
+
+    Engines blend in 8 bits in their own ways: the opacity itself is quantised to
+    an 8-bit alpha (``a * 255`` rounded either way) and each blended channel is
+    rounded by the engine's rule, so one paint can come out a code apart in two
+    browsers.  Here the alpha is taken down to ``floor(a * 255) / 255`` and every
+    channel rounded towards the backdrop's: a fix judged on this colour passes in
+    every engine, not just in the formula (:func:`composite_css` rounds half to
+    even).  Opacity 1 is the source itself.
+
+    >>> from alpha_audit.color.srgb import hex_to_linear, linear_to_hex
+    >>> grey, white = hex_to_linear("#57606a"), hex_to_linear("#ffffff")
+    >>> linear_to_hex(composite_css(grey, white, 0.5))
+    '#abb0b4'
+    >>> linear_to_hex(composite_css_least(grey, white, 0.5))
+    '#acb0b5'
+    """
+    a = np.asarray(alpha, dtype=np.float64)
+    _check_css_alpha(a)
+    a8 = np.floor(a * 255.0 + 1e-9) / 255.0
+    s = srgb_encode(np.asarray(source, dtype=np.float64))
+    b = srgb_encode(np.asarray(background, dtype=np.float64))
+    codes = np.clip(b + a8[..., np.newaxis] * (s - b), 0.0, 1.0) * 255.0
+    # Towards the backdrop: down where the paint is above it, up where below.
+    codes = np.where(s > b, np.floor(codes + 1e-6), np.ceil(codes - 1e-6))
+    return srgb_decode(codes / 255.0)
 
 
 def composite_paint(

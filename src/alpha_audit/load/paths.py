@@ -105,6 +105,18 @@ def enclosing_roots(path: str | Path, markers: tuple[str, ...] = (".git",)) -> l
     return found or [resolve(name.parent)]
 
 
+def _through_link(path: Path, markers: tuple[str, ...] = (".git",)) -> bool:
+    """Whether the name passes through a link inside its project (the name, or a folder
+    between it and the project root its name lies in), rather than lying outside it."""
+    name = Path(os.path.abspath(path))
+    inside = []
+    for folder in (name, *name.parents):
+        if any((folder / m).exists() for m in markers):
+            return any(q.is_symlink() for q in inside)
+        inside.append(folder)
+    return False  # in no project at all: outside it, whatever links lead there
+
+
 def contain_argument(path: str | Path, root: Path | None = None) -> Path:
     """A file named by the user or found by discovery, resolved and inside its project root.
 
@@ -118,11 +130,17 @@ def contain_argument(path: str | Path, root: Path | None = None) -> Path:
         raise PathRefused(f"{_shown(str(p))} has a control or format character; not allowed")
     target = resolve(p.absolute())
     for base in [resolve(root)] if root is not None else enclosing_roots(p):
-        if not target.is_relative_to(base):
+        if target.is_relative_to(base):
+            continue
+        if not _through_link(p):
             raise PathRefused(
-                f"{_shown(str(p))} leads through a symlink to a file outside the project "
-                f"root {base}; not allowed"
+                f"{_shown(str(p))} is outside the project root {base}: alpha-audit reads "
+                "files of the project it runs in only; run it from the project holding it"
             )
+        raise PathRefused(
+            f"{_shown(str(p))} leads through a symlink to a file outside the project "
+            f"root {base}; not allowed"
+        )
     return target
 
 

@@ -20,9 +20,11 @@ from numpy.typing import NDArray
 from PIL import Image
 
 from alpha_audit.browser import Browser, BrowserError, Clip
+from alpha_audit.errors import UsageError
 from alpha_audit.pages.states import State
+from alpha_audit.safe_text import safe_text
 
-__all__ = ["MARGIN", "Capture", "FoundIcon", "capture_page"]
+__all__ = ["MARGIN", "Capture", "FoundIcon", "capture_page", "check_globals"]
 
 MARGIN = 4  # CSS pixels of backdrop kept around the icons' box (the ring "around" each icon)
 _PROBE = "__alphaAuditProbe"
@@ -36,6 +38,54 @@ _STORY_READY = (
     " return c.contains('sb-show-main') && !!root && root.childElementCount > 0"
     " && !c.contains('sb-show-preparing-story'); })()"
 )
+# The values each Storybook global can take, where the Storybook says: a toolbar's
+# items (globalTypes[name].toolbar.items), and @storybook/addon-themes' themes (its
+# decorator announces them on the channel, which keeps the last message of each kind).
+# Read in the page's own world (an isolated one cannot see its globals): data only.
+_TOOLBAR = (
+    "(() => { const p = window.__STORYBOOK_PREVIEW__; const out = {};"
+    " if (!p) return out;"
+    " const store = p.storyStoreValue || p.storyStore || {};"
+    " const types = (store.projectAnnotations || {}).globalTypes || {};"
+    " for (const [name, type] of Object.entries(types)) {"
+    "  const items = (type && type.toolbar && type.toolbar.items) || [];"
+    "  const values = items.map((i) => (i && typeof i === 'object' ? i.value : i))"
+    "   .filter((v) => typeof v === 'string');"
+    "  if (values.length) out[name] = values; }"
+    " const themes = ((p.channel && p.channel.data) || {})['storybook/themes/REGISTER_THEMES'];"
+    " const said = Array.isArray(themes) ? themes[0] : null;"
+    " if (said && Array.isArray(said.themes)) out.theme = said.themes.filter("
+    "  (v) => typeof v === 'string');"
+    " return out; })()"
+)
+MAX_TOOLBAR_VALUES = 256  # values of one global a page may name (a refusal lists them)
+
+
+def check_globals(browser: Browser, state: State) -> None:
+    """Refuse a state's Storybook global whose value is none the Storybook offers.
+
+    A value its toolbar (or the themes addon) does not list renders the story
+    unstyled without a word, so the audit would judge a theme no one ships.  A
+    global the Storybook declares nowhere cannot be checked and is let through.
+    """
+    known: Any = browser.evaluate(_TOOLBAR)
+    if not isinstance(known, dict):
+        return
+    for name, value in state.globals:
+        values = known.get(name)
+        if not isinstance(values, list) or not values:
+            continue
+        allowed = [str(v) for v in values[:MAX_TOOLBAR_VALUES]]
+        if value not in allowed:
+            raise UsageError(
+                safe_text(
+                    f"`globals` {name}:{value}: the Storybook's {name} is one of "
+                    f"{', '.join(allowed)}; a value it does not offer would audit an "
+                    "unstyled story"
+                )
+            )
+
+
 # Then quiet: no DOM change for QUIET_MS (a decorator's effect that sets the theme after
 # the story rendered, a late class), at most SETTLE_MS in all.
 QUIET_MS, SETTLE_MS = 100, 3000
@@ -134,6 +184,8 @@ def capture_page(
         ready = browser.wait_for(_STORY_READY, isolated=isolated)
         if ready == "error":
             raise BrowserError("the story failed to render (Storybook shows its error display)")
+        if state.globals:
+            check_globals(browser, state)
     _mark_html(browser, state)
     browser.evaluate(_SETTLED, isolated=isolated)
     browser.evaluate(f"(globalThis.{_PROBE} = {_probe_source()}, true)", isolated=isolated)

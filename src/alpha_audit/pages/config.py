@@ -38,7 +38,6 @@ from alpha_audit.errors import UsageError
 from alpha_audit.load.fields import check_keys, describe, read_mapping, read_name, read_number
 from alpha_audit.load.paths import PathRefused, contain_argument, project_root
 from alpha_audit.load.yamldoc import KeyPath, YamlDoc, load_yaml
-from alpha_audit.pages.report import RENDER_POLICY
 from alpha_audit.pages.sources import (
     FolderSource,
     Source,
@@ -47,7 +46,7 @@ from alpha_audit.pages.sources import (
     check_loopback_url,
 )
 from alpha_audit.pages.states import State, state_matrix
-from alpha_audit.policy import Policy
+from alpha_audit.policy import RENDER_POLICY, Policy
 from alpha_audit.rules import RENDER_RULES, Rule
 
 __all__ = [

@@ -2,11 +2,11 @@
 
 The two captures of a page state live only while it is measured; the HTML
 report shows, beside each finding, its worst instance as drawn and its
-backdrop.  So while the captures exist, the paints a finding may take its
-figures from (:func:`~alpha_audit.pages.findings.worst_paints`: the rules'
-own statements, not a second test) are cut out of both, the icon's box grown
-by the ring its surroundings are measured in, and kept as two small PNGs
-(:class:`~alpha_audit.pages.measured.IconCrop`).
+backdrop.  So while the captures exist, the paints a finding may be about
+(:func:`~alpha_audit.pages.audit.shown_rule`: the rules' own statements, not a
+second test) are cut out of both, the icon's box grown by the ring its
+surroundings are measured in, and kept as two small PNGs
+(:class:`~alpha_audit.observed.IconCrop`).
 
 Memory stays bounded whatever the number of stories: a crop is at most
 :data:`CROP_SIDE` pixels a side, and a run keeps at most its limit of them
@@ -27,10 +27,10 @@ import numpy as np
 from numpy.typing import NDArray
 from PIL import Image
 
+from alpha_audit.observed import IconCrop, MeasuredPaint
+from alpha_audit.pages.audit import shown_rule
 from alpha_audit.pages.capture import Capture
-from alpha_audit.pages.findings import worst_paints
 from alpha_audit.pages.measure import icon_region, ring_width
-from alpha_audit.pages.measured import IconCrop, MeasuredPaint
 from alpha_audit.policy import Policy
 from alpha_audit.rules import Level
 
@@ -87,9 +87,10 @@ class CropStore:
     the same run keeps the same crops.  ``wanted`` counts every crop asked for.
     """
 
-    def __init__(self, limit: int, policy: Policy) -> None:
+    def __init__(self, limit: int, policy: Policy, threshold: float = 3.0) -> None:
         self.limit = limit
         self.policy = policy
+        self.threshold = threshold
         self.wanted = 0
         # A max-heap of the kept crops by order (each key negated): the top leaves first.
         self._heap: list[tuple[tuple[int, int, int], IconCrop]] = []
@@ -98,7 +99,10 @@ class CropStore:
     def keep(self, capture: Capture, paints: Sequence[MeasuredPaint], rank: int) -> None:
         """Crop the paints of one page state that a finding may show (``rank``: its order)."""
         orders: dict[tuple[str, str, str, str], tuple[tuple[int, int, int], MeasuredPaint]] = {}
-        for k, (rule, paint) in enumerate(worst_paints(paints, self.policy)):
+        for k, paint in enumerate(paints):
+            rule = shown_rule(paint, self.policy, self.threshold)
+            if rule is None:
+                continue
             order = (int(self.policy.level(rule) is not Level.FAIL), rank, k)
             key = (paint.source, paint.state, paint.engine, paint.dom_path)
             if key not in orders or order < orders[key][0]:

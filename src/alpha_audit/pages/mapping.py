@@ -20,7 +20,7 @@ from typing import Any
 from defusedxml import ElementTree
 
 from alpha_audit.model import Icon, IconSet
-from alpha_audit.pages.measured import IconMatch
+from alpha_audit.observed import IconMatch
 
 __all__ = ["GEOMETRY", "ManifestIndex", "geometry_hash"]
 

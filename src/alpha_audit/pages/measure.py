@@ -41,17 +41,26 @@ from alpha_audit.color import (
     coverage_stats,
     delta_e_2000,
     from_8bit,
+    judged_contrast,
     linear_to_hex,
     srgb_decode,
 )
 from alpha_audit.model import Icon
+from alpha_audit.observed import (
+    MEASURED,
+    NO_INTERIOR,
+    Coverage,
+    IconMatch,
+    MeasuredPaint,
+    Prediction,
+)
 from alpha_audit.pages.capture import Capture, FoundIcon
-from alpha_audit.pages.measured import Coverage, IconMatch, MeasuredPaint, Prediction
 
 __all__ = [
     "DeclaredPaint",
     "PageContext",
     "declared_paints",
+    "icon_name",
     "icon_region",
     "measure_capture",
     "ring_width",
@@ -77,10 +86,8 @@ class PageContext:
 
     source: str
     source_kind: str
-    url: str
     state: str
     engine: str
-    threshold: float = 3.0
     file: Path | None = None  # the story's or page's source file
 
 
@@ -173,8 +180,9 @@ def _predictions(
                 pipeline,
                 linear_to_hex(shown),
                 (float(shown[0]), float(shown[1]), float(shown[2])),
-                float(contrast_ratio(shown, behind)),
+                float(judged_contrast(shown, behind)),
                 float(delta_e_2000(drawn, shown)),
+                float(contrast_ratio(shown, behind)),
             )
         )
     return tuple(out)
@@ -237,6 +245,19 @@ def icon_region(
     )
 
 
+def icon_name(icon: FoundIcon, manifest_icon: Icon | None) -> str:
+    """What reports call an icon: the manifest's icon, else what the page names it
+    (``data-icon``, ``aria-label``, ``<title>``, ``alt``, ``id``), else a short DOM path
+    (its last two steps)."""
+    if manifest_icon is not None:
+        return manifest_icon.name
+    for key in ("data", "label", "title", "alt", "id"):
+        value = icon.keys.get(key)
+        if isinstance(value, str) and value.strip():
+            return " ".join(value.split())
+    return " > ".join(icon.dom_path.split(" > ")[-2:])
+
+
 def _measure_icon(
     capture: Capture,
     icon: FoundIcon,
@@ -262,7 +283,7 @@ def _measure_icon(
     around_mask = _dilate(touched, ring) & ~touched
     paints = declared_paints(icon) or (DeclaredPaint(None, 1.0, ("image",), False, "image"),)
     labels = _assign(full, touched, drawn_all, hidden_all, paints)
-    label = f"{page.source} [{page.state}] {icon.dom_path}"
+    name = icon_name(icon, manifest_icon)
     out = []
     for k, paint in enumerate(paints):
         mine = labels == k
@@ -307,20 +328,26 @@ def _measure_icon(
             if paint.color is None
             else ("currentColor" if paint.current else linear_to_hex(paint.color))
         )
+        gated = (
+            None
+            if drawn_lin is None or behind_lin is None
+            else float(judged_contrast(drawn_lin, behind_lin))
+        )
         out.append(
             MeasuredPaint(
                 source=page.source,
                 source_kind=page.source_kind,
-                url=page.url,
                 state=page.state,
                 engine=page.engine,
-                label=label,
+                name=name,
                 icon=manifest_icon.name if manifest_icon is not None else None,
                 match=match,
                 element=icon.kind,
                 dom_path=icon.dom_path,
                 paint=painted,
                 kinds=paint.kinds,
+                declared=None if paint.color is None else linear_to_hex(paint.color),
+                declared_opacity=min(1.0, paint.opacity),
                 drawn=drawn,
                 drawn_linear=drawn_lin,
                 behind=behind,
@@ -328,6 +355,7 @@ def _measure_icon(
                 around=around,
                 around_linear=around_lin,
                 coverage=coverage,
+                contrast=gated,
                 contrast_worst=worst,
                 contrast_median=median,
                 model_source=model_source,
@@ -336,7 +364,7 @@ def _measure_icon(
                 predictions=predictions,
                 render_drift=drift,
                 box=icon.box,
-                threshold=page.threshold,
+                status=MEASURED if gated is not None else NO_INTERIOR,
                 file=page.file,
             )
         )

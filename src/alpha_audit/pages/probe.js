@@ -204,10 +204,20 @@
     state.icons = [];
     const out = [];
     for (const { el, kind, pseudo } of found) {
-      const keys = { data: null, sprite: null, file: null, geometry: null };
+      const keys = { data: null, sprite: null, file: null, geometry: null, label: null,
+        title: null, alt: null, id: null };
       let paints = [];
       const dataOwner = el.closest(`[${attribute}]`);
       if (dataOwner) keys.data = dataOwner.getAttribute(attribute);
+      // What the page calls the icon (reports name an unmapped icon by it).
+      // Its own aria-label, or that of a parent holding nothing else (an icon button).
+      const parent = el.parentElement;
+      keys.label = el.getAttribute("aria-label") ||
+        (parent && parent.children.length === 1 ? parent.getAttribute("aria-label") : null);
+      const title = el.querySelector(":scope > title");
+      keys.title = (title && title.textContent) || el.getAttribute("title");
+      if (kind === "img") keys.alt = el.getAttribute("alt");
+      keys.id = el.id || null;
       if (kind === "svg") {
         const shapes = shapesOf(el);
         keys.geometry = geometryKey(geometryText(shapes));

@@ -21,24 +21,32 @@ import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import NamedTuple
 
 from alpha_audit.browser import Browser, BrowserError, LaunchOptions, engine_class
 from alpha_audit.browser.lifecycle import ending_on_signals
 from alpha_audit.errors import AlphaAuditError, UsageError
 from alpha_audit.model import IconSet
+from alpha_audit.observed import BlockedRequest, MeasuredPaint, PageProblem, PageRun
 from alpha_audit.pages.capture import capture_page
 from alpha_audit.pages.config import RenderConfig
 from alpha_audit.pages.crops import CropStore
 from alpha_audit.pages.mapping import ManifestIndex
 from alpha_audit.pages.measure import PageContext, measure_capture
-from alpha_audit.pages.measured import BlockedRequest, MeasuredPaint, PageProblem, RenderResult
 from alpha_audit.pages.server import BlockingProxy, PageServer
 from alpha_audit.pages.sources import FolderSource, StorybookSource, Target, targets
 from alpha_audit.pages.states import State, globals_param
 
-__all__ = ["Job", "audit_pages", "plan_jobs"]
+__all__ = ["Job", "PageAudit", "audit_pages", "plan_jobs"]
 
 _GUARD_PERIOD = 0.25  # seconds between checks of a page's time and its browser's memory
+
+
+class PageAudit(NamedTuple):
+    """What :func:`audit_pages` measured: the run, and every paint in report order."""
+
+    run: PageRun
+    paints: tuple[MeasuredPaint, ...]
 
 
 @dataclass(frozen=True)
@@ -178,16 +186,10 @@ class _Worker:
         except BrowserError as exc:
             reason = self.guard.reason or str(exc)
             self.close_browser()
-            problem = PageProblem(job.target.name, job.state.name, job.engine, url, reason)
+            problem = PageProblem(job.target.name, job.state.name, job.engine, reason)
             return [], problem, self.proxy.take(), 0
         page = PageContext(
-            job.target.name,
-            job.target.kind,
-            url,
-            job.state.name,
-            job.engine,
-            self.config.threshold,
-            job.target.file,
+            job.target.name, job.target.kind, job.state.name, job.engine, job.target.file
         )
         matches = [index.match(icon.keys) for icon in capture.icons]
         paints = measure_capture(capture, page, matches)
@@ -215,8 +217,12 @@ def audit_pages(
     iconset: IconSet | None = None,
     *,
     progress: Callable[[int, int], None] | None = None,
-) -> RenderResult:
-    """Audit every source x state x engine of ``config``; ``progress(done, total)`` per job.
+) -> PageAudit:
+    """Measure every source x state x engine of ``config``; ``progress(done, total)`` per job.
+
+    Returns what the run saw and every paint it measured, in report order
+    (source, state, engine, DOM order): :func:`alpha_audit.pages.audit.page_report`
+    makes them rows and judges them.
 
     Raises :class:`UsageError` for sources that do not exist or select
     nothing and for engines that are not installed; a page that fails (a
@@ -230,7 +236,7 @@ def audit_pages(
     jobs = plan_jobs(config)
     ordered = sorted(jobs, key=lambda j: (j.target.name, j.state.name, j.engine))  # the report's
     rank = {job.order: k for k, job in enumerate(ordered)}
-    crops = CropStore(config.crops, config.policy) if config.crops > 0 else None
+    crops = CropStore(config.crops, config.policy, config.threshold) if config.crops > 0 else None
     index = ManifestIndex.of(iconset)
     results: dict[int, tuple[list[MeasuredPaint], PageProblem | None, list[str], int]] = {}
     todo: queue.Queue[Job] = queue.Queue()
@@ -296,14 +302,16 @@ def audit_pages(
         blocked.extend(
             BlockedRequest(job.target.name, job.state.name, job.engine, url) for url in refused
         )
-    return RenderResult(
-        tuple(paints),
-        tuple(problems),
-        tuple(blocked),
-        len(jobs),
-        icons,
-        tuple(sorted(versions.items())),
-        tuple(dict.fromkeys((j.target.name, j.state.name) for j in jobs)),
-        crops.crops if crops is not None else (),
-        crops.left_out if crops is not None else 0,
+    run = PageRun(
+        problems=tuple(problems),
+        blocked=tuple(blocked),
+        audited=len(jobs),
+        icons=icons,
+        paints=len(paints),
+        engines=tuple(sorted(versions.items())),
+        pages=tuple(dict.fromkeys((j.target.name, j.state.name) for j in jobs)),
+        files=tuple(dict.fromkeys((j.target.name, j.target.file) for j in ordered)),
+        crops=crops.crops if crops is not None else (),
+        crops_left_out=crops.left_out if crops is not None else 0,
     )
+    return PageAudit(run, tuple(paints))

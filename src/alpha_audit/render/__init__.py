@@ -8,13 +8,17 @@ format is one module and one line.  The result types and their enums:
 =================  ===================================================  ========================
 result             formats                                              enum
 =================  ===================================================  ========================
-``CheckReport``    table, json, junit, sarif, markdown, github, gitlab  :class:`CheckFormat`
+``CheckReport``    table, json, junit, sarif, markdown, github, gitlab,  :class:`CheckFormat`
+                   html
 ``SuggestResult``  table, json, markdown                                :class:`SuggestFormat`
 ``PairReport``     table, json                                          :class:`PairFormat`
 ``Reproduction``   table, json, markdown                                :class:`ReproduceFormat`
 bundled themes     table, json                                          :class:`ThemesFormat`
-``PageReport``     check's seven, and html                              :class:`RenderFormat`
 =================  ===================================================  ========================
+
+``check`` and ``render`` both produce a ``CheckReport`` (``render``'s rows are
+drawn by a browser, :mod:`alpha_audit.render.pages` gives their page views),
+so one enum serves both commands.
 
 Shared helpers (escaping, JSON, text, fix wording) live once in
 :mod:`alpha_audit.render.common`.  A renderer never probes its destination (no
@@ -38,7 +42,6 @@ __all__ = [
     "CheckFormat",
     "Format",
     "PairFormat",
-    "RenderFormat",
     "RenderOptions",
     "Renderer",
     "ReproduceFormat",
@@ -61,19 +64,7 @@ class Format(StrEnum):
 
 
 class CheckFormat(Format):
-    """Output formats of ``alpha-audit check``."""
-
-    TABLE = "table"
-    JSON = "json"
-    JUNIT = "junit"
-    SARIF = "sarif"
-    MARKDOWN = "markdown"
-    GITHUB = "github"
-    GITLAB = "gitlab"
-
-
-class RenderFormat(Format):
-    """Output formats of ``alpha-audit render`` (the page audit)."""
+    """Output formats of ``alpha-audit check`` and ``alpha-audit render``."""
 
     TABLE = "table"
     JSON = "json"
@@ -126,16 +117,7 @@ RENDERERS: dict[type[Format], dict[str, str]] = {
         "markdown": "alpha_audit.render.markdown:render_report",
         "github": "alpha_audit.render.github:render_report",
         "gitlab": "alpha_audit.render.gitlab:render_report",
-    },
-    RenderFormat: {
-        "table": "alpha_audit.render.pages:render_table",
-        "json": "alpha_audit.render.pages:render_json",
-        "junit": "alpha_audit.render.pages:render_junit",
-        "sarif": "alpha_audit.render.pages:render_sarif",
-        "markdown": "alpha_audit.render.pages:render_markdown",
-        "github": "alpha_audit.render.pages:render_github",
-        "gitlab": "alpha_audit.render.pages:render_gitlab",
-        "html": "alpha_audit.render.pages_html:render_html",
+        "html": "alpha_audit.render.html:render_report",
     },
     SuggestFormat: {
         "table": "alpha_audit.render.suggest:render_table",

@@ -37,9 +37,9 @@ if TYPE_CHECKING:
     from rich.segment import Segment
     from rich.table import Table
 
-    from alpha_audit.findings import Finding, Location
+    from alpha_audit.findings import Finding
     from alpha_audit.gate import GateResult
-    from alpha_audit.model import GamutAdjustment
+    from alpha_audit.model import GamutAdjustment, Location
     from alpha_audit.results import CheckReport, ColorFix, Fix, SafeAlpha
 
 __all__ = [
@@ -214,7 +214,7 @@ def escape_html(text: object) -> str:
     >>> escape_html('<a href="x">')
     '&lt;a href=&quot;x&quot;&gt;'
     """
-    return html.escape(safe_text(text, newlines=True), quote=True)
+    return html.escape(safe_text(text), quote=True)  # a newline too: a page is printed to CI logs
 
 
 def xml_safe(text: object) -> str:
@@ -632,7 +632,7 @@ def baselined_text(gate: GateResult) -> str:
 def location_text(location: Location, base: Path | None) -> str:
     """``file:line`` of a location, the file relative to ``base`` where inside it.
 
-    >>> from alpha_audit.findings import Location
+    >>> from alpha_audit.model import Location
     >>> location_text(Location(Path("/r/set.yaml"), 12, "alpha"), Path("/r"))
     'set.yaml:12'
     """
@@ -653,9 +653,25 @@ def safe_span(alpha: float) -> str:
     return "alpha 1" if alpha <= 1.0 else f"alpha 1 to {alpha:g}"
 
 
+def _page_fix_text(fix: ColorFix, opacity: float) -> str:
+    """A CSS paint's fix on its measured backdrop: a higher opacity, or a colour."""
+    options = []
+    reach = fix.reach.alpha
+    if reach is not None and opacity < 1.0:
+        options.append(f"opacity {reach * opacity:.4g} or above (now {opacity:g})")
+    if fix.nearest is not None and fix.nearest.delta_e > 0:
+        at = f" at opacity {opacity:g}" if opacity < 1.0 else ""
+        options.append(f"colour {fix.nearest.color}{at} (CIEDE2000 {fix.nearest.delta_e:.2f} away)")
+    if not options:
+        return f"{fix.color}: no colour of its hue passes on {fix.canvas}; change the hue"
+    return f"{fix.color}: {' or '.join(options)}"
+
+
 def _color_fix_text(fix: ColorFix) -> str:
     from alpha_audit.policy import CONTRAST_RULES
 
+    if fix.opacity is not None:
+        return _page_fix_text(fix, fix.opacity)
     contrast = any(r in CONTRAST_RULES for r in fix.rules)
     options = []
     safe = fix.largest_safe.alpha
@@ -765,5 +781,6 @@ def fix_to_dict(fix: Fix, base: Path | None = None) -> dict[str, Any]:
         },
         "manifest": display_path(fix.manifest, base),
         "line": fix.line,
+        "opacity": fix.opacity,
         "text": fix_text(fix),
     }

@@ -103,7 +103,12 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     lists them).
     Warnings for unrenderable icons are capped the same way.
     """
-    return gate_annotations(report.gate, options, f"gate passed ({len(report.audits)} audit(s))")
+    counted = (
+        f"{report.pages.audited} page state(s)"
+        if report.pages is not None
+        else f"{len(report.audits)} audit(s)"
+    )
+    return gate_annotations(report.gate, options, f"gate passed ({counted})")
 
 
 def gate_annotations(gate: GateResult, options: RenderOptions, passed: str) -> str:

@@ -8,7 +8,7 @@ audits (themes x icon sets): ``audits`` lists each audit's fields, and
 from __future__ import annotations
 
 import math
-from dataclasses import asdict
+from dataclasses import asdict, replace
 from pathlib import Path
 from typing import Any
 
@@ -58,7 +58,7 @@ def check_to_dict(result: AuditResult, base: Path | None = None) -> dict[str, An
         },
         "threshold": result.threshold,
         "pipeline": result.pipeline,
-        "rows": _rows(result),
+        "rows": _rows(result, base),
         "collisions": [
             {
                 "canvas": c.canvas,
@@ -95,9 +95,19 @@ def _finite(value: float) -> float | None:
     return value if math.isfinite(value) else None
 
 
-def _rows(result: AuditResult) -> list[dict[str, Any]]:
+def _rows(result: AuditResult, base: Path | None = None) -> list[dict[str, Any]]:
     """Per paint x canvas, in :meth:`~alpha_audit.rows.AuditResult.rows` order, written
-    from the result's columns (no row object is made)."""
+    from the result's columns (no row object is made); a row a browser drew carries its
+    measurement (``observed``)."""
+    if result.observed:
+        from alpha_audit.render.pages import paint_record
+
+        records = _rows(replace(result, observed=()), base)
+        m = len(result.theme.canvases)
+        for k, record in enumerate(records):  # canvas-major: row k draws entry k % p
+            record["observed"] = paint_record(result.observed[k % len(result.observed)], base)
+        assert len(records) == m * len(result.observed)
+        return records
     c = result.columns()
     sizes = [
         [
@@ -252,14 +262,19 @@ def report_to_dict(report: CheckReport, base: Path | None = None) -> dict[str, A
     gate["fixes"] = [fix_to_dict(f, base) for f in report.fixes]
     gate["fixes_left_out"] = report.fixes_left_out
     gamut = [gamut_to_dict(a, base) for a in report.gamut]
-    if len(report.audits) == 1:
+    pages: dict[str, Any] = {}
+    if report.pages is not None:
+        from alpha_audit.render.pages import page_json
+
+        pages = {"pages": page_json(report.pages, base)}
+    if len(report.audits) == 1 and report.pages is None:
         return {**check_to_dict(report.audits[0], base), "gamut": gamut, "gate": gate}
     audits = []
     for result in report.audits:
         doc = check_to_dict(result, base)
         del doc["schema"]
         audits.append(doc)
-    return {"schema": CHECK_SCHEMA, "audits": audits, "gamut": gamut, "gate": gate}
+    return {"schema": CHECK_SCHEMA, "audits": audits, "gamut": gamut, "gate": gate, **pages}
 
 
 def render_report(report: CheckReport, options: RenderOptions) -> str:

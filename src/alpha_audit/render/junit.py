@@ -3,9 +3,11 @@
 A finding folded over canvases fails the case of each of its canvases (its
 figures are the worst canvas's).
 
-Suites are audits (``theme / icon set``); a case is named after the icon, its
-class after the icon set and canvas, which is how CI test viewers (GitLab,
-Jenkins, Azure, dorny/test-reporter) group them.  Exempted or baselined
+Suites are audits (``theme / icon set``; a page run's audits of one state and
+story, one per backdrop, share their suite); a case is named after the icon,
+its class after the icon set and canvas, which is how CI test viewers (GitLab,
+Jenkins, Azure, dorny/test-reporter) group them.  A page state that could not
+be audited is an ``error`` case of its suite.  Exempted or baselined
 findings make a case ``skipped`` with the reason; an icon that could not be
 rendered is an ``error`` when the ``unrenderable`` rule is on, else skipped.
 Control characters that XML 1.0 forbids are removed from every string.
@@ -20,6 +22,7 @@ from alpha_audit.findings import Finding
 from alpha_audit.render.common import RenderOptions, display_path, xml_safe
 from alpha_audit.results import CheckReport
 from alpha_audit.rules import Level, Rule
+from alpha_audit.safe_text import safe_text
 
 __all__ = ["render_report", "xml_safe"]
 
@@ -32,8 +35,10 @@ def _element(parent: ET.Element, tag: str, text: str | None = None, **attrs: obj
 
 
 def _details(f: Finding) -> str:
+    # A figure may be a name a page supplied (a DOM path): one line each, escaped.
     numbers = ", ".join(
-        f"{k}={v:.6g}" if isinstance(v, float) else f"{k}={v}" for k, v in f.numbers.items()
+        f"{k}={v:.6g}" if isinstance(v, float) else f"{k}={safe_text(v)}"
+        for k, v in f.numbers.items()
     )
     return f"{f.rule.value}: {f.message}\n{numbers}" if numbers else f"{f.rule.value}: {f.message}"
 
@@ -49,10 +54,17 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
 
     root = ET.Element("testsuites", {"name": "alpha-audit"})
     totals = {"tests": 0, "failures": 0, "errors": 0, "skipped": 0}
+    suites: dict[tuple[str, str], tuple[ET.Element, dict[str, int]]] = {}
+
+    def suite_of(theme: str, iconset: str) -> tuple[ET.Element, dict[str, int]]:
+        if (theme, iconset) not in suites:
+            element = _element(root, "testsuite", name=f"{theme} / {iconset}")
+            suites[theme, iconset] = (element, dict.fromkeys(totals, 0))
+        return suites[theme, iconset]
+
     for result in report.audits:
         theme, iconset = result.theme.name, result.iconset.name
-        suite = _element(root, "testsuite", name=f"{theme} / {iconset}")
-        counts = dict.fromkeys(totals, 0)
+        suite, counts = suite_of(theme, iconset)
         for canvas in result.theme.canvases:
             for icon in result.iconset.icons:
                 case = _element(
@@ -96,6 +108,13 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
             else:
                 counts["skipped"] += 1
                 _element(case, "skipped", message=f"could not be rendered: {problem.message}")
+    for q in report.pages.problems if report.pages is not None else ():
+        suite, counts = suite_of(q.state, q.source)
+        case = _element(suite, "testcase", name=f"[{q.engine}]", classname=q.source, time="0")
+        counts["tests"] += 1
+        counts["errors"] += 1
+        _element(case, "error", q.message, message=q.message, type="page")
+    for suite, counts in suites.values():
         for k, v in counts.items():
             suite.set(k, str(v))
             totals[k] += v

@@ -394,5 +394,10 @@ def _groups_of_rows(
 
 
 def render_report(report: CheckReport, options: RenderOptions) -> str:
-    """The pull-request comment (:func:`render_markdown`)."""
+    """The pull-request comment (:func:`render_markdown`; a page run's:
+    :func:`~alpha_audit.render.pages.page_markdown`)."""
+    if report.pages is not None:
+        from alpha_audit.render.pages import page_markdown
+
+        return page_markdown(report, report.pages, options)
     return render_markdown(report, options)

@@ -32,8 +32,8 @@ from pathlib import Path
 from typing import Any
 from urllib.parse import quote
 
-from alpha_audit.findings import Finding, Location
-from alpha_audit.model import Edit, Span
+from alpha_audit.findings import Finding
+from alpha_audit.model import Edit, Location, Span
 from alpha_audit.render.common import (
     RenderOptions,
     baselined_text,

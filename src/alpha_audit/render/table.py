@@ -337,7 +337,15 @@ def fixes_renderable(report: CheckReport) -> RenderableType | None:
 
 
 def render_report(report: CheckReport, options: RenderOptions) -> str:
-    """The gate, every audit of the report, then how to fix it, at ``options.width``."""
+    """The gate, every audit of the report, then how to fix it, at ``options.width``.
+
+    A report whose rows a browser drew is shown as its pages
+    (:func:`~alpha_audit.render.pages.page_table`).
+    """
+    if report.pages is not None:
+        from alpha_audit.render.pages import page_table
+
+        return page_table(report, report.pages, options)
     # The verdict and the worst root causes lead; each audit's figures follow.
     parts: list[RenderableType] = [gate_renderable(report.gate, options.base), Text("")]
     for result in report.audits:

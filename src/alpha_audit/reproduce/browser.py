@@ -5,7 +5,7 @@ rasterised at 16, 24 and 48 px and coloured with the seven Vibrant colours in
 turn, are drawn by the WebGL2 preview page on every canvas of the theme in the
 nine configurations (seven coefficients, Difference, Exclusion), in every
 installed engine, and compared pixel by pixel with the float64 CPU reference
-(:func:`alpha_audit.browser.validate.validate_page`).  The paper reports
+(:func:`alpha_audit.reproduce.validate.validate_page`).  The paper reports
 388,800 instances over three browsers (300 x 3 x 16 x 9 = 129,600 each) with
 every covered pixel within 1/255.
 """
@@ -22,12 +22,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from alpha_audit.browser import ENGINES, engine_class, installed_engines
-from alpha_audit.browser.validate import PAPER_CONFIGURATIONS, PageValidation, validate_page
 from alpha_audit.errors import UsageError
 from alpha_audit.load.svg import rasterize_icons
 from alpha_audit.model import Icon, IconSet, Theme
 from alpha_audit.preview.figures import solid_rows
 from alpha_audit.reproduce.grids import VIBRANT
+from alpha_audit.reproduce.validate import PAPER_CONFIGURATIONS, PageValidation, validate_page
 
 __all__ = [
     "PAPER_ICONS",

@@ -1,14 +1,15 @@
-"""The page audit as one self-contained HTML file, with crops of the icons it finds.
+"""A report as one self-contained HTML file; a page run's with crops of its icons.
 
 ``alpha-audit render -f html -o render.html``: the verdict, the story x state
 matrix (:func:`~alpha_audit.render.pages.state_matrix_cells`, the comment's
 own), then each failing finding and, in a second section, each reported one:
-story or page, state, icon, worst and median contrast against the threshold,
-the drawn colour and the backdrop as swatches, the model's prediction, the fix
-the other formats give (:func:`~alpha_audit.render.common.finding_fix`), the
-manifest line, and the worst instance twice, side by side, as drawn and with
-the icons hidden (:class:`~alpha_audit.pages.measured.IconCrop`), enlarged
-without smoothing so each device pixel shows.
+story or page, state, icon, the pair that limits (drawn colour and backdrop as
+swatches) and its contrast against the threshold, the model's prediction, the
+fix the other formats give (:func:`~alpha_audit.render.common.finding_fix`),
+where to change it, and the icon twice, side by side, as drawn and with the
+icons hidden (:class:`~alpha_audit.observed.IconCrop`), enlarged without
+smoothing so each device pixel shows.  ``check -f html`` writes the same page
+without the matrix and the crops.
 
 The file runs nothing and loads nothing: no script, images as ``data:`` URIs,
 and a Content-Security-Policy that forbids anything else, so a story's name
@@ -27,13 +28,18 @@ from pathlib import Path
 from typing import Any
 
 from alpha_audit.findings import Finding
-from alpha_audit.pages.measured import IconCrop, MeasuredPaint
-from alpha_audit.pages.report import PageReport
-from alpha_audit.render.common import RenderOptions, escape_html, finding_fix, location_text
+from alpha_audit.observed import IconCrop, PageRun
+from alpha_audit.render.common import (
+    RenderOptions,
+    baselined_text,
+    escape_html,
+    finding_fix,
+    location_text,
+)
 from alpha_audit.render.pages import headline, state_matrix_cells, summary_notes
 from alpha_audit.results import CheckReport
 
-__all__ = ["CSP", "render_html"]
+__all__ = ["CSP", "render_report"]
 
 # Nothing but inline style and data: images (CSP Level 3, 'default-src' the fallback of
 # every fetch directive): the report must not load or run anything, whatever it quotes.
@@ -90,8 +96,8 @@ def _ratio(value: object) -> str:
     return f"{value:.2f}:1" if isinstance(value, float) else "—"
 
 
-def _matrix(report: PageReport) -> list[str]:
-    states, rows = state_matrix_cells(report)
+def _matrix(report: CheckReport, run: PageRun) -> list[str]:
+    states, rows = state_matrix_cells(report, run)
     out = ['<table class="matrix">', "<tr><th>story or page</th>"]
     out[-1] += "".join(f"<th>{_e(s)}</th>" for s in states) + "</tr>"
     for source, cells in rows:
@@ -140,15 +146,15 @@ def _figure(crop: IconCrop | None, icon: str, left_out: int) -> str:
 def _model(n: Mapping[str, Any]) -> str:
     if "model_output" not in n:
         return "—"
-    given = f"<code>{_e(n.get('source', '?'))}</code> at alpha {n.get('alpha', 1.0):g}"
-    if n.get("opacity", 1.0) != 1.0:
-        given += f", opacity {n['opacity']:g}"
+    given = f"<code>{_e(n.get('model_source', '?'))}</code> at alpha {n.get('model_alpha', 1.0):g}"
+    if n.get("model_opacity", 1.0) != 1.0:
+        given += f", opacity {n['model_opacity']:g}"
     drift = n.get("render_drift")
     drift_text = ""
     if isinstance(drift, float):
         drift_text = f"; CIEDE2000 {drift:.1f} from the drawn colour"
     return (
-        f"{given} → {_swatch(n['model_output'])} ({_e(n.get('pipeline', ''))}): "
+        f"{given} → {_swatch(n['model_output'])} ({_e(n.get('model_pipeline', ''))}): "
         f"contrast {_ratio(n.get('model_contrast'))}{drift_text}"
     )
 
@@ -157,62 +163,73 @@ def _model(n: Mapping[str, Any]) -> str:
 class _Lookups:
     """What every finding's entry reads, built once per report."""
 
-    check: CheckReport
+    report: CheckReport
     crops: Mapping[tuple[str, str, str, str], IconCrop]
-    paints: Mapping[tuple[str, str, str, str], MeasuredPaint]
     crops_left_out: int
     base: Path | None
 
     @classmethod
-    def of(cls, report: PageReport, options: RenderOptions) -> _Lookups:
-        paints: dict[tuple[str, str, str, str], MeasuredPaint] = {}
-        for p in report.result.paints:
-            paints.setdefault((p.source, p.state, p.engine, p.dom_path), p)
-        crops = {c.key: c for c in report.result.crops}
-        return cls(report.as_check(), crops, paints, report.result.crops_left_out, options.base)
+    def of(cls, report: CheckReport, options: RenderOptions) -> _Lookups:
+        run = report.pages
+        crops = {c.key: c for c in run.crops} if run is not None else {}
+        return cls(report, crops, run.crops_left_out if run else 0, options.base)
 
 
 def _finding(f: Finding, kind: str, look: _Lookups) -> list[str]:
-    """One finding: heading, message, the two crops and its figures."""
+    """One finding: heading, message, the two crops (a page's) and its figures."""
     n = f.numbers
-    source_kind = "story" if "story" in n else "page"
-    engine, dom_path = str(n.get("engine", "")), str(n.get("dom_path", ""))
-    key = (f.iconset, f.theme, engine, dom_path)
-    icon = f.icons[0]
+    icon = f.icons[0] if f.icons else ""
     where = "<br>".join(
         f"<code>{_e(location_text(loc, look.base))}</code> ({_e(loc.what)})" for loc in f.locations
     )
-    contrast = (
-        f"worst {_ratio(n.get('contrast'))}, median {_ratio(n.get('contrast_median'))}; "
-        f"threshold {float(n.get('threshold', 3.0)):g}:1"
-    )
-    backdrop = _swatch(n.get("background")) + " behind"
-    if isinstance(n.get("around"), str) and n["around"] != n.get("background"):
-        backdrop += f", {_swatch(n['around'])} around"
-    rows = [
-        (source_kind, f"<code>{_e(f.iconset)}</code>"),
-        ("state", f"<code>{_e(f.theme)}</code> ({_e(engine)})"),
-        ("icon", f"<code>{_e(icon)}</code> ({_e(n.get('element', ''))}, {_e(n.get('match', ''))})"),
-        ("DOM path", f"<code>{_e(dom_path)}</code>"),
-        ("contrast", contrast),
-        ("drawn", _swatch(n.get("drawn"))),
-        ("backdrop", backdrop),
-        ("model", _model(n)),
-        ("fix", _e(finding_fix(f, look.check))),
-        ("manifest", where or "—"),
-    ]
-    paint = look.paints.get(key)
-    if paint is not None:
-        rows.append(("URL", f"<code>{_e(paint.url)}</code>"))
-    return [
+    rows: list[tuple[str, str]] = []
+    page = "story" in n or "page" in n
+    if page:
+        engine, dom_path = str(n.get("engine", "")), str(n.get("dom_path", ""))
+        source_kind = "story" if "story" in n else "page"
+        rows += [
+            (source_kind, f"<code>{_e(f.iconset)}</code>"),
+            ("state", f"<code>{_e(f.theme)}</code> ({_e(engine)})"),
+            (
+                "icon",
+                f"<code>{_e(icon)}</code> ({_e(n.get('element', ''))}, {_e(n.get('match', ''))})",
+            ),
+            ("DOM path", f"<code>{_e(dom_path)}</code>"),
+        ]
+    else:
+        rows += [
+            ("theme", f"<code>{_e(f.theme)}</code>"),
+            ("icon set", f"<code>{_e(f.iconset)}</code>"),
+            ("icons", ", ".join(f"<code>{_e(i)}</code>" for i in f.icons[:12])),
+        ]
+    if isinstance(n.get("contrast"), float):
+        contrast = f"{_ratio(n.get('contrast'))}; threshold {float(n.get('threshold', 3.0)):g}:1"
+        if page:
+            contrast += (
+                f" (over the pixels measured: worst {_ratio(n.get('contrast_worst'))}, "
+                f"median {_ratio(n.get('contrast_median'))})"
+            )
+        rows.append(("contrast", contrast))
+    if page:
+        backdrop = _swatch(n.get("background")) + " behind"
+        if isinstance(n.get("around"), str) and n["around"] != n.get("background"):
+            backdrop += f", {_swatch(n['around'])} around"
+        rows += [("drawn", _swatch(n.get("drawn"))), ("backdrop", backdrop)]
+        rows.append(("model", _model(n)))
+    elif f.canvas:
+        rows.append(("canvas", f"<code>{_e(f.canvas)}</code>"))
+    rows += [("fix", _e(finding_fix(f, look.report))), ("where", where or "—")]
+    out = [
         f'<article class="{kind}">',
         f"<h3><code>{_e(icon)}</code> in <code>{_e(f.iconset)}</code> "
         f"[<code>{_e(f.theme)}</code>]: {_e(f.rule.value)}</h3>",
         f'<p class="message">{_e(f.message)}</p>',
-        _figure(look.crops.get(key), icon, look.crops_left_out),
-        "<dl>" + "".join(f"<dt>{_e(k)}</dt><dd>{v}</dd>" for k, v in rows) + "</dl>",
-        "</article>",
     ]
+    if page:
+        key = (f.iconset, f.theme, str(n.get("engine", "")), str(n.get("dom_path", "")))
+        out.append(_figure(look.crops.get(key), icon, look.crops_left_out))
+    out += ["<dl>" + "".join(f"<dt>{_e(k)}</dt><dd>{v}</dd>" for k, v in rows) + "</dl>"]
+    return [*out, "</article>"]
 
 
 def _section(title: str, kind: str, findings: Sequence[Finding], look: _Lookups) -> list[str]:
@@ -224,10 +241,22 @@ def _section(title: str, kind: str, findings: Sequence[Finding], look: _Lookups)
     return out
 
 
-def render_html(report: PageReport, options: RenderOptions) -> str:
+def _check_headline(report: CheckReport) -> str:
+    gate = report.gate
+    if gate.passed:
+        return f"gate passed ({len(report.audits)} audit(s))"
+    return f"gate failed: {len(gate.failures)} root cause(s)"
+
+
+def render_report(report: CheckReport, options: RenderOptions) -> str:
     """The report as one HTML page that runs no script and loads nothing (crops inline)."""
-    gate, result = report.gate, report.result
-    title = f"alpha-audit render: {headline(report)}"
+    gate, run = report.gate, report.pages
+    if run is not None:
+        title = f"alpha-audit render: {headline(report, run)}"
+        notes = summary_notes(report, run)
+    else:
+        title = f"alpha-audit check: {_check_headline(report)}"
+        notes = [f"{len(gate.baselined)} {baselined_text(gate)}"] if gate.baselined else []
     lines = [
         "<!DOCTYPE html>",
         '<html lang="en">',
@@ -242,29 +271,31 @@ def render_html(report: PageReport, options: RenderOptions) -> str:
         "<body>",
         f'<h1 class="{"pass" if gate.passed else "fail"}">{_e(title)}</h1>',
     ]
-    notes = summary_notes(report)
     if notes:
         said = "; ".join(notes)
         lines.append(f"<p>{_e(said[:1].upper() + said[1:])}.</p>")
-    lines += ["<h2>Stories and pages by state</h2>", *_matrix(report)]
+    if run is not None:
+        lines += ["<h2>Stories and pages by state</h2>", *_matrix(report, run)]
     look = _Lookups.of(report, options)
     lines += _section("Failing", "fail", gate.failures, look)
     lines += _section("Reported", "reported", gate.warnings, look)
-    if result.problems:
-        lines.append(f"<h2>Not audited ({len(result.problems)})</h2><ul>")
+    if run is None:
+        return "\n".join([*lines, "</body>", "</html>"]) + "\n"
+    if run.problems:
+        lines.append(f"<h2>Not audited ({len(run.problems)})</h2><ul>")
         lines += [
             f"<li><code>{_e(q.source)}</code> [<code>{_e(q.state)}</code>, {_e(q.engine)}]: "
             f"{_e(q.message)}</li>"
-            for q in result.problems
+            for q in run.problems
         ]
         lines.append("</ul>")
     footer = [
-        f"{result.audited} page states, {result.icons} icons, {len(result.paints)} paints",
-        f"{len(result.blocked)} requests blocked",
-        "engines: " + (", ".join(f"{n} {v}" for n, v in result.engines) or "none"),
-        f"{len(result.crops)} crops",
+        f"{run.audited} page states, {run.icons} icons, {run.paints} paints",
+        f"{len(run.blocked)} requests blocked",
+        "engines: " + (", ".join(f"{n} {v}" for n, v in run.engines) or "none"),
+        f"{len(run.crops)} crops",
     ]
-    if result.crops_left_out:
-        footer[-1] += f" ({result.crops_left_out} more not kept: a run keeps a bounded number)"
+    if run.crops_left_out:
+        footer[-1] += f" ({run.crops_left_out} more not kept: a run keeps a bounded number)"
     lines += [f"<footer>{_e('; '.join(footer))}.</footer>", "</body>", "</html>"]
     return "\n".join(lines) + "\n"

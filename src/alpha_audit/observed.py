@@ -1,26 +1,37 @@
-"""What a page audit finds: measured paints, page problems and blocked requests.
+"""What a browser drew: measured paints, and what a page run saw besides them.
 
-Plain frozen dataclasses, the end of :mod:`alpha_audit.pages`: one
-:class:`MeasuredPaint` per (source, state, icon instance, paint), ready to
-become paint rows.  Colours are given both as 8-bit sRGB hex and as linear
-sRGB (float64 triples); contrast ratios are WCAG 2.2's.
+Plain frozen dataclasses of the core, so that rows, findings and renderers
+read a browser's measurements without importing the browser audit
+(:mod:`alpha_audit.pages` builds them; nothing here imports it).  One
+:class:`MeasuredPaint` per (source, state, engine, icon instance, paint): it
+becomes a paint row (:func:`alpha_audit.rows.observed_audit`), and the row
+keeps it as its :attr:`~alpha_audit.rows.AuditResult.observed` record.  A
+:class:`PageRun` holds what a run saw that is not a paint: the pages and states
+audited, those that could not be, the requests refused and the crops the HTML
+report shows.  Colours are given both as 8-bit sRGB hex and as linear sRGB
+(float64 triples); contrast ratios are WCAG 2.2's.
 """
 
 from __future__ import annotations
 
 import enum
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
+from alpha_audit.model import Location
+
 __all__ = [
+    "MEASURED",
+    "NO_INTERIOR",
     "BlockedRequest",
     "Coverage",
     "IconCrop",
     "IconMatch",
     "MeasuredPaint",
     "PageProblem",
+    "PageRun",
     "Prediction",
-    "RenderResult",
 ]
 
 Linear = tuple[float, float, float]
@@ -55,48 +66,74 @@ class Coverage:
 
 @dataclass(frozen=True)
 class Prediction:
-    """The model's displayed colour and contrast for the same paint and backdrop."""
+    """The model's displayed colour for the same paint on the measured backdrop.
+
+    ``contrast`` is judged as every row is (:func:`~alpha_audit.color.judged_contrast`:
+    the 8-bit colours that ship), ``contrast_float`` of the float colours beside it.
+    """
 
     pipeline: str  # "linear" or "css"
     output: str
     output_linear: Linear
     contrast: float
     drift: float  # CIEDE2000 between the drawn colour and this output
+    contrast_float: float = math.nan
+
+
+# A measured paint's status: what its figures are.
+MEASURED = "measured"
+# No pixel of the paint is at full coverage (a hairline): nothing to judge, no failure.
+NO_INTERIOR = "no full-coverage pixel"
 
 
 @dataclass(frozen=True)
 class MeasuredPaint:
-    """One paint of one icon instance in one source and state, as the browser drew it.
+    """One paint of one icon instance in one source, state and engine, as the browser drew it.
 
-    ``icon`` is the manifest's icon name, or ``None`` when the icon maps to no
-    manifest icon (``match`` says how it was mapped); ``label`` names it either
-    way (story or page, state, DOM path).  ``drawn`` is the median colour of
-    the fully covered pixels; ``behind`` the median backdrop under them (the
-    capture with every icon hidden), ``around`` the median backdrop in a ring
-    just outside the icon.  ``contrast_worst`` and ``contrast_median`` are over
-    the fully covered pixels, each against the backdrop at the same pixel.
+    ``name`` is what reports call the icon: the manifest's icon (``icon``, when it
+    maps to one; ``match`` says how), else the page's ``data-icon``,
+    ``aria-label``, ``<title>``, ``alt`` or ``id``, else a short DOM path.
+    ``paint`` is ``currentColor``, the colour the engine computed (``#rrggbb``)
+    or ``image`` (an ``<img>``: its paints are not declared); ``declared`` is
+    the colour the engine computed for it (hex, ``None`` for an image) and
+    ``declared_opacity`` the opacity it is drawn at (every ancestor's ``opacity``,
+    the paint's own and its colour's alpha).
+
+    ``drawn`` and ``behind`` are the pair that limits: the paint's colour at full
+    coverage and the backdrop under it (the capture with every icon hidden) at
+    the pixel where their contrast is least; ``contrast`` is that pair judged
+    (:func:`~alpha_audit.color.judged_contrast`), the figure the gate reads
+    through the paint's row.  ``contrast_worst`` and ``contrast_median`` are over
+    the pixels the measurement considered, for diagnosis only.  ``around`` is
+    the median backdrop in a ring just outside the icon.  ``status`` is
+    :data:`MEASURED`, or :data:`NO_INTERIOR` when no pixel shows the paint at
+    full coverage (its colour and contrast are then ``None``: it cannot be judged).
+
     ``model_source``/``model_alpha``/``model_opacity`` are what the model was
     given (the manifest's colour and alpha for a mapped ``currentColor`` paint,
     else the colour the engine computed, at alpha 1); ``predictions`` holds the
-    model's output under ``linear`` and ``css`` (css only where ``alpha *
-    opacity`` is in [0, 1]).  ``render_drift`` is the CIEDE2000 from the drawn
-    colour to the nearer prediction; ``box`` the icon's crop box in CSS pixels
-    of the page (x, y, width, height); ``file`` the story's source file
-    (``importPath``) or the HTML page, where known.
+    model's output on ``behind`` under ``linear`` and ``css`` (css only where
+    ``alpha * opacity`` is in [0, 1]); ``render_drift`` is the CIEDE2000 from
+    the drawn colour to the nearer prediction.  ``box`` is the icon's box in CSS
+    pixels of the page (x, y, width, height); ``file`` the story's source file
+    (``importPath``) or the HTML page, where known; ``locations`` where the
+    page sets the paint's colour and its backdrop (CSS declarations, the story
+    file), most specific first.
     """
 
-    source: str  # story id or page URL path
+    source: str  # story id or page path
     source_kind: str  # "storybook", "page", "url"
-    url: str
     state: str
     engine: str
-    label: str
+    name: str
     icon: str | None
     match: IconMatch
     element: str  # "svg", "use", "img", "mask", "selector"
     dom_path: str
     paint: str  # "currentColor" or the colour the engine computed (#rrggbb), or "image"
     kinds: tuple[str, ...]
+    declared: str | None
+    declared_opacity: float
     drawn: str | None
     drawn_linear: Linear | None
     behind: str | None
@@ -104,6 +141,7 @@ class MeasuredPaint:
     around: str | None
     around_linear: Linear | None
     coverage: Coverage
+    contrast: float | None
     contrast_worst: float | None
     contrast_median: float | None
     model_source: str | None
@@ -112,19 +150,18 @@ class MeasuredPaint:
     predictions: tuple[Prediction, ...]
     render_drift: float | None
     box: tuple[float, float, float, float]
-    threshold: float = 3.0
+    status: str = MEASURED
     file: Path | None = None
-
-    @property
-    def passes(self) -> bool | None:
-        """Whether the worst pixel reaches the threshold (None where nothing was drawn)."""
-        if self.contrast_worst is None:
-            return None
-        return self.contrast_worst >= self.threshold
+    locations: tuple[Location, ...] = ()
 
     def prediction(self, pipeline: str) -> Prediction | None:
         """The model's prediction under ``pipeline``, or None where it has none."""
         return next((p for p in self.predictions if p.pipeline == pipeline), None)
+
+    @property
+    def nearer(self) -> Prediction | None:
+        """The model's prediction nearest (CIEDE2000) to what the browser drew, if any."""
+        return min(self.predictions, key=lambda p: p.drift) if self.predictions else None
 
 
 @dataclass(frozen=True)
@@ -175,30 +212,27 @@ class PageProblem:
     source: str
     state: str
     engine: str
-    url: str
     message: str
 
 
 @dataclass(frozen=True)
-class RenderResult:
-    """Everything one run found, in a stable order (source, state, engine, DOM order).
+class PageRun:
+    """What one page run saw besides its measured paints (those are rows).
 
-    ``crops`` (kept only when the run was asked for them) show the paints a
-    finding may name as its worst, failing rules' first, at most
-    ``RenderConfig.crops`` of them; ``crops_left_out`` counts the rest.
+    ``pages`` are the (source, state) pairs audited, in report order, with the
+    source file of each source (``files``); ``problems`` the page states that
+    could not be audited; ``blocked`` every request refused.  ``crops`` (kept only
+    when the run was asked for them) show the paints a finding may name, failing
+    rules' first; ``crops_left_out`` counts the rest.
     """
 
-    paints: tuple[MeasuredPaint, ...]
     problems: tuple[PageProblem, ...]
     blocked: tuple[BlockedRequest, ...]
     audited: int  # source x state x engine combinations audited
     icons: int  # icon instances found over all of them
+    paints: int  # paints measured over all of them
     engines: tuple[tuple[str, str], ...]  # (engine, version)
     pages: tuple[tuple[str, str], ...] = ()  # (source, state) of each audited, in order
-    crops: tuple[IconCrop, ...] = ()  # kept only when asked (RenderConfig.crops)
-    crops_left_out: int = 0  # crops wanted beyond RenderConfig.crops
-
-    @property
-    def failing(self) -> tuple[MeasuredPaint, ...]:
-        """Paints whose worst pixel is below the threshold."""
-        return tuple(p for p in self.paints if p.passes is False)
+    files: tuple[tuple[str, Path | None], ...] = ()  # (source, its story or page file)
+    crops: tuple[IconCrop, ...] = ()
+    crops_left_out: int = 0
