@@ -109,7 +109,7 @@ def _through_link(path: Path, markers: tuple[str, ...] = (".git",)) -> bool:
     """Whether the name passes through a link inside its project (the name, or a folder
     between it and the project root its name lies in), rather than lying outside it."""
     name = Path(os.path.abspath(path))
-    inside = []
+    inside: list[Path] = []
     for folder in (name, *name.parents):
         if any((folder / m).exists() for m in markers):
             return any(q.is_symlink() for q in inside)
