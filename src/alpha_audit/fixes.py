@@ -39,10 +39,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from alpha_audit.color import (
     composite_coverage,
-    contrast_from_luminance,
-    contrast_ratio,
     delta_e_2000,
     from_8bit,
+    judged_contrast,
     linear_to_hex,
     relative_luminance,
     shipped,
@@ -162,13 +161,11 @@ def smallest_alpha_reaching(
     t = float(threshold)
     bg = np.repeat(bgs, o.size, axis=0)  # every (canvas, opacity)
     q = np.tile(o, bgs.shape[0])
-    y_screen = relative_luminance(shipped(bg))
 
     def reaches(a: NDArray[np.float64]) -> NDArray[np.bool_]:
         """Whether what ships at each ``a`` (shape (N,)) reaches ``t`` on every canvas."""
-        shown = shipped(composite_coverage(s, bg[:, None, :], a[None, :], q[:, None]))
-        y = relative_luminance(shown)
-        ok: NDArray[np.bool_] = np.all(contrast_from_luminance(y, y_screen[:, None]) >= t, axis=0)
+        shown = composite_coverage(s, bg[:, None, :], a[None, :], q[:, None])
+        ok: NDArray[np.bool_] = np.all(judged_contrast(shown, bg[:, None, :]) >= t, axis=0)
         return ok
 
     # What ships changes only where a displayed channel crosses a code threshold: judge
@@ -236,10 +233,10 @@ def passes_everywhere(
                 break
             src = np.clip(chunk[alive], 0.0, 1.0)[:, np.newaxis, np.newaxis, :]
             b = bgs[group][np.newaxis, np.newaxis]  # (1, 1, g, 3)
-            shown = shipped(composite_coverage(src, b, a[None, :, None], o[None, :, None]))
-            ref = shipped(composite_coverage(src, b, 1.0, o[None, :, None]))
-            contrast = contrast_ratio(shown, screen[group])
-            c_ref = contrast_ratio(ref, screen[group])
+            shown = composite_coverage(src, b, a[None, :, None], o[None, :, None])
+            ref = composite_coverage(src, b, 1.0, o[None, :, None])
+            contrast = judged_contrast(shown, b)
+            c_ref = judged_contrast(ref, b)
             for rule in rules:
                 breaks = contrast_breaks(rule, pol, c_ref, contrast, threshold)
                 ok[alive[np.any(breaks, axis=(1, 2))]] = False
