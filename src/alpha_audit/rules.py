@@ -181,8 +181,10 @@ _SPECS = (
         Rule.NOT_AUDITED,
         "AA009",
         "info",
-        Level.OFF,
-        "The SVG draws something the audit cannot judge (gradient, text, image).",
+        # Listed by default (issue 28): an icon the audit cannot judge must never pass silently.
+        Level.WARN,
+        "The SVG draws something the audit cannot judge (a gradient, text, an image, `<use>`); "
+        "it is not audited.",
         "Audit the element by hand, or draw it with plain fills and strokes the audit can read.",
     ),
     RuleSpec(
