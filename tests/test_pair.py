@@ -14,32 +14,19 @@ import pytest
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
 from alpha_audit.pair import pair_table
 from alpha_audit.rows import audit
+from helpers import spec_decode, spec_ship
 
-
-def _decode(encoded: np.ndarray) -> np.ndarray:
-    """CSS Color 4, 10.2 (sRGB): encoded -> linear."""
-    return np.where(encoded <= 0.04045, encoded / 12.92, ((encoded + 0.055) / 1.055) ** 2.4)
-
-
-def _encode(linear: np.ndarray) -> np.ndarray:
-    """CSS Color 4, 10.2 (sRGB): linear -> encoded."""
-    return np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * linear ** (1 / 2.4) - 0.055)
-
-
-def _wcag(first: np.ndarray, second: np.ndarray) -> np.ndarray:
-    """WCAG 2.2 contrast ratio of two linear colours."""
-    weights = np.array([0.2126, 0.7152, 0.0722])
-    y1, y2 = first @ weights, second @ weights
-    return (np.maximum(y1, y2) + 0.05) / (np.minimum(y1, y2) + 0.05)
+LUMINANCE = np.array([0.2126, 0.7152, 0.0722])  # WCAG 2.2 relative luminance
 
 
 def _shipped_contrast(codes_s: np.ndarray, codes_b: np.ndarray, alpha: np.ndarray) -> np.ndarray:
     """The spec's contrast of what ships for every (source, canvas, alpha), ``(s, b, a)``."""
-    cs = _decode(codes_s / 255.0)[:, None, None, :]
-    cb = _decode(codes_b / 255.0)[None, :, None, :]
-    shown = np.clip(cb + alpha[None, None, :, None] * (cs - cb), 0.0, 1.0)
-    codes = np.rint(255.0 * _encode(shown))  # np.rint: half to even
-    return _wcag(_decode(codes / 255.0), np.broadcast_to(cb, shown.shape))
+    cs = spec_decode(codes_s / 255.0)[:, None, None, :]
+    cb = spec_decode(codes_b / 255.0)[None, :, None, :]
+    shown = spec_ship(cb + alpha[None, None, :, None] * (cs - cb))  # the paper's composite
+    y_shown = shown @ LUMINANCE
+    y_canvas = np.broadcast_to(cb, shown.shape) @ LUMINANCE  # 8-bit canvases ship as themselves
+    return (np.maximum(y_shown, y_canvas) + 0.05) / (np.minimum(y_shown, y_canvas) + 0.05)
 
 
 def _hex(codes: np.ndarray) -> list[str]:

@@ -144,6 +144,9 @@ class TokenThemes:
     modes: tuple[TokenMode, ...]
     adjusted: tuple[GamutAdjustment, ...] = ()
     notes: tuple[str, ...] = ()  # one line each for stderr: modes found, tokens skipped
+    # (mode, the mode it equals): modes audited once because their selected colours are
+    # another's; a page can still ask for them, so ``export`` writes them too.
+    aliases: tuple[tuple[str, str], ...] = ()
 
     @property
     def themes(self) -> tuple[Theme, ...]:
@@ -275,6 +278,7 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
             "that value is not audited"
         )
     distinct: dict[tuple[Any, ...], str] = {}
+    aliases: list[tuple[str, str]] = []
     total_canvases = 0
     for name, entries in by_mode.items():
         canvases: list[Canvas] = []
@@ -344,6 +348,7 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
         # that names its modes (Resolver, Figma, Tokens Studio) keeps them all.
         if source.kind == "css" and signature in distinct:
             notes.append(f"mode {name}: the same selected colours as mode {distinct[signature]}")
+            aliases.append((name, distinct[signature]))
             continue
         distinct[signature] = name
         total_canvases += len(canvases)
@@ -369,7 +374,15 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
         )
         for (name, token, parsed), de in zip(adjusted, delta_e, strict=True)
     )
-    return TokenThemes(source.source, source.kind, config.gamut, tuple(modes), moved, tuple(notes))
+    return TokenThemes(
+        source.source,
+        source.kind,
+        config.gamut,
+        tuple(modes),
+        moved,
+        tuple(notes),
+        tuple(aliases),
+    )
 
 
 def _hex(parsed: ParsedColor) -> str:
