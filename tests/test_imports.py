@@ -126,6 +126,7 @@ def test_import_color_loads_only_color_and_errors() -> None:
     assert ours == {
         "alpha_audit",
         "alpha_audit.color",
+        "alpha_audit.color.codes",
         "alpha_audit.color.composite",
         "alpha_audit.color.css",
         "alpha_audit.color.coverage",

@@ -14,6 +14,8 @@ from types import ModuleType
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from alpha_audit.color.codes import shipped
+
 __all__ = [
     "CONTRAST_TOLERANCE",
     "DELTA_E_TOLERANCE",
@@ -120,7 +122,7 @@ def judged_contrast(shown: ArrayLike, canvas: ArrayLike) -> NDArray[np.float64]:
     """The one judgement of a shown colour on a canvas: WCAG 2.2 contrast of what ships.
 
     Both linear colours are taken to the 8-bit sRGB codes a screen shows
-    (:func:`~alpha_audit.color.srgb.shipped`: encoded, rounded half to even)
+    (:func:`~alpha_audit.color.codes.shipped`: encoded, rounded half to even)
     before the ratio: every verdict (rows, findings, ``pair``, fixes, a
     browser's measured paints and the model's predictions for them) calls this,
     so two formulas never disagree on one colour.  ``contrast_ratio`` of the
@@ -129,8 +131,6 @@ def judged_contrast(shown: ArrayLike, canvas: ArrayLike) -> NDArray[np.float64]:
     >>> round(float(judged_contrast([0.5, 0.5, 0.5], [1.0, 1.0, 1.0])), 6)
     1.899124
     """
-    from alpha_audit.color.srgb import shipped
-
     return contrast_ratio(shipped(shown), shipped(canvas))
 
 
