@@ -539,3 +539,21 @@ def test_css_pipeline_filters_blend_in_srgb() -> None:
             codes = np.rint(255 * np.clip(slope * source + intercept, 0, 1))
             expected = np.array([int(hex_[i : i + 2], 16) for i in (1, 3, 5)])
             assert np.abs(codes - expected).max() <= 1  # a tie may round either way
+
+
+def test_errors_name_files_relative_to_the_project(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A YAML project's error names the file as the user would type it, never absolute."""
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "icons").mkdir()
+    (tmp_path / "icons" / "iconset.yaml").write_text('name: s\nicons: []\ncolor: "#12"\n')
+    shutil.copy(REPO / "themes/paper16.yaml", tmp_path / "paper16.yaml")
+    (tmp_path / "alpha-audit.yaml").write_text("theme: paper16.yaml\niconset: icons/iconset.yaml\n")
+    (tmp_path / "sub").mkdir()
+    runner = CliRunner()
+    for here, shown in ((tmp_path, "icons/iconset.yaml:3"), (tmp_path / "sub", "../icons")):
+        monkeypatch.chdir(here)
+        result = runner.invoke(app, ["export"])
+        assert result.exit_code == 2
+        assert f"error: {shown}" in result.output and str(tmp_path) not in result.output
