@@ -57,8 +57,8 @@ SARIF_SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"  # OASIS SARIF 2.
 # consumer (the checkout); deliberately given no "uri", so the log carries no
 # absolute path of the machine that wrote it.
 SRCROOT = "%SRCROOT%"
-# SVG files named per result beside its line: a set-wide alpha failing thousands of icons
-# stays one result of bounded size (every icon is in its properties).
+# SVG files a folded result names beside its line: a set-wide alpha failing thousands of
+# icons stays one result of bounded size (every icon is in its properties).
 MAX_FILES = 12
 
 # RFC 3986 section 3.3: pchar = unreserved / pct-encoded / sub-delims / ":" / "@".
@@ -179,8 +179,9 @@ def _result(
     places += [_location(path, base, line) for path, line in f.sources]
     if f.manifest is not None:
         places += [_location(f.manifest, base, line) for line in f.lines]
-    places += [_location(p, base) for one in g.findings for p in one.files[:MAX_FILES]]
-    places = _unique(places)[: MAX_FILES + 1]
+    files = list(dict.fromkeys(p for one in g.findings for p in one.files))
+    places += [_location(p, base) for p in (files[:MAX_FILES] if g.folded else files)]
+    places = _unique(places)
     if not places and f.manifest is not None:
         places = [_location(f.manifest, base)]
     result: dict[str, Any] = {
