@@ -227,6 +227,27 @@ def test_end_to_end_with_rendered_masks(tmp_path: Path) -> None:
     assert rules == ["fixed-colour", "not-audited"]
 
 
+def test_what_cannot_be_audited_is_listed_by_default(tmp_path: Path) -> None:
+    """No silent pass: a gradient and a <use> loop are warnings under the default policy."""
+    ns = 'xmlns="http://www.w3.org/2000/svg"'
+    square = '<rect x="4" y="4" width="8" height="8" fill="currentColor"/>'
+    (tmp_path / "grad.svg").write_text(
+        f'<svg {ns} viewBox="0 0 24 24"><defs><linearGradient id="g"><stop stop-color="#f00"/>'
+        f'</linearGradient></defs><rect width="24" height="24" fill="url(#g)"/>{square}</svg>'
+    )
+    (tmp_path / "loop.svg").write_text(
+        f'<svg {ns} viewBox="0 0 24 24"><g id="a"><use href="#b"/></g>'
+        f'<g id="b"><use href="#a"/></g>{square}</svg>'
+    )
+    icons = tuple(Icon(n, tmp_path / f"{n}.svg", "#0969da", 1.0) for n in ("grad", "loop"))
+    iconset = IconSet("set", icons)
+    paints = measure_paints([(i.name, i.file) for i in icons], iconset.sizes)
+    result = audit(Theme("w", (Canvas("white", "#ffffff"),)), iconset, paints)
+    found = [f for f in findings_for(result, Policy()) if f.rule is Rule.NOT_AUDITED]
+    assert sorted({f.icons for f in found}) == [("grad",), ("loop",)]  # each <use> of the loop
+    assert all(f.level.value == "warn" and not f.fails for f in found)
+
+
 def test_paint_audit_size_is_bounded(monkeypatch: pytest.MonkeyPatch) -> None:
     import alpha_audit.rows as pa
 

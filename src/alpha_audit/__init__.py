@@ -108,6 +108,7 @@ _EXPORTS: dict[str, tuple[str, str]] = {
     "write_figures": ("alpha_audit.reproduce.figures", "write_figures"),
     "write_text": ("alpha_audit.output", "write_text"),
     "reproduction_json": ("alpha_audit.reproduce.report", "render_json"),
+    "export_project": ("alpha_audit.export", "export_project"),
     "export_table": ("alpha_audit.export", "export_table"),
     "render_export": ("alpha_audit.export", "render_export"),
     "load_token_modes": ("alpha_audit.load.tokens", "load_token_modes"),
@@ -171,6 +172,7 @@ __all__ = [
     "contrast_ratio",
     "delta_e_2000",
     "evaluate",
+    "export_project",
     "export_table",
     "findings_for",
     "hex_to_linear",
@@ -239,6 +241,7 @@ if TYPE_CHECKING:  # for type checkers only; at run time __getattr__ imports on 
         UsageError,
     )
     from alpha_audit.export import (
+        export_project,
         export_table,
         render_export,
     )

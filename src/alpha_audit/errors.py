@@ -46,13 +46,18 @@ class AlphaAuditError(Exception):
         self.line = line
         self.key = key
 
-    def where(self) -> str:
-        """``file:line: key`` prefix, omitting what is unknown (escaped like the message)."""
+    def where(self, path: str | Path | None = None) -> str:
+        """``file:line: key`` prefix, omitting what is unknown (escaped like the message).
+
+        ``path`` is how to write the file instead (the command line writes it relative
+        to the working folder).
+        """
         from alpha_audit.safe_text import safe_text
 
         parts = []
-        if self.path is not None:
-            parts.append(f"{self.path}:{self.line}" if self.line else str(self.path))
+        shown = self.path if path is None else path
+        if shown is not None:
+            parts.append(f"{shown}:{self.line}" if self.line else str(shown))
         if self.key:
             parts.append(self.key)
         return safe_text(": ".join(parts))

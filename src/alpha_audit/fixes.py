@@ -40,10 +40,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from alpha_audit.color import (
     composite_paint,
-    contrast_from_luminance,
-    contrast_ratio,
     delta_e_2000,
     from_8bit,
+    judged_contrast,
     linear_to_hex,
     relative_luminance,
     shipped,
@@ -189,7 +188,6 @@ def smallest_alpha_reaching(
     t = float(threshold)
     bg = np.repeat(bgs, o.size, axis=0)  # every (canvas, opacity)
     q = np.tile(o, bgs.shape[0])
-    y_screen = relative_luminance(shipped(bg))
     if pipeline != "linear":
         alpha_max = min(alpha_max, 1.0 / float(o.max()))
 
@@ -197,9 +195,8 @@ def smallest_alpha_reaching(
         """Whether what ships at each ``a`` (shape (N,)) reaches ``t`` on every canvas."""
         if pipeline != "linear":
             a = np.minimum(a, 1.0 / q.max())  # float noise at a browser's clamp
-        shown = shipped(_composite(s, bg[:, None, :], a[None, :], q[:, None], pipeline))
-        y = relative_luminance(shown)
-        ok: NDArray[np.bool_] = np.all(contrast_from_luminance(y, y_screen[:, None]) >= t, axis=0)
+        shown = _composite(s, bg[:, None, :], a[None, :], q[:, None], pipeline)
+        ok: NDArray[np.bool_] = np.all(judged_contrast(shown, bg[:, None, :]) >= t, axis=0)
         return ok
 
     # What ships changes only where a displayed channel crosses a code threshold: judge
@@ -292,10 +289,10 @@ def passes_everywhere(
                 break
             src = np.clip(chunk[alive], 0.0, 1.0)[:, np.newaxis, np.newaxis, :]
             b = bgs[group][np.newaxis, np.newaxis]  # (1, 1, g, 3)
-            shown = shipped(_composite(src, b, a[None, :, None], o[None, :, None], pipeline))
-            ref = shipped(_composite(src, b, 1.0, o[None, :, None], pipeline))
-            contrast = contrast_ratio(shown, screen[group])
-            c_ref = contrast_ratio(ref, screen[group])
+            shown = _composite(src, b, a[None, :, None], o[None, :, None], pipeline)
+            ref = _composite(src, b, 1.0, o[None, :, None], pipeline)
+            contrast = judged_contrast(shown, b)
+            c_ref = judged_contrast(ref, b)
             for rule in rules:
                 breaks = contrast_breaks(rule, pol, c_ref, contrast, threshold)
                 ok[alive[np.any(breaks, axis=(1, 2))]] = False

@@ -45,6 +45,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "Work",
+    "audit_pair",
     "audits",
     "base_baseline",
     "check_project",
@@ -117,6 +118,8 @@ class Work:
 
     pairs: tuple[tuple[Theme, IconSet], ...]
     pipelines: tuple[Pipeline, ...]
+    # (mode, the mode it equals): token modes audited once as another (TokenThemes.aliases).
+    aliases: tuple[tuple[str, str], ...] = ()
 
 
 def plan(
@@ -159,7 +162,8 @@ def plan(
             kind = resolve_pipeline(project.pipeline, iconset.pipeline, theme.pipeline)
             check_pipeline(iconset, kind, project.alpha)
             chosen.append(kind)
-        work.append(Work(tuple(pairs), tuple(chosen)))
+        aliases = tuple(token_themes.aliases.items()) if token_themes is not None else ()
+        work.append(Work(tuple(pairs), tuple(chosen), aliases))
     project.policy.check_exemptions(
         (c.name for w in work for t, _ in w.pairs for c in t.canvases),
         (i.name for w in work for i in w.pairs[0][1].icons),
@@ -206,15 +210,31 @@ def audits(
             pool=pool,
         )
         for (theme, iconset), kind in zip(w.pairs, w.pipelines, strict=True):
-            yield audit(
-                theme,
-                _with_project_alpha(project, iconset),
-                paints,
-                threshold=project.threshold,
-                pipeline=kind,
-                max_combinations=project.max_combinations,
-            )
+            yield audit_pair(project, theme, iconset, kind, paints)
         del paints
+
+
+def audit_pair(
+    project: ProjectConfig,
+    theme: Theme,
+    iconset: IconSet,
+    pipeline: Pipeline,
+    paints: PaintSet | None,
+) -> AuditResult:
+    """One theme x icon set as ``check`` audits it: the project's alpha (located where the
+    config writes it), threshold, pipeline and bound.
+
+    ``paints`` None: every icon is its manifest colour as one ``currentColor`` paint at
+    opacity 1, the rows ``export`` reads (the same rows ``check`` has for such a paint).
+    """
+    return audit(
+        theme,
+        _with_project_alpha(project, iconset),
+        paints,
+        threshold=project.threshold,
+        pipeline=pipeline,
+        max_combinations=project.max_combinations,
+    )
 
 
 def check_project(

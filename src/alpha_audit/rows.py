@@ -772,17 +772,16 @@ def _compose(
     """Every figure of the rows ``entries`` draw (:func:`audit` without the reading)."""
     p, m, k = len(entries), len(theme.canvases), q50.shape[1]
     bg = theme.backgrounds[np.newaxis, :, :]  # (1, m, 3)
-    screen = shipped(bg)  # the canvas as an 8-bit screen shows it
     s3 = sources[:, np.newaxis, :]
     output = composite_paint(s3, bg, alphas[:, None], opacity[:, None], pipeline)
     reference = composite_paint(s3, bg, np.ones((p, 1)), opacity[:, None], pipeline)
-    shown, shown_ref = shipped(output), shipped(reference)
+    shown, shown_ref = shipped(output), shipped(reference)  # for drift and hue shift
     # Size contrast: the paint at opacity o * q50, sizes on the last axis.
     q = np.nan_to_num(q50, nan=0.0)[:, np.newaxis, :] * opacity[:, None, None]  # (p, 1, k)
     at_size = composite_paint(
         s3[:, :, np.newaxis, :], bg[:, :, np.newaxis, :], alphas[:, None, None], q, pipeline
     )  # (p, m, k, 3)
-    size_contrast = contrast_ratio(shipped(at_size), screen[:, :, np.newaxis, :]).reshape(p, m, k)
+    size_contrast = judged_contrast(at_size, bg[:, :, np.newaxis, :]).reshape(p, m, k)
     size_contrast = np.where(np.isnan(q50)[:, np.newaxis, :], np.nan, size_contrast)
     result = AuditResult(
         theme=theme,
@@ -796,8 +795,8 @@ def _compose(
         alpha=alphas,
         output=output,
         reference=reference,
-        contrast_ref=contrast_ratio(shown_ref, screen),
-        contrast=contrast_ratio(shown, screen),
+        contrast_ref=judged_contrast(reference, bg),
+        contrast=judged_contrast(output, bg),
         contrast_ref_float=contrast_ratio(reference, bg),
         contrast_float=contrast_ratio(output, bg),
         drift=delta_e_2000(shown_ref, shown).reshape(p, m),

@@ -181,9 +181,10 @@ _SPECS = (
         Rule.NOT_AUDITED,
         "AA009",
         "info",
-        Level.OFF,
-        "The SVG draws something the audit cannot judge (gradient, text, image); on a page, "
-        "no pixel shows a paint at full coverage (a hairline), so its colour is not judged.",
+        # Listed by default (issue 28): an icon the audit cannot judge never passes silently.
+        Level.WARN,
+        "The SVG draws something the audit cannot judge (a gradient, text, an image, `<use>`); "
+        "on a page, no pixel shows a paint at full coverage (a hairline). It is not audited.",
         "Audit the element by hand, or draw it with plain fills and strokes the audit can read "
         "(on a page: strokes of at least 1 CSS px).",
         # A paint a browser drew too thin to measure is said, never passed in silence.

@@ -23,10 +23,9 @@ from PIL import Image
 
 from alpha_audit.browser import ENGINES
 from alpha_audit.color import composite_extended, srgb_decode, srgb_encode, to_8bit
-from alpha_audit.export import export_table, render_export
+from alpha_audit.export import export_project, render_export
 from alpha_audit.export.svg import filter_id
 from alpha_audit.load.config import load_config
-from alpha_audit.load.tokens.themes import load_token_themes
 
 ROOT = Path(__file__).resolve().parents[2]
 CELL = 24  # px; the icon is a square inset in its cell, its left edge at x = 3.5
@@ -75,8 +74,7 @@ def _page(table) -> tuple[str, list[tuple[int, int, str, str]]]:
 @pytest.fixture(scope="module")
 def export_page():
     """The example design system's export table and the page drawing it both ways."""
-    themes = load_token_themes(load_config(ROOT / "examples/tokens/alpha-audit.yaml").tokens)
-    table = export_table(themes)
+    table = export_project(load_config(ROOT / "examples/tokens/alpha-audit.yaml"))
     html, expected = _page(table)
     return table, html, expected
 

@@ -15,7 +15,7 @@ from alpha_audit.color import (
     full_share,
     hex_to_linear,
     median_coverage,
-    size_contrast,
+    size_contrast_float,
 )
 
 codes = arrays(np.uint8, (6, 6), elements=st.integers(0, 255))
@@ -80,7 +80,7 @@ def test_size_contrast_is_contrast_at_q50(
         + (1 - opacity * q50) * canvas
     )
     expected = float(contrast_ratio(shown, canvas))
-    got = float(size_contrast(source, canvas, alpha, q50, opacity))
+    got = float(size_contrast_float(source, canvas, alpha, q50, opacity))
     assert got == pytest.approx(expected, rel=1e-12)
 
 
@@ -89,7 +89,7 @@ def test_size_contrast_never_exceeds_colour_contrast_linear(
     source: np.ndarray, canvas: np.ndarray, alpha: float, q50: float, opacity: float
 ) -> None:
     colour_contrast = float(contrast_ratio(composite_paint(source, canvas, alpha, opacity), canvas))
-    assert float(size_contrast(source, canvas, alpha, q50, opacity)) <= colour_contrast * (
+    assert float(size_contrast_float(source, canvas, alpha, q50, opacity)) <= colour_contrast * (
         1 + 1e-12
     )
 
@@ -103,7 +103,7 @@ def test_css_size_contrast_can_exceed_colour_contrast() -> None:
     """
     source, canvas = hex_to_linear("#0487c9"), hex_to_linear("#e01fad")
     solid = float(contrast_ratio(composite_paint(source, canvas, 1.0, pipeline="css"), canvas))
-    edge = float(size_contrast(source, canvas, 1.0, 0.47, pipeline="css"))
+    edge = float(size_contrast_float(source, canvas, 1.0, 0.47, pipeline="css"))
     assert solid == pytest.approx(1.0695, abs=1e-4)
     assert edge == pytest.approx(1.3541, abs=1e-4)
 
@@ -113,4 +113,6 @@ def test_css_size_contrast_bounded_for_greys(s: float, b: float, alpha: float, q
     """On one axis (greys) the gamma-space path is monotone, so the bound holds under css too."""
     source, canvas = np.full(3, s), np.full(3, b)
     solid = float(contrast_ratio(composite_paint(source, canvas, alpha, pipeline="css"), canvas))
-    assert float(size_contrast(source, canvas, alpha, q50, pipeline="css")) <= solid * (1 + 1e-12)
+    assert float(size_contrast_float(source, canvas, alpha, q50, pipeline="css")) <= solid * (
+        1 + 1e-12
+    )

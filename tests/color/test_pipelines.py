@@ -118,3 +118,31 @@ def test_css_keeps_leading_shape_and_does_not_mutate() -> None:
     assert out.shape == (2, 3, 3)
     np.testing.assert_array_equal(s, before)
     np.testing.assert_allclose(out[1, 2], srgb_decode(np.array([245, 173, 133]) / 255))
+
+
+def test_css_blend_of_8bit_colours_rounds_ties_half_to_even() -> None:
+    """Every 8-bit pair at alphas of two decimals, as integer codes blended by hand.
+
+    Exact halves are common there (17 over 32 at 0.9 is 18.5): they round half to even,
+    as the blend of the codes themselves does, never by the float noise of a colour
+    taken to linear light and back.
+    """
+    from fractions import Fraction
+
+    rng = np.random.default_rng(7)
+    s = rng.integers(0, 256, (4000, 3))
+    b = rng.integers(0, 256, (4000, 3))
+    a = rng.integers(0, 101, 4000) / 100
+    got = to_8bit(composite_css(srgb_decode(s / 255), srgb_decode(b / 255), a))
+    exact = [
+        [
+            round(Fraction(int(cb)) + Fraction(round(100 * al), 100) * (int(cs) - int(cb)))
+            for cs, cb in zip(si, bi, strict=True)
+        ]
+        for si, bi, al in zip(s, b, a, strict=True)
+    ]
+    np.testing.assert_array_equal(got, np.array(exact))
+    assert (
+        linear_to_hex(composite_css(hex_to_linear("#110000"), hex_to_linear("#200000"), 0.9))
+        == "#120000"
+    )

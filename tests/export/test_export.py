@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import shutil
 from dataclasses import replace
+from fractions import Fraction
 from pathlib import Path
 
 import numpy as np
@@ -16,14 +17,14 @@ from typer.testing import CliRunner
 from alpha_audit.cli import app
 from alpha_audit.color import srgb_decode, to_8bit
 from alpha_audit.errors import InputError, UsageError
-from alpha_audit.export import ExportFormat, export_table, render_export, write_export
+from alpha_audit.export import ExportFormat, export_project, render_export, write_export
 from alpha_audit.export.css import render_css
-from alpha_audit.load.config import load_config
-from alpha_audit.load.tokens import load_token_modes, parse_json, token_color, tokens_from_docs
-from alpha_audit.load.tokens.model import TokenModes
-from alpha_audit.load.tokens.themes import TokenConfig, load_token_themes, token_themes
-from alpha_audit.model import Icon, IconSet
-from alpha_audit.rows import audit
+from alpha_audit.load.config import Overrides, load_config, resolve_config
+from alpha_audit.load.tokens import load_token_modes, token_color
+from alpha_audit.load.tokens.themes import load_token_themes
+from alpha_audit.model import Icon
+from alpha_audit.pipeline import check_project
+from helpers import spec_hex
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLE = REPO / "examples/tokens"
@@ -31,6 +32,38 @@ EXAMPLE = REPO / "examples/tokens"
 
 def _example_themes():
     return load_token_themes(load_config(EXAMPLE / "alpha-audit.yaml").tokens)
+
+
+def _example_table():  # type: ignore[no-untyped-def]
+    return export_project(load_config(EXAMPLE / "alpha-audit.yaml"))
+
+
+def _check_outputs(project) -> dict[tuple[str, str, str], str]:  # type: ignore[no-untyped-def]
+    """``{(theme, icon, canvas): output}`` of check's rows of each icon's manifest colour
+    (the ``currentColor`` paint at opacity 1), SVGs read and rendered as check does."""
+    out = {}
+    for result in check_project(project).audits:
+        for row in result.rows():
+            if row.paint == "currentColor" and row.opacity == 1.0:
+                out[(result.theme.name, row.icon, row.canvas)] = row.output
+    return out
+
+
+def assert_export_is_checks(project) -> int:  # type: ignore[no-untyped-def]
+    """Every exported output is check's row output for that icon colour, canvas and theme,
+    and every such row of check's is exported; returns how many were compared."""
+    table = export_project(project)
+    checked = _check_outputs(project)
+    seen = set()
+    for mode in table.modes:
+        for color in mode.colors:
+            for canvas, hex_ in zip(mode.canvases, color.outputs, strict=True):
+                for icon in color.icons:
+                    key = (mode.name, icon, canvas.token)
+                    assert checked[key] == hex_, (key, color.token)
+                    seen.add(key)
+    assert seen == set(checked)
+    return len(seen)
 
 
 def test_example_modes_canvases_colours_and_gamut_report() -> None:
@@ -47,26 +80,87 @@ def test_example_modes_canvases_colours_and_gamut_report() -> None:
     assert 0 < adj.delta_e < 5
 
 
-def test_export_equals_the_audit_output_for_every_colour_and_canvas() -> None:
-    themes = _example_themes()
-    table = export_table(themes)
-    for mode, emode in zip(themes.modes, table.modes, strict=True):
-        icons = IconSet(
-            "tokens",
-            tuple(Icon(p, Path(f"{p}.svg"), c.css, c.alpha) for p, c in mode.colors.items()),
-        )
-        rows = {(r.icon, r.canvas): r.output for r in audit(mode.theme, icons).rows()}
-        assert len(rows) == len(emode.colors) * len(emode.canvases)
-        for color in emode.colors:
-            for canvas, hex_ in zip(emode.canvases, color.outputs, strict=True):
-                assert rows[(color.token, canvas.token)] == hex_
+@pytest.mark.parametrize("pipeline", ["linear", "css"])
+@pytest.mark.parametrize("theme", ["paper16.yaml", "github-primer.yaml", "material3.yaml"])
+def test_export_of_the_bundled_yaml_example_is_checks_outputs(theme: str, pipeline: str) -> None:
+    """The bar (issue 28): YAML themes and a manifest, both pipelines, every output is check's.
+
+    Under css the manifest's alpha 1.1 cannot be drawn, so the project's alpha is 0.9
+    (a set-wide ``alpha:``, as a config writes it); under linear the manifest's own
+    alphas (1.1, and 1.18 for one icon) apply.
+    """
+    overrides = Overrides(
+        themes=(REPO / "themes" / theme,),
+        iconsets=(REPO / "examples/vibrant/iconset.yaml",),
+        pipeline=pipeline,
+        alpha=0.9 if pipeline == "css" else None,
+    )
+    project = resolve_config(overrides, REPO)
+    compared = assert_export_is_checks(project)
+    table = export_project(project)
+    assert {m.pipeline for m in table.modes} == {pipeline}
+    assert compared == 12 * sum(len(m.canvases) for m in table.modes)
+    # And what the specs give, written out here (not alpha-audit's code).
+    for mode in table.modes:
+        for color in mode.colors:
+            for canvas, hex_ in zip(mode.canvases, color.outputs, strict=True):
+                assert hex_ == _spec_output(color.source, canvas.hex, color.alpha, pipeline)
+
+
+def _spec_output(source: str, canvas: str, alpha: float, pipeline: str) -> str:
+    """The displayed 8-bit colour by the paper (linear) or CSS Compositing 1 (css)."""
+    if pipeline == "linear":  # clip(Cb + a (Cs - Cb)) in linear light, then encoded
+        cs, cb = spec_hex(source), spec_hex(canvas)
+        shown = np.clip(cb + alpha * (cs - cb), 0.0, 1.0)
+        encoded = np.where(shown <= 0.0031308, 12.92 * shown, 1.055 * shown ** (1 / 2.4) - 0.055)
+        return "#" + "".join(f"{int(v):02x}" for v in np.rint(encoded * 255.0))
+    # source-over on the encoded codes, in exact arithmetic, rounded half to even
+    a = Fraction(alpha).limit_denominator(10**6)
+    s, b = ([int(c[k : k + 2], 16) for k in (1, 3, 5)] for c in (source, canvas))
+    return "#" + "".join(f"{round(cb + a * (cs - cb)):02x}" for cs, cb in zip(s, b, strict=True))
+
+
+def test_export_of_the_token_example_is_checks_outputs() -> None:
+    """The manifest's alpha where a token carries none, as check applies it."""
+    assert assert_export_is_checks(load_config(EXAMPLE / "alpha-audit.yaml")) == 16
+
+
+def test_the_pipeline_in_force_changes_the_export() -> None:
+    """pipeline: css (a config key, not only the flag) is the pipeline every output follows."""
+    base = Overrides(
+        themes=(REPO / "themes/github-primer.yaml",),
+        iconsets=(REPO / "examples/vibrant/iconset.yaml",),
+        alpha=0.9,
+    )
+    linear = export_project(resolve_config(base, REPO))
+    css = export_project(resolve_config(replace(base, pipeline="css"), REPO))
+    pairs = [
+        (a, b)
+        for m, n in zip(linear.modes, css.modes, strict=True)
+        for c, d in zip(m.colors, n.colors, strict=True)
+        for a, b in zip(c.outputs, d.outputs, strict=True)
+    ]
+    assert len(pairs) == 7 * 8 and sum(a != b for a, b in pairs) > 40
+
+
+def test_yaml_names_are_palette_roles_and_icons_with_their_own_alpha() -> None:
+    """vibrant: seven palette colours at the set's 1.1, and alert (orange at 1.18) apart."""
+    project = resolve_config(
+        Overrides(themes=("paper16",), iconsets=(REPO / "examples/vibrant/iconset.yaml",)), REPO
+    )
+    (mode,) = export_project(project).modes
+    names = {c.token: (c.alpha, c.icons) for c in mode.colors}
+    assert list(names) == ["alert", "blue", "cyan", "magenta", "red", "teal", "grey", "orange"]
+    assert names["orange"] == (1.1, ("info",))
+    assert names["alert"] == (1.18, ("alert",))
+    assert names["orange"][0] == 1.1 and "alert" not in names["orange"][1]
 
 
 def test_svg_filter_reproduces_the_outputs() -> None:
     """feFuncX type=linear: clamp(slope*C + intercept) in linearRGB equals the output code."""
     import xml.etree.ElementTree as ET
 
-    table = export_table(_example_themes())
+    table = _example_table()
     svg = ET.fromstring(render_export(table, "svg")["filters.svg"])
     ns = {"s": "http://www.w3.org/2000/svg"}
     filters = {f.get("id"): f for f in svg.iterfind(".//s:filter", ns)}
@@ -87,14 +181,38 @@ def test_svg_filter_reproduces_the_outputs() -> None:
 
 
 def test_css_blocks_and_light_dark() -> None:
-    table = export_table(_example_themes())
+    table = _example_table()
     css = render_css(table)
     assert '[data-theme="light"] {' in css and '[data-theme="dark"] {' in css
-    light = table.modes[0].colors[0].outputs[0]
-    dark = table.modes[1].colors[0].outputs[0]
+    light, dark = (
+        next(c for c in m.colors if c.token == "color.icon.info").outputs[0] for m in table.modes
+    )
     assert f"--color-icon-info-on-canvas: light-dark({light}, {dark});" in css
     assert "color-scheme: light dark;" in css
     assert render_css(table, selector=".theme-<mode>").count(".theme-light {") == 1
+
+
+def _token_project(
+    tmp: Path, docs: dict[str, dict], canvases: str, colors: str, extra: str = ""
+) -> Path:
+    """A project whose tokens are one DTCG file per mode behind a Resolver document."""
+    (tmp / ".git").mkdir(exist_ok=True)
+    contexts = {}
+    for k, (mode, doc) in enumerate(docs.items()):
+        (tmp / f"m{k}.tokens.json").write_text(json.dumps(doc))
+        contexts[mode] = [{"$ref": f"m{k}.tokens.json"}]
+    resolver = {
+        "version": "2025.10",
+        "modifiers": {"theme": {"contexts": contexts, "default": next(iter(docs))}},
+        "resolutionOrder": [{"$ref": "#/modifiers/theme"}],
+    }
+    (tmp / "t.resolver.json").write_text(json.dumps(resolver))
+    config = tmp / "alpha-audit.yaml"
+    config.write_text(
+        f"tokens:\n  file: t.resolver.json\n  canvases: {canvases!r}\n  colors: {colors!r}\n"
+        + extra
+    )
+    return config
 
 
 def test_hostile_names_are_escaped(tmp_path: Path) -> None:
@@ -105,9 +223,8 @@ def test_hostile_names_are_escaped(tmp_path: Path) -> None:
             "i<svg>": {"$value": "#ff0000", "$extensions": {"com.alpha-audit": {"alpha": 1.1}}},
         }
     }
-    modes = TokenModes(tmp_path, "dtcg", {'da"rk': tokens_from_docs([parse_json(json.dumps(doc))])})
-    config = TokenConfig(file=tmp_path, canvases=("c.bg*",), colors=("c.i*",))
-    table = export_table(token_themes(modes, config))
+    config = _token_project(tmp_path, {'da"rk': doc}, "c.bg*", "c.i*")
+    table = export_project(load_config(config))
     css = render_export(table, "css")["colors.css"]
     assert ";--x:0" not in css and '"da"rk"' not in css
     svg = render_export(table, "svg")["filters.svg"]
@@ -115,7 +232,7 @@ def test_hostile_names_are_escaped(tmp_path: Path) -> None:
 
 
 def test_write_export_refuses_existing_files_and_writes_nothing(tmp_path: Path) -> None:
-    files = render_export(export_table(_example_themes()), "dtcg")
+    files = render_export(_example_table(), "dtcg")
     (tmp_path / "dark.tokens.json").write_text("mine")
     with pytest.raises(UsageError, match="already exists"):
         write_export(files, tmp_path)
@@ -126,7 +243,7 @@ def test_write_export_refuses_existing_files_and_writes_nothing(tmp_path: Path) 
 
 
 def test_every_format_renders() -> None:
-    table = export_table(_example_themes())
+    table = _example_table()
     for fmt in ExportFormat:
         files = render_export(table, fmt)
         assert files and all(text.endswith("\n") for text in files.values())
@@ -142,7 +259,7 @@ def _read_back(files: dict[str, str], tmp_path: Path, fmt: str) -> dict[str, dic
         for mode, tokens in modes.modes.items():
             key = name.split(".")[0] if fmt == "dtcg" else mode
             out[key] = {
-                p: "#"
+                p.removesuffix(".$root"): "#"
                 + "".join(f"{int(v):02x}" for v in np.rint(np.array(token_color(t).encoded) * 255))
                 for p, t in tokens.items()
             }
@@ -162,9 +279,9 @@ def test_round_trip_exported_tokens_give_back_the_same_colours(
     tmp_path_factory, canvases, icons, dark_shift
 ) -> None:
     tmp = tmp_path_factory.mktemp("rt")
-    modes = {}
+    docs = {}
     for mode in ("light", "dark"):
-        doc = {"color": {"$type": "color", "bg": {}, "icon": {}}}
+        doc: dict = {"color": {"$type": "color", "bg": {}, "icon": {}}}
         for i, c in enumerate(canvases):
             if mode == "dark":
                 c = "#" + bytes((int(c[k : k + 2], 16) + dark_shift) % 256 for k in (1, 3, 5)).hex()
@@ -174,29 +291,31 @@ def test_round_trip_exported_tokens_give_back_the_same_colours(
                 "$value": c,
                 "$extensions": {"com.alpha-audit": {"alpha": a}},
             }
-        modes[mode] = tokens_from_docs([parse_json(json.dumps(doc))])
-    themes = token_themes(
-        TokenModes(tmp, "dtcg", modes),
-        TokenConfig(file=tmp, canvases=("color.bg.*",), colors=("color.icon.*",)),
-    )
-    table = export_table(themes)
+        docs[mode] = doc
+    table = export_project(load_config(_token_project(tmp, docs, "color.bg.*", "color.icon.*")))
     expected = {
-        m.name: {
+        name: {
             (c.token if len(m.canvases) == 1 else f"{c.token}.on.{cv.short}"): out
             for c in m.colors
             for cv, out in zip(m.canvases, c.outputs, strict=True)
         }
         for m in table.modes
+        for name in m.names
     }
-    dtcg = _read_back(render_export(table, "dtcg"), tmp, "dtcg")
+    out = tmp / "out"
+    out.mkdir()
+    dtcg = _read_back(render_export(table, "dtcg"), out, "dtcg")
     assert dtcg == expected
-    resolver = _read_back(render_export(table, "resolver"), tmp, "resolver")
+    resolver = _read_back(render_export(table, "resolver"), out, "resolver")
     assert resolver == expected
     tw_dir = tmp / "tw"
     tw_dir.mkdir()
     tailwind = _read_back(render_export(table, "tailwind"), tw_dir, "tailwind")
-    assert tailwind["default"] == {k: v for k, v in expected["light"].items()}
-    assert tailwind["dark"] == expected["dark"]
+    first = table.modes[0].name
+    assert tailwind["default"] == expected[first]
+    for name in expected:
+        if name != first:
+            assert tailwind[name] == expected[name]
     shutil.rmtree(tmp)
 
 
@@ -275,13 +394,13 @@ def test_cli_export_without_a_project_config_says_none_was_found(
     assert result.exit_code == 2
     (line,) = result.output.strip().splitlines()
     assert "no project config found" in line and "alpha-audit.yaml" in line
-    assert "tokens:" in line
+    assert "THEME ICONSET" in line
 
 
 def test_css_header_names_the_token_file_as_written() -> None:
     # A CSS comment does not interpret escapes: "system\2e resolver\2e json" is
     # what a reader saw. The name stays readable; only "*/" could end the comment.
-    table = export_table(_example_themes())
+    table = _example_table()
     first = render_css(table).splitlines()[0]
     assert first.startswith("/* alpha-audit export from system.resolver.json ")
     hostile = render_css(replace(table, source="a*/b{}.json")).splitlines()[0]
@@ -298,16 +417,12 @@ def _css_project(tmp_path: Path, colors: str, css: str) -> Path:
 
 
 def test_export_refuses_a_colours_glob_that_matches_nothing(tmp_path: Path) -> None:
-    from alpha_audit.export import table_from_config
-
     project = _css_project(tmp_path, "icon.*", ":root { --bg: #fff; --fg: #0062ba }")
     with pytest.raises(InputError, match=r"colors: 'icon\.\*' matches no colour token of t\.css"):
-        table_from_config(load_config(project / "alpha-audit.yaml"))
+        export_project(load_config(project / "alpha-audit.yaml"))
 
 
 def test_export_refuses_two_token_paths_that_become_one_property(tmp_path: Path) -> None:
-    from alpha_audit.export import table_from_config
-
     css = '{"bg": {"$type": "color", "$value": "#fff"}, "a": {"$type": "color", '
     css += '"b-c": {"$value": "#123456"}}, "a-b": {"$type": "color", "c": {"$value": "#654321"}}}'
     (tmp_path / ".git").mkdir()
@@ -315,7 +430,7 @@ def test_export_refuses_two_token_paths_that_become_one_property(tmp_path: Path)
     (tmp_path / "alpha-audit.yaml").write_text(
         "alpha: 1.1\ntokens:\n  file: t.tokens.json\n  canvases: bg\n  colors: 'a*'\n"
     )
-    table = table_from_config(load_config(tmp_path / "alpha-audit.yaml"))
+    table = export_project(load_config(tmp_path / "alpha-audit.yaml"))
     assert len(render_export(table, "dtcg")) == 1  # DTCG keeps the two paths apart
     for fmt in ("css", "tailwind"):
         with pytest.raises(
@@ -325,12 +440,10 @@ def test_export_refuses_two_token_paths_that_become_one_property(tmp_path: Path)
 
 
 def _css_table(tmp_path: Path, css: str, colors: str, canvases: str = "bg"):  # type: ignore[no-untyped-def]
-    from alpha_audit.export import table_from_config
-
     project = _css_project(tmp_path, colors, css)
     config = project / "alpha-audit.yaml"
     config.write_text(config.read_text().replace("canvases: bg", f"canvases: {canvases!r}"))
-    return table_from_config(load_config(config))
+    return export_project(load_config(config))
 
 
 def test_export_refuses_two_modes_that_become_one_file_or_filter_id(tmp_path: Path) -> None:
@@ -345,13 +458,16 @@ def test_export_refuses_two_modes_that_become_one_file_or_filter_id(tmp_path: Pa
     assert render_export(table, "resolver")  # contexts keep the names themselves
 
 
-def test_dtcg_export_refuses_a_token_that_would_have_to_be_a_group(tmp_path: Path) -> None:
+def test_dtcg_export_writes_a_token_that_is_also_a_group_as_its_root(tmp_path: Path) -> None:
     # The token fg.on.bg (from --fg-on-bg) drawn on bg is fg.on.bg.on.bg, and fg drawn
-    # on bg is fg.on.bg: in DTCG one token would have to hold the other.
+    # on bg is fg.on.bg: DTCG 2025.10 writes the group's own token as $root.
     css = ":root { --bg: #fff; --bg2: #eee; --fg: #0062ba; --fg-on-bg: #123456 }"
     table = _css_table(tmp_path, css, "fg*", "bg*")
-    with pytest.raises(InputError, match=r"DTCG tokens fg\.on\.bg and fg\.on\.bg\.on\.bg"):
-        render_export(table, "dtcg")
+    (text,) = render_export(table, "dtcg").values()
+    group = json.loads(text)["fg"]["on"]["bg"]
+    assert set(group) == {"$root", "on"} and "$value" in group["$root"]
+    read = _read_back(render_export(table, "dtcg"), tmp_path, "dtcg")["default"]
+    assert {"fg.on.bg", "fg.on.bg.on.bg"} <= set(read)
     assert "--fg-on-bg-on-bg: " in render_export(table, "css")["colors.css"]
 
 
@@ -362,3 +478,82 @@ def test_export_refuses_two_outputs_that_meet_in_one_token_path(tmp_path: Path) 
     for fmt in ("css", "dtcg", "tailwind"):
         with pytest.raises(InputError, match=r"a on x\.b\.on\.c and a\.on\.b on x\.c both"):
             render_export(table, fmt)
+
+
+def test_modes_check_audits_once_are_still_written(tmp_path: Path) -> None:
+    """A CSS mode with another's colours is audited once; export writes it under its name."""
+    css = ':root { --bg: #fff; --fg: #0062ba } [data-theme="dark"] { --bg: #111; --fg: #78a9ff }'
+    css += ' [data-theme="dark-dimmed"] { --bg: #111; --fg: #78a9ff }'
+    table = _css_table(tmp_path, css, "fg")
+    assert [(m.name, m.aliases) for m in table.modes] == [
+        ("default", ()),
+        ("dark", ("dark-dimmed",)),
+    ]
+    files = render_export(table, "dtcg")
+    assert sorted(files) == ["dark-dimmed.tokens.json", "dark.tokens.json", "default.tokens.json"]
+    assert json.loads(files["dark-dimmed.tokens.json"])["fg"]["$value"]["hex"] == "#7db0ff"
+    assert '[data-theme="dark"], [data-theme="dark-dimmed"] {' in render_css(table)
+    contexts = json.loads(render_export(table, "resolver")["colors.resolver.json"])
+    assert set(contexts["modifiers"]["theme"]["contexts"]) == {"default", "dark", "dark-dimmed"}
+    assert json.loads(render_export(table, "json")["colors.json"])["modes"][1]["aliases"] == [
+        "dark-dimmed"
+    ]
+    svg = render_export(table, "svg")["filters.svg"]
+    assert 'id="alpha-dark-dimmed-bg"' in svg and 'id="alpha-dark-bg"' in svg
+
+
+def test_dtcg_root_for_a_path_that_is_also_a_group(tmp_path: Path) -> None:
+    """color.background and color.background.body (issue 29): $root, not a refusal."""
+    css = ":root { --bg: #fff; --color-background: #123456; --color-background-body: #654321 }"
+    table = _css_table(tmp_path, css, "color.background*")
+    (text,) = render_export(table, "dtcg").values()
+    group = json.loads(text)["color"]["background"]
+    assert set(group) == {"$root", "body"}
+    assert group["$root"]["$extensions"]["com.alpha-audit"]["source"] == "#123456"
+    read = _read_back(render_export(table, "dtcg"), tmp_path, "dtcg")["default"]
+    assert set(read) == {"color.background", "color.background.body"}
+
+
+def test_css_pipeline_filters_blend_in_srgb() -> None:
+    """Under pipeline css the filter works on encoded values (sRGB), as the browser blends."""
+    import xml.etree.ElementTree as ET
+
+    overrides = Overrides(
+        themes=("paper16",), iconsets=(REPO / "examples/vibrant/iconset.yaml",), pipeline="css"
+    )
+    table = export_project(resolve_config(replace(overrides, alpha=0.6), REPO))
+    svg = ET.fromstring(render_export(table, "svg")["filters.svg"])
+    ns = {"s": "http://www.w3.org/2000/svg"}
+    (mode,) = table.modes
+    for f in svg.iterfind(".//s:filter", ns):
+        assert f.get("color-interpolation-filters") == "sRGB"
+    filters = {f.get("id"): f for f in svg.iterfind(".//s:filter", ns)}
+    for color in mode.colors:
+        for canvas, hex_ in zip(mode.canvases, color.outputs, strict=True):
+            funcs = filters[f"alpha-{mode.name}-{canvas.short}"].findall(
+                ".//s:feComponentTransfer/*", ns
+            )
+            slope = np.array([float(f.get("slope")) for f in funcs])
+            intercept = np.array([float(f.get("intercept")) for f in funcs])
+            source = np.array([int(color.source[i : i + 2], 16) for i in (1, 3, 5)]) / 255
+            codes = np.rint(255 * np.clip(slope * source + intercept, 0, 1))
+            expected = np.array([int(hex_[i : i + 2], 16) for i in (1, 3, 5)])
+            assert np.abs(codes - expected).max() <= 1  # a tie may round either way
+
+
+def test_errors_name_files_relative_to_the_project(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A YAML project's error names the file as the user would type it, never absolute."""
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "icons").mkdir()
+    (tmp_path / "icons" / "iconset.yaml").write_text('name: s\nicons: []\ncolor: "#12"\n')
+    shutil.copy(REPO / "themes/paper16.yaml", tmp_path / "paper16.yaml")
+    (tmp_path / "alpha-audit.yaml").write_text("theme: paper16.yaml\niconset: icons/iconset.yaml\n")
+    (tmp_path / "sub").mkdir()
+    runner = CliRunner()
+    for here, shown in ((tmp_path, "icons/iconset.yaml:3"), (tmp_path / "sub", "../icons")):
+        monkeypatch.chdir(here)
+        result = runner.invoke(app, ["export"])
+        assert result.exit_code == 2
+        assert f"error: {shown}" in result.output and str(tmp_path) not in result.output

@@ -72,7 +72,7 @@ def test_github_errors_never_exceed_what_github_shows(n: int) -> None:
         assert annotated == n and "more finding" not in verdict
     else:
         assert annotated == MAX_ANNOTATIONS - 1
-        assert f"{n - annotated} more root cause(s) not annotated" in verdict
+        assert f"{n - annotated} more line(s) not annotated" in verdict
     assert "5 more note(s): icons that could not be rendered" in text  # 14 - 9
 
 

@@ -29,13 +29,23 @@ def _theme(name: str = "grey") -> Theme:
     return Theme(name, (Canvas("mid", "#777777"), Canvas("mid-warm", "#7a7770")))
 
 
-def _iconset(per_colour: int = 10) -> IconSet:
+def _iconset(per_colour: int = 10, alpha_line: int | None = None) -> IconSet:
+    """Each role a palette entry setting its colour and alpha on its own line (3, 4), or
+    with ``alpha_line`` one set-wide ``alpha:`` for every icon."""
     icons = tuple(
-        Icon(f"{role}-{k}", Path(f"{role}-{k}.svg"), colour, 1.6, color_name=role)
-        for role, colour in LOSING.items()
+        Icon(
+            f"{role}-{k}",
+            Path(f"{role}-{k}.svg"),
+            colour,
+            1.6,
+            color_name=role,
+            color_line=3 + r,
+            alpha_line=3 + r if alpha_line is None else alpha_line,
+        )
+        for r, (role, colour) in enumerate(LOSING.items())
         for k in range(per_colour)
     )
-    return IconSet("set", icons, palette=dict(LOSING))
+    return IconSet("set", icons, palette=dict(LOSING), path=Path("/repo/set.yaml"))
 
 
 @cache
@@ -85,11 +95,25 @@ def test_one_details_section_per_audit_grouped_by_colour() -> None:
     html = MarkdownIt("commonmark").enable("table").render(text)
     assert html.count("<details") == 2 and html.count("</details>") == 2
     rows = _rows(text, FAILING)
-    # 2 audits x 2 colours, not 40 icons x 2 canvases: each row folds both canvases.
+    # 2 audits x 2 palette lines, not 40 icons x 2 canvases: each row folds the root
+    # causes its line sets, over both canvases.
     assert len(rows) == 4
     assert [r[0] for r in rows[:2]] == ["blue #0000cc", "red #aa0000"]  # the larger loss first
+    assert [r[1] for r in rows[:2]] == ["set.yaml:3", "set.yaml:4"]
     assert all(r[2].endswith("(worst) +1") for r in rows)
     assert rows[0][5] == "10 icons: blue-0, blue-1, blue-2 +7 more"
+
+
+def test_a_set_wide_alpha_failing_every_icon_is_one_row_per_audit() -> None:
+    """Fold by the line that causes it: one row for the set-wide alpha: line and the rule."""
+    audits = tuple(audit(_theme(n), _iconset(alpha_line=2)) for n in ("grey", "warm grey"))
+    gate = evaluate(list(audits), Policy(rules=frozenset({Rule.LOSS})))
+    rep = with_fixes(CheckReport(audits=audits, gate=gate))
+    rows = _rows(render_report(rep, OPTIONS), FAILING)
+    assert len(gate.failures) == 40 and len(rows) == 2  # one per audit section
+    for row in rows:
+        assert row[0] == "blue #0000cc, red #aa0000" and row[1] == "set.yaml:2"
+        assert row[5].startswith("20 icons: ") and "blue: alpha 1" in row[6] and "red: " in row[6]
 
 
 def test_each_failing_group_names_a_largest_safe_alpha_that_holds() -> None:

@@ -1,4 +1,4 @@
-"""``alpha-audit export``: the displayed colours of token themes, in shippable formats."""
+"""``alpha-audit export``: the displayed colours of what ``check`` audits, in shippable formats."""
 
 from __future__ import annotations
 
@@ -12,8 +12,10 @@ from alpha_audit.cli.options import (
     ConfigOption,
     ForceOption,
     GamutOption,
+    IconsetArgument,
+    PipelineOption,
+    ThemeArgument,
     in_range,
-    read_gamut_option,
 )
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.ranges import ALPHA
@@ -22,6 +24,8 @@ __all__ = ["export_command"]
 
 
 def export_command(
+    theme: ThemeArgument = None,
+    iconset: IconsetArgument = None,
     fmt: Annotated[
         str,
         typer.Option(
@@ -42,34 +46,53 @@ def export_command(
     selector: Annotated[
         str | None,
         typer.Option(
-            help='CSS selector per mode; <mode> is replaced. [default: [data-theme="<mode>"]]'
+            help="CSS selector per mode; <mode> is replaced by the mode's name and by each "
+            "name it shares its colours with.",
+            show_default='[data-theme="<mode>"]',
         ),
     ] = None,
     alpha: Annotated[
         float | None,
         typer.Option(
-            help="Coefficient for every colour (overrides the tokens).",
+            "--alpha",
+            "-a",
+            help="Coefficient for every icon colour (overrides the manifests and tokens).",
             callback=in_range("--alpha", ALPHA),
+            show_default="the config's, else the manifest's and tokens'",
         ),
     ] = None,
+    pipeline: PipelineOption = None,
     gamut: GamutOption = None,
     config: ConfigOption = None,
     force: ForceOption = False,
 ) -> ExitStatus:
-    """Write every icon colour's displayed output per mode and canvas.
+    """Write every icon colour's displayed output per theme and canvas.
 
-    Reads the design tokens named by the project config's tokens: table. Each
-    colour equals check's output for that icon colour and canvas, to the 8-bit code.
+    Exports what check audits, with the alpha and the pipeline check uses: the
+    project config's themes (or design-token modes) and icon sets, or THEME
+    ICONSET. Each colour is check's output for that icon colour and canvas, to
+    the 8-bit code: export reads the rows check computes.
+
+    Example: [bold]alpha-audit export paper16 vibrant -f json[/]
     """
     from alpha_audit.errors import UsageError
-    from alpha_audit.export import ExportFormat, render_export, table_from_config, write_export
-    from alpha_audit.load.config import project_config
+    from alpha_audit.export import ExportFormat, export_project, render_export, write_export
+    from alpha_audit.load.config import Overrides, resolve_config
 
     formats = [f.value for f in ExportFormat]
     if fmt not in formats:
         raise UsageError(f"--format {fmt!r} is not one of {', '.join(formats)}")
-    gamut_policy = read_gamut_option(gamut)
-    table = table_from_config(project_config(config, Path.cwd()), alpha=alpha, gamut=gamut_policy)
+    if (theme is None) != (iconset is None):
+        raise UsageError("give both THEME and ICONSET, or neither (to use the project config)")
+    overrides = Overrides(
+        config=config,
+        themes=(theme,) if theme is not None else (),
+        iconsets=(iconset,) if iconset is not None else (),
+        alpha=alpha,
+        pipeline=pipeline,
+        gamut=gamut,
+    )
+    table = export_project(resolve_config(overrides, Path.cwd()))
     for note in table.notes:
         stderr_note(note)
     for a in table.adjusted:

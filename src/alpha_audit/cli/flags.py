@@ -7,7 +7,9 @@ them as the flags a command-line user types instead.
 
 from __future__ import annotations
 
+import os
 import re
+from pathlib import Path
 
 from alpha_audit.errors import AlphaAuditError
 
@@ -43,6 +45,19 @@ def cli_message(exc: AlphaAuditError) -> str:
     >>> cli_message(exc)
     'r.json: already exists; pass --force to replace it'
     """
-    where = exc.where()
+    where = exc.where(_shown_path(exc.path))
     message = _PHRASE.sub(lambda m: FLAGS.get(m.group(1), m.group(0)), exc.message)
     return f"{where}: {message}" if where else message
+
+
+def _shown_path(path: Path | None) -> str | None:
+    """A file of the project written relative to the working folder (``../x.yaml`` from a
+    subfolder), as the user would type it; anything outside the project as it is."""
+    from alpha_audit.load.paths import project_root
+
+    if path is None or not path.is_absolute():
+        return None
+    here = Path.cwd()
+    if not path.is_relative_to(project_root(here)):
+        return None
+    return os.path.relpath(path, here)

@@ -16,7 +16,7 @@ from alpha_audit.color.coverage import (
     coverage_stats,
     full_share,
     median_coverage,
-    size_contrast,
+    size_contrast_float,
 )
 from alpha_audit.color.css import (
     GAMUT_POLICIES,
@@ -103,7 +103,7 @@ __all__ = [
     "relative_luminance",
     "shipped",
     "simulate_cvd",
-    "size_contrast",
+    "size_contrast_float",
     "srgb_decode",
     "srgb_encode",
     "to_8bit",

@@ -38,6 +38,10 @@ __all__ = [
 ]
 
 Pipeline = Literal["linear", "css"]
+# How close (in 8-bit code units) a css blend must be to a half code to be that tie:
+# far above float64 noise on codes (~1e-13), far below any real blend's distance from
+# one (an alpha of d decimals on integer codes gives multiples of 10**-d).
+_TIE = 1e-9
 PIPELINES: tuple[Pipeline, ...] = ("linear", "css")
 
 
@@ -111,8 +115,13 @@ def composite_css(
     _check_css_alpha(a)
     s = srgb_encode(np.asarray(source, dtype=np.float64))
     b = srgb_encode(np.asarray(background, dtype=np.float64))
-    encoded = np.clip(b + a[..., np.newaxis] * (s - b), 0.0, 1.0)
-    return srgb_decode(np.rint(encoded * 255.0) / 255.0)  # np.rint rounds half to even
+    codes = np.clip(b + a[..., np.newaxis] * (s - b), 0.0, 1.0) * 255.0
+    # An 8-bit colour's encoding comes back from linear light within ~1e-13 of code/255,
+    # so a blend exactly half-way between two codes (alpha 0.9 of 17 over 32 is 18.5)
+    # would round by that noise; snapped to the half, it rounds half to even as written.
+    halves = np.round(codes * 2.0) / 2.0
+    codes = np.where(np.abs(codes - halves) < _TIE, halves, codes)
+    return srgb_decode(np.rint(codes) / 255.0)  # np.rint rounds half to even
 
 
 def composite_css_least(

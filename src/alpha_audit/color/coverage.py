@@ -15,7 +15,13 @@ from numpy.typing import ArrayLike, NDArray
 from alpha_audit.color.composite import Pipeline, composite_paint
 from alpha_audit.color.metrics import contrast_ratio
 
-__all__ = ["CoverageStats", "coverage_stats", "full_share", "median_coverage", "size_contrast"]
+__all__ = [
+    "CoverageStats",
+    "coverage_stats",
+    "full_share",
+    "median_coverage",
+    "size_contrast_float",
+]
 
 
 def _coverage(mask: ArrayLike) -> NDArray[np.float64]:
@@ -81,7 +87,7 @@ def coverage_stats(mask: ArrayLike) -> CoverageStats:
     return CoverageStats(median_coverage(mask), full_share(mask), float(q.sum()), int(q.size))
 
 
-def size_contrast(
+def size_contrast_float(
     source: ArrayLike,
     background: ArrayLike,
     alpha: ArrayLike,
@@ -89,12 +95,14 @@ def size_contrast(
     opacity: ArrayLike = 1.0,
     pipeline: Pipeline = "linear",
 ) -> NDArray[np.float64]:
-    """Contrast against the canvas of the paint's displayed colour at coverage ``q50``.
+    """Contrast against the canvas of the paint's float colour at coverage ``q50``.
 
     The pixel at coverage ``q`` of a paint at opacity ``o`` shows the paint at
-    opacity ``q * o``; at ``q50 = 1`` this is the colour contrast.
+    opacity ``q * o``; at ``q50 = 1`` this is the colour contrast.  The paper's
+    maths on float colours; the audit judges the 8-bit colour that ships
+    (:func:`~alpha_audit.color.metrics.judged_contrast` of the same composite).
 
-    >>> round(float(size_contrast([0.0] * 3, [1.0] * 3, 1.0, 1.0)), 6)
+    >>> round(float(size_contrast_float([0.0] * 3, [1.0] * 3, 1.0, 1.0)), 6)
     21.0
     """
     b = np.asarray(background, dtype=np.float64)

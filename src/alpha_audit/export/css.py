@@ -5,7 +5,14 @@ from __future__ import annotations
 from alpha_audit.export.escape import css_comment, css_ident, css_name, css_string
 from alpha_audit.export.table import ExportMode, ExportTable, OneOwner, exported_paths
 
-__all__ = ["DEFAULT_SELECTOR", "css_properties", "mode_properties", "render_css"]
+__all__ = [
+    "DEFAULT_SELECTOR",
+    "css_properties",
+    "header",
+    "mode_properties",
+    "mode_selector",
+    "render_css",
+]
 
 DEFAULT_SELECTOR = '[data-theme="<mode>"]'
 
@@ -41,16 +48,28 @@ def _selector(template: str, mode: str) -> str:
     return template.replace("<mode>", css_ident(mode))
 
 
+def header(table: ExportTable) -> str:
+    """What a CSS export says it was made from (a comment: nothing in it is read)."""
+    gamut = "" if table.gamut is None else f" (gamut: {table.gamut})"
+    return f"/* alpha-audit export from {css_comment(table.source)}{gamut} */"
+
+
+def mode_selector(template: str, mode: ExportMode) -> str:
+    """The selector list of a mode and its aliases (each name where ``<mode>`` is)."""
+    return ", ".join(_selector(template, name) for name in mode.names)
+
+
 def render_css(table: ExportTable, *, selector: str = DEFAULT_SELECTOR) -> str:
-    """One rule per mode under ``selector`` (``<mode>`` is replaced by the mode name).
+    """One rule per mode under ``selector`` (``<mode>`` is replaced by the mode name and
+    by each of its aliases).
 
     With exactly one light and one dark mode, a ``:root`` rule with
     ``light-dark(<light>, <dark>)`` values and ``color-scheme: light dark``
     follows (CSS Color 5, ``light-dark()``).
     """
-    lines = [f"/* alpha-audit export from {css_comment(table.source)} (gamut: {table.gamut}) */"]
+    lines = [header(table)]
     for mode in table.modes:
-        lines.append(f"{_selector(selector, mode.name)} {{")
+        lines.append(f"{mode_selector(selector, mode)} {{")
         lines.extend(f"  {prop}: {value};" for prop, value in mode_properties(mode))
         lines.append("}")
     kinds = [m.kind for m in table.modes]

@@ -5,7 +5,6 @@ from __future__ import annotations
 import json
 from typing import Any
 
-from alpha_audit.errors import InputError
 from alpha_audit.export.table import ExportMode, ExportTable, OneOwner, exported_paths
 
 __all__ = ["mode_tokens", "render_dtcg", "render_resolver"]
@@ -17,24 +16,24 @@ def _color_value(hex_: str) -> dict[str, Any]:
     return {"colorSpace": "srgb", "components": comps, "hex": hex_}
 
 
-def mode_tokens(mode: ExportMode, gamut: str) -> dict[str, Any]:
-    """Nested DTCG groups of one mode's outputs (``$type: color`` on the root group)."""
+def mode_tokens(mode: ExportMode, gamut: str | None, name: str | None = None) -> dict[str, Any]:
+    """Nested DTCG groups of one mode's outputs (``$type: color`` on the root group).
+
+    ``name`` is the mode name written in the extensions (an alias's own; default
+    the mode's).  A token path that is also the group of another (``color.bg``
+    and ``color.bg.body``) is the group's ``$root`` token (Format 2025.10, 6.3):
+    DTCG has no token holding tokens.
+    """
     root: dict[str, Any] = {"$type": "color"}
-    outputs = exported_paths(mode)
-    made = {path: f"{color.token} on {canvas.token}" for path, color, canvas, _ in outputs}
-    for path, color, canvas, hex_ in outputs:
+    for path, color, canvas, hex_ in exported_paths(mode):
         *groups, leaf = path.split(".")
-        for i in range(1, len(groups) + 1):
-            group = ".".join(groups[:i])
-            if group in made:  # DTCG: a token holds no tokens (Format 2025.10, 6.1)
-                raise InputError(
-                    f"{made[group]} and {made[path]} (mode {mode.name}) become the DTCG "
-                    f"tokens {group} and {path}, and a token cannot be a group; rename one"
-                )
         node = root
         for g in groups:
-            node = node.setdefault(g, {})
-        node[leaf] = {
+            child = node.setdefault(g, {})
+            if "$value" in child:  # a token so far: it becomes this group's $root
+                child = node[g] = {"$root": child}
+            node = child
+        token = {
             "$value": _color_value(hex_),
             "$description": f"{color.token} ({color.source}) at alpha {color.alpha} "
             f"on {canvas.token} ({canvas.hex})",
@@ -43,22 +42,28 @@ def mode_tokens(mode: ExportMode, gamut: str) -> dict[str, Any]:
                     "source": color.source,
                     "alpha": color.alpha,
                     "canvas": canvas.token,
-                    "mode": mode.name,
+                    "mode": mode.name if name is None else name,
+                    "pipeline": mode.pipeline,
                     "gamut": gamut,
                 }
             },
         }
+        if leaf in node:  # already a group of other tokens
+            node[leaf]["$root"] = token
+        else:
+            node[leaf] = token
     return root
 
 
 def render_dtcg(table: ExportTable) -> dict[str, str]:
-    """``{"<mode>.tokens.json": text}``, one DTCG file per mode."""
+    """``{"<mode>.tokens.json": text}``, one DTCG file per mode (and per alias of one)."""
     files = OneOwner("DTCG file")
     out = {}
     for m in table.modes:
-        name = f"{_file_stem(m.name)}.tokens.json"
-        files.claim(name, f"mode {m.name}")
-        out[name] = json.dumps(mode_tokens(m, table.gamut), indent=2) + "\n"
+        for name in m.names:
+            file = f"{_file_stem(name)}.tokens.json"
+            files.claim(file, f"mode {name}")
+            out[file] = json.dumps(mode_tokens(m, table.gamut, name), indent=2) + "\n"
     return out
 
 
@@ -69,7 +74,11 @@ def render_resolver(table: ExportTable) -> str:
         "name": "alpha-audit export",
         "modifiers": {
             "theme": {
-                "contexts": {m.name: [mode_tokens(m, table.gamut)] for m in table.modes},
+                "contexts": {
+                    name: [mode_tokens(m, table.gamut, name)]
+                    for m in table.modes
+                    for name in m.names
+                },
                 "default": table.modes[0].name,
             }
         },

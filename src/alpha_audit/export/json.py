@@ -22,12 +22,15 @@ def export_to_dict(table: ExportTable) -> dict[str, Any]:
             {
                 "name": m.name,
                 "mode": m.kind,
+                "aliases": list(m.aliases),
+                "pipeline": m.pipeline,
                 "canvases": [{"token": c.token, "color": c.hex} for c in m.canvases],
                 "colors": [
                     {
                         "token": c.token,
                         "source": c.source,
                         "alpha": c.alpha,
+                        "icons": list(c.icons),
                         "outputs": {
                             cv.token: out for cv, out in zip(m.canvases, c.outputs, strict=True)
                         },

@@ -1,11 +1,12 @@
-"""SVG filters that do the paper's compositing: one ``<filter>`` per canvas (and coefficient).
+"""SVG filters that do the audit's compositing: one ``<filter>`` per canvas (and coefficient).
 
 ``feComponentTransfer`` with ``type="linear"`` computes ``slope*C + intercept``
 per channel on non-premultiplied colour, then clamps to [0, 1] (Filter
-Effects 1, section 15.11); in ``color-interpolation-filters="linearRGB"``
-that is linear light.  With ``slope = a`` and ``intercept = (1 - a) Cb``
-(``Cb`` the canvas in linear light) it is ``clip(Cb + a (Cs - Cb))``: the
-paper's formula with its clip, for one canvas colour.  The icon keeps its one
+Effects 1, section 15.11).  With ``slope = a`` and ``intercept = (1 - a) Cb``
+it is ``clip(Cb + a (Cs - Cb))`` for one canvas colour, in the colour space
+``color-interpolation-filters`` names: ``linearRGB`` (``Cb`` in linear light)
+for the ``linear`` pipeline, the paper's formula with its clip; ``sRGB``
+(``Cb`` encoded) for ``css``, the browser's own blend.  The icon keeps its one
 source colour and the filter does the rest.  Antialiased edges are then
 blended by the browser in gamma-encoded sRGB, not in linear light, and
 browsers keep linearRGB filter buffers in 8 bits, so dark channels come out
@@ -14,6 +15,9 @@ up to 18/255 off (docs/export.md measures it; the CSS colours are exact).
 
 from __future__ import annotations
 
+import numpy as np
+
+from alpha_audit.color import srgb_encode
 from alpha_audit.export.escape import xml_attr, xml_id, xml_text
 from alpha_audit.export.table import ExportTable, OneOwner
 
@@ -35,25 +39,28 @@ def render_svg(table: ExportTable) -> str:
     ids = OneOwner("SVG filter id")
     for mode in table.modes:
         alphas = sorted({c.alpha for c in mode.colors})
-        for canvas in mode.canvases:
-            for a in alphas:
-                fid = filter_id(mode.name, canvas.short, a, len(alphas))
-                ids.claim(fid, f"mode {mode.name} on {canvas.token} at alpha {a!r}")
-                lines.append(
-                    f'    <filter id={xml_attr(fid)} color-interpolation-filters="linearRGB" '
-                    f'x="0" y="0" width="100%" height="100%">'
-                )
-                lines.append(
-                    f"      <desc>{xml_text(canvas.token)} {canvas.hex}, alpha {a!r}</desc>"
-                )
-                lines.append("      <feComponentTransfer>")
-                for channel, cb in zip("RGB", canvas.linear, strict=True):
-                    intercept = (1 - a) * cb
+        space = "sRGB" if mode.pipeline == "css" else "linearRGB"
+        for name in mode.names:
+            for canvas in mode.canvases:
+                behind = canvas.linear if mode.pipeline == "linear" else srgb_encode(canvas.linear)
+                for a in alphas:
+                    fid = filter_id(name, canvas.short, a, len(alphas))
+                    ids.claim(fid, f"mode {name} on {canvas.token} at alpha {a!r}")
                     lines.append(
-                        f'        <feFunc{channel} type="linear" slope="{a!r}" '
-                        f'intercept="{intercept!r}"/>'
+                        f'    <filter id={xml_attr(fid)} color-interpolation-filters="{space}" '
+                        f'x="0" y="0" width="100%" height="100%">'
                     )
-                lines.append("      </feComponentTransfer>")
-                lines.append("    </filter>")
+                    lines.append(
+                        f"      <desc>{xml_text(canvas.token)} {canvas.hex}, alpha {a!r}</desc>"
+                    )
+                    lines.append("      <feComponentTransfer>")
+                    for channel, cb in zip("RGB", np.asarray(behind).tolist(), strict=True):
+                        intercept = (1 - a) * cb
+                        lines.append(
+                            f'        <feFunc{channel} type="linear" slope="{a!r}" '
+                            f'intercept="{intercept!r}"/>'
+                        )
+                    lines.append("      </feComponentTransfer>")
+                    lines.append("    </filter>")
     lines += ["  </defs>", "</svg>"]
     return "\n".join(lines) + "\n"

@@ -20,13 +20,17 @@ def _props(mode: ExportMode) -> list[tuple[str, str]]:
 
 
 def render_tailwind(table: ExportTable) -> str:
-    """``@theme { --color-...: #rrggbb; }`` plus per-mode overrides."""
+    """``@theme { --color-...: #rrggbb; }`` plus per-mode overrides (aliases included)."""
     first, *rest = table.modes
     lines = [f"/* alpha-audit export, mode {css_comment(first.name)} in @theme */", "@theme {"]
     lines.extend(f"  {p}: {v};" for p, v in _props(first))
     lines.append("}")
+    if first.aliases:  # the same values, for a page that names the alias
+        lines.append(", ".join(f"[data-theme={css_string(a)}]" for a in first.aliases) + " {")
+        lines.extend(f"  {p}: {v};" for p, v in _props(first))
+        lines.append("}")
     for mode in rest:
-        lines.append(f"[data-theme={css_string(mode.name)}] {{")
+        lines.append(", ".join(f"[data-theme={css_string(n)}]" for n in mode.names) + " {")
         lines.extend(f"  {p}: {v};" for p, v in _props(mode))
         lines.append("}")
     return "\n".join(lines) + "\n"

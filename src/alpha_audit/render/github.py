@@ -10,9 +10,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from alpha_audit.findings import Finding
 from alpha_audit.gate import GateResult
-from alpha_audit.render.common import RenderOptions, display_path, location_text, where_text
+from alpha_audit.render.common import RenderOptions, display_path, location_text
+from alpha_audit.render.lines import LineGroup, by_line, group_message, group_where
 from alpha_audit.results import CheckReport
 from alpha_audit.rules import RULES, Rule
 from alpha_audit.safe_text import safe_text
@@ -51,28 +51,38 @@ def _command(level: str, message: str, *, file: str | None, line: int | None, ti
     return f"::{level} {','.join(props)}::{escape_data(message)}"
 
 
-def _annotation(f: Finding, base: Path | None) -> str:
-    """One failing root cause, annotated on the line that sets its failing value.
+def _annotation(g: LineGroup, base: Path | None) -> str:
+    """One line's failing root causes of one rule, annotated on that line.
 
     That line (an ``alpha:`` or colour in the manifest, a design token, the
     config's ``alpha:``) is what a pull request changes, so GitHub shows the
-    annotation inline in the diff; an SVG alone (its drawing is the cause)
-    gets its file.
+    annotation inline in the diff, once however many icons it fails; an SVG
+    alone (its drawing is the cause) gets its file.
     """
-    message = f"{where_text(f)} ({f.theme} / {f.iconset}): {f.message}"
-    related = [f"{loc.what} at {location_text(loc, base)}" for loc in f.locations[1:]] + [
-        f"SVG {display_path(p, base)}" for p in f.files[:3]
-    ]
+    f = g.worst
+    message = group_message(g)
+    related = []
+    if not g.folded:  # the other places of one root cause (a group's differ by icon)
+        related += [f"{loc.what} at {location_text(loc, base)}" for loc in f.locations[1:]]
+        related += [f"SVG {display_path(p, base)}" for p in f.files[:3]]
     if related:
         message += f" [{'; '.join(related)}]"
     file: str | None
     line: int | None
-    if f.locations:
-        file, line = display_path(f.locations[0].file, base), f.locations[0].line
+    if g.location is not None:
+        file, line = display_path(g.location.file, base), g.location.line
     else:
         file = display_path(f.files[0], base) if f.files else display_path(f.manifest, base)
         line = None
-    return _command("error", message, file=file, line=line, title=f"alpha-audit {f.rule.value}")
+    return _command("error", message, file=file, line=line, title=f"alpha-audit {g.rule.value}")
+
+
+def _file(g: LineGroup, base: Path | None) -> str | None:
+    """The file a note is annotated on: its line's, else its SVG's."""
+    f = g.worst
+    if g.location is not None:
+        return display_path(g.location.file, base)
+    return display_path(f.files[0], base) if f.files else None
 
 
 # GitHub shows at most 10 error and 10 warning annotations per step and drops
@@ -97,10 +107,11 @@ def _capped(level: str, annotations: list[str], rollup: str) -> list[str]:
 def render_report(report: CheckReport, options: RenderOptions) -> str:
     """Annotations GitHub displays: failures and warnings each capped at 10, with a roll-up.
 
-    Up to 9 failing root causes, worst first (10 when they fit), are annotated
-    on the lines that set them; the last error line is the verdict, naming how
-    many were left out (the job summary, written from ``--format markdown``,
-    lists them).
+    Failing root causes are folded by the line that sets them (one annotation per
+    line and rule, with the icon and canvas counts and the worst case); up to 9
+    lines, worst first (10 when they fit), are annotated; the last error line is
+    the verdict, naming how many were left out (the job summary, written from
+    ``--format markdown``, lists them).
     Warnings for unrenderable icons are capped the same way.
     """
     counted = (
@@ -112,22 +123,24 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
 
 
 def gate_annotations(gate: GateResult, options: RenderOptions, passed: str) -> str:
-    """The annotations of ``gate`` (:func:`render_report`); ``passed`` is the passing verdict."""
-    errors = [_annotation(f, options.base) for f in gate.failures]
+    """The annotations of ``gate`` (:func:`render_report`); ``passed`` is the passing verdict.
+
+    Root causes are folded by the line that sets their failing value
+    (:func:`~alpha_audit.render.lines.by_line`): one annotation per line and rule.
+    """
+    failing = by_line(gate.failures)
+    errors = [_annotation(g, options.base) for g in failing]
     warnings = [
         _command(
-            "warning" if w.rule is Rule.UNRENDERABLE else "notice",
-            f"{where_text(w)}: {w.message}",
-            file=display_path(w.locations[0].file if w.locations else w.files[0], options.base)
-            if w.locations or w.files
-            else None,
-            line=w.locations[0].line if w.locations else None,
-            title=f"alpha-audit {w.rule.value}: {RULES[w.rule].help}",
+            "warning" if g.rule is Rule.UNRENDERABLE else "notice",
+            f"{group_where(g)}: {g.worst.message}",
+            file=_file(g, options.base),
+            line=g.location.line if g.location is not None else None,
+            title=f"alpha-audit {g.rule.value}: {RULES[g.rule].help}",
         )
-        for w in gate.warnings
         # A loss reported but not gated (an invisible paint, a sub-tolerance loss) is
         # in the JSON and SARIF reports; an annotation slot is for what needs a look.
-        if w.numbers.get("gated") != "false"
+        for g in by_line(w for w in gate.warnings if w.numbers.get("gated") != "false")
     ]
     lines: list[str] = []
     if gate.passed:
@@ -136,10 +149,12 @@ def gate_annotations(gate: GateResult, options: RenderOptions, passed: str) -> s
         counts = ", ".join(f"{n} {rule}" for rule, n in gate.counts().items())
         # The verdict is an error line too: the findings get the other nine.
         shown = errors if len(errors) < MAX_ANNOTATIONS else errors[: MAX_ANNOTATIONS - 1]
-        verdict = f"gate failed: {len(errors)} root cause(s): {counts}"
+        verdict = (
+            f"gate failed: {len(gate.failures)} root cause(s) on {len(errors)} line(s): {counts}"
+        )
         if len(shown) < len(errors):
             verdict += (
-                f"; {len(errors) - len(shown)} more root cause(s) not annotated "
+                f"; {len(errors) - len(shown)} more line(s) not annotated "
                 "(GitHub shows 10 per step): see the job summary, and the JSON or SARIF "
                 "report for every finding"
             )

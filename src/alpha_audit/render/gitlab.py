@@ -10,7 +10,11 @@ and its target branch to say what is new, so a fingerprint is built from what
 a baseline matches on (theme, icon set, rule, icons: one root cause, whatever
 its canvases) -- never a line number -- and made unique within the report.
 ``location`` is the line that sets the failing value (the ``alpha:`` or
-colour a change edits), so the issue lands on the diff.
+colour a change edits), so the issue lands on the diff; root causes that share
+that line and rule are one issue (:func:`~alpha_audit.render.lines.by_line`:
+a set-wide ``alpha:`` failing every icon is one entry, with the icon and canvas
+counts and the worst case), fingerprinted by the line's file and kind of value,
+its audits and its icons.
 
 Only what fails the gate is an issue: exempted and baselined findings are
 decisions already taken, and Code Quality has no "dismissed" state.  The
@@ -23,15 +27,8 @@ from __future__ import annotations
 from pathlib import Path, PurePosixPath
 from typing import Any
 
-from alpha_audit.findings import Finding
-from alpha_audit.render.common import (
-    RenderOptions,
-    digest,
-    display_path,
-    dumps,
-    finding_fix,
-    where_text,
-)
+from alpha_audit.render.common import RenderOptions, digest, display_path, dumps
+from alpha_audit.render.lines import LineGroup, by_line, group_fix, group_message
 from alpha_audit.results import CheckReport
 from alpha_audit.rules import RULES
 
@@ -51,10 +48,11 @@ def _relative(path: Path | None, base: Path | None) -> str:
     return shown
 
 
-def _where(f: Finding, base: Path | None) -> tuple[str, int]:
+def _where(g: LineGroup, base: Path | None) -> tuple[str, int]:
     """The line that sets the failing value (:attr:`Finding.locations`), else the SVG's first."""
-    if f.locations:
-        return _relative(f.locations[0].file, base), f.locations[0].line
+    f = g.worst
+    if g.location is not None:
+        return _relative(g.location.file, base), g.location.line
     if f.manifest is not None and f.lines:
         return _relative(f.manifest, base), f.lines[0]
     if f.files:
@@ -63,27 +61,30 @@ def _where(f: Finding, base: Path | None) -> tuple[str, int]:
 
 
 def render_report(report: CheckReport, options: RenderOptions) -> str:
-    """Every failing finding as one GitLab Code Quality issue, in the gate's order."""
-    entries: list[tuple[Finding, str]] = [(f, RULES[f.rule].severity) for f in report.gate.failures]
-    entries += [(note, "info") for note in report.gate.warnings]
+    """Every failing line (root causes folded by the line and rule) as one GitLab issue.
+
+    In the gate's order, then the gate's warnings as ``info`` issues, folded alike.
+    """
+    entries: list[tuple[LineGroup, str]] = [
+        (g, RULES[g.rule].severity) for g in by_line(report.gate.failures)
+    ]
+    entries += [(g, "info") for g in by_line(report.gate.warnings)]
     issues: list[dict[str, Any]] = []
     seen: set[str] = set()
-    for f, severity in entries:
-        theme, iconset, rule, icons = f.key
-        identity = "\x1f".join([theme, iconset, rule, *icons])
-        fingerprint = digest(identity)
-        n = 1
+    for g, severity in entries:
+        identity = g.fingerprint(options.base)
+        fingerprint, n = identity, 1
         while fingerprint in seen:  # an icon unrenderable in two themes, say
             n += 1
             fingerprint = digest(f"{identity}\x1e{n}")
         seen.add(fingerprint)
-        path, line = _where(f, options.base)
+        path, line = _where(g, options.base)
+        fix = group_fix(g, report)
         issues.append(
             {
                 "type": "issue",
-                "description": f"{where_text(f)} ({f.theme} / {f.iconset}): {f.message}. "
-                f"Fix: {finding_fix(f, report)}.",
-                "check_name": _CHECK_PREFIX + f.rule.value,
+                "description": f"{group_message(g)}. Fix: {fix}.",
+                "check_name": _CHECK_PREFIX + g.rule.value,
                 "fingerprint": fingerprint,
                 "severity": severity,
                 "location": {"path": path, "lines": {"begin": max(1, line)}},

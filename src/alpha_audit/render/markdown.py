@@ -4,10 +4,12 @@ Layout: a hidden marker (:data:`MARKER`, so a bot updates one sticky comment),
 a headline verdict counting root causes, one line per rule (how many root
 causes fail, how many icons, what is only reported, and the worst one), one
 summary row per audit, then per audit (theme x icon set) a ``<details>``
-section with the failing groups worst first (collisions of many colours,
-confusions, newly failing paints, then losses by size), each a colour (role)
-under one rule with the line that sets it, its canvases, its icons shortened
-to a count and the first names, and its fix (computed in the pipeline,
+section with the failing rows worst first (collisions of many colours,
+confusions, newly failing paints, then losses by size), each the root causes of
+one rule whose failing value one line sets (a set-wide ``alpha:`` failing every
+icon is one row; :func:`~alpha_audit.render.lines.by_line`): their colours, the
+line, the worst canvas and how many, the worst figures, the icons shortened to a
+count and the first names, and the fix (computed in the pipeline,
 :mod:`alpha_audit.fixes`, worded by
 :func:`~alpha_audit.render.common.finding_fix`); then what improved (newly
 passing), exemptions, the baseline, and the notes (hard-coded paints, icons that
@@ -23,7 +25,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 from alpha_audit.findings import Finding
 from alpha_audit.gate import rule_summary
@@ -31,12 +33,12 @@ from alpha_audit.render.common import (
     RenderOptions,
     baselined_text,
     escape_markdown,
-    finding_fix,
     gamut_line,
     location_text,
     shorten_names,
     where_text,
 )
+from alpha_audit.render.lines import LineGroup, by_line, group_fix
 from alpha_audit.results import CheckReport
 from alpha_audit.rows import AuditResult
 from alpha_audit.rules import Rule
@@ -59,15 +61,25 @@ _FRAME = 600  # room kept per audit for its <details> lines and summary (names a
 
 @dataclass
 class _Group:
-    """Findings of one rule for one colour (or colour set) over the same canvases."""
+    """Root causes of one rule whose failing value one line sets (a comment row)."""
 
-    rule: Rule
+    line: LineGroup
     colour: str
     canvas: str
     canvases: int
     numbers: str
-    first: Finding
-    icons: list[str] = field(default_factory=list)
+
+    @property
+    def rule(self) -> Rule:
+        return self.line.rule
+
+    @property
+    def first(self) -> Finding:
+        return self.line.worst
+
+    @property
+    def icons(self) -> list[str]:
+        return list(self.line.icons)
 
 
 def _numbers(f: Finding) -> str:
@@ -87,30 +99,32 @@ def _numbers(f: Finding) -> str:
     return f.message
 
 
+def _colour(f: Finding, roles: dict[str, str]) -> str:
+    """The colour (role) a finding is about, or the colours of a collision, or two roles."""
+    n = f.numbers
+    source = str(n.get("source", ""))
+    if "sources" in n:  # a collision's colours: a few named, the rest counted
+        source = shorten_names(str(n["sources"]).split(", "), 8)
+    role = roles.get(f.icons[0], "") if "source" in n else ""
+    # confusion names its two roles (the numbers' "roles", comma-separated)
+    return f"{role} {source}".strip() or str(n.get("roles", "")).replace(",", " / ")
+
+
 def _groups(findings: Sequence[Finding], roles: dict[str, str]) -> list[_Group]:
-    """Findings that differ only by icon merged, in the order given (worst first)."""
-    groups: dict[tuple[object, ...], _Group] = {}
-    for f in findings:
-        n = f.numbers
-        source = str(n.get("source", ""))
-        if "sources" in n:  # a collision's colours: a few named, the rest counted
-            source = shorten_names(str(n["sources"]).split(", "), 8)
-        role = roles.get(f.icons[0], "") if "source" in n else ""
-        # confusion names its two roles (the numbers' "roles", comma-separated)
-        colour = f"{role} {source}".strip() or str(n.get("roles", "")).replace(",", " / ")
-        key = (
-            f.rule,
-            colour,
-            n.get("sources"),
-            f.canvas,
-            f.canvases,
-            n.get("alpha"),
-            n.get("output"),
+    """One row per line and rule (:func:`~alpha_audit.render.lines.by_line`), worst first."""
+    out = []
+    for g in by_line(findings):
+        colours = list(dict.fromkeys(_colour(f, roles) for f in g.findings))
+        out.append(
+            _Group(
+                g,
+                shorten_names(colours, 4),
+                g.worst.canvas or "",
+                len(g.canvases),
+                _numbers(g.worst),
+            )
         )
-        if key not in groups:
-            groups[key] = _Group(f.rule, colour, f.canvas or "", len(f.canvases), _numbers(f), f)
-        groups[key].icons.extend(f.icons)
-    return list(groups.values())
+    return out
 
 
 def _where(f: Finding, options: RenderOptions) -> str:
@@ -271,7 +285,7 @@ def render_markdown(
         section = _Budget((budget.limit - budget.size - _FRAME * remaining) // remaining)
         rows = []
         for g in groups:
-            text = finding_fix(g.first, report)
+            text = group_fix(g.line, report)
             rows.append(
                 "| "
                 + " | ".join(

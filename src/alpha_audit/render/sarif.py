@@ -1,7 +1,12 @@
 """SARIF 2.1.0 for code-scanning dashboards (GitHub, GitLab, Azure DevOps).
 
-Each finding (one root cause, folded over canvases) is a result whose
-location is the line that sets its failing value
+Root causes (each folded over canvases) that share the line setting their
+failing value and a rule are one result (:func:`~alpha_audit.render.lines.by_line`;
+GitHub code scanning makes every result with its own fingerprint an alert of its
+own, shown as its own annotation in a pull request's diff, so a set-wide ``alpha:``
+failing 69 icons would be 69 alerts on one line), with every icon, canvas and the
+count of root causes in its ``properties`` and the worst one's figures.  Its
+location is the line that sets the failing value
 (:attr:`~alpha_audit.findings.Finding.locations`: the ``alpha:`` that
 applies, the palette entry, colour or design token of its colour, the
 palette entries of both roles of a confusion), with the value's exact region
@@ -14,7 +19,8 @@ ids are opaque (``AA001`` ...), names readable, and each rule has
 Exempted and baselined findings stay in the log with a ``suppressions`` entry
 (so dashboards show them as dismissed, with the reason), and every result has a
 ``partialFingerprints`` entry built from what a baseline matches on (theme,
-icon set, rule, icons), never from canvases or line numbers.
+icon set, rule, icons; a folded result: its rule, the file and kind of value
+of its line, its audits and icons), never from canvases or line numbers.
 Reported rules (hard-coded paints, icons that could not be rendered, losses
 that are reported but not gated) are results of level ``note`` and
 ``warning``.  A failing finding whose fix is an exact edit of a written value
@@ -32,16 +38,9 @@ from pathlib import Path
 from typing import Any
 from urllib.parse import quote
 
-from alpha_audit.findings import Finding
 from alpha_audit.model import Edit, Location, Span
-from alpha_audit.render.common import (
-    RenderOptions,
-    baselined_text,
-    digest,
-    dumps,
-    finding_fix,
-    where_text,
-)
+from alpha_audit.render.common import RenderOptions, baselined_text, dumps
+from alpha_audit.render.lines import LineGroup, by_line, group_fix, group_message
 from alpha_audit.results import CheckReport
 from alpha_audit.rules import RULES, Level, Rule
 
@@ -57,6 +56,9 @@ SARIF_SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"  # OASIS SARIF 2.
 # consumer (the checkout); deliberately given no "uri", so the log carries no
 # absolute path of the machine that wrote it.
 SRCROOT = "%SRCROOT%"
+# SVG files a folded result names beside its line: a set-wide alpha failing thousands of
+# icons stays one result of bounded size (every icon is in its properties).
+MAX_FILES = 12
 
 # RFC 3986 section 3.3: pchar = unreserved / pct-encoded / sub-delims / ":" / "@".
 # ":" is encoded too: in a relative reference's first segment it would read as a
@@ -155,12 +157,6 @@ def _unique(locations: list[dict[str, Any]]) -> list[dict[str, Any]]:
     return list(out.values())
 
 
-def _fingerprint(f: Finding) -> str:
-    theme, iconset, rule, icons = f.key
-    text = "\x1f".join([theme, iconset, rule, *icons])
-    return digest(text)
-
-
 def _place(loc: Location, base: Path | None) -> dict[str, Any]:
     """A location with the value's exact region when known, else its line."""
     if loc.span is not None:
@@ -169,7 +165,7 @@ def _place(loc: Location, base: Path | None) -> dict[str, Any]:
 
 
 def _result(
-    f: Finding,
+    g: LineGroup,
     index: int,
     base: Path | None,
     level: str = "error",
@@ -177,30 +173,31 @@ def _result(
     edits: tuple[Edit, ...] = (),
     baselined: str = "in the baseline",
 ) -> dict[str, Any]:
+    f = g.worst
     places = [_place(loc, base) for loc in f.locations]
     places += [_location(path, base, line) for path, line in f.sources]
     if f.manifest is not None:
         places += [_location(f.manifest, base, line) for line in f.lines]
-    places += [_location(p, base) for p in f.files]
+    files = list(dict.fromkeys(p for one in g.findings for p in one.files))
+    places += [_location(p, base) for p in (files[:MAX_FILES] if g.folded else files)]
     places = _unique(places)
     if not places and f.manifest is not None:
         places = [_location(f.manifest, base)]
     result: dict[str, Any] = {
-        "ruleId": RULES[f.rule].sarif_id,
+        "ruleId": RULES[g.rule].sarif_id,
         "ruleIndex": index,
         "level": level,
-        "message": {
-            "text": f"{where_text(f)} ({f.theme} / {f.iconset}): {f.message}"
-            + (f". Fix: {fix}" if fix else "")
-        },
+        "message": {"text": group_message(g) + (f". Fix: {fix}" if fix else "")},
         "locations": places[:1],
-        "partialFingerprints": {"alphaAuditFinding/v2": _fingerprint(f)},
+        "partialFingerprints": {"alphaAuditFinding/v2": g.fingerprint(base)},
         "properties": {
             "theme": f.theme,
             "iconset": f.iconset,
             "canvas": f.canvas,
-            "canvases": list(f.canvases),
-            "icons": list(f.icons),
+            "canvases": list(g.canvases),
+            "icons": list(g.icons),
+            "rootCauses": len(g.findings),
+            **({"audits": [list(a) for a in g.audits]} if len(g.audits) > 1 else {}),
             **dict(f.numbers),
         },
     }
@@ -214,6 +211,12 @@ def _result(
     elif f.baselined:
         result["suppressions"] = [{"kind": "external", "justification": baselined}]
     return result
+
+
+def _shared_edits(g: LineGroup) -> tuple[Edit, ...]:
+    """The exact edits every root cause of the group carries: those known to clear it all."""
+    first, *rest = (f.edits for f in g.findings)
+    return tuple(e for e in first if all(e in other for other in rest))
 
 
 def _rule(rule: Rule, level: str) -> dict[str, Any]:
@@ -247,19 +250,19 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
     why = baselined_text(report.gate)
     results = [
         _result(
-            f,
-            index[f.rule],
+            g,
+            index[g.rule],
             options.base,
             # Each failure's message ends with its fix, in the PR comment's words.
-            fix=finding_fix(f, report) if f.fails else None,
-            edits=f.edits if f.fails else (),
+            fix=group_fix(g, report) if g.worst.fails else None,
+            edits=_shared_edits(g) if g.worst.fails else (),
             baselined=why,
         )
-        for f in report.gate.findings
+        for g in by_line(report.gate.findings)
     ]
-    for f in report.gate.warnings:
-        level = "warning" if f.rule is Rule.UNRENDERABLE else "note"
-        results.append(_result(f, index[f.rule], options.base, level))
+    for g in by_line(report.gate.warnings):
+        level = "warning" if g.rule is Rule.UNRENDERABLE else "note"
+        results.append(_result(g, index[g.rule], options.base, level))
     run: dict[str, Any] = {
         "tool": {
             "driver": {

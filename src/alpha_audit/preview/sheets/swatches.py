@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from alpha_audit.color import contrast_ratio, parse_color, shipped, srgb_decode, to_8bit
+from alpha_audit.color import judged_contrast, parse_color, srgb_decode, to_8bit
 from alpha_audit.color.composite import Pipeline, composite_paint
 from alpha_audit.load.paints import CURRENT_COLOR
 from alpha_audit.model import IconSet
@@ -164,7 +164,7 @@ def draw_swatches(
         coeff = np.full(len(colors), float(alpha))
         pixels = composite_drawings(solids, side, background, coeff, pipeline)
         output = composite_paint(sources, background, coeff, 1.0, pipeline)
-        contrast = contrast_ratio(shipped(output), shipped(background))
+        contrast = judged_contrast(output, background)
         for j in range(len(colors)):
             x = MARGIN + left + j * cell_w
             source = (float(sources[j, 0]), float(sources[j, 1]), float(sources[j, 2]))
