@@ -9,9 +9,10 @@ once: :func:`by_line` folds findings of one rule and one standing (failing,
 exempted with one reason, baselined, reported) by that line, keeping the order
 given (worst first), so each :class:`LineGroup` is one GitHub annotation, one GitLab
 Code Quality issue, one SARIF result and one pull-request comment row, with the
-icon and canvas counts and the worst case.  A finding with no location is a group
-of its own.  The findings themselves (their keys, the JSON report, baselines) are
-unchanged: this is how they are shown.
+icon and canvas counts and the worst case.  A finding with no location, or whose
+first location names where an icon is drawn rather than a value (an SVG, a story
+or page file), is a group of its own.  The findings themselves (their keys, the
+JSON report, baselines) are unchanged: this is how they are shown.
 
 Pure functions of the findings given; the lead's ``render`` command feeds its
 findings through the same renderers.
@@ -96,6 +97,12 @@ class LineGroup:
         return digest("\x1f".join(parts))
 
 
+# Locations that name where an icon is drawn, not a value that makes it fail (an SVG,
+# a story or page file at its first line): findings there are root causes of their
+# own, never folded together.
+_NOT_VALUES = frozenset({"svg", "story", "page"})
+
+
 def _standing(f: Finding) -> tuple[object, ...]:
     """What a report does with a finding: a group never mixes failing and dismissed ones."""
     return (f.level, f.exemption, f.baselined)
@@ -117,7 +124,7 @@ def by_line(findings: Iterable[Finding]) -> list[LineGroup]:
     """
     groups: dict[tuple[object, ...], list[Finding]] = {}
     for n, f in enumerate(findings):
-        if f.locations:
+        if f.locations and f.locations[0].what not in _NOT_VALUES:
             at = f.locations[0]
             key: tuple[object, ...] = (f.rule, _standing(f), at.file, at.line)
         else:
