@@ -123,3 +123,24 @@ def test_the_comment_has_one_row_per_rule_on_the_alpha_line(reports: dict[str, s
     assert per_rule == Counter(dict.fromkeys(_failing_on_alpha_line(reports), 1))
     (loss,) = [r for r in failing_rows if r[3] == "loss"]
     assert loss[5].startswith("12 icons: ")
+
+
+def test_findings_located_only_at_a_story_or_svg_file_never_fold() -> None:
+    """Two icons of one story, each failing on its own: the story file at line 1 is where
+    they are drawn, not a value they share, so each stays a root cause of its own."""
+    from alpha_audit.findings import Finding
+    from alpha_audit.model import Location
+    from alpha_audit.render.lines import by_line
+    from alpha_audit.rules import Rule
+
+    story = Location(Path("stories/icons.stories.js"), 1, "story")
+    found = [
+        Finding(Rule.BELOW_THRESHOLD, "dark", "icons--toolbar", "#0d1117", (i,), "m",
+                locations=(story,))
+        for i in ("bell", "search")
+    ]  # fmt: skip
+    assert [g.icons for g in by_line(found)] == [("bell",), ("search",)]
+    value = Location(Path("theme.css"), 12, "css-colour")
+    shared = [Finding(f.rule, f.theme, f.iconset, f.canvas, f.icons, f.message,
+                      locations=(value, story)) for f in found]  # fmt: skip
+    assert [g.icons for g in by_line(shared)] == [("bell", "search")]
