@@ -142,7 +142,9 @@ class Chromium(Browser):
         return [
             f"--proxy-server=http://{self.options.proxy}",
             f"--proxy-bypass-list={bypass}",
-            "--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE localhost, EXCLUDE 127.0.0.1",
+            # IPv6 loopback is excluded as "::1" (not "[::1]", which Chromium never matches).
+            "--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE localhost, EXCLUDE 127.0.0.1, "
+            "EXCLUDE ::1",
             "--force-webrtc-ip-handling-policy=disable_non_proxied_udp",
             "--dns-prefetch-disable",
         ]

@@ -33,7 +33,7 @@ from alpha_audit.pages.mapping import ManifestIndex
 from alpha_audit.pages.measure import PageContext, measure_capture
 from alpha_audit.pages.measured import BlockedRequest, MeasuredPaint, PageProblem, RenderResult
 from alpha_audit.pages.server import BlockingProxy, PageServer
-from alpha_audit.pages.sources import FolderSource, StorybookSource, Target, targets
+from alpha_audit.pages.sources import FolderSource, StorybookSource, Target, targets, url_origin
 from alpha_audit.pages.states import State, globals_param
 
 __all__ = ["Job", "audit_pages", "plan_jobs"]
@@ -203,11 +203,10 @@ class _Worker:
             self.proxy.close()
 
 
-def _mounts(config: RenderConfig) -> list[Path]:
-    return [
-        s.folder if isinstance(s, StorybookSource | FolderSource) else Path(config.root)
-        for s in config.sources
-    ]
+def _mounts(config: RenderConfig) -> list[Path | None]:
+    """Each source's folder on the page server; a URL source has none (its own server)."""
+    return [s.folder if isinstance(s, StorybookSource | FolderSource) else None
+            for s in config.sources]  # fmt: skip
 
 
 def audit_pages(
@@ -242,7 +241,7 @@ def audit_pages(
         direct = tuple(
             dict.fromkeys(
                 [server.address, server.address.replace("127.0.0.1", "localhost")]
-                + [j.target.path.split("/")[2] for j in jobs if j.target.mount is None]
+                + [url_origin(j.target.path) for j in jobs if j.target.mount is None]
             )
         )
         workers = [
