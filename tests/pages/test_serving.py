@@ -163,8 +163,15 @@ def test_every_mount_and_path_form_serves_the_folders_pages_and_nothing_else(tre
 def test_the_project_root_as_a_source_serves_no_dot_file_and_no_link_out(tree):
     root, _ = tree
     with PageServer([root], root) as server:
-        for path in ("/0/.git/config", "/0/.env", "/0/site/.env", "/0/site/link-git",
-                     "/0/site/link-outside", "/0/site/link-dot", "/0/site/.hidden/x.html"):
+        for path in (
+            "/0/.git/config",
+            "/0/.env",
+            "/0/site/.env",
+            "/0/site/link-git",
+            "/0/site/link-outside",
+            "/0/site/link-dot",
+            "/0/site/.hidden/x.html",
+        ):
             assert _get(server.address, path)[0] == 404, path  # fmt: skip
         assert _get(server.address, "/0/site/a.html") == (200, b"OK-a")
         assert _get(server.address, "/0/private.txt")[0] == 200  # a plain file of the folder
