@@ -110,6 +110,8 @@ class Chromium(Browser):
                     *_FLAGS,
                     *self._network_flags(),
                     f"--user-data-dir={self.workdir / 'profile'}",
+                    # Crash reports go to the browser's folder too (HOME is there as well).
+                    f"--crash-dumps-dir={self.workdir / 'crashes'}",
                     "about:blank",
                 ],
                 env=self.child_env(),

@@ -15,8 +15,9 @@ Three layers, each covering what the one before cannot:
   holds the read end of a pipe: when alpha-audit is gone for any reason
   (SIGKILL included) it ends the groups and removes the browser's folder.
 
-Children also get ``TMPDIR`` inside the browser's own folder, so what they
-leave there (Chromium's ``org.chromium.Chromium.*``) goes with it.
+Children also get ``TMPDIR`` in the browser's own short runtime folder and
+``HOME`` inside the browser's folder, so what they leave there (Chromium's
+``org.chromium.Chromium.*``, crash report folders) goes with it.
 """
 
 from __future__ import annotations
@@ -132,14 +133,14 @@ def resident_bytes(pids: Sequence[int]) -> int:
 class ProcessGroup:
     """Child processes, each started in a new session, ended together.
 
-    ``folder`` is removed with them by the reaper should alpha-audit die
-    before ``close``.
+    ``folder`` (and each folder given to :meth:`also_remove`) is removed with
+    them by the reaper should alpha-audit die before ``close``.
     """
 
     def __init__(self, folder: Path | None = None) -> None:
         self._processes: list[subprocess.Popen[bytes]] = []
         self._reaper: list[subprocess.Popen[bytes]] = []
-        self._folder = folder
+        self._folders = [] if folder is None else [folder]
         # A finalizer also runs at interpreter exit (weakref.finalize.atexit is True).
         self._finalizer = weakref.finalize(
             self, ProcessGroup._end_all, self._processes, self._reaper
@@ -158,13 +159,20 @@ class ProcessGroup:
             except OSError as exc:
                 raise BrowserError(f"cannot start the clean-up watcher: {exc}") from exc
             self._reaper.append(reaper)
-            if self._folder is not None:
-                self._tell_reaper(f"folder {self._folder}")
+            for folder in self._folders:
+                self._tell_reaper(f"folder {folder}")
         stdin = self._reaper[0].stdin
         assert stdin is not None
         with contextlib.suppress(OSError):
             stdin.write(line.encode() + b"\n")
             stdin.flush()
+
+    def also_remove(self, folder: Path) -> None:
+        """Have the reaper remove ``folder`` too (before any process starts)."""
+        if folder not in self._folders:
+            self._folders.append(folder)
+            if self._reaper:
+                self._tell_reaper(f"folder {folder}")
 
     def start(
         self,
