@@ -44,9 +44,7 @@ def fresh_home(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
     return home
 
 
-def test_each_engine_starts_with_a_long_tmpdir_and_leaves_no_trace(
-    engine, long_tmpdir, fresh_home
-):
+def test_each_engine_starts_with_a_long_tmpdir_and_leaves_no_trace(engine, long_tmpdir, fresh_home):
     name, installation = engine
     with ENGINES[name](installation, timeout=60) as browser:
         runtime = browser.runtime
