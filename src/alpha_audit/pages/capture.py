@@ -1,9 +1,11 @@
 """One page in one state: load it, find its icons, capture it as drawn and with them hidden.
 
-Exactly two screenshots per page and state, of the box holding every icon
-(plus a margin for the ring around them), at the browser's device scale: the
-icons as drawn, then all of them ``visibility: hidden`` at once.  What the
-second shows is the backdrop the browser composited behind them.
+Once the page is held still (:mod:`alpha_audit.pages.stillness`), three
+screenshots per page and state, of the box holding every icon (plus a margin
+for the ring around them), at the browser's device scale: the icons as drawn,
+then all of them ``visibility: hidden`` at once, then as drawn again.  What
+the second shows is the backdrop the browser composited behind them; the third
+must equal the first, or the page state is a problem (it still moves).
 """
 
 from __future__ import annotations
@@ -21,6 +23,7 @@ from PIL import Image
 
 from alpha_audit.browser import Browser, BrowserError, Clip
 from alpha_audit.pages.states import State
+from alpha_audit.pages.stillness import check_still, hold_still
 
 __all__ = ["MARGIN", "Capture", "FoundIcon", "capture_page"]
 
@@ -136,6 +139,7 @@ def capture_page(
             raise BrowserError("the story failed to render (Storybook shows its error display)")
     _mark_html(browser, state)
     browser.evaluate(_SETTLED, isolated=isolated)
+    hold_still(browser)  # before the icons' boxes are read: a finished animation moves them
     browser.evaluate(f"(globalThis.{_PROBE} = {_probe_source()}, true)", isolated=isolated)
     options = {"selector": selector, "attribute": attribute, "maxSize": max_icon_size}
     found: Any = browser.evaluate(f"{_PROBE}.find({json.dumps(options)})", isolated=isolated)
@@ -147,6 +151,7 @@ def capture_page(
         browser.set_viewport(width, min(page_h, 4096), scale)
         height = min(page_h, 4096)
         browser.evaluate(_SETTLED, isolated=isolated)
+        hold_still(browser)
         found = browser.evaluate(f"{_PROBE}.find({json.dumps(options)})", isolated=isolated)
     icons = [
         FoundIcon(
@@ -165,6 +170,8 @@ def capture_page(
     drawn = _png(browser.screenshot(clip))
     browser.evaluate(f"{_PROBE}.hide(true)", isolated=isolated)
     hidden = _png(browser.screenshot(clip))
+    browser.evaluate(f"{_PROBE}.hide(false)", isolated=isolated)
+    check_still(drawn, _png(browser.screenshot(clip)))
     expected = (clip.height * scale, clip.width * scale)
     if drawn.shape[:2] != expected or hidden.shape != drawn.shape:
         raise BrowserError(

@@ -35,6 +35,7 @@ from alpha_audit.pages.measured import BlockedRequest, MeasuredPaint, PageProble
 from alpha_audit.pages.server import BlockingProxy, PageServer
 from alpha_audit.pages.sources import FolderSource, StorybookSource, Target, targets, url_origin
 from alpha_audit.pages.states import State, globals_param
+from alpha_audit.pages.stillness import PageUnstable
 
 __all__ = ["Job", "audit_pages", "plan_jobs"]
 
@@ -177,7 +178,8 @@ class _Worker:
                 )
         except BrowserError as exc:
             reason = self.guard.reason or str(exc)
-            self.close_browser()
+            if not isinstance(exc, PageUnstable):  # a page that moves leaves its browser fine
+                self.close_browser()
             problem = PageProblem(job.target.name, job.state.name, job.engine, url, reason)
             return [], problem, self.proxy.take(), 0
         page = PageContext(
