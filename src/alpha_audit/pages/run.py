@@ -36,10 +36,12 @@ from alpha_audit.pages.server import BlockingProxy, PageServer
 from alpha_audit.pages.sources import FolderSource, StorybookSource, Target, targets, url_origin
 from alpha_audit.pages.states import State, globals_param
 from alpha_audit.pages.stillness import PageUnstable
+from alpha_audit.safe_text import shorten
 
-__all__ = ["Job", "audit_pages", "plan_jobs"]
+__all__ = ["MAX_REASON", "Job", "audit_pages", "plan_jobs"]
 
 _GUARD_PERIOD = 0.25  # seconds between checks of a page's time and its browser's memory
+MAX_REASON = 500  # characters of a page problem's message
 
 
 @dataclass(frozen=True)
@@ -177,7 +179,8 @@ class _Worker:
                     max_icon_size=self.config.max_icon_size,
                 )
         except BrowserError as exc:
-            reason = self.guard.reason or str(exc)
+            # The message may quote the page (a script's error): bounded like its names.
+            reason = shorten(self.guard.reason or str(exc), MAX_REASON)
             if not isinstance(exc, PageUnstable):  # a page that moves leaves its browser fine
                 self.close_browser()
             problem = PageProblem(job.target.name, job.state.name, job.engine, url, reason)
