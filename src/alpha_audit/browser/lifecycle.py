@@ -7,10 +7,11 @@ Three layers, each covering what the one before cannot:
   processes, web processes and helpers are ended with their group; ``close``
   sends SIGTERM, waits, then SIGKILLs.  It runs from ``Browser.close``, from a
   finaliser and at interpreter exit.
-* :func:`ending_on_signals` turns SIGTERM and SIGHUP (a CI cancel, ``timeout``,
-  a container stop, a closed terminal) into an exception, as Python already
-  does for SIGINT, so ``with`` blocks close their browsers; the process then
-  dies of the same signal, as the caller expects.
+* :func:`alpha_audit.signals.ending_on_signals` (around every command) turns
+  SIGTERM and SIGHUP (a CI cancel, ``timeout``, a container stop, a closed
+  terminal) into an exception, as Python already does for SIGINT, so ``with``
+  blocks close their browsers; the process then dies of the same signal, as
+  the caller expects.
 * a *reaper* (``_reaper.py``) per process group, started in its own session,
   holds the read end of a pipe: when alpha-audit is gone for any reason
   (SIGKILL included) it ends the groups and removes the browser's folder.
@@ -27,20 +28,16 @@ import os
 import signal
 import subprocess
 import sys
-import threading
 import time
 import weakref
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 from pathlib import Path
-from types import FrameType
 
 from alpha_audit.errors import AlphaAuditError
 
 __all__ = [
     "BrowserError",
     "ProcessGroup",
-    "Terminated",
-    "ending_on_signals",
     "group_members",
     "resident_bytes",
 ]
@@ -52,50 +49,6 @@ _REAPER = Path(__file__).with_name("_reaper.py")
 
 class BrowserError(AlphaAuditError):
     """A browser engine could not be started, did not answer in time, or a script failed."""
-
-
-class Terminated(BaseException):
-    """SIGTERM or SIGHUP arrived: unwind (closing every browser), then die of the signal."""
-
-    def __init__(self, signum: int) -> None:
-        super().__init__(f"received {signal.Signals(signum).name}")
-        self.signum = signum
-
-
-@contextlib.contextmanager
-def ending_on_signals() -> Iterator[None]:
-    """Within the block, SIGTERM and SIGHUP unwind like SIGINT, then end the process.
-
-    On the way out the signal's default action is restored and the signal sent
-    again, so the exit status says "killed by SIGTERM" (143 in a shell) as
-    it would have without alpha-audit's clean-up; SIGINT (KeyboardInterrupt)
-    does the same.  Only the main thread can receive signals; elsewhere the
-    block runs unchanged.
-    """
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-
-    def raise_terminated(signum: int, frame: FrameType | None) -> None:
-        raise Terminated(signum)
-
-    handled = (signal.SIGTERM, signal.SIGHUP)
-    previous = {sig: signal.signal(sig, raise_terminated) for sig in handled}
-    received: int | None = None
-    try:
-        yield
-    except Terminated as exc:
-        received = exc.signum
-    except KeyboardInterrupt:
-        received = signal.SIGINT
-    finally:
-        for sig, handler in previous.items():
-            signal.signal(sig, handler)
-    if received is not None:
-        signal.signal(received, signal.SIG_DFL)
-        os.kill(os.getpid(), received)
-        time.sleep(1.0)  # the signal is delivered on return to the interpreter loop
-        raise SystemExit(128 + received)  # pragma: no cover - only if the signal is blocked
 
 
 def group_members(group: int) -> list[int]:

@@ -229,8 +229,12 @@ def check_command(
     project = resolve_config(overrides, Path.cwd())
     known = None
     if base is not None:
-        known, why = base_baseline(overrides, Path.cwd(), base, pool=ctx.obj)
-        stderr_note(why or f"base {base}: {len(known.keys)} failing root cause(s) there")
+        audit = base_baseline(overrides, Path.cwd(), base, pool=ctx.obj)
+        for note in audit.notes:
+            stderr_note(note)
+        known = audit.baseline
+        if audit.audited:
+            stderr_note(f"base {base}: {len(known.keys)} failing root cause(s) there")
     elif project.baseline is not None and write_baseline is None:
         known = read_baseline(project.baseline)
         if known.legacy:

@@ -36,6 +36,7 @@ from alpha_audit.cli.options import ARGS, Command, untyped_flags
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.errors import AlphaAuditError
 from alpha_audit.safe_text import safe_text
+from alpha_audit.signals import ending_on_signals
 
 __all__ = ["COMMANDS", "ExitStatus", "app", "application", "main"]
 
@@ -341,4 +342,7 @@ def main(argv: Sequence[str] | None = None) -> None:
     args = sys.argv[1:] if argv is None else list(argv)
     name = next((a for a in args if not a.startswith("-")), None)
     chosen = application([name]) if name in COMMANDS else _every_command()
-    chosen(args=args, prog_name="alpha-audit")
+    # SIGTERM and SIGHUP unwind every command like Ctrl-C: temporary folders (the base
+    # revision of --base), browsers and outputs are cleaned up before the process dies.
+    with ending_on_signals():
+        chosen(args=args, prog_name="alpha-audit")

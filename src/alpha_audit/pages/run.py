@@ -23,7 +23,6 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 from alpha_audit.browser import Browser, BrowserError, LaunchOptions, engine_class
-from alpha_audit.browser.lifecycle import ending_on_signals
 from alpha_audit.errors import AlphaAuditError, UsageError
 from alpha_audit.model import IconSet
 from alpha_audit.pages.capture import capture_page
@@ -37,6 +36,7 @@ from alpha_audit.pages.sources import FolderSource, StorybookSource, Target, tar
 from alpha_audit.pages.states import State, globals_param
 from alpha_audit.pages.stillness import PageUnstable
 from alpha_audit.safe_text import shorten
+from alpha_audit.signals import ending_on_signals
 
 __all__ = ["MAX_REASON", "Job", "audit_pages", "plan_jobs"]
 
