@@ -46,13 +46,18 @@ class AlphaAuditError(Exception):
         self.line = line
         self.key = key
 
-    def where(self) -> str:
-        """``file:line: key`` prefix, omitting what is unknown (escaped like the message)."""
+    def where(self, shown_path: str | None = None) -> str:
+        """``file:line: key`` prefix, omitting what is unknown (escaped like the message).
+
+        ``shown_path`` names the file instead of ``path`` as given (the command
+        line shows it relative to the project).
+        """
         from alpha_audit.safe_text import safe_text
 
         parts = []
         if self.path is not None:
-            parts.append(f"{self.path}:{self.line}" if self.line else str(self.path))
+            file = shown_path or str(self.path)
+            parts.append(f"{file}:{self.line}" if self.line else file)
         if self.key:
             parts.append(self.key)
         return safe_text(": ".join(parts))

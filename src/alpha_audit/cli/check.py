@@ -34,6 +34,7 @@ from alpha_audit.cli.options import (
     flag,
     given_order,
     in_range,
+    path_value,
 )
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.ranges import ALPHA
@@ -111,11 +112,18 @@ def check_command(
     iconset: IconsetArgument = None,
     themes: Annotated[
         list[Path] | None,
-        typer.Option("--theme", metavar="PATH", help="Another theme to audit (repeatable)."),
+        typer.Option(
+            "--theme",
+            metavar="PATH",
+            parser=path_value,
+            help="Another theme to audit (repeatable).",
+        ),
     ] = None,
     iconsets: Annotated[
         list[Path] | None,
-        typer.Option("--iconset", metavar="PATH", help="Another icon set (repeatable)."),
+        typer.Option(
+            "--iconset", metavar="PATH", parser=path_value, help="Another icon set (repeatable)."
+        ),
     ] = None,
     config: ConfigOption = None,
     alpha: Annotated[
@@ -158,6 +166,8 @@ def check_command(
         Path | None,
         typer.Option(
             "--baseline",
+            parser=path_value,
+            metavar="<path>",
             help="Fail only on findings not in this baseline file.",
             show_default="the config's baseline:",
         ),

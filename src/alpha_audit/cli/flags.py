@@ -8,6 +8,7 @@ them as the flags a command-line user types instead.
 from __future__ import annotations
 
 import re
+from pathlib import Path
 
 from alpha_audit.errors import AlphaAuditError
 
@@ -34,14 +35,19 @@ FLAGS: dict[str, str] = {
 _PHRASE = re.compile(r"`([^`\n]+)`")
 
 
-def cli_message(exc: AlphaAuditError) -> str:
+def cli_message(exc: AlphaAuditError, base: Path | None = None) -> str:
     """``str(exc)`` with each known backticked parameter phrase replaced by its flag.
 
+    The file is named relative to ``base`` (the project root) when it lies
+    inside it, however it was found (a config resolves its paths):
+
     >>> from alpha_audit.errors import UsageError
-    >>> exc = UsageError("already exists; pass `overwrite=True` to replace it", path="r.json")
-    >>> cli_message(exc)
+    >>> exc = UsageError("already exists; pass `overwrite=True` to replace it", path="/p/r.json")
+    >>> cli_message(exc, Path("/p"))
     'r.json: already exists; pass --force to replace it'
     """
-    where = exc.where()
+    from alpha_audit.render.common import display_path
+
+    where = exc.where(display_path(exc.path, base))
     message = _PHRASE.sub(lambda m: FLAGS.get(m.group(1), m.group(0)), exc.message)
     return f"{where}: {message}" if where else message
