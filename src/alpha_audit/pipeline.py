@@ -344,7 +344,14 @@ def base_baseline(
                 for result in audits(project, work, pool=pool):
                     found += collect([result], project.policy, seen=found)
         except AlphaAuditError as exc:
-            why = f"the base revision {ref} could not be audited ({exc}); every finding is new"
+            # Files of the revision are named as in the repository, not in our folder.
+            path = exc.path
+            shown = (
+                path.relative_to(tree).as_posix() if path and path.is_relative_to(tree) else None
+            )
+            where = exc.where(shown)
+            reason = f"{where}: {exc.message}" if where else exc.message
+            why = f"the base revision {ref} could not be audited ({reason}); every finding is new"
             return BaseAudit(Baseline(kind="base", name=ref), (*notes, why), audited=False)
     keys = frozenset(f.key for f in found if f.level is Level.FAIL)
     return BaseAudit(Baseline(keys=keys, kind="base", name=ref), tuple(notes), audited=True)

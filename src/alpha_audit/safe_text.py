@@ -160,7 +160,7 @@ def shorten(text: str, limit: int = MAX_NAME) -> str:
     from another; the result has exactly ``limit`` characters.
 
     >>> shorten("html > body > div#" + "x" * 300 + " > svg", 40)
-    'html > body > div#xxxx…xxxxxxxxxxxx > svg'
+    'html > body > div#xx…xxxxxxxxxxxxx > svg'
     >>> shorten("short", 40)
     'short'
     """

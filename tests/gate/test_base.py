@@ -125,6 +125,17 @@ def test_a_base_without_the_config_makes_every_finding_new(repo: Path) -> None:
     assert len(json.loads(result.stdout)["gate"]["failures"]) == 2
 
 
+def test_a_broken_file_of_the_base_is_named_as_in_the_repository(repo: Path) -> None:
+    (repo / "theme.yaml").write_text("name: t\ncanvases: {}\n")
+    _git(repo, "add", "theme.yaml")
+    _git(repo, "-c", "user.email=a@b", "-c", "user.name=t", "commit", "-qm", "broken")
+    (repo / "theme.yaml").write_text(THEME)  # the change repairs it
+    result = runner.invoke(app, ["check", "--base", "HEAD", "-f", "json"])
+    assert result.exit_code == 1, result.output
+    assert "could not be audited (theme.yaml:2: canvases: " in result.stderr, result.stderr
+    assert "alpha-audit-base-" not in result.stderr
+
+
 @pytest.mark.parametrize(
     "ref", ["-x", "--output=/tmp/x", "HEAD..main", "main:set.yaml", "HEAD@{1}", "a b", "", "x/"]
 )
