@@ -10,7 +10,9 @@ wrote ``Crash Reports`` (and Firefox ``Downloads``) into the user's home on ever
 from __future__ import annotations
 
 import os
+import shutil
 import tempfile
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -22,15 +24,19 @@ LONG = 100  # characters of the caller's TMPDIR
 
 
 @pytest.fixture
-def long_tmpdir(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
-    """A TMPDIR of exactly :data:`LONG` characters, for this process and its children."""
-    base = tmp_path / "t"
-    folder = Path(str(base) + "x" * (LONG - len(str(base))))
+def long_tmpdir(monkeypatch: pytest.MonkeyPatch) -> Iterator[Path]:
+    """A TMPDIR of exactly :data:`LONG` characters, for this process and its children
+    (made under /tmp: the suite's own TMPDIR may already be that long)."""
+    base = Path(tempfile.mkdtemp(prefix="alpha-audit-long-", dir="/tmp"))
+    folder = base / ("x" * (LONG - len(str(base)) - 1))
     folder.mkdir()
     assert len(str(folder)) == LONG
     monkeypatch.setenv("TMPDIR", str(folder))
     monkeypatch.setattr(tempfile, "tempdir", None)  # gettempdir() reads TMPDIR again
-    return folder
+    try:
+        yield folder
+    finally:
+        shutil.rmtree(base, ignore_errors=True)
 
 
 @pytest.fixture
