@@ -268,6 +268,9 @@ class RenderCache:
             try:
                 _safe_files(path, max_bytes * _OVERSIZE)
                 return cls(_connect(path), path, max_bytes)
+            except sqlite3.OperationalError as exc:  # busy, locked, no space: not the file's fault
+                _note(f"render cache {path} not used ({exc}); this run renders every icon")
+                return None
             except (sqlite3.DatabaseError, _NotOurs) as exc:
                 if attempt:
                     _note(f"render cache {path} not used ({exc}); this run renders every icon")
