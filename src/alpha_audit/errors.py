@@ -46,18 +46,18 @@ class AlphaAuditError(Exception):
         self.line = line
         self.key = key
 
-    def where(self, path: str | Path | None = None) -> str:
+    def where(self, shown_path: str | None = None) -> str:
         """``file:line: key`` prefix, omitting what is unknown (escaped like the message).
 
-        ``path`` is how to write the file instead (the command line writes it relative
-        to the working folder).
+        ``shown_path`` names the file instead of ``path`` as given (the command
+        line shows it relative to the project).
         """
         from alpha_audit.safe_text import safe_text
 
         parts = []
-        shown = self.path if path is None else path
-        if shown is not None:
-            parts.append(f"{shown}:{self.line}" if self.line else str(shown))
+        if self.path is not None:
+            file = shown_path or str(self.path)
+            parts.append(f"{file}:{self.line}" if self.line else file)
         if self.key:
             parts.append(self.key)
         return safe_text(": ".join(parts))

@@ -44,6 +44,7 @@ if TYPE_CHECKING:
     from alpha_audit.load.sandbox import RenderPool
 
 __all__ = [
+    "BaseAudit",
     "Work",
     "audit_pair",
     "audits",
@@ -283,28 +284,41 @@ def check_project(
     return with_fixes(CheckReport(tuple(results), gate, gamut=moved, notes=notes))
 
 
+@dataclass(frozen=True)
+class BaseAudit:
+    """The base revision's findings as a baseline, what to say about it, and whether it
+    was audited at all (when not, ``baseline`` is empty and every finding is new)."""
+
+    baseline: Baseline
+    notes: tuple[str, ...]
+    audited: bool
+
+
 def base_baseline(
     overrides: Overrides,
     start: Path,
     ref: str,
     *,
     pool: RenderPool | None = None,
-) -> tuple[Baseline, str | None]:
+) -> BaseAudit:
     """The findings of the project as it is at git revision ``ref``, as a baseline.
 
     The revision's tree is exported into a temporary folder (never into the
     checkout, :mod:`alpha_audit.load.git`), the config is resolved there from
     the same place and with the same ``overrides`` (paths given inside the
     repository point at the revision's files), and every failing-rule
-    finding's key is kept.  Returns the baseline and, when the revision cannot
-    be audited (no config, a broken file), the reason (its baseline is empty:
-    every finding is new).
+    finding's key is kept.  The notes say which entries the export left out
+    (links to absolute paths) and, when the revision cannot be exported or
+    audited (no config, a broken file, a tree over the export's bounds), why:
+    then the baseline is empty and every finding is new.  A ``ref`` that
+    names no commit, or no git, is a :class:`~alpha_audit.errors.UsageError`.
     """
     import tempfile
 
     from alpha_audit.load.config import resolve_config
     from alpha_audit.load.git import export_revision, git_toplevel, resolve_commit
 
+    notes: list[str] = []
     with tempfile.TemporaryDirectory(prefix="alpha-audit-base-") as tmp:
         home = Path(tmp) / "home"
         home.mkdir()
@@ -314,8 +328,6 @@ def base_baseline(
         tree = Path(tmp) / "revision" / top.name
         tree.mkdir(parents=True)
         commit = resolve_commit(top, ref, home)
-        export_revision(top, commit, tree, home)
-        (tree / ".git").mkdir(exist_ok=True)  # the project root, as in the checkout
 
         def moved(path: str | Path) -> str | Path:
             """A path inside the repository, in the revision's tree; anything else as given."""
@@ -324,16 +336,24 @@ def base_baseline(
                 return path  # a bundled name, or outside the repository
             return tree / full.relative_to(top)
 
-        here = tree / start.resolve().relative_to(top)
-        config = overrides.config
-        mapped = replace(
-            overrides,
-            config=None if config is None else Path(moved(config)),
-            themes=tuple(moved(t) for t in overrides.themes),
-            iconsets=tuple(moved(s) for s in overrides.iconsets),
-            baseline=None,
-        )
         try:
+            skipped = export_revision(top, commit, tree, home)
+            if skipped:
+                notes.append(
+                    f"the base revision {ref}: {len(skipped)} entr"
+                    f"{'y' if len(skipped) == 1 else 'ies'} left out as unsafe to write "
+                    f"(first: {skipped[0]})"
+                )
+            (tree / ".git").mkdir(exist_ok=True)  # the project root, as in the checkout
+            here = tree / start.resolve().relative_to(top)
+            config = overrides.config
+            mapped = replace(
+                overrides,
+                config=None if config is None else Path(moved(config)),
+                themes=tuple(moved(t) for t in overrides.themes),
+                iconsets=tuple(moved(s) for s in overrides.iconsets),
+                baseline=None,
+            )
             project = resolve_config(mapped, here if here.is_dir() else tree)
             project = replace(project, baseline=None)
             work, _, _ = plan(project)
@@ -344,10 +364,17 @@ def base_baseline(
                 for result in audits(project, work, pool=pool):
                     found += collect([result], project.policy, seen=found)
         except AlphaAuditError as exc:
-            why = f"the base revision {ref} could not be audited ({exc}); every finding is new"
-            return Baseline(kind="base", name=ref), why
+            # Files of the revision are named as in the repository, not in our folder.
+            path = exc.path
+            shown = (
+                path.relative_to(tree).as_posix() if path and path.is_relative_to(tree) else None
+            )
+            where = exc.where(shown)
+            reason = f"{where}: {exc.message}" if where else exc.message
+            why = f"the base revision {ref} could not be audited ({reason}); every finding is new"
+            return BaseAudit(Baseline(kind="base", name=ref), (*notes, why), audited=False)
     keys = frozenset(f.key for f in found if f.level is Level.FAIL)
-    return Baseline(keys=keys, kind="base", name=ref), None
+    return BaseAudit(Baseline(keys=keys, kind="base", name=ref), tuple(notes), audited=True)
 
 
 def _unique(paths: Sequence[str | Path]) -> list[Path]:

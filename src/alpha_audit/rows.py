@@ -146,6 +146,11 @@ def check_pipeline(iconset: IconSet, pipeline: Pipeline, alpha: float | None = N
             )
 
 
+def _counted(n: int, noun: str, plural: str | None = None) -> str:
+    """``1 size``, ``3 sizes``, ``1,200 paints``."""
+    return f"{n:,} {noun if n == 1 else plural or noun + 's'}"
+
+
 def check_combinations(
     rows: int,
     canvases: int,
@@ -162,7 +167,8 @@ def check_combinations(
     cells = max(MAX_SIZE_CELLS, limit * (MAX_SIZE_CELLS // MAX_COMBINATIONS))
     if rows * canvases > limit or rows * canvases * sizes > cells:
         raise InputError(
-            f"{rows:,} paints x {canvases:,} canvases x {sizes} sizes is more than one check "
+            f"{_counted(rows, 'paint')} x {_counted(canvases, 'canvas', 'canvases')} x "
+            f"{_counted(sizes, 'size')} is more than one check "
             f"audits ({limit:,} paint rows, {cells:,} paint x canvas x size figures); raise "
             "`max_combinations` if the memory is there (docs/ci.md), "
             "split the theme or the icon set, or give fewer sizes",

@@ -38,6 +38,7 @@ __all__ = [
     "first_unsafe",
     "is_safe",
     "safe_text",
+    "shorten",
 ]
 
 # Unicode General_Category values that are instructions rather than text.
@@ -149,3 +150,21 @@ def safe_text(text: object, *, newlines: bool = False) -> str:
         out += [_escape_run(s[pos : match.start()], newlines), match.group()]
         pos = match.end()
     return "".join([*out, _escape_run(s[pos:], newlines)])
+
+
+def shorten(text: str, limit: int = MAX_NAME) -> str:
+    """``text`` if it has at most ``limit`` characters, else its start and end around ``…``.
+
+    For names an untrusted page or file supplies that are shown, not matched
+    (a DOM path, a script's error): the start and the end are what tell one
+    from another; the result has exactly ``limit`` characters.
+
+    >>> shorten("html > body > div#" + "x" * 300 + " > svg", 40)
+    'html > body > div#xx…xxxxxxxxxxxxx > svg'
+    >>> shorten("short", 40)
+    'short'
+    """
+    if len(text) <= limit:
+        return text
+    tail = (limit - 1) // 2
+    return text[: limit - 1 - tail] + "…" + text[len(text) - tail :]

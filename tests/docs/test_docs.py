@@ -42,3 +42,24 @@ def test_the_rules_table_is_the_registrys() -> None:
     assert rules_table() in (REPO / "docs" / "rules.md").read_text(), (
         "docs/rules.md is stale: paste alpha_audit.rules.rules_table() into it"
     )
+
+
+def test_every_rule_id_range_the_docs_state_is_the_registrys() -> None:
+    """A range of SARIF rule ids written in prose (``AA001``...``AA0NN``) names every rule
+    of the registry, in order, and nothing more (docs/ci.md said AA015 with 16 rules)."""
+    import re
+
+    from alpha_audit.rules import RULES
+
+    ids = [spec.sarif_id for spec in RULES.values()]
+    stated = [
+        (path, match)
+        for path in [REPO / "README.md", *sorted((REPO / "docs").glob("*.md"))]
+        for match in re.findall(
+            r"`(AA\d{3})`\s*(?:\.\.\.|…|-|–|to)\s*`(AA\d{3})`", path.read_text()
+        )
+    ]
+    assert stated, "no rule id range found in the docs"
+    for path, (first, last) in stated:
+        assert (first, last) == (ids[0], ids[-1]), f"{path.name} states {first}...{last}"
+    assert ids == [f"AA{k:03d}" for k in range(1, len(ids) + 1)]  # contiguous, never renumbered

@@ -125,6 +125,17 @@ def test_a_base_without_the_config_makes_every_finding_new(repo: Path) -> None:
     assert len(json.loads(result.stdout)["gate"]["failures"]) == 2
 
 
+def test_a_broken_file_of_the_base_is_named_as_in_the_repository(repo: Path) -> None:
+    (repo / "theme.yaml").write_text("name: t\ncanvases: {}\n")
+    _git(repo, "add", "theme.yaml")
+    _git(repo, "-c", "user.email=a@b", "-c", "user.name=t", "commit", "-qm", "broken")
+    (repo / "theme.yaml").write_text(THEME)  # the change repairs it
+    result = runner.invoke(app, ["check", "--base", "HEAD", "-f", "json"])
+    assert result.exit_code == 1, result.output
+    assert "could not be audited (theme.yaml:2: canvases: " in result.stderr, result.stderr
+    assert "alpha-audit-base-" not in result.stderr
+
+
 @pytest.mark.parametrize(
     "ref", ["-x", "--output=/tmp/x", "HEAD..main", "main:set.yaml", "HEAD@{1}", "a b", "", "x/"]
 )
@@ -147,3 +158,76 @@ def test_an_unknown_ref_or_no_repository_is_a_usage_error(repo: Path, tmp_path: 
     (elsewhere / "x.svg").write_text(SVG)
     outside = runner.invoke(app, ["check", "--base", "HEAD"])
     assert outside.exit_code == 2 and "needs a git repository" in outside.output
+
+
+def _commit_links(repo: Path) -> None:
+    """Links a repository may hold beside its icons: to an absolute path, and up and out."""
+    (repo / "tools").mkdir()
+    (repo / "tools" / "python").symlink_to("/usr/bin/python3")
+    (repo / "tools" / "up").symlink_to("../../../..")
+    _git(repo, "add", "tools")
+    _git(repo, "-c", "user.email=a@b", "-c", "user.name=t", "commit", "-qm", "links")
+
+
+def test_a_base_holding_links_out_is_audited_without_them(repo: Path) -> None:
+    _commit_links(repo)
+    result = runner.invoke(app, ["check", "--base", "HEAD", "-f", "json"])
+    assert result.exit_code == 1, result.output
+    assert "2 entries left out as unsafe to write" in result.stderr
+    assert "could not be audited" not in result.stderr
+    failures = json.loads(result.stdout)["gate"]["failures"]
+    assert [f["icons"] for f in failures] == [["b"]]  # a is on the base: only b is new
+
+
+def test_a_base_that_cannot_be_exported_gates_on_every_finding(
+    repo: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from alpha_audit.load import git
+
+    monkeypatch.setattr(git, "MAX_EXPORT_FILES", 2)  # the revision holds 6 files
+    result = runner.invoke(app, ["check", "--base", "HEAD", "-f", "json"])
+    assert result.exit_code == 1, result.output
+    assert "could not be audited" in result.stderr and "every finding is new" in result.stderr
+    assert "more than 2 files" in result.stderr
+    assert len(json.loads(result.stdout)["gate"]["failures"]) == 2
+
+
+def test_sigterm_during_the_base_removes_the_exported_revision(repo: Path, tmp_path: Path) -> None:
+    """git archive is made to hang once it has written the tree (a wrapper on PATH): the run
+    is signalled while the revision sits exported in its TMPDIR, and must leave nothing."""
+    import shutil
+    import signal
+    import sys
+    import time
+
+    real = shutil.which("git")
+    assert real is not None
+    bin_dir = tmp_path / "bin"
+    bin_dir.mkdir()
+    wrapper = bin_dir / "git"
+    wrapper.write_text(
+        f'#!/bin/sh\ncase " $* " in *" archive "*) "{real}" "$@"; exec sleep 300;; esac\n'
+        f'exec "{real}" "$@"\n'
+    )
+    wrapper.chmod(0o755)
+    temp = tmp_path / "run-tmp"
+    temp.mkdir()
+    exe = Path(sys.executable).with_name("alpha-audit")
+    env = {**os.environ, "TMPDIR": str(temp), "PATH": f"{bin_dir}:{os.environ['PATH']}"}
+    run = subprocess.Popen(
+        [str(exe), "check", "--base", "HEAD", "--no-cache"],
+        cwd=repo,
+        env=env,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        start_new_session=True,
+    )
+    deadline = time.monotonic() + 60
+    while not list(temp.glob("alpha-audit-base-*/revision/design/set.yaml")):
+        assert run.poll() is None and time.monotonic() < deadline, run.stderr.read()
+        time.sleep(0.05)
+    run.send_signal(signal.SIGTERM)
+    assert run.wait(timeout=30) == -signal.SIGTERM, run.stderr.read()
+    assert list(temp.iterdir()) == []  # the exported revision is gone
+    sleepers = subprocess.run(["pgrep", "-s", str(run.pid)], capture_output=True, text=True)
+    assert sleepers.stdout.split() == []  # and the hanging git with it

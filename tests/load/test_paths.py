@@ -154,3 +154,48 @@ def test_a_name_outside_the_root_is_said_to_be_outside_not_a_symlink(root: Path)
     os.symlink(root.parent / "sb", root / "linked")
     with pytest.raises(PathRefused, match="leads through a symlink"):
         contain_argument(root / "linked", root)
+
+
+def test_a_glob_over_folders_nested_deeper_than_pythons_stack_finds_the_file(
+    root: Path,
+) -> None:
+    """Depth is bounded by the entries a glob visits, never by recursion: 1,500 folders
+    deep (Python's recursion limit is 1,000) the icon at the bottom is found, in order."""
+    import sys
+
+    depth = 1500
+    assert depth > sys.getrecursionlimit()
+    deep = root / "deep"
+    deep.mkdir()
+    fd = os.open(deep, os.O_RDONLY)
+    try:  # one folder at a time, relative to the last: no path is ever long
+        for _ in range(depth):
+            os.mkdir("d", dir_fd=fd)
+            child = os.open("d", os.O_RDONLY, dir_fd=fd)
+            os.close(fd)
+            fd = child
+        os.close(os.open("x.svg", os.O_CREAT | os.O_WRONLY, dir_fd=fd))
+    finally:
+        os.close(fd)
+    (deep / "a.svg").write_text("<svg/>")
+    try:
+        found = glob_contained(root, deep, "**/*.svg", limit=10)
+        assert [p.name for p in found] == ["a.svg", "x.svg"]
+        assert len(found[1].relative_to(deep).parts) == depth + 1
+    finally:
+        _remove_deep(deep)
+
+
+def _remove_deep(deep: Path) -> None:
+    """Remove the chain of ``d`` folders bottom-up by descriptor (shutil.rmtree recurses)."""
+    fds = [os.open(deep, os.O_RDONLY)]
+    while True:
+        try:
+            fds.append(os.open("d", os.O_RDONLY, dir_fd=fds[-1]))
+        except FileNotFoundError:
+            break
+    os.unlink("x.svg", dir_fd=fds[-1])
+    for parent, child in zip(fds[-2::-1], fds[:0:-1], strict=True):
+        os.close(child)
+        os.rmdir("d", dir_fd=parent)
+    os.close(fds[0])

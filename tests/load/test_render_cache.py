@@ -365,3 +365,103 @@ def test_whole_icon_masks_are_cached_too(
         assert list(result.masks) == list(cold.masks)
         for key in cold.masks:
             np.testing.assert_array_equal(result.masks.codes(key), cold.masks.codes(key))
+
+
+# A view and a trigger that would never end if anything ran them: a crafted file in the
+# cache folder (a CI cache restored from a pull request's run) must not hang the audit.
+_ENDLESS = "WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL SELECT i + 1 FROM n) SELECT i FROM n"
+CRAFTED = {
+    "a view named entries": [
+        f"CREATE VIEW entries AS {_ENDLESS}",
+        "PRAGMA user_version = 1",
+    ],
+    "a trigger on entries": [
+        "CREATE TABLE entries (key BLOB PRIMARY KEY, value BLOB NOT NULL, checksum BLOB NOT "
+        "NULL, used INTEGER NOT NULL, size INTEGER NOT NULL)",
+        "CREATE INDEX entries_used ON entries (used)",
+        f"CREATE TRIGGER t AFTER INSERT ON entries BEGIN SELECT count(*) FROM ({_ENDLESS}); END",
+        "PRAGMA user_version = 1",
+    ],
+    "another table": [
+        "CREATE TABLE entries (key TEXT, value TEXT)",
+        "CREATE TABLE other (x)",
+    ],
+    "an old schema with a view": [f"CREATE VIEW entries AS {_ENDLESS}"],
+}
+
+
+def _round_trip(folder: Path) -> None:
+    """The cache in ``folder`` takes an entry and gives it back."""
+    with RenderCache.open(folder) as cache:  # type: ignore[union-attr]
+        cache.put(b"k" * 20, b"value")
+        cache.flush()
+        assert cache.get([b"k" * 20]) == {b"k" * 20: b"value"} and not cache.broken
+
+
+@pytest.mark.parametrize("craft", list(CRAFTED))
+def test_a_crafted_cache_file_is_replaced_and_never_run(
+    craft: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # Were a statement run for ever, the step bound would stop it: this test cannot hang.
+    monkeypatch.setattr(render_cache, "MAX_STEPS", 5_000_000)
+    folder = tmp_path / "cache"
+    folder.mkdir(mode=0o700)
+    con = sqlite3.connect(folder / FILE_NAME)
+    for statement in CRAFTED[craft]:
+        con.execute(statement)
+    con.commit()
+    con.close()
+    render_cache.take_notes()
+    monkeypatch.setenv("ALPHA_AUDIT_CACHE_DIR", str(folder))
+    opened = render_cache.open_default()
+    assert opened is not None and opened.entries() == 0
+    opened.close()
+    (note,) = render_cache.take_notes()
+    assert "replaced by an empty one" in note and "not alpha-audit's" in note, note
+    _round_trip(folder)
+    assert render_cache.take_notes() == []
+
+
+def test_an_operation_over_its_step_bound_leaves_the_run_uncached(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Counted, not timed: SQLite's progress handler counts the steps of each operation."""
+    folder = tmp_path / "cache"
+    with RenderCache.open(folder) as cache:  # type: ignore[union-attr]
+        for k in range(2_000):
+            cache.put(k.to_bytes(20, "big"), b"v" * 64)
+        cache.flush()
+    render_cache.take_notes()
+    monkeypatch.setattr(render_cache, "MAX_STEPS", 20_000)  # opening fits, a large read not
+    monkeypatch.setattr(render_cache, "_STEP_CALL", 100)
+    cache = RenderCache.open(folder)
+    assert cache is not None
+    assert cache.get(k.to_bytes(20, "big") for k in range(2_000)) == {} and cache.broken
+    cache.put(b"x" * 20, b"y")
+    cache.flush()  # a broken cache writes nothing, and raises nothing
+    (note,) = render_cache.take_notes()
+    assert "took more than 20,000 steps" in note and "goes on without it" in note
+    monkeypatch.setattr(render_cache, "MAX_STEPS", 1_000_000_000)
+    _round_trip(folder)  # the file was replaced: the next run has a working cache
+
+
+def test_a_cache_folder_that_cannot_be_named_leaves_the_run_uncached_with_a_note(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from typer.testing import CliRunner
+
+    from alpha_audit.cli import app
+
+    assert RenderCache.open(Path("cache\x00dir")) is None  # a NUL: no folder has that name
+    assert "render cache not used" in render_cache.take_notes()[0]
+    monkeypatch.setenv("ALPHA_AUDIT_CACHE_DIR", "~no-such-user-alpha-audit/cache")
+    assert not render_cache.probably_warm() and render_cache.open_default() is None
+    assert "cannot be named" in render_cache.take_notes()[0]
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "t.yaml").write_text("name: t\ncanvases:\n  - {name: white, color: '#fff'}\n")
+    (tmp_path / "a.svg").write_text(ICONS["disc"])
+    (tmp_path / "s.yaml").write_text("name: s\nicons: ['a.svg']\ncolor: '#333333'\n")
+    monkeypatch.chdir(tmp_path)
+    result = CliRunner().invoke(app, ["check", "t.yaml", "s.yaml"])
+    assert result.exit_code == 0, result.output
+    assert "alpha-audit: render cache not used (the cache folder cannot be named" in (result.stderr)

@@ -15,6 +15,7 @@ import os
 import tempfile
 from pathlib import Path
 
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from typer.testing import CliRunner
@@ -202,3 +203,274 @@ def test_every_unmutated_source_exports() -> None:
             finally:
                 os.chdir(cwd)
         assert result.exit_code == 0, (name, result.output)
+
+
+# ---------------------------------------------------------------- wrong types, every place
+#
+# A structured fuzzer over real-shaped documents of the four JSON token readers (Figma
+# Variables, Tokens Studio, the DTCG Resolver, DTCG itself): the value at every position
+# of every document (the documents a resolver or $themes.json names included) is
+# replaced, in turn, by a value of each JSON type (and a finite number too large for any
+# colour).  Counted, not sampled: every case loads its themes and colours, or is refused
+# by an error naming the file and a line or key; no other exception, and no number that
+# is not finite in what loads.
+
+WRONG_VALUES = (
+    None,
+    True,
+    0,
+    -1,
+    1.5,
+    1e308,
+    "",
+    "x",
+    "{color.bg}",
+    [],
+    [1],
+    ["x"],
+    {},
+    {"a": 1},
+    {"$value": 1},
+)
+_DTCG_BG = {"$type": "color", "$value": "#ffffff"}
+STRUCTURED: dict[str, dict[str, object]] = {
+    "dtcg": {
+        "tokens.json": {
+            "color": {
+                "$type": "color",
+                "bg": {
+                    "$value": {
+                        "colorSpace": "srgb",
+                        "components": [1, 1, 1],
+                        "alpha": 1,
+                        "hex": "#ffffff",
+                    }
+                },
+                "base": {
+                    "blue": {
+                        "$value": "oklch(0.55 0.15 250)",
+                        "$extensions": {"com.alpha-audit": {"alpha": 1.2}},
+                    }
+                },
+                "icon": {
+                    "$description": "icons",
+                    "fg": {"$value": "{color.base.blue}"},
+                    "ref": {"$value": {"$ref": "#/color/base/blue/$value"}},
+                },
+                "alt": {"$extends": "{color.icon}"},
+            },
+            "size": {"$type": "dimension", "s": {"$value": {"value": 4, "unit": "px"}}},
+        },
+    },
+    "resolver": {
+        "system.resolver.json": {
+            "version": "2025.10",
+            "sets": {
+                "base": {"sources": [{"$ref": "base.tokens.json"}, {"color": {"bg": _DTCG_BG}}]}
+            },
+            "modifiers": {
+                "theme": {
+                    "default": "light",
+                    "contexts": {
+                        "light": [{"$ref": "light.tokens.json#/color"}],
+                        "dark": [{"icon": {"fg": {"$type": "color", "$value": "#9cf"}}}],
+                    },
+                }
+            },
+            "resolutionOrder": [
+                {"$ref": "#/sets/base"},
+                {"$ref": "#/modifiers/theme"},
+                {"type": "set", "name": "inline", "sources": [{"color": {"x": _DTCG_BG}}]},
+            ],
+        },
+        "base.tokens.json": {"color": {"y": _DTCG_BG}},
+        "light.tokens.json": {"color": {"icon": {"fg": {"$type": "color", "$value": "#0062ba"}}}},
+    },
+    "tokens-studio": {
+        "studio.json": {
+            "core": {
+                "color": {
+                    "bg": {"value": "#fff", "type": "color"},
+                    "blue": {"value": "#0062ba", "type": "color"},
+                }
+            },
+            "light": {"color": {"icon": {"fg": {"value": "{color.blue}", "type": "color"}}}},
+            "dark": {"color": {"icon": {"fg": {"value": "#9cf", "type": "color"}}}},
+            "$themes": [
+                {
+                    "id": "1",
+                    "name": "Light",
+                    "group": "mode",
+                    "selectedTokenSets": {"core": "source", "light": "enabled"},
+                },
+                {
+                    "id": "2",
+                    "name": "Dark",
+                    "selectedTokenSets": {"core": "source", "dark": "enabled"},
+                },
+            ],
+            "$metadata": {"tokenSetOrder": ["core", "light", "dark"]},
+        },
+        "$themes.json": [
+            {
+                "id": "1",
+                "name": "Light",
+                "selectedTokenSets": {"core": "source", "light": "enabled"},
+            }
+        ],
+        "core.json": {"color": {"bg": {"value": "#fff", "type": "color"}}},
+        "light.json": {"color": {"icon": {"fg": {"value": "{color.bg}", "type": "color"}}}},
+        "$metadata.json": {"tokenSetOrder": ["core", "light"]},
+    },
+    "figma": {
+        "figma.json": {
+            "status": 200,
+            "error": False,
+            "meta": {
+                "variableCollections": {
+                    "C:1": {
+                        "id": "C:1",
+                        "name": "Theme",
+                        "modes": [
+                            {"modeId": "1:0", "name": "Light"},
+                            {"modeId": "1:1", "name": "Dark"},
+                        ],
+                        "defaultModeId": "1:0",
+                    }
+                },
+                "variables": {
+                    "V:1": {
+                        "id": "V:1",
+                        "name": "color/bg",
+                        "variableCollectionId": "C:1",
+                        "resolvedType": "COLOR",
+                        "valuesByMode": {
+                            "1:0": {"r": 1, "g": 1, "b": 1, "a": 1},
+                            "1:1": {"r": 0, "g": 0, "b": 0, "a": 1},
+                        },
+                    },
+                    "V:2": {
+                        "id": "V:2",
+                        "name": "color/icon/fg",
+                        "description": "icons",
+                        "scopes": ["ALL_SCOPES"],
+                        "variableCollectionId": "C:1",
+                        "resolvedType": "COLOR",
+                        "valuesByMode": {
+                            "1:0": {"type": "VARIABLE_ALIAS", "id": "V:1"},
+                            "1:1": {"r": 0.5, "g": 0.6, "b": 1, "a": 1},
+                        },
+                    },
+                },
+            },
+        },
+    },
+}
+# The file the config names, per reader, and every file it reads ($themes.json is
+# Tokens Studio's folder layout, read on its own).
+READS = {
+    "dtcg": {"tokens.json": ("tokens.json",)},
+    "resolver": {
+        "system.resolver.json": ("system.resolver.json", "base.tokens.json", "light.tokens.json")
+    },
+    "tokens-studio": {
+        "studio.json": ("studio.json",),
+        "$themes.json": ("$themes.json", "core.json", "light.json", "$metadata.json"),
+    },
+    "figma": {"figma.json": ("figma.json",)},
+}
+
+
+def _positions(node: object, at: tuple[object, ...] = ()) -> list[tuple[object, ...]]:
+    found = [at]
+    if isinstance(node, dict):
+        for key, value in node.items():
+            found += _positions(value, (*at, key))
+    elif isinstance(node, list):
+        for index, value in enumerate(node):
+            found += _positions(value, (*at, index))
+    return found
+
+
+def _replaced(doc: object, at: tuple[object, ...], value: object) -> object:
+    if not at:
+        return value
+    copy = json.loads(json.dumps(doc))
+    node = copy
+    for key in at[:-1]:
+        node = node[key]  # type: ignore[index]
+    node[at[-1]] = value  # type: ignore[index]
+    return copy
+
+
+def _numbers(value: object) -> list[float]:
+    """Every float a loaded value holds (dataclasses, mappings, sequences, arrays)."""
+    import dataclasses
+
+    import numpy as np
+
+    if isinstance(value, float):
+        return [value]
+    if isinstance(value, np.ndarray):
+        return [float(v) for v in value.ravel()] if value.dtype.kind == "f" else []
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        return [n for f in dataclasses.fields(value) for n in _numbers(getattr(value, f.name))]
+    if isinstance(value, dict):
+        return [n for v in value.values() for n in _numbers(v)]
+    if isinstance(value, list | tuple):
+        return [n for v in value for n in _numbers(v)]
+    return []
+
+
+@pytest.mark.parametrize("reader", list(STRUCTURED))
+def test_wrong_json_types_at_every_position_are_input_errors_naming_file_and_place(
+    reader: str, tmp_path: Path
+) -> None:
+    import math
+
+    from alpha_audit.errors import AlphaAuditError
+    from alpha_audit.load.tokens.themes import TokenConfig, load_token_themes
+
+    files = STRUCTURED[reader]
+    root = tmp_path.resolve()
+
+    def load(entry: str) -> object:
+        config = TokenConfig(
+            file=root / entry,
+            canvases=("color.bg",),
+            colors=("color.icon.*",),
+            root=root,
+            gamut="clip",
+        )
+        return load_token_themes(config)
+
+    def write_all() -> None:
+        for name, doc in files.items():
+            (root / name).write_text(json.dumps(doc, indent=1), encoding="utf-8")
+
+    cases = refused = 0
+    for entry, read in READS[reader].items():
+        write_all()
+        load(entry)  # the unmutated documents load
+        for name in read:
+            doc = files[name]
+            for at in _positions(doc):
+                for value in WRONG_VALUES:
+                    (root / name).write_text(json.dumps(_replaced(doc, at, value)), "utf-8")
+                    cases += 1
+                    try:
+                        loaded = load(entry)
+                    except AlphaAuditError as exc:
+                        refused += 1
+                        where = (name, at, value, str(exc))
+                        assert exc.path is not None, where
+                        assert exc.path.resolve().is_relative_to(root), where
+                        # A place in the file, or the whole file: its shape (the top
+                        # replaced), or the config's selection that matched nothing there.
+                        whole = not at or "matching canvases" in exc.message
+                        assert exc.line is not None or exc.key or whole, where
+                        continue
+                    numbers = _numbers(loaded)
+                    assert all(math.isfinite(n) for n in numbers), (name, at, value)
+                (root / name).write_text(json.dumps(doc, indent=1), encoding="utf-8")
+    assert cases > 300 and 0 < refused < cases, (cases, refused)

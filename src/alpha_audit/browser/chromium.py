@@ -110,6 +110,8 @@ class Chromium(Browser):
                     *_FLAGS,
                     *self._network_flags(),
                     f"--user-data-dir={self.workdir / 'profile'}",
+                    # Crash reports go to the browser's folder too (HOME is there as well).
+                    f"--crash-dumps-dir={self.workdir / 'crashes'}",
                     "about:blank",
                 ],
                 env=self.child_env(),
@@ -142,7 +144,9 @@ class Chromium(Browser):
         return [
             f"--proxy-server=http://{self.options.proxy}",
             f"--proxy-bypass-list={bypass}",
-            "--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE localhost, EXCLUDE 127.0.0.1",
+            # IPv6 loopback is excluded as "::1" (not "[::1]", which Chromium never matches).
+            "--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE localhost, EXCLUDE 127.0.0.1, "
+            "EXCLUDE ::1",
             "--force-webrtc-ip-handling-policy=disable_non_proxied_udp",
             "--dns-prefetch-disable",
         ]

@@ -92,7 +92,14 @@ class Firefox(Browser):
             encoding="utf-8",
         )
         log = self.workdir / "stderr.log"
-        env = self.child_env({**os.environ, "MOZ_WEBGL_FORCE_EGL": "1", "MOZ_HEADLESS": "1"})
+        env = self.child_env(
+            {
+                **os.environ,
+                "MOZ_WEBGL_FORCE_EGL": "1",
+                "MOZ_HEADLESS": "1",
+                "MOZ_CRASHREPORTER_DISABLE": "1",  # no crash reporter, no "Crash Reports"
+            }
+        )
         env.pop("DISPLAY", None)  # headless and EGL: never an X server that is not ours
         with log.open("wb") as stderr:  # a file, never a pipe nobody drains
             self.processes.start(

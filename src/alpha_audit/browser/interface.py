@@ -61,6 +61,46 @@ _PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 # (or the browser's own timeout, if less).
 LAUNCH_ATTEMPTS = 2
 LAUNCH_TIMEOUT = 60.0
+# unix(7): a socket's path (sun_path) holds 108 bytes with its NUL.  Chromium makes its
+# singleton socket at $TMPDIR/.org.chromium.Chromium.XXXXXX/SingletonSocket, 47 bytes
+# below TMPDIR; a runtime folder longer than the rest makes Chromium die at start.
+_SOCKET_PATH_BYTES = 107
+_SOCKET_TAIL_BYTES = 47
+MAX_RUNTIME_BYTES = _SOCKET_PATH_BYTES - _SOCKET_TAIL_BYTES
+# Where a runtime folder goes when the caller's TMPDIR is too long for one: short,
+# sticky system folders (mkdtemp makes the folder itself 0700).
+_SHORT_BASES = ("/tmp", "/var/tmp", "/dev/shm")
+# The engine's HOME and XDG base directories (XDG Base Directory Specification 0.8),
+# all inside the browser's folder.
+_XDG_VARIABLES = ("XDG_CONFIG_HOME", "XDG_DATA_HOME", "XDG_CACHE_HOME", "XDG_STATE_HOME")
+_HOME_FOLDERS = (".config", ".local/share", ".cache", ".local/state")
+
+
+def runtime_folder(workdir: Path, name: str) -> Path:
+    """A private folder for an engine's sockets and temporary files, short whatever TMPDIR is.
+
+    ``workdir/tmp`` when that path leaves room for the longest socket an
+    engine makes in it (:data:`MAX_RUNTIME_BYTES`); otherwise a new folder
+    (mode 0700) in ``/tmp`` or another short system folder, which the caller
+    removes with the browser.
+    """
+    inside = workdir / "tmp"
+    if len(os.fsencode(inside)) <= MAX_RUNTIME_BYTES:
+        inside.mkdir()
+        return inside
+    for base in _SHORT_BASES:
+        # mkdtemp adds "alpha-audit-<engine>-" and 8 characters to the base.
+        if len(os.fsencode(base)) + len(name) + 22 > MAX_RUNTIME_BYTES or not os.path.isdir(base):
+            continue
+        try:
+            return Path(tempfile.mkdtemp(prefix=f"alpha-audit-{name}-", dir=base))
+        except OSError:
+            continue
+    raise BrowserError(
+        f"the temporary folder {workdir.parent} is too long for the browser's sockets "
+        f"(at most {MAX_RUNTIME_BYTES - 31} bytes) and no short folder such as /tmp is "
+        "writable: set TMPDIR to a shorter folder"
+    )
 
 
 @dataclass(frozen=True)
@@ -154,10 +194,14 @@ class Browser(abc.ABC):
             # answer) is started again, from nothing, rather than waited on.
             self.timeout = min(float(timeout), LAUNCH_TIMEOUT)
             self.workdir = Path(tempfile.mkdtemp(prefix=f"alpha-audit-{self.NAME}-"))
+            self.runtime = self.workdir  # until runtime_folder() has made the real one
             self.processes = ProcessGroup(self.workdir)
             self._closed = False
             try:
-                (self.workdir / "tmp").mkdir()
+                self.runtime = runtime_folder(self.workdir, self.NAME)
+                self.processes.also_remove(self.runtime)
+                for folder in _HOME_FOLDERS:
+                    (self.workdir / "home" / folder).mkdir(parents=True)
                 self._start()
             except BrowserError:
                 self.close()
@@ -171,14 +215,23 @@ class Browser(abc.ABC):
         self.timeout = float(timeout)
 
     def child_env(self, base: dict[str, str] | None = None) -> dict[str, str]:
-        """The environment for the engine's programs: temporary files in our folder.
+        """The environment for the engine's programs: nothing of the caller's folders.
 
-        Whatever an engine leaves in ``TMPDIR`` (Chromium's
-        ``org.chromium.Chromium.*``) or in caches is removed with the browser.
+        ``TMPDIR`` and ``XDG_RUNTIME_DIR`` are the browser's short runtime
+        folder (:func:`runtime_folder`: Chromium's singleton socket lives
+        there), ``HOME`` and the XDG folders are inside the browser's own
+        folder: the crash reports, settings and downloads folders an engine
+        makes (Chromium's and Firefox's ``Crash Reports``, Firefox's
+        ``Downloads``) are removed with the browser and never touch the
+        user's home.
         """
         env = dict(os.environ if base is None else base)
-        env["TMPDIR"] = str(self.workdir / "tmp")
-        env["XDG_CACHE_HOME"] = str(self.workdir / "tmp")
+        home = self.workdir / "home"
+        env["HOME"] = str(home)
+        for variable, folder in zip(_XDG_VARIABLES, _HOME_FOLDERS, strict=True):
+            env[variable] = str(home / folder)
+        env["TMPDIR"] = str(self.runtime)
+        env["XDG_RUNTIME_DIR"] = str(self.runtime)
         return env
 
     @classmethod
@@ -323,6 +376,7 @@ class Browser(abc.ABC):
         finally:
             self.processes.close()
             shutil.rmtree(self.workdir, ignore_errors=True)
+            shutil.rmtree(self.runtime, ignore_errors=True)  # gone already if inside workdir
 
     def __enter__(self) -> Self:
         return self

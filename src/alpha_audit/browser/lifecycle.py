@@ -7,16 +7,18 @@ Three layers, each covering what the one before cannot:
   processes, web processes and helpers are ended with their group; ``close``
   sends SIGTERM, waits, then SIGKILLs.  It runs from ``Browser.close``, from a
   finaliser and at interpreter exit.
-* :func:`ending_on_signals` turns SIGTERM and SIGHUP (a CI cancel, ``timeout``,
-  a container stop, a closed terminal) into an exception, as Python already
-  does for SIGINT, so ``with`` blocks close their browsers; the process then
-  dies of the same signal, as the caller expects.
+* :func:`alpha_audit.signals.ending_on_signals` (around every command) turns
+  SIGTERM and SIGHUP (a CI cancel, ``timeout``, a container stop, a closed
+  terminal) into an exception, as Python already does for SIGINT, so ``with``
+  blocks close their browsers; the process then dies of the same signal, as
+  the caller expects.
 * a *reaper* (``_reaper.py``) per process group, started in its own session,
   holds the read end of a pipe: when alpha-audit is gone for any reason
   (SIGKILL included) it ends the groups and removes the browser's folder.
 
-Children also get ``TMPDIR`` inside the browser's own folder, so what they
-leave there (Chromium's ``org.chromium.Chromium.*``) goes with it.
+Children also get ``TMPDIR`` in the browser's own short runtime folder and
+``HOME`` inside the browser's folder, so what they leave there (Chromium's
+``org.chromium.Chromium.*``, crash report folders) goes with it.
 """
 
 from __future__ import annotations
@@ -26,20 +28,16 @@ import os
 import signal
 import subprocess
 import sys
-import threading
 import time
 import weakref
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 from pathlib import Path
-from types import FrameType
 
 from alpha_audit.errors import AlphaAuditError
 
 __all__ = [
     "BrowserError",
     "ProcessGroup",
-    "Terminated",
-    "ending_on_signals",
     "group_members",
     "resident_bytes",
 ]
@@ -51,50 +49,6 @@ _REAPER = Path(__file__).with_name("_reaper.py")
 
 class BrowserError(AlphaAuditError):
     """A browser engine could not be started, did not answer in time, or a script failed."""
-
-
-class Terminated(BaseException):
-    """SIGTERM or SIGHUP arrived: unwind (closing every browser), then die of the signal."""
-
-    def __init__(self, signum: int) -> None:
-        super().__init__(f"received {signal.Signals(signum).name}")
-        self.signum = signum
-
-
-@contextlib.contextmanager
-def ending_on_signals() -> Iterator[None]:
-    """Within the block, SIGTERM and SIGHUP unwind like SIGINT, then end the process.
-
-    On the way out the signal's default action is restored and the signal sent
-    again, so the exit status says "killed by SIGTERM" (143 in a shell) as
-    it would have without alpha-audit's clean-up; SIGINT (KeyboardInterrupt)
-    does the same.  Only the main thread can receive signals; elsewhere the
-    block runs unchanged.
-    """
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-
-    def raise_terminated(signum: int, frame: FrameType | None) -> None:
-        raise Terminated(signum)
-
-    handled = (signal.SIGTERM, signal.SIGHUP)
-    previous = {sig: signal.signal(sig, raise_terminated) for sig in handled}
-    received: int | None = None
-    try:
-        yield
-    except Terminated as exc:
-        received = exc.signum
-    except KeyboardInterrupt:
-        received = signal.SIGINT
-    finally:
-        for sig, handler in previous.items():
-            signal.signal(sig, handler)
-    if received is not None:
-        signal.signal(received, signal.SIG_DFL)
-        os.kill(os.getpid(), received)
-        time.sleep(1.0)  # the signal is delivered on return to the interpreter loop
-        raise SystemExit(128 + received)  # pragma: no cover - only if the signal is blocked
 
 
 def group_members(group: int) -> list[int]:
@@ -132,14 +86,14 @@ def resident_bytes(pids: Sequence[int]) -> int:
 class ProcessGroup:
     """Child processes, each started in a new session, ended together.
 
-    ``folder`` is removed with them by the reaper should alpha-audit die
-    before ``close``.
+    ``folder`` (and each folder given to :meth:`also_remove`) is removed with
+    them by the reaper should alpha-audit die before ``close``.
     """
 
     def __init__(self, folder: Path | None = None) -> None:
         self._processes: list[subprocess.Popen[bytes]] = []
         self._reaper: list[subprocess.Popen[bytes]] = []
-        self._folder = folder
+        self._folders = [] if folder is None else [folder]
         # A finalizer also runs at interpreter exit (weakref.finalize.atexit is True).
         self._finalizer = weakref.finalize(
             self, ProcessGroup._end_all, self._processes, self._reaper
@@ -158,13 +112,20 @@ class ProcessGroup:
             except OSError as exc:
                 raise BrowserError(f"cannot start the clean-up watcher: {exc}") from exc
             self._reaper.append(reaper)
-            if self._folder is not None:
-                self._tell_reaper(f"folder {self._folder}")
+            for folder in self._folders:
+                self._tell_reaper(f"folder {folder}")
         stdin = self._reaper[0].stdin
         assert stdin is not None
         with contextlib.suppress(OSError):
             stdin.write(line.encode() + b"\n")
             stdin.flush()
+
+    def also_remove(self, folder: Path) -> None:
+        """Have the reaper remove ``folder`` too (before any process starts)."""
+        if folder not in self._folders:
+            self._folders.append(folder)
+            if self._reaper:
+                self._tell_reaper(f"folder {folder}")
 
     def start(
         self,

@@ -34,6 +34,7 @@ from alpha_audit.cli.options import (
     flag,
     given_order,
     in_range,
+    path_value,
 )
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.ranges import ALPHA
@@ -114,11 +115,18 @@ def check_command(
     iconset: IconsetArgument = None,
     themes: Annotated[
         list[Path] | None,
-        typer.Option("--theme", metavar="PATH", help="Another theme to audit (repeatable)."),
+        typer.Option(
+            "--theme",
+            metavar="PATH",
+            parser=path_value,
+            help="Another theme to audit (repeatable).",
+        ),
     ] = None,
     iconsets: Annotated[
         list[Path] | None,
-        typer.Option("--iconset", metavar="PATH", help="Another icon set (repeatable)."),
+        typer.Option(
+            "--iconset", metavar="PATH", parser=path_value, help="Another icon set (repeatable)."
+        ),
     ] = None,
     config: ConfigOption = None,
     alpha: Annotated[
@@ -161,6 +169,8 @@ def check_command(
         Path | None,
         typer.Option(
             "--baseline",
+            parser=path_value,
+            metavar="<path>",
             help="Fail only on findings not in this baseline file.",
             show_default="the config's baseline:",
         ),
@@ -232,8 +242,12 @@ def check_command(
     project = resolve_config(overrides, Path.cwd())
     known = None
     if base is not None:
-        known, why = base_baseline(overrides, Path.cwd(), base, pool=ctx.obj)
-        stderr_note(why or f"base {base}: {len(known.keys)} failing root cause(s) there")
+        audit = base_baseline(overrides, Path.cwd(), base, pool=ctx.obj)
+        for note in audit.notes:
+            stderr_note(note)
+        known = audit.baseline
+        if audit.audited:
+            stderr_note(f"base {base}: {len(known.keys)} failing root cause(s) there")
     elif project.baseline is not None and write_baseline is None:
         known = read_baseline(project.baseline)
         if known.legacy:

@@ -7,7 +7,6 @@ them as the flags a command-line user types instead.
 
 from __future__ import annotations
 
-import os
 import re
 from pathlib import Path
 
@@ -37,27 +36,19 @@ FLAGS: dict[str, str] = {
 _PHRASE = re.compile(r"`([^`\n]+)`")
 
 
-def cli_message(exc: AlphaAuditError) -> str:
+def cli_message(exc: AlphaAuditError, base: Path | None = None) -> str:
     """``str(exc)`` with each known backticked parameter phrase replaced by its flag.
 
+    The file is named relative to ``base`` (the project root) when it lies
+    inside it, however it was found (a config resolves its paths):
+
     >>> from alpha_audit.errors import UsageError
-    >>> exc = UsageError("already exists; pass `overwrite=True` to replace it", path="r.json")
-    >>> cli_message(exc)
+    >>> exc = UsageError("already exists; pass `overwrite=True` to replace it", path="/p/r.json")
+    >>> cli_message(exc, Path("/p"))
     'r.json: already exists; pass --force to replace it'
     """
-    where = exc.where(_shown_path(exc.path))
+    from alpha_audit.render.common import display_path
+
+    where = exc.where(display_path(exc.path, base))
     message = _PHRASE.sub(lambda m: FLAGS.get(m.group(1), m.group(0)), exc.message)
     return f"{where}: {message}" if where else message
-
-
-def _shown_path(path: Path | None) -> str | None:
-    """A file of the project written relative to the working folder (``../x.yaml`` from a
-    subfolder), as the user would type it; anything outside the project as it is."""
-    from alpha_audit.load.paths import project_root
-
-    if path is None or not path.is_absolute():
-        return None
-    here = Path.cwd()
-    if not path.is_relative_to(project_root(here)):
-        return None
-    return os.path.relpath(path, here)

@@ -43,6 +43,7 @@ __all__ = [
     "flag",
     "given_order",
     "in_range",
+    "path_value",
     "read_gamut_option",
     "rules_flag",
     "untyped_flags",
@@ -50,6 +51,19 @@ __all__ = [
 
 ARGS = "alpha_audit.args"
 """``ctx.meta`` key: the command's arguments as given (the group records them)."""
+
+
+def path_value(value: str) -> Path:
+    """A path option's value; an empty one is a usage error naming the option.
+
+    ``Path("")`` is the current folder: an empty value (an unset variable in a CI
+    script, ``--baseline ""``) would otherwise be read as ``.`` and fail far from
+    its cause ("is a directory").
+    """
+    if not value:
+        raise typer.BadParameter("an empty path; give a file name")
+    return Path(value)
+
 
 ThemeArgument = Annotated[
     Path | None,
@@ -72,19 +86,27 @@ OutputsOption = Annotated[
         "--output",
         "-o",
         metavar="PATH",
+        parser=path_value,
         help="File for the --format before it ('-' = stdout; repeatable).",
         show_default="stdout",
     ),
 ]
 WriteBaselineOption = Annotated[
     Path | None,
-    typer.Option("--write-baseline", help="Record today's findings as a baseline file."),
+    typer.Option(
+        "--write-baseline",
+        parser=path_value,
+        metavar="<path>",
+        help="Record today's findings as a baseline file.",
+    ),
 ]
 
 ConfigOption = Annotated[
     Path | None,
     typer.Option(
         "--config",
+        parser=path_value,
+        metavar="<path>",
         help="Project config file.",
         show_default="alpha-audit.yaml, .alpha-audit.yaml or [tool.alpha-audit] in "
         "pyproject.toml, found from here upwards",

@@ -24,6 +24,7 @@ import traceback
 from collections.abc import Iterable, Sequence
 from functools import cache
 from importlib import import_module
+from pathlib import Path
 from typing import Annotated, Any, NoReturn
 
 import typer
@@ -36,6 +37,7 @@ from alpha_audit.cli.options import ARGS, Command, untyped_flags
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.errors import AlphaAuditError
 from alpha_audit.safe_text import safe_text
+from alpha_audit.signals import ending_on_signals
 
 __all__ = ["COMMANDS", "ExitStatus", "app", "application", "main"]
 
@@ -118,10 +120,20 @@ _WRITE_ERRORS = frozenset(
 )
 
 
+def _project() -> Path | None:
+    """The project root of the working folder, which error lines name files relative to."""
+    from alpha_audit.load.paths import PathRefused, project_root
+
+    try:
+        return project_root(Path.cwd())
+    except (OSError, PathRefused):  # the working folder is gone or unreadable
+        return None
+
+
 def _classify(exc: Exception) -> tuple[ExitStatus, str]:
     """The exit code ``exc`` means and the one line that says why."""
     if isinstance(exc, AlphaAuditError):
-        return ExitStatus.INPUT_ERROR, cli_message(exc)
+        return ExitStatus.INPUT_ERROR, cli_message(exc, _project())
     if isinstance(exc, MemoryError):
         return ExitStatus.INPUT_ERROR, (
             f"out of memory: the inputs need more than {_memory_limit()}; "
@@ -193,6 +205,13 @@ def _exit_code(exc: Exception, *, debug: bool) -> ExitStatus:
     return status
 
 
+def _cache_notes() -> None:
+    """Say why the render cache went unused or was replaced, if the command opened it."""
+    cache = sys.modules.get("alpha_audit.load.render_cache")
+    for note in cache.take_notes() if cache is not None else ():
+        stderr_line(f"alpha-audit: {safe_text(note)}")
+
+
 class _Group(TyperGroup):
     """The single boundary where results and exceptions become exit codes."""
 
@@ -233,6 +252,8 @@ class _Group(TyperGroup):
             _usage_error(exc)
         except Exception as exc:  # the boundary: nothing else turns exceptions into exit codes
             status = _exit_code(exc, debug=bool(ctx.params.get("debug")))
+        finally:
+            _cache_notes()
         raise typer.Exit(status)
 
 
@@ -341,4 +362,7 @@ def main(argv: Sequence[str] | None = None) -> None:
     args = sys.argv[1:] if argv is None else list(argv)
     name = next((a for a in args if not a.startswith("-")), None)
     chosen = application([name]) if name in COMMANDS else _every_command()
-    chosen(args=args, prog_name="alpha-audit")
+    # SIGTERM and SIGHUP unwind every command like Ctrl-C: temporary folders (the base
+    # revision of --base), browsers and outputs are cleaned up before the process dies.
+    with ending_on_signals():
+        chosen(args=args, prog_name="alpha-audit")

@@ -47,6 +47,7 @@ if TYPE_CHECKING:  # coloraide is imported on first use (import alpha_audit.colo
 __all__ = [
     "CSS_SPACES",
     "GAMUT_POLICIES",
+    "MAX_CHANNEL",
     "MAX_COLOR_TEXT",
     "GamutPolicy",
     "ParsedColor",
@@ -84,6 +85,12 @@ CSS_SPACES: dict[str, str] = {
 # channel, about 1/50 of an 8-bit step, so rounding noise of a conversion
 # (a display-p3 white gives 1.0000000000000002) is not "out of gamut".
 _GAMUT_TOLERANCE = 0.000075
+# The largest sRGB channel (gamma-encoded) a colour may have before any policy applies.
+# CSS Color 4 leaves lab()/oklch()/color() channels unbounded, but colours within its
+# reference ranges land within a few units of [0, 1] (lab(100 -125 -125) is about
+# srgb(-1.9 1.1 2.3)); beyond 1000 a value is no colour, and its linear light
+# (|c|^2.4, IEC 61966-2-1) would overflow float64 further down.
+MAX_CHANNEL = 1000.0
 
 _ALLOWED = (
     "use a CSS Color 4 colour: #rgb, #rrggbb, rgb(), hsl(), hwb(), lab(), lch(), "
@@ -183,6 +190,12 @@ def _resolve(
         unmapped = _rgb(srgb.coords(nans=False))
     if not all(math.isfinite(v) for v in unmapped):
         raise ColorSyntaxError(f"{text!r} has a channel that is not a finite number")
+    if not all(abs(v) <= MAX_CHANNEL for v in unmapped):
+        shown = ", ".join(f"{v:.4g}" for v in unmapped)
+        raise ColorSyntaxError(
+            f"{text[:60]!r} is no colour (sRGB channels {shown}, beyond +-{MAX_CHANNEL:g}); "
+            "give channels in their CSS Color 4 ranges"
+        )
     in_gamut = bool(srgb.in_gamut(tolerance=_GAMUT_TOLERANCE))
     if in_gamut or gamut == "clip":
         fitted = unmapped

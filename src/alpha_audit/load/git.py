@@ -7,11 +7,13 @@ user's checkout, index and ``.git`` are never written.  git runs as a
 subprocess with a clean environment (no ``GIT_DIR`` or other ``GIT_*`` from
 the caller, no user or system config, no prompts), and the revision, which may
 come from a pull request's event, is validated before git sees it
-(:func:`check_ref`).
+(:func:`check_ref`).  An entry the filter refuses (a link to an absolute
+path) is left out and reported, not fatal: the rest of the revision is audited.
 """
 
 from __future__ import annotations
 
+import contextlib
 import os
 import re
 import subprocess
@@ -20,6 +22,7 @@ from pathlib import Path
 from typing import IO
 
 from alpha_audit.errors import InputError, UsageError
+from alpha_audit.safe_text import safe_text
 
 __all__ = [
     "MAX_EXPORT_BYTES",
@@ -143,12 +146,14 @@ def resolve_commit(repo: Path, ref: str, home: Path) -> str:
     return commit
 
 
-def export_revision(repo: Path, commit: str, into: Path, home: Path) -> None:
+def export_revision(repo: Path, commit: str, into: Path, home: Path) -> list[str]:
     """Write the tree of ``commit`` (a full id) into the empty folder ``into``.
 
     At most :data:`MAX_EXPORT_FILES` entries and :data:`MAX_EXPORT_BYTES`;
     extracted with tarfile's ``data`` filter (PEP 706), which refuses absolute
-    names, ``..``, links pointing out of ``into`` and special files.
+    names, ``..``, links pointing out of ``into`` and special files.  A refused
+    entry is left out (the revision's other files are all there); returns what
+    was left out, one line each, for the caller to say.
     """
     if not re.fullmatch(r"[0-9a-f]{40}|[0-9a-f]{64}", commit):
         raise UsageError(f"not a commit id: {commit[:80]!r}")
@@ -163,25 +168,33 @@ def export_revision(repo: Path, commit: str, into: Path, home: Path) -> None:
     ) as proc:
         assert proc.stdout is not None and proc.stderr is not None
         try:
-            _extract(proc.stdout, into)
-        except tarfile.ReadError as exc:
+            try:
+                skipped = _extract(proc.stdout, into)
+            finally:
+                proc.stdout.close()  # a git still writing stops at once (SIGPIPE)
             proc.wait(timeout=GIT_SECONDS)
+        except tarfile.ReadError as exc:
+            with contextlib.suppress(subprocess.TimeoutExpired):
+                proc.wait(timeout=10)  # git said why on stderr and exited
+            proc.kill()
             said = proc.stderr.read().decode("utf-8", "replace").strip().splitlines()
             raise UsageError(f"git archive: {(said or [str(exc)])[0][:200]}", path=repo) from exc
-        finally:
-            proc.stdout.close()
-            try:
-                proc.wait(timeout=GIT_SECONDS)
-            except subprocess.TimeoutExpired:
-                proc.kill()
-                proc.wait()
+        except subprocess.TimeoutExpired as exc:
+            proc.kill()
+            raise InputError(f"git archive took more than {GIT_SECONDS} s", path=repo) from exc
+        except BaseException:
+            proc.kill()  # any other failure, or a signal unwinding: git is not waited for
+            raise
         if proc.returncode != 0:
             said = proc.stderr.read().decode("utf-8", "replace").strip().splitlines()
             raise UsageError(f"git archive: {(said or ['failed'])[0][:200]}", path=repo)
+    return skipped
 
 
-def _extract(stream: IO[bytes], into: Path) -> None:
-    """Members of a tar stream into ``into``, within the bounds, each through the filter."""
+def _extract(stream: IO[bytes], into: Path) -> list[str]:
+    """Members of a tar stream into ``into``, within the bounds, each through the filter;
+    returns the members the filter refused (each left out), as ``name: reason``."""
+    skipped: list[str] = []
     total = files = 0
     with tarfile.open(fileobj=stream, mode="r|") as archive:
         for member in archive:
@@ -195,4 +208,7 @@ def _extract(stream: IO[bytes], into: Path) -> None:
             try:
                 archive.extract(member, into, filter="data")
             except tarfile.FilterError as exc:
-                raise InputError(f"the base revision has an unsafe entry: {exc}") from exc
+                # A link to an absolute path is common (a tool's config, a vendored folder)
+                # and never needed to audit: left out, not written, and said.
+                skipped.append(safe_text(str(exc))[:200])
+    return skipped

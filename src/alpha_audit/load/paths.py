@@ -16,6 +16,7 @@ from __future__ import annotations
 import fnmatch
 import os
 import re
+from collections.abc import Iterator
 from pathlib import Path, PurePosixPath
 
 from alpha_audit.safe_text import first_unsafe, safe_text
@@ -176,10 +177,13 @@ def glob_contained(root: Path, base: Path, pattern: str, *, limit: int) -> list[
     if not start.is_relative_to(root):
         raise PathRefused(f"{_shown(str(base))} is outside the project root; not allowed")
     parts = [p for p in pure.parts if p not in ("", ".")]
+    if parts and parts[-1] == "**":
+        raise PathRefused(f"{_shown(pattern)} ends in **; add a file pattern like **/*.svg")
     visited = 0
     found: list[Path] = []
 
-    def walk(folder: Path, rest: list[str]) -> None:
+    def folder_steps(folder: Path, rest: list[str]) -> Iterator[tuple[Path, list[str]] | Path]:
+        """One folder's work, in order: sub-walks ``(folder, rest)`` and matched files."""
         nonlocal visited
         head, tail = rest[0], rest[1:]
         try:
@@ -194,37 +198,44 @@ def glob_contained(root: Path, base: Path, pattern: str, *, limit: int) -> list[
             )
         if head == "**":
             if tail:
-                walk(folder, tail)  # ** matches zero folders
+                yield folder, tail  # ** matches zero folders
             for entry in entries:
                 if entry.is_dir(follow_symlinks=False) and not entry.name.startswith("."):
-                    walk(Path(entry.path), rest)
+                    yield Path(entry.path), rest
             return
         for entry in entries:
             if not fnmatch.fnmatchcase(entry.name, head):
                 continue
             if tail:
                 if entry.is_dir(follow_symlinks=False):
-                    walk(Path(entry.path), tail)
+                    yield Path(entry.path), tail
             elif entry.is_file(follow_symlinks=True) or entry.is_symlink():
-                shown = os.path.relpath(entry.path, start)
-                if first_unsafe(shown) is not None:  # folders on the way count too
-                    raise PathRefused(
-                        f"{_shown(shown)} matched by {_shown(pattern)} has a control or "
-                        "format character in its name; not allowed"
-                    )
-                target = resolve(Path(entry.path))
-                if not target.is_relative_to(root):
-                    raise PathRefused(
-                        f"{_shown(shown)} matched by "
-                        f"{_shown(pattern)} resolves outside the project root; not allowed"
-                    )
-                if target.is_file():
-                    found.append(target)
-                    if len(found) > limit:
-                        raise PathRefused(f"{_shown(pattern)} matches more than {limit} files")
+                yield Path(entry.path)
 
-    if parts and parts[-1] == "**":
-        raise PathRefused(f"{_shown(pattern)} ends in **; add a file pattern like **/*.svg")
-    if parts:
-        walk(start, parts)
+    # Depth first with a stack of our own, not recursion: a tree nested thousands of
+    # folders deep is bounded by MAX_GLOB_ENTRIES like any other, never by Python's stack.
+    stack = [folder_steps(start, parts)] if parts else []
+    while stack:
+        step = next(stack[-1], None)
+        if step is None:
+            stack.pop()
+        elif isinstance(step, tuple):
+            stack.append(folder_steps(*step))
+        else:
+            shown = os.path.relpath(step, start)
+            if first_unsafe(shown) is not None:  # folders on the way count too
+                raise PathRefused(
+                    f"{_shown(shown)} matched by {_shown(pattern)} has a control or "
+                    "format character in its name; not allowed"
+                )
+            target = resolve(step)
+            if not target.is_relative_to(root):
+                raise PathRefused(
+                    f"{_shown(shown)} matched by "
+                    f"{_shown(pattern)} resolves outside the project root; not allowed"
+                )
+            if target.is_file():
+                found.append(target)
+                if len(found) > limit:
+                    raise PathRefused(f"{_shown(pattern)} matches more than {limit} files")
     return found

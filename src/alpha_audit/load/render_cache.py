@@ -17,9 +17,15 @@ checksum by someone who can write the user's cache folder is not detected;
 such a person can replace alpha-audit itself.)
 
 The file lives in the user cache folder (``$ALPHA_AUDIT_CACHE_DIR``, else
-``$XDG_CACHE_HOME/alpha-audit``, else ``~/.cache/alpha-audit``).  A folder or
+``$XDG_CACHE_HOME/alpha-audit``, else ``~/.cache/alpha-audit``).  A folder
+that cannot be named (``~nosuchuser/x``, no home) or made, and a folder or
 file that is a symbolic link, has several hard links, belongs to another user
-or is writable by others is not used: the run goes on without a cache.  Writes
+or is writable by others, is not used: the run goes on without a cache, and
+:func:`take_notes` says why.  A file that is not alpha-audit's (another
+schema, a view or trigger a crafted file could make loop, a size far over the
+bound) is replaced by an empty one, and every statement's work is bounded
+(:data:`MAX_STEPS` virtual-machine steps, counted by SQLite's progress
+handler): past it the run goes on without the cache.  Writes
 are transactions in WAL mode, so two runs may share the file (a run that finds
 it busy for long skips its writes); the file is kept under
 :data:`DEFAULT_MAX_BYTES` by dropping the entries used least recently.
@@ -45,6 +51,7 @@ from pathlib import Path
 __all__ = [
     "CACHE_DIR_ENV",
     "DEFAULT_MAX_BYTES",
+    "MAX_STEPS",
     "NO_CACHE_ENV",
     "RenderCache",
     "default_cache_dir",
@@ -52,6 +59,7 @@ __all__ = [
     "open_default",
     "probably_warm",
     "renderer_fingerprint",
+    "take_notes",
 ]
 
 CACHE_DIR_ENV = "ALPHA_AUDIT_CACHE_DIR"
@@ -63,10 +71,44 @@ _BUSY_SECONDS = 2.0  # a writer waits this long for another run's transaction
 _CHUNK = 500  # keys per statement (SQLite allows 999 variables before 3.32)
 _TOUCH_AFTER = 3600  # seconds: a read refreshes an entry's last use at most hourly
 _SIDE_FILES = ("", "-wal", "-shm", "-journal")
+# SQLite virtual-machine steps one cache operation may take: the progress handler is
+# called every _STEP_CALL of them and stops the statement past the bound.  Evicting from
+# a full 256 MiB file takes a few million; a crafted file could loop for ever.
+MAX_STEPS = 1_000_000_000
+_STEP_CALL = 10_000
+# A file this many times over its bound is no cache of ours (eviction keeps it under).
+_OVERSIZE = 4
+# What the file's schema is (sqlite_master), exactly; anything else is not ours.
+_TABLE_SQL = (
+    "CREATE TABLE entries (key BLOB PRIMARY KEY, value BLOB NOT NULL, "
+    "checksum BLOB NOT NULL, used INTEGER NOT NULL, size INTEGER NOT NULL)"
+)
+_INDEX_SQL = "CREATE INDEX entries_used ON entries (used)"
+_SCHEMA_ROWS = frozenset(
+    {
+        ("table", "entries", "entries", _TABLE_SQL),
+        ("index", "entries_used", "entries", _INDEX_SQL),
+        ("index", "sqlite_autoindex_entries_1", "entries", None),
+    }
+)
 
 _enabled: contextvars.ContextVar[bool] = contextvars.ContextVar(
     "alpha_audit_render_cache", default=True
 )
+_notes: list[str] = []  # why the user's cache was not used or was replaced (take_notes)
+
+
+def _note(text: str) -> None:
+    if text not in _notes:
+        _notes.append(text)
+
+
+def take_notes() -> list[str]:
+    """What happened to the user's cache since the last call, one line each (then cleared):
+    why a run went without it, or that an unusable file was replaced."""
+    taken = list(_notes)
+    _notes.clear()
+    return taken
 
 
 def disable() -> Callable[[], None]:
@@ -77,7 +119,18 @@ def disable() -> Callable[[], None]:
 
 
 def default_cache_dir() -> Path:
-    """``$ALPHA_AUDIT_CACHE_DIR``, else the platform's user cache folder + ``alpha-audit``."""
+    """``$ALPHA_AUDIT_CACHE_DIR``, else the platform's user cache folder + ``alpha-audit``.
+
+    Raises :class:`OSError` when the folder cannot be named (``~nosuchuser``, no
+    home folder): the run then goes without a cache.
+    """
+    try:
+        return _cache_dir()
+    except (RuntimeError, KeyError) as exc:  # pathlib: "Could not determine home directory."
+        raise OSError(f"the cache folder cannot be named: {exc}") from exc
+
+
+def _cache_dir() -> Path:
     if chosen := os.environ.get(CACHE_DIR_ENV):
         return Path(chosen).expanduser()
     if sys.platform == "darwin":
@@ -93,7 +146,12 @@ def open_default() -> RenderCache | None:
     """The user's render cache, or None when it is turned off or cannot be used safely."""
     if not _enabled.get() or os.environ.get(NO_CACHE_ENV):
         return None
-    return RenderCache.open(default_cache_dir())
+    try:
+        folder = default_cache_dir()
+    except OSError as exc:
+        _note(f"render cache not used ({exc}); this run renders every icon")
+        return None
+    return RenderCache.open(folder)
 
 
 def probably_warm() -> bool:
@@ -103,7 +161,7 @@ def probably_warm() -> bool:
         return False
     try:
         return (default_cache_dir() / FILE_NAME).stat().st_size > 8192
-    except OSError:
+    except (OSError, ValueError):  # ValueError: a NUL in the variable
         return False
 
 
@@ -188,6 +246,7 @@ class RenderCache:
 
     def __init__(self, connection: sqlite3.Connection, path: Path, max_bytes: int) -> None:
         self._db = connection
+        self._steps = _Steps(connection)
         self.path = path
         self.max_bytes = max_bytes
         self._pending: dict[bytes, bytes] = {}
@@ -197,21 +256,30 @@ class RenderCache:
 
     @classmethod
     def open(cls, folder: Path, *, max_bytes: int = DEFAULT_MAX_BYTES) -> RenderCache | None:
-        """The cache file in ``folder`` (made if missing), or None if it cannot be used safely."""
+        """The cache file in ``folder`` (made if missing), or None if it cannot be used safely
+        (why is noted: :func:`take_notes`)."""
         try:
             _safe_folder(folder)
-        except OSError:
+        except (OSError, ValueError) as exc:  # ValueError: a NUL in the name
+            _note(f"render cache not used ({_reason(exc)}); this run renders every icon")
             return None
         path = folder / FILE_NAME
         for attempt in range(2):
             try:
-                _safe_files(path)
+                _safe_files(path, max_bytes * _OVERSIZE)
                 return cls(_connect(path), path, max_bytes)
-            except sqlite3.DatabaseError:
+            except sqlite3.OperationalError as exc:  # busy, locked, no space: not the file's fault
+                _note(f"render cache {path} not used ({exc}); this run renders every icon")
+                return None
+            except (sqlite3.DatabaseError, _NotOurs) as exc:
                 if attempt:
+                    _note(f"render cache {path} not used ({exc}); this run renders every icon")
                     return None
-                _remove(path)  # not a database (truncated, overwritten): start afresh
-            except OSError:
+                # Not a database (truncated, overwritten) or not ours: start afresh.
+                _note(f"render cache {path} was unusable ({exc}); replaced by an empty one")
+                _remove(path)
+            except OSError as exc:
+                _note(f"render cache not used ({_reason(exc)}); this run renders every icon")
                 return None
         return None
 
@@ -231,6 +299,7 @@ class RenderCache:
         found: dict[bytes, bytes] = {}
         if self.broken or not wanted:
             return found
+        self._steps.reset()
         try:
             for chunk in _chunks(wanted):
                 marks = ",".join("?" * len(chunk))
@@ -270,6 +339,7 @@ class RenderCache:
         now = int(time.time())
         pending, bad, read = self._pending, self._bad, self._read
         self._pending, self._bad, self._read = {}, set(), set()
+        self._steps.reset()
         try:
             with _transaction(self._db):
                 for chunk in _chunks(list(bad)):
@@ -300,9 +370,15 @@ class RenderCache:
 
     def _fail(self, exc: sqlite3.Error) -> None:
         """After a database error the run goes on without the cache; a damaged file is
-        removed, so the next run starts an empty one."""
+        removed, so the next run starts an empty one (so is one whose statements take
+        more than :data:`MAX_STEPS`: no cache of ours does)."""
         self.broken = True
-        if isinstance(exc, sqlite3.OperationalError):
+        if self._steps.exceeded:
+            _note(
+                f"render cache {self.path} took more than {MAX_STEPS:,} steps for one "
+                "operation; this run goes on without it, and it is replaced"
+            )
+        elif isinstance(exc, sqlite3.OperationalError):
             return  # busy (another run writing), out of space ...: the file itself is fine
         self.close()
         _remove(self.path)
@@ -334,6 +410,37 @@ class RenderCache:
         return int(n)
 
 
+class _NotOurs(Exception):
+    """The file is a database, but not alpha-audit's render cache."""
+
+
+class _Steps:
+    """A bound on the SQLite virtual-machine steps of one operation (the progress handler)."""
+
+    def __init__(self, db: sqlite3.Connection) -> None:
+        self.calls = 0
+        self.exceeded = False
+        db.set_progress_handler(self._tick, _STEP_CALL)
+
+    def reset(self) -> None:
+        self.calls = 0
+
+    def _tick(self) -> int:
+        self.calls += 1
+        if self.calls * _STEP_CALL > MAX_STEPS:
+            self.exceeded = True
+            return 1  # a non-zero answer interrupts the statement (sqlite3.OperationalError)
+        return 0
+
+
+def _reason(exc: BaseException) -> str:
+    """An OS error in one line, without the errno prefix: ``file: Permission denied``."""
+    strerror, filename = getattr(exc, "strerror", None), getattr(exc, "filename", None)
+    if strerror and filename is not None:
+        return f"{filename}: {strerror}"
+    return str(strerror or exc)
+
+
 def _chunks(items: Sequence[bytes]) -> Iterator[Sequence[bytes]]:
     for start in range(0, len(items), _CHUNK):
         yield items[start : start + _CHUNK]
@@ -352,22 +459,38 @@ def _transaction(db: sqlite3.Connection) -> Iterator[None]:
 
 
 def _connect(path: Path) -> sqlite3.Connection:
+    """The cache file, opened; :class:`_NotOurs` when its schema is anything but ours.
+
+    The schema is read from ``sqlite_master`` (which runs nothing) before any
+    statement touches ``entries``: a crafted file's view or trigger of that name
+    never runs, and every statement is bounded anyway (:class:`_Steps`).
+    """
     db = sqlite3.connect(path, timeout=_BUSY_SECONDS, isolation_level=None)
     try:
+        steps = _Steps(db)
+        db.execute("PRAGMA trusted_schema = OFF")  # no function runs from a schema
+        schema = frozenset(db.execute("SELECT type, name, tbl_name, sql FROM sqlite_master"))
+        if schema and schema != _SCHEMA_ROWS:
+            kinds = sorted({f"{kind} {name}" for kind, name, _, _ in schema - _SCHEMA_ROWS})
+            raise _NotOurs(f"its schema is not alpha-audit's: {', '.join(kinds)[:120]}")
         db.execute("PRAGMA auto_vacuum = INCREMENTAL")  # takes effect on a new file only
         db.execute("PRAGMA journal_mode = WAL")
         db.execute("PRAGMA synchronous = NORMAL")
         (version,) = db.execute("PRAGMA user_version").fetchone()
-        if version != _SCHEMA:
+        if version != _SCHEMA or not schema:
             with _transaction(db):
                 db.execute("DROP TABLE IF EXISTS entries")
-                db.execute(
-                    "CREATE TABLE entries (key BLOB PRIMARY KEY, value BLOB NOT NULL, "
-                    "checksum BLOB NOT NULL, used INTEGER NOT NULL, size INTEGER NOT NULL)"
-                )
-                db.execute("CREATE INDEX entries_used ON entries (used)")
+                db.execute(_TABLE_SQL)
+                db.execute(_INDEX_SQL)
                 db.execute(f"PRAGMA user_version = {_SCHEMA}")
         db.execute("SELECT count(*) FROM entries LIMIT 1").fetchone()
+        if steps.exceeded:
+            raise _NotOurs(f"opening it took more than {MAX_STEPS:,} steps")
+    except sqlite3.OperationalError as exc:
+        db.close()
+        if "interrupted" in str(exc):
+            raise _NotOurs(f"opening it took more than {MAX_STEPS:,} steps") from exc
+        raise
     except BaseException:
         db.close()
         raise
@@ -391,8 +514,9 @@ def _safe_folder(folder: Path) -> None:
         raise OSError(f"{folder} is writable by others")
 
 
-def _safe_files(path: Path) -> None:
-    """OSError if the database or one of SQLite's side files is anything but our own file.
+def _safe_files(path: Path, max_bytes: int | None = None) -> None:
+    """OSError if the database or one of SQLite's side files is anything but our own file;
+    :class:`_NotOurs` if one is over ``max_bytes`` (no cache of ours grows so large).
 
     Their mode is not checked: inside our own folder, no one else reaches them.
     """
@@ -406,6 +530,8 @@ def _safe_files(path: Path) -> None:
         _owned(info, path)
         if info.st_nlink != 1:
             raise OSError(f"{path}{suffix} has other hard links")
+        if max_bytes is not None and info.st_size > max_bytes:
+            raise _NotOurs(f"{info.st_size:,} bytes, far over the cache's bound")
 
 
 def _owned(info: os.stat_result, path: Path) -> None:

@@ -1,9 +1,11 @@
 """One page in one state: load it, find its icons, capture it as drawn and with them hidden.
 
-Exactly two screenshots per page and state, of the box holding every icon
-(plus a margin for the ring around them), at the browser's device scale: the
-icons as drawn, then all of them ``visibility: hidden`` at once.  What the
-second shows is the backdrop the browser composited behind them.
+Once the page is held still (:mod:`alpha_audit.pages.stillness`), three
+screenshots per page and state, of the box holding every icon (plus a margin
+for the ring around them), at the browser's device scale: the icons as drawn,
+then all of them ``visibility: hidden`` at once, then as drawn again.  What
+the second shows is the backdrop the browser composited behind them; the third
+must equal the first, or the page state is a problem (it still moves).
 """
 
 from __future__ import annotations
@@ -22,11 +24,25 @@ from PIL import Image
 from alpha_audit.browser import Browser, BrowserError, Clip
 from alpha_audit.errors import UsageError
 from alpha_audit.pages.states import State
-from alpha_audit.safe_text import safe_text
+from alpha_audit.pages.stillness import check_still, hold_still
+from alpha_audit.safe_text import MAX_NAME, safe_text, shorten
 
-__all__ = ["MARGIN", "Capture", "FoundIcon", "capture_page", "check_globals"]
+__all__ = [
+    "ICON_KINDS",
+    "MARGIN",
+    "MAX_DOM_PATH",
+    "Capture",
+    "FoundIcon",
+    "capture_page",
+    "check_globals",
+]
 
 MARGIN = 4  # CSS pixels of backdrop kept around the icons' box (the ring "around" each icon)
+# Bounds on what a page supplies (docs/ci.md, "Every bound"): a DOM path is shown, so it is
+# shortened; the probe sends at most MAX_GEOMETRY characters of path data (probe.js).
+MAX_DOM_PATH = 1000
+MAX_GEOMETRY = 262_144
+ICON_KINDS = ("svg", "use", "img", "mask", "selector")
 _PROBE = "__alphaAuditProbe"
 # Storybook 7-10 mark <body> once a story has rendered (or failed); a page is ready when
 # loaded, its fonts are in and its images decoded.
@@ -150,6 +166,75 @@ def _union(icons: list[FoundIcon], width: int, height: int) -> Clip:
     return Clip(left, top, max(1, right - left), max(1, bottom - top))
 
 
+def _text(value: object, limit: int) -> str | None:
+    """A string the page supplied, or ``None`` when it is missing or longer than ``limit``."""
+    return value if isinstance(value, str) and len(value) <= limit else None
+
+
+def _number(value: object) -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
+        raise TypeError(f"{value!r:.40} is not a finite number")
+    return float(value)
+
+
+def _found_icon(raw: Any) -> FoundIcon:
+    """One icon of the probe's answer, checked; names the page supplied, bounded.
+
+    The DOM path (ids are the page's) is shortened to :data:`MAX_DOM_PATH`
+    characters, start and end kept; a key (``data-icon`` value, sprite id,
+    file name) longer than :data:`~alpha_audit.safe_text.MAX_NAME` matches no
+    manifest name, so it is dropped; a paint's colour text longer than that is
+    no colour an engine computes.
+    """
+    kind = raw["kind"]
+    if kind not in ICON_KINDS:
+        raise TypeError(f"icon kind {kind!r:.40}")
+    path = raw["path"]
+    if not isinstance(path, str):
+        raise TypeError("a DOM path that is not text")
+    keys = raw["keys"]
+    paints = []
+    for paint in raw["paints"]:
+        kinds = tuple(k for k in paint["kinds"] if k in ("fill", "stroke"))
+        color = _text(paint["color"], MAX_NAME)
+        current = paint["current"]
+        if color is None or len(kinds) != len(paint["kinds"]) or not isinstance(current, bool):
+            raise TypeError("a paint of another shape")
+        opacity = _number(paint["opacity"])
+        paints.append(
+            {"color": color, "opacity": opacity, "kinds": list(kinds), "current": current}
+        )
+    box = tuple(_number(raw["box"][k]) for k in range(4))
+    return FoundIcon(
+        kind,
+        shorten(path, MAX_DOM_PATH),
+        (box[0], box[1], box[2], box[3]),
+        {
+            "data": _text(keys["data"], MAX_NAME),
+            "sprite": _text(keys["sprite"], MAX_NAME),
+            "file": _text(keys["file"], MAX_NAME),
+            "geometry": _text(keys["geometry"], MAX_GEOMETRY),
+        },
+        tuple(paints),
+    )
+
+
+def _found_icons(found: Any, label: str) -> list[FoundIcon]:
+    """The probe's icons; an answer of another shape is a :class:`BrowserError`.
+
+    Where the engine has no isolated world (WebKitGTK), the probe runs beside
+    the page's scripts, which may have replaced what it calls: its answer is
+    data from the page like any other.
+    """
+    try:
+        icons = found["icons"]
+        if not isinstance(icons, list):
+            raise TypeError("icons is not a list")
+        return [_found_icon(raw) for raw in icons]
+    except (KeyError, IndexError, TypeError, ValueError) as exc:
+        raise BrowserError(f"{label}: the icon probe returned malformed data ({exc})") from None
+
+
 def _mark_html(browser: Browser, state: State) -> None:
     if not state.marks_html:
         return
@@ -188,28 +273,21 @@ def capture_page(
             check_globals(browser, state)
     _mark_html(browser, state)
     browser.evaluate(_SETTLED, isolated=isolated)
+    hold_still(browser)  # before the icons' boxes are read: a finished animation moves them
     browser.evaluate(f"(globalThis.{_PROBE} = {_probe_source()}, true)", isolated=isolated)
     options = {"selector": selector, "attribute": attribute, "maxSize": max_icon_size}
     found: Any = browser.evaluate(f"{_PROBE}.find({json.dumps(options)})", isolated=isolated)
-    if not isinstance(found, dict):
-        raise BrowserError(f"{browser.LABEL}: the icon probe returned {type(found).__name__}")
-    page_h = int(found["height"])
+    if not isinstance(found, dict) or not isinstance(found.get("height"), int | float):
+        raise BrowserError(f"{browser.LABEL}: the icon probe returned malformed data")
+    page_h = int(min(found["height"], 1 << 20))
     if page_h > height and height < 4096:
         # Icons below the fold: make the viewport as tall as the page (4096 px at most).
         browser.set_viewport(width, min(page_h, 4096), scale)
         height = min(page_h, 4096)
         browser.evaluate(_SETTLED, isolated=isolated)
+        hold_still(browser)
         found = browser.evaluate(f"{_PROBE}.find({json.dumps(options)})", isolated=isolated)
-    icons = [
-        FoundIcon(
-            str(i["kind"]),
-            str(i["path"]),
-            (float(i["box"][0]), float(i["box"][1]), float(i["box"][2]), float(i["box"][3])),
-            dict(i["keys"]),
-            tuple(dict(p) for p in i["paints"]),
-        )
-        for i in found["icons"]
-    ]
+    icons = _found_icons(found, browser.LABEL)
     if not icons:
         empty = np.zeros((0, 0, 3), dtype=np.uint8)
         return Capture((), None, scale, empty, empty)
@@ -217,6 +295,8 @@ def capture_page(
     drawn = _png(browser.screenshot(clip))
     browser.evaluate(f"{_PROBE}.hide(true)", isolated=isolated)
     hidden = _png(browser.screenshot(clip))
+    browser.evaluate(f"{_PROBE}.hide(false)", isolated=isolated)
+    check_still(drawn, _png(browser.screenshot(clip)))
     expected = (clip.height * scale, clip.width * scale)
     if drawn.shape[:2] != expected or hidden.shape != drawn.shape:
         raise BrowserError(

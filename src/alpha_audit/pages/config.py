@@ -126,6 +126,11 @@ class RenderConfig:
 
 def source_from_argument(text: str, root: Path) -> Source:
     """A source named on the command line: a loopback URL, a built Storybook or a folder."""
+    if not text.strip():  # Path("") is the current folder: never what an empty value meant
+        raise UsageError(
+            "an empty source: give a built Storybook folder, a folder of HTML pages or a "
+            "loopback URL"
+        )
     if "://" in text:
         return UrlSource(check_loopback_url(text))
     try:

@@ -24,7 +24,6 @@ from pathlib import Path
 from typing import NamedTuple
 
 from alpha_audit.browser import Browser, BrowserError, LaunchOptions, engine_class
-from alpha_audit.browser.lifecycle import ending_on_signals
 from alpha_audit.errors import AlphaAuditError, UsageError
 from alpha_audit.model import IconSet
 from alpha_audit.observed import BlockedRequest, MeasuredPaint, PageProblem, PageRun
@@ -34,12 +33,16 @@ from alpha_audit.pages.crops import CropStore
 from alpha_audit.pages.mapping import ManifestIndex
 from alpha_audit.pages.measure import PageContext, measure_capture
 from alpha_audit.pages.server import BlockingProxy, PageServer
-from alpha_audit.pages.sources import FolderSource, StorybookSource, Target, targets
+from alpha_audit.pages.sources import FolderSource, StorybookSource, Target, targets, url_origin
 from alpha_audit.pages.states import State, globals_param
+from alpha_audit.pages.stillness import PageUnstable
+from alpha_audit.safe_text import shorten
+from alpha_audit.signals import ending_on_signals
 
-__all__ = ["Job", "PageAudit", "audit_pages", "plan_jobs"]
+__all__ = ["MAX_REASON", "Job", "PageAudit", "audit_pages", "plan_jobs"]
 
 _GUARD_PERIOD = 0.25  # seconds between checks of a page's time and its browser's memory
+MAX_REASON = 500  # characters of a page problem's message
 
 
 class PageAudit(NamedTuple):
@@ -184,8 +187,10 @@ class _Worker:
                     max_icon_size=self.config.max_icon_size,
                 )
         except BrowserError as exc:
-            reason = self.guard.reason or str(exc)
-            self.close_browser()
+            # The message may quote the page (a script's error): bounded like its names.
+            reason = shorten(self.guard.reason or str(exc), MAX_REASON)
+            if not isinstance(exc, PageUnstable):  # a page that moves leaves its browser fine
+                self.close_browser()
             problem = PageProblem(job.target.name, job.state.name, job.engine, reason)
             return [], problem, self.proxy.take(), 0
         page = PageContext(
@@ -205,11 +210,10 @@ class _Worker:
             self.proxy.close()
 
 
-def _mounts(config: RenderConfig) -> list[Path]:
-    return [
-        s.folder if isinstance(s, StorybookSource | FolderSource) else Path(config.root)
-        for s in config.sources
-    ]
+def _mounts(config: RenderConfig) -> list[Path | None]:
+    """Each source's folder on the page server; a URL source has none (its own server)."""
+    return [s.folder if isinstance(s, StorybookSource | FolderSource) else None
+            for s in config.sources]  # fmt: skip
 
 
 def audit_pages(
@@ -248,7 +252,7 @@ def audit_pages(
         direct = tuple(
             dict.fromkeys(
                 [server.address, server.address.replace("127.0.0.1", "localhost")]
-                + [j.target.path.split("/")[2] for j in jobs if j.target.mount is None]
+                + [url_origin(j.target.path) for j in jobs if j.target.mount is None]
             )
         )
         workers = [

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import contextlib
 import mimetypes
+import re
 import socketserver
 import threading
 from collections.abc import Sequence
@@ -37,10 +38,16 @@ _TYPES = {
     ".woff2": "font/woff2",
     ".wasm": "application/wasm",
 }
+_MOUNT = re.compile(r"[0-9]{1,6}")  # ASCII digits only: str.isdigit() takes "²" and "١"
+
+
+def _plain(part: str) -> bool:
+    """A path part that names a visible entry: not ``.``/``..``, no dot file, no separator."""
+    return bool(part) and not part.startswith(".") and not any(c in part for c in "\\/\x00")
 
 
 class _Quiet(BaseHTTPRequestHandler):
-    """Request handling shared by both servers: no logging to stderr."""
+    """Request handling shared by both servers: no logging to stderr (see ``_Server``)."""
 
     protocol_version = "HTTP/1.1"
     server_version = "alpha-audit"
@@ -71,22 +78,27 @@ class _FileHandler(_Quiet):
         self._serve(body=False)
 
     def _file(self) -> Path | None:
-        path = unquote(urlsplit(self.path).path)
-        parts = [p for p in path.split("/") if p]
-        if not parts or not parts[0].isdigit() or int(parts[0]) >= len(self.server.mounts):
-            return None
-        if any(p in ("..", ".") or "\\" in p or "\x00" in p for p in parts):
-            return None
-        folder = self.server.mounts[int(parts[0])]
-        candidate = folder.joinpath(*parts[1:])
-        if path.endswith("/") or candidate == folder:
-            candidate = candidate / "index.html"
+        """The file the request names, or ``None`` (see the module's docstring)."""
         try:
-            resolved = candidate.resolve(strict=True)
-        except (OSError, RuntimeError):
+            path = unquote(urlsplit(self.path).path, errors="strict")
+        except (ValueError, UnicodeError):  # not UTF-8 once decoded, a bad IPv6 host ...
             return None
-        # Symlinks may not lead out of the folder or the project.
+        parts = path.split("/")[1:]
+        if len(parts) < 2 or not _MOUNT.fullmatch(parts[0]):
+            return None
+        mount = int(parts[0])
+        folder = self.server.mounts[mount] if mount < len(self.server.mounts) else None
+        names = parts[1:] if parts[-1] else [*parts[1:-1], "index.html"]
+        if folder is None or not all(_plain(p) for p in names):
+            return None
+        try:
+            resolved = folder.joinpath(*names).resolve(strict=True)
+        except (OSError, RuntimeError, ValueError):
+            return None
+        # As resolved too: a link may lead out of the folder, or to a dot file inside it.
         if not (resolved.is_relative_to(folder) and resolved.is_relative_to(self.server.root)):
+            return None
+        if not all(_plain(p) for p in resolved.relative_to(folder).parts):
             return None
         return resolved if resolved.is_file() else None
 
@@ -112,9 +124,21 @@ class _FileHandler(_Quiet):
                     self.wfile.write(chunk)
 
 
-class _FileServer(ThreadingHTTPServer):
+class _Server(ThreadingHTTPServer):
+    """A loopback server whose failed requests print nothing (socketserver prints a traceback).
+
+    What a page sends cannot write to alpha-audit's stderr: a request that
+    fails (a client that hangs up mid-file) just ends its connection.
+    """
+
     daemon_threads = True
-    mounts: tuple[Path, ...]
+
+    def handle_error(self, request: object, client_address: object) -> None:
+        return
+
+
+class _FileServer(_Server):
+    mounts: tuple[Path | None, ...]
     root: Path
 
 
@@ -152,11 +176,14 @@ class _Background:
 
 
 class PageServer(_Background):
-    """Serves ``mounts[n]`` at ``http://127.0.0.1:PORT/n/`` (nothing outside ``root``)."""
+    """Serves ``mounts[n]`` at ``http://127.0.0.1:PORT/n/`` (nothing outside ``root``).
 
-    def __init__(self, mounts: Sequence[Path], root: Path) -> None:
+    A ``None`` mount (a source that is a URL) serves nothing.
+    """
+
+    def __init__(self, mounts: Sequence[Path | None], root: Path) -> None:
         server = _FileServer(("127.0.0.1", 0), _FileHandler)
-        server.mounts = tuple(m.resolve() for m in mounts)
+        server.mounts = tuple(None if m is None else m.resolve() for m in mounts)
         server.root = root.resolve()
         super().__init__(server)
 
@@ -178,8 +205,7 @@ class _ProxyHandler(_Quiet):
     do_CONNECT = _record
 
 
-class _ProxyServer(ThreadingHTTPServer):
-    daemon_threads = True
+class _ProxyServer(_Server):
     lock: threading.Lock
     requests: list[str]
 

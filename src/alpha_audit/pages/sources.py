@@ -29,11 +29,12 @@ __all__ = [
     "UrlSource",
     "check_loopback_url",
     "targets",
+    "url_origin",
 ]
 
-LOOPBACK_HOSTS = ("localhost", "127.0.0.1", "[::1]", "::1")
+LOOPBACK_HOSTS = ("localhost", "127.0.0.1", "::1")  # urlsplit's hostname: [::1] is "::1"
 MAX_INDEX_BYTES = 32 << 20  # a Storybook of thousands of stories has an index of a few MB
-MAX_PAGES = 20_000
+MAX_PAGES = 20_000  # pages, stories and URLs of one run, every source together
 
 
 @dataclass(frozen=True)
@@ -85,15 +86,43 @@ class Target:
     file: Path | None = None
 
 
+_LOOPBACK_FORMS = (
+    "give http://localhost:PORT/..., http://127.0.0.1:PORT/... or http://[::1]:PORT/... "
+    "(pages are audited with no network but loopback)"
+)
+
+
 def check_loopback_url(url: str) -> str:
-    """``url`` if it is ``http://`` on a loopback host, else a :class:`UsageError`."""
-    parts = urlsplit(url)
-    if parts.scheme != "http" or parts.hostname not in LOOPBACK_HOSTS or not parts.port:
-        raise UsageError(
-            f"{url!r} is not a loopback page: give http://localhost:PORT/... or "
-            "http://127.0.0.1:PORT/... (pages are audited with no network but loopback)"
-        )
+    """``url`` if it is ``http://`` on a loopback host with a port, else a :class:`UsageError`.
+
+    >>> check_loopback_url("http://[::1]:6006/iframe.html")
+    'http://[::1]:6006/iframe.html'
+    >>> check_loopback_url("http://localhost:99999/")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    alpha_audit.errors.UsageError: 'http://localhost:99999/' is not a URL (Port out of range ...
+    """
+    shown = repr(url[:200])
+    try:
+        parts = urlsplit(url)
+        port = parts.port  # a port that is not a number from 0 to 65535 raises here
+    except ValueError as exc:  # also "[::1" (an unclosed IPv6 host)
+        raise UsageError(f"{shown} is not a URL ({exc}): {_LOOPBACK_FORMS}") from None
+    if parts.scheme != "http" or parts.hostname not in LOOPBACK_HOSTS or not port:
+        raise UsageError(f"{shown} is not a loopback page: {_LOOPBACK_FORMS}")
+    if parts.username is not None or parts.password is not None:
+        raise UsageError(f"{shown} holds a user name or password; give the page's address alone")
     return url
+
+
+def url_origin(url: str) -> str:
+    """``host:port`` of a loopback URL (:func:`check_loopback_url`), as proxy lists take it.
+
+    >>> url_origin("http://[::1]:6006/x"), url_origin("http://localhost:6006")
+    ('[::1]:6006', 'localhost:6006')
+    """
+    parts = urlsplit(check_loopback_url(url))
+    host = parts.hostname or ""
+    return f"[{host}]:{parts.port}" if ":" in host else f"{host}:{parts.port}"
 
 
 def _story_file(source: StorybookSource, import_path: object) -> Path | None:
@@ -129,15 +158,38 @@ def _stories(source: StorybookSource) -> list[tuple[str, str, Path | None]]:
             "expected 4 or 5 with entries)",
             path=index,
         )
+    if len(entries) > MAX_PAGES:  # before any entry is read: the bound of every source
+        raise InputError(
+            f"lists {len(entries):,} entries; a run audits at most {MAX_PAGES:,} pages and "
+            "stories (choose some with stories: globs, or split the Storybook)",
+            path=index,
+        )
     found = []
     for key, entry in entries.items():
         if not isinstance(entry, dict) or entry.get("type", "story") != "story":
             continue  # docs pages draw no story of their own
-        # Ids reach every report and the page's URL: the one name policy of every input.
+        # Ids, titles and names reach reports, URLs and globs: the one name policy of
+        # every input (no control characters, at most MAX_NAME characters).
         story = check_name(str(entry.get("id", key)), path=index, key=str(key), what="story id")
-        title = f"{entry.get('title', '')}/{entry.get('name', '')}"
-        found.append((story, title, _story_file(source, entry.get("importPath"))))
+        parts = []
+        for field in ("title", "name"):
+            value = entry.get(field)
+            text = "" if value is None else str(value)
+            if text:
+                check_name(text, path=index, key=f"{key}.{field}", what=f"story {field}")
+            parts.append(text)
+        found.append((story, "/".join(parts), _story_file(source, entry.get("importPath"))))
     return found
+
+
+def _bounded(count: int, folder: Path | None) -> None:
+    """Refuse a run of more than :data:`MAX_PAGES` pages, stories and URLs together."""
+    if count > MAX_PAGES:
+        raise UsageError(
+            f"more than {MAX_PAGES:,} pages and stories in one run; choose fewer "
+            "(stories: globs, a narrower pattern) or split the sources",
+            path=folder,
+        )
 
 
 def targets(sources: Sequence[Source]) -> list[Target]:
@@ -161,22 +213,27 @@ def targets(sources: Sequence[Source]) -> list[Target]:
                     else "the Storybook has no stories",
                     path=source.folder,
                 )
+            _bounded(len(out) + len(chosen), source.folder)
             for story, file in chosen:
                 path = f"iframe.html?id={quote(story, safe='')}&viewMode=story"
                 out.append(Target("storybook", story, mount, path, True, file))
         elif isinstance(source, FolderSource):
             try:
                 pages = glob_contained(
-                    source.folder, source.folder, source.pattern, limit=MAX_PAGES
+                    source.folder, source.folder, source.pattern, limit=MAX_PAGES - len(out)
                 )
             except PathRefused as exc:
                 raise UsageError(str(exc), path=source.folder) from exc
-            if not pages:
+            # The server never serves a dot file (pages.server): such a page is not one.
+            relatives = [(p, p.relative_to(source.folder)) for p in pages]
+            shown = [(p, r.as_posix()) for p, r in relatives
+                     if not any(part.startswith(".") for part in r.parts)]  # fmt: skip
+            if not shown:
                 raise UsageError(f"no page matches {source.pattern!r}", path=source.folder)
-            for page in pages:
-                relative = page.relative_to(source.folder).as_posix()
+            for page, relative in shown:
                 out.append(Target("page", relative, mount, quote(relative), False, page))
         else:
             check_loopback_url(source.url)
+            _bounded(len(out) + 1, None)
             out.append(Target("url", source.url, None, source.url, "iframe.html" in source.url))
     return out

@@ -59,6 +59,8 @@ class _Resolver:
         if target not in self.files:
             if len(self.files) >= MAX_SOURCES:
                 raise self.error(keys, f"more than {MAX_SOURCES} source files")
+            if not target.is_file():  # named here, at the $ref, not as a file alone
+                raise self.error(keys, f"$ref {ref!r} names no file")
             self.files[target] = load_json(target)
         return self.files[target]
 
@@ -108,12 +110,23 @@ class _Resolver:
                         keys, f"$ref {ref!r} must point at #/sets/... or #/modifiers/..."
                     )
                 node, parts = self.pointer(keys, ref)
-                out.append(("set" if parts[0] == "sets" else "modifier", node, parts))
+                kind = "set" if parts[0] == "sets" else "modifier"
+                if not isinstance(node, dict):
+                    raise self.error(
+                        parts, f"expected a {kind} object, got {_json_type(node)} (via {ref})"
+                    )
+                out.append((kind, node, parts))
             elif isinstance(item, dict) and item.get("type") in ("set", "modifier"):
                 out.append((item["type"], item, keys))
             else:
                 raise self.error(keys, "expected {$ref: #/sets/...} or an inline set or modifier")
         return out
+
+
+def _json_type(value: Any) -> str:
+    """The JSON name of a value's type (``null``, ``array``, ``string``, ...)."""
+    names = {bool: "boolean", int: "number", float: "number", str: "string", list: "array"}
+    return "null" if value is None else names.get(type(value), "object")
 
 
 def _walk_pointer(doc: JsonDoc, fragment: str) -> tuple[Any, tuple[str, ...]]:

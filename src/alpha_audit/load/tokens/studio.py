@@ -93,6 +93,13 @@ def modes_from_studio(
                     line=doc.line(keys),
                     path=".".join(map(str, keys)),
                 ) from err
+            if not target.is_file():  # named here, where a theme selects it
+                raise token_error(
+                    f"token set {name!r} has no file {name}.json beside this one",
+                    file=doc.path,
+                    line=doc.line(keys),
+                    path=".".join(map(str, keys)),
+                )
             loaded = load_json(target)
             sets[name] = (loaded, loaded.data)
         return sets[name]
