@@ -61,6 +61,28 @@ class _Quiet(BaseHTTPRequestHandler):
         self.close_connection = True
 
 
+def _served_file(mounts: Sequence[Path], root: Path, target: str) -> Path | None:
+    """The file served at ``target`` (a request's path, query allowed), or ``None``."""
+    path = unquote(urlsplit(target).path)
+    parts = [p for p in path.split("/") if p]
+    if not parts or not parts[0].isdigit() or int(parts[0]) >= len(mounts):
+        return None
+    if any(p in ("..", ".") or "\\" in p or "\x00" in p for p in parts):
+        return None
+    folder = mounts[int(parts[0])]
+    candidate = folder.joinpath(*parts[1:])
+    if path.endswith("/") or candidate == folder:
+        candidate = candidate / "index.html"
+    try:
+        resolved = candidate.resolve(strict=True)
+    except (OSError, RuntimeError):
+        return None
+    # Symlinks may not lead out of the folder or the project.
+    if not (resolved.is_relative_to(folder) and resolved.is_relative_to(root)):
+        return None
+    return resolved if resolved.is_file() else None
+
+
 class _FileHandler(_Quiet):
     server: _FileServer
 
@@ -70,28 +92,8 @@ class _FileHandler(_Quiet):
     def do_HEAD(self) -> None:
         self._serve(body=False)
 
-    def _file(self) -> Path | None:
-        path = unquote(urlsplit(self.path).path)
-        parts = [p for p in path.split("/") if p]
-        if not parts or not parts[0].isdigit() or int(parts[0]) >= len(self.server.mounts):
-            return None
-        if any(p in ("..", ".") or "\\" in p or "\x00" in p for p in parts):
-            return None
-        folder = self.server.mounts[int(parts[0])]
-        candidate = folder.joinpath(*parts[1:])
-        if path.endswith("/") or candidate == folder:
-            candidate = candidate / "index.html"
-        try:
-            resolved = candidate.resolve(strict=True)
-        except (OSError, RuntimeError):
-            return None
-        # Symlinks may not lead out of the folder or the project.
-        if not (resolved.is_relative_to(folder) and resolved.is_relative_to(self.server.root)):
-            return None
-        return resolved if resolved.is_file() else None
-
     def _serve(self, *, body: bool) -> None:
-        file = self._file()
+        file = _served_file(self.server.mounts, self.server.root, self.path)
         if file is None:
             self._refuse(HTTPStatus.NOT_FOUND)
             return
@@ -159,10 +161,25 @@ class PageServer(_Background):
         server.mounts = tuple(m.resolve() for m in mounts)
         server.root = root.resolve()
         super().__init__(server)
+        self._mounts, self._root = server.mounts, server.root
+        port = self.address.rsplit(":", 1)[1]
+        self._origins = (f"127.0.0.1:{port}", f"localhost:{port}")
 
     def url(self, mount: int, path: str) -> str:
         """The URL of ``path`` (query included) in folder ``mount``."""
         return f"http://{self.address}/{mount}/{path}"
+
+    def local_file(self, url: str) -> Path | None:
+        """The file this server serves (or served) at ``url``; ``None`` for any other URL.
+
+        What :meth:`url` gives, resolved as a request for it is: inside its
+        folder and the project root, symlinks followed; another origin (a
+        page's own loopback server) is none of ours.
+        """
+        parts = urlsplit(url)
+        if parts.scheme != "http" or parts.netloc not in self._origins:
+            return None
+        return _served_file(self._mounts, self._root, parts.path)
 
 
 class _ProxyHandler(_Quiet):
