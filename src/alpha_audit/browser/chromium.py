@@ -300,10 +300,14 @@ class Chromium(Browser):
                 try:
                     node = self._call("DOM.requestNode", {"objectId": handles[k]})["nodeId"]
                     matched = self._call("CSS.getMatchedStylesForNode", {"nodeId": node})
+                    flat = self._call("DOM.getAttributes", {"nodeId": node}).get("attributes", [])
                 except (KeyError, _ProtocolError):
                     nodes.append([])
                     continue
-                nodes.append(declarations(matched, pseudo, headers, sheets))  # type: ignore[arg-type]
+                written = {
+                    str(n).lower(): str(v) for n, v in zip(flat[::2], flat[1::2], strict=False)
+                }
+                nodes.append(declarations(matched, pseudo, headers, sheets, written))  # type: ignore[arg-type]
         finally:
             self._sheet_headers = None
             for method, params in (

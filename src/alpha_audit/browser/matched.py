@@ -76,12 +76,17 @@ def declarations(
     pseudo: str | None,
     headers: dict[str, dict[str, Any]],
     sheets: dict[str, int],
+    attributes: dict[str, str] | None = None,
 ) -> list[dict[str, Any]]:
     """One node's declarations of traced properties, from a ``getMatchedStylesForNode`` reply.
 
     ``pseudo`` takes the rules of that pseudo-element of the node instead;
     ``headers`` are the style sheet headers by id, ``sheets`` the index of
     each id in the answer's ``sheets`` list (added to as sheets are met).
+    ``attributes`` are the node's attributes as written (``DOM.getAttributes``):
+    a presentational hint's value is the engine's serialisation
+    (``rgb(170, 51, 0)`` for ``stroke="#a30"``), the attribute says what the
+    markup holds.
     """
     if pseudo is None:
         rules = matched.get("matchedCSSRules") or []
@@ -157,8 +162,9 @@ def declarations(
         for prop in (matched.get("attributesStyle") or {}).get("cssProperties", ()):
             name = str(prop.get("name", ""))
             if name in _HINTS:
+                value = (attributes or {}).get(name, str(prop.get("value", "")))
                 out.append(
-                    {"property": name, "name": name, "value": str(prop.get("value", "")),
+                    {"property": name, "name": name, "value": value[:MAX_VALUE],
                      "important": False, "kind": "hint", "layer": [LAST_LAYER], "position": -1}
                 )  # fmt: skip
     return out

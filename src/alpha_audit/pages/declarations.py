@@ -228,14 +228,21 @@ class ServedFiles:
         return out
 
     # ---------------------------------------------------------------- places
-    def _at(self, index: LineIndex, offset: int, name: str) -> _Place | None:
-        """The declaration of ``name`` starting at ``offset``, with its value's span."""
+    def _at(
+        self, index: LineIndex, offset: int, name: str, limit: int | None = None
+    ) -> _Place | None:
+        """The declaration of ``name`` starting at ``offset``, with its value's span.
+
+        ``limit`` ends the text the declaration may take (a ``style``
+        attribute's closing quote).
+        """
         import tinycss2
 
         text = index.text
         if text[offset : offset + len(name)].lower() != name.lower():
             return None
-        chunk = text[offset : offset + _DECLARATION_CHARS]
+        stop = offset + _DECLARATION_CHARS
+        chunk = text[offset : stop if limit is None else min(stop, limit)]
         tokens = tinycss2.parse_component_value_list(chunk, skip_comments=False)
         local = LineIndex(chunk, index.path, "css")
 
@@ -262,7 +269,7 @@ class ServedFiles:
                 value.pop(0)
             if value:
                 if end is None:
-                    end = len(chunk) if len(chunk) < _DECLARATION_CHARS else None
+                    end = len(chunk) if offset + len(chunk) < stop else None
                 if end is not None:
                     span = index.span(offset + start_of(value[0]), offset + end)
         return _Place(index.path, line, column, span)
@@ -322,27 +329,34 @@ class ServedFiles:
                 return -1
         return -1
 
-    def _in_markup(self, d: Declaration, index: LineIndex) -> int | None:
-        """An attribute's declaration in the page's own markup, when it is there once."""
+    def _in_markup(self, d: Declaration, index: LineIndex) -> _Place | None:
+        """An attribute's declaration in the page's own markup, when it is there once.
+
+        A presentation attribute (``stroke="#a30"``) is found by name and
+        value; a ``style`` attribute by its whole text, then the property in
+        it.  Text that a script wrote (a story's markup) is in no file.
+        """
         place = d.place
         if place is None:
             return None
         if d.kind == "hint":
             pattern = re.compile(
-                rf"(?<![\w-]){re.escape(d.name)}\s*=\s*([\"']){re.escape(d.value)}\1",
+                rf"(?<![\w-]){re.escape(d.name)}\s*=\s*([\"'])(?P<value>{re.escape(d.value)})\1",
                 re.IGNORECASE,
             )
             found = list(pattern.finditer(index.text))
-            return found[0].start() if len(found) == 1 else None
+            if len(found) != 1:
+                return None
+            line, column = index.position(found[0].start())
+            value = index.span(found[0].start("value"), found[0].end("value"))
+            return _Place(index.path, line, column, value)
         if place.text is None:
             return None
         at = self._find_once(index.text, place.text)
-        if at < 0:
+        inner = re.search(rf"(?<![\w-]){re.escape(d.name)}\s*:", place.text, re.IGNORECASE)
+        if at < 0 or inner is None:
             return None
-        inner = re.search(
-            rf"(?<![\w-]){re.escape(d.name)}\s*:", place.text, re.IGNORECASE
-        )  # fmt: skip
-        return at + inner.start() if inner else None
+        return self._at(index, at + inner.start(), d.name, limit=at + len(place.text))
 
     def _mapped(self, place: _Place, index: LineIndex, offset: int, name: str) -> _Place:
         """Through the served CSS's source map to its original file, where it leads to one."""
@@ -411,8 +425,8 @@ class ServedFiles:
         if index is None:
             return None
         if d.kind in ("hint", "attribute"):
-            offset = self._in_markup(d, index)
-        elif d.place.line is not None and d.place.column is not None:
+            return self._in_markup(d, index)
+        if d.place.line is not None and d.place.column is not None:
             offset = self._from_devtools(d, index)
         else:
             offset = self._from_walk(d, index)
