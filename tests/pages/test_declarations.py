@@ -16,25 +16,43 @@ colour).  The engines must also agree on every place.
 
 from __future__ import annotations
 
+import importlib.util
+import json
 import os
 import re
 import shutil
+import subprocess
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
+from urllib.parse import unquote
 
+import jsonschema
 import pytest
 import tinycss2
 from coloraide import Color
 
 from alpha_audit.browser import Browser, LaunchOptions, engine_class
+from alpha_audit.findings import Finding
+from alpha_audit.gate import judge
 from alpha_audit.pages.capture import _PROBE, FoundIcon, capture_page
-from alpha_audit.pages.declarations import PaintLocation, ServedFiles, paint_locations
+from alpha_audit.pages.declarations import (
+    PaintLocation,
+    ServedFiles,
+    finding_locations,
+    paint_locations,
+)
 from alpha_audit.pages.server import PageServer
 from alpha_audit.pages.sources import FolderSource, StorybookSource, Target, targets
 from alpha_audit.pages.states import State
+from alpha_audit.policy import Policy
+from alpha_audit.render import sarif
+from alpha_audit.render.common import RenderOptions
+from alpha_audit.results import CheckReport
+from alpha_audit.rules import Rule
 
 HERE = Path(__file__).resolve().parent
+REPO = HERE.parents[1]
 ENGINES = ("chromium", "firefox", "webkit")
 DARK = "&globals=theme:dark"
 _PLAIN = State("plain", (), None)
@@ -424,3 +442,70 @@ def test_story_paints_fall_back_to_the_story_export(
     last = seen.places[0][0][-1]
     assert last.what == "story" and last.file == root / "stories/icons.stories.js"
     assert last.file.read_text().split("\n")[last.line - 1].startswith("export const Toolbar")
+
+
+# ------------------------------------------------------------------------- SARIF
+@pytest.fixture(scope="module")
+def sarif_schema() -> dict[str, object]:
+    """The SARIF 2.1.0 schema (tools/sarif_schema.py: fetched once with npm, cached)."""
+    spec = importlib.util.spec_from_file_location("sarif_schema", REPO / "tools/sarif_schema.py")
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    try:
+        schema: dict[str, object] = module.sarif_schema()
+    except (RuntimeError, subprocess.CalledProcessError) as exc:
+        if os.environ.get("CI"):
+            pytest.fail(f"the SARIF schema could not be fetched: {exc}", pytrace=False)
+        pytest.skip(f"the SARIF schema could not be fetched: {exc}")
+    return schema
+
+
+def test_sarif_without_an_iconset_has_a_line_for_every_result(
+    browsers: Browsers,
+    root: Path,
+    reference: dict[tuple[str, str], Seen],
+    sarif_schema: dict[str, object],
+) -> None:
+    """A finding per measured paint of every state, its locations from the paint alone (no
+    manifest): the SARIF render/sarif.py writes validates against SARIF 2.1.0, and every
+    result has a physical location with a line, in a file of the project that holds it."""
+    found = []
+    for state in STATES:
+        seen = _chromium(browsers, root, reference, state)
+        target = _target(root, state[0])
+        for icon in seen.icons:
+            for paint in range(max(1, len(icon.paints))):
+                where = finding_locations(icon, paint if icon.paints else None, target, seen.files)
+                found.append(
+                    Finding(
+                        rule=Rule.BELOW_THRESHOLD,
+                        theme="theme:dark" if state[1] else "default",
+                        iconset=target.name,
+                        canvas=None,
+                        icons=(icon.dom_path,),
+                        message="below 3:1",
+                        locations=where,
+                    )
+                )
+    report = CheckReport((), judge((), Policy(), found))
+    doc = json.loads(sarif.render_report(report, RenderOptions(base=root)))
+    validator = jsonschema.Draft4Validator(sarif_schema)
+    validator.validate(doc)
+    broken = json.loads(json.dumps(doc))  # the check can fail: a region with no line
+    del broken["runs"][0]["results"][0]["locations"][0]["physicalLocation"]["region"]["startLine"]
+    assert not validator.is_valid(broken)
+    results = doc["runs"][0]["results"]
+    assert len(results) == len(found) > 30
+    css = 0
+    for result in results:
+        (first,) = result["locations"]
+        for place in (first, *result.get("relatedLocations", ())):
+            physical = place["physicalLocation"]
+            uri = physical["artifactLocation"]["uri"]
+            assert not uri.startswith(("/", "..")) and (root / unquote(uri)).is_file(), uri
+            assert physical["region"]["startLine"] >= 1
+        css += first["physicalLocation"]["artifactLocation"]["uri"].endswith(".css")
+    # Most paints are named by their CSS first (the rest: the cascade page's markup,
+    # and the icons whose colour no project line sets).
+    assert css >= len(results) // 2
