@@ -137,10 +137,12 @@ class IconSources:
 def winner(declarations: Sequence[Declaration], prop: str) -> Declaration | None:
     """The declaration of ``prop`` that wins the cascade on one element, or ``None``.
 
-    Important declarations beat normal ones; among them the style attribute
-    wins, then earlier layers (the layer order reversed, unlayered last),
-    then the normal order; among normal ones the style attribute beats
-    rules, rules beat presentational hints, hints beat the engine's own.
+    Important declarations beat normal ones (the engine's own first); among
+    authors' the style attribute wins, then earlier layers (the layer order
+    reversed, unlayered last), then the normal order; among normal ones the
+    style attribute beats rules, rules beat presentational hints, hints beat
+    the engine's own.  A tie (a property written twice in one rule) goes to
+    the later declaration.
 
     >>> d = lambda v, pos, imp=False, kind="rule": Declaration("color", "color", v, imp, kind,
     ...     (1 << 30,), pos)
@@ -149,17 +151,26 @@ def winner(declarations: Sequence[Declaration], prop: str) -> Declaration | None
     >>> winner([d("red", 0, True), d("blue", 1), d("navy", 2, kind="attribute")], "color").value
     'red'
     """
-    found = [d for d in declarations if d.property == prop]
-    important = [d for d in found if d.important and d.kind != "ua"]
+    # A rule may write a property twice: the later one (later in the list) wins a tie.
+    found = [(k, d) for k, d in enumerate(declarations) if d.property == prop]
+    engine = [(k, d) for k, d in found if d.important and d.kind == "ua"]
+    if engine:  # the engine's own !important beats every author's (6.2)
+        return max(engine, key=lambda kd: (kd[1].position, kd[0]))[1]
+    important = [(k, d) for k, d in found if d.important]
     if important:
         return max(
             important,
-            key=lambda d: (d.kind == "attribute", tuple(-k for k in d.layer), d.position),
-        )
-    normal = [d for d in found if not d.important]
+            key=lambda kd: (
+                kd[1].kind == "attribute",
+                tuple(-x for x in kd[1].layer),
+                kd[1].position,
+                kd[0],
+            ),
+        )[1]
+    normal = [(k, d) for k, d in found if not d.important]
     if not normal:
         return None
-    return max(normal, key=lambda d: (_KIND_RANK.get(d.kind, 0), d.position))
+    return max(normal, key=lambda kd: (_KIND_RANK.get(kd[1].kind, 0), kd[1].position, kd[0]))[1]
 
 
 def _inherits(prop: str) -> bool:
