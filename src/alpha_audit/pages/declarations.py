@@ -290,10 +290,10 @@ class ServedFiles:
         assert place is not None
         base, sheet = 0, index.text
         if place.sheet_text is not None:
-            base = self._find_once(index.text, place.sheet_text, first=True)
+            base, length = self._find_once(index.text, place.sheet_text, first=True)
             if base < 0:
                 return None
-            sheet = place.sheet_text
+            sheet = index.text[base : base + length]  # the file's own (CRLF) text
         elif place.inline:
             return None  # a constructed sheet or one a script wrote: not in the file
         rules = self._rules_of(index, base, sheet)
@@ -317,17 +317,21 @@ class ServedFiles:
         return None
 
     @staticmethod
-    def _find_once(text: str, needle: str, *, first: bool = False) -> int:
-        """The offset of ``needle`` in ``text`` (CRLF files too); -1 if absent or repeated."""
+    def _find_once(text: str, needle: str, *, first: bool = False) -> tuple[int, int]:
+        """Where ``needle`` is in ``text``, and its length there (CRLF files too).
+
+        HTML parsing turns CRLF into LF, so the DOM's text may be in the file
+        with CRs.  ``(-1, 0)`` when absent, or (unless ``first``) repeated.
+        """
         if not needle.strip():
-            return -1
+            return -1, 0
         for candidate in (needle, needle.replace("\n", "\r\n")):
             at = text.find(candidate)
             if at >= 0:
                 if first or text.find(candidate, at + 1) < 0:
-                    return at
-                return -1
-        return -1
+                    return at, len(candidate)
+                return -1, 0
+        return -1, 0
 
     def _in_markup(self, d: Declaration, index: LineIndex) -> _Place | None:
         """An attribute's declaration in the page's own markup, when it is there once.
@@ -352,11 +356,12 @@ class ServedFiles:
             return _Place(index.path, line, column, value)
         if place.text is None:
             return None
-        at = self._find_once(index.text, place.text)
-        inner = re.search(rf"(?<![\w-]){re.escape(d.name)}\s*:", place.text, re.IGNORECASE)
+        at, length = self._find_once(index.text, place.text)
+        written = index.text[at : at + length]
+        inner = re.search(rf"(?<![\w-]){re.escape(d.name)}\s*:", written, re.IGNORECASE)
         if at < 0 or inner is None:
             return None
-        return self._at(index, at + inner.start(), d.name, limit=at + len(place.text))
+        return self._at(index, at + inner.start(), d.name, limit=at + length)
 
     def _mapped(self, place: _Place, index: LineIndex, offset: int, name: str) -> _Place:
         """Through the served CSS's source map to its original file, where it leads to one."""
