@@ -23,7 +23,7 @@ import re
 import shutil
 import subprocess
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from urllib.parse import unquote
 
@@ -511,3 +511,28 @@ def test_sarif_without_an_iconset_has_a_line_for_every_result(
     # Most paints are named by their CSS first (the rest: the cascade page's markup,
     # and the icons whose colour no project line sets).
     assert css >= len(results) // 2
+
+
+def test_a_page_too_large_to_walk_is_still_captured(
+    browsers: Browsers, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The walk is bounded (selector matches over all traced elements): a page beyond it has
+    no sources, and its icons are captured as before."""
+    project = tmp_path / "big"
+    (project / ".git").mkdir(parents=True)
+    (project / "page").mkdir()
+    # 12,000 rules every <svg> is a candidate for, 60 icons: 720,000 matches to try.
+    (project / "page" / "big.css").write_text(
+        "".join(f"svg:not(.x{k}) {{ color: #{k % 4096:03x}; }}\n" for k in range(12000))
+    )
+    svg = ('<svg width="16" height="16" viewBox="0 0 16 16" fill="none" '
+           'stroke="currentColor"><path d="M2 2h12v12H2z"/></svg>')  # fmt: skip
+    (project / "page" / "index.html").write_text(
+        '<!doctype html><link rel="stylesheet" href="big.css"><div>' + svg * 60 + "</div>"
+    )
+    target = replace(targets([FolderSource(project / "page")])[0], mount=MOUNTS.index("page"))
+    chromium = browsers("chromium")
+    monkeypatch.setattr(type(chromium), "matched_styles", lambda self, e, p: None)
+    walked = _look(chromium, project, target)
+    assert len(walked.icons) == 60 and all(i.sources is None for i in walked.icons)
+    assert all(p.what == "page" for places in walked.places for p in places[0])

@@ -71,6 +71,11 @@ _TRAMPOLINE = (
 )
 
 
+# At most this long asking for matched styles, per page: a page of thousands of icons in
+# a deep tree gets no locations rather than a timed-out audit.
+_STYLES_SECONDS = 5.0
+
+
 class _ProtocolError(BrowserError):
     """Chromium answered a command with an error (the browser itself is fine)."""
 
@@ -296,7 +301,10 @@ class Chromium(Browser):
             }
             sheets: dict[str, int] = {}
             nodes: list[JSONValue] = []
+            deadline = time.monotonic() + _STYLES_SECONDS
             for k, pseudo in enumerate(pseudos):
+                if time.monotonic() > deadline:
+                    return {"sheets": [], "nodes": [], "error": "out of time"}
                 try:
                     node = self._call("DOM.requestNode", {"objectId": handles[k]})["nodeId"]
                     matched = self._call("CSS.getMatchedStylesForNode", {"nodeId": node})

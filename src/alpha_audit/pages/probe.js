@@ -286,6 +286,12 @@
   const MAX_VALUE = 2000; // characters of a declared value kept (a data: URL can be huge)
   const MAX_SHEET_TEXT = 1 << 20; // a <style> element's text, to find it in the page
   const LAST = 1 << 30; // a layer's own rules sort after its sublayers; unlayered last
+  // Bounds on the walk, so that a page of huge style sheets costs seconds, not its time
+  // limit: elements traced, style rules read, and selector matches over all the elements
+  // (a microsecond or two each).
+  const MAX_NODES = 4000;
+  const MAX_RULES = 200000;
+  const MAX_MATCHES = 500000;
 
   function paintSource(entry, property, el, use, pseudo) {
     const at = entry[AT] || (entry[AT] = {});
@@ -365,6 +371,10 @@
         chain: chainOf(found.node, null, null).map(ref) };
       return { paints: out, backdrop };
     });
+    if (nodes.length > MAX_NODES) {
+      state.nodes = [];
+      return { pseudos: [], icons: null, error: `more than ${MAX_NODES} elements to trace` };
+    }
     state.nodes = nodes;
     return { pseudos: nodes.map((n) => n.pseudo), icons };
   }
@@ -526,8 +536,74 @@
       const m = /::?(before|after)\s*$/i.exec(s);
       const pseudo = m ? m[1].toLowerCase() : (/::[\w-]+(\([^)]*\))?\s*$/.test(s) ? "other" : null);
       const base = m ? s.slice(0, m.index).trim() || "*" : s;
-      return { base, pseudo, spec: specificity(s) };
+      return { base, pseudo, spec: specificity(s), key: keyOf(base) };
     });
+  }
+
+  // What an element must have for a complex selector to match it, read off its last
+  // compound (as engines bucket rules): an id, a class or a type; null for none (only
+  // element.matches can tell).  Arguments of pseudo-classes and attribute brackets are
+  // left out, and an escaped name is not guessed at.
+  function keyOf(selector) {
+    let depth = 0;
+    let quote = null;
+    let start = 0;
+    for (let i = 0; i < selector.length; i++) {
+      const ch = selector[i];
+      if (ch === "\\") i++;
+      else if (quote) {
+        if (ch === quote) quote = null;
+      } else if (ch === '"' || ch === "'") quote = ch;
+      else if (ch === "(" || ch === "[") depth++;
+      else if (ch === ")" || ch === "]") depth--;
+      else if (depth === 0 && /[\s>+~]/.test(ch)) start = i + 1;
+    }
+    let last = selector.slice(start);
+    if (last.includes("\\") || last.includes("|")) return null; // escapes, namespaces
+    for (let before = ""; before !== last; ) {
+      before = last;
+      last = last.replace(/\([^()]*\)/g, "").replace(/\[[^\]]*\]/g, "");
+    }
+    const id = /#([\w-]+)/.exec(last);
+    if (id) return { id: id[1] };
+    const cls = /\.([\w-]+)/.exec(last);
+    if (cls) return { cls: cls[1] };
+    const tag = /^([a-zA-Z][\w-]*)/.exec(last);
+    return tag ? { tag: tag[1].toLowerCase() } : null;
+  }
+
+  // The rules' complex selectors bucketed by key, for one tree scope.
+  function bucket(rules) {
+    const ids = new Map();
+    const classes = new Map();
+    const tags = new Map();
+    const any = [];
+    const put = (map, name, item) => {
+      if (!map.has(name)) map.set(name, []);
+      map.get(name).push(item);
+    };
+    rules.forEach((entry, index) => {
+      for (const complex of entry.complexes) {
+        const item = { index, complex };
+        const key = complex.key;
+        if (!key) any.push(item);
+        else if (key.id) put(ids, key.id, item);
+        else if (key.cls) put(classes, key.cls, item);
+        else put(tags, key.tag, item);
+      }
+    });
+    return { rules, ids, classes, tags, any };
+  }
+
+  function candidates(buckets, el) {
+    const out = [...buckets.any];
+    if (el.id && buckets.ids.has(el.id)) out.push(...buckets.ids.get(el.id));
+    for (const c of el.classList || []) {
+      if (buckets.classes.has(c)) out.push(...buckets.classes.get(c));
+    }
+    const tag = el.localName.toLowerCase();
+    if (buckets.tags.has(tag)) out.push(...buckets.tags.get(tag));
+    return out;
   }
 
   // ---------------------------------------------------------------- rules
@@ -568,6 +644,7 @@
     const layerCount = new Map();
     let anonymous = 0;
     let order = 0;
+    let read = 0;
     const layerKey = (path) => {
       const ranks = [];
       for (let k = 0; k < path.length; k++) {
@@ -587,6 +664,7 @@
     const walk = (list, ctx) => {
       for (const rule of list) {
         if (rule instanceof CSSStyleRule) {
+          if (++read > MAX_RULES) throw new Error(`more than ${MAX_RULES} style rules`);
           const index = ctx.counter.rules++;
           const selector = nest(rule.selectorText, ctx.parent);
           const decls = declared(rule.style);
@@ -651,33 +729,34 @@
     return rules;
   }
 
-  function matchesRule(entry, el, pseudo) {
-    let best = null;
-    for (const complex of entry.complexes) {
+  // The matching rules of an element (or its pseudo-element) and each one's specificity:
+  // that of its most specific complex selector that matches.
+  function matching(buckets, el, pseudo, budget) {
+    const best = new Map();
+    for (const { index, complex } of candidates(buckets, el)) {
       if (complex.pseudo !== pseudo) continue;
+      if (--budget.left < 0) throw new Error(`more than ${MAX_MATCHES} selector matches`);
       let ok = false;
       try {
         ok = el.matches(complex.base);
       } catch (e) {
         ok = false;
       }
-      if (ok && (!best || compare(complex.spec, best) > 0)) best = complex.spec;
+      const known = best.get(index);
+      if (ok && (!known || compare(complex.spec, known) > 0)) best.set(index, complex.spec);
     }
-    return best;
+    return Array.from(best, ([index, spec]) => ({ entry: buckets.rules[index], spec }));
   }
 
   function cascade() {
     try {
       const sheets = [];
       const byRoot = new Map();
+      const budget = { left: MAX_MATCHES };
       const out = state.nodes.map(({ el, pseudo }) => {
         const root = el.getRootNode();
-        if (!byRoot.has(root)) byRoot.set(root, collectRules(root, sheets));
-        const matched = [];
-        for (const entry of byRoot.get(root)) {
-          const spec = matchesRule(entry, el, pseudo);
-          if (spec) matched.push({ entry, spec });
-        }
+        if (!byRoot.has(root)) byRoot.set(root, bucket(collectRules(root, sheets)));
+        const matched = matching(byRoot.get(root), el, pseudo, budget);
         matched.sort((x, y) => {
           const lx = x.entry.layer;
           const ly = y.entry.layer;
