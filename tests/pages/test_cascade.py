@@ -222,3 +222,55 @@ def test_devtools_answers_become_the_walks_shape() -> None:
     ]
     assert out[1]["layer"] == [0, LAST_LAYER] and out[1]["important"] is True
     assert sheets == {"s1": 0}
+
+
+SELECTORS = [
+    "span",
+    ".c",
+    "#t .c",
+    "div#t.a.b[data-x] > span.c:first-child",
+    ":is(#t, .a) .c",
+    ":where(#t) .c",
+    ":not(.zz, #yy) .c",
+    "div:has(> .c) .c",
+    ".c:nth-child(1 of .c, #q)",
+    "*|span.c",
+    "html body div span",
+    "[data-x='1'] .c:not(:where(#nope))",
+    ":is(div, #t.a) > :is(span, .c.c)",
+    "div :is(.c)",
+]
+
+
+def test_the_walks_specificity_is_the_engines() -> None:
+    """Blink's own specificity of each selector (devtools reports it) and the probe's agree."""
+    from alpha_audit.browser import Chromium
+    from alpha_audit.pages.capture import _probe_source
+
+    if Chromium.find() is None:
+        pytest.skip("Chromium is not installed")
+    css = "".join(f"{s} {{ color: red }}\n" for s in SELECTORS)  # one rule a line
+    html = (f"<!doctype html><style>{css}</style>"
+            '<div id="t" class="a b" data-x="1"><span class="c">x</span></div>')  # fmt: skip
+    with Chromium() as browser:
+        browser.open_html(html)
+        ours = browser.evaluate(
+            f"(() => {{ const probe = {_probe_source()};"
+            f" return {json.dumps(SELECTORS)}.map((s) => probe.specificity(s)); }})()",
+            isolated=True,
+        )
+        call = browser._call  # type: ignore[attr-defined]
+        call("DOM.enable")
+        call("CSS.enable")
+        root = call("DOM.getDocument", {"depth": -1})["root"]["nodeId"]
+        node = call("DOM.querySelector", {"nodeId": root, "selector": "span.c"})["nodeId"]
+        matched = call("CSS.getMatchedStylesForNode", {"nodeId": node})
+    blink: dict[int, list[int]] = {}
+    for match in matched["matchedCSSRules"]:
+        if match["rule"]["origin"] != "regular":
+            continue
+        (selector,) = match["rule"]["selectorList"]["selectors"]
+        spec = selector["specificity"]
+        blink[selector["range"]["startLine"]] = [spec["a"], spec["b"], spec["c"]]
+    assert sorted(blink) == list(range(len(SELECTORS)))  # every selector matched the <span>
+    assert ours == [blink[k] for k in range(len(SELECTORS))]

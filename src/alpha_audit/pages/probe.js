@@ -810,5 +810,5 @@
     }
   }
 
-  return { find, hide, targets, nodes, cascade };
+  return { find, hide, targets, nodes, cascade, specificity };
 })()
