@@ -64,6 +64,7 @@ from alpha_audit.pages.sources import Target
 __all__ = [
     "PaintLocation",
     "ServedFiles",
+    "SourcePlace",
     "finding_locations",
     "paint_index",
     "paint_locations",
@@ -107,7 +108,10 @@ class PaintLocation:
 
 
 @dataclass(frozen=True)
-class _Place:
+class SourcePlace:
+    """Where a declaration is written in the project: file, 1-based line and column, and
+    its value's exact region where known."""
+
     file: Path
     line: int
     column: int
@@ -230,7 +234,7 @@ class ServedFiles:
     # ---------------------------------------------------------------- places
     def _at(
         self, index: LineIndex, offset: int, name: str, limit: int | None = None
-    ) -> _Place | None:
+    ) -> SourcePlace | None:
         """The declaration of ``name`` starting at ``offset``, with its value's span.
 
         ``limit`` ends the text the declaration may take (a ``style``
@@ -272,7 +276,7 @@ class ServedFiles:
                     end = len(chunk) if offset + len(chunk) < stop else None
                 if end is not None:
                     span = index.span(offset + start_of(value[0]), offset + end)
-        return _Place(index.path, line, column, span)
+        return SourcePlace(index.path, line, column, span)
 
     def _from_devtools(self, d: Declaration, index: LineIndex) -> int | None:
         place = d.place
@@ -333,7 +337,7 @@ class ServedFiles:
                 return -1, 0
         return -1, 0
 
-    def _in_markup(self, d: Declaration, index: LineIndex) -> _Place | None:
+    def _in_markup(self, d: Declaration, index: LineIndex) -> SourcePlace | None:
         """An attribute's declaration in the page's own markup, when it is there once.
 
         A presentation attribute (``stroke="#a30"``) is found by name and
@@ -353,7 +357,7 @@ class ServedFiles:
                 return None
             line, column = index.position(found[0].start())
             value = index.span(found[0].start("value"), found[0].end("value"))
-            return _Place(index.path, line, column, value)
+            return SourcePlace(index.path, line, column, value)
         if place.text is None:
             return None
         at, length = self._find_once(index.text, place.text)
@@ -363,7 +367,7 @@ class ServedFiles:
             return None
         return self._at(index, at + inner.start(), d.name, limit=at + length)
 
-    def _mapped(self, place: _Place, index: LineIndex, offset: int, name: str) -> _Place:
+    def _mapped(self, place: SourcePlace, index: LineIndex, offset: int, name: str) -> SourcePlace:
         """Through the served CSS's source map to its original file, where it leads to one."""
         found = self._map_of(index)
         if found is None:
@@ -421,7 +425,7 @@ class ServedFiles:
             self._maps[path] = found
         return found
 
-    def place(self, d: Declaration) -> _Place | None:
+    def place(self, d: Declaration) -> SourcePlace | None:
         """Where ``d`` is written in the project, or ``None`` when that cannot be known."""
         if d.place is None or d.kind == "ua":
             return None
