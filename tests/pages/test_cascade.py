@@ -39,7 +39,7 @@ def test_the_winner_does_not_depend_on_the_order_reported(
     decls: list[Declaration], shuffle: object
 ) -> None:
     again = list(decls)
-    shuffle.shuffle(again)  # type: ignore[attr-defined]
+    shuffle.shuffle(again)
     assert winner(again, "color") == winner(decls, "color")
 
 
@@ -64,21 +64,21 @@ def test_importance_then_attachment_decide_first(decls: list[Declaration]) -> No
 
 def test_a_property_written_twice_in_a_rule_takes_the_later() -> None:
     twice = [rule("color", "red", 3), rule("color", "blue", 3), rule("color", "navy", 2)]
-    assert winner(twice, "color").value == "blue"  # type: ignore[union-attr]
+    assert winner(twice, "color").value == "blue"
 
 
 def test_layers_order_normal_declarations_and_reverse_important_ones() -> None:
     first, second = (0, LAST_LAYER), (1, LAST_LAYER)
     normal = [rule("color", "a", 5, layer=first), rule("color", "b", 6, layer=second),
               rule("color", "c", 7)]  # fmt: skip
-    assert winner(normal, "color").value == "c"  # type: ignore[union-attr]
+    assert winner(normal, "color").value == "c"
     important = [rule("color", "a", 5, important=True, layer=first),
                  rule("color", "b", 6, important=True, layer=second),
                  rule("color", "c", 7, important=True)]  # fmt: skip
-    assert winner(important, "color").value == "a"  # type: ignore[union-attr]
+    assert winner(important, "color").value == "a"
     nested = [rule("color", "outer", 1, important=True, layer=(0, LAST_LAYER)),
               rule("color", "inner", 0, important=True, layer=(0, 0, LAST_LAYER))]  # fmt: skip
-    assert winner(nested, "color").value == "inner"  # type: ignore[union-attr]
+    assert winner(nested, "color").value == "inner"
 
 
 def _styles(*nodes: list[Declaration]) -> list[list[Declaration]]:
@@ -259,7 +259,7 @@ def test_the_walks_specificity_is_the_engines() -> None:
             f" return {json.dumps(SELECTORS)}.map((s) => probe.specificity(s)); }})()",
             isolated=True,
         )
-        call = browser._call  # type: ignore[attr-defined]
+        call = browser._call
         call("DOM.enable")
         call("CSS.enable")
         root = call("DOM.getDocument", {"depth": -1})["root"]["nodeId"]

@@ -145,7 +145,7 @@ def _look(
     assert isinstance(found, dict)
     backdrops = tuple(
         (i.get("backdrop") or {}).get("color") if isinstance(i, dict) else None
-        for i in found["icons"]  # type: ignore[union-attr]
+        for i in found["icons"]
     )
     places = tuple(
         tuple(
@@ -154,7 +154,7 @@ def _look(
         )
         for icon in capture.icons
     )
-    return Seen(capture.icons, backdrops, places, files)  # type: ignore[arg-type]
+    return Seen(capture.icons, backdrops, places, files)
 
 
 def _rgba(text: str | None) -> tuple[int, ...] | None:
@@ -205,7 +205,7 @@ def _named_in(css: str, name: str, nodes: list[object], found: list[tuple[int, i
     for node in nodes:
         kind = getattr(node, "type", "")
         if kind == "declaration" and getattr(node, "name", None) == name:
-            at = starts[node.source_line - 1] + node.source_column - 1  # type: ignore[attr-defined]
+            at = starts[node.source_line - 1] + node.source_column - 1
             m = _VALUE.match(css, at)
             if m:
                 found.append((m.start(1), m.end(1)))

@@ -17,7 +17,7 @@ def _files(root: Path) -> ServedFiles:
 
 
 def _walked(prop: str, url: str, selector: str, rule: int, **more: object) -> Declaration:
-    place = ServedPlace(url, rule=rule, selector=selector, **more)  # type: ignore[arg-type]
+    place = ServedPlace(url, rule=rule, selector=selector, **more)
     return Declaration(prop, prop, "", False, "rule", LAST, 0, place)
 
 

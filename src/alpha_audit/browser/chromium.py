@@ -19,7 +19,7 @@ import sys
 import time
 from collections.abc import Iterator, Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 from alpha_audit.browser.interface import (
     Browser,
@@ -315,7 +315,8 @@ class Chromium(Browser):
                 written = {
                     str(n).lower(): str(v) for n, v in zip(flat[::2], flat[1::2], strict=False)
                 }
-                nodes.append(declarations(matched, pseudo, headers, sheets, written))  # type: ignore[arg-type]
+                listed_here = declarations(matched, pseudo, headers, sheets, written)
+                nodes.append(cast(JSONValue, listed_here))  # plain JSON data, typed loosely
         finally:
             self._sheet_headers = None
             for method, params in (
