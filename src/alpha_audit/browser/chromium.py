@@ -17,9 +17,9 @@ import select
 import shutil
 import sys
 import time
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 from alpha_audit.browser.interface import (
     Browser,
@@ -27,9 +27,11 @@ from alpha_audit.browser.interface import (
     Clip,
     ColorScheme,
     Installation,
+    JSONValue,
     deadline_after,
     time_left,
 )
+from alpha_audit.browser.matched import declarations, sheet_entry
 
 __all__ = ["Chromium"]
 
@@ -67,6 +69,15 @@ _TRAMPOLINE = (
     "os.close(int(sys.argv[1])); os.close(int(sys.argv[2])); "
     "os.execv(sys.argv[3], sys.argv[3:])"
 )
+
+
+# At most this long asking for matched styles, per page: a page of thousands of icons in
+# a deep tree gets no locations rather than a timed-out audit.
+_STYLES_SECONDS = 5.0
+
+
+class _ProtocolError(BrowserError):
+    """Chromium answered a command with an error (the browser itself is fine)."""
 
 
 class Chromium(Browser):
@@ -122,6 +133,7 @@ class Chromium(Browser):
             os.close(child_w)
         self._buffer = bytearray()
         self._scanned = 0
+        self._sheet_headers: dict[str, dict[str, Any]] | None = None
         self._next_id = 0
         self._session: str | None = None
         self.version = self._call("Browser.getVersion", session=False)["product"]
@@ -195,9 +207,12 @@ class Chromium(Browser):
         for reply in self._messages(deadline_after(timeout or self.timeout)):
             if reply.get("id") == self._next_id:
                 if "error" in reply:
-                    raise BrowserError(f"Chromium {method}: {reply['error'].get('message')}")
+                    raise _ProtocolError(f"Chromium {method}: {reply['error'].get('message')}")
                 result: dict[str, Any] = reply["result"]
                 return result
+            if self._sheet_headers is not None and reply.get("method") == "CSS.styleSheetAdded":
+                header = reply.get("params", {}).get("header", {})
+                self._sheet_headers[str(header.get("styleSheetId"))] = header
         raise AssertionError("unreachable")
 
     def _navigate(self, url: str) -> None:
@@ -248,6 +263,76 @@ class Chromium(Browser):
             raise BrowserError(f"script error in Chromium: {text}")
         value: str = reply["result"].get("value")  # JSON text (evaluate() refuses anything else)
         return value
+
+    def matched_styles(
+        self, elements: str, pseudos: Sequence[str | None]
+    ) -> dict[str, JSONValue] | None:
+        """The declarations matching each element, from ``CSS.getMatchedStylesForNode``.
+
+        The CSS domain reports every style sheet of the page when it is enabled
+        (``CSS.styleSheetAdded``, before ``CSS.enable`` answers): their URLs and,
+        for ``<style>`` elements, where in the page their text starts.  The
+        elements are found by reference from the isolated world
+        (``DOM.requestNode``), shadow trees included; one whose node is gone
+        since has no declarations.
+        """
+        headers: dict[str, dict[str, Any]] = {}
+        self._sheet_headers = headers
+        group = "alpha-audit-styles"
+        try:
+            self._call("DOM.enable")
+            self._call("CSS.enable")
+            self._call("DOM.getDocument", {"depth": 0})
+            found = self._call(
+                "Runtime.evaluate",
+                {
+                    "expression": elements,
+                    "contextId": self._isolated_world(),
+                    "returnByValue": False,
+                    "objectGroup": group,
+                },
+            )
+            if "exceptionDetails" in found or "objectId" not in found.get("result", {}):
+                return None  # no elements to ask about: the probe walks the cascade instead
+            props = self._call(
+                "Runtime.getProperties",
+                {"objectId": found["result"]["objectId"], "ownProperties": True},
+            )
+            handles = {
+                int(p["name"]): p["value"]["objectId"]
+                for p in props.get("result", ())
+                if str(p.get("name", "")).isdigit() and "objectId" in p.get("value", {})
+            }
+            sheets: dict[str, int] = {}
+            nodes: list[JSONValue] = []
+            deadline = time.monotonic() + _STYLES_SECONDS
+            for k, pseudo in enumerate(pseudos):
+                if time.monotonic() > deadline:
+                    return {"sheets": [], "nodes": [], "error": "out of time"}
+                try:
+                    node = self._call("DOM.requestNode", {"objectId": handles[k]})["nodeId"]
+                    matched = self._call("CSS.getMatchedStylesForNode", {"nodeId": node})
+                    flat = self._call("DOM.getAttributes", {"nodeId": node}).get("attributes", [])
+                except (KeyError, _ProtocolError):
+                    nodes.append([])
+                    continue
+                written = {
+                    str(n).lower(): str(v) for n, v in zip(flat[::2], flat[1::2], strict=False)
+                }
+                listed_here = declarations(matched, pseudo, headers, sheets, written)
+                nodes.append(cast(JSONValue, listed_here))  # plain JSON data, typed loosely
+        finally:
+            self._sheet_headers = None
+            for method, params in (
+                ("Runtime.releaseObjectGroup", {"objectGroup": group}),
+                ("CSS.disable", {}),
+                ("DOM.disable", {}),
+            ):
+                with contextlib.suppress(_ProtocolError):
+                    self._call(method, params)
+        by_index = sorted(sheets.items(), key=lambda item: item[1])
+        listed: list[JSONValue] = [sheet_entry(headers.get(sid)) for sid, _ in by_index]
+        return {"sheets": listed, "nodes": nodes}
 
     def _set_viewport(self, width: int, height: int, scale: float) -> None:
         self._call(

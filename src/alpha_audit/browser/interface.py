@@ -27,6 +27,7 @@ import os
 import shutil
 import tempfile
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from types import TracebackType
@@ -364,6 +365,24 @@ class Browser(abc.ABC):
         if not png.startswith(_PNG_SIGNATURE):
             raise BrowserError(f"{self.LABEL} returned a screenshot that is not a PNG")
         return png
+
+    def matched_styles(
+        self, elements: str, pseudos: Sequence[str | None]
+    ) -> dict[str, JSONValue] | None:
+        """The author declarations that match each element, from the engine's devtools.
+
+        ``elements`` is a JS expression (evaluated like ``evaluate(...,
+        isolated=True)``) whose value is an array of elements; ``pseudos``
+        names, per element, the pseudo-element (``"before"``, ``"after"``) to
+        match instead of the element itself.  The answer has the shape of the
+        page probe's ``cascade()`` (``pages/probe.js``): ``sheets`` (``url``,
+        ``inline``) and, per element, its declarations of colours, backgrounds
+        and custom properties with their rank in the cascade and where the
+        engine says they are written (``line`` and ``column``, 0-based, in the
+        served file).  ``None`` where the engine has no such protocol: the
+        probe then walks the cascade itself from ``document.styleSheets``.
+        """
+        return None
 
     def close(self) -> None:
         """Quit the engine, end its processes and delete its temporary files (idempotent)."""

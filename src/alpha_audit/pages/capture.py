@@ -13,7 +13,7 @@ from __future__ import annotations
 import io
 import json
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from importlib import resources
 from typing import Any
 
@@ -23,6 +23,7 @@ from PIL import Image
 
 from alpha_audit.browser import Browser, BrowserError, Clip
 from alpha_audit.errors import UsageError
+from alpha_audit.pages.cascade import IconSources, collect_sources
 from alpha_audit.pages.states import State
 from alpha_audit.pages.stillness import check_still, hold_still
 from alpha_audit.safe_text import MAX_NAME, safe_text, shorten
@@ -129,6 +130,8 @@ class FoundIcon:
     box: tuple[float, float, float, float]
     keys: dict[str, Any]
     paints: tuple[dict[str, Any], ...]
+    sources: IconSources | None = None
+    """Where its colours and its backdrop's are declared (:mod:`alpha_audit.pages.cascade`)."""
 
 
 @dataclass(frozen=True)
@@ -258,8 +261,14 @@ def capture_page(
     selector: str | None,
     attribute: str,
     max_icon_size: int,
+    sources: bool = True,
 ) -> Capture:
-    """Load ``url`` in ``state`` and take the two captures (the colour scheme is the browser's)."""
+    """Load ``url`` in ``state`` and take the two captures (the colour scheme is the browser's).
+
+    With ``sources``, each icon's :attr:`FoundIcon.sources` says which
+    declarations set its colours, read after the captures (the icons shown
+    again first), so that nothing of it can change what they show.
+    """
     isolated = browser.ISOLATED_SCRIPTS
     width, height = viewport
     if (browser.scale, browser.viewport) != (scale, viewport):
@@ -303,4 +312,8 @@ def capture_page(
             f"{browser.LABEL} returned a {drawn.shape[1]} x {drawn.shape[0]} capture for a "
             f"{expected[1]} x {expected[0]} box"
         )
+    if sources:
+        browser.evaluate(f"{_PROBE}.hide(false)", isolated=isolated)
+        found_sources = collect_sources(browser, _PROBE, [i.paints for i in icons], url)
+        icons = [replace(i, sources=s) for i, s in zip(icons, found_sources, strict=True)]
     return Capture(tuple(icons), clip, scale, drawn, hidden)

@@ -68,6 +68,37 @@ class _Quiet(BaseHTTPRequestHandler):
         self.close_connection = True
 
 
+def _served_file(mounts: Sequence[Path | None], root: Path, target: str) -> Path | None:
+    """The file served at ``target`` (a request's path, query allowed), or ``None``.
+
+    See the module's docstring: a plain file of the mount's own folder, checked as
+    requested and as resolved (no dot file or folder, no ``..``, nothing outside the
+    folder or the project root); a ``None`` mount (a URL source) serves nothing.
+    """
+    try:
+        path = unquote(urlsplit(target).path, errors="strict")
+    except (ValueError, UnicodeError):  # not UTF-8 once decoded, a bad IPv6 host ...
+        return None
+    parts = path.split("/")[1:]
+    if len(parts) < 2 or not _MOUNT.fullmatch(parts[0]):
+        return None
+    mount = int(parts[0])
+    folder = mounts[mount] if mount < len(mounts) else None
+    names = parts[1:] if parts[-1] else [*parts[1:-1], "index.html"]
+    if folder is None or not all(_plain(p) for p in names):
+        return None
+    try:
+        resolved = folder.joinpath(*names).resolve(strict=True)
+    except (OSError, RuntimeError, ValueError):
+        return None
+    # As resolved too: a link may lead out of the folder, or to a dot file inside it.
+    if not (resolved.is_relative_to(folder) and resolved.is_relative_to(root)):
+        return None
+    if not all(_plain(p) for p in resolved.relative_to(folder).parts):
+        return None
+    return resolved if resolved.is_file() else None
+
+
 class _FileHandler(_Quiet):
     server: _FileServer
 
@@ -77,33 +108,8 @@ class _FileHandler(_Quiet):
     def do_HEAD(self) -> None:
         self._serve(body=False)
 
-    def _file(self) -> Path | None:
-        """The file the request names, or ``None`` (see the module's docstring)."""
-        try:
-            path = unquote(urlsplit(self.path).path, errors="strict")
-        except (ValueError, UnicodeError):  # not UTF-8 once decoded, a bad IPv6 host ...
-            return None
-        parts = path.split("/")[1:]
-        if len(parts) < 2 or not _MOUNT.fullmatch(parts[0]):
-            return None
-        mount = int(parts[0])
-        folder = self.server.mounts[mount] if mount < len(self.server.mounts) else None
-        names = parts[1:] if parts[-1] else [*parts[1:-1], "index.html"]
-        if folder is None or not all(_plain(p) for p in names):
-            return None
-        try:
-            resolved = folder.joinpath(*names).resolve(strict=True)
-        except (OSError, RuntimeError, ValueError):
-            return None
-        # As resolved too: a link may lead out of the folder, or to a dot file inside it.
-        if not (resolved.is_relative_to(folder) and resolved.is_relative_to(self.server.root)):
-            return None
-        if not all(_plain(p) for p in resolved.relative_to(folder).parts):
-            return None
-        return resolved if resolved.is_file() else None
-
     def _serve(self, *, body: bool) -> None:
-        file = self._file()
+        file = _served_file(self.server.mounts, self.server.root, self.path)
         if file is None:
             self._refuse(HTTPStatus.NOT_FOUND)
             return
@@ -186,10 +192,25 @@ class PageServer(_Background):
         server.mounts = tuple(None if m is None else m.resolve() for m in mounts)
         server.root = root.resolve()
         super().__init__(server)
+        self._mounts, self._root = server.mounts, server.root
+        port = self.address.rsplit(":", 1)[1]
+        self._origins = (f"127.0.0.1:{port}", f"localhost:{port}")
 
     def url(self, mount: int, path: str) -> str:
         """The URL of ``path`` (query included) in folder ``mount``."""
         return f"http://{self.address}/{mount}/{path}"
+
+    def local_file(self, url: str) -> Path | None:
+        """The file this server serves (or served) at ``url``; ``None`` for any other URL.
+
+        What :meth:`url` gives, resolved as a request for it is: inside its
+        folder and the project root, symlinks followed; another origin (a
+        page's own loopback server) is none of ours.
+        """
+        parts = urlsplit(url)
+        if parts.scheme != "http" or parts.netloc not in self._origins:
+            return None
+        return _served_file(self._mounts, self._root, parts.path)
 
 
 class _ProxyHandler(_Quiet):

@@ -75,7 +75,8 @@ class Target:
     a URL source) and ``path`` the URL path below it, query included.
     ``file`` is the source file a finding points at: the story's
     ``importPath`` from ``index.json`` (where it exists beside the build), or
-    the HTML page; ``None`` for a URL.
+    the HTML page; ``None`` for a URL.  ``export`` is the story's
+    ``exportName`` in that file (Storybook 7 and later index it).
     """
 
     kind: str  # "storybook", "page", "url"
@@ -84,6 +85,7 @@ class Target:
     path: str
     storybook: bool
     file: Path | None = None
+    export: str | None = None
 
 
 _LOOPBACK_FORMS = (
@@ -137,8 +139,8 @@ def _story_file(source: StorybookSource, import_path: object) -> Path | None:
     return path if path.is_relative_to(base) and path.is_file() else None
 
 
-def _stories(source: StorybookSource) -> list[tuple[str, str, Path | None]]:
-    """``(id, "Title/Name", story file)`` of every story in the index, in its order."""
+def _stories(source: StorybookSource) -> list[tuple[str, str, Path | None, str | None]]:
+    """``(id, "Title/Name", story file, export name)`` of every story in the index, in order."""
     index = source.folder / "index.json"
     if not index.is_file():
         raise UsageError(
@@ -178,7 +180,15 @@ def _stories(source: StorybookSource) -> list[tuple[str, str, Path | None]]:
             if text:
                 check_name(text, path=index, key=f"{key}.{field}", what=f"story {field}")
             parts.append(text)
-        found.append((story, "/".join(parts), _story_file(source, entry.get("importPath"))))
+        export = entry.get("exportName")
+        found.append(
+            (
+                story,
+                "/".join(parts),
+                _story_file(source, entry.get("importPath")),
+                export if isinstance(export, str) and export.isidentifier() else None,
+            )
+        )
     return found
 
 
@@ -199,8 +209,8 @@ def targets(sources: Sequence[Source]) -> list[Target]:
         if isinstance(source, StorybookSource):
             stories = _stories(source)
             chosen = [
-                (story, file)
-                for story, path, file in stories
+                (story, file, export)
+                for story, path, file, export in stories
                 if any(fnmatch.fnmatchcase(story, g) or fnmatch.fnmatchcase(path, g)
                        for g in source.stories)
             ]  # fmt: skip
@@ -214,9 +224,9 @@ def targets(sources: Sequence[Source]) -> list[Target]:
                     path=source.folder,
                 )
             _bounded(len(out) + len(chosen), source.folder)
-            for story, file in chosen:
+            for story, file, export in chosen:
                 path = f"iframe.html?id={quote(story, safe='')}&viewMode=story"
-                out.append(Target("storybook", story, mount, path, True, file))
+                out.append(Target("storybook", story, mount, path, True, file, export))
         elif isinstance(source, FolderSource):
             try:
                 pages = glob_contained(
