@@ -29,7 +29,7 @@ Pure computation: nothing is printed.
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -80,7 +80,7 @@ def _faithful(paint: MeasuredPaint) -> bool:
 def _page_places(paint: MeasuredPaint) -> tuple[Location, ...]:
     """Where the page sets the paint (its CSS declarations), then its story or page file."""
     found = list(paint.locations)
-    if paint.file is not None:
+    if paint.file is not None and not any(p.what in ("story", "page") for p in found):
         found.append(
             Location(paint.file, 1, "story" if paint.source_kind == "storybook" else "page")
         )
@@ -111,8 +111,10 @@ def _row(paint: MeasuredPaint, manifest: IconSet | None, icons: dict[str, Icon])
     # icon the manifest's colour next (the icon's source, where the page follows it),
     # then the story or page file.
     said = colour_location(mapped, manifest.path) if mapped and manifest else None
-    file_place = _page_places(replace(paint, locations=()))
-    places = tuple(dict.fromkeys([*paint.locations, *([said] if said else []), *file_place]))
+    page = _page_places(paint)
+    css = [p for p in page if p.what.startswith("css-")]
+    rest = [p for p in page if not p.what.startswith("css-")]
+    places = tuple(dict.fromkeys([*css, *([said] if said else []), *rest]))
     # The file that draws it: the manifest's SVG when it maps to one, else the story or page.
     file = mapped.file if mapped is not None else (paint.file or Path(paint.source))
     icon = Icon(paint.name, file, colour, 1.0)

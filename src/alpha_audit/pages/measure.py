@@ -26,7 +26,7 @@ Per icon, inside its box (device pixels):
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -45,7 +45,7 @@ from alpha_audit.color import (
     linear_to_hex,
     srgb_decode,
 )
-from alpha_audit.model import Icon
+from alpha_audit.model import Icon, Location
 from alpha_audit.observed import (
     MEASURED,
     NO_INTERIOR,
@@ -67,6 +67,8 @@ __all__ = [
 ]
 
 Linear = tuple[float, float, float]
+# Where the page sets an icon's paint (its index in the probe's paints; None: an image).
+Locate = Callable[[FoundIcon, int | None], tuple[Location, ...]]
 
 
 @dataclass(frozen=True)
@@ -78,6 +80,7 @@ class DeclaredPaint:
     kinds: tuple[str, ...]
     current: bool
     text: str
+    index: int | None = None  # its place in the probe's paints of the icon (None: an image)
 
 
 @dataclass(frozen=True)
@@ -107,7 +110,7 @@ def _parse(text: str) -> tuple[Linear, float] | None:
 def declared_paints(icon: FoundIcon) -> tuple[DeclaredPaint, ...]:
     """The icon's paints as the probe reported them, colour alpha folded into opacity."""
     out = []
-    for paint in icon.paints:
+    for index, paint in enumerate(icon.paints):
         parsed = _parse(str(paint.get("color", "")))
         opacity = float(paint.get("opacity", 1.0))
         color = None
@@ -116,7 +119,7 @@ def declared_paints(icon: FoundIcon) -> tuple[DeclaredPaint, ...]:
             opacity *= own_alpha
         kinds = tuple(str(k) for k in paint.get("kinds", ()))
         text = str(paint.get("color", ""))
-        out.append(DeclaredPaint(color, opacity, kinds, bool(paint.get("current")), text))
+        out.append(DeclaredPaint(color, opacity, kinds, bool(paint.get("current")), text, index))
     return tuple(p for p in out if p.opacity > 0)
 
 
@@ -264,6 +267,7 @@ def _measure_icon(
     page: PageContext,
     manifest_icon: Icon | None,
     match: IconMatch,
+    locate: Locate | None = None,
 ) -> list[MeasuredPaint]:
     ring = ring_width(capture.scale)
     rows, cols, grown_rows, grown_cols = icon_region(capture, icon.box, ring)
@@ -366,6 +370,7 @@ def _measure_icon(
                 box=icon.box,
                 status=MEASURED if gated is not None else NO_INTERIOR,
                 file=page.file,
+                locations=() if locate is None else locate(icon, paint.index),
             )
         )
     return out
@@ -375,9 +380,15 @@ def measure_capture(
     capture: Capture,
     page: PageContext,
     matches: Sequence[tuple[Icon | None, IconMatch]],
+    locate: Locate | None = None,
 ) -> list[MeasuredPaint]:
-    """Every paint of every icon of ``capture``; ``matches`` gives each icon's manifest icon."""
+    """Every paint of every icon of ``capture``; ``matches`` gives each icon's manifest icon.
+
+    ``locate(icon, index)`` gives where the page sets the paint at ``index`` of the
+    icon's probed paints (``None``: an image's own drawing): its CSS declarations,
+    then its story or page (:func:`alpha_audit.pages.declarations.paint_locations`).
+    """
     out: list[MeasuredPaint] = []
     for icon, (manifest_icon, how) in zip(capture.icons, matches, strict=True):
-        out.extend(_measure_icon(capture, icon, page, manifest_icon, how))
+        out.extend(_measure_icon(capture, icon, page, manifest_icon, how, locate))
     return out

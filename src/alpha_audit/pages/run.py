@@ -25,11 +25,12 @@ from typing import NamedTuple
 
 from alpha_audit.browser import Browser, BrowserError, LaunchOptions, engine_class
 from alpha_audit.errors import AlphaAuditError, UsageError
-from alpha_audit.model import IconSet
+from alpha_audit.model import IconSet, Location
 from alpha_audit.observed import BlockedRequest, MeasuredPaint, PageProblem, PageRun
-from alpha_audit.pages.capture import capture_page
+from alpha_audit.pages.capture import FoundIcon, capture_page
 from alpha_audit.pages.config import RenderConfig
 from alpha_audit.pages.crops import CropStore
+from alpha_audit.pages.declarations import ServedFiles, paint_locations
 from alpha_audit.pages.mapping import ManifestIndex
 from alpha_audit.pages.measure import PageContext, measure_capture
 from alpha_audit.pages.server import BlockingProxy, PageServer
@@ -130,9 +131,16 @@ class _Guard:
 class _Worker:
     """One thread: one browser (restarted as needed) behind one proxy."""
 
-    def __init__(self, config: RenderConfig, server: PageServer | None, direct: tuple[str, ...]):
+    def __init__(
+        self,
+        config: RenderConfig,
+        server: PageServer | None,
+        direct: tuple[str, ...],
+        files: ServedFiles | None = None,
+    ):
         self.config = config
         self.server = server
+        self.files = files
         self.direct = direct
         self.proxy = BlockingProxy()
         self.guard = _Guard(config.timeout, config.memory_mb << 20)
@@ -197,7 +205,14 @@ class _Worker:
             job.target.name, job.target.kind, job.state.name, job.engine, job.target.file
         )
         matches = [index.match(icon.keys) for icon in capture.icons]
-        paints = measure_capture(capture, page, matches)
+        files = self.files
+
+        def locate(icon: FoundIcon, paint: int | None) -> tuple[Location, ...]:
+            if files is None:
+                return ()
+            return tuple(p.location() for p in paint_locations(icon, paint, job.target, files))
+
+        paints = measure_capture(capture, page, matches, locate)
         if crops is not None:
             crops.keep(capture, paints, rank)
         return paints, None, self.proxy.take(), len(capture.icons)
@@ -249,6 +264,8 @@ def audit_pages(
     failure: list[BaseException] = []
     lock = threading.Lock()
     with ending_on_signals(), PageServer(_mounts(config), Path(config.root)) as server:
+        # Where each page's CSS is written (one resolver for the run, shared by workers).
+        files = ServedFiles(server.local_file, Path(config.root))
         direct = tuple(
             dict.fromkeys(
                 [server.address, server.address.replace("127.0.0.1", "localhost")]
@@ -256,7 +273,8 @@ def audit_pages(
             )
         )
         workers = [
-            _Worker(config, server, direct) for _ in range(max(1, min(config.workers, len(jobs))))
+            _Worker(config, server, direct, files)
+            for _ in range(max(1, min(config.workers, len(jobs))))
         ]
 
         def work(worker: _Worker) -> None:

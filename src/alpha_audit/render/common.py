@@ -60,6 +60,7 @@ __all__ = [
     "fix_to_dict",
     "gamut_line",
     "location_text",
+    "location_to_dict",
     "name_column",
     "number_column",
     "records",
@@ -627,6 +628,18 @@ def baselined_text(gate: GateResult) -> str:
     if b is not None and b.kind == "base":
         return f"already on the base revision {b.name}"
     return "in the baseline"
+
+
+def location_to_dict(location: Location, base: Path | None = None) -> dict[str, Any]:
+    """A location as JSON data: file (relative to ``base``), line, column (where the value's
+    exact place is known, else null) and what it sets."""
+    span = location.span
+    return {
+        "file": display_path(location.file, base),
+        "line": location.line,
+        "column": span.start_column if span is not None else None,
+        "what": location.what,
+    }
 
 
 def location_text(location: Location, base: Path | None) -> str:

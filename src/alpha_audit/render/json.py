@@ -15,7 +15,14 @@ from typing import Any
 from alpha_audit.findings import Finding
 from alpha_audit.gate import GateResult
 from alpha_audit.model import GamutAdjustment
-from alpha_audit.render.common import Records, RenderOptions, display_path, dumps, fix_to_dict
+from alpha_audit.render.common import (
+    Records,
+    RenderOptions,
+    display_path,
+    dumps,
+    fix_to_dict,
+    location_to_dict,
+)
 from alpha_audit.results import CheckReport
 from alpha_audit.rows import AuditResult
 
@@ -177,10 +184,7 @@ def finding_to_dict(finding: Finding, base: Path | None = None) -> dict[str, Any
         "files": [display_path(f, base) for f in finding.files],
         "manifest": display_path(finding.manifest, base),
         "lines": list(finding.lines),
-        "locations": [
-            {"file": display_path(loc.file, base), "line": loc.line, "what": loc.what}
-            for loc in finding.locations
-        ],
+        "locations": [location_to_dict(loc, base) for loc in finding.locations],
         "sources": [{"file": display_path(p, base), "line": n} for p, n in finding.sources],
         "exemption": None if finding.exemption is None else finding.exemption.reason,
         "baselined": finding.baselined,

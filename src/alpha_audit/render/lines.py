@@ -126,7 +126,8 @@ def by_line(findings: Iterable[Finding]) -> list[LineGroup]:
     for n, f in enumerate(findings):
         if f.locations and f.locations[0].what not in _NOT_VALUES:
             at = f.locations[0]
-            key: tuple[object, ...] = (f.rule, _standing(f), at.file, at.line)
+            column = at.span.start_column if at.span is not None else None  # minified CSS
+            key: tuple[object, ...] = (f.rule, _standing(f), at.file, at.line, column)
         else:
             key = (f.rule, n)  # nothing to share: alone
         groups.setdefault(key, []).append(f)

@@ -38,6 +38,7 @@ from alpha_audit.render.common import (
     finding_fix,
     fitted_table,
     location_text,
+    location_to_dict,
     name_column,
     number_column,
     to_text,
@@ -182,10 +183,7 @@ def paint_record(paint: MeasuredPaint, base: Path | None = None) -> dict[str, An
     record: dict[str, Any] = _finite(asdict(paint))
     record["match"] = str(paint.match)
     record["file"] = display_path(paint.file, base)
-    record["locations"] = [
-        {"file": display_path(loc.file, base), "line": loc.line, "what": loc.what}
-        for loc in paint.locations
-    ]
+    record["locations"] = [location_to_dict(loc, base) for loc in paint.locations]
     return record
 
 
