@@ -72,7 +72,7 @@ class Browsers:
         if engine not in self.opened:
             if not _installed(engine):
                 pytest.skip(f"{engine} is not installed")
-            self.opened[engine] = engine_class(engine)(options=LaunchOptions(scale=1))
+            self.opened[engine] = engine_class(engine)(options=LaunchOptions(scale=2))
         return self.opened[engine]
 
 
@@ -134,7 +134,7 @@ def _look(
             _PLAIN,
             storybook=target.storybook,
             viewport=(800, 600),
-            scale=1,
+            scale=2,  # the product captures at 2 or more (scale 1 rasters a repaint differently)
             selector=None,
             attribute="data-icon",
             max_icon_size=64,
@@ -498,7 +498,10 @@ def test_sarif_without_an_iconset_has_a_line_for_every_result(
     del broken["runs"][0]["results"][0]["locations"][0]["physicalLocation"]["region"]["startLine"]
     assert not validator.is_valid(broken)
     results = doc["runs"][0]["results"]
-    assert len(results) == len(found) > 30
+    # Root causes sharing the declaration that sets their colour are one result (folded by
+    # the line and column that cause them); every finding is in one.
+    folded = [r["properties"].get("rootCauses", 1) for r in results]
+    assert sum(folded) == len(found) > 30
     css = 0
     for result in results:
         (first,) = result["locations"]

@@ -61,8 +61,8 @@ def test_every_hostile_name_arrives_bounded_in_every_engine(engine, tmp_path):
     assert paths[:-1] == [f"svg#{name}" for name in NAMES[:-1]]  # as the page wrote them
     long = paths[-1]
     assert len(long) == MAX_DOM_PATH and long.startswith("svg#gxxx") and "…" in long
-    assert all(len(p.label) <= MAX_DOM_PATH + MAX_NAME for p in result.paints)
-    problems = {p.source: p.message for p in result.problems}
+    assert all(len(p.name) <= MAX_DOM_PATH + MAX_NAME for p in result.paints)
+    problems = {p.source: p.message for p in result.run.problems}
     if ENGINES[engine].ISOLATED_SCRIPTS:
         assert problems == {}
     else:

@@ -42,7 +42,7 @@ def report(project: Path):
     return page_report(run, paints, RENDER_POLICY, manifest)
 
 
-def test_the_dark_only_alert_fails_the_gate_with_its_story_theme_and_manifest_line(report):
+def test_the_dark_only_alert_fails_the_gate_with_its_story_theme_and_manifest_line(report, project):
     alert = [f for f in report.gate.failures if f.iconset == "icons--alert"]
     assert [(f.rule, f.theme, f.icons) for f in alert] == [
         (Rule.BELOW_THRESHOLD, "theme:dark", ("triangle-alert",))
@@ -53,7 +53,13 @@ def test_the_dark_only_alert_fails_the_gate_with_its_story_theme_and_manifest_li
     # where it is found; the manifest's line (overrides: triangle-alert: {color: ...})
     # and the story file (index.json's importPath) follow.
     assert ("iconset.yaml", 6, "colour") in where
-    assert where[-1] == ("icons.stories.js", 1, "story")
+    # The line of the story's export (index.json's importPath and exportName).
+    story = next(line for name, line, what in where if what == "story")
+    lines = (project / "stories/icons.stories.js").read_text().splitlines()
+    assert lines[story - 1].startswith("export const Alert")
+    # The page's own declaration of the colour leads: the dark theme's --danger value.
+    css = next(w for w in f.locations if w.what == "css-colour")
+    assert css.span is not None and css.span.text.strip().lower() == "#6e1a1f"
     assert not report.gate.passed
 
 
@@ -86,7 +92,8 @@ def test_sarif_locates_the_failure_at_the_manifest_line_with_the_story_related(r
     places = [result["locations"][0], *result["relatedLocations"]]
     where = [(r["physicalLocation"]["artifactLocation"]["uri"],
               r["physicalLocation"]["region"]["startLine"]) for r in places]  # fmt: skip
-    assert ("icons/iconset.yaml", 6) in where and ("stories/icons.stories.js", 1) in where
+    assert ("icons/iconset.yaml", 6) in where
+    assert any(uri == "stories/icons.stories.js" and line > 1 for uri, line in where)
     props = result["properties"]
     assert (props["state"], props["dom_path"].endswith("svg")) == ("theme:dark", True)
     assert "theme:dark / icons--alert" in result["message"]["text"]

@@ -230,4 +230,4 @@ def test_a_page_in_a_browser_reads_nothing_beyond_its_folder(tree):
     # Mount 0 served its two pages (and itself, probe.html, is not counted: no "OK-");
     # mount 1 (the URL source) served nothing; no answer held a secret.
     assert paths == ["svg#probe-2-0"], paths
-    assert not result.problems
+    assert not result.run.problems

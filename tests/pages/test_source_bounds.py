@@ -145,6 +145,6 @@ def test_an_ipv6_loopback_page_is_audited_in_every_engine(name, tmp_path):
     finally:
         server.shutdown()
         server.server_close()
-    assert not result.problems, result.problems
+    assert not result.run.problems, result.run.problems
     assert [p.drawn for p in result.paints] == ["#333333"]
-    assert not [b.url for b in result.blocked if "[::1]" in b.url]  # not sent to the proxy
+    assert not [b.url for b in result.run.blocked if "[::1]" in b.url]  # not sent to the proxy

@@ -119,7 +119,7 @@ def test_moving_pages_are_judged_at_rest_and_a_page_that_keeps_moving_is_a_probl
         (FolderSource(pages / "pages"),), root=pages, engines=(name,), workers=1, timeout=60
     )
     result = audit_pages(config)
-    problems = {p.source: p.message for p in result.problems}
+    problems = {p.source: p.message for p in result.run.problems}
     assert set(problems) == {"unstable.html"}, problems
     assert "kept changing between two captures" in problems["unstable.html"]
     by_copy: dict[str, dict[str, tuple[object, ...]]] = {}
