@@ -80,6 +80,7 @@ __all__ = [
     "check_pipeline",
     "find_collisions",
     "resolve_pipeline",
+    "widest_delta_e",
     "with_alphas",
 ]
 
@@ -298,13 +299,24 @@ class Unaudited:
 
 @dataclass(frozen=True)
 class Collision:
-    """Distinct paints that give the same 8-bit output on one canvas."""
+    """Distinct paints that give the same 8-bit output on one canvas.
+
+    ``delta_e_ref`` is the widest CIEDE2000 between two of them as they ship at
+    alpha 1 on that canvas (:func:`widest_delta_e`): 0 when they already share
+    the output there, below the policy's near-duplicate distance when they
+    already look the same (:func:`~alpha_audit.policy.collision_rules`).
+    """
 
     canvas: str
     output: str
     sources: tuple[str, ...]
     icons: tuple[str, ...]
-    new: bool = True  # False when the same paints already collide at alpha = 1
+    delta_e_ref: float = math.inf
+
+    @property
+    def new(self) -> bool:
+        """Whether the paints told apart at alpha 1 (any two of them had distinct outputs)."""
+        return self.delta_e_ref > 0.0
 
 
 @dataclass(frozen=True)
@@ -369,6 +381,37 @@ class Summary:
 
 def _hex(packed: int) -> str:
     return f"#{packed:06x}"
+
+
+# Pairs measured exactly for the widest CIEDE2000 of one collision group: beyond
+# 1,448 distinct colours in one 8-bit output (never seen in a real set; every colour
+# clipping to white at an absurd alpha) the widest is estimated (widest_delta_e).
+WIDEST_PAIRS = 1 << 20
+
+
+def widest_delta_e(lab: NDArray[np.float64]) -> float:
+    """The largest CIEDE2000 between two of the CIELAB colours ``lab`` ``(n, 3)``.
+
+    Every pair is measured, a chunk at a time, up to :data:`WIDEST_PAIRS`
+    pairs; a bigger group gets the double-sweep estimate (the farthest colour
+    from the first, then the farthest from that), a lower bound.  0 for fewer
+    than two colours.
+
+    >>> from alpha_audit.color import hex_to_linear, linear_to_lab
+    >>> lab = linear_to_lab(hex_to_linear(["#00a4ff", "#01a4ff", "#00a4ff"]))
+    >>> round(widest_delta_e(lab), 3)
+    0.017
+    """
+    n = len(lab)
+    if n < 2:
+        return 0.0
+    if n * (n - 1) // 2 > WIDEST_PAIRS:
+        far = int(np.argmax(delta_e_2000_lab(lab[0], lab)))
+        return float(np.max(delta_e_2000_lab(lab[far], lab)))
+    widest = 0.0
+    for first, second in iter_pairs(n):
+        widest = max(widest, float(np.max(delta_e_2000_lab(lab[first], lab[second]))))
+    return widest
 
 
 def find_collisions(
@@ -835,22 +878,24 @@ def with_alphas(result: AuditResult, alphas: Mapping[str, float]) -> AuditResult
 
 
 def _collisions(result: AuditResult) -> tuple[Collision, ...]:
-    """Distinct paints sharing an 8-bit output per canvas; ``new`` unless already at alpha 1."""
+    """Distinct paints sharing an 8-bit output per canvas, with how far apart they were at 1.
+
+    How far: the widest CIEDE2000 between two of the group's paints as they ship
+    at alpha 1 on that canvas (one row per paint: its rows all show one colour).
+    """
     keys = result.paint_keys
-    ref_pairs = {
-        (j, frozenset(keys[g].tolist()))
-        for j, _, g in find_collisions(to_8bit(result.reference), keys)
-    }
     out = []
     for j, packed, group in find_collisions(result.output_codes, keys):
         rows = [result.entries[r] for r in group]
+        _, first = np.unique(keys[group], return_index=True)
+        lab = linear_to_lab(shipped(result.reference[group[first], j]))
         out.append(
             Collision(
                 canvas=result.theme.canvases[j].name,
                 output=_hex(packed),
                 sources=tuple(sorted({_paint_label(e) for e in rows})),
                 icons=tuple(sorted({e.icon.name for e in rows})),
-                new=(j, frozenset(keys[group].tolist())) not in ref_pairs,
+                delta_e_ref=widest_delta_e(lab),
             )
         )
     return tuple(out)
