@@ -451,36 +451,46 @@ def _colours(colours: Sequence[str], limit: int = 8) -> str:
 
 
 def _collisions(c: _Collector, rule: Rule) -> None:
-    """``collision`` (every shared output) or ``new-collision`` (not already at alpha 1).
+    """``collision``, ``new-collision`` and ``near-duplicate``: colours sharing an 8-bit output.
 
-    One finding per set of colliding colours, over the canvases where exactly
-    they collide.  With both enabled a new collision is reported once, as
-    ``collision``.
+    Each collision is reported under one rule (:meth:`~alpha_audit.policy.Policy.collision_rule`,
+    from how far apart its colours were at alpha 1): every collision is a
+    ``collision``; one alpha made between colours told apart at alpha 1 is a
+    ``new-collision``; one between colours that already look the same there is a
+    ``near-duplicate``.  One finding per set of colliding colours, over the
+    canvases where exactly they collide.
     """
-    if rule is Rule.NEW_COLLISION and Rule.COLLISION in c.policy.reported:
-        return
+    policy = c.policy
     index = {name: j for j, name in enumerate(c.canvas_names)}
     groups: dict[tuple[str, ...], list[Collision]] = {}
     for col in c.result.collisions:
-        if rule is Rule.NEW_COLLISION and not col.new:
-            continue
-        groups.setdefault(col.sources, []).append(col)
+        if policy.collision_rule(col.delta_e_ref) is rule:
+            groups.setdefault(col.sources, []).append(col)
+    limit = policy.near_duplicate_delta_e
     for cols in groups.values():
         icons = tuple(sorted({n for col in cols for n in col.icons}))
 
         def build(k: int, cols: list[Collision] = cols) -> tuple[str, dict[str, float | str]]:
             col = cols[k]
             give = "both give" if len(col.sources) == 2 else "all give"
-            message = f"{_colours(col.sources)} {give} {col.output}" + (
-                "" if col.new else " (already at alpha 1)"
-            )
+            if not col.new:
+                how = " (already at alpha 1)"
+            elif col.delta_e_ref < limit:
+                widest = max(x.delta_e_ref for x in cols)
+                how = (
+                    f": they already look the same at alpha 1 (CIEDE2000 {widest:.3g} < "
+                    f"{limit:g}); alpha only rounds them together"
+                )
+            else:
+                how = ""
             numbers: dict[str, float | str] = {
                 "output": col.output,
                 "sources": ", ".join(col.sources),
                 "colours": len(col.sources),
                 "new": str(col.new).lower(),
+                "delta_e_ref": col.delta_e_ref,
             }
-            return message, numbers
+            return f"{_colours(col.sources)} {give} {col.output}{how}", numbers
 
         c.fold(
             rule,
@@ -680,8 +690,13 @@ def _confusion(c: _Collector, rule: Rule) -> None:
         for one in _confusions(c, deficiency):
             pairs.setdefault(one.roles, []).append(one)
     min_delta_e = c.policy.min_delta_e
+    # A confusion is between the roles: every icon drawing either colour.
+    of_role: dict[str, set[str]] = {}
+    for e in c.result.entries:
+        if not e.fixed and e.icon.color_name is not None:
+            of_role.setdefault(e.role, set()).add(e.icon.name)
     for (r1, r2), found in sorted(pairs.items()):
-        icons = found[0].icons
+        icons = tuple(sorted(of_role[r1] | of_role[r2]))
         # The palette entries of both roles are where the confusion is written.
         locations = c.group_locations(icons, colour_first=True)
 
@@ -872,7 +887,7 @@ def severity(finding: Finding) -> tuple[int, float]:
     """
     n = finding.numbers
     rule = finding.rule
-    if rule in (Rule.COLLISION, Rule.NEW_COLLISION, Rule.CVD_COLLISION):
+    if rule in (Rule.COLLISION, Rule.NEW_COLLISION, Rule.CVD_COLLISION, Rule.NEAR_DUPLICATE):
         return 0, -float(n.get("colours", 0)) - len(finding.icons) / 1e9
     if rule in (Rule.CONFUSION, Rule.CVD_CONFUSION):
         return 1, float(n.get("delta_e", 0.0))
@@ -908,4 +923,5 @@ _RULES = {
     Rule.THIN_STROKES: _thin_strokes,
     Rule.CVD_COLLISION: _cvd_collision,
     Rule.CVD_CONFUSION: _confusion,
+    Rule.NEAR_DUPLICATE: _collisions,
 }

@@ -60,9 +60,12 @@ def test_two_confused_roles_get_their_joint_answer() -> None:
     )
     finding = report.gate.failures[0]
     (fix,) = (report.fixes[k] for k in finding.fixes)
-    assert isinstance(fix, GroupFix) and fix.colors == ("danger", "severe")
+    # The group in palette order; the pair that limits it, the canvas and where, named.
+    assert isinstance(fix, GroupFix) and fix.colors == ("severe", "danger")
     assert fix.safe.alpha is not None and 1.0 <= fix.safe.alpha < 1.15
-    assert finding_fix(finding, report).startswith("danger and severe together: alpha 1 to ")
+    assert fix.safe.limit is not None and fix.safe.limit.roles == ("danger", "severe")
+    assert finding_fix(finding, report).startswith("severe and danger together: alpha 1 to ")
+    assert f"(limited by danger and severe on white at {fix.safe.limit.at:.6f})" in fix_text(fix)
     # The joint answer passes the gate; just above it fails.
     both = {"alert": fix.safe.alpha, "stop": fix.safe.alpha}
     from alpha_audit.rows import with_alphas

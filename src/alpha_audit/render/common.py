@@ -61,6 +61,7 @@ __all__ = [
     "gamut_line",
     "location_text",
     "name_column",
+    "names_and",
     "number_column",
     "records",
     "safe_span",
@@ -660,7 +661,8 @@ def _color_fix_text(fix: ColorFix) -> str:
     options = []
     safe = fix.largest_safe.alpha
     if safe is not None:
-        options.append(safe_span(safe))
+        with_ = f" together with {names_and(fix.together)}" if fix.together else ""
+        options.append(safe_span(safe) + with_)
     # Reaching the threshold at 1 itself is already inside that range.
     reach = fix.reach.alpha
     if contrast and reach is not None and not (safe is not None and reach <= 1.0):
@@ -686,10 +688,24 @@ def fix_text(fix: Fix) -> str:
 
     if isinstance(fix, ColorFix):
         return _color_fix_text(fix)
-    who = " and ".join(fix.colors) + " together" if fix.colors else "the whole set"
+    who = names_and(fix.colors) + " together" if fix.colors else "the whole set"
+    limit = fix.safe.limit
+    why = ""
+    if limit is not None and limit.roles:  # the pair that limits the group, and where
+        why = f" (limited by {names_and(limit.roles)} on {limit.canvas} at {limit.at:.6f})"
     if fix.safe.alpha is None:
-        return f"{who}: not even alpha 1 is safe; move the colours apart"
-    return f"{who}: {safe_span(fix.safe.alpha)}, or move the colours apart"
+        return f"{who}: not even alpha 1 is safe{why}; move the colours apart"
+    return f"{who}: {safe_span(fix.safe.alpha)}{why}, or move the colours apart"
+
+
+def names_and(names: Sequence[str]) -> str:
+    """Names joined as prose.
+
+    >>> names_and(["red"]), names_and(["red", "orange"]), names_and(["a", "b", "c"])
+    ('red', 'red and orange', 'a, b and c')
+    """
+    *head, last = names
+    return f"{', '.join(head)} and {last}" if head else last
 
 
 def finding_fix(finding: Finding, report: CheckReport) -> str:
@@ -719,6 +735,7 @@ def _safe_to_dict(safe: SafeAlpha) -> dict[str, Any]:
             "icons": list(limit.icons),
             "at": limit.at,
             "attained": limit.attained,
+            "roles": list(limit.roles),
         },
     }
 
@@ -734,6 +751,7 @@ def fix_to_dict(fix: Fix, base: Path | None = None) -> dict[str, Any]:
             "iconset": fix.iconset,
             "rule": fix.rule.value,
             "colors": list(fix.colors),
+            "confused": list(fix.confused),
             "largest_safe_alpha": _safe_to_dict(fix.safe),
             "text": fix_text(fix),
         }
@@ -749,6 +767,7 @@ def fix_to_dict(fix: Fix, base: Path | None = None) -> dict[str, Any]:
         "icons": list(fix.icons),
         "rules": [r.value for r in fix.rules],
         "largest_safe_alpha": _safe_to_dict(fix.largest_safe),
+        "together": list(fix.together),
         "smallest_alpha_reaching": {
             "alpha": fix.reach.alpha,
             "exact": fix.reach.exact,
