@@ -1193,7 +1193,7 @@ class _Engine:
                 joins = set(limit.roles)
             if joins <= group:
                 return last if safe.alpha is None and last is not None else answer
-            if safe.alpha is not None:
+            if safe.alpha is not None and not grow:
                 last = answer
             group |= joins
 
