@@ -23,9 +23,9 @@ gets a :class:`~alpha_audit.results.GroupFix`: the largest safe alpha for its
 rule alone, of the whole set, or for a confusion the joint answer of its group:
 the roles the failing findings connect, grown into every role the answer finds
 pulled under the floor (:meth:`~alpha_audit.suggest.engine.SafeAlphas.joint`),
-one fix for every finding of the group.  Where an answer is an exact edit of a value the loaders
-located (:class:`~alpha_audit.model.Span`), the finding carries it
-(:attr:`~alpha_audit.findings.Finding.edits`); see :func:`_edits` for when.
+one fix for every finding of the group.  Where an answer is an exact edit of a
+value the loaders located (:class:`~alpha_audit.model.Span`), the finding
+carries it (:attr:`~alpha_audit.findings.Finding.edits`); see :func:`_edits`.
 Pure computation: nothing is printed.
 """
 

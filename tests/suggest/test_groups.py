@@ -291,3 +291,17 @@ def test_apply_writes_nothing_when_no_alpha_can_pass(tmp_path: Path) -> None:
     assert (root / "iconset.yaml").read_text() == before
     assert "wrote nothing to iconset.yaml: the gate would still fail" in res.stderr
     assert "fixed-colour of bell" in res.stderr
+
+
+def test_a_report_without_the_set_wide_question_claims_no_set_wide_answer() -> None:
+    from alpha_audit.render.common import RenderOptions
+    from alpha_audit.render.suggest import render_markdown, render_table
+
+    result = suggest(audit(THEME, ICONS), Policy(), scopes=("group",))
+    for text in (
+        render_table(result, RenderOptions(width=200)),
+        render_markdown(result, RenderOptions()),
+    ):
+        assert "No safe alpha" not in text and "nothing breaks up to" not in text
+        assert "the set-wide answer not asked" in text
+        assert "red, orange, amber and yellow" in text and "(orange and red" in text

@@ -141,6 +141,11 @@ def _headline(result: SuggestResult) -> str:
     p = result.precision
     rules = ", ".join(sorted(r.value for r in result.policy.rules))
     alpha = result.overall.alpha
+    if not result.overall.per_canvas:  # the set-wide question was not asked (--only)
+        return (
+            f"Largest safe alphas for {result.iconset.name} on {result.theme.name} "
+            f"(policy: {rules}; the set-wide answer not asked)"
+        )
     if alpha is None:
         return f"No safe alpha for {result.iconset.name} on {result.theme.name}: " + _why(
             result.overall.limit, result.alpha_max

@@ -477,9 +477,9 @@ class ApplyPlan:
     ``top`` is the new set-wide alpha (``None``: unchanged), ``icons`` the
     per-icon alphas, ``palette`` the palette colours' own alphas, ``kept`` the
     icons whose explicit choice is left alone and ``unsafe`` the groups with no
-    safe alpha from 1, left at their alpha.  ``failures`` are the gate's failing
-    findings on the manifest as it would be written (empty: it passes, and only
-    then is it written).
+    safe alpha from 1, left at their alpha.  ``alphas`` is every icon's alpha as
+    planned and ``failures`` the gate's failing findings with them (empty: it
+    passes, and only then is the manifest written).
     """
 
     scope: ApplyScope
@@ -489,6 +489,7 @@ class ApplyPlan:
     unsafe: tuple[Unsafe, ...] = ()
     palette: dict[str, float] = field(default_factory=dict)
     failures: tuple[Finding, ...] = ()
+    alphas: dict[str, float] = field(default_factory=dict)
 
     @property
     def passes(self) -> bool:
@@ -604,7 +605,8 @@ def plan_apply(
             # A palette colour's own alpha sets every icon that has none of its own.
             and not (by_colour[n] in palette and n not in explicit)
         }
-    return ApplyPlan(scope, top, wanted, kept, tuple(unsafe), palette, _failures(result, alphas))
+    failures = _failures(result, alphas)
+    return ApplyPlan(scope, top, wanted, kept, tuple(unsafe), palette, failures, alphas)
 
 
 def _failures(result: SuggestResult, alphas: dict[str, float]) -> tuple[Finding, ...]:
@@ -643,8 +645,9 @@ def apply_suggestion(
     palette = {c: format_alpha(a, p) for c, a in plan.palette.items()}
     edited = edit_alphas(text, top=top, icons=icons, palette=palette, path=given)
     written = _read_back(edited, given, gamut)
-    audited = {n: a for n, a in written.items() if n in {i.name for i in result.iconset.icons}}
-    plan = replace(plan, failures=_failures(result, audited))
+    audited = {n: a for n, a in written.items() if n in plan.alphas}
+    if audited != plan.alphas:  # what check reads is the truth (the plan's gate ran on this)
+        plan = replace(plan, alphas=audited, failures=_failures(result, audited))
     if not plan.passes:
         return plan, False
     return plan, _write_if_changed(target, text, edited)
