@@ -690,13 +690,14 @@ def _confusion(c: _Collector, rule: Rule) -> None:
         for one in _confusions(c, deficiency):
             pairs.setdefault(one.roles, []).append(one)
     min_delta_e = c.policy.min_delta_e
-    # A confusion is between the roles: every icon drawing either colour.
-    of_role: dict[str, set[str]] = {}
+    # A confusion is between the roles: every icon drawing either colour at an alpha
+    # that is confused (all of both roles' icons when they share one alpha each).
+    icons_of: dict[tuple[str, str, float], set[str]] = {}
     for e in c.result.entries:
         if not e.fixed and e.icon.color_name is not None:
-            of_role.setdefault(e.role, set()).add(e.icon.name)
+            icons_of.setdefault(_drawn(e), set()).add(e.icon.name)
     for (r1, r2), found in sorted(pairs.items()):
-        icons = tuple(sorted(of_role[r1] | of_role[r2]))
+        icons = tuple(sorted({n for f in found for d in f.drawn for n in icons_of[d]}))
         # The palette entries of both roles are where the confusion is written.
         locations = c.group_locations(icons, colour_first=True)
 
@@ -746,6 +747,9 @@ class _Confused:
     ref: float
     de: float
     deficiency: Deficiency | None
+    # Every (role, colour, alpha) of the two roles confused on this canvas: the icons
+    # drawing them are the finding's (a role's icons at another alpha may not be).
+    drawn: frozenset[tuple[str, str, float]] = frozenset()
 
 
 def _confusions(c: _Collector, deficiency: Deficiency | None) -> list[_Confused]:
@@ -781,10 +785,14 @@ def _confusions(c: _Collector, deficiency: Deficiency | None) -> list[_Confused]
         ref = np.asarray(delta_e_2000(solid[i, j, :], solid[k, j, :])).reshape(-1)
         keep = np.flatnonzero(confusion_breaks(ref, de, min_delta_e))
         worst: dict[tuple[str, str], int] = {}
+        drawn: dict[tuple[str, str], set[tuple[str, str, float]]] = {}
         for h in keep.tolist():
             one, two = sorted((entries[i[h]].role, entries[k[h]].role))
             if (one, two) not in worst or de[h] < de[worst[one, two]]:
                 worst[one, two] = h
+            drawn.setdefault((one, two), set()).update(
+                (_drawn(entries[i[h]]), _drawn(entries[k[h]]))
+            )
         for pair, h in sorted(worst.items()):
             a, b = entries[i[h]], entries[k[h]]
             out.append(
@@ -796,9 +804,15 @@ def _confusions(c: _Collector, deficiency: Deficiency | None) -> list[_Confused]
                     float(ref[h]),
                     float(de[h]),
                     deficiency,
+                    frozenset(drawn[pair]),
                 )
             )
     return out
+
+
+def _drawn(e: PaintEntry) -> tuple[str, str, float]:
+    """What a role row stands for (:func:`role_rows`): its role, colour and alpha."""
+    return (e.role, e.source, e.icon.alpha)
 
 
 def cvd_collision_groups(

@@ -8,6 +8,7 @@ GitHub Primer canvases, where orange and red, moved alone, are held by amber.
 
 from __future__ import annotations
 
+import itertools
 import os
 import shutil
 from pathlib import Path
@@ -161,6 +162,33 @@ def test_a_confusion_names_every_icon_of_both_roles() -> None:
     gate = evaluate([result], Policy())
     (finding,) = [f for f in gate.failures if f.numbers.get("roles") == "orange,red"]
     assert finding.icons == ("orange1", "orange2", "red1", "red2")
+
+
+def test_a_role_at_two_alphas_names_only_the_icons_at_the_confused_one() -> None:
+    alphas = {"orange1": 1.2, "orange2": 1.0, "red1": 1.2, "red2": 1.0}
+    icons = IconSet(
+        "s",
+        tuple(Icon(n, f"{n}.svg", TAILWIND[n[:-1]], a, n[:-1]) for n, a in alphas.items()),
+        {c: TAILWIND[c] for c in ("orange", "red")},
+    )
+    gate = evaluate([audit(THEME, icons)], Policy())
+    (finding,) = [f for f in gate.failures if f.rule is Rule.CONFUSION]
+    # Independently: which (orange, red) icon pairs come under 10 on some canvas.
+    expected = {
+        name
+        for o, r in itertools.product(("orange1", "orange2"), ("red1", "red2"))
+        if any(
+            _de(
+                _shipped_hex(TAILWIND["orange"], bg, alphas[o]),
+                _shipped_hex(TAILWIND["red"], bg, alphas[r]),
+            )
+            < 10
+            for bg in PRIMER.values()
+        )
+        for name in (o, r)
+    }
+    assert expected and expected != set(alphas)
+    assert set(finding.icons) == expected
 
 
 def test_suggest_groups_are_disjoint_and_closed() -> None:
