@@ -398,9 +398,9 @@ def widest_delta_e(lab: NDArray[np.float64]) -> float:
     than two colours.
 
     >>> from alpha_audit.color import hex_to_linear, linear_to_lab
-    >>> lab = linear_to_lab(hex_to_linear(["#00a4ff", "#01a4ff", "#00a4ff"]))
-    >>> round(widest_delta_e(lab), 3)
-    0.017
+    >>> lab = linear_to_lab(np.array([hex_to_linear(c) for c in ("#00a4ff", "#01a4ff", "#000")]))
+    >>> round(widest_delta_e(lab), 3), round(widest_delta_e(lab[:2]), 4)  # #01a4ff to black
+    (57.125, 0.0169)
     """
     n = len(lab)
     if n < 2:
