@@ -81,6 +81,7 @@ __all__ = [
     "find_collisions",
     "resolve_pipeline",
     "widest_delta_e",
+    "widest_delta_e_many",
     "with_alphas",
 ]
 
@@ -392,26 +393,56 @@ WIDEST_PAIRS = 1 << 20
 def widest_delta_e(lab: NDArray[np.float64]) -> float:
     """The largest CIEDE2000 between two of the CIELAB colours ``lab`` ``(n, 3)``.
 
-    Every pair is measured, a chunk at a time, up to :data:`WIDEST_PAIRS`
-    pairs; a bigger group gets the double-sweep estimate (the farthest colour
-    from the first, then the farthest from that), a lower bound.  0 for fewer
-    than two colours.
+    :func:`widest_delta_e_many` of one group.
 
     >>> from alpha_audit.color import hex_to_linear, linear_to_lab
     >>> lab = linear_to_lab(np.array([hex_to_linear(c) for c in ("#00a4ff", "#01a4ff", "#000")]))
     >>> round(widest_delta_e(lab), 3), round(widest_delta_e(lab[:2]), 4)  # #01a4ff to black
     (57.125, 0.0169)
     """
-    n = len(lab)
-    if n < 2:
-        return 0.0
-    if n * (n - 1) // 2 > WIDEST_PAIRS:
-        far = int(np.argmax(delta_e_2000_lab(lab[0], lab)))
-        return float(np.max(delta_e_2000_lab(lab[far], lab)))
-    widest = 0.0
-    for first, second in iter_pairs(n):
-        widest = max(widest, float(np.max(delta_e_2000_lab(lab[first], lab[second]))))
-    return widest
+    return float(widest_delta_e_many([lab])[0])
+
+
+def widest_delta_e_many(labs: Sequence[NDArray[np.float64]]) -> NDArray[np.float64]:
+    """The largest CIEDE2000 between two colours of each group of CIELAB colours ``(n, 3)``.
+
+    Every pair of every group is measured, groups gathered until about
+    :data:`~alpha_audit.color.nearest.PAIR_CHUNK` pairs (one CIEDE2000 call for the
+    many small groups of an audit, bounded memory for big ones); a group of more
+    than :data:`WIDEST_PAIRS` pairs gets the double-sweep estimate (the farthest
+    colour from the first, then the farthest from that), a lower bound.  0 for a
+    group of fewer than two colours.
+    """
+    out = np.zeros(len(labs))
+    batch: list[int] = []
+    pairs = 0
+
+    def measure() -> None:
+        every = np.concatenate([labs[g] for g in batch]).reshape(-1, 3)
+        sizes = [len(labs[g]) for g in batch]
+        starts = np.cumsum([0, *sizes[:-1]])
+        parts = [np.triu_indices(n, 1) for n in sizes]
+        first = np.concatenate([i + s for (i, _), s in zip(parts, starts, strict=True)])
+        second = np.concatenate([k + s for (_, k), s in zip(parts, starts, strict=True)])
+        owner = np.repeat(batch, [i.size for i, _ in parts])
+        for lo in range(0, first.size, PAIR_CHUNK):
+            at = slice(lo, lo + PAIR_CHUNK)
+            np.maximum.at(out, owner[at], delta_e_2000_lab(every[first[at]], every[second[at]]))
+
+    for g, lab in enumerate(labs):
+        n = len(lab)
+        if n * (n - 1) // 2 > WIDEST_PAIRS:
+            far = int(np.argmax(delta_e_2000_lab(lab[0], lab)))
+            out[g] = float(np.max(delta_e_2000_lab(lab[far], lab)))
+        elif n > 1:
+            batch.append(g)
+            pairs += n * (n - 1) // 2
+            if pairs >= PAIR_CHUNK:
+                measure()
+                batch, pairs = [], 0
+    if batch:
+        measure()
+    return out
 
 
 def find_collisions(
@@ -884,18 +915,22 @@ def _collisions(result: AuditResult) -> tuple[Collision, ...]:
     at alpha 1 on that canvas (one row per paint: its rows all show one colour).
     """
     keys = result.paint_keys
-    out = []
-    for j, packed, group in find_collisions(result.output_codes, keys):
-        rows = [result.entries[r] for r in group]
+    found = find_collisions(result.output_codes, keys)
+    labs = []
+    for j, _, group in found:
         _, first = np.unique(keys[group], return_index=True)
-        lab = linear_to_lab(shipped(result.reference[group[first], j]))
+        labs.append(linear_to_lab(shipped(result.reference[group[first], j])))
+    widest = widest_delta_e_many(labs)
+    out = []
+    for (j, packed, group), delta_e_ref in zip(found, widest.tolist(), strict=True):
+        rows = [result.entries[r] for r in group]
         out.append(
             Collision(
                 canvas=result.theme.canvases[j].name,
                 output=_hex(packed),
                 sources=tuple(sorted({_paint_label(e) for e in rows})),
                 icons=tuple(sorted({e.icon.name for e in rows})),
-                delta_e_ref=widest_delta_e(lab),
+                delta_e_ref=delta_e_ref,
             )
         )
     return tuple(out)

@@ -20,7 +20,7 @@ from alpha_audit.color import hex_to_linear, linear_to_lab
 from alpha_audit.gate import evaluate
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
 from alpha_audit.policy import NEAR_DUPLICATE_DELTA_E, Policy
-from alpha_audit.rows import audit, widest_delta_e
+from alpha_audit.rows import audit, widest_delta_e, widest_delta_e_many
 from alpha_audit.rules import RULES, Level, Rule
 from alpha_audit.suggest import suggest
 
@@ -28,7 +28,7 @@ LIGHT = Theme("light", (Canvas("white", "#ffffff"), Canvas("muted", "#f6f8fa")))
 DARK = Theme("dark", (Canvas("ink", "#0d1117"),))
 
 
-def _de(a: str, b: str) -> float:
+def _de(a: str | Color, b: str | Color) -> float:
     return float(Color(a).delta_e(Color(b), method="2000"))
 
 
@@ -114,3 +114,20 @@ def test_widest_is_the_largest_ciede2000_of_any_two(colours: list[str]) -> None:
     lab = linear_to_lab(np.array([hex_to_linear(c) for c in colours]))
     expected = max((_de(a, b) for a, b in itertools.combinations(colours, 2)), default=0.0)
     assert widest_delta_e(lab) == pytest.approx(expected, rel=1e-9, abs=1e-9)
+
+
+def test_many_groups_at_once_are_each_groups_widest() -> None:
+    rng = np.random.default_rng(3)
+    # Small groups, and two of 400 colours (80,000 pairs each: more than one chunk).
+    sizes = [0, 1, 2, 3, 5, 400, 2, 400, 7]
+    labs = [linear_to_lab(rng.uniform(0.0, 1.0, (n, 3))) for n in sizes]
+    many = widest_delta_e_many(labs)
+    assert many.tolist() == [widest_delta_e_many([lab])[0] for lab in labs]
+    for lab, value in zip(labs[:5], many[:5], strict=True):
+        i, k = np.triu_indices(len(lab), 1)
+        pairs = zip(i.tolist(), k.tolist(), strict=True)
+        expected = max(
+            (_de(Color("lab-d65", list(lab[x])), Color("lab-d65", list(lab[y]))) for x, y in pairs),
+            default=0.0,
+        )
+        assert value == pytest.approx(expected, rel=1e-6, abs=1e-9)

@@ -604,16 +604,22 @@ class _Engine:
         return near, self.fixed_codes()[tracks.first[near], j].astype(np.int64)
 
     def widest_at_reference(self, j: int, keys: frozenset[int]) -> float:
-        """How far apart paints ``keys`` were at alpha 1 on canvas ``j``: the widest CIEDE2000
-        between two of them as they ship there (:func:`~alpha_audit.rows.widest_delta_e`,
-        as the audit's collisions have it).  Cached: a question meets one group again and
-        again."""
+        """How far apart paints ``keys`` were at alpha 1 on canvas ``j``, as far as the
+        collision rules need: the widest CIEDE2000 between two of them as they ship there
+        (:func:`~alpha_audit.rows.widest_delta_e`, as the audit's collisions have it), or
+        the lightness bound ``|dL| / S_L,max`` (at most that widest) when it already
+        reaches the near-duplicate distance.  Cached: a question meets one group again
+        and again."""
         found = self._widest.get((j, keys))
         if found is None:
             if self._ref_lab is None:
                 _, first = np.unique(self.keys, return_index=True)  # a row of each paint
                 self._ref_lab = linear_to_lab(shipped(self.result.reference[first]))
-            found = widest_delta_e(self._ref_lab[sorted(keys), j])
+            lab = self._ref_lab[sorted(keys), j]
+            key = delta_e_2000_lightness_key(lab)
+            bound = float(key.max() - key.min())
+            near = self.policy.near_duplicate_delta_e
+            found = bound if bound > 0.0 and bound >= near else widest_delta_e(lab)
             self._widest[j, keys] = found
         return found
 
