@@ -508,13 +508,21 @@ class _Audit:
                 exact=exact,
             )
         fixed = role.startswith("#") and first.color_name != role and first.color != role
-        # A colour of the manifest moves with the colours that hold it at alpha 1, if any
-        # (SafeAlphas.joint); a hard-coded paint's icons move alone.
-        colours: tuple[str, ...] = ()
-        if fixed:
+        # A palette role moves with the roles that hold it at alpha 1, if any
+        # (SafeAlphas.joint: few roles, few questions).  Any other colour (a brand's hex,
+        # a hard-coded paint) moves alone; with no safe alpha, the fix names the colours
+        # that hold it, since alpha 1 itself may pass.
+        together: tuple[str, ...] = ()
+        held: tuple[str, ...] = ()
+        if fixed or role not in r.iconset.palette:
             safe = self.largest_safe(None, [role])
+            limit = safe.limit
+            if safe.alpha is None and limit is not None:
+                of = {n: i.color_name or i.color for n, i in self.by_name.items()}
+                held = tuple(dict.fromkeys(c for n in limit.icons if (c := of[n]) != role))
         else:
             colours, safe = self.answers_for(None).joint([role], grow=False)
+            together = tuple(c for c in colours if c != role)
         return ColorFix(
             theme=theme.name,
             iconset=r.iconset.name,
@@ -529,7 +537,8 @@ class _Audit:
             nearest=self.nearest[role],
             manifest=r.iconset.path,
             line=None if fixed else first.color_line,
-            together=tuple(c for c in colours if c != role),
+            together=together,
+            held=held,
         )
 
 

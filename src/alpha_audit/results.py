@@ -214,6 +214,8 @@ class ColorFix:
     # The colours that move with it for ``largest_safe``: those that leave it no safe
     # alpha alone (a role it is confused with at 1 while they keep their alpha).
     together: tuple[str, ...] = ()
+    # With no safe alpha: the colours whose alpha holds it at 1 (alpha 1 itself may pass).
+    held: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)

@@ -670,6 +670,13 @@ def _color_fix_text(fix: ColorFix) -> str:
     if contrast and fix.nearest is not None and fix.nearest.delta_e > 0:
         near = fix.nearest
         options.append(f"colour {near.color} (CIEDE2000 {near.delta_e:.2f} away)")
+    if not options and fix.held:  # alpha 1 itself may pass: name what holds it
+        one = len(fix.held) == 1
+        return (
+            f"{fix.color}: no alpha from 1 is safe while {names_and(fix.held[:3])}"
+            f"{f' +{len(fix.held) - 3} more' if len(fix.held) > 3 else ''} "
+            f"keep{'s' * one} {'its' if one else 'their'} alpha; move the colours apart"
+        )
     if not options:
         return f"{fix.color}: not even alpha 1 passes; change the colour"
     return f"{fix.color}: {' or '.join(options)}"
@@ -768,6 +775,7 @@ def fix_to_dict(fix: Fix, base: Path | None = None) -> dict[str, Any]:
         "rules": [r.value for r in fix.rules],
         "largest_safe_alpha": _safe_to_dict(fix.largest_safe),
         "together": list(fix.together),
+        "held": list(fix.held),
         "smallest_alpha_reaching": {
             "alpha": fix.reach.alpha,
             "exact": fix.reach.exact,

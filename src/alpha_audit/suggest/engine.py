@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import hashlib
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, replace
 from decimal import ROUND_FLOOR, Decimal
 from typing import Any, NamedTuple
@@ -93,7 +93,7 @@ from alpha_audit.results import (
     SafeAlpha,
     SuggestResult,
 )
-from alpha_audit.rows import AuditResult, widest_delta_e
+from alpha_audit.rows import AuditResult
 from alpha_audit.rules import Rule
 from alpha_audit.suggest import SCOPES
 from alpha_audit.suggest.events import (
@@ -209,6 +209,41 @@ def _shared_code_starts(
     return np.unique(pos[shared])
 
 
+# A search radius above 0, so pairs of paints shipping one colour (CIEDE2000 0) are found.
+_SAME_COLOUR = 1e-9
+# Moving tracks from which a collision check groups codes by one sort, not one scan each.
+_SORT_FROM = 16
+
+
+def _code_groups(
+    moving: NDArray[np.bool_], subset: NDArray[np.intp], codes: NDArray[np.int64]
+) -> Iterator[NDArray[np.intp]]:
+    """The tracks of ``subset`` sharing a code with a moving one, group by group, each once,
+    in order of its first moving track (``moving`` and ``codes`` are per ``subset`` entry).
+
+    >>> [g.tolist() for g in _code_groups(np.array([1, 1, 0, 0], bool), np.arange(4) + 10,
+    ...                                   np.array([5, 7, 5, 9]))]
+    [[10, 12]]
+    """
+    if np.count_nonzero(moving) < _SORT_FROM:  # a few moving tracks: a scan for each
+        seen: set[int] = set()
+        for k in np.flatnonzero(moving).tolist():
+            if int(codes[k]) not in seen:
+                seen.add(int(codes[k]))
+                members = subset[codes == codes[k]]
+                if members.size > 1:
+                    yield members
+        return
+    order = np.argsort(codes, kind="stable")
+    ordered = codes[order]
+    starts = np.flatnonzero(np.r_[True, ordered[1:] != ordered[:-1]])
+    ends = np.r_[starts[1:], ordered.size]
+    first = np.minimum.reduceat(np.where(moving[order], order, codes.size), starts)
+    held = (first < codes.size) & (ends - starts > 1)
+    for g in np.flatnonzero(held)[np.argsort(first[held], kind="stable")].tolist():
+        yield subset[order[starts[g] : ends[g]]]
+
+
 # The most an 8-bit screen moves a linear channel, so a luminance: half the widest gap
 # between decoded codes (next to white: (1 - decode(254/255)) / 2 = 0.004449), rounded up.
 SHIPPED_Y_ERROR = 0.0045
@@ -288,7 +323,7 @@ class _Engine:
         # Whether any failing rule objects to a collision (which one depends on how far
         # apart its colours were at alpha 1: Policy.collision_rule).
         self.collides = bool(rules & _COLLISION_RULES)
-        self._widest: dict[tuple[int, frozenset[int]], float] = {}
+        self._near_pairs: dict[int, dict[tuple[int, int], float]] = {}
         self._ref_lab: NDArray[np.float64] | None = None
         static = rules & _STATIC_RULES
         self.static: list[tuple[Rule, tuple[int, ...]]] = []
@@ -603,25 +638,43 @@ class _Engine:
         near = np.unique(track[~tracks.moving[track]])
         return near, self.fixed_codes()[tracks.first[near], j].astype(np.int64)
 
-    def widest_at_reference(self, j: int, keys: frozenset[int]) -> float:
-        """How far apart paints ``keys`` were at alpha 1 on canvas ``j``, as far as the
-        collision rules need: the widest CIEDE2000 between two of them as they ship there
-        (:func:`~alpha_audit.rows.widest_delta_e`, as the audit's collisions have it), or
-        the lightness bound ``|dL| / S_L,max`` (at most that widest) when it already
-        reaches the near-duplicate distance.  Cached: a question meets one group again
-        and again."""
-        found = self._widest.get((j, keys))
+    def near_pairs(self, j: int) -> dict[tuple[int, int], float]:
+        """The paints already closer than the near-duplicate distance at alpha 1 on canvas
+        ``j`` (CIEDE2000 of what they ship there), by pair of paint keys: found once per
+        canvas by the lightness-pruned pair search (:func:`~alpha_audit.color.nearest.pairs_below`),
+        so judging a collision is a look-up."""
+        found = self._near_pairs.get(j)
         if found is None:
             if self._ref_lab is None:
                 _, first = np.unique(self.keys, return_index=True)  # a row of each paint
                 self._ref_lab = linear_to_lab(shipped(self.result.reference[first]))
-            lab = self._ref_lab[sorted(keys), j]
-            key = delta_e_2000_lightness_key(lab)
-            bound = float(key.max() - key.min())
-            near = self.policy.near_duplicate_delta_e
-            found = bound if bound > 0.0 and bound >= near else widest_delta_e(lab)
-            self._widest[j, keys] = found
+            lab = self._ref_lab[:, j]
+
+            def distance(f: NDArray[np.intp], g: NDArray[np.intp]) -> NDArray[np.float64]:
+                return delta_e_2000_lab(lab[f], lab[g])
+
+            # Paints shipping one colour at alpha 1 (0 apart) are found whatever the distance.
+            near = max(self.policy.near_duplicate_delta_e, _SAME_COLOUR)
+            a, b, d = pairs_below(delta_e_2000_lightness_key(lab), distance, near)
+            found = dict(zip(zip(a.tolist(), b.tolist(), strict=True), d.tolist(), strict=True))
+            self._near_pairs[j] = found
         return found
+
+    def widest_at_reference(self, j: int, keys: frozenset[int]) -> float:
+        """How far apart paints ``keys`` were at alpha 1 on canvas ``j``, as far as the
+        collision rules need: the widest CIEDE2000 between two of them as they ship there
+        when every two are near duplicates (:meth:`near_pairs`; as the audit's collisions
+        have it, :func:`~alpha_audit.rows.widest_delta_e`), else infinity (told apart)."""
+        widest = 0.0
+        near = self.near_pairs(j)
+        at = sorted(keys)
+        for k, a in enumerate(at):
+            for b in at[k + 1 :]:
+                d = near.get((a, b))
+                if d is None:
+                    return math.inf
+                widest = max(widest, d)
+        return widest
 
     def collision_group(
         self, tracks: _Tracks, subset: NDArray[np.intp], codes: NDArray[np.int64], j: int
@@ -634,8 +687,7 @@ class _Engine:
         :mod:`alpha_audit.findings`' (:meth:`~alpha_audit.policy.Policy.collision_rule`
         of the failing rules), group by group.
         """
-        for k in np.flatnonzero(tracks.moving[subset]):
-            members = subset[codes == codes[k]]
+        for members in _code_groups(tracks.moving[subset], subset, codes):
             keys = frozenset(tracks.label[members].tolist())
             if len(keys) < 2:
                 continue
