@@ -523,36 +523,46 @@ def _colours(colours: Sequence[str], limit: int = 8) -> str:
 
 
 def _collisions(c: _Collector, rule: Rule) -> None:
-    """``collision`` (every shared output) or ``new-collision`` (not already at alpha 1).
+    """``collision``, ``new-collision`` and ``near-duplicate``: colours sharing an 8-bit output.
 
-    One finding per set of colliding colours, over the canvases where exactly
-    they collide.  With both enabled a new collision is reported once, as
-    ``collision``.
+    Each collision is reported under one rule (:meth:`~alpha_audit.policy.Policy.collision_rule`,
+    from how far apart its colours were at alpha 1): every collision is a
+    ``collision``; one alpha made between colours told apart at alpha 1 is a
+    ``new-collision``; one between colours that already look the same there is a
+    ``near-duplicate``.  One finding per set of colliding colours, over the
+    canvases where exactly they collide.
     """
-    if rule is Rule.NEW_COLLISION and Rule.COLLISION in c.policy.reported:
-        return
+    policy = c.policy
     index = {name: j for j, name in enumerate(c.canvas_names)}
     groups: dict[tuple[str, ...], list[Collision]] = {}
     for col in c.result.collisions:
-        if rule is Rule.NEW_COLLISION and not col.new:
-            continue
-        groups.setdefault(col.sources, []).append(col)
+        if policy.collision_rule(col.delta_e_ref) is rule:
+            groups.setdefault(col.sources, []).append(col)
+    limit = policy.near_duplicate_delta_e
     for cols in groups.values():
         icons = tuple(sorted({n for col in cols for n in col.icons}))
 
         def build(k: int, cols: list[Collision] = cols) -> tuple[str, dict[str, float | str]]:
             col = cols[k]
             give = "both give" if len(col.sources) == 2 else "all give"
-            message = f"{_colours(col.sources)} {give} {col.output}" + (
-                "" if col.new else " (already at alpha 1)"
-            )
+            if not col.new:
+                how = " (already at alpha 1)"
+            elif col.delta_e_ref < limit:
+                widest = max(x.delta_e_ref for x in cols)
+                how = (
+                    f": they already look the same at alpha 1 (CIEDE2000 {widest:.3g} < "
+                    f"{limit:g}); alpha only rounds them together"
+                )
+            else:
+                how = ""
             numbers: dict[str, float | str] = {
                 "output": col.output,
                 "sources": ", ".join(col.sources),
                 "colours": len(col.sources),
                 "new": str(col.new).lower(),
+                "delta_e_ref": col.delta_e_ref,
             }
-            return message, numbers
+            return f"{_colours(col.sources)} {give} {col.output}{how}", numbers
 
         c.fold(
             rule,
@@ -752,8 +762,14 @@ def _confusion(c: _Collector, rule: Rule) -> None:
         for one in _confusions(c, deficiency):
             pairs.setdefault(one.roles, []).append(one)
     min_delta_e = c.policy.min_delta_e
+    # A confusion is between the roles: every icon drawing either colour at an alpha
+    # that is confused (all of both roles' icons when they share one alpha each).
+    icons_of: dict[tuple[str, str, float], set[str]] = {}
+    for e in c.result.entries:
+        if not e.fixed and e.icon.color_name is not None:
+            icons_of.setdefault(_drawn(e), set()).add(e.icon.name)
     for (r1, r2), found in sorted(pairs.items()):
-        icons = found[0].icons
+        icons = tuple(sorted({n for f in found for d in f.drawn for n in icons_of[d]}))
         # The palette entries of both roles are where the confusion is written.
         locations = c.group_locations(icons, colour_first=True)
 
@@ -803,6 +819,9 @@ class _Confused:
     ref: float
     de: float
     deficiency: Deficiency | None
+    # Every (role, colour, alpha) of the two roles confused on this canvas: the icons
+    # drawing them are the finding's (a role's icons at another alpha may not be).
+    drawn: frozenset[tuple[str, str, float]] = frozenset()
 
 
 def _confusions(c: _Collector, deficiency: Deficiency | None) -> list[_Confused]:
@@ -838,10 +857,14 @@ def _confusions(c: _Collector, deficiency: Deficiency | None) -> list[_Confused]
         ref = np.asarray(delta_e_2000(solid[i, j, :], solid[k, j, :])).reshape(-1)
         keep = np.flatnonzero(confusion_breaks(ref, de, min_delta_e))
         worst: dict[tuple[str, str], int] = {}
+        drawn: dict[tuple[str, str], set[tuple[str, str, float]]] = {}
         for h in keep.tolist():
             one, two = sorted((entries[i[h]].role, entries[k[h]].role))
             if (one, two) not in worst or de[h] < de[worst[one, two]]:
                 worst[one, two] = h
+            drawn.setdefault((one, two), set()).update(
+                (_drawn(entries[i[h]]), _drawn(entries[k[h]]))
+            )
         for pair, h in sorted(worst.items()):
             a, b = entries[i[h]], entries[k[h]]
             out.append(
@@ -853,9 +876,15 @@ def _confusions(c: _Collector, deficiency: Deficiency | None) -> list[_Confused]
                     float(ref[h]),
                     float(de[h]),
                     deficiency,
+                    frozenset(drawn[pair]),
                 )
             )
     return out
+
+
+def _drawn(e: PaintEntry) -> tuple[str, str, float]:
+    """What a role row stands for (:func:`role_rows`): its role, colour and alpha."""
+    return (e.role, e.source, e.icon.alpha)
 
 
 def cvd_collision_groups(
@@ -944,7 +973,7 @@ def severity(finding: Finding) -> tuple[int, float]:
     """
     n = finding.numbers
     rule = finding.rule
-    if rule in (Rule.COLLISION, Rule.NEW_COLLISION, Rule.CVD_COLLISION):
+    if rule in (Rule.COLLISION, Rule.NEW_COLLISION, Rule.CVD_COLLISION, Rule.NEAR_DUPLICATE):
         return 0, -float(n.get("colours", 0)) - len(finding.icons) / 1e9
     if rule in (Rule.CONFUSION, Rule.CVD_CONFUSION):
         return 1, float(n.get("delta_e", 0.0))
@@ -981,4 +1010,5 @@ _RULES = {
     Rule.CVD_COLLISION: _cvd_collision,
     Rule.CVD_CONFUSION: _confusion,
     Rule.RENDER_DRIFT: _render_drift,
+    Rule.NEAR_DUPLICATE: _collisions,
 }

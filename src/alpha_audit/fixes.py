@@ -20,10 +20,12 @@ reviewer can act on:
 
 A finding between several colours (collision, separation, confusion, CVD)
 gets a :class:`~alpha_audit.results.GroupFix`: the largest safe alpha for its
-rule alone, of the two roles together for a confusion (the joint answer), else
-of the whole set.  Where an answer is an exact edit of a value the loaders
-located (:class:`~alpha_audit.model.Span`), the finding carries it
-(:attr:`~alpha_audit.findings.Finding.edits`); see :func:`_edits` for when.
+rule alone, of the whole set, or for a confusion the joint answer of its group:
+the roles the failing findings connect, grown into every role the answer finds
+pulled under the floor (:meth:`~alpha_audit.suggest.engine.SafeAlphas.joint`),
+one fix for every finding of the group.  Where an answer is an exact edit of a
+value the loaders located (:class:`~alpha_audit.model.Span`), the finding
+carries it (:attr:`~alpha_audit.findings.Finding.edits`); see :func:`_edits`.
 Pure computation: nothing is printed.
 """
 
@@ -65,7 +67,7 @@ from alpha_audit.results import (
 )
 from alpha_audit.rows import AuditResult
 from alpha_audit.rules import Rule
-from alpha_audit.suggest.engine import SafeAlphas
+from alpha_audit.suggest.engine import SafeAlphas, connected
 from alpha_audit.suggest.events import code_crossings
 
 __all__ = [
@@ -487,21 +489,46 @@ class _Audit:
         self.safe: dict[tuple[Rule | None, tuple[str, ...]], SafeAlpha] = {}
         self.nearest: dict[str, NearestColor | None] = {}
         self.reach: dict[tuple[str, str], ReachAlpha] = {}
+        self.groups: dict[Rule, dict[str, GroupFix]] = {}
 
     def largest_safe(self, rule: Rule | None, colors: Sequence[str]) -> SafeAlpha:
         """The largest safe alpha of the icons drawing ``colors`` (all: none given)."""
         key = (rule, tuple(colors))
         if key not in self.safe:
-            if rule not in self.answers:
-                policy = (
-                    self.policy if rule is None else replace(self.policy, rules=frozenset({rule}))
-                )
-                self.answers[rule] = SafeAlphas(
-                    self.result, policy, alpha_max=self.alpha_max, precision=self.precision
-                )
             icons = None if not colors else [n for c in colors for n in self.members.get(c, [])]
-            self.safe[key] = self.answers[rule](icons)
+            self.safe[key] = self.answers_for(rule)(icons)
         return self.safe[key]
+
+    def group_fixes(self, rule: Rule, failures: Sequence[Finding]) -> dict[str, GroupFix]:
+        """The fix of each role ``rule``'s failing findings name: the joint answer of its
+        group, for ``rule`` alone.  The roles those findings connect (on any canvas,
+        :func:`~alpha_audit.suggest.engine.connected`) grow into every role the answer
+        finds pulled under the floor, and groups that grow into each other are one
+        (:meth:`~alpha_audit.suggest.engine.SafeAlphas.joint_groups`)."""
+        if rule not in self.groups:
+            r = self.result
+            pairs = [
+                str(f.numbers["roles"]).split(",", 1)
+                for f in failures
+                if f.rule is rule
+                and (f.theme, f.iconset) == (r.theme.name, r.iconset.name)
+                and "roles" in f.numbers
+            ]
+            self.groups[rule] = {
+                colour: GroupFix(r.theme.name, r.iconset.name, rule, colours, safe, seed)
+                for colours, safe, seed in self.answers_for(rule).joint_groups(connected(pairs))
+                for colour in seed
+            }
+        return self.groups[rule]
+
+    def answers_for(self, rule: Rule | None) -> SafeAlphas:
+        """The suggest engine for ``rule`` alone (every rule of the policy: ``None``)."""
+        if rule not in self.answers:
+            policy = self.policy if rule is None else replace(self.policy, rules=frozenset({rule}))
+            self.answers[rule] = SafeAlphas(
+                self.result, policy, alpha_max=self.alpha_max, precision=self.precision
+            )
+        return self.answers[rule]
 
     def color_fix(self, role: str, canvas: int, rules: set[Rule]) -> ColorFix:
         r = self.result
@@ -546,6 +573,23 @@ class _Audit:
         # A paint a browser drew with CSS: no coefficient above 1 exists there, so the
         # answers are an opacity (the reaching alpha times its opacity) and a colour.
         page = self.drawn == "css-least"
+        # A palette role moves with the roles that hold it at alpha 1, if any
+        # (SafeAlphas.joint: few roles, few questions).  Any other colour (a brand's hex,
+        # a hard-coded paint) moves alone; with no safe alpha, the fix names the colours
+        # that hold it, since alpha 1 itself may pass.
+        together: tuple[str, ...] = ()
+        held: tuple[str, ...] = ()
+        if page:
+            safe = SafeAlpha(None, None, None)
+        elif fixed or role not in r.iconset.palette:
+            safe = self.largest_safe(None, [role])
+            limit = safe.limit
+            if safe.alpha is None and limit is not None:
+                of = {n: i.color_name or i.color for n, i in self.by_name.items()}
+                held = tuple(dict.fromkeys(c for n in limit.icons if (c := of[n]) != role))
+        else:
+            colours, safe = self.answers_for(None).joint([role], grow=False)
+            together = tuple(c for c in colours if c != role)
         return ColorFix(
             theme=theme.name,
             iconset=r.iconset.name,
@@ -555,12 +599,14 @@ class _Audit:
             mode=mode,
             icons=tuple(icons),
             rules=tuple(sorted(rules, key=list(Rule).index)),
-            largest_safe=SafeAlpha(None, None, None) if page else self.largest_safe(None, [role]),
+            largest_safe=safe,
             reach=self.reach[role, mode],
             nearest=self.nearest[role],
             manifest=r.iconset.path,
             line=None if fixed else first.color_line,
             opacity=max(o for _, o in styles) if page else None,
+            together=together,
+            held=held,
         )
 
 
@@ -664,15 +710,15 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
                 else:
                     left_out.add(color)
         elif a is not None and f.rule in _GROUP:
-            roles: tuple[str, ...] = ()
+            group: GroupFix | None = None
             if f.rule in _PAIR and "roles" in f.numbers:
-                roles = tuple(sorted(str(f.numbers["roles"]).split(",", 1)))
-            key = ("group", f.theme, f.iconset, f.rule, roles)
+                role = str(f.numbers["roles"]).split(",", 1)[0]
+                group = a.group_fixes(f.rule, gate.failures).get(role)
+            key = ("group", f.theme, f.iconset, f.rule, group.colors if group else ())
             if key not in index and len(index) < 2 * MAX_FIXED_COLORS:
                 index[key] = len(fixes)
-                fixes.append(
-                    GroupFix(f.theme, f.iconset, f.rule, roles, a.largest_safe(f.rule, roles))
-                )
+                whole = a.largest_safe(f.rule, ()) if group is None else group.safe
+                fixes.append(group or GroupFix(f.theme, f.iconset, f.rule, (), whole))
             if key in index:
                 found.append(index[key])
         edits = _edits(f, [fixes[k] for k in found], a.result if a else None, canvas_spans)
@@ -717,7 +763,8 @@ def _edits(
         if not isinstance(fix, ColorFix):
             continue
         alpha_span = icon.alpha_span
-        safe = fix.largest_safe.alpha
+        # An answer for several colours together is no edit of this icon's alpha alone.
+        safe = None if fix.together else fix.largest_safe.alpha
         if alpha_span is not None and safe is not None and safe != icon.alpha:
             out.append(
                 Edit(

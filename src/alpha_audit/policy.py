@@ -34,11 +34,13 @@ from alpha_audit.rules import (
 __all__ = [
     "CONTRAST_RULES",
     "LOSS_TOLERANCE",
+    "NEAR_DUPLICATE_DELTA_E",
     "RENDER_DRIFT_TOLERANCE",
     "RENDER_POLICY",
     "VISIBILITY_FLOOR",
     "Exemption",
     "Policy",
+    "collision_rules",
     "confusion_breaks",
     "confusion_possible",
     "contrast_breaks",
@@ -61,6 +63,10 @@ VISIBILITY_FLOOR = 1.5
 # (blue 0 -> 1 beside full red and green, luminance weights of WCAG 2.2), so 1e-6
 # tolerates no visible change, only float noise and sub-code losses (2e-10).
 LOSS_TOLERANCE = 1e-6
+# Two colours closer than this CIEDE2000 at alpha 1 already look the same: one
+# just-noticeable difference, the usual reading of dE00 = 1 (as for ``lock``).  Alpha
+# rounding them onto one 8-bit code makes no collision a reader could see.
+NEAR_DUPLICATE_DELTA_E = 1.0
 
 
 @dataclass(frozen=True)
@@ -104,6 +110,9 @@ class Policy:
     visibility_floor: float = VISIBILITY_FLOOR
     # ... that lose more than this share of it (both: reported, not gated, below).
     loss_tolerance: float = LOSS_TOLERANCE
+    # Rule.NEW_COLLISION gates only colours at least this far apart at alpha 1; closer
+    # ones are Rule.NEAR_DUPLICATE (reported, not gated, by default).
+    near_duplicate_delta_e: float = NEAR_DUPLICATE_DELTA_E
 
     def __post_init__(self) -> None:
         # The ranges the config keys and the flags of the same names obey.
@@ -114,6 +123,7 @@ class Policy:
             ("min_size_contrast", self.min_size_contrast, CONTRAST_RATIO),
             ("visibility_floor", self.visibility_floor, CONTRAST_RATIO),
             ("loss_tolerance", self.loss_tolerance, ranges.LOSS_TOLERANCE),
+            ("near_duplicate_delta_e", self.near_duplicate_delta_e, DELTA_E),
         ]
         for name, value, allowed in limits:
             if value is not None and not allowed.allows(value):
@@ -131,6 +141,7 @@ class Policy:
         min_size_contrast: float | None = None,
         visibility_floor: float | None = None,
         loss_tolerance: float | None = None,
+        near_duplicate_delta_e: float | None = None,
     ) -> Policy:
         """This policy with command-line overrides applied (``None`` keeps a field)."""
         return replace(
@@ -141,6 +152,11 @@ class Policy:
                 self.visibility_floor if visibility_floor is None else visibility_floor
             ),
             loss_tolerance=self.loss_tolerance if loss_tolerance is None else loss_tolerance,
+            near_duplicate_delta_e=(
+                self.near_duplicate_delta_e
+                if near_duplicate_delta_e is None
+                else near_duplicate_delta_e
+            ),
             max_loss=self.max_loss if max_loss is None else max_loss,
             min_delta_e=self.min_delta_e if min_delta_e is None else min_delta_e,
             max_drift=self.max_drift if max_drift is None else max_drift,
@@ -199,17 +215,22 @@ class Policy:
         """The enabled per icon x canvas contrast rules, in :data:`CONTRAST_RULES` order."""
         return tuple(r for r in CONTRAST_RULES if r in self.rules)
 
-    @property
-    def collision_rule(self) -> Rule | None:
-        """Which collision rule applies: ``collision`` already covers every new one.
+    def collision_rule(
+        self, delta_e_ref: float, rules: frozenset[Rule] | None = None
+    ) -> Rule | None:
+        """The one rule a collision is reported under, of ``rules`` (default: the reported).
 
-        With both enabled a new collision is reported once, as ``collision``.
+        ``delta_e_ref`` is the widest CIEDE2000 between the colliding colours at
+        alpha 1 (:func:`collision_rules`).  A failing rule comes before a reported
+        one, then ``collision`` before the narrower rules: with both ``collision``
+        and ``new-collision`` failing a new collision is reported once, as ``collision``.
         """
-        if Rule.COLLISION in self.rules:
-            return Rule.COLLISION
-        if Rule.NEW_COLLISION in self.rules:
-            return Rule.NEW_COLLISION
-        return None
+        chosen = self.reported if rules is None else rules
+        found = [
+            r for r in collision_rules(delta_e_ref, self.near_duplicate_delta_e) if r in chosen
+        ]
+        failing = [r for r in found if r in self.rules]
+        return next(iter(failing or found), None)
 
 
 # render's gate without a config: below-threshold fails, render-drift and not-audited
@@ -327,6 +348,26 @@ def size_contrast_floor(limit: float, tolerance: float = CONTRAST_TOLERANCE) -> 
     True
     """
     return limit - tolerance
+
+
+def collision_rules(delta_e_ref: float, near_duplicate_delta_e: float) -> tuple[Rule, ...]:
+    """The rules that object to distinct colours sharing one 8-bit output on a canvas.
+
+    The one statement of the collision rules.  ``delta_e_ref`` is the widest
+    CIEDE2000 between two of the colours as they ship at alpha 1 on that canvas
+    (0: they already share the output there).  ``collision`` objects to every
+    collision; ``new-collision`` only to one alpha made between colours told apart
+    at alpha 1 (at least ``near_duplicate_delta_e``); ``near-duplicate`` to one
+    between colours already closer than that, which alpha only rounds together.
+
+    >>> [[r.value for r in collision_rules(d, 1.0)] for d in (0.0, 0.02, 12.0)]
+    [['collision'], ['collision', 'near-duplicate'], ['collision', 'new-collision']]
+    """
+    if delta_e_ref <= 0.0:
+        return (Rule.COLLISION,)
+    if delta_e_ref < near_duplicate_delta_e:
+        return (Rule.COLLISION, Rule.NEAR_DUPLICATE)
+    return (Rule.COLLISION, Rule.NEW_COLLISION)
 
 
 def confusion_possible(delta_e_ref: ArrayLike, min_delta_e: float) -> NDArray[np.bool_]:

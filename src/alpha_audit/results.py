@@ -25,10 +25,10 @@ __all__ = [
     "ColorSuggestion",
     "Fix",
     "GroupFix",
+    "GroupSuggestion",
     "IconSuggestion",
     "Limit",
     "NearestColor",
-    "PairSuggestion",
     "Progress",
     "ReachAlpha",
     "SafeAlpha",
@@ -48,7 +48,8 @@ class Limit:
     When ``attained`` it is itself unsafe; otherwise it is the last safe one
     and every coefficient just above it is unsafe.  ``grid`` is ``None`` when
     found exactly from events, else the bracketing grid step (then bisected to
-    1e-9): a dip narrower than it could be missed.
+    1e-9): a dip narrower than it could be missed.  ``roles`` are the two palette
+    roles a role rule (``confusion``, ``cvd-confusion``) finds pulled together.
     """
 
     rule: Rule
@@ -57,6 +58,7 @@ class Limit:
     at: float
     attained: bool
     grid: float | None = None
+    roles: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -94,12 +96,19 @@ class ColorSuggestion:
 
 
 @dataclass(frozen=True)
-class PairSuggestion:
-    """Two roles that pull each other together, moving as one (the joint answer)."""
+class GroupSuggestion:
+    """Roles that pull each other under the separation floor, moving as one (the joint answer).
 
-    colors: tuple[str, str]
+    ``confused`` are the roles the gate finds confused at their alphas, connected
+    through confusion; ``colors`` the group they grow into (every role the joint
+    answer finds pulled under the floor with one of them), in palette order; the
+    limit's ``roles`` name the pair that limits it.
+    """
+
+    colors: tuple[str, ...]
     icons: tuple[str, ...]
     safe: SafeAlpha
+    confused: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -114,7 +123,7 @@ class IconSuggestion:
 
 @dataclass(frozen=True)
 class SuggestResult:
-    """Set-wide, per-colour, per-pair and per-icon largest safe alphas of one audit.
+    """Set-wide, per-colour, per-group and per-icon largest safe alphas of one audit.
 
     ``left_out`` names the icons that could not be rendered (left out as
     ``check`` leaves them out).
@@ -127,7 +136,7 @@ class SuggestResult:
     overall: SafeAlpha
     per_color: tuple[ColorSuggestion, ...]
     per_icon: tuple[IconSuggestion, ...]
-    per_pair: tuple[PairSuggestion, ...] = ()
+    per_group: tuple[GroupSuggestion, ...] = ()
     left_out: tuple[str, ...] = ()
 
     @property
@@ -206,14 +215,21 @@ class ColorFix:
     # A paint a browser drew with CSS at this opacity: the answers are an opacity
     # (``reach.alpha`` times it) and a colour, not a coefficient.  None: the model's.
     opacity: float | None = None
+    # The colours that move with it for ``largest_safe``: those that leave it no safe
+    # alpha alone (a role it is confused with at 1 while they keep their alpha).
+    together: tuple[str, ...] = ()
+    # With no safe alpha: the colours whose alpha holds it at 1 (alpha 1 itself may pass).
+    held: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
 class GroupFix:
     """The largest safe alpha for a finding between several colours, for its rule alone.
 
-    ``colors`` are the roles moving together (a confusion's pair, a
-    collision's colours); empty: every icon of the set.
+    ``colors`` are the roles moving together (a confusion's group); empty: every
+    icon of the set.  ``confused`` are the roles the failing findings connect,
+    from which the group grew (:class:`GroupSuggestion`); the limit's ``roles``
+    name the pair that limits it.
     """
 
     theme: str
@@ -221,6 +237,7 @@ class GroupFix:
     rule: Rule
     colors: tuple[str, ...]
     safe: SafeAlpha
+    confused: tuple[str, ...] = ()
 
 
 Fix = ColorFix | GroupFix

@@ -83,6 +83,8 @@ __all__ = [
     "find_collisions",
     "observed_audit",
     "resolve_pipeline",
+    "widest_delta_e",
+    "widest_delta_e_many",
     "with_alphas",
 ]
 
@@ -311,13 +313,24 @@ class Unaudited:
 
 @dataclass(frozen=True)
 class Collision:
-    """Distinct paints that give the same 8-bit output on one canvas."""
+    """Distinct paints that give the same 8-bit output on one canvas.
+
+    ``delta_e_ref`` is the widest CIEDE2000 between two of them as they ship at
+    alpha 1 on that canvas (:func:`widest_delta_e`): 0 when they already share
+    the output there, below the policy's near-duplicate distance when they
+    already look the same (:func:`~alpha_audit.policy.collision_rules`).
+    """
 
     canvas: str
     output: str
     sources: tuple[str, ...]
     icons: tuple[str, ...]
-    new: bool = True  # False when the same paints already collide at alpha = 1
+    delta_e_ref: float = math.inf
+
+    @property
+    def new(self) -> bool:
+        """Whether the paints told apart at alpha 1 (any two of them had distinct outputs)."""
+        return self.delta_e_ref > 0.0
 
 
 @dataclass(frozen=True)
@@ -382,6 +395,67 @@ class Summary:
 
 def _hex(packed: int) -> str:
     return f"#{packed:06x}"
+
+
+# Pairs measured exactly for the widest CIEDE2000 of one collision group: beyond
+# 1,448 distinct colours in one 8-bit output (never seen in a real set; every colour
+# clipping to white at an absurd alpha) the widest is estimated (widest_delta_e).
+WIDEST_PAIRS = 1 << 20
+
+
+def widest_delta_e(lab: NDArray[np.float64]) -> float:
+    """The largest CIEDE2000 between two of the CIELAB colours ``lab`` ``(n, 3)``.
+
+    :func:`widest_delta_e_many` of one group.
+
+    >>> from alpha_audit.color import hex_to_linear, linear_to_lab
+    >>> lab = linear_to_lab(np.array([hex_to_linear(c) for c in ("#00a4ff", "#01a4ff", "#000")]))
+    >>> round(widest_delta_e(lab), 3), round(widest_delta_e(lab[:2]), 4)  # #01a4ff to black
+    (57.125, 0.0169)
+    """
+    return float(widest_delta_e_many([lab])[0])
+
+
+def widest_delta_e_many(labs: Sequence[NDArray[np.float64]]) -> NDArray[np.float64]:
+    """The largest CIEDE2000 between two colours of each group of CIELAB colours ``(n, 3)``.
+
+    Every pair of every group is measured, groups gathered until about
+    :data:`~alpha_audit.color.nearest.PAIR_CHUNK` pairs (one CIEDE2000 call for the
+    many small groups of an audit, bounded memory for big ones); a group of more
+    than :data:`WIDEST_PAIRS` pairs gets the double-sweep estimate (the farthest
+    colour from the first, then the farthest from that), a lower bound.  0 for a
+    group of fewer than two colours.
+    """
+    out = np.zeros(len(labs))
+    batch: list[int] = []
+    pairs = 0
+
+    def measure() -> None:
+        every = np.concatenate([labs[g] for g in batch]).reshape(-1, 3)
+        sizes = [len(labs[g]) for g in batch]
+        starts = np.cumsum([0, *sizes[:-1]])
+        parts = [np.triu_indices(n, 1) for n in sizes]
+        first = np.concatenate([i + s for (i, _), s in zip(parts, starts, strict=True)])
+        second = np.concatenate([k + s for (_, k), s in zip(parts, starts, strict=True)])
+        owner = np.repeat(batch, [i.size for i, _ in parts])
+        for lo in range(0, first.size, PAIR_CHUNK):
+            at = slice(lo, lo + PAIR_CHUNK)
+            np.maximum.at(out, owner[at], delta_e_2000_lab(every[first[at]], every[second[at]]))
+
+    for g, lab in enumerate(labs):
+        n = len(lab)
+        if n * (n - 1) // 2 > WIDEST_PAIRS:
+            far = int(np.argmax(delta_e_2000_lab(lab[0], lab)))
+            out[g] = float(np.max(delta_e_2000_lab(lab[far], lab)))
+        elif n > 1:
+            batch.append(g)
+            pairs += n * (n - 1) // 2
+            if pairs >= PAIR_CHUNK:
+                measure()
+                batch, pairs = [], 0
+    if batch:
+        measure()
+    return out
 
 
 def find_collisions(
@@ -909,14 +983,24 @@ def with_alphas(result: AuditResult, alphas: Mapping[str, float]) -> AuditResult
 
 
 def _collisions(result: AuditResult) -> tuple[Collision, ...]:
-    """Distinct paints sharing an 8-bit output per canvas; ``new`` unless already at alpha 1."""
+    """Distinct paints sharing an 8-bit output per canvas, with how far apart they were at 1.
+
+    How far: the widest CIEDE2000 between two of the group's paints as they ship
+    at alpha 1 on that canvas (one row per paint: its rows all show one colour).
+    """
     keys = result.paint_keys
-    ref_pairs = {
-        (j, frozenset(keys[g].tolist()))
-        for j, _, g in find_collisions(to_8bit(result.reference), keys)
-    }
+    found = find_collisions(result.output_codes, keys)
+    if not found:
+        return ()
+    # A row of each paint of each group, on its canvas: every group's colours at alpha 1
+    # in one CIELAB conversion (colour-science costs about 0.5 ms a call, whatever its size).
+    rows_of = [group[np.unique(keys[group], return_index=True)[1]] for _, _, group in found]
+    sizes = [r.size for r in rows_of]
+    canvas = np.repeat([j for j, _, _ in found], sizes)
+    lab = linear_to_lab(shipped(result.reference[np.concatenate(rows_of), canvas]))
+    widest = widest_delta_e_many(np.split(lab, np.cumsum(sizes)[:-1]))
     out = []
-    for j, packed, group in find_collisions(result.output_codes, keys):
+    for (j, packed, group), delta_e_ref in zip(found, widest.tolist(), strict=True):
         rows = [result.entries[r] for r in group]
         out.append(
             Collision(
@@ -924,7 +1008,7 @@ def _collisions(result: AuditResult) -> tuple[Collision, ...]:
                 output=_hex(packed),
                 sources=tuple(sorted({_paint_label(e) for e in rows})),
                 icons=tuple(sorted({e.icon.name for e in rows})),
-                new=(j, frozenset(keys[group].tolist())) not in ref_pairs,
+                delta_e_ref=delta_e_ref,
             )
         )
     return tuple(out)

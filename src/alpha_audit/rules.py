@@ -52,6 +52,7 @@ class Rule(StrEnum):
     CVD_COLLISION = "cvd-collision"
     CVD_CONFUSION = "cvd-confusion"
     RENDER_DRIFT = "render-drift"
+    NEAR_DUPLICATE = "near-duplicate"
 
     @classmethod
     def parse(cls, text: str, flag: str | None = None) -> Rule:
@@ -148,7 +149,8 @@ _SPECS = (
         "AA005",
         "minor",
         Level.FAIL,
-        "Distinct colours collide at their alpha but not at alpha 1.",
+        "Colours told apart at alpha 1 (CIEDE2000 at least near-duplicate-delta-e) share one "
+        "8-bit output at their alpha.",
         "Lower the set's `alpha` below the value `alpha-audit suggest` reports, or move one "
         "of the colours apart.",
     ),
@@ -254,6 +256,19 @@ _SPECS = (
         "Paint the icon with the manifest's colour (`currentColor` from the theme token), or "
         "write the colour the page draws into the manifest so `check` audits it.",
         render=Level.WARN,
+    ),
+    # Alpha did not make these collide: the colours already look the same at alpha 1
+    # and only share a code once it rounds them together.  Listed once, never gated
+    # by default, never a limit of ``suggest``.
+    RuleSpec(
+        Rule.NEAR_DUPLICATE,
+        "AA017",
+        "info",
+        Level.WARN,
+        "Distinct colours that already look the same at alpha 1 (CIEDE2000 below "
+        "near-duplicate-delta-e) share one 8-bit output at their alpha.",
+        "Use one colour for both if they mean the same, or move them apart if they should "
+        "be told apart; alpha only rounds them together.",
     ),
 )
 RULES: dict[Rule, RuleSpec] = {spec.rule: spec for spec in _SPECS}

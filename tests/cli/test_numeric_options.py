@@ -25,6 +25,7 @@ POLICY = {
     "--min-size-contrast": CONTRAST,
     "--visibility-floor": CONTRAST,
     "--loss-tolerance": (0, 1, "a relative tolerance between 0 and 1"),
+    "--near-duplicate-delta-e": DELTA_E,
 }
 EXPECTED = {
     **{

@@ -65,16 +65,32 @@ def test_each_contrast_rule_means_what_the_paper_says() -> None:
         contrast_breaks(Rule.COLLISION, p, ref, now, 3.0)
 
 
+NO_WARNINGS: frozenset[Rule] = frozenset()
+
+
 @pytest.mark.parametrize(
-    ("rules", "expected"),
+    ("rules", "warnings", "delta_e_ref", "expected"),
     [
-        ({Rule.COLLISION, Rule.NEW_COLLISION}, Rule.COLLISION),
-        ({Rule.NEW_COLLISION}, Rule.NEW_COLLISION),
-        ({Rule.LOSS}, None),
+        # Told apart at alpha 1: both failing, reported once as the wider rule.
+        ({Rule.COLLISION, Rule.NEW_COLLISION}, NO_WARNINGS, 12.0, Rule.COLLISION),
+        ({Rule.NEW_COLLISION}, NO_WARNINGS, 12.0, Rule.NEW_COLLISION),
+        ({Rule.LOSS}, NO_WARNINGS, 12.0, None),
+        # A failing rule before a reported one: collision at warn does not hide it.
+        ({Rule.NEW_COLLISION}, {Rule.COLLISION}, 12.0, Rule.NEW_COLLISION),
+        # Already one output at alpha 1: only collision objects.
+        ({Rule.NEW_COLLISION}, {Rule.NEAR_DUPLICATE}, 0.0, None),
+        ({Rule.COLLISION}, NO_WARNINGS, 0.0, Rule.COLLISION),
+        # Closer than one JND at alpha 1: a near-duplicate, never a new collision.
+        ({Rule.NEW_COLLISION}, {Rule.NEAR_DUPLICATE}, 0.5, Rule.NEAR_DUPLICATE),
+        ({Rule.NEW_COLLISION}, NO_WARNINGS, 0.5, None),
+        ({Rule.NEW_COLLISION}, NO_WARNINGS, 1.0, Rule.NEW_COLLISION),  # the limit is apart
     ],
 )
-def test_which_collision_rule_applies(rules: set[Rule], expected: Rule | None) -> None:
-    assert Policy(rules=frozenset(rules)).collision_rule is expected
+def test_which_collision_rule_applies(
+    rules: set[Rule], warnings: set[Rule], delta_e_ref: float, expected: Rule | None
+) -> None:
+    policy = Policy(rules=frozenset(rules), warnings=frozenset(warnings))
+    assert policy.collision_rule(delta_e_ref) is expected
 
 
 def test_pack_8bit_is_the_hex_code() -> None:

@@ -83,6 +83,7 @@ BAD = [
     ("fail-on: [loss]\nrules: {drift: warn}\n", "not both"),
     ("visibility-floor: 0.5\n", "contrast ratio between 1 and 21"),
     ("loss-tolerance: 2\n", "relative tolerance between 0 and 1"),
+    ("near-duplicate-delta-e: -1\n", "CIEDE2000 difference between 0 and 200"),
 ]
 
 
@@ -152,9 +153,10 @@ def test_rules_set_each_rules_level_over_the_defaults(tmp_path: Path) -> None:
     cfg = write(
         tmp_path / "alpha-audit.yaml",
         "rules: {drift: warn, collision: fail, unrenderable: off, loss: warn}\n"
-        "visibility-floor: 2\nloss-tolerance: 0.001\n",
+        "visibility-floor: 2\nloss-tolerance: 0.001\nnear-duplicate-delta-e: 2.5\n",
     )
     policy = load_config(cfg).policy
+    assert policy.near_duplicate_delta_e == 2.5
     assert policy.rules == (DEFAULT_RULES - {Rule.LOSS}) | {Rule.COLLISION}
     assert Rule.DRIFT in policy.warnings and Rule.LOSS in policy.warnings
     assert Rule.UNRENDERABLE not in policy.reported

@@ -7,6 +7,7 @@ every fix is now computed once in the pipeline and worded by one function.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 from alpha_audit.fixes import with_fixes
@@ -60,9 +61,12 @@ def test_two_confused_roles_get_their_joint_answer() -> None:
     )
     finding = report.gate.failures[0]
     (fix,) = (report.fixes[k] for k in finding.fixes)
-    assert isinstance(fix, GroupFix) and fix.colors == ("danger", "severe")
+    # The group in palette order; the pair that limits it, the canvas and where, named.
+    assert isinstance(fix, GroupFix) and fix.colors == ("severe", "danger")
     assert fix.safe.alpha is not None and 1.0 <= fix.safe.alpha < 1.15
-    assert finding_fix(finding, report).startswith("danger and severe together: alpha 1 to ")
+    assert fix.safe.limit is not None and fix.safe.limit.roles == ("danger", "severe")
+    assert finding_fix(finding, report).startswith("severe and danger together: alpha 1 to ")
+    assert f"(limited by danger and severe on white at {fix.safe.limit.at:.6f})" in fix_text(fix)
     # The joint answer passes the gate; just above it fails.
     both = {"alert": fix.safe.alpha, "stop": fix.safe.alpha}
     from alpha_audit.rows import with_alphas
@@ -72,3 +76,30 @@ def test_two_confused_roles_get_their_joint_answer() -> None:
     assert fix.safe.limit is not None
     above = {k: fix.safe.limit.at + 1e-6 for k in both}
     assert not evaluate([with_alphas(result, above)], policy).passed
+
+
+def test_no_safe_alpha_says_not_even_1_only_when_1_itself_fails() -> None:
+    """A colour held at 1 by others keeping their alpha is named so; alpha 1 may pass."""
+    from alpha_audit.results import Limit, ReachAlpha, SafeAlpha
+
+    limit = Limit(Rule.NEW_COLLISION, "white", ("a", "b"), 1.0, True)
+    fix = ColorFix(
+        theme="t",
+        iconset="s",
+        color="#ee7733",
+        source="#ee7733",
+        canvas="white",
+        mode="light",
+        icons=("a",),
+        rules=(Rule.LOSS,),
+        largest_safe=SafeAlpha(None, None, limit),
+        reach=ReachAlpha("light", ("white",), 3.0, None, None),
+        nearest=None,
+        held=("#ff7f36",),
+    )
+    assert fix_text(fix) == (
+        "#ee7733: no alpha from 1 is safe while #ff7f36 keeps its alpha; move the colours apart"
+    )
+    assert fix_text(replace(fix, held=())) == "#ee7733: not even alpha 1 passes; change the colour"
+    together = replace(fix, largest_safe=SafeAlpha(1.05, 1.05, limit), together=("b", "c"))
+    assert fix_text(together) == "#ee7733: alpha 1 to 1.05 together with b and c"

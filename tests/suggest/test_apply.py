@@ -85,7 +85,7 @@ def test_cli_apply_and_no_write_without_it(tmp_path: Path, repo: Path) -> None:
     assert res.exit_code == 0, res.output
     assert (target / "iconset.yaml").read_text() == original
     doc = json.loads(res.stdout)
-    assert doc["schema"] == "alpha-audit.suggest/2" and doc["alpha"] == 1.193
+    assert doc["schema"] == "alpha-audit.suggest/3" and doc["alpha"] == 1.193
     # The default policy holds confusion: orange and magenta (roles) blur on white first.
     assert doc["limited_by"]["rule"] == "confusion" and doc["limited_by"]["canvas"] == "white"
     assert doc["limited_by"]["grid"] == 1e-3  # bracketed, and said so

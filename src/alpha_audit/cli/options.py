@@ -34,6 +34,7 @@ __all__ = [
     "MaxLossOption",
     "MinDeltaEOption",
     "MinSizeContrastOption",
+    "NearDuplicateOption",
     "NoCacheOption",
     "PipelineOption",
     "StrictSvgOption",
@@ -215,6 +216,16 @@ VisibilityFloorOption = Annotated[
         help="Contrast at alpha 1 below which a loss is reported, not gated.",
         callback=in_range("--visibility-floor", ranges.CONTRAST_RATIO),
         show_default=_policy_default("visibility_floor"),
+    ),
+]
+NearDuplicateOption = Annotated[
+    float | None,
+    typer.Option(
+        "--near-duplicate-delta-e",
+        help="CIEDE2000 at alpha 1 below which colours already look the same: alpha rounding "
+        "them onto one 8-bit output is near-duplicate (reported), not new-collision.",
+        callback=in_range("--near-duplicate-delta-e", ranges.DELTA_E),
+        show_default=_policy_default("near_duplicate_delta_e"),
     ),
 ]
 LossToleranceOption = Annotated[

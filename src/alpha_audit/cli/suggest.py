@@ -19,6 +19,7 @@ from alpha_audit.cli.options import (
     MaxLossOption,
     MinDeltaEOption,
     MinSizeContrastOption,
+    NearDuplicateOption,
     NoCacheOption,
     ThemeArgument,
     ThresholdOption,
@@ -85,6 +86,7 @@ def suggest_command(
     min_size_contrast: MinSizeContrastOption = None,
     visibility_floor: VisibilityFloorOption = None,
     loss_tolerance: LossToleranceOption = None,
+    near_duplicate_delta_e: NearDuplicateOption = None,
     fmt: Annotated[
         SuggestFormat,
         typer.Option("--format", "-f", help="table, json or markdown.", case_sensitive=False),
@@ -99,8 +101,9 @@ def suggest_command(
         typer.Option(
             "--apply",
             metavar="set|colour|icon",
-            help="Write the answer into the manifest: set (the set-wide alpha), colour or icon "
-            "(per-icon overrides); only alpha values change.",
+            help="Write the answer into the manifest: set (the set-wide alpha), colour (one "
+            "alpha per group of colours) or icon (per-icon overrides); only alpha values change, "
+            "and only when the gate passes with them (else nothing is written, exit 1).",
             show_default=False,
             callback=_scope,
         ),
@@ -127,9 +130,11 @@ def suggest_command(
     """The largest alpha every coefficient in [1, alpha] keeps the gate policy for.
 
     Computed exactly from where contrast, 8-bit codes and separation change, not
-    by a sweep: set-wide (one coefficient for every icon), per palette colour
-    and per icon (the others keep their configured alpha), with the canvas,
-    rule and icons that stop each and the first unsafe alpha.  Losses are judged
+    by a sweep: set-wide (one coefficient for every icon), per palette colour,
+    per group of roles the gate finds confused (all moving together) and per
+    icon (the others keep their configured alpha), with the canvas, rule and
+    icons (for a confusion, the pair of roles) that stop each and the first
+    unsafe alpha.  Losses are judged
     as check judges them (--visibility-floor, --loss-tolerance).  A big set's
     table shows the smallest answers and each colour's worst icon; --format json
     has every answer.  Nothing is written unless --apply is given.
@@ -142,7 +147,7 @@ def suggest_command(
     from alpha_audit.output import check_targets
     from alpha_audit.pipeline import audits, plan
     from alpha_audit.render.common import RenderOptions, check_suffix
-    from alpha_audit.suggest.apply import apply_suggestion, describe_plan, recheck
+    from alpha_audit.suggest.apply import apply_suggestion, describe_plan
     from alpha_audit.suggest.engine import suggest
 
     if output is not None:
@@ -163,6 +168,7 @@ def suggest_command(
             min_size_contrast=min_size_contrast,
             visibility_floor=visibility_floor,
             loss_tolerance=loss_tolerance,
+            near_duplicate_delta_e=near_duplicate_delta_e,
             gamut=gamut,
         ),
         Path.cwd(),
@@ -201,13 +207,10 @@ def suggest_command(
     emit(fmt.renderer()(result, options), output, force)
     if apply is not None:
         applied, changed = apply_suggestion(
-            manifest, result, apply, replace_explicit=replace_explicit
+            manifest, result, apply, replace_explicit=replace_explicit, gamut=project.gamut
         )
-        verdict = recheck(manifest, result, gamut=project.gamut)
         stderr_note(describe_plan(applied, manifest, changed, precision))
-        stderr_note(
-            "check: the gate passes with what was written"
-            if verdict
-            else "check: the gate still fails with what was written (run alpha-audit check)"
-        )
+        if not applied.passes:
+            return ExitStatus.GATE_FAILED
+        stderr_note("check: the gate passes with what was written")
     return ExitStatus.OK

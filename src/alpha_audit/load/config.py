@@ -66,6 +66,7 @@ CONFIG_KEYS = (
     "max-loss",
     "min-delta-e",
     "min-size-contrast",
+    "near-duplicate-delta-e",
     "pipeline",
     "render",  # alpha-audit render's table, read by alpha_audit.pages.config
     "rules",
@@ -195,6 +196,7 @@ class Overrides:
     min_size_contrast: float | None = None
     visibility_floor: float | None = None
     loss_tolerance: float | None = None
+    near_duplicate_delta_e: float | None = None
     pipeline: str | None = None
     gamut: str | None = None
     baseline: Path | None = None
@@ -234,6 +236,7 @@ def resolve_config(overrides: Overrides | None = None, start: str | Path = ".") 
             min_size_contrast=o.min_size_contrast,
             visibility_floor=o.visibility_floor,
             loss_tolerance=o.loss_tolerance,
+            near_duplicate_delta_e=o.near_duplicate_delta_e,
         ),
         pipeline=project.pipeline if o.pipeline is None else o.pipeline.strip().lower(),  # type: ignore[arg-type]  # checked against PIPELINES above
         gamut=project.gamut if o.gamut is None else o.gamut.strip().lower(),  # type: ignore[arg-type]  # checked against GAMUT_POLICIES above
@@ -440,6 +443,7 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
     for key, allowed in (
         ("visibility-floor", ranges.CONTRAST_RATIO),
         ("loss-tolerance", ranges.LOSS_TOLERANCE),
+        ("near-duplicate-delta-e", ranges.DELTA_E),
     ):
         if key in data:
             limits[key.replace("-", "_")] = read_number(doc, at(key), data[key], allowed=allowed)

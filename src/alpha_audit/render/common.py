@@ -62,6 +62,7 @@ __all__ = [
     "location_text",
     "location_to_dict",
     "name_column",
+    "names_and",
     "number_column",
     "records",
     "safe_span",
@@ -689,7 +690,8 @@ def _color_fix_text(fix: ColorFix) -> str:
     options = []
     safe = fix.largest_safe.alpha
     if safe is not None:
-        options.append(safe_span(safe))
+        with_ = f" together with {names_and(fix.together)}" if fix.together else ""
+        options.append(safe_span(safe) + with_)
     # Reaching the threshold at 1 itself is already inside that range.
     reach = fix.reach.alpha
     if contrast and reach is not None and not (safe is not None and reach <= 1.0):
@@ -697,6 +699,13 @@ def _color_fix_text(fix: ColorFix) -> str:
     if contrast and fix.nearest is not None and fix.nearest.delta_e > 0:
         near = fix.nearest
         options.append(f"colour {near.color} (CIEDE2000 {near.delta_e:.2f} away)")
+    if not options and fix.held:  # alpha 1 itself may pass: name what holds it
+        one = len(fix.held) == 1
+        return (
+            f"{fix.color}: no alpha from 1 is safe while {names_and(fix.held[:3])}"
+            f"{f' +{len(fix.held) - 3} more' if len(fix.held) > 3 else ''} "
+            f"keep{'s' * one} {'its' if one else 'their'} alpha; move the colours apart"
+        )
     if not options:
         return f"{fix.color}: not even alpha 1 passes; change the colour"
     return f"{fix.color}: {' or '.join(options)}"
@@ -715,10 +724,24 @@ def fix_text(fix: Fix) -> str:
 
     if isinstance(fix, ColorFix):
         return _color_fix_text(fix)
-    who = " and ".join(fix.colors) + " together" if fix.colors else "the whole set"
+    who = names_and(fix.colors) + " together" if fix.colors else "the whole set"
+    limit = fix.safe.limit
+    why = ""
+    if limit is not None and limit.roles:  # the pair that limits the group, and where
+        why = f" (limited by {names_and(limit.roles)} on {limit.canvas} at {limit.at:.6f})"
     if fix.safe.alpha is None:
-        return f"{who}: not even alpha 1 is safe; move the colours apart"
-    return f"{who}: {safe_span(fix.safe.alpha)}, or move the colours apart"
+        return f"{who}: not even alpha 1 is safe{why}; move the colours apart"
+    return f"{who}: {safe_span(fix.safe.alpha)}{why}, or move the colours apart"
+
+
+def names_and(names: Sequence[str]) -> str:
+    """Names joined as prose.
+
+    >>> names_and(["red"]), names_and(["red", "orange"]), names_and(["a", "b", "c"])
+    ('red', 'red and orange', 'a, b and c')
+    """
+    *head, last = names
+    return f"{', '.join(head)} and {last}" if head else last
 
 
 def finding_fix(finding: Finding, report: CheckReport) -> str:
@@ -748,6 +771,7 @@ def _safe_to_dict(safe: SafeAlpha) -> dict[str, Any]:
             "icons": list(limit.icons),
             "at": limit.at,
             "attained": limit.attained,
+            "roles": list(limit.roles),
         },
     }
 
@@ -763,6 +787,7 @@ def fix_to_dict(fix: Fix, base: Path | None = None) -> dict[str, Any]:
             "iconset": fix.iconset,
             "rule": fix.rule.value,
             "colors": list(fix.colors),
+            "confused": list(fix.confused),
             "largest_safe_alpha": _safe_to_dict(fix.safe),
             "text": fix_text(fix),
         }
@@ -778,6 +803,8 @@ def fix_to_dict(fix: Fix, base: Path | None = None) -> dict[str, Any]:
         "icons": list(fix.icons),
         "rules": [r.value for r in fix.rules],
         "largest_safe_alpha": _safe_to_dict(fix.largest_safe),
+        "together": list(fix.together),
+        "held": list(fix.held),
         "smallest_alpha_reaching": {
             "alpha": fix.reach.alpha,
             "exact": fix.reach.exact,

@@ -217,6 +217,7 @@ def gate_to_dict(gate: GateResult, base: Path | None = None) -> dict[str, Any]:
             "min_size_contrast": policy.min_size_contrast,
             "visibility_floor": policy.visibility_floor,
             "loss_tolerance": policy.loss_tolerance,
+            "near_duplicate_delta_e": policy.near_duplicate_delta_e,
             "exemptions": [
                 {
                     "canvas": e.canvas,

@@ -1,10 +1,10 @@
 """Reports for ``alpha-audit suggest``: pure functions of a :class:`SuggestResult`.
 
-``table`` (rich, fixed width), ``json`` (schema ``alpha-audit.suggest/2``,
+``table`` (rich, fixed width), ``json`` (schema ``alpha-audit.suggest/3``,
 documented in ``docs/suggest.md``) and ``markdown`` (a pull-request comment).
 Output order is stable: canvases in theme order, colours in palette order,
-icons in manifest order.  A big set (more than :data:`MAX_ROWS` colours, pairs
-or icons) is summarised in the table and the comment: the colours and pairs
+icons in manifest order.  A big set (more than :data:`MAX_ROWS` colours, groups
+or icons) is summarised in the table and the comment: the colours and groups
 with the smallest answers first, and per colour its worst icon; the JSON
 document always has every answer.
 """
@@ -24,15 +24,16 @@ from alpha_audit.render.common import (
     escape_markdown,
     fitted_table,
     name_column,
+    names_and,
     number_column,
     shorten_names,
     to_text,
 )
 from alpha_audit.results import (
     ColorSuggestion,
+    GroupSuggestion,
     IconSuggestion,
     Limit,
-    PairSuggestion,
     SafeAlpha,
     SuggestResult,
 )
@@ -46,7 +47,7 @@ __all__ = [
     "suggest_document",
 ]
 
-SCHEMA = "alpha-audit.suggest/2"
+SCHEMA = "alpha-audit.suggest/3"
 _MAX_NAMES = 3  # icon names shown per cell in table and markdown; JSON has all
 # Rows per section of the table and the comment before it is summarised (Lucide's
 # 1,500 icons were 16,468 lines): the worst answers first, the rest in the JSON.
@@ -64,6 +65,8 @@ def _limit(limit: Limit | None) -> dict[str, Any] | None:
         "attained": limit.attained,
         # null: found exactly from events; else bracketed on this grid, bisected to 1e-9.
         "grid": limit.grid,
+        # The two roles a confusion or cvd-confusion limit pulls together; else empty.
+        "roles": list(limit.roles),
     }
 
 
@@ -72,7 +75,7 @@ def _safe(safe: SafeAlpha) -> dict[str, Any]:
 
 
 def suggest_document(result: SuggestResult) -> dict[str, Any]:
-    """The JSON document (``alpha-audit.suggest/2``) as plain data."""
+    """The JSON document (``alpha-audit.suggest/3``) as plain data."""
     policy = result.policy
     return {
         "schema": SCHEMA,
@@ -86,6 +89,7 @@ def suggest_document(result: SuggestResult) -> dict[str, Any]:
             "min_size_contrast": policy.min_size_contrast,
             "visibility_floor": policy.visibility_floor,
             "loss_tolerance": policy.loss_tolerance,
+            "near_duplicate_delta_e": policy.near_duplicate_delta_e,
         },
         "threshold": result.threshold,
         "alpha_max": result.alpha_max,
@@ -99,9 +103,14 @@ def suggest_document(result: SuggestResult) -> dict[str, Any]:
             {"color": c.color, "source": c.source, "icons": list(c.icons), **_safe(c.safe)}
             for c in result.per_color
         ],
-        "per_pair": [
-            {"colors": list(c.colors), "icons": list(c.icons), **_safe(c.safe)}
-            for c in result.per_pair
+        "per_group": [
+            {
+                "colors": list(g.colors),
+                "confused": list(g.confused),
+                "icons": list(g.icons),
+                **_safe(g.safe),
+            }
+            for g in result.per_group
         ],
         "per_icon": [
             {"icon": i.icon, "color": i.color, "configured": i.configured, **_safe(i.safe)}
@@ -124,15 +133,19 @@ def _why(limit: Limit | None, alpha_max: float) -> str:
         return f"nothing breaks up to {alpha_max:g}"
     where = "at" if limit.attained else "just above"
     how = "" if limit.grid is None else f", bracketed on a {limit.grid:g} grid, bisected to 1e-9"
-    return (
-        f"{limit.rule.value} on {limit.canvas} {where} {limit.at:.6f} ({_names(limit.icons)}{how})"
-    )
+    who = names_and(limit.roles) if limit.roles else _names(limit.icons)
+    return f"{limit.rule.value} on {limit.canvas} {where} {limit.at:.6f} ({who}{how})"
 
 
 def _headline(result: SuggestResult) -> str:
     p = result.precision
     rules = ", ".join(sorted(r.value for r in result.policy.rules))
     alpha = result.overall.alpha
+    if not result.overall.per_canvas:  # the set-wide question was not asked (--only)
+        return (
+            f"Largest safe alphas for {result.iconset.name} on {result.theme.name} "
+            f"(policy: {rules}; the set-wide answer not asked)"
+        )
     if alpha is None:
         return f"No safe alpha for {result.iconset.name} on {result.theme.name}: " + _why(
             result.overall.limit, result.alpha_max
@@ -154,7 +167,7 @@ class _Shown:
     """What a big set's table and comment show: the worst answers, and what they leave out."""
 
     colors: tuple[ColorSuggestion, ...]
-    pairs: tuple[PairSuggestion, ...]
+    groups: tuple[GroupSuggestion, ...]
     icons: tuple[IconSuggestion, ...]
     notes: tuple[str, ...]
 
@@ -176,7 +189,7 @@ def _summarised(result: SuggestResult) -> _Shown:
         return kept
 
     colors = worst(result.per_color, "colours", lambda c: c.safe.alpha)
-    pairs = worst(result.per_pair, "pairs of roles", lambda c: c.safe.alpha)
+    groups = worst(result.per_group, "groups of roles", lambda g: g.safe.alpha)
     icons = result.per_icon
     if len(icons) > MAX_ROWS:
         per_colour: dict[str, IconSuggestion] = {}
@@ -191,7 +204,7 @@ def _summarised(result: SuggestResult) -> _Shown:
             f"{len(per_colour)} colours); every icon is in --format json"
         )
         icons = kept
-    return _Shown(colors, pairs, icons, tuple(notes))
+    return _Shown(colors, groups, icons, tuple(notes))
 
 
 def literal(*cells: str) -> list[Text]:
@@ -231,7 +244,8 @@ def render_table(result: SuggestResult, options: RenderOptions) -> str:
         if limit is None:
             return [f"nothing up to {a_max:g}", "", *([""] if with_canvas else []), ""]
         at = f"{limit.at:.6f}" if limit.attained else f">{limit.at:.6f}"
-        return [limit.rule.value, at, *([limit.canvas] if with_canvas else []),
+        rule = f"{limit.rule.value} ({names_and(limit.roles)})" if limit.roles else limit.rule.value
+        return [rule, at, *([limit.canvas] if with_canvas else []),
                 _names(limit.icons)]  # fmt: skip
 
     canvases = table(
@@ -250,11 +264,11 @@ def render_table(result: SuggestResult, options: RenderOptions) -> str:
         [[f"{c.color} {c.source}", _alpha(c.safe.alpha, p), *cells(c.safe.limit)]
          for c in shown.colors],
     )  # fmt: skip
-    pairs = table(
-        "Per pair of roles that pull each other together (both move)",
+    groups = table(
+        "Per group of roles that pull each other under the floor (all move)",
         "colours",
-        [[" and ".join(c.colors), _alpha(c.safe.alpha, p), *cells(c.safe.limit)]
-         for c in shown.pairs],
+        [[names_and(g.colors), _alpha(g.safe.alpha, p), *cells(g.safe.limit)]
+         for g in shown.groups],
     )  # fmt: skip
     icons = table(
         "Per icon (the others keep their alpha)",
@@ -263,7 +277,7 @@ def render_table(result: SuggestResult, options: RenderOptions) -> str:
     )
     if result.overall.per_canvas:
         parts.append(canvases)
-    parts += [t for t, rows in ((colors, shown.colors), (pairs, shown.pairs),
+    parts += [t for t, rows in ((colors, shown.colors), (groups, shown.groups),
                                (icons, shown.icons)) if rows]  # fmt: skip
     parts += [Text(note) for note in shown.notes]
     if result.left_out:
@@ -302,9 +316,9 @@ def render_markdown(result: SuggestResult, options: RenderOptions) -> str:
     shown = _summarised(result)
     section("Per colour", "colour", [(c.color, c.safe.alpha, c.safe.limit) for c in shown.colors])
     section(
-        "Per pair of roles (both move)",
+        "Per group of roles (all move)",
         "colours",
-        [(" and ".join(c.colors), c.safe.alpha, c.safe.limit) for c in shown.pairs],
+        [(names_and(g.colors), g.safe.alpha, g.safe.limit) for g in shown.groups],
     )
     section("Per icon", "icon", [(i.icon, i.safe.alpha, i.safe.limit) for i in shown.icons])
     if shown.notes:

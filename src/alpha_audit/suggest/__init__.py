@@ -11,8 +11,8 @@ from alpha_audit.lazy import lazy_exports
 
 __all__ = ["SCOPES", "largest_safe_alpha", "suggest"]
 
-# What suggest answers: one coefficient for the set, per colour, per pair of roles, per icon.
-SCOPES = ("set", "colour", "pair", "icon")
+# What suggest answers: one coefficient for the set, per colour, per group of roles, per icon.
+SCOPES = ("set", "colour", "group", "icon")
 
 __getattr__ = lazy_exports(
     __name__,

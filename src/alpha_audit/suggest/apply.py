@@ -17,14 +17,14 @@ import json
 import os
 import re
 import stat
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from enum import StrEnum
 from pathlib import Path, PurePosixPath
 from typing import TYPE_CHECKING, Any
 
 import yaml
 
-from alpha_audit.errors import InputError, UsageError
+from alpha_audit.errors import InputError
 from alpha_audit.load.files import read_text_capped
 from alpha_audit.load.yamldoc import MAX_YAML_BYTES
 from alpha_audit.output import write_bytes
@@ -32,11 +32,13 @@ from alpha_audit.rows import with_alphas
 
 if TYPE_CHECKING:
     from alpha_audit.color import GamutPolicy
-    from alpha_audit.results import SuggestResult
+    from alpha_audit.findings import Finding
+    from alpha_audit.results import Limit, SuggestResult
 
 __all__ = [
     "ApplyPlan",
     "ApplyScope",
+    "Unsafe",
     "alpha_spans",
     "apply_alpha",
     "apply_suggestion",
@@ -45,7 +47,6 @@ __all__ = [
     "explicit_alpha_icons",
     "format_alpha",
     "plan_apply",
-    "recheck",
     "set_alpha",
 ]
 
@@ -461,22 +462,39 @@ def _add_entries(
 
 
 @dataclass(frozen=True)
+class Unsafe:
+    """Colours (or icons) ``--apply`` found no safe alpha for (left at their alpha), and what
+    stops them at 1."""
+
+    names: tuple[str, ...]
+    limit: Limit | None
+
+
+@dataclass(frozen=True)
 class ApplyPlan:
-    """What ``suggest --apply`` will write.
+    """What ``suggest --apply`` will write, and whether the gate passes with it.
 
     ``top`` is the new set-wide alpha (``None``: unchanged), ``icons`` the
     per-icon alphas, ``palette`` the palette colours' own alphas, ``kept`` the
-    icons whose explicit choice is left alone and ``skipped`` the colours or
-    icons with no safe alpha at all.
+    icons whose explicit choice is left alone and ``unsafe`` the groups with no
+    safe alpha from 1, left at their alpha.  ``alphas`` is every icon's alpha as
+    planned and ``failures`` the gate's failing findings with them (empty: it
+    passes, and only then is the manifest written).
     """
 
     scope: ApplyScope
     top: float | None
     icons: dict[str, float]
     kept: tuple[str, ...] = ()
-    skipped: tuple[str, ...] = ()
-    passes: bool | None = None  # the gate on the planned alphas (None: not checked)
+    unsafe: tuple[Unsafe, ...] = ()
     palette: dict[str, float] = field(default_factory=dict)
+    failures: tuple[Finding, ...] = ()
+    alphas: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def passes(self) -> bool:
+        """Whether the gate passes on the manifest as planned (the only one ever written)."""
+        return not self.failures
 
 
 def plan_apply(
@@ -490,93 +508,95 @@ def plan_apply(
 
     ``set``: the set-wide alpha; with explicit icons kept, it is recomputed
     with those icons fixed at their own alpha (so it stays safe with them).
-    ``colour``/``icon``: each colour's (icon's) largest safe alpha, one after
-    the other, each with the colours (icons) before it at their new alpha, so
-    the answers hold together (each alone would assume the rest unchanged).
-    A colour with no safe alpha alone moves together with a role it confuses
-    (:attr:`~alpha_audit.results.SuggestResult.per_pair`: the joint answer).
-    A palette colour's answer is written once, as the colour's own alpha
-    (``palette: {red: {color: ..., alpha: ...}}``); other alphas per icon where
-    they differ from what the icon has now.  The plan then re-runs the gate on
-    the same rows with the planned alphas (``passes``).
+    ``colour``: one alpha per group of colours, one group after the other, each
+    with the groups before it at their new alpha, so the answers hold together
+    (each alone would assume the rest unchanged).  The groups are suggest's
+    groups of confused roles (:attr:`~alpha_audit.results.SuggestResult.per_group`),
+    then every other colour alone; each grows into the group its joint answer
+    needs (:meth:`~alpha_audit.suggest.engine.SafeAlphas.joint`: the roles it
+    pulls under the floor, the colours that leave it no safe alpha), so a colour
+    that cannot move alone moves with the colours that hold it.  A palette
+    colour's answer is written once, as the colour's own alpha (``palette: {red:
+    {color: ..., alpha: ...}}``); other alphas per icon where they differ from
+    what the icon has now.  ``icon``: each icon's answer in turn, an icon with
+    none moving with its colour's group.  The plan then runs the gate on the
+    same rows with the planned alphas (``failures``).
     """
-    from alpha_audit.suggest.engine import largest_safe_alpha
+    from alpha_audit.suggest.engine import SafeAlphas
 
     scope = ApplyScope(scope)
     iconset = result.iconset
     names = [i.name for i in iconset.icons]
     kept = () if replace_explicit else tuple(n for n in names if n in explicit)
     alphas = {i.name: i.alpha for i in iconset.icons}
+    colour_of = {i.name: i.color_name or i.color for i in iconset.icons}
 
-    def safe_for(movable: list[str]) -> float | None:
-        return largest_safe_alpha(
+    def answers() -> SafeAlphas:
+        """The suggest engine on the rows with the alphas planned so far."""
+        return SafeAlphas(
             with_alphas(result.audit, alphas),
             result.policy,
-            icons=movable,
             alpha_max=result.alpha_max,
             precision=result.precision,
-        ).alpha
+        )
 
     top: float | None = None
-    skipped: list[str] = []
+    unsafe: list[Unsafe] = []
     palette: dict[str, float] = {}
     if scope is ApplyScope.SET:
         movable = [n for n in names if n not in kept]
         if movable:
-            top = result.alpha if len(movable) == len(names) else safe_for(movable)
+            safe = result.overall if len(movable) == len(names) else answers()(movable)
+            top = safe.alpha
             if top is None and result.alpha is not None:
                 # [1, a] is not all safe with the explicit icons held (a pair of one
                 # held icon and a moving one can be confused at a = 1), but the
                 # set-wide answer itself may be: take it when the gate says so.
                 trial = {**alphas, **dict.fromkeys(movable, result.alpha)}
-                top = result.alpha if _passes(result, trial) else None
+                top = result.alpha if not _failures(result, trial) else None
             if top is None:
-                skipped.append("the set")
+                unsafe.append(Unsafe(("the set",), safe.limit))
         for n in movable:
             alphas[n] = top if top is not None else alphas[n]
         wanted = {n: alphas[n] for n in names if n in explicit and n not in kept}
     else:
-        groups = (
-            [(c.color, c.icons) for c in result.per_color]
-            if scope is ApplyScope.COLOUR
-            else [(i.icon, (i.icon,)) for i in result.per_icon]
-        )
-        colour_of = {i.name: i.color_name or i.color for i in iconset.icons}
-        icons_of: dict[str, list[str]] = {}
-        for name, colour in colour_of.items():
-            icons_of.setdefault(colour, []).append(name)
-        moved: dict[str, float] = {}
-        done: set[str] = set()
-        for label, members in groups:
-            if label in done:
-                continue
-            movable = [n for n in members if n not in kept]
-            if not movable:
-                continue
-            alpha = safe_for(movable)
-            together = [label]
-            colour = label if scope is ApplyScope.COLOUR else colour_of[label]
-            for pair in (p.colors for p in result.per_pair if colour in p.colors):
-                if alpha is not None:
-                    break
-                # No safe alpha alone: move with the role it confuses (the joint answer).
-                other = pair[1] if pair[0] == colour else pair[0]
-                both = movable + [n for n in icons_of.get(other, []) if n not in kept]
-                alpha = safe_for(both)
-                if alpha is not None:
-                    movable = both
-                    together = list(pair) if scope is ApplyScope.COLOUR else both
-            if alpha is None:
-                skipped.append(label)
-                continue
-            alphas.update(dict.fromkeys(movable, alpha))
-            done.update(together)
-            if scope is ApplyScope.COLOUR:
-                moved.update(dict.fromkeys(together, alpha))
         p = result.precision
-        original = {i.name: i.alpha for i in iconset.icons}
+        original = dict(alphas)
+        moved: dict[str, float] = {}
         if scope is ApplyScope.COLOUR:
+            colours = [*iconset.palette, *colour_of.values()]
+            units = [g.colors for g in result.per_group] + [(c,) for c in dict.fromkeys(colours)]
+            done: set[str] = set()
+            for unit in units:
+                seed = [c for c in unit if c not in done]
+                if not seed:
+                    continue
+                group, safe = answers().joint(seed, held=kept, grow=False)
+                done.update(group)
+                movable = [n for n in names if colour_of[n] in group and n not in kept]
+                if not movable:
+                    continue
+                if safe.alpha is None:  # left as they are; the colours placed before stay
+                    unsafe.append(Unsafe(tuple(seed), safe.limit))
+                    continue
+                alphas.update(dict.fromkeys(movable, safe.alpha))
+                moved.update(dict.fromkeys(group, safe.alpha))
             palette = {c: a for c, a in moved.items() if c in iconset.palette}
+        else:
+            placed: set[str] = set()
+            for name in names:
+                if name in kept or name in placed:
+                    continue
+                engine = answers()
+                safe, movable = engine([name]), [name]
+                if safe.alpha is None:  # not alone: with the colours that hold it
+                    group, safe = engine.joint([colour_of[name]], held=kept, grow=False)
+                    movable = [n for n in names if colour_of[n] in group and n not in kept]
+                placed.update(movable)
+                if safe.alpha is None:
+                    unsafe.append(Unsafe(tuple(movable), safe.limit))
+                    continue
+                alphas.update(dict.fromkeys(movable, safe.alpha))
         by_colour = {i.name: i.color_name for i in iconset.icons}
         wanted = {
             n: alphas[n]
@@ -585,14 +605,15 @@ def plan_apply(
             # A palette colour's own alpha sets every icon that has none of its own.
             and not (by_colour[n] in palette and n not in explicit)
         }
-    return ApplyPlan(scope, top, wanted, kept, tuple(skipped), _passes(result, alphas), palette)
+    failures = _failures(result, alphas)
+    return ApplyPlan(scope, top, wanted, kept, tuple(unsafe), palette, failures, alphas)
 
 
-def _passes(result: SuggestResult, alphas: dict[str, float]) -> bool:
-    """Whether the gate passes on the same rows with these alphas (the same policy)."""
+def _failures(result: SuggestResult, alphas: dict[str, float]) -> tuple[Finding, ...]:
+    """The gate's failing findings on the same rows with these alphas (the same policy)."""
     from alpha_audit.gate import evaluate
 
-    return evaluate([with_alphas(result.audit, alphas)], result.policy).passed
+    return tuple(evaluate([with_alphas(result.audit, alphas)], result.policy).failures)
 
 
 def apply_suggestion(
@@ -602,39 +623,44 @@ def apply_suggestion(
     *,
     replace_explicit: bool = False,
     root: str | Path | None = None,
+    gamut: GamutPolicy | None = None,
 ) -> tuple[ApplyPlan, bool]:
-    """Plan (:func:`plan_apply`) and write a suggestion into the manifest at ``path``.
+    """Plan (:func:`plan_apply`) and write a suggestion into the manifest at ``path``,
+    only if the gate passes with what would be written.
 
-    Returns the plan and whether the file changed.  The file is handled as
-    :func:`apply_alpha` handles it (capped read, a link edited at its target
-    inside ``root``, mode kept, atomic write), and the edit is parsed again
-    and must mean exactly the planned alphas.  Raises :class:`UsageError`
-    when there is nothing safe to write at all.
+    Returns the plan and whether the file changed.  The edited text is read back
+    by the manifest loader ``check`` uses (``gamut`` as the project's) and the
+    gate run on the same rows with the alphas it holds
+    (:attr:`ApplyPlan.failures`); when it fails, nothing is written and the plan
+    says why (:func:`describe_plan`).  The file is handled as :func:`apply_alpha`
+    handles it (capped read, a link edited at its target inside ``root``, mode
+    kept, atomic write), and the edit must mean exactly the planned alphas.
     """
     given, target, text = _read_manifest(path, root)
     explicit = explicit_alpha_icons(text, given)
     plan = plan_apply(result, scope, explicit, replace_explicit=replace_explicit)
-    if plan.top is None and not plan.icons and not plan.palette and plan.skipped:
-        raise UsageError(
-            f"no safe alpha to apply for {', '.join(plan.skipped)}: "
-            "the policy already fails at alpha = 1"
-        )
     p = result.precision
     top = None if plan.top is None else format_alpha(plan.top, p)
     icons = {n: format_alpha(a, p) for n, a in plan.icons.items()}
     palette = {c: format_alpha(a, p) for c, a in plan.palette.items()}
     edited = edit_alphas(text, top=top, icons=icons, palette=palette, path=given)
+    written = _read_back(edited, given, gamut)
+    audited = {n: a for n, a in written.items() if n in plan.alphas}
+    if audited != plan.alphas:  # what check reads is the truth (the plan's gate ran on this)
+        plan = replace(plan, alphas=audited, failures=_failures(result, audited))
+    if not plan.passes:
+        return plan, False
     return plan, _write_if_changed(target, text, edited)
 
 
-def recheck(path: str | Path, result: SuggestResult, *, gamut: GamutPolicy | None = None) -> bool:
-    """The gate's verdict on the manifest as written: its alphas read back, the same rows."""
-    from alpha_audit.gate import evaluate
-    from alpha_audit.load.iconset import load_iconset
+def _read_back(text: str, path: Path, gamut: GamutPolicy | None) -> dict[str, float]:
+    """Each icon's alpha in manifest ``text`` (at ``path``), read as ``check`` reads it."""
+    from alpha_audit.load.iconset import find_project_root, iconset_from_doc
+    from alpha_audit.load.yamldoc import parse_yaml
 
-    written = {i.name: i.alpha for i in load_iconset(path, gamut=gamut).icons}
-    audited = {n: a for n, a in written.items() if n in {i.name for i in result.iconset.icons}}
-    return evaluate([with_alphas(result.audit, audited)], result.policy).passed
+    root = find_project_root(path.absolute().parent)
+    iconset = iconset_from_doc(parse_yaml(text, path), root=root, gamut=gamut)
+    return {i.name: i.alpha for i in iconset.icons}
 
 
 def _icon_entry_name(item: Any) -> str | None:
@@ -714,11 +740,13 @@ def _check_edit(
 
 
 def describe_plan(plan: ApplyPlan, path: str | Path, changed: bool, precision: int) -> str:
-    """One status line saying what ``--apply`` wrote, kept and skipped (plain text).
+    """One status line saying what ``--apply`` wrote and kept, or why it wrote nothing.
 
     >>> describe_plan(ApplyPlan(ApplyScope.ICON, None, {"a": 1.25}, ("b",)), "m.yaml", True, 3)
     'wrote alpha for 1 icon (a: 1.25) in m.yaml; kept the explicit alpha of 1 icon (b)'
     """
+    if not plan.passes:
+        return f"wrote nothing to {path}: " + "; ".join(_why_not(plan))
     parts = []
     if plan.top is not None:
         verb = "wrote" if changed else "already has"
@@ -737,6 +765,36 @@ def describe_plan(plan: ApplyPlan, path: str | Path, changed: bool, precision: i
         count = len(plan.kept)
         names = ", ".join(plan.kept)
         parts.append(f"kept the explicit alpha of {count} icon{'s' * (count != 1)} ({names})")
-    if plan.skipped:
-        parts.append(f"no safe alpha for {', '.join(plan.skipped)}")
+    parts += [f"left {u}" for u in _unsafe(plan)]
     return "; ".join(parts)
+
+
+def _unsafe(plan: ApplyPlan) -> list[str]:
+    """Each group with no safe alpha from 1, and what stops it there."""
+    out = []
+    for u in plan.unsafe:
+        what = ", ".join(u.names) + (" at their alpha" if len(u.names) > 1 else " at its alpha")
+        limit = u.limit
+        if limit is None:
+            out.append(what)
+            continue
+        who = " and ".join(limit.roles) if limit.roles else ", ".join(limit.icons[:3])
+        more = "" if limit.roles or len(limit.icons) <= 3 else f" +{len(limit.icons) - 3} more"
+        out.append(
+            f"{what} (no safe alpha from 1: {limit.rule.value} on {limit.canvas} at alpha "
+            f"{limit.at:g}, {who}{more})"
+        )
+    return out
+
+
+def _why_not(plan: ApplyPlan) -> list[str]:
+    """Why the plan is not written: the gate's first failure, and each group with no safe
+    alpha (left at its alpha)."""
+    f = plan.failures[0]
+    held = f" with the explicit alpha of {', '.join(plan.kept)} kept" if plan.kept else ""
+    icons = ", ".join(f.icons[:3]) + (f" +{len(f.icons) - 3} more" if len(f.icons) > 3 else "")
+    out = [
+        f"the gate would still fail{held} ({len(plan.failures)} finding(s); first "
+        f"{f.rule.value} of {icons}: {f.message})"
+    ]
+    return out + [f"left {u}" for u in _unsafe(plan)]

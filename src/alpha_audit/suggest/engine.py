@@ -36,10 +36,10 @@ from __future__ import annotations
 
 import hashlib
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, replace
 from decimal import ROUND_FLOOR, Decimal
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
@@ -86,14 +86,14 @@ from alpha_audit.ranges import ALPHA_MAX, PRECISION
 from alpha_audit.results import (
     CanvasLimit,
     ColorSuggestion,
+    GroupSuggestion,
     IconSuggestion,
     Limit,
-    PairSuggestion,
     Progress,
     SafeAlpha,
     SuggestResult,
 )
-from alpha_audit.rows import AuditResult, find_collisions
+from alpha_audit.rows import AuditResult
 from alpha_audit.rules import Rule
 from alpha_audit.suggest import SCOPES
 from alpha_audit.suggest.events import (
@@ -109,6 +109,8 @@ from alpha_audit.suggest.events import (
 __all__ = [
     "GRID_STEP",
     "SafeAlphas",
+    "confusion_groups",
+    "connected",
     "largest_safe_alpha",
     "suggest",
 ]
@@ -120,6 +122,7 @@ BRACKETED_RULES = frozenset(
     {Rule.SEPARATION, Rule.DRIFT, Rule.LOCK, Rule.CONFUSION, Rule.CVD_CONFUSION, Rule.CVD_COLLISION}
 )
 _STATIC_RULES = frozenset({Rule.FIXED_COLOUR, Rule.NOT_AUDITED})
+_COLLISION_RULES = frozenset({Rule.COLLISION, Rule.NEW_COLLISION, Rule.NEAR_DUPLICATE})
 # Item x grid-point evaluations held at once (~8 MB per float64 intermediate).
 _CHUNK = 1 << 20
 # Code timelines kept between questions (a few KB per paint and canvas).
@@ -131,9 +134,17 @@ _RULE_ORDER = {rule: k for k, rule in enumerate(Rule)}
 
 # One paint's code timeline on one canvas: (points, packed codes of its elements).
 _Timeline = tuple[NDArray[np.float64], NDArray[np.int64]]
-# A limit found: (rule, canvas index or -1 for every canvas, icon indices, first unsafe alpha,
-# attained).
-Found = tuple[Rule, int, tuple[int, ...], float, bool]
+
+
+class Found(NamedTuple):
+    """A limit found: a rule broken on a canvas (-1: every canvas) by some icons."""
+
+    rule: Rule
+    canvas: int
+    icons: tuple[int, ...]
+    at: float  # the first unsafe alpha
+    attained: bool
+    roles: tuple[str, ...] = ()  # the two roles of a role rule (confusion, cvd-confusion)
 
 
 class _TrackIcons:
@@ -196,6 +207,41 @@ def _shared_code_starts(
     last_at = np.r_[(pos[1:] != pos[:-1]) | (codes[1:] != codes[:-1]), True]
     shared = last_at & (active >= 2)
     return np.unique(pos[shared])
+
+
+# A search radius above 0, so pairs of paints shipping one colour (CIEDE2000 0) are found.
+_SAME_COLOUR = 1e-9
+# Moving tracks from which a collision check groups codes by one sort, not one scan each.
+_SORT_FROM = 16
+
+
+def _code_groups(
+    moving: NDArray[np.bool_], subset: NDArray[np.intp], codes: NDArray[np.int64]
+) -> Iterator[NDArray[np.intp]]:
+    """The tracks of ``subset`` sharing a code with a moving one, group by group, each once,
+    in order of its first moving track (``moving`` and ``codes`` are per ``subset`` entry).
+
+    >>> [g.tolist() for g in _code_groups(np.array([1, 1, 0, 0], bool), np.arange(4) + 10,
+    ...                                   np.array([5, 7, 5, 9]))]
+    [[10, 12]]
+    """
+    if np.count_nonzero(moving) < _SORT_FROM:  # a few moving tracks: a scan for each
+        seen: set[int] = set()
+        for k in np.flatnonzero(moving).tolist():
+            if int(codes[k]) not in seen:
+                seen.add(int(codes[k]))
+                members = subset[codes == codes[k]]
+                if members.size > 1:
+                    yield members
+        return
+    order = np.argsort(codes, kind="stable")
+    ordered = codes[order]
+    starts = np.flatnonzero(np.r_[True, ordered[1:] != ordered[:-1]])
+    ends = np.r_[starts[1:], ordered.size]
+    first = np.minimum.reduceat(np.where(moving[order], order, codes.size), starts)
+    held = (first < codes.size) & (ends - starts > 1)
+    for g in np.flatnonzero(held)[np.argsort(first[held], kind="stable")].tolist():
+        yield subset[order[starts[g] : ends[g]]]
 
 
 # The most an 8-bit screen moves a linear channel, so a luminance: half the widest gap
@@ -274,18 +320,11 @@ class _Engine:
         self.keys = r.paint_keys
         self.locked = locked_rows(r)
         rules = policy.rules
-        self.collision_rule = (
-            Rule.COLLISION
-            if Rule.COLLISION in rules
-            else Rule.NEW_COLLISION
-            if Rule.NEW_COLLISION in rules
-            else None
-        )
-        # Paints already colliding at alpha 1, per canvas (a new-collision is not one of these).
-        self.ref_groups: list[set[frozenset[int]]] = [set() for _ in self.canvases]
-        if self.collision_rule is Rule.NEW_COLLISION:
-            for j, _, group in find_collisions(to_8bit(r.reference), self.keys):
-                self.ref_groups[j].add(frozenset(self.keys[group].tolist()))
+        # Whether any failing rule objects to a collision (which one depends on how far
+        # apart its colours were at alpha 1: Policy.collision_rule).
+        self.collides = bool(rules & _COLLISION_RULES)
+        self._near_pairs: dict[int, dict[tuple[int, int], float]] = {}
+        self._ref_lab: NDArray[np.float64] | None = None
         static = rules & _STATIC_RULES
         self.static: list[tuple[Rule, tuple[int, ...]]] = []
         if static:
@@ -300,8 +339,12 @@ class _Engine:
         self.role_row = np.array(
             [not e.fixed and e.icon.color_name is not None for e in r.entries], dtype=bool
         ).reshape(-1)
-        self.role_label = np.unique(np.array(roles or [""], dtype=object), return_inverse=True)[1]
-        self.role_label = self.role_label.reshape(-1)[: len(roles)]
+        names, label = np.unique(np.array(roles or [""], dtype=object), return_inverse=True)
+        self.role_names = tuple(str(n) for n in names.tolist())
+        self.role_label = label.reshape(-1)[: len(roles)]
+        # The colours suggest and the fixes name: a palette name, else the colour itself.
+        self.colour_of = tuple(i.color_name or i.color for i in r.iconset.icons)
+        self.colours = tuple(dict.fromkeys([*r.iconset.palette, *self.colour_of]))
         self._per_row: list[Found] | None = None
         self._fixed_codes: NDArray[np.int32] | None = None
         self._code_index: tuple[NDArray[np.int32], NDArray[np.int32]] | None = None
@@ -319,6 +362,11 @@ class _Engine:
 
     def icon_names(self, icons: Iterable[int]) -> tuple[str, ...]:
         return tuple(sorted({self.names[i] for i in icons}))
+
+    def role_pair(self, roles: _Tracks, f: int, g: int) -> tuple[str, str]:
+        """The names of the roles of role tracks ``f`` and ``g``, sorted."""
+        one, two = (self.role_names[int(roles.label[t])] for t in (f, g))
+        return (one, two) if one <= two else (two, one)
 
     def tracks(self, moving_icons: NDArray[np.bool_], roles: bool = False) -> _Tracks:
         """Rows grouped: moving rows by paint, fixed rows by (paint, alpha); moving first.
@@ -550,7 +598,7 @@ class _Engine:
         for p, j in zip(*np.nonzero(np.isfinite(start)), strict=True):
             icon = (int(self.row_icon[p]),)
             if not self.exempt(rule, self.canvases[j], icon):
-                out.append((rule, int(j), icon, float(start[p, j]), bool(attained[p, j])))
+                out.append(Found(rule, int(j), icon, float(start[p, j]), bool(attained[p, j])))
         return out
 
     # -- 8-bit collisions, exactly ----------------------------------------------
@@ -590,26 +638,66 @@ class _Engine:
         near = np.unique(track[~tracks.moving[track]])
         return near, self.fixed_codes()[tracks.first[near], j].astype(np.int64)
 
+    def near_pairs(self, j: int) -> dict[tuple[int, int], float]:
+        """The paints already closer than the near-duplicate distance at alpha 1 on canvas
+        ``j`` (CIEDE2000 of what they ship there), by pair of paint keys: found once per
+        canvas by the lightness-pruned pair search (:func:`~alpha_audit.color.nearest.pairs_below`),
+        so judging a collision is a look-up."""
+        found = self._near_pairs.get(j)
+        if found is None:
+            if self._ref_lab is None:
+                _, first = np.unique(self.keys, return_index=True)  # a row of each paint
+                self._ref_lab = linear_to_lab(shipped(self.result.reference[first]))
+            lab = self._ref_lab[:, j]
+
+            def distance(f: NDArray[np.intp], g: NDArray[np.intp]) -> NDArray[np.float64]:
+                return delta_e_2000_lab(lab[f], lab[g])
+
+            # Paints shipping one colour at alpha 1 (0 apart) are found whatever the distance.
+            near = max(self.policy.near_duplicate_delta_e, _SAME_COLOUR)
+            a, b, d = pairs_below(delta_e_2000_lightness_key(lab), distance, near)
+            found = dict(zip(zip(a.tolist(), b.tolist(), strict=True), d.tolist(), strict=True))
+            self._near_pairs[j] = found
+        return found
+
+    def widest_at_reference(self, j: int, keys: frozenset[int]) -> float:
+        """How far apart paints ``keys`` were at alpha 1 on canvas ``j``, as far as the
+        collision rules need: the widest CIEDE2000 between two of them as they ship there
+        when every two are near duplicates (:meth:`near_pairs`; as the audit's collisions
+        have it, :func:`~alpha_audit.rows.widest_delta_e`), else infinity (told apart)."""
+        widest = 0.0
+        near = self.near_pairs(j)
+        at = sorted(keys)
+        for k, a in enumerate(at):
+            for b in at[k + 1 :]:
+                d = near.get((a, b))
+                if d is None:
+                    return math.inf
+                widest = max(widest, d)
+        return widest
+
     def collision_group(
         self, tracks: _Tracks, subset: NDArray[np.intp], codes: NDArray[np.int64], j: int
-    ) -> tuple[int, ...] | None:
-        """Icons of the first unsafe collision group (holding a moving track), if any.
+    ) -> tuple[Rule, tuple[int, ...]] | None:
+        """The rule and icons of the first unsafe collision group (holding a moving track).
 
         ``codes`` are the packed 8-bit outputs of tracks ``subset`` (ascending,
         every moving track and at least every fixed one sharing a code with
         one) on canvas ``j`` at one coefficient; the verdict is
-        :mod:`alpha_audit.findings`', group by group.
+        :mod:`alpha_audit.findings`' (:meth:`~alpha_audit.policy.Policy.collision_rule`
+        of the failing rules), group by group.
         """
-        rule = self.collision_rule
-        assert rule is not None
-        for k in np.flatnonzero(tracks.moving[subset]):
-            members = subset[codes == codes[k]]
+        for members in _code_groups(tracks.moving[subset], subset, codes):
             keys = frozenset(tracks.label[members].tolist())
-            if len(keys) < 2 or (rule is Rule.NEW_COLLISION and keys in self.ref_groups[j]):
+            if len(keys) < 2:
+                continue
+            widest = self.widest_at_reference(j, keys)
+            rule = self.policy.collision_rule(widest, self.policy.rules)
+            if rule is None:
                 continue
             icons = tuple(sorted({i for m in members for i in tracks.icons[m]}))
             if not self.exempt(rule, self.canvases[j], icons):
-                return icons
+                return rule, icons
         return None
 
     def track_segments(
@@ -668,9 +756,8 @@ class _Engine:
         unsafe element is the one a single window finds.
         """
         out: list[Found] = []
-        rule = self.collision_rule
         mv = np.flatnonzero(tracks.moving)
-        if rule is None or mv.size == 0 or len(tracks.label) < 2 or self.a_hi <= ALPHA_LO:
+        if not self.collides or mv.size == 0 or len(tracks.label) < 2 or self.a_hi <= ALPHA_LO:
             return out
         chosen = tracks.row_track >= 0
         rows = np.flatnonzero(chosen)[tracks.moving[tracks.row_track[chosen]]]
@@ -690,14 +777,12 @@ class _Engine:
                 else:
                     out.append(found)
             pending = left
-        return sorted(out, key=lambda f: f[1])
+        return sorted(out, key=lambda f: f.canvas)
 
     def _first_collision(
         self, tracks: _Tracks, mv: NDArray[np.intp], j: int, a_lo: float, a_hi: float
     ) -> Found | None:
         """The first unsafe collision on canvas ``j`` with ``a`` in ``[a_lo, a_hi]``, if any."""
-        rule = self.collision_rule
-        assert rule is not None
         own = self.track_segments(tracks, mv, [j], a_lo, a_hi)
         fixed, fixed_codes = self._near(tracks, np.concatenate([c for _, c in own]), j)
         labels = tracks.label[mv]
@@ -734,9 +819,9 @@ class _Engine:
         everyone = subset * (last + 2)
         for e in candidates.tolist():
             at = order[np.searchsorted(sorted_key, everyone + e, side="right") - 1]
-            icons = self.collision_group(tracks, subset, code[at], j)
-            if icons is not None:
-                return (rule, j, icons, float(points[e // 2]), e % 2 == 0)
+            group = self.collision_group(tracks, subset, code[at], j)
+            if group is not None:
+                return Found(group[0], j, group[1], float(points[e // 2]), e % 2 == 0)
         return None
 
     # -- pairs: separation and the role rules, bracketed --------------------------
@@ -792,7 +877,7 @@ class _Engine:
                 for p in np.flatnonzero(np.isfinite(unsafe)).tolist():
                     icons = tuple(sorted({*tracks.icons[first[p]], *tracks.icons[second[p]]}))
                     if not self.exempt(Rule.SEPARATION, self.canvases[j], icons):
-                        out.append((Rule.SEPARATION, j, icons, float(unsafe[p]), True))
+                        out.append(Found(Rule.SEPARATION, j, icons, float(unsafe[p]), True))
         return out
 
     def confusion_limits(
@@ -868,7 +953,8 @@ class _Engine:
                 for p in np.flatnonzero(np.isfinite(unsafe)).tolist():
                     icons = tuple(sorted({*roles.icons[first[p]], *roles.icons[second[p]]}))
                     if not self.exempt(rule, self.canvases[j], icons):
-                        out.append((rule, j, icons, float(unsafe[p]), True))
+                        pair = self.role_pair(roles, first[p], second[p])
+                        out.append(Found(rule, j, icons, float(unsafe[p]), True, pair))
                         if shrink:
                             caps = np.minimum(caps, float(unsafe[p]))
         return out
@@ -915,7 +1001,7 @@ class _Engine:
                             lo = mid
                         else:
                             hi = mid
-                    out.append((Rule.CVD_COLLISION, j, icons, hi, True))
+                    out.append(Found(Rule.CVD_COLLISION, j, icons, hi, True))
                     break
         return out
 
@@ -941,7 +1027,7 @@ class _Engine:
         """An objection at exactly ``a`` involving a moving icon (the re-check of an answer)."""
         for rule, icons in self.static:
             if any(moving_icons[i] for i in icons):
-                return (rule, -1, icons, a, True)
+                return Found(rule, -1, icons, a, True)
         r, rules = self.result, self.policy.rules
         rows = np.flatnonzero(moving_icons[self.row_icon])
         bg = self.backgrounds[np.newaxis]
@@ -976,9 +1062,9 @@ class _Engine:
                 for k, j in zip(*np.nonzero(broken), strict=True):
                     icon = (int(self.row_icon[rows[k]]),)
                     if not self.exempt(rule, self.canvases[j], icon):
-                        return (rule, int(j), icon, a, True)
+                        return Found(rule, int(j), icon, a, True)
         tracks = self.tracks(moving_icons)
-        if self.collision_rule is not None and tracks.moving.any():
+        if self.collides and tracks.moving.any():
             mv = np.flatnonzero(tracks.moving)
             for j in range(len(self.canvases)):
                 codes = pack_8bit(to_8bit(self.shown(tracks, mv, np.array([a]), j)[:, 0]))
@@ -986,7 +1072,7 @@ class _Engine:
                 subset, codes = np.concatenate([mv, fixed]), np.concatenate([codes, fixed_codes])
                 group = self.collision_group(tracks, subset, codes, j)
                 if group is not None:
-                    return (self.collision_rule, j, group, a, True)
+                    return Found(group[0], j, group[1], a, True)
         if Rule.SEPARATION in rules:
             found = self._pairs_below_at(tracks, a, None, Rule.SEPARATION)
             if found is not None:
@@ -1011,7 +1097,7 @@ class _Engine:
                     ref = to_8bit(simulate_cvd(shown[:, 1], deficiency))
                     cvd = self._cvd_group(roles, seen, ref, sources, j)
                     if cvd is not None:
-                        return (Rule.CVD_COLLISION, j, cvd, a, True)
+                        return Found(Rule.CVD_COLLISION, j, cvd, a, True)
         return None
 
     def _pairs_below_at(
@@ -1048,7 +1134,8 @@ class _Engine:
             for f, g in zip(first[keep].tolist(), second[keep].tolist(), strict=True):
                 icons = tuple(sorted({*tracks.icons[f], *tracks.icons[g]}))
                 if not self.exempt(rule, self.canvases[j], icons):
-                    return (rule, j, icons, a, True)
+                    pair = () if rule is Rule.SEPARATION else self.role_pair(tracks, f, g)
+                    return Found(rule, j, icons, a, True, pair)
         return None
 
     # -- one question ------------------------------------------------------------
@@ -1076,16 +1163,16 @@ class _Engine:
         found: list[Found] = []
         for rule, icons in self.static:
             if any(moving_icons[i] for i in icons):
-                found.append((rule, -1, icons, ALPHA_LO, True))
-        found += [f for f in self.per_row() if moving_icons[f[2][0]]]
+                found.append(Found(rule, -1, icons, ALPHA_LO, True))
+        found += [f for f in self.per_row() if moving_icons[f.icons[0]]]
         tracks = self.tracks(moving_icons)
         found += self.collision_limits(tracks)
         caps = np.full(m, self.a_hi)
-        for _, j, _, at, _ in found:
-            if j < 0 or not per_canvas_needed:
-                caps = np.minimum(caps, at)
+        for f in found:
+            if f.canvas < 0 or not per_canvas_needed:
+                caps = np.minimum(caps, f.at)
             else:
-                caps[j] = min(caps[j], at)
+                caps[f.canvas] = min(caps[f.canvas], f.at)
         rules = self.policy.rules
         if self.a_hi > ALPHA_LO:
             found += self.separation_limits(tracks, caps)
@@ -1101,7 +1188,7 @@ class _Engine:
         limits = [self._limit(f) for f in found]
         per_canvas_limit: list[Limit | None] = []
         for j in range(len(self.canvases)):
-            here = [lim for f, lim in zip(found, limits, strict=True) if f[1] in (j, -1)]
+            here = [lim for f, lim in zip(found, limits, strict=True) if f.canvas in (j, -1)]
             per_canvas_limit.append(min(here, key=_limit_order) if here else None)
         per_canvas = tuple(
             CanvasLimit(name, self.rounded(limit, precision), limit)
@@ -1122,11 +1209,81 @@ class _Engine:
             exact = limit.at
         return SafeAlpha(alpha=alpha, exact=exact, limit=limit, per_canvas=per_canvas)
 
+    def joint(
+        self,
+        colours: Iterable[str],
+        precision: int,
+        held: Iterable[str] = (),
+        *,
+        grow: bool = True,
+    ) -> tuple[tuple[str, ...], SafeAlpha]:
+        """The joint answer of a group of colours, and the group it has to grow into.
+
+        Every icon of the group's colours moves (but those named in ``held``); the
+        others keep their alpha.  What limits the answer may lie outside the group:
+        a role the group pulls under the separation floor (the two roles of a
+        ``confusion`` or ``cvd-confusion`` limit), or, when not even alpha 1 is safe,
+        the colours of the icons that stop it there (a collision with a colour held
+        at its own alpha).  Those colours join the group and the grown group is
+        asked again, until its limit lies inside it.  So a group's answer names the
+        pair that really limits it, and "no safe alpha" means alpha 1 itself fails
+        for its icons.  Without ``grow`` only a group with no safe alpha grows, and
+        one that has none after growing gives the last answer a smaller group had
+        (``--apply``: every answer holds with the others at their alpha).  The
+        group comes back in palette order.
+        """
+        group = set(colours)
+        keep = set(held)
+        index = {name: i for i, name in enumerate(self.names)}
+        order = {c: k for k, c in enumerate(self.colours)}
+        last: tuple[tuple[str, ...], SafeAlpha] | None = None
+        while True:
+            moving = np.zeros(len(self.names), dtype=bool)
+            for i, colour in enumerate(self.colour_of):
+                moving[i] = colour in group and self.names[i] not in keep
+            safe = self.answer(moving, precision, per_canvas_needed=False)
+            answer = tuple(sorted(group, key=lambda c: order.get(c, len(order)))), safe
+            limit = safe.limit
+            joins: set[str] = set()
+            if limit is not None and safe.alpha is None:
+                joins = set(limit.roles) or {self.colour_of[index[n]] for n in limit.icons}
+            elif limit is not None and grow:
+                joins = set(limit.roles)
+            if joins <= group:
+                return last if safe.alpha is None and last is not None else answer
+            if safe.alpha is not None and not grow:
+                last = answer
+            group |= joins
+
+    def joint_groups(
+        self, seeds: Iterable[Iterable[str]], precision: int
+    ) -> list[tuple[tuple[str, ...], SafeAlpha, tuple[str, ...]]]:
+        """Disjoint groups grown from ``seeds`` (:meth:`joint`), with their answers and seeds.
+
+        Two groups that grow into each other are one group: their seeds are joined
+        and asked again, until no two share a colour.  Each comes with the seed
+        colours it grew from, in palette order; groups in order of their first seed.
+        """
+        order = {c: k for k, c in enumerate(self.colours)}
+        pending = [set(seed) for seed in seeds]
+        while True:
+            grown = [self.joint(seed, precision) for seed in pending]
+            for k, (colours, _) in enumerate(grown):
+                other = next((h for h in range(k) if set(grown[h][0]) & set(colours)), None)
+                if other is not None:
+                    pending[other] |= pending.pop(k)
+                    break
+            else:
+                return [
+                    (colours, safe, tuple(sorted(seed, key=lambda c: order.get(c, len(order)))))
+                    for (colours, safe), seed in zip(grown, pending, strict=True)
+                ]
+
     def _limit(self, found: Found) -> Limit:
-        rule, j, icons, at, attained = found
-        canvas = "(every canvas)" if j < 0 else self.canvases[j]
-        grid = GRID_STEP if rule in BRACKETED_RULES else None
-        return Limit(rule, canvas, self.icon_names(icons), at, attained, grid)
+        canvas = "(every canvas)" if found.canvas < 0 else self.canvases[found.canvas]
+        grid = GRID_STEP if found.rule in BRACKETED_RULES else None
+        icons = self.icon_names(found.icons)
+        return Limit(found.rule, canvas, icons, found.at, found.attained, grid, found.roles)
 
     def rounded(self, limit: Limit | None, precision: int) -> float | None:
         """``limit.at`` (or alpha_max) rounded down, stepping off an unsafe point."""
@@ -1193,6 +1350,21 @@ class SafeAlphas:
         moving = _moving(self._engine, icons)
         return self._engine.answer(moving, self._precision, per_canvas_needed=per_canvas)
 
+    def joint(
+        self, colours: Iterable[str], held: Iterable[str] = (), *, grow: bool = True
+    ) -> tuple[tuple[str, ...], SafeAlpha]:
+        """The group ``colours`` grow into and its joint answer (:meth:`_Engine.joint`).
+
+        ``held`` names icons that keep their alpha although their colour moves.
+        """
+        return self._engine.joint(colours, self._precision, held, grow=grow)
+
+    def joint_groups(
+        self, seeds: Iterable[Iterable[str]]
+    ) -> list[tuple[tuple[str, ...], SafeAlpha, tuple[str, ...]]]:
+        """Disjoint groups grown from ``seeds`` and their answers (:meth:`_Engine.joint_groups`)."""
+        return self._engine.joint_groups(seeds, self._precision)
+
 
 def largest_safe_alpha(
     result: AuditResult,
@@ -1227,6 +1399,63 @@ def _moving(engine: _Engine, icons: Iterable[str] | None) -> NDArray[np.bool_]:
     return np.isin(np.array(engine.names), sorted(wanted)).reshape(-1)
 
 
+def connected(groups: Iterable[Iterable[str]]) -> list[tuple[str, ...]]:
+    """The connected components of colours joined by ``groups`` (each sorted), in order
+    of first appearance; a colour alone is no group.
+
+    >>> connected([("red", "orange"), ("amber", "yellow"), ("orange", "amber"), ("blue",)])
+    [('amber', 'orange', 'red', 'yellow')]
+    """
+    parent: dict[str, str] = {}
+
+    def find(x: str) -> str:
+        parent.setdefault(x, x)
+        while parent[x] != x:
+            parent[x] = parent[parent[x]]
+            x = parent[x]
+        return x
+
+    for group in groups:
+        colours = list(group)
+        for other in colours:
+            parent[find(other)] = find(colours[0])
+    out: dict[str, list[str]] = {}
+    for colour in parent:
+        out.setdefault(find(colour), []).append(colour)
+    return [tuple(sorted(g)) for g in out.values() if len(g) > 1]
+
+
+def confusion_groups(
+    result: AuditResult, policy: Policy, extra: Iterable[Iterable[str]] = ()
+) -> list[tuple[str, ...]]:
+    """The roles the gate finds confused at their alphas, as connected groups.
+
+    Two roles a failing ``confusion`` or ``cvd-confusion`` finding names are
+    joined (on any canvas), and so are the colours of each of ``extra``
+    (:func:`connected`).
+
+    >>> from alpha_audit.model import Canvas, Icon, IconSet, Theme
+    >>> from alpha_audit.rows import audit
+    >>> pal = {"a": "#ee7733", "b": "#ee3377", "c": "#0077bb"}
+    >>> icons = IconSet("s", tuple(Icon(k, f"{k}.svg", v, 1.5, k) for k, v in pal.items()), pal)
+    >>> confusion_groups(audit(Theme("t", (Canvas("w", "#ffffff"),)), icons), Policy())
+    [('a', 'b')]
+    """
+    role_rules = policy.rules & {Rule.CONFUSION, Rule.CVD_CONFUSION}
+    pairs: list[Iterable[str]] = []
+    if role_rules:
+        only = Policy(
+            rules=role_rules,
+            warnings=frozenset(),
+            min_delta_e=policy.min_delta_e,
+            exemptions=policy.exemptions,
+        )
+        for f in findings_for(result, only):
+            if f.exemption is None and "roles" in f.numbers:
+                pairs.append(str(f.numbers["roles"]).split(",", 1))
+    return connected([*pairs, *extra])
+
+
 def suggest(
     result: AuditResult,
     policy: Policy,
@@ -1234,19 +1463,20 @@ def suggest(
     alpha_max: float = 2.0,
     precision: int = 3,
     scopes: Iterable[str] = SCOPES,
-    pairs: Iterable[tuple[str, str]] = (),
+    groups: Iterable[Iterable[str]] = (),
     progress: Progress | None = None,
 ) -> SuggestResult:
-    """The largest safe alpha for the whole set, per colour, per pair of roles and per icon.
+    """The largest safe alpha for the whole set, per colour, per group of roles and per icon.
 
     Set-wide, every icon takes the same coefficient; per colour, the icons of
-    that colour (palette name, else the colour) move together; per pair, the
-    icons of two roles that confuse each other at their configured alphas move
-    together (``pairs`` adds more), the joint answer when neither can move
-    alone; per icon, one icon moves.  Others keep their alpha.  ``policy`` is
-    the gate's.  Icons that could not be rendered are left out, as ``check``
-    leaves them out (``left_out``).  ``progress`` is told how many questions
-    there are, then each one answered.
+    that colour (palette name, else the colour) move together; per group, the
+    roles the gate finds confused at their alphas, connected through confusion
+    (:func:`confusion_groups`; ``groups`` adds more), move together and take in
+    every role their joint answer finds pulled under the floor
+    (:meth:`_Engine.joint`); per icon, one icon moves.  Others keep their alpha.
+    ``policy`` is the gate's.  Icons that could not be rendered are left out, as
+    ``check`` leaves them out (``left_out``).  ``progress`` is told how many
+    questions there are, then each one answered.
 
     >>> from alpha_audit.model import Canvas, Icon, IconSet, Theme
     >>> from alpha_audit.rows import audit
@@ -1267,63 +1497,44 @@ def suggest(
     iconset = result.iconset
     n = len(engine.names)
     start, tick = progress or ((lambda total: None), (lambda: None))
-    groups: dict[str, list[int]] = {name: [] for name in iconset.palette}
-    for i, icon in enumerate(iconset.icons):
-        groups.setdefault(icon.color_name or icon.color, []).append(i)
-    asked = {tuple(sorted(p)) for p in pairs}
-    if "pair" in wanted and (Rule.CONFUSION in policy.rules or Rule.CVD_CONFUSION in policy.rules):
-        only = Policy(
-            rules=policy.rules & {Rule.CONFUSION, Rule.CVD_CONFUSION},
-            warnings=frozenset(),
-            min_delta_e=policy.min_delta_e,
-            exemptions=policy.exemptions,
-        )
-        for f in findings_for(result, only):
-            if f.exemption is None and "roles" in f.numbers:
-                one, two = str(f.numbers["roles"]).split(",", 1)
-                asked.add((one, two) if one <= two else (two, one))
+    members: dict[str, list[int]] = {name: [] for name in engine.colours}
+    for i, colour in enumerate(engine.colour_of):
+        members[colour].append(i)
+    seeds = confusion_groups(result, policy, groups) if "group" in wanted else []
     start(
         ("set" in wanted)
-        + len(groups) * ("colour" in wanted)
-        + len(asked) * ("pair" in wanted)
+        + len(members) * ("colour" in wanted)
+        + len(seeds)
         + n * ("icon" in wanted)
     )
     overall = engine.answer(np.ones(n, dtype=bool), precision) if "set" in wanted else None
     tick()
 
     per_color = []
-    for name, members in groups.items() if "colour" in wanted else ():
-        if not members:
+    for name, icons in members.items() if "colour" in wanted else ():
+        if not icons:
             tick()
             continue
         moving = np.zeros(n, dtype=bool)
-        moving[members] = True
+        moving[icons] = True
         per_color.append(
             ColorSuggestion(
                 color=name,
-                source=iconset.icons[members[0]].color,
-                icons=tuple(engine.names[i] for i in members),
+                source=iconset.icons[icons[0]].color,
+                icons=tuple(engine.names[i] for i in icons),
                 safe=engine.answer(moving, precision, per_canvas_needed=False),
             )
         )
         tick()
 
-    per_pair = []
-    if "pair" in wanted:
-        for a, b in sorted(asked):
-            members = groups.get(a, []) + groups.get(b, [])
-            tick()
-            if not members:
-                continue
-            moving = np.zeros(n, dtype=bool)
-            moving[members] = True
-            per_pair.append(
-                PairSuggestion(
-                    colors=(a, b),
-                    icons=tuple(engine.names[i] for i in sorted(members)),
-                    safe=engine.answer(moving, precision, per_canvas_needed=False),
-                )
-            )
+    per_group = []
+    for colours, safe, seed in engine.joint_groups(seeds, precision):
+        icons = sorted(i for c in colours for i in members.get(c, []))
+        per_group.append(
+            GroupSuggestion(colours, tuple(engine.names[i] for i in icons), safe, seed)
+        )
+    for _ in seeds:
+        tick()
 
     # Icons of one style (the same paints at the same alpha) get the same answer,
     # unless an exemption names an icon; then every icon is asked on its own.
@@ -1354,6 +1565,6 @@ def suggest(
         overall=overall if overall is not None else empty,
         per_color=tuple(per_color),
         per_icon=tuple(per_icon),
-        per_pair=tuple(per_pair),
+        per_group=tuple(per_group),
         left_out=tuple(p.icon for p in result.problems),
     )
