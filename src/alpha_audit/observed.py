@@ -18,6 +18,7 @@ import enum
 import math
 from dataclasses import dataclass
 from pathlib import Path
+from urllib.parse import urlsplit
 
 from alpha_audit.model import Location
 
@@ -197,12 +198,35 @@ class IconCrop:
 
 @dataclass(frozen=True)
 class BlockedRequest:
-    """A request a page made that was refused: it was not to the page's own server."""
+    """A request a page made that was refused: it was not to the page's own server.
+
+    ``own`` is the engine's name when the engine asks that host by itself, whatever
+    the page (Debian's Chromium: its updater and sign-in check), else ``None``.
+    """
 
     source: str
     state: str
     engine: str
     url: str  # for HTTPS, the host and port the page tried to reach
+    own: str | None = None
+
+    @property
+    def host(self) -> str:
+        """The host asked, its port only when not the scheme's usual one (an HTTPS tunnel
+        is recorded as ``host:443``, with or without a scheme).
+
+        >>> BlockedRequest("s", "dark", "chromium", "http://cdn.example:8080/x.js").host
+        'cdn.example:8080'
+        >>> BlockedRequest("s", "dark", "chromium", "tracker.example:443").host
+        'tracker.example'
+        """
+        parts = urlsplit(self.url if "://" in self.url else f"//{self.url}")
+        host = parts.hostname or self.url
+        try:
+            port = parts.port
+        except ValueError:  # a port that is not a number: name what was recorded
+            return self.url
+        return host if port in (None, 80, 443) else f"{host}:{port}"
 
 
 @dataclass(frozen=True)

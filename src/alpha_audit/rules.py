@@ -19,6 +19,7 @@ from typing import Literal
 from alpha_audit.errors import UsageError
 
 __all__ = [
+    "CHECK_RULES",
     "DEFAULT_RULES",
     "DEFAULT_WARNINGS",
     "RENDER_DEFAULT_RULES",
@@ -100,6 +101,8 @@ class RuleSpec:
     help: str
     fix: str
     render: Level | None = None
+    # Raised only from a browser's pixels (``render``): ``check`` and ``suggest`` refuse it.
+    browser_only: bool = False
 
 
 # Contrast that no longer meets the threshold is what the gate exists for;
@@ -256,6 +259,7 @@ _SPECS = (
         "Paint the icon with the manifest's colour (`currentColor` from the theme token), or "
         "write the colour the page draws into the manifest so `check` audits it.",
         render=Level.WARN,
+        browser_only=True,
     ),
     # Alpha did not make these collide: the colours already look the same at alpha 1
     # and only share a code once it rounds them together.  Listed once, never gated
@@ -274,6 +278,8 @@ _SPECS = (
 RULES: dict[Rule, RuleSpec] = {spec.rule: spec for spec in _SPECS}
 DEFAULT_RULES = frozenset(r for r, s in RULES.items() if s.default is Level.FAIL)
 DEFAULT_WARNINGS = frozenset(r for r, s in RULES.items() if s.default is Level.WARN)
+# The rules ``alpha-audit check`` (and ``suggest``) can raise from the model's rows.
+CHECK_RULES = tuple(r for r, s in RULES.items() if not s.browser_only)
 # The rules ``alpha-audit render`` can raise from measured paints, and its defaults.
 RENDER_RULES = tuple(r for r, s in RULES.items() if s.render is not None)
 RENDER_DEFAULT_RULES = frozenset(r for r, s in RULES.items() if s.render is Level.FAIL)

@@ -15,6 +15,11 @@ CASES = [
     (["suggest", "--alpha-max", "x"], "--alpha-max"),
     (["suggest", "--apply", "everything"], "--apply"),
     (["pair"], "Missing argument"),
+    # A rule only a browser's pixels raise: check and suggest refuse it (issue 31).
+    (["check", "paper16", "vibrant", "--fail-on", "render-drift"], "only render raises it"),
+    (["suggest", "paper16", "vibrant", "--fail-on", "render-drift"], "only render raises it"),
+    # And render refuses check's rules.
+    (["render", "x", "--fail-on", "loss"], "it is a rule of check"),
 ]
 
 

@@ -85,6 +85,8 @@ class Chromium(Browser):
 
     NAME = "chromium"
     LABEL = "Chromium"
+    # Debian's Chromium 156: the component updater and the sign-in check.
+    OWN_HOSTS = frozenset({"update.googleapis.com", "accounts.google.com"})
     LIVE_COLOR_SCHEME = True
     ISOLATED_SCRIPTS = True
     INSTALL_HINT = (

@@ -170,6 +170,9 @@ class Browser(abc.ABC):
     LABEL: ClassVar[str]
     INSTALL_HINT: ClassVar[str]
     LIVE_COLOR_SCHEME: ClassVar[bool] = False
+    # Hosts the engine asks by itself despite its flags, whatever the page (a report says
+    # so: a page that requests nothing still shows them blocked).
+    OWN_HOSTS: ClassVar[frozenset[str]] = frozenset()
     """Whether :meth:`emulate_color_scheme` works without a restart."""
     ISOLATED_SCRIPTS: ClassVar[bool] = False
     """Whether ``evaluate(..., isolated=True)`` runs apart from the page's own scripts."""

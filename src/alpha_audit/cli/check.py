@@ -13,8 +13,10 @@ from alpha_audit.cli.console import emit, progress_bar, stderr_note, stdout_opti
 from alpha_audit.cli.options import (
     ARGS,
     ConfigOption,
+    ExitZeroOption,
     FailOnOption,
     ForceOption,
+    FormatsOption,
     GamutOption,
     IconsetArgument,
     LossToleranceOption,
@@ -32,10 +34,10 @@ from alpha_audit.cli.options import (
     ThresholdOption,
     VisibilityFloorOption,
     WriteBaselineOption,
-    flag,
     given_order,
     in_range,
     path_value,
+    theme_and_iconset,
 )
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.ranges import ALPHA
@@ -43,6 +45,7 @@ from alpha_audit.render import CheckFormat, Format, RenderOptions
 from alpha_audit.render.common import check_suffix
 
 if TYPE_CHECKING:
+    from alpha_audit.gate import GateResult
     from alpha_audit.results import CheckReport
 
 __all__ = ["check_command", "pair_outputs"]
@@ -152,20 +155,8 @@ def check_command(
     max_combinations: MaxCombinationsOption = None,
     pipeline: PipelineOption = None,
     gamut: GamutOption = None,
-    exit_zero: Annotated[
-        bool, flag("--exit-zero", help="Report findings but exit 0 even if the gate fails.")
-    ] = False,
-    fmt: Annotated[
-        list[CheckFormat] | None,
-        typer.Option(
-            "--format",
-            "-f",
-            metavar="FORMAT",
-            help=f"Report format (repeatable): {', '.join(CheckFormat)}.",
-            case_sensitive=False,
-            show_default=CheckFormat.TABLE.value,
-        ),
-    ] = None,
+    exit_zero: ExitZeroOption = False,
+    fmt: FormatsOption = None,
     output: OutputsOption = None,
     baseline: Annotated[
         Path | None,
@@ -220,8 +211,7 @@ def check_command(
     pairs = pair_outputs(list(fmt or []), list(output or []), order)
     files = [out for _, out in pairs if out is not None] + [write_baseline] * bool(write_baseline)
     check_targets([f for f in files if f is not None], overwrite=force)  # before the work
-    if (theme is None) != (iconset is None):
-        raise UsageError("give both THEME and ICONSET, or neither (to use the project config)")
+    theme_and_iconset(theme, iconset)
     overrides = Overrides(
         config=config,
         themes=(*([theme] if theme else []), *(themes or [])),
@@ -271,8 +261,18 @@ def check_command(
     for note in report.notes:  # the token modes found, the tokens skipped
         stderr_note(note)
     write_reports(report, pairs, write_baseline, force)
-    gate = report.gate
-    if write_baseline is not None:
+    return gate_status(
+        report.gate, writing_baseline=write_baseline is not None, exit_zero=exit_zero
+    )
+
+
+def gate_status(gate: GateResult, *, writing_baseline: bool, exit_zero: bool) -> ExitStatus:
+    """The gate's verdict on stderr and as the exit status (check's and render's one tail).
+
+    Writing a baseline always passes (today's findings are what it records).
+    """
+    if writing_baseline:
+        stderr_note("gate passed" if gate.passed else "baseline written")
         return ExitStatus.OK
     if gate.passed:
         stderr_note("gate passed")

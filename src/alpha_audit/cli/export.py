@@ -16,6 +16,7 @@ from alpha_audit.cli.options import (
     PipelineOption,
     ThemeArgument,
     in_range,
+    theme_and_iconset,
 )
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.ranges import ALPHA
@@ -82,8 +83,7 @@ def export_command(
     formats = [f.value for f in ExportFormat]
     if fmt not in formats:
         raise UsageError(f"--format {fmt!r} is not one of {', '.join(formats)}")
-    if (theme is None) != (iconset is None):
-        raise UsageError("give both THEME and ICONSET, or neither (to use the project config)")
+    theme_and_iconset(theme, iconset)
     overrides = Overrides(
         config=config,
         themes=(theme,) if theme is not None else (),

@@ -18,14 +18,17 @@ from alpha_audit import ranges
 from alpha_audit.color.css import GAMUT_POLICIES, GamutPolicy
 from alpha_audit.color.metrics import NON_TEXT_THRESHOLD
 from alpha_audit.errors import UsageError
-from alpha_audit.rules import DEFAULT_RULES, RULES, Rule
+from alpha_audit.render import CheckFormat
+from alpha_audit.rules import CHECK_RULES, DEFAULT_RULES, RULES, Rule
 
 __all__ = [
     "ARGS",
     "Command",
     "ConfigOption",
+    "ExitZeroOption",
     "FailOnOption",
     "ForceOption",
+    "FormatsOption",
     "GamutOption",
     "IconsetArgument",
     "LossToleranceOption",
@@ -47,6 +50,7 @@ __all__ = [
     "path_value",
     "read_gamut_option",
     "rules_flag",
+    "theme_and_iconset",
     "untyped_flags",
 ]
 
@@ -115,6 +119,12 @@ ConfigOption = Annotated[
 ]
 
 
+def theme_and_iconset(theme: Path | None, iconset: Path | None) -> None:
+    """Refuse THEME without ICONSET (or the other way): both, or neither (the config's)."""
+    if (theme is None) != (iconset is None):
+        raise UsageError("give both THEME and ICONSET, or neither (to use the project config)")
+
+
 def flag(*names: str, help: str) -> Any:
     """A boolean flag: no value, shown without a type (click's convention)."""
     return typer.Option(*names, help=help, metavar="")
@@ -176,10 +186,29 @@ FailOnOption = Annotated[
         "--fail-on",
         metavar="RULE",
         help="Rule that fails the gate (repeatable; replaces the policy): "
-        + ", ".join(RULES)
+        + ", ".join(CHECK_RULES)
         + " (docs/rules.md).",
         show_default="the config's, else " + ", ".join(r for r in RULES if r in DEFAULT_RULES),
-        callback=rules_flag("--fail-on"),
+        callback=rules_flag(
+            "--fail-on",
+            tuple(r.value for r in RULES if r not in CHECK_RULES),
+            "only render raises it (from a browser's pixels)",
+        ),
+    ),
+]
+# The gate's shared flags of check and render.
+ExitZeroOption = Annotated[
+    bool, flag("--exit-zero", help="Report findings but exit 0 even if the gate fails.")
+]
+FormatsOption = Annotated[
+    list[CheckFormat] | None,
+    typer.Option(
+        "--format",
+        "-f",
+        metavar="FORMAT",
+        help=f"Report format (repeatable): {', '.join(CheckFormat)}.",
+        case_sensitive=False,
+        show_default=CheckFormat.TABLE.value,
     ),
 ]
 MaxLossOption = Annotated[

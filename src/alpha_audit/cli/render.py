@@ -14,27 +14,26 @@ from collections.abc import Sequence
 from dataclasses import replace
 from pathlib import Path
 from typing import Annotated
-from urllib.parse import urlsplit
 
 import typer
 
 from alpha_audit import ranges
-from alpha_audit.browser import COLOR_SCHEMES, engine_class
+from alpha_audit.browser import COLOR_SCHEMES
 from alpha_audit.cli.console import progress_bar, stderr_note
 from alpha_audit.cli.options import (
     ARGS,
     ConfigOption,
+    ExitZeroOption,
     ForceOption,
+    FormatsOption,
     OutputsOption,
     WriteBaselineOption,
-    flag,
     given_order,
     in_range,
     rules_flag,
 )
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.errors import UsageError
-from alpha_audit.observed import BlockedRequest
 from alpha_audit.pages.states import State, state_matrix
 from alpha_audit.render import CheckFormat
 from alpha_audit.rules import RENDER_DEFAULT_RULES, RENDER_RULES, RULES
@@ -158,20 +157,8 @@ def render_command(
             callback=rules_flag("--fail-on", _NOT_RENDER, "it is a rule of check"),
         ),
     ] = None,
-    exit_zero: Annotated[
-        bool, flag("--exit-zero", help="Report findings but exit 0 even if the gate fails.")
-    ] = False,
-    fmt: Annotated[
-        list[CheckFormat] | None,
-        typer.Option(
-            "--format",
-            "-f",
-            metavar="FORMAT",
-            help=f"Report format (repeatable): {', '.join(CheckFormat)}.",
-            case_sensitive=False,
-            show_default=CheckFormat.TABLE.value,
-        ),
-    ] = None,
+    exit_zero: ExitZeroOption = False,
+    fmt: FormatsOption = None,
     output: OutputsOption = None,
     baseline: Annotated[
         Path | None,
@@ -203,12 +190,13 @@ def render_command(
 
     [bold]alpha-audit render storybook-static --globals theme:light --globals theme:dark[/]
     """
-    from alpha_audit.cli.check import pair_outputs, write_reports
+    from alpha_audit.cli.check import gate_status, pair_outputs, write_reports
     from alpha_audit.load.baseline import read_baseline
     from alpha_audit.load.iconset import load_iconset
     from alpha_audit.output import check_targets
     from alpha_audit.pages import audit_pages, page_report
     from alpha_audit.pages.config import resolve_render_config
+    from alpha_audit.render.pages import blocked_line
 
     order = given_order(ctx.meta.get(ARGS, ()), _ORDER)
     pairs = pair_outputs(list(fmt or [CheckFormat.TABLE]), list(output or []), order)
@@ -254,7 +242,7 @@ def render_command(
     )
     write_reports(report, pairs, write_baseline, force)
     if run.blocked:
-        stderr_note(blocked_summary(run.blocked))
+        stderr_note(blocked_line(run.blocked))
     if run.problems:
         first = run.problems[0]
         stderr_note(
@@ -264,72 +252,6 @@ def render_command(
             )
         )
         return ExitStatus.INPUT_ERROR
-    gate = report.gate
-    if write_baseline is not None or gate.passed:
-        stderr_note("gate passed" if gate.passed else "baseline written")
-        return ExitStatus.OK
-    counts = ", ".join(f"{n} {rule}" for rule, n in gate.counts().items())
-    stderr_note(f"gate failed: {counts}" + (" (--exit-zero)" if exit_zero else ""))
-    return ExitStatus.OK if exit_zero else ExitStatus.GATE_FAILED
-
-
-# Hosts an engine asks by itself despite its flags (Debian's Chromium 156: the component
-# updater and the sign-in check), so a page that requests nothing still shows them.
-_ENGINES_OWN: dict[str, frozenset[str]] = {
-    "chromium": frozenset({"update.googleapis.com", "accounts.google.com"}),
-}
-
-
-def blocked_summary(blocked: Sequence[BlockedRequest], shown: int = 3) -> str:
-    """The stderr line for the requests a run refused: how many, and to which hosts.
-
-    >>> from alpha_audit.observed import BlockedRequest as B
-    >>> line = blocked_summary([B("s", "dark", "chromium", "https://fonts.example/a.css"),
-    ...                         B("s", "light", "chromium", "https://fonts.example/b.css"),
-    ...                         B("s", "dark", "firefox", "cdn.example:443")])
-    >>> line.startswith("3 requests to anything but the pages' server blocked, ")
-    True
-    >>> line.endswith("to cdn.example and fonts.example (every one in the JSON report)")
-    True
-    """
-    hosts = sorted({_host(b.url) for b in blocked})
-    engines: dict[str, set[str]] = {}  # each host's engines
-    for b in blocked:
-        engines.setdefault(_host(b.url), set()).add(b.engine)
-    # Per engine, the hosts that it alone asked and that it asks by itself.
-    own: dict[str, list[str]] = {}
-    for host in hosts:
-        (engine, *others) = engines[host]
-        if not others and host in _ENGINES_OWN.get(engine, ()):
-            own.setdefault(engine, []).append(host)
-    tail = "".join(
-        f"; {engine_class(engine).LABEL} asks {_and(names)} by itself, whatever the page"
-        for engine, names in sorted(own.items())
+    return gate_status(
+        report.gate, writing_baseline=write_baseline is not None, exit_zero=exit_zero
     )
-    return (
-        f"{len(blocked)} requests to anything but the pages' server blocked, to "
-        f"{_and(hosts, shown)} (every one in the JSON report{tail})"
-    )
-
-
-def _and(names: Sequence[str], shown: int = 3) -> str:
-    """``a``, ``a and b``, ``a, b and c``, or the first ``shown`` and a count of the rest."""
-    named = ", ".join(names[:shown])
-    if len(names) > shown:
-        return named + f" and {len(names) - shown} more hosts"
-    if len(names) > 1:
-        head, _, last = named.rpartition(", ")
-        return f"{head} and {last}"
-    return named
-
-
-def _host(url: str) -> str:
-    """The host a blocked request went to, its port only when not the scheme's usual one
-    (an HTTPS tunnel is recorded as ``host:443``, with or without a scheme)."""
-    parts = urlsplit(url if "://" in url else f"//{url}")
-    host = parts.hostname or url
-    try:
-        port = parts.port
-    except ValueError:  # a port that is not a number: name what was recorded
-        return url
-    return host if port in (None, 80, 443) else f"{host}:{port}"

@@ -26,6 +26,7 @@ from alpha_audit.cli.options import (
     VisibilityFloorOption,
     flag,
     in_range,
+    theme_and_iconset,
 )
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.ranges import ALPHA_MAX, PRECISION
@@ -153,8 +154,7 @@ def suggest_command(
     if output is not None:
         check_suffix(fmt.value, output)
         check_targets([output], overwrite=force)  # before the work, not after
-    if (theme is None) != (iconset is None):
-        raise UsageError("give both THEME and ICONSET, or neither (to use the project config)")
+    theme_and_iconset(theme, iconset)
     project = resolve_config(
         Overrides(
             config=config,

@@ -231,6 +231,13 @@ def _mounts(config: RenderConfig) -> list[Path | None]:
             for s in config.sources]  # fmt: skip
 
 
+def _blocked(job: Job, url: str) -> BlockedRequest:
+    """A refused request of ``job``, said to be the engine's own where it asks that host."""
+    request = BlockedRequest(job.target.name, job.state.name, job.engine, url)
+    engine = engine_class(job.engine)
+    return replace(request, own=engine.LABEL) if request.host in engine.OWN_HOSTS else request
+
+
 def audit_pages(
     config: RenderConfig,
     iconset: IconSet | None = None,
@@ -321,9 +328,7 @@ def audit_pages(
         icons += count
         if problem is not None:
             problems.append(problem)
-        blocked.extend(
-            BlockedRequest(job.target.name, job.state.name, job.engine, url) for url in refused
-        )
+        blocked.extend(_blocked(job, url) for url in refused)
     run = PageRun(
         problems=tuple(problems),
         blocked=tuple(blocked),

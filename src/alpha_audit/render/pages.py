@@ -21,6 +21,7 @@ Pure functions of the report; every name a page supplies is printed through
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
@@ -29,7 +30,7 @@ from rich import box
 from rich.text import Text
 
 from alpha_audit.findings import Finding
-from alpha_audit.observed import MeasuredPaint, PageRun
+from alpha_audit.observed import BlockedRequest, MeasuredPaint, PageRun
 from alpha_audit.render.common import (
     RenderOptions,
     baselined_text,
@@ -49,6 +50,7 @@ from alpha_audit.safe_text import safe_text
 __all__ = [
     "MARKER",
     "PageRow",
+    "blocked_line",
     "headline",
     "page_json",
     "page_markdown",
@@ -330,3 +332,49 @@ def page_markdown(report: CheckReport, run: PageRun, options: RenderOptions) -> 
         cut = text[: COMMENT_LIMIT - 200].rsplit("\n", 1)[0]
         text = cut + "\n\nThe comment was cut at GitHub's limit: see the JSON report.\n"
     return text
+
+
+# ------------------------------------------------------------------ blocked requests
+
+
+def blocked_line(blocked: Sequence[BlockedRequest], shown: int = 3) -> str:
+    """One line for the requests a run refused: how many, and to which hosts.
+
+    >>> from alpha_audit.observed import BlockedRequest as B
+    >>> line = blocked_line([B("s", "dark", "chromium", "https://fonts.example/a.css"),
+    ...                      B("s", "light", "chromium", "https://fonts.example/b.css"),
+    ...                      B("s", "dark", "firefox", "cdn.example:443")])
+    >>> line.startswith("3 requests to anything but the pages' server blocked, ")
+    True
+    >>> line.endswith("to cdn.example and fonts.example (every one in the JSON report)")
+    True
+    """
+    hosts = sorted({b.host for b in blocked})
+    # Per engine, the hosts it alone asked, each by itself (no page did: no other engine).
+    askers: dict[str, set[str | None]] = {}
+    for b in blocked:
+        askers.setdefault(b.host, set()).add(b.own)
+    own: dict[str, list[str]] = {}
+    for host in hosts:
+        (label, *others) = askers[host]
+        if not others and label is not None:
+            own.setdefault(label, []).append(host)
+    tail = "".join(
+        f"; {label} asks {_and(names)} by itself, whatever the page"
+        for label, names in sorted(own.items())
+    )
+    return safe_text(
+        f"{len(blocked)} requests to anything but the pages' server blocked, to "
+        f"{_and(hosts, shown)} (every one in the JSON report{tail})"
+    )
+
+
+def _and(names: Sequence[str], shown: int = 3) -> str:
+    """``a``, ``a and b``, ``a, b and c``, or the first ``shown`` and a count of the rest."""
+    named = ", ".join(names[:shown])
+    if len(names) > shown:
+        return named + f" and {len(names) - shown} more hosts"
+    if len(names) > 1:
+        head, _, last = named.rpartition(", ")
+        return f"{head} and {last}"
+    return named
