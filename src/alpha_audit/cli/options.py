@@ -7,9 +7,12 @@ by hand.  A flag shows no type after it (``metavar=""``), as in click.
 
 from __future__ import annotations
 
+import functools
+import inspect
 from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Annotated, Any, TypeVar
+from typing import Annotated, Any, TypeVar, cast, get_type_hints
 
 import typer
 from typer.core import TyperCommand
@@ -40,10 +43,12 @@ __all__ = [
     "NearDuplicateOption",
     "NoCacheOption",
     "PipelineOption",
+    "PolicyFlags",
     "StrictSvgOption",
     "ThemeArgument",
     "ThresholdOption",
     "VisibilityFloorOption",
+    "baseline_option",
     "flag",
     "given_order",
     "in_range",
@@ -52,6 +57,7 @@ __all__ = [
     "rules_flag",
     "theme_and_iconset",
     "untyped_flags",
+    "with_policy_flags",
 ]
 
 ARGS = "alpha_audit.args"
@@ -196,6 +202,19 @@ FailOnOption = Annotated[
         ),
     ),
 ]
+
+
+def baseline_option(default: str) -> Any:
+    """``--baseline PATH`` (check's and render's; ``default`` says where it is else read)."""
+    return typer.Option(
+        "--baseline",
+        parser=path_value,
+        metavar="<path>",
+        help="Fail only on findings not in this baseline file.",
+        show_default=default,
+    )
+
+
 # The gate's shared flags of check and render.
 ExitZeroOption = Annotated[
     bool, flag("--exit-zero", help="Report findings but exit 0 even if the gate fails.")
@@ -401,3 +420,67 @@ class Command(TyperCommand):
     def get_params(self, ctx: Any) -> list[Any]:
         """The command's parameters (click's public hook), ``--help`` with no ``<bool>``."""
         return untyped_flags(super().get_params(ctx))
+
+
+# ------------------------------------------------------------------ the gate's policy flags
+
+# The flags that set the gate's policy, shared by check and suggest (declared once here;
+# with_policy_flags adds them to a command and hands them over as one PolicyFlags).
+_POLICY_FLAGS: dict[str, Any] = {
+    "threshold": ThresholdOption,
+    "fail_on": FailOnOption,
+    "max_loss": MaxLossOption,
+    "min_delta_e": MinDeltaEOption,
+    "max_drift": MaxDriftOption,
+    "min_size_contrast": MinSizeContrastOption,
+    "visibility_floor": VisibilityFloorOption,
+    "loss_tolerance": LossToleranceOption,
+    "near_duplicate_delta_e": NearDuplicateOption,
+}
+
+
+@dataclass(frozen=True)
+class PolicyFlags:
+    """The policy flags a command was given (``None``: the config's value)."""
+
+    threshold: float | None = None
+    fail_on: tuple[str, ...] = ()
+    max_loss: float | None = None
+    min_delta_e: float | None = None
+    max_drift: float | None = None
+    min_size_contrast: float | None = None
+    visibility_floor: float | None = None
+    loss_tolerance: float | None = None
+    near_duplicate_delta_e: float | None = None
+
+    def overrides(self) -> dict[str, Any]:
+        """As :class:`~alpha_audit.load.config.Overrides` fields."""
+        return {name: getattr(self, name) for name in _POLICY_FLAGS}
+
+
+Command_T = TypeVar("Command_T", bound=Callable[..., Any])
+
+
+def with_policy_flags(command: Command_T) -> Command_T:
+    """``command`` with the policy flags added to its options (after its own), handed to
+    it as one ``policy_flags: PolicyFlags`` argument (typer reads the new signature)."""
+    signature = inspect.signature(command)
+    own = [p for p in signature.parameters.values() if p.name != "policy_flags"]
+    added = [
+        inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=None, annotation=kind)
+        for name, kind in _POLICY_FLAGS.items()
+    ]
+
+    @functools.wraps(command)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        given = {name: kwargs.pop(name) for name in _POLICY_FLAGS}
+        given["fail_on"] = tuple(given["fail_on"] or ())
+        return command(*args, policy_flags=PolicyFlags(**given), **kwargs)
+
+    hints = {k: v for k, v in get_type_hints(command, include_extras=True).items()}
+    hints.pop("policy_flags", None)
+    wrapper.__annotations__ = {**hints, **_POLICY_FLAGS}
+    wrapper.__signature__ = signature.replace(  # type: ignore[attr-defined]  # read by typer
+        parameters=[p.replace(annotation=hints.get(p.name, p.annotation)) for p in own] + added
+    )
+    return cast(Command_T, wrapper)

@@ -28,6 +28,7 @@ from alpha_audit.cli.options import (
     FormatsOption,
     OutputsOption,
     WriteBaselineOption,
+    baseline_option,
     given_order,
     in_range,
     rules_flag,
@@ -160,14 +161,7 @@ def render_command(
     exit_zero: ExitZeroOption = False,
     fmt: FormatsOption = None,
     output: OutputsOption = None,
-    baseline: Annotated[
-        Path | None,
-        typer.Option(
-            "--baseline",
-            help="Fail only on findings not in this baseline file.",
-            show_default="the render: table's baseline:",
-        ),
-    ] = None,
+    baseline: Annotated[Path | None, baseline_option("the render: table's baseline:")] = None,
     write_baseline: WriteBaselineOption = None,
     config: ConfigOption = None,
     force: ForceOption = False,

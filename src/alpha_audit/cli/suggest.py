@@ -10,23 +10,16 @@ import typer
 from alpha_audit.cli.console import emit, progress_bar, stderr_note, stdout_options
 from alpha_audit.cli.options import (
     ConfigOption,
-    FailOnOption,
     ForceOption,
     GamutOption,
     IconsetArgument,
-    LossToleranceOption,
-    MaxDriftOption,
-    MaxLossOption,
-    MinDeltaEOption,
-    MinSizeContrastOption,
-    NearDuplicateOption,
     NoCacheOption,
+    PolicyFlags,
     ThemeArgument,
-    ThresholdOption,
-    VisibilityFloorOption,
     flag,
     in_range,
     theme_and_iconset,
+    with_policy_flags,
 )
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.ranges import ALPHA_MAX, PRECISION
@@ -58,8 +51,10 @@ def _scopes(values: list[str] | None) -> list[str] | None:
     return values
 
 
+@with_policy_flags
 def suggest_command(
     ctx: typer.Context,
+    policy_flags: PolicyFlags,  # the policy flags, handed over by with_policy_flags
     theme: ThemeArgument = None,
     iconset: IconsetArgument = None,
     config: ConfigOption = None,
@@ -79,15 +74,6 @@ def suggest_command(
             callback=in_range("--precision", PRECISION),
         ),
     ] = 3,
-    threshold: ThresholdOption = None,
-    fail_on: FailOnOption = None,
-    max_loss: MaxLossOption = None,
-    min_delta_e: MinDeltaEOption = None,
-    max_drift: MaxDriftOption = None,
-    min_size_contrast: MinSizeContrastOption = None,
-    visibility_floor: VisibilityFloorOption = None,
-    loss_tolerance: LossToleranceOption = None,
-    near_duplicate_delta_e: NearDuplicateOption = None,
     fmt: Annotated[
         SuggestFormat,
         typer.Option("--format", "-f", help="table, json or markdown.", case_sensitive=False),
@@ -160,15 +146,7 @@ def suggest_command(
             config=config,
             themes=(theme,) if theme else (),
             iconsets=(iconset,) if iconset else (),
-            threshold=threshold,
-            fail_on=tuple(fail_on or ()),
-            max_loss=max_loss,
-            min_delta_e=min_delta_e,
-            max_drift=max_drift,
-            min_size_contrast=min_size_contrast,
-            visibility_floor=visibility_floor,
-            loss_tolerance=loss_tolerance,
-            near_duplicate_delta_e=near_duplicate_delta_e,
+            **policy_flags.overrides(),
             gamut=gamut,
         ),
         Path.cwd(),
