@@ -18,6 +18,7 @@ __all__ = [
     "IconCrop",
     "IconMatch",
     "MeasuredPaint",
+    "Measurement",
     "PageProblem",
     "Prediction",
     "RenderResult",
@@ -36,12 +37,30 @@ class IconMatch(enum.StrEnum):
     NONE = "none"
 
 
+class Measurement(enum.StrEnum):
+    """How a paint's fully covered pixels were found (:mod:`alpha_audit.pages.measure`), or not.
+
+    ``declared``: the pixels whose drawn colour is the declared colour at its
+    opacity composited over the backdrop at that pixel (within
+    :data:`~alpha_audit.pages.measure.FULL_TOLERANCE`); ``plateau``: the
+    declared colour does not explain the pixels (a CSS filter, a blend mode, an
+    ``<img>`` whose paints are unknown), so the drawn colour furthest from the
+    backdrop that a plateau of pixels shares; ``could not measure``: no pixel
+    shows the paint at full coverage (a hairline), so no verdict.
+    """
+
+    DECLARED = "declared"
+    PLATEAU = "plateau"
+    UNMEASURED = "could not measure"
+
+
 @dataclass(frozen=True)
 class Coverage:
     """The paint's coverage measured from the difference of the two captures.
 
     ``pixels`` device pixels differ between the captures; ``full`` of them are
-    fully covered (the drawn colour comes from those); ``q50`` and
+    fully covered (the drawn colour and the gated contrast come from those:
+    :class:`Measurement`); ``q50`` and
     ``full_share`` as in :func:`alpha_audit.color.coverage_stats`, ``ink`` the
     sum of coverage in device pixels.
     """
@@ -73,8 +92,18 @@ class MeasuredPaint:
     way (story or page, state, DOM path).  ``drawn`` is the median colour of
     the fully covered pixels; ``behind`` the median backdrop under them (the
     capture with every icon hidden), ``around`` the median backdrop in a ring
-    just outside the icon.  ``contrast_worst`` and ``contrast_median`` are over
-    the fully covered pixels, each against the backdrop at the same pixel.
+    just outside the icon.
+
+    ``contrast`` is the gated figure: the least WCAG 2.2 contrast
+    (:func:`~alpha_audit.color.judged_contrast`) of a fully covered pixel
+    against the backdrop at the same pixel, ``limit_drawn`` on ``limit_behind``
+    the pair of colours at that pixel (what a fix must change); ``status`` says
+    how the fully covered pixels were found, or that there were none
+    (``could not measure``: ``contrast`` is then ``None`` and the paint neither
+    passes nor fails).  ``contrast_worst`` and ``contrast_median`` are kept for
+    diagnosis: over the paint's *candidate* pixels, touched pixels whose 3 x 3
+    neighbourhood is touched, antialiased mixes at concave corners and
+    diagonals included, each against the backdrop at the same pixel.
     ``model_source``/``model_alpha``/``model_opacity`` are what the model was
     given (the manifest's colour and alpha for a mapped ``currentColor`` paint,
     else the colour the engine computed, at alpha 1); ``predictions`` holds the
@@ -114,13 +143,19 @@ class MeasuredPaint:
     box: tuple[float, float, float, float]
     threshold: float = 3.0
     file: Path | None = None
+    contrast: float | None = None  # the gated contrast: limit_drawn on limit_behind
+    limit_drawn: str | None = None
+    limit_drawn_linear: Linear | None = None
+    limit_behind: str | None = None
+    limit_behind_linear: Linear | None = None
+    status: Measurement = Measurement.DECLARED
 
     @property
     def passes(self) -> bool | None:
-        """Whether the worst pixel reaches the threshold (None where nothing was drawn)."""
-        if self.contrast_worst is None:
+        """Whether the gated ``contrast`` reaches the threshold (None: could not measure)."""
+        if self.contrast is None or self.status is Measurement.UNMEASURED:
             return None
-        return self.contrast_worst >= self.threshold
+        return self.contrast >= self.threshold
 
     def prediction(self, pipeline: str) -> Prediction | None:
         """The model's prediction under ``pipeline``, or None where it has none."""
@@ -200,5 +235,5 @@ class RenderResult:
 
     @property
     def failing(self) -> tuple[MeasuredPaint, ...]:
-        """Paints whose worst pixel is below the threshold."""
+        """Paints whose gated contrast is below the threshold."""
         return tuple(p for p in self.paints if p.passes is False)
