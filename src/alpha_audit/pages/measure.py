@@ -27,9 +27,11 @@ Per icon, inside its box (device pixels), with ``D`` the drawn capture and
 * an icon that changes no pixel is judged where its full-coverage colour is the
   backdrop's (an icon the colour of its surface: contrast 1);
 * the **gated contrast** is the least WCAG 2.2 contrast
-  (:func:`~alpha_audit.color.judged_contrast`) of a fully covered pixel against
-  ``B`` at the same pixel (over a gradient, the least-contrasting area), and
-  that pixel's pair of colours is the limiting pair;
+  (:func:`~alpha_audit.color.judged_contrast`) of the fully covered pixels
+  against ``B`` at the same pixel (over a gradient, the least-contrasting
+  area), taking on each backdrop colour the paint's most frequent drawn colour
+  there (a pixel one code off beside the paint's own colour never limits);
+  that pair of colours is the limiting pair;
 * the **drawn** colour is the median of the fully covered pixels, **behind** the
   median of ``B`` under them, **around** the median of ``B`` in a ring of
   ``2 * scale`` device pixels just outside the touched pixels;
@@ -398,12 +400,24 @@ def icon_region(
 def _limit(
     drawn: NDArray[np.float64], behind: NDArray[np.float64]
 ) -> tuple[float, NDArray[np.float64], NDArray[np.float64]]:
-    """The least judged contrast over pixel pairs (codes ``(n, 3)``) and the pair giving it."""
-    per_pixel = judged_contrast(
-        from_8bit(drawn.astype(np.uint8)), from_8bit(behind.astype(np.uint8))
+    """The least judged contrast of a paint's fully covered pixels (codes ``(n, 3)``), and the
+    pair of colours giving it.
+
+    On each backdrop colour the paint shows its most frequent drawn colour there, so a
+    pixel one code off (an edge at 99 % coverage, an engine's rounding) never limits
+    where the paint's own colour is beside it.
+    """
+    keys = pack_8bit(behind) * (1 << 24) + pack_8bit(drawn)
+    pairs, first, counts = np.unique(keys, return_index=True, return_counts=True)
+    on = pairs >> 24
+    order = np.lexsort((-counts, on))  # by backdrop, the most frequent drawn colour first
+    modal = first[order[np.r_[True, on[order][1:] != on[order][:-1]]]]
+    shown, canvas = drawn[modal], behind[modal]
+    per_pair = judged_contrast(
+        from_8bit(shown.astype(np.uint8)), from_8bit(canvas.astype(np.uint8))
     )
-    k = int(np.argmin(per_pixel))
-    return float(per_pixel[k]), drawn[k], behind[k]
+    k = int(np.argmin(per_pair))
+    return float(per_pair[k]), shown[k], canvas[k]
 
 
 def _measure_icon(
