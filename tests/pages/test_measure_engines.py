@@ -27,36 +27,12 @@ import numpy as np
 import pytest
 
 from alpha_audit.pages import FolderSource, Measurement, RenderConfig, audit_pages
+from screen_truth import hex_codes, over, ratio, within_a_code
 
 SEED = 20260927
 ICONS = 120
 COLUMNS, CELL = 16, 76  # CSS px: 16 x 76 fits the default 1280 px viewport
 THRESHOLD = 3.0
-
-
-def _luminance(codes: np.ndarray) -> np.ndarray:
-    """WCAG 2.2 relative luminance of 8-bit sRGB codes (the spec's own formula)."""
-    c = np.asarray(codes, dtype=float) / 255.0
-    linear = np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
-    return linear @ np.array([0.2126, 0.7152, 0.0722])
-
-
-def _ratio(a: float, b: float) -> float:
-    return (max(a, b) + 0.05) / (min(a, b) + 0.05)
-
-
-def _over(top: np.ndarray, alpha: float, below: np.ndarray) -> np.ndarray:
-    """Source-over of an sRGB colour at ``alpha`` on an opaque one, on encoded values, 8-bit."""
-    return np.floor(below + alpha * (top - below) + 0.5)
-
-
-def _range(drawn: np.ndarray, behind: np.ndarray) -> tuple[float, float]:
-    """Least and greatest WCAG contrast with each colour moved by up to one code per channel."""
-    ld = [_luminance(np.clip(drawn + s, 0, 255)) for s in (-1, 1)]
-    lb = [_luminance(np.clip(behind + s, 0, 255)) for s in (-1, 1)]
-    overlap = max(ld[0], lb[0]) <= min(ld[1], lb[1])
-    low = 1.0 if overlap else min(_ratio(a, b) for a in ld for b in lb)
-    return low, max(_ratio(a, b) for a in ld for b in lb)
 
 
 def _star(points: int, outer: float, inner: float) -> str:
@@ -86,7 +62,7 @@ class Spec:
 
     @property
     def truth(self) -> float:
-        return float(_ratio(_luminance(self.drawn), _luminance(self.behind)))
+        return float(ratio(self.drawn, self.behind))
 
 
 def _shape(rng: np.random.Generator, k: int, size: int) -> tuple[str, str]:
@@ -119,15 +95,15 @@ def _specs() -> list[Spec]:
                 rng.integers(0, 256, 3).astype(float),
                 round(float(rng.uniform(0.1, 0.9)), 2),
             )
-            behind = _over(chip, alpha, page)
+            behind = over(chip, alpha, page)
             chip_css = f"background: rgba({', '.join(str(int(v)) for v in chip)}, {alpha});"
         opacity = round(float(rng.uniform(0.4, 0.95)), 2) if k % 5 == 1 else 1.0
         fail = k % 4 == 0
         for _ in range(1000):  # a colour on the wanted side of 3:1, away from it
             colour = rng.integers(0, 256, 3).astype(float)
-            drawn = _over(colour, opacity, behind)
-            ratio = _ratio(_luminance(drawn), _luminance(behind))
-            if (ratio < 2.9) if fail else (ratio > 3.1):
+            drawn = over(colour, opacity, behind)
+            truth = ratio(drawn, behind)
+            if (truth < 2.9) if fail else (truth > 3.1):
                 break
         angle = float(rng.uniform(0, 360))
         style = f"color: {_hex(colour)}; display: block" + (
@@ -212,7 +188,7 @@ def test_the_gated_contrast_is_the_paints_within_one_code_every_time(measured):
     for spec, paint in measured.values():
         if spec.kind in ("hairline", "invisible", "image"):
             continue
-        low, high = _range(spec.drawn, spec.behind)
+        low, high = within_a_code(spec.drawn, spec.behind)
         inside = paint.contrast is not None and low - 1e-9 <= paint.contrast <= high + 1e-9
         if not inside or paint.status is not Measurement.DECLARED:
             wrong.append((spec.key, spec.kind, round(spec.truth, 3), paint.contrast, paint.status))
@@ -225,9 +201,9 @@ def test_the_limiting_pair_is_the_paint_and_its_backdrop(measured):
         if spec.colour is None:
             continue
         pair = [paint.limit_drawn, paint.limit_behind]
-        drawn, behind = (np.array([int(h[i : i + 2], 16) for i in (1, 3, 5)]) for h in pair)
+        drawn, behind = (hex_codes(h) for h in pair)
         assert np.abs(behind - spec.behind).max() <= 1, (spec.key, pair, _hex(spec.behind))
-        expected = _over(spec.colour, spec.opacity, behind)
+        expected = over(spec.colour, spec.opacity, behind)
         assert np.abs(drawn - expected).max() <= 1, (spec.key, pair, _hex(expected))
 
 
@@ -245,7 +221,7 @@ def test_the_old_worst_pixel_was_the_antialiased_edge(measured):
         spec.key
         for spec, paint in measured.values()
         if paint.contrast_worst is not None
-        and paint.contrast_worst < _range(spec.drawn, spec.behind)[0] - 0.05
+        and paint.contrast_worst < within_a_code(spec.drawn, spec.behind)[0] - 0.05
     ]
     assert len(below) >= ICONS // 10
 
@@ -264,6 +240,6 @@ def test_an_icon_the_colour_of_its_surface_fails_at_one(measured):
 
 def test_an_image_is_measured_from_its_plateau(measured):
     spec, paint = measured["image"]
-    low, high = _range(spec.drawn, spec.behind)
+    low, high = within_a_code(spec.drawn, spec.behind)
     assert paint.status is Measurement.PLATEAU
     assert paint.contrast is not None and low <= paint.contrast <= high

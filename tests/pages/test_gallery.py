@@ -1,0 +1,125 @@
+"""Done when: a real Storybook with many real Lucide icons at 16 and 24 px in two themes has
+zero false failures, and its true failures are caught.
+
+The Storybook is tests/pages/site: ``gallery--lucide`` draws 48 Lucide icons (chosen by a
+rule, not by how they draw) at 16 and 24 px in three roles, ``gallery--faded`` a passing
+colour under an ``opacity: 0.5`` wrapper, and the ``icons--*`` stories the rest (a colour
+too dark in the dark theme only, an ``<img>`` that draws black, chips, a sprite, a mask).
+The truth is computed here from the theme's CSS values as the build ships them
+(tests/screen_truth.py: source-over on encoded sRGB, WCAG 2.2's ratio), never from what
+alpha-audit measured.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from alpha_audit.pages import Measurement, RenderConfig, StorybookSource, audit_pages, state_matrix
+from screen_truth import css_colour, over, ratio, within_a_code
+
+THEMES = [[("theme", "light")], [("theme", "dark")]]
+# Each paint's colour (a theme variable, or a literal), opacity and backdrop layers, bottom
+# up, as .storybook/theme.css and the stories lay them out.
+ROLES = {
+    "plain": ("icon", 1.0, ("raised",)),
+    "accent": ("accent", 1.0, ("raised",)),
+    "chip": ("accent", 1.0, ("raised", "chip")),
+    "faded": ("icon", 0.5, ("raised",)),
+}
+STORIES = {
+    "icons--toolbar": ("icon", 1.0, ("raised",)),
+    "icons--sprite": ("icon", 1.0, ("raised",)),
+    "icons--chip": ("accent", 1.0, ("surface", "chip")),
+    "icons--alert": ("danger", 1.0, ("surface",)),
+}
+IMAGES = {"img": ("#000000", 1.0, ("raised",)), "mask": ("accent", 1.0, ("raised",))}
+# The true failures the fixture holds, by construction (story, theme, how many paints).
+TRUE_FAILURES = {
+    ("icons--alert", "theme:dark"): 1,  # --danger is too dark on the dark surface
+    ("icons--images", "theme:dark"): 1,  # the <img> draws black (an SVG image's currentColor)
+    ("gallery--faded", "theme:light"): 2,  # opacity 0.5 halves --icon's difference
+    ("gallery--faded", "theme:dark"): 2,
+}
+
+
+def _themes(project: Path) -> dict[str, dict[str, str]]:
+    """Each theme's custom properties, as the built CSS ships them."""
+    css = "".join(p.read_text() for p in (project / "storybook-static/assets").glob("*.css"))
+    out = {}
+    for theme in ("light", "dark"):
+        block = re.search(r'html\[data-theme="?' + theme + r'"?\]\s*\{([^}]*)\}', css)
+        assert block, f"no {theme} block in the built CSS"
+        out[theme] = dict(re.findall(r"--([a-z]+):\s*([^;]+)", block.group(1)))
+    return out
+
+
+def _role(paint) -> tuple[str, float, tuple[str, ...]]:
+    if paint.source == "icons--images":
+        return IMAGES[paint.element]
+    if paint.source.startswith("gallery--"):
+        found = re.search(r"#([a-z]+)-\d+-", paint.dom_path)
+        assert found, paint.dom_path
+        return ROLES[found.group(1)]
+    return STORIES[paint.source]
+
+
+def _truth(theme: dict[str, str], paint) -> tuple[np.ndarray, np.ndarray]:
+    """The paint's colour at full coverage and its backdrop, 8-bit, from the CSS values."""
+    colour, opacity, layers = _role(paint)
+    behind = css_colour(theme[layers[0]])[0]
+    for layer in layers[1:]:
+        top, alpha = css_colour(theme[layer])
+        behind = over(top, alpha, behind)
+    codes = css_colour(colour if colour.startswith("#") else theme[colour])[0]
+    return over(codes, opacity, behind), behind
+
+
+@pytest.fixture(scope="module", params=["chromium", "firefox", "webkit"])
+def audited(request, project: Path):
+    config = RenderConfig(
+        (StorybookSource(project / "storybook-static"),),
+        states=state_matrix(THEMES),
+        root=project,
+        engines=(request.param,),
+        workers=2,
+        timeout=120,
+    )
+    result = audit_pages(config)
+    assert result.problems == ()
+    themes = _themes(project)
+    return [(p, *_truth(themes[p.state.split(":")[1]], p)) for p in result.paints]
+
+
+def test_many_real_lucide_icons_at_16_and_24_px_in_both_themes(audited):
+    gallery = [p for p, _, _ in audited if p.source == "gallery--lucide"]
+    names = {re.search(r"-(\d+)-([a-z0-9-]+)$", p.dom_path).groups() for p in gallery}
+    assert len({name for _, name in names}) >= 40
+    assert {size for size, _ in names} == {"16", "24"}
+    assert len(gallery) == 2 * 2 * 48  # two themes, two sizes
+
+
+def test_no_true_pass_fails_and_every_true_failure_is_caught(audited):
+    wrong = [
+        (p.source, p.state, p.dom_path, round(ratio(drawn, behind), 3), p.contrast)
+        for p, drawn, behind in audited
+        if p.passes is not (ratio(drawn, behind) >= p.threshold)
+    ]
+    assert wrong == []
+    failing: dict[tuple[str, str], int] = {}
+    for p, _, _ in audited:
+        if p.passes is False:
+            failing[(p.source, p.state)] = failing.get((p.source, p.state), 0) + 1
+    assert failing == TRUE_FAILURES
+
+
+def test_every_paint_is_measured_within_a_code_of_its_css(audited):
+    off = []
+    for p, drawn, behind in audited:
+        low, high = within_a_code(drawn, behind)
+        if p.status is Measurement.UNMEASURED or not low <= (p.contrast or 0) <= high:
+            off.append((p.source, p.state, p.dom_path, str(p.status), p.contrast, low, high))
+    assert off == []
