@@ -26,7 +26,7 @@ from urllib.parse import quote
 import numpy as np
 import pytest
 
-from alpha_audit.pages import FolderSource, Measurement, RenderConfig, audit_pages
+from alpha_audit.pages import MEASURED, UNMEASURED, Basis, FolderSource, RenderConfig, audit_pages
 from screen_truth import hex_codes, over, ratio, within_a_code
 
 SEED = 20260927
@@ -190,7 +190,7 @@ def test_the_gated_contrast_is_the_paints_within_one_code_every_time(measured):
             continue
         low, high = within_a_code(spec.drawn, spec.behind)
         inside = paint.contrast is not None and low - 1e-9 <= paint.contrast <= high + 1e-9
-        if not inside or paint.status is not Measurement.DECLARED:
+        if not inside or paint.basis is not Basis.DECLARED:
             wrong.append((spec.key, spec.kind, round(spec.truth, 3), paint.contrast, paint.status))
     assert wrong == []
 
@@ -228,7 +228,7 @@ def test_the_old_worst_pixel_was_the_antialiased_edge(measured):
 
 def test_a_hairline_could_not_be_measured_and_neither_passes_nor_fails(measured):
     _, paint = measured["hairline"]
-    assert paint.status is Measurement.UNMEASURED
+    assert paint.status == UNMEASURED and paint.basis is None
     assert paint.contrast is None and paint.passes is None
     assert paint.coverage.pixels > 0 and paint.coverage.full == 0
 
@@ -241,5 +241,5 @@ def test_an_icon_the_colour_of_its_surface_fails_at_one(measured):
 def test_an_image_is_measured_from_its_plateau(measured):
     spec, paint = measured["image"]
     low, high = within_a_code(spec.drawn, spec.behind)
-    assert paint.status is Measurement.PLATEAU
+    assert paint.status == MEASURED and paint.basis is Basis.PLATEAU
     assert paint.contrast is not None and low <= paint.contrast <= high

@@ -18,7 +18,13 @@ import pytest
 from coloraide import Color
 
 from alpha_audit.load.iconset import load_iconset
-from alpha_audit.pages import FolderSource, Measurement, RenderConfig, audit_pages, state_matrix
+from alpha_audit.pages import (
+    Basis,
+    FolderSource,
+    RenderConfig,
+    audit_pages,
+    state_matrix,
+)
 from screen_truth import within_a_code
 
 TOLERANCE = 0.05
@@ -126,5 +132,5 @@ def test_the_gated_contrast_is_the_least_contrasting_area_within_a_code(result, 
         columns = [_colours(tokens, theme, paint.icon, c) for c in np.arange(x, x + w, 0.5)]
         ranges = [within_a_code(_codes(d), _codes(b)) for d, b in columns]
         low, high = min(r[0] for r in ranges), min(r[1] for r in ranges)
-        assert paint.status is Measurement.DECLARED
+        assert paint.basis is Basis.DECLARED
         assert low <= paint.contrast <= high, (paint.icon, theme, paint.limit_drawn, low, high)

@@ -19,12 +19,14 @@ Example (a built Storybook in the current folder)::
 
 from alpha_audit.pages.config import RenderConfig, config_from_yaml, source_from_argument
 from alpha_audit.pages.measured import (
+    MEASURED,
+    UNMEASURED,
+    Basis,
     BlockedRequest,
     Coverage,
     IconCrop,
     IconMatch,
     MeasuredPaint,
-    Measurement,
     PageProblem,
     Prediction,
     RenderResult,
@@ -34,13 +36,15 @@ from alpha_audit.pages.sources import FolderSource, StorybookSource, UrlSource
 from alpha_audit.pages.states import State, state_matrix
 
 __all__ = [
+    "MEASURED",
+    "UNMEASURED",
+    "Basis",
     "BlockedRequest",
     "Coverage",
     "FolderSource",
     "IconCrop",
     "IconMatch",
     "MeasuredPaint",
-    "Measurement",
     "PageProblem",
     "Prediction",
     "RenderConfig",

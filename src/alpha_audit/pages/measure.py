@@ -71,10 +71,12 @@ from alpha_audit.color import (
 from alpha_audit.model import Icon
 from alpha_audit.pages.capture import Capture, FoundIcon
 from alpha_audit.pages.measured import (
+    MEASURED,
+    UNMEASURED,
+    Basis,
     Coverage,
     IconMatch,
     MeasuredPaint,
-    Measurement,
     Prediction,
 )
 
@@ -147,12 +149,15 @@ def declared_paints(icon: FoundIcon) -> tuple[DeclaredPaint, ...]:
 
 
 # Engines draw a paint at full coverage to within this many 8-bit codes per channel of
-# CSS source-over on encoded sRGB kept to 8 bits (the prediction): measured in Chromium,
-# Firefox and WebKitGTK by tests/pages/test_measure_engines.py (opaque paints on opaque and
-# translucent backdrops, paints under opacity: every interior pixel within 1 code).
+# CSS source-over on encoded sRGB kept to 8 bits (the prediction).  Measured on the pages
+# of tests/pages/test_measure_engines.py, every pixel deep inside a filled shape (its
+# 7 x 7 neighbourhood touched): opaque paints on opaque and on rgba() backdrops exact in
+# Chromium, Firefox and WebKitGTK; paints under opacity 0.4-0.95 off by -1 to +1 (Chromium
+# and Firefox quantise the opacity to 8 bits and round down about half the time), never 2.
 FULL_TOLERANCE = 1
-# A plateau pixel lies this far (Euclidean, 8-bit codes) from the segment between the
-# backdrop and a declared full-coverage colour: the declaration explains it as a mix.
+# A plateau pixel within this distance (Euclidean, 8-bit codes: one code per channel is
+# sqrt(3)) of the segment from the backdrop to a declared full-coverage colour is a mix of
+# the two: the declaration explains it as partial coverage.
 _ON_SEGMENT = 2.0
 
 
@@ -292,7 +297,7 @@ def _plateau(
 class _Found:
     """A paint's fully covered pixels and the full-coverage colour per pixel (codes)."""
 
-    status: Measurement
+    basis: Basis | None  # None: could not measure
     full: NDArray[np.bool_]
     target: NDArray[np.float64] | None  # (H, W, 3), None when could not measure
 
@@ -322,7 +327,7 @@ def _find_full(
     for k, target in enumerate(targets):
         full = matched & (nearest == k)
         if target is not None and full.any():
-            found[k] = _Found(Measurement.DECLARED, full, target)
+            found[k] = _Found(Basis.DECLARED, full, target)
     # Pixels the measured paints explain (fully covered, or a mix with the backdrop) are no
     # other paint's; what is left may be a paint the computed colour does not explain.
     explained = np.zeros(shape, dtype=bool)
@@ -345,10 +350,10 @@ def _find_full(
                 if on_segment and not (full & _erode(interior)).any():
                     full = None
             if full is None:
-                f = _Found(Measurement.UNMEASURED, np.zeros(shape, dtype=bool), target)
+                f = _Found(None, np.zeros(shape, dtype=bool), target)
             else:
                 plateau = np.broadcast_to(np.median(drawn[full], axis=0), drawn.shape).copy()
-                f = _Found(Measurement.PLATEAU, full, plateau)
+                f = _Found(Basis.PLATEAU, full, plateau)
         out.append(f)
     return out
 
@@ -519,7 +524,8 @@ def _measure_icon(
                 limit_drawn_linear=limit_drawn_lin,
                 limit_behind=limit_behind,
                 limit_behind_linear=limit_behind_lin,
-                status=f.status,
+                status=MEASURED if gated is not None else UNMEASURED,
+                basis=f.basis,
             )
         )
     return out

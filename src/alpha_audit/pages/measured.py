@@ -13,12 +13,14 @@ from dataclasses import dataclass
 from pathlib import Path
 
 __all__ = [
+    "MEASURED",
+    "UNMEASURED",
+    "Basis",
     "BlockedRequest",
     "Coverage",
     "IconCrop",
     "IconMatch",
     "MeasuredPaint",
-    "Measurement",
     "PageProblem",
     "Prediction",
     "RenderResult",
@@ -37,21 +39,25 @@ class IconMatch(enum.StrEnum):
     NONE = "none"
 
 
-class Measurement(enum.StrEnum):
-    """How a paint's fully covered pixels were found (:mod:`alpha_audit.pages.measure`), or not.
+# A measured paint's status: whether it has a gated contrast.
+MEASURED = "measured"
+# No pixel shows the paint at full coverage (a hairline): nothing to judge, no failure.
+UNMEASURED = "could not measure"
 
-    ``declared``: the pixels whose drawn colour is the declared colour at its
-    opacity composited over the backdrop at that pixel (within
-    :data:`~alpha_audit.pages.measure.FULL_TOLERANCE`); ``plateau``: the
-    declared colour does not explain the pixels (a CSS filter, a blend mode, an
-    ``<img>`` whose paints are unknown), so the drawn colour furthest from the
-    backdrop that a plateau of pixels shares; ``could not measure``: no pixel
-    shows the paint at full coverage (a hairline), so no verdict.
+
+class Basis(enum.StrEnum):
+    """What a paint's fully covered pixels were found by (:mod:`alpha_audit.pages.measure`).
+
+    ``declared``: their drawn colour is the colour the engine computed for the
+    paint, at its opacity, composited over the backdrop at that pixel (within
+    :data:`~alpha_audit.pages.measure.FULL_TOLERANCE`); ``plateau``: that colour
+    does not explain the pixels (a CSS filter, a blend mode, an ``<img>`` whose
+    paints are unknown), so they are the drawn colour furthest from the
+    backdrop that a plateau of pixels shares.
     """
 
     DECLARED = "declared"
     PLATEAU = "plateau"
-    UNMEASURED = "could not measure"
 
 
 @dataclass(frozen=True)
@@ -60,7 +66,7 @@ class Coverage:
 
     ``pixels`` device pixels differ between the captures; ``full`` of them are
     fully covered (the drawn colour and the gated contrast come from those:
-    :class:`Measurement`); ``q50`` and
+    ``basis`` of :class:`MeasuredPaint`); ``q50`` and
     ``full_share`` as in :func:`alpha_audit.color.coverage_stats`, ``ink`` the
     sum of coverage in device pixels.
     """
@@ -95,15 +101,17 @@ class MeasuredPaint:
     just outside the icon.
 
     ``contrast`` is the gated figure: the least WCAG 2.2 contrast
-    (:func:`~alpha_audit.color.judged_contrast`) of a fully covered pixel
-    against the backdrop at the same pixel, ``limit_drawn`` on ``limit_behind``
-    the pair of colours at that pixel (what a fix must change); ``status`` says
-    how the fully covered pixels were found, or that there were none
-    (``could not measure``: ``contrast`` is then ``None`` and the paint neither
-    passes nor fails).  ``contrast_worst`` and ``contrast_median`` are kept for
-    diagnosis: over the paint's *candidate* pixels, touched pixels whose 3 x 3
-    neighbourhood is touched, antialiased mixes at concave corners and
-    diagonals included, each against the backdrop at the same pixel.
+    (:func:`~alpha_audit.color.judged_contrast`) of the fully covered pixels
+    against the backdrop at the same pixel (on each backdrop colour, the
+    paint's most frequent drawn colour there); ``limit_drawn`` on
+    ``limit_behind`` is the pair giving it (what a fix must change).  ``basis``
+    says how the fully covered pixels were found (:class:`Basis`).  ``status``
+    is :data:`MEASURED`, or :data:`UNMEASURED` when no pixel shows the paint at
+    full coverage (a hairline): ``contrast`` is then ``None`` and the paint
+    neither passes nor fails.  ``contrast_worst`` and ``contrast_median`` are
+    kept for diagnosis: over the paint's *candidate* pixels, touched pixels
+    whose 3 x 3 neighbourhood is touched, antialiased mixes at concave corners
+    and diagonals included, each against the backdrop at the same pixel.
     ``model_source``/``model_alpha``/``model_opacity`` are what the model was
     given (the manifest's colour and alpha for a mapped ``currentColor`` paint,
     else the colour the engine computed, at alpha 1); ``predictions`` holds the
@@ -148,12 +156,13 @@ class MeasuredPaint:
     limit_drawn_linear: Linear | None = None
     limit_behind: str | None = None
     limit_behind_linear: Linear | None = None
-    status: Measurement = Measurement.DECLARED
+    status: str = MEASURED
+    basis: Basis | None = None
 
     @property
     def passes(self) -> bool | None:
         """Whether the gated ``contrast`` reaches the threshold (None: could not measure)."""
-        if self.contrast is None or self.status is Measurement.UNMEASURED:
+        if self.contrast is None or self.status != MEASURED:
             return None
         return self.contrast >= self.threshold
 
