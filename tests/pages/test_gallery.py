@@ -16,10 +16,10 @@ import re
 from pathlib import Path
 
 import numpy as np
-import pytest
 
 from alpha_audit.pages import (
     MEASURED,
+    MeasuredPaint,
     RenderConfig,
     StorybookSource,
     audit_pages,
@@ -84,16 +84,13 @@ def _truth(theme: dict[str, str], paint) -> tuple[np.ndarray, np.ndarray]:
     return over(codes, opacity, behind), behind
 
 
-@pytest.fixture(scope="module")
-def audited(engine, project: Path):
-    """Every paint of every story in both themes in ``engine``, with its truth (colour,
-    backdrop); a missing engine skips, or fails on CI (tests/conftest.py)."""
-    name, _ = engine
+def _audit(engine: str, project: Path) -> list[tuple[MeasuredPaint, np.ndarray, np.ndarray]]:
+    """Every paint of every story in both themes, with its truth (colour, backdrop)."""
     config = RenderConfig(
         (StorybookSource(project / "storybook-static"),),
         states=state_matrix(THEMES),
         root=project,
-        engines=(name,),
+        engines=(engine,),
         workers=2,
         timeout=120,
     )
@@ -103,15 +100,20 @@ def audited(engine, project: Path):
     return [(p, *_truth(themes[p.state.split(":")[1]], p)) for p in result.paints]
 
 
-def test_many_real_lucide_icons_at_16_and_24_px_in_both_themes(audited):
+def test_zero_false_failures_and_every_true_failure_caught(engine, project):
+    """One test per engine, so one audit per engine (a missing engine skips, or fails on CI).
+
+    pytest-xdist may hand a module's tests to different workers, and each would audit
+    the Storybook again.
+    """
+    audited = _audit(engine[0], project)
+    # Many real icons: 48 distinct Lucide icons at 16 and 24 px in both themes.
     gallery = [p for p, _, _ in audited if p.source == "gallery--lucide"]
     names = {re.search(r"-(\d+)-([a-z0-9-]+)$", p.dom_path).groups() for p in gallery}
     assert len({name for _, name in names}) >= 40
     assert {size for size, _ in names} == {"16", "24"}
-    assert len(gallery) == 2 * 2 * 48  # two themes, two sizes
-
-
-def test_no_true_pass_fails_and_every_true_failure_is_caught(audited):
+    assert len(gallery) == 2 * 2 * 48
+    # No true pass fails, every true failure is caught.
     wrong = [
         (p.source, p.state, p.dom_path, round(ratio(drawn, behind), 3), p.contrast)
         for p, drawn, behind in audited
@@ -123,9 +125,7 @@ def test_no_true_pass_fails_and_every_true_failure_is_caught(audited):
         if p.passes is False:
             failing[(p.source, p.state)] = failing.get((p.source, p.state), 0) + 1
     assert failing == TRUE_FAILURES
-
-
-def test_every_paint_is_measured_within_a_code_of_its_css(audited):
+    # Every paint measured, its gated contrast within one 8-bit code of its CSS values'.
     off = []
     for p, drawn, behind in audited:
         low, high = within_a_code(drawn, behind)
