@@ -8,6 +8,8 @@ from pathlib import Path
 import pytest
 from hypothesis import HealthCheck, settings
 
+from alpha_audit.browser import ENGINES, Installation
+
 REPO = Path(__file__).resolve().parents[1]
 
 # CI must not flake: no per-example deadline on a loaded 2-core machine, and the
@@ -46,6 +48,24 @@ def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
             if where.startswith(prefix):
                 item.add_marker(pytest.mark.xdist_group(group))
                 break
+
+
+@pytest.fixture(params=list(ENGINES), scope="module")
+def engine(request: pytest.FixtureRequest) -> tuple[str, Installation]:
+    """``(name, installation)`` of each registered engine, in the paper's order.
+
+    A missing engine is a visible skip; on CI (``$CI`` set) it fails instead, so
+    a broken install cannot pass as a skipped test (``make test`` installs the
+    engines when missing and running as root).
+    """
+    cls = ENGINES[request.param]
+    found = cls.find()
+    if found is None:
+        reason = f"{cls.LABEL} not installed: {cls.INSTALL_HINT}"
+        if os.environ.get("CI"):
+            pytest.fail(reason, pytrace=False)
+        pytest.skip(reason)
+    return request.param, found
 
 
 @pytest.fixture(autouse=True, scope="session")

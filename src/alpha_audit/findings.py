@@ -419,6 +419,7 @@ def observed_figures(o: MeasuredPaint) -> dict[str, float | str]:
     }
     optional: dict[str, float | str | None] = {
         "drawn": o.drawn,
+        "basis": None if o.basis is None else str(o.basis),
         "around": o.around,
         "contrast_worst": o.contrast_worst,
         "contrast_median": o.contrast_median,

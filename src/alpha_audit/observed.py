@@ -24,7 +24,8 @@ from alpha_audit.model import Location
 
 __all__ = [
     "MEASURED",
-    "NO_INTERIOR",
+    "UNMEASURED",
+    "Basis",
     "BlockedRequest",
     "Coverage",
     "IconCrop",
@@ -83,8 +84,23 @@ class Prediction:
 
 # A measured paint's status: what its figures are.
 MEASURED = "measured"
-# No pixel of the paint is at full coverage (a hairline): nothing to judge, no failure.
-NO_INTERIOR = "no full-coverage pixel"
+# No pixel shows the paint at full coverage (a hairline): nothing to judge, no failure.
+UNMEASURED = "could not measure"
+
+
+class Basis(enum.StrEnum):
+    """What a paint's fully covered pixels were found by (:mod:`alpha_audit.pages.measure`).
+
+    ``declared``: their drawn colour is the colour the engine computed for the
+    paint, at its opacity, composited over the backdrop at that pixel (within
+    :data:`~alpha_audit.pages.measure.FULL_TOLERANCE`); ``plateau``: that colour
+    does not explain the pixels (a CSS filter, a blend mode, an ``<img>`` whose
+    paints are unknown), so they are the drawn colour furthest from the
+    backdrop that a plateau of pixels shares.
+    """
+
+    DECLARED = "declared"
+    PLATEAU = "plateau"
 
 
 @dataclass(frozen=True)
@@ -107,8 +123,9 @@ class MeasuredPaint:
     through the paint's row.  ``contrast_worst`` and ``contrast_median`` are over
     the pixels the measurement considered, for diagnosis only.  ``around`` is
     the median backdrop in a ring just outside the icon.  ``status`` is
-    :data:`MEASURED`, or :data:`NO_INTERIOR` when no pixel shows the paint at
-    full coverage (its colour and contrast are then ``None``: it cannot be judged).
+    :data:`MEASURED`, or :data:`UNMEASURED` when no pixel shows the paint at
+    full coverage (its colour and contrast are then ``None``: it cannot be judged);
+    ``basis`` says how its fully covered pixels were found (:class:`Basis`).
 
     ``model_source``/``model_alpha``/``model_opacity`` are what the model was
     given (the manifest's colour and alpha for a mapped ``currentColor`` paint,
@@ -152,6 +169,7 @@ class MeasuredPaint:
     render_drift: float | None
     box: tuple[float, float, float, float]
     status: str = MEASURED
+    basis: Basis | None = None
     file: Path | None = None
     locations: tuple[Location, ...] = ()
 

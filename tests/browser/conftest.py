@@ -1,35 +1,16 @@
-"""Engines for the browser tests: each installed engine runs, a missing one is a visible skip.
+"""The generated SVG shapes several browser tests draw (``generated_svgs``).
 
-Also the generated SVG shapes several browser tests draw (``generated_svgs``).
-
-``make test`` installs the engines when missing and running as root; on CI
-(``$CI`` set) a missing engine fails instead, so a broken install cannot
-pass as a skipped test.
+The ``engine`` fixture (each installed engine; a missing one skips, or fails on
+CI) is in tests/conftest.py, shared with tests/pages.
 """
 
 from __future__ import annotations
 
-import os
 from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 import pytest
-
-from alpha_audit.browser import ENGINES, Installation
-
-
-@pytest.fixture(params=list(ENGINES), scope="module")
-def engine(request: pytest.FixtureRequest) -> tuple[str, Installation]:
-    """``(name, installation)`` of each registered engine, in the paper's order."""
-    cls = ENGINES[request.param]
-    found = cls.find()
-    if found is None:
-        reason = f"{cls.LABEL} not installed: {cls.INSTALL_HINT}"
-        if os.environ.get("CI"):
-            pytest.fail(reason, pytrace=False)
-        pytest.skip(reason)
-    return request.param, found
 
 
 def _generated_svgs(folder: Path, count: int) -> list[Path]:

@@ -15,6 +15,7 @@ from pathlib import Path
 import pytest
 
 from alpha_audit.browser import Chromium
+from alpha_audit.pages import StorybookSource
 
 REPO = Path(__file__).resolve().parents[2]
 ICONS = ("bell", "search", "settings", "check", "info", "triangle-alert", "star", "heart")
@@ -65,3 +66,12 @@ def project(site: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
         encoding="utf-8",
     )
     return root
+
+
+@pytest.fixture(scope="module")
+def icon_stories(project: Path) -> StorybookSource:
+    """The ``icons--*`` stories (stories/icons.stories.js), what most tests audit.
+
+    ``gallery--*`` (stories/gallery.stories.js: many icons) is test_gallery.py's.
+    """
+    return StorybookSource(project / "storybook-static", ("icons--*",))

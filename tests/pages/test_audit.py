@@ -20,7 +20,7 @@ from alpha_audit.gate import baseline_document
 from alpha_audit.load.baseline import parse_baseline
 from alpha_audit.load.iconset import load_iconset
 from alpha_audit.model import Location
-from alpha_audit.observed import NO_INTERIOR, MeasuredPaint, PageRun
+from alpha_audit.observed import UNMEASURED, MeasuredPaint, PageRun
 from alpha_audit.pages import page_report
 from alpha_audit.pages.config import render_rules
 from alpha_audit.policy import RENDER_DRIFT_TOLERANCE, RENDER_POLICY, Policy
@@ -163,7 +163,7 @@ def test_an_unmapped_icon_points_at_its_story_only(tmp_path) -> None:
 
 
 def test_a_paint_with_no_full_coverage_pixel_is_not_audited_never_failed() -> None:
-    p = replace(paint(status=NO_INTERIOR, name="hairline"), drawn=None, drawn_linear=None,
+    p = replace(paint(status=UNMEASURED, name="hairline"), drawn=None, drawn_linear=None,
                 behind=None, behind_linear=None, contrast=None)  # fmt: skip
     gate = report(p, paint(name="bell"), fixes=False).gate
     assert gate.passed and not gate.failures

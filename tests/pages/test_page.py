@@ -13,11 +13,19 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+import numpy as np
 import pytest
 from coloraide import Color
 
 from alpha_audit.load.iconset import load_iconset
-from alpha_audit.pages import FolderSource, RenderConfig, audit_pages, state_matrix
+from alpha_audit.observed import Basis
+from alpha_audit.pages import (
+    FolderSource,
+    RenderConfig,
+    audit_pages,
+    state_matrix,
+)
+from screen_truth import within_a_code
 
 TOLERANCE = 0.05
 # The page's layout (page/index.html): which icon sits on which chip, and each theme's tokens.
@@ -64,18 +72,27 @@ def _over(top: Color, below: Color) -> Color:
     return _eight_bit(Color.layer([top, below], space="srgb"))
 
 
-def _expected(tokens: dict[str, str], theme: str, icon: str, centre_x: float) -> float:
+def _colours(tokens: dict[str, str], theme: str, icon: str, x: float) -> tuple[Color, Color]:
+    """The icon's colour and its backdrop at ``x`` (CSS px along the gradient), 8-bit."""
     t = THEMES[theme]
     gradient = Color.interpolate([tokens[t["from"]], tokens[t["to"]]], space="oklab")
-    backdrop = _eight_bit(gradient(centre_x / MAIN_WIDTH))
+    backdrop = _eight_bit(gradient(x / MAIN_WIDTH))
     if icon in CHIPS:
         name, alpha = t["chip"]
         backdrop = _over(Color(tokens[name]).set("alpha", alpha), backdrop)
         name, alpha = t[CHIPS[icon]]
     else:
         name, alpha = t["bare"]
-    drawn = _over(Color(tokens[name]).set("alpha", alpha), backdrop)
+    return _over(Color(tokens[name]).set("alpha", alpha), backdrop), backdrop
+
+
+def _expected(tokens: dict[str, str], theme: str, icon: str, centre_x: float) -> float:
+    drawn, backdrop = _colours(tokens, theme, icon, centre_x)
     return drawn.contrast(backdrop, method="wcag21")
+
+
+def _codes(color: Color) -> np.ndarray:
+    return np.array([round(c * 255) for c in color.coords()], dtype=float)
 
 
 def test_every_icon_is_found_in_every_state(result):
@@ -92,7 +109,7 @@ def test_measured_contrast_equals_an_independent_computation(result, project):
         theme = paint.state.split(":")[1]
         x, _, w, _ = paint.box
         expected = _expected(tokens, theme, paint.icon, x + w / 2)
-        assert paint.contrast == pytest.approx(expected, abs=TOLERANCE), (
+        assert paint.contrast_median == pytest.approx(expected, abs=TOLERANCE), (
             paint.icon,
             theme,
             paint.drawn,
@@ -100,3 +117,20 @@ def test_measured_contrast_equals_an_independent_computation(result, project):
         )
         checked += 1
     assert checked == 2 * (len(CHIPS) + len(BARE))
+
+
+def test_the_gated_contrast_is_the_least_contrasting_area_within_a_code(result, project):
+    """Over the gradient the gate takes the icon's least-contrasting area, never an edge pixel.
+
+    The truth is the least contrast of the icon's colour over the page's backdrop at each
+    device pixel column the icon spans, each within one 8-bit code (tests/screen_truth.py).
+    """
+    tokens = _tokens(project)
+    for paint in result.paints:
+        theme = paint.state.split(":")[1]
+        x, _, w, _ = paint.box
+        columns = [_colours(tokens, theme, paint.icon, c) for c in np.arange(x, x + w, 0.5)]
+        ranges = [within_a_code(_codes(d), _codes(b)) for d, b in columns]
+        low, high = min(r[0] for r in ranges), min(r[1] for r in ranges)
+        assert paint.basis is Basis.DECLARED
+        assert low <= paint.contrast <= high, (paint.icon, theme, paint.drawn, low, high)

@@ -30,10 +30,10 @@ runner = CliRunner()
 
 
 @pytest.fixture(scope="module")
-def report(project: Path):
+def report(project: Path, icon_stories: StorybookSource):
     manifest = load_iconset(project / "icons/iconset.yaml")
     config = RenderConfig(
-        (StorybookSource(project / "storybook-static"),),
+        (icon_stories,),
         states=state_matrix(THEMES),
         root=project,
         workers=2,

@@ -98,10 +98,10 @@ def instances(found) -> set[tuple[str, str, str, str]]:
 
 
 @pytest.fixture(scope="module")
-def report(project: Path):
+def report(project: Path, icon_stories: StorybookSource):
     manifest = load_iconset(project / "icons/iconset.yaml")
     config = RenderConfig(
-        (StorybookSource(project / "storybook-static"),),
+        (icon_stories,),
         states=state_matrix(THEMES),
         root=project,
         workers=2,
@@ -159,10 +159,12 @@ def test_a_crop_is_kept_for_each_finding(report):
     assert all(max(c.width, c.height) <= 128 and c.step == 1 for c in run.crops)
 
 
-def test_the_crop_cap_holds_and_keeps_the_failing_icons_first(project: Path):
+def test_the_crop_cap_holds_and_keeps_the_failing_icons_first(
+    project: Path, icon_stories: StorybookSource
+):
     manifest = load_iconset(project / "icons/iconset.yaml")
     config = RenderConfig(
-        (StorybookSource(project / "storybook-static"),),
+        (icon_stories,),
         states=state_matrix([[("theme", "dark")]]),
         root=project,
         workers=2,

@@ -24,9 +24,9 @@ PER_STORY = {
 
 
 @pytest.fixture(scope="module")
-def result(project: Path):
+def result(project: Path, icon_stories: StorybookSource):
     config = RenderConfig(
-        (StorybookSource(project / "storybook-static"),),
+        (icon_stories,),
         states=state_matrix(THEMES),
         root=project,
         workers=2,

@@ -216,8 +216,8 @@ def _unaudited(left: Sequence[tuple[MeasuredPaint, Icon]], own: dict[str, Icon])
                 paint.name,
                 paint.dom_path,
                 None,
-                f"{paint.paint} ({'/'.join(paint.kinds) or 'paint'}): {paint.status}, so its "
-                "colour could not be measured (a hairline at this device scale); not judged",
+                f"{paint.paint} ({'/'.join(paint.kinds) or 'paint'}): {paint.status}: no pixel "
+                "shows it at full coverage (a hairline at this device scale); not judged",
             )
         )
     return out

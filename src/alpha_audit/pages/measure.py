@@ -1,24 +1,45 @@
-"""From a capture pair to measured paints: coverage, drawn colour, backdrop, contrast, drift.
+"""From a capture pair to measured paints: full coverage, gated contrast, backdrop, drift.
 
-Per icon, inside its box (device pixels):
+Per icon, inside its box (device pixels), with ``D`` the drawn capture and
+``B`` the hidden one (the backdrop the browser composited behind the icons):
 
-* **touched** pixels differ between the drawn and the hidden capture;
-  **fully covered** ones are touched pixels whose 3 x 3 neighbourhood is
-  touched too (the icon's interior: antialiasing only reaches one device
-  pixel into a shape at the scales used, 2 or more);
-* with several declared paints, each fully covered pixel goes to the paint
-  whose colour, composited by the browser's rule (source-over on encoded
-  sRGB, :func:`~alpha_audit.color.composite_paint` ``css``) over that pixel's
-  backdrop, is nearest; edge pixels follow their nearest fully covered pixel;
-* the **drawn** colour is the median of a paint's fully covered pixels,
-  **behind** the median of the hidden capture under them, **around** the
-  median of the hidden capture in a ring of ``2 * scale`` device pixels just
-  outside the touched pixels;
-* **contrast** (WCAG 2.2) per fully covered pixel against the backdrop at the
-  same pixel: worst (minimum) and median;
+* **touched** pixels differ between the two captures;
+* a paint's **full-coverage colour** at a pixel is what the browser draws
+  there for the paint at full coverage: its computed colour at its opacity
+  chain, composited source-over on encoded sRGB over ``B`` at that pixel and
+  kept to 8 bits (:func:`~alpha_audit.color.composite_paint` ``css``);
+* a touched pixel is **fully covered** by the paint whose full-coverage colour
+  is nearest to ``D`` there, when that is within :data:`FULL_TOLERANCE` codes
+  in every channel.  Antialiased mixes (edges, concave corners, diagonals of
+  thin strokes) sit between ``B`` and the paint's colour, so they never count,
+  whatever the stroke width, angle or size; they never decide which paint a
+  pixel belongs to either (they follow their nearest fully covered pixel, for
+  coverage figures only);
+* where the computed colour does not explain the pixels (a CSS filter, a blend
+  mode, an ``<img>`` whose paints are unknown) the fully covered pixels are a
+  **plateau**: the drawn colour furthest from the backdrop shared by at least
+  :func:`plateau_pixels` pixels, one of them inside the shape (its 3 x 3
+  neighbourhood touched), never a single pixel.  A plateau the computed colour
+  explains as partial coverage (a mix of it with the backdrop) counts only deep
+  inside a shape (a 5 x 5 neighbourhood touched: a CSS ``filter: opacity()``),
+  never on a stroke under 2 device pixels; no plateau at all is ``could not
+  measure`` (a hairline: no pixel shows the paint, so no verdict);
+* an icon that changes no pixel is judged where its full-coverage colour is the
+  backdrop's (an icon the colour of its surface: contrast 1);
+* the **gated contrast** is the least WCAG 2.2 contrast
+  (:func:`~alpha_audit.color.judged_contrast`) of the fully covered pixels
+  against ``B`` at the same pixel (over a gradient, the least-contrasting
+  area), taking on each backdrop colour the paint's most frequent drawn colour
+  there (a pixel one code off beside the paint's own colour never limits);
+  that pair of colours, the limiting pair, is the paint's **drawn** colour on
+  its **behind** colour (a report's "draws X on Y: r:1" is that pair);
+  **around** is the median of ``B`` in a ring of ``2 * scale`` device pixels
+  just outside the touched pixels;
+* for diagnosis, worst and median contrast over the *candidate* pixels (touched
+  pixels whose 3 x 3 neighbourhood is touched: antialiased mixes included);
 * **coverage** per touched pixel, ``q = (D - B)·(P - B) / |P - B|²`` in encoded
-  values with ``P`` the drawn colour, clipped to [0, 1]
-  (:func:`~alpha_audit.color.coverage_stats`);
+  values with ``P`` the full-coverage colour, clipped to [0, 1] and 1 on fully
+  covered pixels (:func:`~alpha_audit.color.coverage_stats`);
 * the **model's prediction** for the same paint and backdrop under ``linear``
   and ``css``, and the CIEDE2000 from the drawn colour to each.
 """
@@ -43,12 +64,15 @@ from alpha_audit.color import (
     from_8bit,
     judged_contrast,
     linear_to_hex,
+    pack_8bit,
     srgb_decode,
+    to_8bit,
 )
 from alpha_audit.model import Icon, Location
 from alpha_audit.observed import (
     MEASURED,
-    NO_INTERIOR,
+    UNMEASURED,
+    Basis,
     Coverage,
     IconMatch,
     MeasuredPaint,
@@ -57,12 +81,15 @@ from alpha_audit.observed import (
 from alpha_audit.pages.capture import Capture, FoundIcon
 
 __all__ = [
+    "FULL_TOLERANCE",
     "DeclaredPaint",
     "PageContext",
     "declared_paints",
+    "full_coverage_colour",
     "icon_name",
     "icon_region",
     "measure_capture",
+    "plateau_pixels",
     "ring_width",
 ]
 
@@ -121,6 +148,24 @@ def declared_paints(icon: FoundIcon) -> tuple[DeclaredPaint, ...]:
         text = str(paint.get("color", ""))
         out.append(DeclaredPaint(color, opacity, kinds, bool(paint.get("current")), text, index))
     return tuple(p for p in out if p.opacity > 0)
+
+
+# Engines draw a paint at full coverage to within this many 8-bit codes per channel of
+# CSS source-over on encoded sRGB kept to 8 bits (the prediction).  Measured on the pages
+# of tests/pages/test_measure_engines.py, every pixel deep inside a filled shape (its
+# 7 x 7 neighbourhood touched): opaque paints on opaque and on rgba() backdrops exact in
+# Chromium, Firefox and WebKitGTK; paints under opacity 0.4-0.95 off by -1 to +1 (Chromium
+# and Firefox quantise the opacity to 8 bits and round down about half the time), never 2.
+FULL_TOLERANCE = 1
+# A plateau pixel within this distance (Euclidean, 8-bit codes: one code per channel is
+# sqrt(3)) of the segment from the backdrop to a declared full-coverage colour is a mix of
+# the two: the declaration explains it as partial coverage.
+_ON_SEGMENT = 2.0
+
+
+def plateau_pixels(scale: int) -> int:
+    """Fewest device pixels a plateau needs: one CSS pixel's worth, never a single pixel."""
+    return max(2, scale * scale)
 
 
 def _erode(mask: NDArray[np.bool_]) -> NDArray[np.bool_]:
@@ -191,36 +236,148 @@ def _predictions(
     return tuple(out)
 
 
-def _assign(
-    full: NDArray[np.bool_],
-    touched: NDArray[np.bool_],
+def full_coverage_colour(paint: DeclaredPaint, behind: NDArray[np.float64]) -> NDArray[np.float64]:
+    """8-bit codes the paint shows at full coverage over each backdrop pixel (codes, ``(..., 3)``).
+
+    CSS source-over on encoded sRGB at the paint's opacity chain, kept to 8
+    bits: what a browser draws (:func:`~alpha_audit.color.composite_paint` ``css``).
+
+    >>> paint = DeclaredPaint((1.0, 1.0, 1.0), 0.4, ("fill",), False, "white")
+    >>> full_coverage_colour(paint, np.array([[0.0, 0.0, 0.0]])).tolist()
+    [[102.0, 102.0, 102.0]]
+    """
+    assert paint.color is not None  # only declared colours have a prediction
+    shown = composite_paint(paint.color, from_8bit(behind), 1.0, min(1.0, paint.opacity), "css")
+    return to_8bit(shown).astype(np.float64)
+
+
+def _segment_distance(
+    drawn: NDArray[np.float64], behind: NDArray[np.float64], full: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Distance (codes) from each drawn colour to the segment backdrop -> full colour, and
+    where along it (0 the backdrop, 1 the full colour) its nearest point lies."""
+    span = full - behind
+    norm = (span * span).sum(axis=-1)
+    t = np.where(norm > 0, ((drawn - behind) * span).sum(axis=-1) / np.where(norm > 0, norm, 1), 0)
+    t = np.clip(t, 0.0, 1.0)
+    gap = drawn - behind - t[..., np.newaxis] * span
+    return np.sqrt((gap * gap).sum(axis=-1)), t
+
+
+def _plateau(
     drawn: NDArray[np.float64],
     behind: NDArray[np.float64],
+    pool: NDArray[np.bool_],
+    interior: NDArray[np.bool_],
+    least: int,
+) -> NDArray[np.bool_] | None:
+    """The pixels of ``pool`` at the paint's extreme: the most frequent drawn colour among
+    those furthest from their backdrop, shared by ``least`` pixels, one of them interior."""
+    if not pool.any():
+        return None
+    codes = drawn[pool]
+    keys = pack_8bit(codes)
+    colours, first, group, counts = np.unique(
+        keys, return_index=True, return_inverse=True, return_counts=True
+    )
+    inner = np.bincount(group, weights=interior[pool].astype(np.float64), minlength=colours.size)
+    reach = np.sqrt(((codes - behind[pool]) ** 2).sum(axis=-1))
+    # A plateau's distance from its backdrop: its median pixel's (a gradient varies it).
+    order = np.lexsort((reach, group))
+    starts = np.searchsorted(group[order], np.arange(colours.size))
+    median = reach[order][starts + (counts - 1) // 2]
+    eligible = (counts >= least) & (inner > 0)
+    if not eligible.any():
+        return None
+    top = median[eligible].max()
+    near = eligible & (median >= top - math.sqrt(3.0) * FULL_TOLERANCE)
+    chosen = codes[first[np.argmax(np.where(near, counts, -1))]]
+    plateau: NDArray[np.bool_] = pool & (np.abs(drawn - chosen).max(axis=-1) <= FULL_TOLERANCE)
+    return plateau
+
+
+@dataclass(frozen=True)
+class _Found:
+    """A paint's fully covered pixels and the full-coverage colour per pixel (codes)."""
+
+    basis: Basis | None  # None: could not measure
+    full: NDArray[np.bool_]
+    target: NDArray[np.float64] | None  # (H, W, 3), None when could not measure
+
+
+def _find_full(
+    drawn: NDArray[np.float64],
+    hidden: NDArray[np.float64],
+    inside: NDArray[np.bool_],
+    touched: NDArray[np.bool_],
     paints: Sequence[DeclaredPaint],
-) -> NDArray[np.int64]:
-    """Paint index per pixel (-1 for none): nearest css-composited colour, then spread."""
-    labels = np.full(full.shape, -1, dtype=np.int64)
-    known = [k for k, p in enumerate(paints) if p.color is not None]
-    if len(known) <= 1:
-        labels[touched] = known[0] if known else 0
-        return labels
-    b_lin = srgb_decode(behind[full] / 255.0)
-    distances = []
-    for k in known:
-        paint = paints[k]
-        assert paint.color is not None  # known paints have a colour
-        shown = composite_paint(paint.color, b_lin, 1.0, min(1.0, paint.opacity), "css")
-        codes = np.rint(np.clip(_encode(shown), 0, 1) * 255.0)
-        distances.append(np.abs(codes - drawn[full]).sum(axis=-1))
-    nearest = np.asarray(known)[np.argmin(np.stack(distances), axis=0)]
-    labels[full] = nearest
-    return _spread(labels, touched)
+    scale: int,
+) -> list[_Found]:
+    """Each paint's fully covered pixels (see the module's docstring)."""
+    shape = touched.shape
+    targets = [full_coverage_colour(p, hidden) if p.color is not None else None for p in paints]
+    # Nothing drawn at all: a paint whose full colour is the backdrop is invisible there.
+    eligible = touched if touched.any() else inside
+    gap = np.stack(
+        [
+            np.abs(drawn - t).max(axis=-1) if t is not None else np.full(shape, np.inf)
+            for t in targets
+        ]
+    )
+    nearest = np.argmin(gap, axis=0)
+    matched = eligible & (gap.min(axis=0) <= FULL_TOLERANCE)
+    found: list[_Found | None] = [None] * len(paints)
+    for k, target in enumerate(targets):
+        full = matched & (nearest == k)
+        if target is not None and full.any():
+            found[k] = _Found(Basis.DECLARED, full, target)
+    # Pixels the measured paints explain (fully covered, or a mix with the backdrop) are no
+    # other paint's; what is left may be a paint the computed colour does not explain.
+    explained = np.zeros(shape, dtype=bool)
+    for f in found:
+        if f is not None and f.target is not None:
+            explained |= f.full | (_segment_distance(drawn, hidden, f.target)[0] <= _ON_SEGMENT)
+    interior = _erode(touched)
+    out = []
+    for k, f in enumerate(found):
+        if f is None:
+            full = _plateau(drawn, hidden, touched & ~explained, interior, plateau_pixels(scale))
+            target = targets[k]
+            if full is not None and target is not None:
+                # Mixes of the declared colour with the backdrop: partial coverage (a stroke
+                # under 2 device pixels), unless deep inside a shape (its 5 x 5 neighbourhood
+                # touched), where the geometry covers the pixel and something else (a filter's
+                # opacity) takes the colour towards the backdrop.
+                distance, along = _segment_distance(drawn[full], hidden[full], target[full])
+                on_segment = np.median(distance) <= _ON_SEGMENT and np.median(along) < 1.0
+                if on_segment and not (full & _erode(interior)).any():
+                    full = None
+            if full is None:
+                f = _Found(None, np.zeros(shape, dtype=bool), target)
+            else:
+                plateau = np.broadcast_to(np.median(drawn[full], axis=0), drawn.shape).copy()
+                f = _Found(Basis.PLATEAU, full, plateau)
+        out.append(f)
+    return out
 
 
-def _encode(linear: NDArray[np.float64]) -> NDArray[np.float64]:
-    from alpha_audit.color import srgb_encode
-
-    return srgb_encode(linear)
+def _coverage(
+    drawn: NDArray[np.float64],
+    hidden: NDArray[np.float64],
+    touched: NDArray[np.bool_],
+    found: _Found,
+) -> Coverage:
+    """Coverage figures of a paint's touched pixels, relative to its full-coverage colour."""
+    full = found.full
+    if found.target is None or not touched.any():
+        return Coverage(int(touched.sum()), int(full.sum()), 0.0, math.nan, math.nan)
+    span = found.target[touched] - hidden[touched]
+    norm = (span * span).sum(axis=-1)
+    diff = drawn[touched] - hidden[touched]
+    q = np.where(norm > 0, (diff * span).sum(axis=-1) / np.where(norm > 0, norm, 1), 1.0)
+    q = np.where(full[touched], 1.0, np.clip(q, 0.0, 1.0))
+    stats = coverage_stats(q)
+    return Coverage(int(touched.sum()), int(full.sum()), stats.ink, stats.q50, stats.full_share)
 
 
 def ring_width(scale: int) -> int:
@@ -246,6 +403,29 @@ def icon_region(
         slice(max(0, y0 - pad), min(h_px, y1 + pad)),
         slice(max(0, x0 - pad), min(w_px, x1 + pad)),
     )
+
+
+def _limit(
+    drawn: NDArray[np.float64], behind: NDArray[np.float64]
+) -> tuple[float, NDArray[np.float64], NDArray[np.float64]]:
+    """The least judged contrast of a paint's fully covered pixels (codes ``(n, 3)``), and the
+    pair of colours giving it.
+
+    On each backdrop colour the paint shows its most frequent drawn colour there, so a
+    pixel one code off (an edge at 99 % coverage, an engine's rounding) never limits
+    where the paint's own colour is beside it.
+    """
+    keys = pack_8bit(behind) * (1 << 24) + pack_8bit(drawn)
+    pairs, first, counts = np.unique(keys, return_index=True, return_counts=True)
+    on = pairs >> 24
+    order = np.lexsort((-counts, on))  # by backdrop, the most frequent drawn colour first
+    modal = first[order[np.r_[True, on[order][1:] != on[order][:-1]]]]
+    shown, canvas = drawn[modal], behind[modal]
+    per_pair = judged_contrast(
+        from_8bit(shown.astype(np.uint8)), from_8bit(canvas.astype(np.uint8))
+    )
+    k = int(np.argmin(per_pair))
+    return float(per_pair[k]), shown[k], canvas[k]
 
 
 def icon_name(icon: FoundIcon, manifest_icon: Icon | None) -> str:
@@ -279,46 +459,37 @@ def _measure_icon(
         cols.start - grown_cols.start : cols.stop - grown_cols.start,
     ] = True
     touched = inside & (np.abs(drawn_all - hidden_all).max(axis=-1) > 0)
-    full = _erode(touched)
-    if touched.any() and not full.any():
-        # Hairlines: no interior at this scale; the strongest differences stand in for it.
-        strength = np.abs(drawn_all - hidden_all).max(axis=-1)
-        full = touched & (strength >= 0.9 * strength[touched].max())
+    candidates = _erode(touched)
     around_mask = _dilate(touched, ring) & ~touched
+    around = around_lin = None
+    if around_mask.any():
+        around, around_lin = _hex(np.median(hidden_all[around_mask], axis=0))
     paints = declared_paints(icon) or (DeclaredPaint(None, 1.0, ("image",), False, "image"),)
-    labels = _assign(full, touched, drawn_all, hidden_all, paints)
+    found = _find_full(drawn_all, hidden_all, inside, touched, paints, capture.scale)
+    # Edge pixels follow their nearest fully covered pixel (for coverage and candidates only).
+    labels = np.full(touched.shape, -1, dtype=np.int64)
+    for k, f in enumerate(found):
+        labels[f.full] = k
+    labels = _spread(labels, touched) if len(paints) > 1 else np.where(touched, 0, -1)
     name = icon_name(icon, manifest_icon)
     out = []
-    for k, paint in enumerate(paints):
-        mine = labels == k
-        mine_full = full & mine
-        drawn = behind = around = None
-        drawn_lin = behind_lin = around_lin = None
-        worst = median = None
+    for k, (paint, f) in enumerate(zip(paints, found, strict=True)):
+        drawn = behind = None
+        drawn_lin = behind_lin = None
+        worst = median = gated = None
         predictions: tuple[Prediction, ...] = ()
         model_source = model_alpha = model_opacity = drift = None
-        coverage = Coverage(0, 0, 0.0, math.nan, math.nan)
-        if mine_full.any():
-            d_codes = drawn_all[mine_full]
-            b_codes = hidden_all[mine_full]
-            drawn, drawn_lin = _hex(np.median(d_codes, axis=0))
-            behind, behind_lin = _hex(np.median(b_codes, axis=0))
-            if around_mask.any():
-                around, around_lin = _hex(np.median(hidden_all[around_mask], axis=0))
-            per_pixel = contrast_ratio(from_8bit(d_codes), from_8bit(b_codes))
-            worst, median = float(per_pixel.min()), float(np.median(per_pixel))
-            # Coverage: the share of the way from backdrop to drawn colour, per touched pixel.
-            p_codes = np.median(d_codes, axis=0)
-            t = touched & mine
-            diff = drawn_all[t] - hidden_all[t]
-            span = p_codes - hidden_all[t]
-            norm = (span * span).sum(axis=-1)
-            q = np.where(norm > 0, (diff * span).sum(axis=-1) / np.where(norm > 0, norm, 1), 1.0)
-            q = np.clip(q, 0.0, 1.0)
-            stats = coverage_stats(q)
-            coverage = Coverage(
-                int(t.sum()), int(mine_full.sum()), stats.ink, stats.q50, stats.full_share
+        mine = labels == k
+        if (candidates & mine).any():
+            per_pixel = contrast_ratio(
+                from_8bit(drawn_all[candidates & mine]), from_8bit(hidden_all[candidates & mine])
             )
+            worst, median = float(per_pixel.min()), float(np.median(per_pixel))
+        if f.full.any():
+            # drawn on behind: the pair that limits (the gated contrast is theirs).
+            gated, pair_drawn, pair_behind = _limit(drawn_all[f.full], hidden_all[f.full])
+            drawn, drawn_lin = _hex(pair_drawn)
+            behind, behind_lin = _hex(pair_behind)
             source, alpha = paint.color, 1.0
             if manifest_icon is not None and (paint.current or len(paints) == 1):
                 source, alpha = manifest_icon.linear, float(manifest_icon.alpha)
@@ -331,11 +502,6 @@ def _measure_icon(
             "image"
             if paint.color is None
             else ("currentColor" if paint.current else linear_to_hex(paint.color))
-        )
-        gated = (
-            None
-            if drawn_lin is None or behind_lin is None
-            else float(judged_contrast(drawn_lin, behind_lin))
         )
         out.append(
             MeasuredPaint(
@@ -358,7 +524,7 @@ def _measure_icon(
                 behind_linear=behind_lin,
                 around=around,
                 around_linear=around_lin,
-                coverage=coverage,
+                coverage=_coverage(drawn_all, hidden_all, touched & mine, f),
                 contrast=gated,
                 contrast_worst=worst,
                 contrast_median=median,
@@ -368,7 +534,8 @@ def _measure_icon(
                 predictions=predictions,
                 render_drift=drift,
                 box=icon.box,
-                status=MEASURED if gated is not None else NO_INTERIOR,
+                status=MEASURED if gated is not None else UNMEASURED,
+                basis=f.basis,
                 file=page.file,
                 locations=() if locate is None else locate(icon, paint.index),
             )
