@@ -47,11 +47,13 @@ TEST_WORKERS ?= auto
 test: lint browser dist fixtures
 	ALPHA_AUDIT_DIST=$(CURDIR)/dist $(BIN)/pytest -n $(TEST_WORKERS) --dist loadgroup
 
-## lint: ruff's lint and format checks, then mypy --strict on src/alpha_audit ([tool.mypy])
+## lint: ruff's lint and format checks, mypy --strict on src/alpha_audit ([tool.mypy]), then
+## the layers as import contracts ([tool.importlinter]: a wrong import fails here)
 lint: $(STAMP)
 	$(BIN)/ruff check src tests benchmarks tools
 	$(BIN)/ruff format --check src tests benchmarks tools
 	$(BIN)/mypy
+	$(BIN)/lint-imports --no-logo
 
 format: $(STAMP)
 	$(BIN)/ruff format src tests benchmarks tools
@@ -61,4 +63,5 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/run.py
 
 clean:
-	rm -rf $(VENV) build dist src/*.egg-info .pytest_cache .hypothesis .ruff_cache .mypy_cache
+	rm -rf $(VENV) build dist src/*.egg-info .pytest_cache .hypothesis .ruff_cache .mypy_cache \
+	  .import_linter_cache

@@ -22,6 +22,7 @@ import time
 from pathlib import Path
 
 from alpha_audit.browser import Chromium, Clip, LaunchOptions
+from alpha_audit.browser.server import BlockingProxy, PageServer
 from alpha_audit.pages import (
     RenderConfig,
     StorybookSource,
@@ -30,7 +31,6 @@ from alpha_audit.pages import (
     state_matrix,
 )
 from alpha_audit.pages.capture import _PROBE, _SETTLED, _STORY_READY, _probe_source
-from alpha_audit.pages.server import BlockingProxy, PageServer
 from alpha_audit.pages.sources import targets
 
 REPO = Path(__file__).resolve().parents[1]

@@ -11,8 +11,15 @@ def solid_paints(iconset, problems=(), sizes=None):  # type: ignore[no-untyped-d
     ``problems`` are icons that "could not be rendered" (their names need not be in the set).
     """
     from alpha_audit.color.coverage import CoverageStats
-    from alpha_audit.load.paint_masks import IconPaints, PaintCoverage, PaintSet
-    from alpha_audit.load.paints import CURRENT_COLOR, Paint, PaintGroup, SvgPaints
+    from alpha_audit.paints import (
+        CURRENT_COLOR,
+        IconPaints,
+        Paint,
+        PaintCoverage,
+        PaintGroup,
+        PaintSet,
+        SvgPaints,
+    )
 
     solid = CoverageStats(q50=1.0, full_share=1.0, ink=10.0, pixels=10)
     gone = {p.icon for p in problems}

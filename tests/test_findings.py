@@ -18,9 +18,17 @@ from alpha_audit.color import (
 from alpha_audit.color.coverage import CoverageStats
 from alpha_audit.errors import InputError, UsageError
 from alpha_audit.findings import findings_for
-from alpha_audit.load.paint_masks import IconPaints, PaintCoverage, PaintSet, measure_paints
-from alpha_audit.load.paints import CURRENT_COLOR, Paint, PaintGroup, SvgPaints
+from alpha_audit.load.paint_masks import measure_paints
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
+from alpha_audit.paints import (
+    CURRENT_COLOR,
+    IconPaints,
+    Paint,
+    PaintCoverage,
+    PaintGroup,
+    PaintSet,
+    SvgPaints,
+)
 from alpha_audit.policy import Policy
 from alpha_audit.rows import audit, check_pipeline, resolve_pipeline
 from alpha_audit.rules import Rule

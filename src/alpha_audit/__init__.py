@@ -49,7 +49,7 @@ _EXPORTS: dict[str, tuple[str, str]] = {
     "resolve_config": ("alpha_audit.load.config", "resolve_config"),
     "load_config": ("alpha_audit.load.config", "load_config"),
     "project_config": ("alpha_audit.load.config", "project_config"),
-    "IconProblem": ("alpha_audit.load.svg", "IconProblem"),
+    "IconProblem": ("alpha_audit.model", "IconProblem"),
     "MaskSet": ("alpha_audit.load.svg", "MaskSet"),
     "RenderLimits": ("alpha_audit.load.svg", "RenderLimits"),
     "rasterize": ("alpha_audit.load.svg", "rasterize"),
@@ -59,7 +59,7 @@ _EXPORTS: dict[str, tuple[str, str]] = {
     "bundled_theme": ("alpha_audit.bundled", "bundled_theme"),
     "bundled_themes": ("alpha_audit.bundled", "bundled_themes"),
     "iconset_source": ("alpha_audit.bundled", "iconset_source"),
-    "load_bundled_themes": ("alpha_audit.bundled", "load_bundled_themes"),
+    "load_bundled_themes": ("alpha_audit.load.theme", "load_bundled_themes"),
     "theme_source": ("alpha_audit.bundled", "theme_source"),
     "AuditResult": ("alpha_audit.rows", "AuditResult"),
     "CanvasSummary": ("alpha_audit.rows", "CanvasSummary"),
@@ -80,8 +80,8 @@ _EXPORTS: dict[str, tuple[str, str]] = {
     "GateResult": ("alpha_audit.gate", "GateResult"),
     "baseline_document": ("alpha_audit.gate", "baseline_document"),
     "evaluate": ("alpha_audit.gate", "evaluate"),
-    "parse_baseline": ("alpha_audit.load.baseline", "parse_baseline"),
-    "read_baseline": ("alpha_audit.load.baseline", "read_baseline"),
+    "parse_baseline": ("alpha_audit.baseline", "parse_baseline"),
+    "read_baseline": ("alpha_audit.baseline", "read_baseline"),
     "with_fixes": ("alpha_audit.fixes", "with_fixes"),
     "check_project": ("alpha_audit.pipeline", "check_project"),
     "CheckFormat": ("alpha_audit.render", "CheckFormat"),
@@ -212,13 +212,16 @@ __all__ = [
 ]
 
 if TYPE_CHECKING:  # for type checkers only; at run time __getattr__ imports on demand
+    from alpha_audit.baseline import (
+        parse_baseline,
+        read_baseline,
+    )
     from alpha_audit.bundled import (
         bundled_iconset,
         bundled_iconsets,
         bundled_theme,
         bundled_themes,
         iconset_source,
-        load_bundled_themes,
         theme_source,
     )
     from alpha_audit.color import (
@@ -258,10 +261,6 @@ if TYPE_CHECKING:  # for type checkers only; at run time __getattr__ imports on 
         baseline_document,
         evaluate,
     )
-    from alpha_audit.load.baseline import (
-        parse_baseline,
-        read_baseline,
-    )
     from alpha_audit.load.config import (
         Overrides,
         ProjectConfig,
@@ -272,14 +271,9 @@ if TYPE_CHECKING:  # for type checkers only; at run time __getattr__ imports on 
     from alpha_audit.load.iconset import (
         load_iconset,
     )
-    from alpha_audit.load.svg import (
-        IconProblem,
-        MaskSet,
-        RenderLimits,
-        rasterize,
-        rasterize_icons,
-    )
+    from alpha_audit.load.svg import MaskSet, RenderLimits, rasterize, rasterize_icons
     from alpha_audit.load.theme import (
+        load_bundled_themes,
         load_theme,
     )
     from alpha_audit.load.tokens import (
@@ -291,6 +285,7 @@ if TYPE_CHECKING:  # for type checkers only; at run time __getattr__ imports on 
     from alpha_audit.model import (
         Canvas,
         Icon,
+        IconProblem,
         IconSet,
         Theme,
     )

@@ -4,7 +4,7 @@
 and decides the verdict once: a finding of a failing rule fails the gate unless
 an exemption (with its reason) or the baseline covers it; findings of
 reported rules are warnings.  The baseline is a :class:`Baseline`: the keys of
-a baseline file (:mod:`alpha_audit.load.baseline`) or of the base revision's
+a baseline file (:mod:`alpha_audit.baseline`) or of the base revision's
 own findings (``check --base``), matched the same way.  Findings come out
 worst first (:func:`~alpha_audit.findings.ranked`).  Pure computation:
 nothing is printed.

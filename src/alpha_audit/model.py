@@ -31,6 +31,7 @@ __all__ = [
     "Edit",
     "GamutAdjustment",
     "Icon",
+    "IconProblem",
     "IconSet",
     "Location",
     "Mode",
@@ -277,6 +278,15 @@ class Theme:
             return done[canvas.name]
 
         return replace(self, canvases=tuple(flat(c) for c in self.canvases))
+
+
+@dataclass(frozen=True)
+class IconProblem:
+    """An icon that could not be used, with the reason."""
+
+    icon: str
+    file: Path
+    message: str
 
 
 @dataclass(frozen=True)

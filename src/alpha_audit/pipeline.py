@@ -17,19 +17,20 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from alpha_audit.baseline import read_baseline
 from alpha_audit.color import Pipeline
 from alpha_audit.color.metrics import preload_colour
 from alpha_audit.errors import AlphaAuditError, SvgError, UsageError
 from alpha_audit.findings import Finding
 from alpha_audit.fixes import with_fixes
 from alpha_audit.gate import Baseline, collect, judge
-from alpha_audit.load.baseline import read_baseline
 from alpha_audit.load.config import Overrides, ProjectConfig
 from alpha_audit.load.iconset import load_iconset
-from alpha_audit.load.paint_masks import PaintSet, measure_paints
-from alpha_audit.load.svg import IconProblem, RenderLimits
+from alpha_audit.load.paint_masks import measure_paints
+from alpha_audit.load.svg import RenderLimits
 from alpha_audit.load.theme import load_theme
-from alpha_audit.model import GamutAdjustment, IconSet, Theme
+from alpha_audit.model import GamutAdjustment, IconProblem, IconSet, Theme
+from alpha_audit.paints import PaintSet
 from alpha_audit.results import CheckReport, Progress
 from alpha_audit.rows import (
     AuditResult,

@@ -57,11 +57,9 @@ from alpha_audit.color.nearest import (
     iter_pairs,
 )
 from alpha_audit.errors import InputError, UsageError
-from alpha_audit.load.paint_masks import PaintSet
-from alpha_audit.load.paints import CURRENT_COLOR
-from alpha_audit.load.svg import IconProblem
-from alpha_audit.model import Icon, IconSet, Location, Theme
+from alpha_audit.model import Icon, IconProblem, IconSet, Location, Theme
 from alpha_audit.observed import MeasuredPaint
+from alpha_audit.paints import CURRENT_COLOR, PaintSet
 from alpha_audit.ranges import DEFAULT_COMBINATIONS
 
 __all__ = [

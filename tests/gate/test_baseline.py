@@ -9,10 +9,10 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
+from alpha_audit.baseline import parse_baseline
 from alpha_audit.cli import app
 from alpha_audit.errors import InputError
 from alpha_audit.gate import baseline_document, evaluate
-from alpha_audit.load.baseline import parse_baseline
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
 from alpha_audit.policy import Policy
 from alpha_audit.rows import audit

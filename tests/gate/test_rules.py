@@ -15,8 +15,7 @@ from hypothesis import strategies as st
 
 from alpha_audit.color import CONTRAST_TOLERANCE, pack_8bit
 from alpha_audit.gate import evaluate
-from alpha_audit.load.svg import IconProblem
-from alpha_audit.model import Canvas, Icon, IconSet, Theme
+from alpha_audit.model import Canvas, Icon, IconProblem, IconSet, Theme
 from alpha_audit.policy import (
     CONTRAST_RULES,
     Exemption,

@@ -9,8 +9,9 @@ import numpy as np
 import pytest
 
 from alpha_audit.load.paint_masks import MAX_PAINT_GROUPS, measure_paints
-from alpha_audit.load.paints import CURRENT_COLOR, isolate_paints
+from alpha_audit.load.paints import isolate_paints
 from alpha_audit.load.svg import rasterize
+from alpha_audit.paints import CURRENT_COLOR
 
 NS = 'xmlns="http://www.w3.org/2000/svg"'
 LUCIDE_LIKE = (

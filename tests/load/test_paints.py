@@ -7,13 +7,8 @@ import re
 import pytest
 
 from alpha_audit.errors import SvgError
-from alpha_audit.load.paints import (
-    CURRENT_COLOR,
-    MAX_DEPTH,
-    MAX_ELEMENTS,
-    extract_paints,
-    isolate_paints,
-)
+from alpha_audit.load.paints import MAX_DEPTH, MAX_ELEMENTS, extract_paints, isolate_paints
+from alpha_audit.paints import CURRENT_COLOR
 
 NS = 'xmlns="http://www.w3.org/2000/svg"'
 

@@ -15,9 +15,10 @@ import numpy as np
 import pytest
 
 from alpha_audit.load import render_cache, sandbox
-from alpha_audit.load.paint_masks import PaintSet, measure_paints, paint_masks
+from alpha_audit.load.paint_masks import measure_paints, paint_masks
 from alpha_audit.load.render_cache import FILE_NAME, RenderCache, entry_key
 from alpha_audit.load.svg import rasterize_icons
+from alpha_audit.paints import PaintSet
 
 NS = 'xmlns="http://www.w3.org/2000/svg"'
 ICONS = {

@@ -15,9 +15,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from alpha_audit.baseline import parse_baseline
 from alpha_audit.errors import UsageError
 from alpha_audit.gate import baseline_document
-from alpha_audit.load.baseline import parse_baseline
 from alpha_audit.load.iconset import load_iconset
 from alpha_audit.model import Location
 from alpha_audit.observed import UNMEASURED, MeasuredPaint, PageRun

@@ -33,6 +33,7 @@ import tinycss2
 from coloraide import Color
 
 from alpha_audit.browser import Browser, LaunchOptions, engine_class
+from alpha_audit.browser.server import PageServer
 from alpha_audit.findings import Finding
 from alpha_audit.gate import judge
 from alpha_audit.pages.capture import _PROBE, FoundIcon, capture_page
@@ -42,7 +43,6 @@ from alpha_audit.pages.declarations import (
     finding_locations,
     paint_locations,
 )
-from alpha_audit.pages.server import PageServer
 from alpha_audit.pages.sources import FolderSource, StorybookSource, Target, targets
 from alpha_audit.pages.states import State
 from alpha_audit.policy import Policy

@@ -20,8 +20,8 @@ from urllib.parse import quote
 import pytest
 
 from alpha_audit.browser import Chromium
+from alpha_audit.browser.server import PageServer
 from alpha_audit.pages import FolderSource, RenderConfig, audit_pages
-from alpha_audit.pages.server import PageServer
 from alpha_audit.pages.sources import UrlSource
 
 SECRET = "SECRET-"  # every file no page may read holds it

@@ -243,9 +243,9 @@ def test_a_storybook_built_with_css_maps_is_named_in_its_sources(
     the failing alert's colour is named in ``.storybook/theme.css``, from devtools' ranges and
     from the probe's walk (Chromium without its devtools answer, as Firefox and WebKit)."""
     from alpha_audit.browser import LaunchOptions, engine_class
+    from alpha_audit.browser.server import PageServer
     from alpha_audit.pages.capture import capture_page
     from alpha_audit.pages.declarations import paint_locations
-    from alpha_audit.pages.server import PageServer
     from alpha_audit.pages.sources import StorybookSource, targets
     from alpha_audit.pages.states import State
 

@@ -18,8 +18,8 @@ from pathlib import Path
 import pytest
 
 from alpha_audit.browser import ENGINES
+from alpha_audit.browser.server import PageServer
 from alpha_audit.pages import FolderSource, RenderConfig, audit_pages
-from alpha_audit.pages.server import PageServer
 
 ICON = (
     '<svg data-icon="x" width="24" height="24" viewBox="0 0 24 24">'

@@ -13,8 +13,7 @@ import pytest
 
 from alpha_audit.gate import evaluate
 from alpha_audit.load.config import ProjectConfig
-from alpha_audit.load.svg import IconProblem
-from alpha_audit.model import Canvas, Icon, IconSet, Theme
+from alpha_audit.model import Canvas, Icon, IconProblem, IconSet, Theme
 from alpha_audit.policy import Policy
 from alpha_audit.render import CheckFormat
 from alpha_audit.render.common import RenderOptions

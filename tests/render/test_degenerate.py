@@ -10,8 +10,7 @@ from typer.testing import CliRunner
 
 from alpha_audit.cli import app
 from alpha_audit.gate import VACUOUS, evaluate
-from alpha_audit.load.svg import IconProblem
-from alpha_audit.model import Canvas, Icon, IconSet, Theme
+from alpha_audit.model import Canvas, Icon, IconProblem, IconSet, Theme
 from alpha_audit.policy import Policy
 from alpha_audit.rows import audit
 from helpers import solid_paints

@@ -23,8 +23,7 @@ from markdown_it import MarkdownIt
 
 from alpha_audit.gate import evaluate
 from alpha_audit.load.config import ProjectConfig
-from alpha_audit.load.svg import IconProblem
-from alpha_audit.model import Canvas, Icon, IconSet, Theme
+from alpha_audit.model import Canvas, Icon, IconProblem, IconSet, Theme
 from alpha_audit.pair import pair_report
 from alpha_audit.policy import Policy
 from alpha_audit.render import CheckFormat, PairFormat, ReproduceFormat, SuggestFormat

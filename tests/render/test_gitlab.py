@@ -6,8 +6,7 @@ import json
 from pathlib import Path
 
 from alpha_audit.gate import evaluate
-from alpha_audit.load.svg import IconProblem
-from alpha_audit.model import Canvas, Icon, IconSet, Theme
+from alpha_audit.model import Canvas, Icon, IconProblem, IconSet, Theme
 from alpha_audit.policy import Exemption, Policy
 from alpha_audit.render import CheckFormat, RenderOptions, render_check
 from alpha_audit.render.lines import by_line

@@ -165,7 +165,7 @@ def test_pair_table_keeps_every_figure_whole(width: int) -> None:
 
 @pytest.mark.parametrize("width", WIDTHS)
 def test_themes_table_keeps_every_hex_whole(width: int) -> None:
-    from alpha_audit.bundled import load_bundled_themes
+    from alpha_audit.load.theme import load_bundled_themes
     from alpha_audit.render.common import to_text
     from alpha_audit.render.themes import _table
 

@@ -346,8 +346,8 @@ def test_explicit_tags_on_bad_scalars_are_clean_input_errors(tmp_path: Path, val
     ],
 )
 def test_bad_baselines_name_the_file(tmp_path: Path, entries: str, message: str) -> None:
+    from alpha_audit.baseline import read_baseline
     from alpha_audit.gate import BASELINE_SCHEMA
-    from alpha_audit.load.baseline import read_baseline
 
     path = tmp_path / "base.json"
     path.write_text(f'{{"schema": "{BASELINE_SCHEMA}", "entries": {entries}}}')

@@ -21,9 +21,16 @@ import numpy as np
 import pytest
 
 from alpha_audit.color.coverage import CoverageStats
-from alpha_audit.load.paint_masks import IconPaints, PaintCoverage, PaintSet
-from alpha_audit.load.paints import CURRENT_COLOR, Paint, PaintGroup, SvgPaints
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
+from alpha_audit.paints import (
+    CURRENT_COLOR,
+    IconPaints,
+    Paint,
+    PaintCoverage,
+    PaintGroup,
+    PaintSet,
+    SvgPaints,
+)
 from alpha_audit.policy import Policy
 from alpha_audit.rows import audit
 from alpha_audit.rules import Rule

@@ -3,7 +3,8 @@
 ``ENGINES`` is the registry, in the paper's order (Chrome, Firefox, WebKit);
 :func:`installed_engines` lists those present on this machine and
 :func:`open_browser` starts one by name.  A new engine is one module and one
-registry line.
+registry line.  The loopback servers a browser loads pages from, and the proxy
+that refuses everything else, are :mod:`alpha_audit.browser.server`.
 """
 
 from __future__ import annotations

@@ -17,8 +17,6 @@ from importlib.resources import files
 from pathlib import Path
 
 from alpha_audit.errors import UsageError
-from alpha_audit.load.theme import load_theme
-from alpha_audit.model import Theme
 
 __all__ = [
     "bundled_iconset",
@@ -26,7 +24,6 @@ __all__ = [
     "bundled_theme",
     "bundled_themes",
     "iconset_source",
-    "load_bundled_themes",
     "theme_source",
 ]
 
@@ -83,8 +80,3 @@ def iconset_source(arg: str | Path) -> Path:
     if not path.exists() and str(arg) in bundled_iconsets():
         return bundled_iconset(str(arg))
     return path
-
-
-def load_bundled_themes() -> tuple[tuple[str, Theme], ...]:
-    """Every bundled theme as ``(name, loaded theme)``, in name order."""
-    return tuple((name, load_theme(bundled_theme(name))) for name in bundled_themes())

@@ -176,9 +176,9 @@ def check_command(
     Example:
     [bold]alpha-audit check themes/github-primer.yaml examples/vibrant/iconset.yaml -a 1.2[/]
     """
+    from alpha_audit.baseline import read_baseline
     from alpha_audit.errors import UsageError
     from alpha_audit.gate import LEGACY_BASELINE_SCHEMA
-    from alpha_audit.load.baseline import read_baseline
     from alpha_audit.load.config import Overrides, resolve_config
     from alpha_audit.output import check_targets
     from alpha_audit.pipeline import base_baseline, check_project

@@ -184,8 +184,8 @@ def render_command(
 
     [bold]alpha-audit render storybook-static --globals theme:light --globals theme:dark[/]
     """
+    from alpha_audit.baseline import read_baseline
     from alpha_audit.cli.check import gate_status, pair_outputs, write_reports
-    from alpha_audit.load.baseline import read_baseline
     from alpha_audit.load.iconset import load_iconset
     from alpha_audit.output import check_targets
     from alpha_audit.pages import audit_pages, page_report

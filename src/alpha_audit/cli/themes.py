@@ -27,7 +27,7 @@ def themes_command(
 
     [bold]alpha-audit check github-primer vibrant[/]
     """
-    from alpha_audit.bundled import load_bundled_themes
+    from alpha_audit.load.theme import load_bundled_themes
 
     emit(fmt.renderer()(load_bundled_themes(), stdout_options()), None, False)
     return ExitStatus.OK

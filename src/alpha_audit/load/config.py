@@ -33,7 +33,6 @@ from alpha_audit.load.tokens.themes import TokenConfig, token_config_from_mappin
 from alpha_audit.load.yamldoc import MAX_YAML_BYTES, KeyPath, YamlDoc, format_key, load_yaml
 from alpha_audit.model import Span
 from alpha_audit.policy import Exemption, Policy
-from alpha_audit.rows import MAX_COMBINATIONS
 from alpha_audit.rules import DEFAULT_RULES, DEFAULT_WARNINGS, Level, Rule
 from alpha_audit.safe_text import describe_char, first_unsafe, safe_text
 
@@ -98,7 +97,7 @@ class ProjectConfig:
     gamut: GamutPolicy | None = None  # for theme and manifest colours; None: each file's own
     # Paint rows x canvases one check audits: the resource bound (docs/ci.md says how
     # memory scales with it).
-    max_combinations: int = MAX_COMBINATIONS
+    max_combinations: int = ranges.DEFAULT_COMBINATIONS
     # Where the config writes ``alpha:`` (findings point there); None: not written, or
     # overridden by --alpha.
     alpha_span: Span | None = field(default=None, compare=False)
@@ -417,7 +416,7 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
     alpha = threshold = None
     if "alpha" in data:
         alpha = read_number(doc, at("alpha"), data["alpha"], allowed=ranges.ALPHA)
-    max_combinations = MAX_COMBINATIONS
+    max_combinations = ranges.DEFAULT_COMBINATIONS
     if "max-combinations" in data:
         value = data["max-combinations"]
         number = read_number(doc, at("max-combinations"), value, allowed=ranges.COMBINATIONS)

@@ -33,18 +33,17 @@ from numpy.typing import NDArray
 
 from alpha_audit.color.coverage import CoverageStats, coverage_stats
 from alpha_audit.errors import SvgError
-from alpha_audit.load.paints import PaintGroup, SvgPaints, decode_paints, encode_paints
+from alpha_audit.load.paints import decode_paints, encode_paints
 from alpha_audit.load.render_cache import RenderCache, entry_key, open_default
 from alpha_audit.load.sandbox import PaintsReply, ReadPaints, RenderLimits, RenderPool
-from alpha_audit.load.svg import IconProblem, read_svg
+from alpha_audit.load.svg import read_svg
+from alpha_audit.model import IconProblem
+from alpha_audit.paints import IconPaints, PaintCoverage, PaintGroup, PaintSet, SvgPaints
 
 __all__ = [
     "MAX_PAINT_GROUPS",
     "IconMasks",
-    "IconPaints",
-    "PaintCoverage",
     "PaintMasks",
-    "PaintSet",
     "measure_paints",
     "paint_masks",
 ]
@@ -55,32 +54,6 @@ __all__ = [
 MAX_PAINT_GROUPS = 32
 
 Mask = NDArray[np.uint8]  # 8-bit coverage codes, alpha x 255
-
-
-@dataclass(frozen=True)
-class PaintCoverage:
-    """One paint group of one icon with its coverage at every size."""
-
-    group: PaintGroup
-    sizes: dict[int, CoverageStats]
-
-
-@dataclass(frozen=True)
-class IconPaints:
-    """An icon's paints, what was not audited, and each paint group's coverage."""
-
-    icon: str
-    file: Path
-    paints: SvgPaints
-    coverage: tuple[PaintCoverage, ...]
-
-
-@dataclass(frozen=True)
-class PaintSet:
-    """Per-icon paint coverage plus the icons that could not be read or rendered."""
-
-    icons: dict[str, IconPaints]
-    problems: tuple[IconProblem, ...]
 
 
 @dataclass(frozen=True)

@@ -45,9 +45,9 @@ import json
 import re
 import xml.etree.ElementTree as ET
 from collections.abc import Callable, Container, Iterator, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Literal, cast
+from typing import Any, cast
 
 import cssselect2
 import cssselect2.compiler
@@ -58,19 +58,14 @@ import tinycss2
 import tinycss2.color4
 
 from alpha_audit.errors import SvgError
+from alpha_audit.paints import CURRENT_COLOR, Paint, PaintGroup, SvgPaints, Unaudited
 
 __all__ = [
-    "CURRENT_COLOR",
     "MAX_DEPTH",
     "MAX_ELEMENTS",
     "MAX_ISOLATE_WORK",
     "MAX_MATCH_WORK",
     "MAX_SELECTORS",
-    "Paint",
-    "PaintGroup",
-    "PaintKind",
-    "SvgPaints",
-    "Unaudited",
     "decode_paints",
     "encode_paints",
     "extract_paints",
@@ -81,8 +76,6 @@ __all__ = [
 ]
 
 SVG_NS = "http://www.w3.org/2000/svg"
-CURRENT_COLOR = "currentColor"
-PaintKind = Literal["fill", "stroke"]
 
 # Limits on the in-process parse of an untrusted file (already capped at
 # MAX_SVG_BYTES by load.svg.read_svg).  Icons have tens of elements and a few
@@ -144,71 +137,6 @@ _INITIAL = {
     "stroke-width": "1",
     "visibility": "visible",
 }
-
-
-@dataclass(frozen=True)
-class Paint:
-    """One fill or stroke of one element.
-
-    ``color`` is ``#rrggbb`` (a fixed colour: it will not follow the theme) or
-    ``currentColor`` (the manifest colour).  ``opacity`` is effective: the
-    product of ``opacity`` on the element and every ancestor, the
-    ``fill-opacity`` or ``stroke-opacity``, and any alpha in the colour itself.
-    """
-
-    color: str
-    kind: PaintKind
-    opacity: float
-    element: str
-    line: int | None = None
-
-    @property
-    def fixed(self) -> bool:
-        """Whether the colour is hard-coded rather than ``currentColor``."""
-        return self.color != CURRENT_COLOR
-
-
-@dataclass(frozen=True)
-class Unaudited:
-    """Something the SVG draws that the audit cannot judge, naming the element."""
-
-    element: str
-    line: int | None
-    reason: str
-
-
-@dataclass(frozen=True)
-class PaintGroup:
-    """Paints that draw the same colour at the same effective opacity (one audit row each)."""
-
-    color: str
-    opacity: float
-    paints: tuple[Paint, ...]
-
-    @property
-    def key(self) -> tuple[str, float]:
-        """``(color, opacity)``, what :func:`isolate_paints` keeps."""
-        return (self.color, self.opacity)
-
-    @property
-    def fixed(self) -> bool:
-        """Whether the colour is hard-coded rather than ``currentColor``."""
-        return self.color != CURRENT_COLOR
-
-
-@dataclass(frozen=True)
-class SvgPaints:
-    """Every visible paint of one SVG, in document order, and what was not audited."""
-
-    paints: tuple[Paint, ...]
-    unaudited: tuple[Unaudited, ...] = field(default=())
-
-    def groups(self) -> tuple[PaintGroup, ...]:
-        """Paints grouped by ``(color, opacity)``, in order of first appearance."""
-        by_key: dict[tuple[str, float], list[Paint]] = {}
-        for p in self.paints:
-            by_key.setdefault((p.color, p.opacity), []).append(p)
-        return tuple(PaintGroup(c, o, tuple(ps)) for (c, o), ps in by_key.items())
 
 
 def extract_paints(svg: bytes, *, path: str | Path | None = None) -> SvgPaints:

@@ -20,13 +20,13 @@ from numpy.typing import NDArray
 from alpha_audit.errors import SvgError
 from alpha_audit.load.files import read_capped
 from alpha_audit.load.sandbox import RenderLimits, RenderPool
+from alpha_audit.model import IconProblem
 
 if TYPE_CHECKING:
     from alpha_audit.load.render_cache import RenderCache
 
 __all__ = [
     "MAX_SVG_BYTES",
-    "IconProblem",
     "MaskSet",
     "RenderLimits",
     "rasterize",
@@ -45,15 +45,6 @@ _NOT_SVG = {
     b"%PDF": "a PDF document",
     b"RIFF": "a RIFF (WebP/WAV) file",
 }
-
-
-@dataclass(frozen=True)
-class IconProblem:
-    """An icon that could not be used, with the reason."""
-
-    icon: str
-    file: Path
-    message: str
 
 
 def read_svg(path: str | Path) -> bytes:

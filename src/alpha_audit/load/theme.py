@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from alpha_audit import ranges
+from alpha_audit.bundled import bundled_theme, bundled_themes
 from alpha_audit.color import NON_TEXT_THRESHOLD, GamutPolicy
 from alpha_audit.errors import InputError
 from alpha_audit.load.fields import (
@@ -20,7 +21,7 @@ from alpha_audit.load.paths import PathRefused, contain_argument
 from alpha_audit.load.yamldoc import YamlDoc, load_yaml
 from alpha_audit.model import Canvas, GamutAdjustment, Theme
 
-__all__ = ["MAX_CANVASES", "load_theme", "theme_from_doc"]
+__all__ = ["MAX_CANVASES", "load_bundled_themes", "load_theme", "theme_from_doc"]
 
 MAX_CANVASES = 4096
 _THEME_KEYS = ("name", "threshold", "canvases", "description", "source", "pipeline", "gamut")
@@ -42,6 +43,11 @@ def load_theme(path: str | Path, *, gamut: GamutPolicy | None = None) -> Theme:
     except PathRefused as err:
         raise InputError(str(err), path=path) from err
     return theme_from_doc(load_yaml(path), gamut=gamut)
+
+
+def load_bundled_themes() -> tuple[tuple[str, Theme], ...]:
+    """Every bundled theme as ``(name, loaded theme)``, in name order."""
+    return tuple((name, load_theme(bundled_theme(name))) for name in bundled_themes())
 
 
 def read_layer_color(

@@ -37,9 +37,9 @@ import numpy as np
 from alpha_audit.color import Pipeline, from_8bit
 from alpha_audit.findings import colour_location
 from alpha_audit.gate import Baseline, CanvasKey, collect, judge
-from alpha_audit.load.paints import CURRENT_COLOR
 from alpha_audit.model import Canvas, Icon, IconSet, Location, Theme
 from alpha_audit.observed import MEASURED, MeasuredPaint, PageRun
+from alpha_audit.paints import CURRENT_COLOR
 from alpha_audit.policy import (
     RENDER_DRIFT_TOLERANCE,
     RENDER_POLICY,

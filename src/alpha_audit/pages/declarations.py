@@ -156,7 +156,7 @@ class ServedFiles:
     """From what the engine reports (served URLs) to files and lines of the project.
 
     ``local_file`` maps a URL to the file the page server serves there
-    (:meth:`~alpha_audit.pages.server.PageServer.local_file`), ``None`` for
+    (:meth:`~alpha_audit.browser.server.PageServer.local_file`), ``None`` for
     any other; ``root`` is the project root, outside which nothing is
     named.  Files, their rules and source maps are read once each; an
     instance may be shared by threads.

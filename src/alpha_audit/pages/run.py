@@ -24,6 +24,7 @@ from pathlib import Path
 from typing import NamedTuple
 
 from alpha_audit.browser import Browser, BrowserError, LaunchOptions, engine_class
+from alpha_audit.browser.server import BlockingProxy, PageServer
 from alpha_audit.errors import AlphaAuditError, UsageError
 from alpha_audit.model import IconSet, Location
 from alpha_audit.observed import BlockedRequest, MeasuredPaint, PageProblem, PageRun
@@ -33,7 +34,6 @@ from alpha_audit.pages.crops import CropStore
 from alpha_audit.pages.declarations import ServedFiles, paint_locations
 from alpha_audit.pages.mapping import ManifestIndex
 from alpha_audit.pages.measure import PageContext, measure_capture
-from alpha_audit.pages.server import BlockingProxy, PageServer
 from alpha_audit.pages.sources import FolderSource, StorybookSource, Target, targets, url_origin
 from alpha_audit.pages.states import State, globals_param
 from alpha_audit.pages.stillness import PageUnstable

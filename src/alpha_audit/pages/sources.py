@@ -3,7 +3,7 @@
 Each source lists its :class:`Target` pages: one per selected story
 (``iframe.html?id=...``, Storybook 8 to 10's ``index.json``), one per HTML
 file, or the URL itself.  Folders are served by alpha-audit's own loopback
-server (:mod:`alpha_audit.pages.server`) under a path of their own.
+server (:mod:`alpha_audit.browser.server`) under a path of their own.
 """
 
 from __future__ import annotations
@@ -234,7 +234,7 @@ def targets(sources: Sequence[Source]) -> list[Target]:
                 )
             except PathRefused as exc:
                 raise UsageError(str(exc), path=source.folder) from exc
-            # The server never serves a dot file (pages.server): such a page is not one.
+            # The server never serves a dot file (browser.server): such a page is not one.
             relatives = [(p, p.relative_to(source.folder)) for p in pages]
             shown = [(p, r.as_posix()) for p, r in relatives
                      if not any(part.startswith(".") for part in r.parts)]  # fmt: skip

@@ -43,8 +43,8 @@ from alpha_audit.color import (
 )
 from alpha_audit.color.composite import Pipeline
 from alpha_audit.errors import UsageError
-from alpha_audit.load.paints import CURRENT_COLOR
 from alpha_audit.model import Canvas, Icon
+from alpha_audit.paints import CURRENT_COLOR
 
 __all__ = [
     "DARK_GREY",

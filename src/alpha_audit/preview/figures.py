@@ -19,8 +19,8 @@ from numpy.typing import NDArray
 from alpha_audit.color.composite import Pipeline
 from alpha_audit.color.srgb import hex_to_linear
 from alpha_audit.load.paint_masks import PaintMasks
-from alpha_audit.load.paints import CURRENT_COLOR
 from alpha_audit.model import Icon, IconSet, Theme
+from alpha_audit.paints import CURRENT_COLOR
 from alpha_audit.preview.compose import Drawing, Layer, solid_drawing
 from alpha_audit.rows import AuditResult, audit, with_alphas
 

@@ -13,9 +13,8 @@ from alpha_audit.color import GamutPolicy
 from alpha_audit.errors import SvgError, UsageError
 from alpha_audit.load.iconset import load_iconset
 from alpha_audit.load.paint_masks import paint_masks
-from alpha_audit.load.svg import IconProblem
 from alpha_audit.load.theme import load_theme
-from alpha_audit.model import Canvas, IconSet, Theme
+from alpha_audit.model import Canvas, IconProblem, IconSet, Theme
 from alpha_audit.output import make_folder, write_text
 from alpha_audit.preview.compose import near_source_canvases
 from alpha_audit.preview.figures import preview_rows

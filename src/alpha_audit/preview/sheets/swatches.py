@@ -14,8 +14,8 @@ import numpy as np
 
 from alpha_audit.color import judged_contrast, parse_color, srgb_decode, to_8bit
 from alpha_audit.color.composite import Pipeline, composite_paint
-from alpha_audit.load.paints import CURRENT_COLOR
 from alpha_audit.model import IconSet
+from alpha_audit.paints import CURRENT_COLOR
 from alpha_audit.preview.compose import Drawing, Layer, composite_drawings
 from alpha_audit.preview.sheets.plan import SheetSpec
 from alpha_audit.preview.sheets.surface import (
