@@ -206,8 +206,8 @@ def _finding(f: Finding, kind: str, look: _Lookups) -> list[str]:
         contrast = f"{_ratio(n.get('contrast'))}; threshold {float(n.get('threshold', 3.0)):g}:1"
         if page:
             contrast += (
-                f" (over the pixels measured: worst {_ratio(n.get('contrast_worst'))}, "
-                f"median {_ratio(n.get('contrast_median'))})"
+                f" (the paint's own colour; its pixels with antialiased edges: worst "
+                f"{_ratio(n.get('contrast_worst'))}, median {_ratio(n.get('contrast_median'))})"
             )
         rows.append(("contrast", contrast))
     if page:
