@@ -39,10 +39,11 @@ from alpha_audit.render import CheckFormat, Format, RenderOptions
 from alpha_audit.render.common import check_suffix
 
 if TYPE_CHECKING:
-    from alpha_audit.gate import GateResult
+    from alpha_audit.gate import Baseline, GateResult
+    from alpha_audit.load.config import Overrides, ProjectConfig
     from alpha_audit.results import CheckReport
 
-__all__ = ["check_command", "pair_outputs"]
+__all__ = ["check_command", "gate_status", "pair_outputs", "report_targets", "write_reports"]
 
 
 FormatT = TypeVar("FormatT", bound=Format)
@@ -107,38 +108,69 @@ def pair_outputs(
 _ORDER = {"format": ("-f", "--format"), "output": ("-o", "--output")}
 
 
+def report_targets(
+    ctx: typer.Context,
+    formats: Sequence[CheckFormat] | None,
+    outputs: Sequence[Path] | None,
+    write_baseline: Path | None,
+    force: bool,
+) -> list[tuple[CheckFormat, Path | None]]:
+    """Each report's format and file (check's and render's), every file checked writable
+    before the work starts (an existing one is refused without ``force``)."""
+    from alpha_audit.output import check_targets
+
+    order = given_order(ctx.meta.get(ARGS, ()), _ORDER)
+    pairs = pair_outputs(list(formats or []), list(outputs or []), order)
+    files = [out for _, out in pairs if out is not None] + [write_baseline] * bool(write_baseline)
+    check_targets([f for f in files if f is not None], overwrite=force)
+    return pairs
+
+
+# check's own options (the gate's shared ones are in cli/options.py).
+_Themes = Annotated[
+    list[Path] | None,
+    typer.Option(
+        "--theme", metavar="PATH", parser=path_value, help="Another theme to audit (repeatable)."
+    ),
+]
+_Iconsets = Annotated[
+    list[Path] | None,
+    typer.Option(
+        "--iconset", metavar="PATH", parser=path_value, help="Another icon set (repeatable)."
+    ),
+]
+_Alpha = Annotated[
+    float | None,
+    typer.Option(
+        "--alpha",
+        "-a",
+        help="Coefficient for every icon.",
+        callback=in_range("--alpha", ALPHA),
+        show_default="the manifest's",
+    ),
+]
+_Base = Annotated[
+    str | None,
+    typer.Option(
+        "--base",
+        metavar="REF",
+        help="Fail only on what this change adds to git revision REF (a branch, tag or "
+        "commit, audited from git; the checkout is not touched).",
+        show_default="no base: every finding counts",
+    ),
+]
+
+
 @with_policy_flags
 def check_command(
     ctx: typer.Context,
     policy_flags: PolicyFlags,  # the policy flags, handed over by with_policy_flags
     theme: ThemeArgument = None,
     iconset: IconsetArgument = None,
-    themes: Annotated[
-        list[Path] | None,
-        typer.Option(
-            "--theme",
-            metavar="PATH",
-            parser=path_value,
-            help="Another theme to audit (repeatable).",
-        ),
-    ] = None,
-    iconsets: Annotated[
-        list[Path] | None,
-        typer.Option(
-            "--iconset", metavar="PATH", parser=path_value, help="Another icon set (repeatable)."
-        ),
-    ] = None,
+    themes: _Themes = None,
+    iconsets: _Iconsets = None,
     config: ConfigOption = None,
-    alpha: Annotated[
-        float | None,
-        typer.Option(
-            "--alpha",
-            "-a",
-            help="Coefficient for every icon.",
-            callback=in_range("--alpha", ALPHA),
-            show_default="the manifest's",
-        ),
-    ] = None,
+    alpha: _Alpha = None,
     max_combinations: MaxCombinationsOption = None,
     pipeline: PipelineOption = None,
     gamut: GamutOption = None,
@@ -147,16 +179,7 @@ def check_command(
     output: OutputsOption = None,
     baseline: Annotated[Path | None, baseline_option("the config's baseline:")] = None,
     write_baseline: WriteBaselineOption = None,
-    base: Annotated[
-        str | None,
-        typer.Option(
-            "--base",
-            metavar="REF",
-            help="Fail only on what this change adds to git revision REF (a branch, tag or "
-            "commit, audited from git; the checkout is not touched).",
-            show_default="no base: every finding counts",
-        ),
-    ] = None,
+    base: _Base = None,
     force: ForceOption = False,
     strict_svg: StrictSvgOption = False,
     no_cache: NoCacheOption = False,
@@ -176,19 +199,13 @@ def check_command(
     Example:
     [bold]alpha-audit check themes/github-primer.yaml examples/vibrant/iconset.yaml -a 1.2[/]
     """
-    from alpha_audit.baseline import read_baseline
     from alpha_audit.errors import UsageError
-    from alpha_audit.gate import LEGACY_BASELINE_SCHEMA
     from alpha_audit.load.config import Overrides, resolve_config
-    from alpha_audit.output import check_targets
-    from alpha_audit.pipeline import base_baseline, check_project
+    from alpha_audit.pipeline import check_project
 
     if base is not None and (baseline is not None or write_baseline is not None):
         raise UsageError("give --base or a baseline file (--baseline, --write-baseline), not both")
-    order = given_order(ctx.meta.get(ARGS, ()), _ORDER)
-    pairs = pair_outputs(list(fmt or []), list(output or []), order)
-    files = [out for _, out in pairs if out is not None] + [write_baseline] * bool(write_baseline)
-    check_targets([f for f in files if f is not None], overwrite=force)  # before the work
+    pairs = report_targets(ctx, fmt, output, write_baseline, force)
     theme_and_iconset(theme, iconset)
     overrides = Overrides(
         config=config,
@@ -203,22 +220,7 @@ def check_command(
         strict_svg=strict_svg,
     )
     project = resolve_config(overrides, Path.cwd())
-    known = None
-    if base is not None:
-        audit = base_baseline(overrides, Path.cwd(), base, pool=ctx.obj)
-        for note in audit.notes:
-            stderr_note(note)
-        known = audit.baseline
-        if audit.audited:
-            stderr_note(f"base {base}: {len(known.keys)} failing root cause(s) there")
-    elif project.baseline is not None and write_baseline is None:
-        known = read_baseline(project.baseline)
-        if known.legacy:
-            stderr_note(
-                f"{project.baseline} is a per-canvas baseline ({LEGACY_BASELINE_SCHEMA}): "
-                "a root cause is covered when each of its canvases is; rewrite it with "
-                "--write-baseline --force to record root causes"
-            )
+    known = _known_findings(ctx, overrides, project, base, write_baseline)
     with progress_bar("Rendering icons") as progress:
         report = check_project(
             project,
@@ -234,6 +236,38 @@ def check_command(
     return gate_status(
         report.gate, writing_baseline=write_baseline is not None, exit_zero=exit_zero
     )
+
+
+def _known_findings(
+    ctx: typer.Context,
+    overrides: Overrides,
+    project: ProjectConfig,
+    base: str | None,
+    write_baseline: Path | None,
+) -> Baseline | None:
+    """The findings the gate accepts: those at git revision ``base``, else the baseline
+    file's (unless one is being written), else none; what it found said on stderr."""
+    from alpha_audit.baseline import read_baseline
+    from alpha_audit.gate import LEGACY_BASELINE_SCHEMA
+    from alpha_audit.pipeline import base_baseline
+
+    if base is not None:
+        audit = base_baseline(overrides, Path.cwd(), base, pool=ctx.obj)
+        for note in audit.notes:
+            stderr_note(note)
+        if audit.audited:
+            stderr_note(f"base {base}: {len(audit.baseline.keys)} failing root cause(s) there")
+        return audit.baseline
+    if project.baseline is None or write_baseline is not None:
+        return None
+    known = read_baseline(project.baseline)
+    if known.legacy:
+        stderr_note(
+            f"{project.baseline} is a per-canvas baseline ({LEGACY_BASELINE_SCHEMA}): "
+            "a root cause is covered when each of its canvases is; rewrite it with "
+            "--write-baseline --force to record root causes"
+        )
+    return known
 
 
 def gate_status(gate: GateResult, *, writing_baseline: bool, exit_zero: bool) -> ExitStatus:

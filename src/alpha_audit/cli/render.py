@@ -21,7 +21,6 @@ from alpha_audit import ranges
 from alpha_audit.browser import COLOR_SCHEMES
 from alpha_audit.cli.console import progress_bar, stderr_note
 from alpha_audit.cli.options import (
-    ARGS,
     ConfigOption,
     ExitZeroOption,
     ForceOption,
@@ -29,7 +28,6 @@ from alpha_audit.cli.options import (
     OutputsOption,
     WriteBaselineOption,
     baseline_option,
-    given_order,
     in_range,
     rules_flag,
 )
@@ -42,7 +40,6 @@ from alpha_audit.safe_text import safe_text
 
 __all__ = ["render_command"]
 
-_ORDER = {"format": ("-f", "--format"), "output": ("-o", "--output")}
 _NOT_RENDER = tuple(r.value for r in RULES if r not in RENDER_RULES)
 
 
@@ -87,77 +84,88 @@ def states_from_flags(
     )
 
 
+# render's own options (the gate's shared ones are in cli/options.py).
+_Sources = Annotated[
+    list[str] | None,
+    typer.Argument(
+        help="Built Storybook folders (storybook-static/), folders of HTML pages, or "
+        "http://localhost URLs. [default: the render: table of alpha-audit.yaml]",
+        show_default=False,
+    ),
+]
+_Stories = Annotated[
+    list[str] | None,
+    typer.Option("--stories", help="Glob over story ids or Title/Name (repeatable)."),
+]
+_Globals = Annotated[
+    list[str] | None,
+    typer.Option("--globals", help="Storybook globals of one state, NAME:VALUE;... (repeatable)."),
+]
+_ColorScheme = Annotated[
+    list[str] | None,
+    typer.Option("--color-scheme", help="Emulated prefers-color-scheme: light, dark."),
+]
+_HtmlAttribute = Annotated[
+    list[str] | None,
+    typer.Option("--html-attribute", help="NAME=VALUE set on <html> (repeatable)."),
+]
+_HtmlClass = Annotated[
+    list[str] | None,
+    typer.Option("--html-class", help="A class set on <html> (repeatable; '' for none)."),
+]
+_Selector = Annotated[
+    str | None, typer.Option(help="CSS selector of more elements to audit as icons.")
+]
+_Engine = Annotated[
+    list[str] | None,
+    typer.Option("--engine", help="chromium (default), firefox, webkit (repeatable)."),
+]
+_Iconset = Annotated[Path | None, typer.Option(help="Icon-set manifest the icons are mapped to.")]
+_Workers = Annotated[
+    int | None,
+    typer.Option(
+        help="Pages in parallel.",
+        callback=in_range("--workers", ranges.WORKERS),
+        show_default="CPUs, at most 4",
+    ),
+]
+_Timeout = Annotated[
+    float | None,
+    typer.Option(
+        help="Seconds per page and state.",
+        callback=in_range("--timeout", ranges.PAGE_SECONDS),
+        show_default="30",
+    ),
+]
+_FailOn = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--fail-on",
+        metavar="RULE",
+        help="Rule that fails the gate (repeatable; replaces the policy): "
+        + ", ".join(r.value for r in RENDER_RULES)
+        + " (docs/rules.md).",
+        show_default="the render: table's, else "
+        + ", ".join(r.value for r in RENDER_RULES if r in RENDER_DEFAULT_RULES),
+        callback=rules_flag("--fail-on", _NOT_RENDER, "it is a rule of check"),
+    ),
+]
+
+
 def render_command(
     ctx: typer.Context,
-    sources: Annotated[
-        list[str] | None,
-        typer.Argument(
-            help="Built Storybook folders (storybook-static/), folders of HTML pages, or "
-            "http://localhost URLs. [default: the render: table of alpha-audit.yaml]",
-            show_default=False,
-        ),
-    ] = None,
-    stories: Annotated[
-        list[str] | None,
-        typer.Option("--stories", help="Glob over story ids or Title/Name (repeatable)."),
-    ] = None,
-    globals_values: Annotated[
-        list[str] | None,
-        typer.Option(
-            "--globals", help="Storybook globals of one state, NAME:VALUE;... (repeatable)."
-        ),
-    ] = None,
-    color_scheme: Annotated[
-        list[str] | None,
-        typer.Option("--color-scheme", help="Emulated prefers-color-scheme: light, dark."),
-    ] = None,
-    html_attribute: Annotated[
-        list[str] | None,
-        typer.Option("--html-attribute", help="NAME=VALUE set on <html> (repeatable)."),
-    ] = None,
-    html_class: Annotated[
-        list[str] | None,
-        typer.Option("--html-class", help="A class set on <html> (repeatable; '' for none)."),
-    ] = None,
-    selector: Annotated[
-        str | None, typer.Option(help="CSS selector of more elements to audit as icons.")
-    ] = None,
-    engine: Annotated[
-        list[str] | None,
-        typer.Option("--engine", help="chromium (default), firefox, webkit (repeatable)."),
-    ] = None,
-    iconset: Annotated[
-        Path | None, typer.Option(help="Icon-set manifest the icons are mapped to.")
-    ] = None,
-    workers: Annotated[
-        int | None,
-        typer.Option(
-            help="Pages in parallel.",
-            callback=in_range("--workers", ranges.WORKERS),
-            show_default="CPUs, at most 4",
-        ),
-    ] = None,
-    timeout: Annotated[
-        float | None,
-        typer.Option(
-            help="Seconds per page and state.",
-            callback=in_range("--timeout", ranges.PAGE_SECONDS),
-            show_default="30",
-        ),
-    ] = None,
-    fail_on: Annotated[
-        list[str] | None,
-        typer.Option(
-            "--fail-on",
-            metavar="RULE",
-            help="Rule that fails the gate (repeatable; replaces the policy): "
-            + ", ".join(r.value for r in RENDER_RULES)
-            + " (docs/rules.md).",
-            show_default="the render: table's, else "
-            + ", ".join(r.value for r in RENDER_RULES if r in RENDER_DEFAULT_RULES),
-            callback=rules_flag("--fail-on", _NOT_RENDER, "it is a rule of check"),
-        ),
-    ] = None,
+    sources: _Sources = None,
+    stories: _Stories = None,
+    globals_values: _Globals = None,
+    color_scheme: _ColorScheme = None,
+    html_attribute: _HtmlAttribute = None,
+    html_class: _HtmlClass = None,
+    selector: _Selector = None,
+    engine: _Engine = None,
+    iconset: _Iconset = None,
+    workers: _Workers = None,
+    timeout: _Timeout = None,
+    fail_on: _FailOn = None,
     exit_zero: ExitZeroOption = False,
     fmt: FormatsOption = None,
     output: OutputsOption = None,
@@ -185,17 +193,13 @@ def render_command(
     [bold]alpha-audit render storybook-static --globals theme:light --globals theme:dark[/]
     """
     from alpha_audit.baseline import read_baseline
-    from alpha_audit.cli.check import gate_status, pair_outputs, write_reports
+    from alpha_audit.cli.check import gate_status, report_targets, write_reports
     from alpha_audit.load.iconset import load_iconset
-    from alpha_audit.output import check_targets
     from alpha_audit.pages import audit_pages, page_report
     from alpha_audit.pages.config import resolve_render_config
-    from alpha_audit.render.pages import blocked_line
+    from alpha_audit.render.pages import blocked_line, problems_line
 
-    order = given_order(ctx.meta.get(ARGS, ()), _ORDER)
-    pairs = pair_outputs(list(fmt or [CheckFormat.TABLE]), list(output or []), order)
-    files = [out for _, out in pairs if out is not None] + [write_baseline] * bool(write_baseline)
-    check_targets([f for f in files if f is not None], overwrite=force)  # before the work
+    pairs = report_targets(ctx, fmt, output, write_baseline, force)
     settings = resolve_render_config(
         sources or [],
         config_path=config,
@@ -220,16 +224,7 @@ def render_command(
     if settings.baseline is not None and write_baseline is None:
         known = read_baseline(settings.baseline)
     manifest = load_iconset(settings.iconset) if settings.iconset is not None else None
-    with progress_bar("rendering") as (start, advance):
-        started = False
-
-        def progress(done: int, total: int) -> None:
-            nonlocal started
-            if not started:
-                start(total)
-                started = True
-            advance()
-
+    with progress_bar("rendering") as progress:
         run, paints = audit_pages(settings, manifest, progress=progress)
     report = page_report(
         run, paints, settings.policy, manifest, threshold=settings.threshold, baseline=known
@@ -238,13 +233,7 @@ def render_command(
     if run.blocked:
         stderr_note(blocked_line(run.blocked))
     if run.problems:
-        first = run.problems[0]
-        stderr_note(
-            safe_text(
-                f"error: {len(run.problems)} of {run.audited} page states could not be "
-                f"audited; first: {first.source} [{first.state}, {first.engine}]: {first.message}"
-            )
-        )
+        stderr_note(safe_text(problems_line(run)))
         return ExitStatus.INPUT_ERROR
     return gate_status(
         report.gate, writing_baseline=write_baseline is not None, exit_zero=exit_zero

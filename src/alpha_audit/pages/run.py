@@ -18,7 +18,7 @@ import contextlib
 import queue
 import threading
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import NamedTuple
@@ -37,6 +37,7 @@ from alpha_audit.pages.measure import PageContext, measure_capture
 from alpha_audit.pages.sources import FolderSource, StorybookSource, Target, targets, url_origin
 from alpha_audit.pages.states import State, globals_param
 from alpha_audit.pages.stillness import PageUnstable
+from alpha_audit.results import Progress
 from alpha_audit.safe_text import shorten
 from alpha_audit.signals import ending_on_signals
 
@@ -242,9 +243,10 @@ def audit_pages(
     config: RenderConfig,
     iconset: IconSet | None = None,
     *,
-    progress: Callable[[int, int], None] | None = None,
+    progress: Progress | None = None,
 ) -> PageAudit:
-    """Measure every source x state x engine of ``config``; ``progress(done, total)`` per job.
+    """Measure every source x state x engine of ``config``; ``progress`` is told the number
+    of jobs (page x state x engine) first, then each one done (as ``check``'s).
 
     Returns what the run saw and every paint it measured, in report order
     (source, state, engine, DOM order): :func:`alpha_audit.pages.audit.page_report`
@@ -260,6 +262,8 @@ def audit_pages(
             cls = engine_class(engine)
             raise UsageError(f"{cls.LABEL} is not installed: {cls.INSTALL_HINT}")
     jobs = plan_jobs(config)
+    if progress is not None:
+        progress[0](len(jobs))
     ordered = sorted(jobs, key=lambda j: (j.target.name, j.state.name, j.engine))  # the report's
     rank = {job.order: k for k, job in enumerate(ordered)}
     crops = CropStore(config.crops, config.policy, config.threshold) if config.crops > 0 else None
@@ -298,7 +302,7 @@ def audit_pages(
                 with lock:
                     results[job.order] = outcome
                     if progress is not None:
-                        progress(len(results), len(jobs))
+                        progress[1]()
 
         threads = [threading.Thread(target=work, args=(w,), daemon=True) for w in workers]
         try:

@@ -56,6 +56,7 @@ __all__ = [
     "page_markdown",
     "page_rows",
     "page_table",
+    "problems_line",
     "state_matrix_cells",
     "summary_notes",
 ]
@@ -334,7 +335,23 @@ def page_markdown(report: CheckReport, run: PageRun, options: RenderOptions) -> 
     return text
 
 
-# ------------------------------------------------------------------ blocked requests
+# ------------------------------------------------------------------ problems and blocked requests
+
+
+def problems_line(run: PageRun) -> str:
+    """One line for the page states a run could not audit: how many, and the first.
+
+    >>> from alpha_audit.observed import PageProblem
+    >>> problem = PageProblem("a--b", "theme:dark", "chromium", "timed out")
+    >>> run = PageRun((problem,), (), 4, 0, 0, ())
+    >>> problems_line(run)
+    'error: 1 of 4 page states could not be audited; first: a--b [theme:dark, chromium]: timed out'
+    """
+    first = run.problems[0]
+    return (
+        f"error: {len(run.problems)} of {run.audited} page states could not be audited; "
+        f"first: {first.source} [{first.state}, {first.engine}]: {first.message}"
+    )
 
 
 def blocked_line(blocked: Sequence[BlockedRequest], shown: int = 3) -> str:
