@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
@@ -25,6 +25,9 @@ from alpha_audit.cli.status import ExitStatus
 from alpha_audit.ranges import ALPHA_MAX, PRECISION
 from alpha_audit.render import SuggestFormat
 from alpha_audit.suggest import SCOPES
+
+if TYPE_CHECKING:
+    from alpha_audit.load.config import ProjectConfig
 
 __all__ = ["suggest_command"]
 
@@ -51,67 +54,102 @@ def _scopes(values: list[str] | None) -> list[str] | None:
     return values
 
 
+# suggest's own options (the gate's shared ones are in cli/options.py).
+_AlphaMax = Annotated[
+    float,
+    typer.Option(
+        "--alpha-max",
+        help="Largest coefficient considered.",
+        callback=in_range("--alpha-max", ALPHA_MAX),
+    ),
+]
+_Precision = Annotated[
+    int,
+    typer.Option(
+        "--precision",
+        help="Decimals; the answer is rounded down.",
+        callback=in_range("--precision", PRECISION),
+    ),
+]
+_Format = Annotated[
+    SuggestFormat,
+    typer.Option("--format", "-f", help="table, json or markdown.", case_sensitive=False),
+]
+_Output = Annotated[
+    Path | None, typer.Option("--output", "-o", help="Write the report here instead of stdout.")
+]
+_Apply = Annotated[
+    str | None,
+    typer.Option(
+        "--apply",
+        metavar="set|colour|icon",
+        help="Write the answer into the manifest: set (the set-wide alpha), colour (one "
+        "alpha per group of colours) or icon (per-icon overrides); only alpha values change, "
+        "and only when the gate passes with them (else nothing is written, exit 1).",
+        show_default=False,
+        callback=_scope,
+    ),
+]
+_ReplaceExplicit = Annotated[
+    bool,
+    flag(
+        "--replace-explicit", help="With --apply, also replace alphas the manifest sets per icon."
+    ),
+]
+_Only = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--only",
+        metavar="SCOPE",
+        help=f"Answer only these questions (repeatable): {', '.join(SCOPES)}.",
+        show_default="all",
+        callback=_scopes,
+    ),
+]
+
+
 @with_policy_flags
+def _the_manifest(project: ProjectConfig, iconset: Path | None, apply: str | None) -> Path:
+    """The one manifest suggest answers for; refused: tokens, several themes or icon sets,
+    and ``--apply`` on the bundled example (it rewrites the manifest in place)."""
+    from alpha_audit.errors import UsageError
+
+    if project.tokens is not None:
+        raise UsageError(
+            "suggest reads YAML themes, not the config's tokens: table (a coefficient in "
+            "$extensions is never rewritten); give THEME ICONSET, or run check, which "
+            "audits every token mode (docs/tokens.md)"
+        )
+    if len(project.themes) != 1 or len(project.iconsets) != 1:
+        raise UsageError(
+            "suggest needs one theme and one icon set: give THEME ICONSET, or a project "
+            f"config naming exactly one of each (found {len(project.themes)} theme(s), "
+            f"{len(project.iconsets)} icon set(s))"
+        )
+    manifest = project.iconsets[0]
+    if apply is not None and iconset is not None and manifest != Path(iconset):
+        raise UsageError(
+            f"--apply rewrites the manifest in place and {iconset} is the bundled example; "
+            f"copy {manifest.parent} into your project and give its {manifest.name}"
+        )
+    return manifest
+
+
 def suggest_command(
     ctx: typer.Context,
     policy_flags: PolicyFlags,  # the policy flags, handed over by with_policy_flags
     theme: ThemeArgument = None,
     iconset: IconsetArgument = None,
     config: ConfigOption = None,
-    alpha_max: Annotated[
-        float,
-        typer.Option(
-            "--alpha-max",
-            help="Largest coefficient considered.",
-            callback=in_range("--alpha-max", ALPHA_MAX),
-        ),
-    ] = 2.0,
-    precision: Annotated[
-        int,
-        typer.Option(
-            "--precision",
-            help="Decimals; the answer is rounded down.",
-            callback=in_range("--precision", PRECISION),
-        ),
-    ] = 3,
-    fmt: Annotated[
-        SuggestFormat,
-        typer.Option("--format", "-f", help="table, json or markdown.", case_sensitive=False),
-    ] = SuggestFormat.TABLE,
-    output: Annotated[
-        Path | None, typer.Option("--output", "-o", help="Write the report here instead of stdout.")
-    ] = None,
+    alpha_max: _AlphaMax = 2.0,
+    precision: _Precision = 3,
+    fmt: _Format = SuggestFormat.TABLE,
+    output: _Output = None,
     force: ForceOption = False,
     gamut: GamutOption = None,
-    apply: Annotated[
-        str | None,
-        typer.Option(
-            "--apply",
-            metavar="set|colour|icon",
-            help="Write the answer into the manifest: set (the set-wide alpha), colour (one "
-            "alpha per group of colours) or icon (per-icon overrides); only alpha values change, "
-            "and only when the gate passes with them (else nothing is written, exit 1).",
-            show_default=False,
-            callback=_scope,
-        ),
-    ] = None,
-    replace_explicit: Annotated[
-        bool,
-        flag(
-            "--replace-explicit",
-            help="With --apply, also replace alphas the manifest sets per icon.",
-        ),
-    ] = False,
-    only: Annotated[
-        list[str] | None,
-        typer.Option(
-            "--only",
-            metavar="SCOPE",
-            help=f"Answer only these questions (repeatable): {', '.join(SCOPES)}.",
-            show_default="all",
-            callback=_scopes,
-        ),
-    ] = None,
+    apply: _Apply = None,
+    replace_explicit: _ReplaceExplicit = False,
+    only: _Only = None,
     no_cache: NoCacheOption = False,
 ) -> ExitStatus:
     """The largest alpha every coefficient in [1, alpha] keeps the gate policy for.
@@ -129,7 +167,6 @@ def suggest_command(
     Example:
     [bold]alpha-audit suggest themes/paper16.yaml examples/vibrant/iconset.yaml --apply set[/]
     """
-    from alpha_audit.errors import UsageError
     from alpha_audit.load.config import Overrides, resolve_config
     from alpha_audit.output import check_targets
     from alpha_audit.pipeline import audits, plan
@@ -151,24 +188,7 @@ def suggest_command(
         ),
         Path.cwd(),
     )
-    if project.tokens is not None:
-        raise UsageError(
-            "suggest reads YAML themes, not the config's tokens: table (a coefficient in "
-            "$extensions is never rewritten); give THEME ICONSET, or run check, which "
-            "audits every token mode (docs/tokens.md)"
-        )
-    if len(project.themes) != 1 or len(project.iconsets) != 1:
-        raise UsageError(
-            "suggest needs one theme and one icon set: give THEME ICONSET, or a project "
-            f"config naming exactly one of each (found {len(project.themes)} theme(s), "
-            f"{len(project.iconsets)} icon set(s))"
-        )
-    manifest = project.iconsets[0]
-    if apply is not None and iconset is not None and manifest != Path(iconset):
-        raise UsageError(
-            f"--apply rewrites the manifest in place and {iconset} is the bundled example; "
-            f"copy {manifest.parent} into your project and give its {manifest.name}"
-        )
+    manifest = _the_manifest(project, iconset, apply)
     work, _, _ = plan(project)
     # The gate judges every paint of every SVG as drawn: suggest answers the same rows.
     (rows,) = audits(project, work, pool=ctx.obj)
