@@ -25,68 +25,79 @@ from alpha_audit.ranges import ALPHA, ICON_SIZE
 __all__ = ["preview_command"]
 
 
+# preview's options of its own (the shared ones are in cli/options.py).
+_Theme = Annotated[
+    Path, typer.Argument(help="Theme YAML (canvases, light and dark) or a bundled theme name.")
+]
+_Iconset = Annotated[Path, typer.Argument(help="Icon-set manifest YAML, or vibrant (bundled).")]
+_Output = Annotated[
+    Path | None, typer.Option("--output", "-o", help="Folder for the sheets (created if missing).")
+]
+_Html = Annotated[
+    Path | None,
+    typer.Option("--html", help="Write one self-contained interactive WebGL2 page here."),
+]
+_Alphas = Annotated[
+    list[float] | None,
+    typer.Option(
+        "--alpha",
+        "-a",
+        metavar="A",
+        help="Coefficient row, any real value in [-100, 100] (repeatable). "
+        "[default: 1 and the set's own; swatches: 0.6 1 1.1 1.2 1.4 2]",
+        callback=in_range("--alpha", ALPHA),
+    ),
+]
+_Sizes = Annotated[
+    list[int] | None,
+    typer.Option(
+        "--size",
+        "-s",
+        metavar="PX",
+        help="Icon size in px (repeatable). [default: 48; page: set's + 48]",
+        callback=in_range("--size", ICON_SIZE),
+    ),
+]
+_ImageFormat = Annotated[
+    ImageFormat,
+    typer.Option(
+        "--format",
+        "-f",
+        help="Sheet files: png, or webp (lossless, about a third of the size, "
+        "twice as long to write).",
+        case_sensitive=False,
+    ),
+]
+_Layout = Annotated[
+    Layout,
+    typer.Option(
+        "--layout",
+        "-l",
+        help="grid: a sheet per canvas and size; swatches: palette x alpha per canvas; "
+        "compare: alpha 1 beside alpha X, a row per canvas.",
+        case_sensitive=False,
+    ),
+]
+_NearSource = Annotated[
+    bool,
+    typer.Option(
+        "--near-source",
+        help="Use the paper's gallery canvases instead of the theme's: each palette colour "
+        "mixed with 10% white (encoded sRGB), plus a dark grey.",
+    ),
+]
+
+
 def preview_command(
-    theme: Annotated[
-        Path, typer.Argument(help="Theme YAML (canvases, light and dark) or a bundled theme name.")
-    ],
-    iconset: Annotated[Path, typer.Argument(help="Icon-set manifest YAML, or vibrant (bundled).")],
-    output: Annotated[
-        Path | None,
-        typer.Option("--output", "-o", help="Folder for the sheets (created if missing)."),
-    ] = None,
-    html: Annotated[
-        Path | None,
-        typer.Option("--html", help="Write one self-contained interactive WebGL2 page here."),
-    ] = None,
-    alpha: Annotated[
-        list[float] | None,
-        typer.Option(
-            "--alpha",
-            "-a",
-            metavar="A",
-            help="Coefficient row, any real value in [-100, 100] (repeatable). "
-            "[default: 1 and the set's own; swatches: 0.6 1 1.1 1.2 1.4 2]",
-            callback=in_range("--alpha", ALPHA),
-        ),
-    ] = None,
-    size: Annotated[
-        list[int] | None,
-        typer.Option(
-            "--size",
-            "-s",
-            metavar="PX",
-            help="Icon size in px (repeatable). [default: 48; page: set's + 48]",
-            callback=in_range("--size", ICON_SIZE),
-        ),
-    ] = None,
-    image_format: Annotated[
-        ImageFormat,
-        typer.Option(
-            "--format",
-            "-f",
-            help="Sheet files: png, or webp (lossless, about a third of the size, "
-            "twice as long to write).",
-            case_sensitive=False,
-        ),
-    ] = ImageFormat.PNG,
-    layout: Annotated[
-        Layout,
-        typer.Option(
-            "--layout",
-            "-l",
-            help="grid: a sheet per canvas and size; swatches: palette x alpha per canvas; "
-            "compare: alpha 1 beside alpha X, a row per canvas.",
-            case_sensitive=False,
-        ),
-    ] = Layout.GRID,
-    near_source: Annotated[
-        bool,
-        typer.Option(
-            "--near-source",
-            help="Use the paper's gallery canvases instead of the theme's: each palette colour "
-            "mixed with 10% white (encoded sRGB), plus a dark grey.",
-        ),
-    ] = False,
+    theme: _Theme,
+    iconset: _Iconset,
+    output: _Output = None,
+    html: _Html = None,
+    alpha: _Alphas = None,
+    size: _Sizes = None,
+    image_format: _ImageFormat = ImageFormat.PNG,
+    layout: _Layout = Layout.GRID,
+    near_source: _NearSource = False,
     threshold: ThresholdOption = None,
     pipeline: PipelineOption = None,
     force: ForceOption = False,
@@ -116,7 +127,7 @@ def preview_command(
     # The pipeline as check decides it: the flag, else the project config's; preview_files
     # goes on to the icon set's, the theme's, else linear.
     project = resolve_config(Overrides(pipeline=pipeline), Path.cwd())
-    with progress_bar("Rendering previews") as (on_start, on_step):
+    with progress_bar("Rendering previews") as progress:
         result = preview_files(
             theme_source(theme),
             iconset_source(iconset),
@@ -129,8 +140,7 @@ def preview_command(
             threshold=threshold,
             overwrite=force,
             strict_svg=strict_svg,
-            on_start=on_start,
-            on_step=on_step,
+            progress=progress,
             gamut=gamut_policy,
             pipeline=project.pipeline,
             image_format=image_format,

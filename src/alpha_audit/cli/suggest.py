@@ -108,7 +108,6 @@ _Only = Annotated[
 ]
 
 
-@with_policy_flags
 def _the_manifest(project: ProjectConfig, iconset: Path | None, apply: str | None) -> Path:
     """The one manifest suggest answers for; refused: tokens, several themes or icon sets,
     and ``--apply`` on the bundled example (it rewrites the manifest in place)."""
@@ -135,6 +134,7 @@ def _the_manifest(project: ProjectConfig, iconset: Path | None, apply: str | Non
     return manifest
 
 
+@with_policy_flags
 def suggest_command(
     ctx: typer.Context,
     policy_flags: PolicyFlags,  # the policy flags, handed over by with_policy_flags

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections import deque
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import dataclass, replace
 from functools import partial
@@ -24,6 +24,8 @@ from alpha_audit.preview.sheets import (
     Alpha,
     ImageFormat,
     Layout,
+    Sheet,
+    SheetSpec,
     check_writable,
     default_alphas,
     paginate,
@@ -32,6 +34,7 @@ from alpha_audit.preview.sheets import (
     write_sheet,
 )
 from alpha_audit.ranges import ALPHA, ICON_SIZE
+from alpha_audit.results import Progress
 from alpha_audit.rows import check_pipeline, resolve_pipeline
 
 __all__ = ["DEFAULT_SIZE", "PreviewResult", "preview_canvases", "preview_files"]
@@ -76,8 +79,7 @@ def preview_files(
     threshold: float | None = None,
     overwrite: bool = False,
     strict_svg: bool = False,
-    on_start: Callable[[int], None] | None = None,
-    on_step: Callable[[], None] | None = None,
+    progress: Progress | None = None,
     gamut: GamutPolicy | None = None,
     pipeline: str | None = None,
     image_format: ImageFormat = ImageFormat.PNG,
@@ -89,8 +91,8 @@ def preview_files(
     under ``pipeline``: the given one, else the icon set's, else the
     theme's, else linear, as ``check`` decides) and labelled with their
     rows' size contrast.  Every target is checked before any work: an
-    existing file is an error unless ``overwrite``.  ``on_start(n)`` and
-    ``on_step()`` report progress over icons rendered plus files written;
+    existing file is an error unless ``overwrite``.  ``progress`` (start,
+    advance) is told the icons to render plus the files to write, then each;
     ``gamut`` decides colours outside sRGB (else each file's ``gamut:``,
     else they are an error).  Sheets are PNG files, or lossless WebP with
     ``image_format``.
@@ -120,11 +122,7 @@ def preview_files(
     title = f"{iconset.name} on {'near-source canvases' if near_source else theme.name}"
 
     specs = []
-    targets: list[Path] = []
     if out_dir is not None:
-        folder = Path(out_dir)
-        if folder.exists() and not folder.is_dir():
-            raise UsageError("is not a folder", path=folder)
         specs = paginate(
             plan_sheets(layout, canvases, sheet_sizes, prefix),
             iconset,
@@ -133,17 +131,13 @@ def preview_files(
             title=title,
             source=iconset.path if near_source else theme.path,
         )
-        targets += [folder / image_format.file_name(s.name) for s in specs]
-    if html_path is not None:
-        targets.append(Path(html_path))
-    if out_dir is not None:
-        make_folder(out_dir)
-    check_writable(targets, overwrite=overwrite)
-
+    _check_targets(specs, out_dir, html_path, image_format, overwrite)
+    targets = len(specs) + (html_path is not None)
+    step: Callable[[], None] = _nothing if progress is None else progress[1]
     raster_sizes = sorted({*(sheet_sizes if specs else ()), *(page_sizes if html_path else ())})
-    if on_start is not None:
-        on_start(len(iconset.icons) + len(targets))
-    masks = paint_masks([(i.name, i.file) for i in iconset.icons], raster_sizes, progress=on_step)
+    if progress is not None:
+        progress[0](len(iconset.icons) + targets)
+    masks = paint_masks([(i.name, i.file) for i in iconset.icons], raster_sizes, progress=step)
     if strict_svg and masks.problems:
         first = masks.problems[0]
         raise SvgError(first.message, path=first.file)
@@ -154,7 +148,6 @@ def preview_files(
     swatch_rows = [a for a in SWATCH_ALPHAS if 0.0 <= a <= 1.0] if kind == "css" else None
     drawn = preview_rows(replace(theme, canvases=canvases), iconset, masks, raster_sizes, kind)
 
-    written: list[Path] = []
     sheets = render_all(
         specs,
         iconset,  # pages index the manifest's icons; icons not drawn are left out
@@ -163,23 +156,10 @@ def preview_files(
         threshold=theme.threshold,
         title=title,
     )
-    # Each sheet is compressed on a second thread while the next one is drawn (Pillow's
-    # encoder and numpy release the GIL); at most two sheets are held at once.
-    pending: deque[Future[Path]] = deque()
-
-    def collect() -> None:
-        written.append(pending.popleft().result())
-        if on_step is not None:
-            on_step()
-
-    with ThreadPoolExecutor(max_workers=1, thread_name_prefix="alpha-audit-sheet") as writer:
-        save = partial(write_sheet, overwrite=overwrite, image_format=image_format)
-        for sheet in sheets:
-            pending.append(writer.submit(save, sheet, out_dir or "."))
-            if len(pending) > 1:
-                collect()
-        while pending:
-            collect()
+    save = partial(
+        write_sheet, folder=out_dir or ".", overwrite=overwrite, image_format=image_format
+    )
+    written = _write_sheets(sheets, save, step)
     if html_path is not None:
         page = preview_html(
             replace(theme, canvases=canvases),
@@ -189,6 +169,52 @@ def preview_files(
             alpha=alphas[0] if alphas else None,
         )
         written.append(write_text(html_path, page, overwrite=overwrite))
-        if on_step is not None:
-            on_step()
+        step()
     return PreviewResult(tuple(written), masks.problems)
+
+
+def _nothing() -> None:
+    """No progress to report."""
+
+
+def _check_targets(
+    specs: Sequence[SheetSpec],
+    out_dir: str | Path | None,
+    html_path: str | Path | None,
+    image_format: ImageFormat,
+    overwrite: bool,
+) -> None:
+    """Every file the preview will write, checked before any work (the folder made)."""
+    targets: list[Path] = []
+    if out_dir is not None:
+        folder = Path(out_dir)
+        if folder.exists() and not folder.is_dir():
+            raise UsageError("is not a folder", path=folder)
+        targets += [folder / image_format.file_name(s.name) for s in specs]
+    if html_path is not None:
+        targets.append(Path(html_path))
+    if out_dir is not None:
+        make_folder(out_dir)
+    check_writable(targets, overwrite=overwrite)
+
+
+def _write_sheets(
+    sheets: Iterable[Sheet], save: Callable[[Sheet], Path], step: Callable[[], None]
+) -> list[Path]:
+    """Each sheet saved on a second thread while the next one is drawn (Pillow's encoder
+    and numpy release the GIL); at most two sheets are held at once."""
+    written: list[Path] = []
+    pending: deque[Future[Path]] = deque()
+
+    def collect() -> None:
+        written.append(pending.popleft().result())
+        step()
+
+    with ThreadPoolExecutor(max_workers=1, thread_name_prefix="alpha-audit-sheet") as writer:
+        for sheet in sheets:
+            pending.append(writer.submit(save, sheet))
+            if len(pending) > 1:
+                collect()
+        while pending:
+            collect()
+    return written
