@@ -441,6 +441,70 @@ def icon_name(icon: FoundIcon, manifest_icon: Icon | None) -> str:
     return " > ".join(icon.dom_path.split(" > ")[-2:])
 
 
+def _diagnosis(
+    drawn: NDArray[np.float64], behind: NDArray[np.float64]
+) -> tuple[float | None, float | None]:
+    """Worst and median contrast of candidate pixels (codes ``(n, 3)``), antialiased mixes
+    included: for diagnosis only (None where there is none)."""
+    if not len(drawn):
+        return None, None
+    per_pixel = contrast_ratio(from_8bit(drawn), from_8bit(behind))
+    return float(per_pixel.min()), float(np.median(per_pixel))
+
+
+@dataclass(frozen=True)
+class _Model:
+    """What the model was given for a paint, and what it predicts on the measured backdrop."""
+
+    source: str | None = None
+    alpha: float | None = None
+    opacity: float | None = None
+    predictions: tuple[Prediction, ...] = ()
+    drift: float | None = None
+
+
+def _model(
+    paint: DeclaredPaint, manifest_icon: Icon | None, drawn: Linear, behind: Linear
+) -> _Model:
+    """The model's input for ``paint`` (the manifest's colour and alpha when the icon maps to
+    ``manifest_icon``, else the colour the engine computed at alpha 1) and its predictions."""
+    source, alpha = paint.color, 1.0
+    if manifest_icon is not None:
+        source, alpha = manifest_icon.linear, float(manifest_icon.alpha)
+    if source is None:
+        return _Model()
+    opacity = min(1.0, paint.opacity)
+    predictions = _predictions(drawn, behind, source, alpha, opacity)
+    drift = min(p.drift for p in predictions) if predictions else None
+    return _Model(linear_to_hex(source), alpha, opacity, predictions, drift)
+
+
+def _crop(
+    capture: Capture, icon: FoundIcon, ring: int
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
+    """The icon's box grown by ``ring`` in both captures (codes), and which pixels are in
+    the box itself."""
+    rows, cols, grown_rows, grown_cols = icon_region(capture, icon.box, ring)
+    drawn = capture.drawn[grown_rows, grown_cols].astype(np.float64)
+    hidden = capture.hidden[grown_rows, grown_cols].astype(np.float64)
+    inside = np.zeros(drawn.shape[:2], dtype=bool)
+    inside[
+        rows.start - grown_rows.start : rows.stop - grown_rows.start,
+        cols.start - grown_cols.start : cols.stop - grown_cols.start,
+    ] = True
+    return drawn, hidden, inside
+
+
+def _around(
+    hidden: NDArray[np.float64], touched: NDArray[np.bool_], ring: int
+) -> tuple[str, Linear] | tuple[None, None]:
+    """The median backdrop in a ring of ``ring`` pixels just outside the touched ones."""
+    mask = _dilate(touched, ring) & ~touched
+    if not mask.any():
+        return None, None
+    return _hex(np.median(hidden[mask], axis=0))
+
+
 def _measure_icon(
     capture: Capture,
     icon: FoundIcon,
@@ -450,20 +514,10 @@ def _measure_icon(
     locate: Locate | None = None,
 ) -> list[MeasuredPaint]:
     ring = ring_width(capture.scale)
-    rows, cols, grown_rows, grown_cols = icon_region(capture, icon.box, ring)
-    drawn_all = capture.drawn[grown_rows, grown_cols].astype(np.float64)
-    hidden_all = capture.hidden[grown_rows, grown_cols].astype(np.float64)
-    inside = np.zeros(drawn_all.shape[:2], dtype=bool)
-    inside[
-        rows.start - grown_rows.start : rows.stop - grown_rows.start,
-        cols.start - grown_cols.start : cols.stop - grown_cols.start,
-    ] = True
+    drawn_all, hidden_all, inside = _crop(capture, icon, ring)
     touched = inside & (np.abs(drawn_all - hidden_all).max(axis=-1) > 0)
     candidates = _erode(touched)
-    around_mask = _dilate(touched, ring) & ~touched
-    around = around_lin = None
-    if around_mask.any():
-        around, around_lin = _hex(np.median(hidden_all[around_mask], axis=0))
+    around, around_lin = _around(hidden_all, touched, ring)
     paints = declared_paints(icon) or (DeclaredPaint(None, 1.0, ("image",), False, "image"),)
     found = _find_full(drawn_all, hidden_all, inside, touched, paints, capture.scale)
     # Edge pixels follow their nearest fully covered pixel (for coverage and candidates only).
@@ -476,33 +530,17 @@ def _measure_icon(
     for k, (paint, f) in enumerate(zip(paints, found, strict=True)):
         drawn = behind = None
         drawn_lin = behind_lin = None
-        worst = median = gated = None
-        predictions: tuple[Prediction, ...] = ()
-        model_source = model_alpha = model_opacity = drift = None
+        gated = None
+        model = _Model()
         mine = labels == k
-        if (candidates & mine).any():
-            per_pixel = contrast_ratio(
-                from_8bit(drawn_all[candidates & mine]), from_8bit(hidden_all[candidates & mine])
-            )
-            worst, median = float(per_pixel.min()), float(np.median(per_pixel))
+        worst, median = _diagnosis(drawn_all[candidates & mine], hidden_all[candidates & mine])
         if f.full.any():
             # drawn on behind: the pair that limits (the gated contrast is theirs).
             gated, pair_drawn, pair_behind = _limit(drawn_all[f.full], hidden_all[f.full])
             drawn, drawn_lin = _hex(pair_drawn)
             behind, behind_lin = _hex(pair_behind)
-            source, alpha = paint.color, 1.0
-            if manifest_icon is not None and (paint.current or len(paints) == 1):
-                source, alpha = manifest_icon.linear, float(manifest_icon.alpha)
-            if source is not None:
-                model_source = linear_to_hex(source)
-                model_alpha, model_opacity = alpha, min(1.0, paint.opacity)
-                predictions = _predictions(drawn_lin, behind_lin, source, alpha, model_opacity)
-                drift = min(p.drift for p in predictions) if predictions else None
-        painted = (
-            "image"
-            if paint.color is None
-            else ("currentColor" if paint.current else linear_to_hex(paint.color))
-        )
+            only = manifest_icon if paint.current or len(paints) == 1 else None
+            model = _model(paint, only, drawn_lin, behind_lin)
         out.append(
             MeasuredPaint(
                 source=page.source,
@@ -514,7 +552,11 @@ def _measure_icon(
                 match=match,
                 element=icon.kind,
                 dom_path=icon.dom_path,
-                paint=painted,
+                paint=(
+                    "image"
+                    if paint.color is None
+                    else ("currentColor" if paint.current else linear_to_hex(paint.color))
+                ),
                 kinds=paint.kinds,
                 declared=None if paint.color is None else linear_to_hex(paint.color),
                 declared_opacity=min(1.0, paint.opacity),
@@ -528,11 +570,11 @@ def _measure_icon(
                 contrast=gated,
                 contrast_worst=worst,
                 contrast_median=median,
-                model_source=model_source,
-                model_alpha=model_alpha,
-                model_opacity=model_opacity,
-                predictions=predictions,
-                render_drift=drift,
+                model_source=model.source,
+                model_alpha=model.alpha,
+                model_opacity=model.opacity,
+                predictions=model.predictions,
+                render_drift=model.drift,
                 box=icon.box,
                 status=MEASURED if gated is not None else UNMEASURED,
                 basis=f.basis,

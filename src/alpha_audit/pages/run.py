@@ -18,7 +18,7 @@ import contextlib
 import queue
 import threading
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import NamedTuple
@@ -268,12 +268,6 @@ def audit_pages(
     rank = {job.order: k for k, job in enumerate(ordered)}
     crops = CropStore(config.crops, config.policy, config.threshold) if config.crops > 0 else None
     index = ManifestIndex.of(iconset)
-    results: dict[int, tuple[list[MeasuredPaint], PageProblem | None, list[str], int]] = {}
-    todo: queue.Queue[Job] = queue.Queue()
-    for job in jobs:
-        todo.put(job)
-    failure: list[BaseException] = []
-    lock = threading.Lock()
     with ending_on_signals(), PageServer(_mounts(config), Path(config.root)) as server:
         # Where each page's CSS is written (one resolver for the run, shared by workers).
         files = ServedFiles(server.local_file, Path(config.root))
@@ -287,38 +281,75 @@ def audit_pages(
             _Worker(config, server, direct, files)
             for _ in range(max(1, min(config.workers, len(jobs))))
         ]
+        results = _run_jobs(
+            workers,
+            jobs,
+            lambda worker, job: worker.run(job, index, crops, rank[job.order]),
+            progress,
+        )
+    return _page_audit(jobs, ordered, results, workers, crops)
 
-        def work(worker: _Worker) -> None:
-            while not failure:
-                try:
-                    job = todo.get_nowait()
-                except queue.Empty:
-                    return
-                try:
-                    outcome = worker.run(job, index, crops, rank[job.order])
-                except BaseException as exc:  # handed to the caller's thread below
-                    failure.append(exc)
-                    return
-                with lock:
-                    results[job.order] = outcome
-                    if progress is not None:
-                        progress[1]()
 
-        threads = [threading.Thread(target=work, args=(w,), daemon=True) for w in workers]
-        try:
-            for thread in threads:
-                thread.start()
-            for thread in threads:
-                while thread.is_alive():
-                    thread.join(0.1)  # short joins: SIGTERM and Ctrl-C are handled meanwhile
-        finally:
-            failure.append(AlphaAuditError("stopped"))  # tells the other workers to stop
-            for worker in workers:
-                worker.close()
-            for thread in threads:
-                thread.join(5)
-        if len(failure) > 1:
-            raise failure[0]
+_Outcome = tuple[list[MeasuredPaint], PageProblem | None, list[str], int]
+
+
+def _run_jobs(
+    workers: Sequence[_Worker],
+    jobs: Sequence[Job],
+    run: Callable[[_Worker, Job], _Outcome],
+    progress: Progress | None,
+) -> dict[int, _Outcome]:
+    """Each job's outcome by its order, the workers taking jobs in parallel (a thread each);
+    the first exception of any worker stops them all and is raised here."""
+    results: dict[int, _Outcome] = {}
+    todo: queue.Queue[Job] = queue.Queue()
+    for job in jobs:
+        todo.put(job)
+    failure: list[BaseException] = []
+    lock = threading.Lock()
+
+    def work(worker: _Worker) -> None:
+        while not failure:
+            try:
+                job = todo.get_nowait()
+            except queue.Empty:
+                return
+            try:
+                outcome = run(worker, job)
+            except BaseException as exc:  # handed to the caller's thread below
+                failure.append(exc)
+                return
+            with lock:
+                results[job.order] = outcome
+                if progress is not None:
+                    progress[1]()
+
+    threads = [threading.Thread(target=work, args=(w,), daemon=True) for w in workers]
+    try:
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            while thread.is_alive():
+                thread.join(0.1)  # short joins: SIGTERM and Ctrl-C are handled meanwhile
+    finally:
+        failure.append(AlphaAuditError("stopped"))  # tells the other workers to stop
+        for worker in workers:
+            worker.close()
+        for thread in threads:
+            thread.join(5)
+    if len(failure) > 1:
+        raise failure[0]
+    return results
+
+
+def _page_audit(
+    jobs: Sequence[Job],
+    ordered: Sequence[Job],
+    results: dict[int, _Outcome],
+    workers: Sequence[_Worker],
+    crops: CropStore | None,
+) -> PageAudit:
+    """The run and its paints in report order (``ordered``) from each job's outcome."""
     versions: dict[str, str] = {}
     for worker in workers:
         versions.update(worker.versions)
