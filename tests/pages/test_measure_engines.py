@@ -121,7 +121,8 @@ def _specs() -> list[Spec]:
 
 
 def _special(rng: np.random.Generator) -> list[Spec]:
-    """A hairline, an icon the colour of its surface, and an ``<img>`` whose paint is unknown."""
+    """A hairline, an icon the colour of its surface, an ``<img>`` whose paint is unknown, and
+    an icon whose colour is ``transparent`` (it draws nothing: no row)."""
     page = np.array([192.0, 192.0, 192.0])
     star = _star(5, 10, 4.5)
     hairline = (
@@ -143,8 +144,14 @@ def _special(rng: np.random.Generator) -> list[Spec]:
         f'<img id="image" width="32" height="32" style="display: block" '
         f'src="data:image/svg+xml,{quote(image)}">'
     )
+    transparent = (
+        '<svg id="transparent" xmlns="http://www.w3.org/2000/svg" width="32" height="32" '
+        f'viewBox="0 0 24 24" style="color: transparent; display: block"><polygon '
+        f'points="{star}" fill="currentColor"/></svg>'
+    )
     return [
         Spec("hairline", _cell(ICONS, page, "", hairline), np.array([32.0] * 3), page, "hairline"),
+        Spec("transparent", _cell(ICONS + 3, page, "", transparent), page, page, "transparent"),
         Spec("invisible", _cell(ICONS + 1, page, "", invisible), page, page, "invisible"),
         Spec("image", _cell(ICONS + 2, page, "", img), fill, page, "image"),
     ]
@@ -188,7 +195,8 @@ def measured(engine, tmp_path_factory: pytest.TempPathFactory):
         key = re.search(r"#([a-z0-9]+)$", paint.dom_path)
         assert key is not None and key.group(1) not in paints, paint.dom_path
         paints[key.group(1)] = paint
-    return {s.key: (s, paints[s.key]) for s in specs}
+    assert set(paints) == {s.key for s in specs if s.kind != "transparent"}
+    return {s.key: (s, paints[s.key]) for s in specs if s.key in paints}
 
 
 def test_the_gated_contrast_is_the_paints_within_one_code_every_time(measured):
@@ -239,6 +247,12 @@ def test_a_hairline_could_not_be_measured_and_neither_passes_nor_fails(measured)
     assert paint.status == UNMEASURED and paint.basis is None
     assert paint.contrast is None and _passes(paint) is None
     assert paint.coverage.pixels > 0 and paint.coverage.full == 0
+
+
+def test_a_transparent_icon_draws_nothing_and_is_no_row(measured):
+    """``color: transparent`` (every paint at alpha 0): not a failure, not a warning, no row
+    (the fixture checks that every other icon of the page has its row)."""
+    assert "transparent" not in measured
 
 
 def test_an_icon_the_colour_of_its_surface_fails_at_one(measured):

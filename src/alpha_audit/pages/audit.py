@@ -217,7 +217,8 @@ def _unaudited(left: Sequence[tuple[MeasuredPaint, Icon]], own: dict[str, Icon])
                 paint.dom_path,
                 None,
                 f"{paint.paint} ({'/'.join(paint.kinds) or 'paint'}): {paint.status}: no pixel "
-                "shows it at full coverage (a hairline at this device scale); not judged",
+                "shows it at full coverage (a stroke too thin for this device scale, a fill "
+                "with no area, or a paint under the icon's other paints); not judged",
             )
         )
     return out

@@ -518,7 +518,10 @@ def _measure_icon(
     touched = inside & (np.abs(drawn_all - hidden_all).max(axis=-1) > 0)
     candidates = _erode(touched)
     around, around_lin = _around(hidden_all, touched, ring)
-    paints = declared_paints(icon) or (DeclaredPaint(None, 1.0, ("image",), False, "image"),)
+    declared = declared_paints(icon)
+    if icon.paints and not declared:
+        return []  # every paint transparent or at opacity 0: the icon draws nothing
+    paints = declared or (DeclaredPaint(None, 1.0, ("image",), False, "image"),)
     found = _find_full(drawn_all, hidden_all, inside, touched, paints, capture.scale)
     # Edge pixels follow their nearest fully covered pixel (for coverage and candidates only).
     labels = np.full(touched.shape, -1, dtype=np.int64)
