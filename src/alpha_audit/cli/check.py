@@ -12,6 +12,7 @@ import typer
 from alpha_audit.cli.console import emit, progress_bar, stderr_note, stdout_options
 from alpha_audit.cli.options import (
     ARGS,
+    AlphaOption,
     ConfigOption,
     ExitZeroOption,
     ForceOption,
@@ -28,13 +29,11 @@ from alpha_audit.cli.options import (
     WriteBaselineOption,
     baseline_option,
     given_order,
-    in_range,
     path_value,
     theme_and_iconset,
     with_policy_flags,
 )
 from alpha_audit.cli.status import ExitStatus
-from alpha_audit.ranges import ALPHA
 from alpha_audit.render import CheckFormat, Format, RenderOptions
 from alpha_audit.render.common import check_suffix
 
@@ -139,16 +138,6 @@ _Iconsets = Annotated[
         "--iconset", metavar="PATH", parser=path_value, help="Another icon set (repeatable)."
     ),
 ]
-_Alpha = Annotated[
-    float | None,
-    typer.Option(
-        "--alpha",
-        "-a",
-        help="Coefficient for every icon.",
-        callback=in_range("--alpha", ALPHA),
-        show_default="the manifest's",
-    ),
-]
 _Base = Annotated[
     str | None,
     typer.Option(
@@ -170,7 +159,7 @@ def check_command(
     themes: _Themes = None,
     iconsets: _Iconsets = None,
     config: ConfigOption = None,
-    alpha: _Alpha = None,
+    alpha: AlphaOption = None,
     max_combinations: MaxCombinationsOption = None,
     pipeline: PipelineOption = None,
     gamut: GamutOption = None,

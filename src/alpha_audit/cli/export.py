@@ -9,17 +9,16 @@ import typer
 
 from alpha_audit.cli.console import emit, stderr_note
 from alpha_audit.cli.options import (
+    AlphaOption,
     ConfigOption,
     ForceOption,
     GamutOption,
     IconsetArgument,
     PipelineOption,
     ThemeArgument,
-    in_range,
     theme_and_iconset,
 )
 from alpha_audit.cli.status import ExitStatus
-from alpha_audit.ranges import ALPHA
 
 __all__ = ["export_command"]
 
@@ -52,16 +51,7 @@ def export_command(
             show_default='[data-theme="<mode>"]',
         ),
     ] = None,
-    alpha: Annotated[
-        float | None,
-        typer.Option(
-            "--alpha",
-            "-a",
-            help="Coefficient for every icon colour (overrides the manifests and tokens).",
-            callback=in_range("--alpha", ALPHA),
-            show_default="the config's, else the manifest's and tokens'",
-        ),
-    ] = None,
+    alpha: AlphaOption = None,
     pipeline: PipelineOption = None,
     gamut: GamutOption = None,
     config: ConfigOption = None,

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import functools
 import inspect
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any, TypeVar, cast, get_type_hints
@@ -26,6 +26,7 @@ from alpha_audit.rules import CHECK_RULES, DEFAULT_RULES, RULES, Rule
 
 __all__ = [
     "ARGS",
+    "AlphaOption",
     "Command",
     "ConfigOption",
     "ExitZeroOption",
@@ -49,6 +50,7 @@ __all__ = [
     "ThresholdOption",
     "VisibilityFloorOption",
     "baseline_option",
+    "fail_on_option",
     "flag",
     "given_order",
     "in_range",
@@ -186,20 +188,42 @@ ThresholdOption = Annotated[
         show_default=f"the theme's, else {NON_TEXT_THRESHOLD:g}: WCAG 2.2 SC 1.4.11",
     ),
 ]
-FailOnOption = Annotated[
-    list[str] | None,
-    typer.Option(
+
+
+def fail_on_option(
+    rules: Iterable[str], defaults: Iterable[str], where: str, others: Iterable[str], why: str
+) -> Any:
+    """``--fail-on RULE`` over ``rules`` (``defaults`` when ``where`` names none); the rules
+    of ``others`` are refused with ``why`` (check's and render's are not the same)."""
+    return typer.Option(
         "--fail-on",
         metavar="RULE",
         help="Rule that fails the gate (repeatable; replaces the policy): "
-        + ", ".join(CHECK_RULES)
+        + ", ".join(rules)
         + " (docs/rules.md).",
-        show_default="the config's, else " + ", ".join(r for r in RULES if r in DEFAULT_RULES),
-        callback=rules_flag(
-            "--fail-on",
-            tuple(r.value for r in RULES if r not in CHECK_RULES),
-            "only render raises it (from a browser's pixels)",
-        ),
+        show_default=f"{where}, else " + ", ".join(defaults),
+        callback=rules_flag("--fail-on", tuple(others), why),
+    )
+
+
+AlphaOption = Annotated[
+    float | None,
+    typer.Option(
+        "--alpha",
+        "-a",
+        help="Coefficient for every icon colour (overrides the config, manifests and tokens).",
+        callback=in_range("--alpha", ranges.ALPHA),
+        show_default="the config's, else the manifest's and tokens'",
+    ),
+]
+FailOnOption = Annotated[
+    list[str] | None,
+    fail_on_option(
+        CHECK_RULES,
+        (r for r in RULES if r in DEFAULT_RULES),
+        "the config's",
+        (r.value for r in RULES if r not in CHECK_RULES),
+        "only render raises it (from a browser's pixels)",
     ),
 ]
 

@@ -28,8 +28,8 @@ from alpha_audit.cli.options import (
     OutputsOption,
     WriteBaselineOption,
     baseline_option,
+    fail_on_option,
     in_range,
-    rules_flag,
 )
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.errors import UsageError
@@ -139,15 +139,12 @@ _Timeout = Annotated[
 ]
 _FailOn = Annotated[
     list[str] | None,
-    typer.Option(
-        "--fail-on",
-        metavar="RULE",
-        help="Rule that fails the gate (repeatable; replaces the policy): "
-        + ", ".join(r.value for r in RENDER_RULES)
-        + " (docs/rules.md).",
-        show_default="the render: table's, else "
-        + ", ".join(r.value for r in RENDER_RULES if r in RENDER_DEFAULT_RULES),
-        callback=rules_flag("--fail-on", _NOT_RENDER, "it is a rule of check"),
+    fail_on_option(
+        (r.value for r in RENDER_RULES),
+        (r.value for r in RENDER_RULES if r in RENDER_DEFAULT_RULES),
+        "the render: table's",
+        _NOT_RENDER,
+        "it is a rule of check",
     ),
 ]
 
