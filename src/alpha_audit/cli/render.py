@@ -11,9 +11,8 @@ audited (one line says which), 3 a bug.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import replace
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
@@ -37,6 +36,9 @@ from alpha_audit.pages.states import State, state_matrix
 from alpha_audit.render import CheckFormat
 from alpha_audit.rules import RENDER_DEFAULT_RULES, RENDER_RULES, RULES
 from alpha_audit.safe_text import safe_text
+
+if TYPE_CHECKING:
+    from alpha_audit.observed import PageRun
 
 __all__ = ["render_command"]
 
@@ -149,6 +151,18 @@ _FailOn = Annotated[
 ]
 
 
+def _said_problems(run: PageRun) -> bool:
+    """The blocked requests and the page states that could not be audited, on stderr;
+    whether there were any of the latter (render then exits 2)."""
+    from alpha_audit.render.pages import blocked_line, problems_line
+
+    if run.blocked:
+        stderr_note(blocked_line(run.blocked))
+    if run.problems:
+        stderr_note(safe_text(problems_line(run)))
+    return bool(run.problems)
+
+
 def render_command(
     ctx: typer.Context,
     sources: _Sources = None,
@@ -194,7 +208,7 @@ def render_command(
     from alpha_audit.load.iconset import load_iconset
     from alpha_audit.pages import audit_pages, page_report
     from alpha_audit.pages.config import resolve_render_config
-    from alpha_audit.render.pages import blocked_line, problems_line
+    from alpha_audit.pages.crops import MAX_CROPS
 
     pairs = report_targets(ctx, fmt, output, write_baseline, force)
     settings = resolve_render_config(
@@ -212,11 +226,9 @@ def render_command(
         workers=workers,
         timeout=timeout,
         baseline=baseline,
+        # Crops are cut while each page state is measured, for the html report only.
+        crops=MAX_CROPS if any(kind is CheckFormat.HTML for kind, _ in pairs) else None,
     )
-    if any(kind is CheckFormat.HTML for kind, _ in pairs):
-        from alpha_audit.pages.crops import MAX_CROPS
-
-        settings = replace(settings, crops=MAX_CROPS)  # cut while each page state is measured
     known = None
     if settings.baseline is not None and write_baseline is None:
         known = read_baseline(settings.baseline)
@@ -227,10 +239,7 @@ def render_command(
         run, paints, settings.policy, manifest, threshold=settings.threshold, baseline=known
     )
     write_reports(report, pairs, write_baseline, force)
-    if run.blocked:
-        stderr_note(blocked_line(run.blocked))
-    if run.problems:
-        stderr_note(safe_text(problems_line(run)))
+    if _said_problems(run):
         return ExitStatus.INPUT_ERROR
     return gate_status(
         report.gate, writing_baseline=write_baseline is not None, exit_zero=exit_zero

@@ -57,73 +57,84 @@ def _run_with_progress(
         return run(advance)
 
 
+# reproduce's options.
+_Theme = Annotated[
+    Path | None,
+    typer.Option(
+        "--theme",
+        help="Theme YAML with the canvases, or a bundled theme name (default: paper16, bundled).",
+    ),
+]
+_Only = Annotated[
+    list[Experiment] | None,
+    typer.Option(
+        "--only",
+        metavar="EXPERIMENT",
+        help="Run only this experiment (repeatable): full-gamut, broad-grid, sweep, palette; "
+        "browser and runtime (in browsers, never by default) need --icons.",
+        show_default=False,
+    ),
+]
+_Alphas = Annotated[
+    list[float] | None,
+    typer.Option(
+        "--alpha",
+        metavar="A",
+        help="Coefficient for full gamut, broad grid and palette (repeatable; default 1.1 "
+        "and 1.4).",
+        show_default=False,
+        callback=in_range("--alpha", ALPHA),
+    ),
+]
+_Out = Annotated[
+    Path | None,
+    typer.Option(
+        "--out",
+        help="Directory for results.json, report.md and the sweep figures.",
+        file_okay=False,
+    ),
+]
+_Quick = Annotated[
+    bool, typer.Option("--quick", help="Small grids (seconds, not the paper's sizes).")
+]
+_OutputFormat = Annotated[
+    ReproduceFormat,
+    typer.Option("--format", help="What to print on stdout."),
+]
+_Force = Annotated[
+    bool, typer.Option("--force", help="Replace existing files in the --out folder.")
+]
+_Icons = Annotated[
+    Path | None,
+    typer.Option(
+        "--icons",
+        help="Directory of SVG icons for browser and runtime (the first 300 by SHA-256 "
+        "of their path).",
+        file_okay=False,
+    ),
+]
+_Engines = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--engine",
+        metavar="ENGINE",
+        help="Browser engine for browser and runtime (repeatable: chromium, firefox, "
+        "webkit; default every installed one).",
+        show_default=False,
+    ),
+]
+
+
 def reproduce_command(
-    theme: Annotated[
-        Path | None,
-        typer.Option(
-            "--theme",
-            help="Theme YAML with the canvases, or a bundled theme name (default: paper16, "
-            "bundled).",
-        ),
-    ] = None,
-    only: Annotated[
-        list[Experiment] | None,
-        typer.Option(
-            "--only",
-            metavar="EXPERIMENT",
-            help="Run only this experiment (repeatable): full-gamut, broad-grid, sweep, palette; "
-            "browser and runtime (in browsers, never by default) need --icons.",
-            show_default=False,
-        ),
-    ] = None,
-    alphas: Annotated[
-        list[float] | None,
-        typer.Option(
-            "--alpha",
-            metavar="A",
-            help="Coefficient for full gamut, broad grid and palette (repeatable; default 1.1 "
-            "and 1.4).",
-            show_default=False,
-            callback=in_range("--alpha", ALPHA),
-        ),
-    ] = None,
-    out: Annotated[
-        Path | None,
-        typer.Option(
-            "--out",
-            help="Directory for results.json, report.md and the sweep figures.",
-            file_okay=False,
-        ),
-    ] = None,
-    quick: Annotated[
-        bool, typer.Option("--quick", help="Small grids (seconds, not the paper's sizes).")
-    ] = False,
-    output_format: Annotated[
-        ReproduceFormat,
-        typer.Option("--format", help="What to print on stdout."),
-    ] = ReproduceFormat.TABLE,
-    force: Annotated[
-        bool, typer.Option("--force", help="Replace existing files in the --out folder.")
-    ] = False,
-    icons: Annotated[
-        Path | None,
-        typer.Option(
-            "--icons",
-            help="Directory of SVG icons for browser and runtime (the first 300 by SHA-256 "
-            "of their path).",
-            file_okay=False,
-        ),
-    ] = None,
-    engines: Annotated[
-        list[str] | None,
-        typer.Option(
-            "--engine",
-            metavar="ENGINE",
-            help="Browser engine for browser and runtime (repeatable: chromium, firefox, "
-            "webkit; default every installed one).",
-            show_default=False,
-        ),
-    ] = None,
+    theme: _Theme = None,
+    only: _Only = None,
+    alphas: _Alphas = None,
+    out: _Out = None,
+    quick: _Quick = False,
+    output_format: _OutputFormat = ReproduceFormat.TABLE,
+    force: _Force = False,
+    icons: _Icons = None,
+    engines: _Engines = None,
 ) -> ExitStatus:
     """Reproduce the paper's numerical evaluation (Section 4) exactly and fast."""
     from rich.console import Console
