@@ -74,162 +74,180 @@ def modes_from_figma(doc: JsonDoc, *, collection: str | None = None) -> TokenMod
             line=doc.line(top),
             path=None,
         )
-
-    known: dict[str, dict[str, str]] = {}  # each collection's modes, read once
-
-    def coll_modes(cid: str) -> dict[str, str]:
-        if cid in known:
-            return known[cid]
-        c = collections.get(cid)
-        if not isinstance(c, dict) or not isinstance(c.get("modes"), list):
-            raise token_error(
-                f"collection {cid!r} is missing or has no modes",
-                file=doc.path,
-                line=doc.line((*top, "variableCollections")),
-                path=None,
-            )
-        modes = {}
-        for m in c["modes"]:
-            if not isinstance(m, dict) or not isinstance(m.get("name"), str) or "modeId" not in m:
-                raise token_error(
-                    f"collection {cid!r} has a mode without a name and a modeId",
-                    file=doc.path,
-                    line=doc.line((*top, "variableCollections", cid)),
-                    path=None,
-                )
-            modes[m["name"]] = str(m["modeId"])
-        if not modes:
-            raise token_error(
-                f"collection {cid!r} has no modes",
-                file=doc.path,
-                line=doc.line((*top, "variableCollections", cid)),
-                path=None,
-            )
-        known[cid] = modes
-        return modes
-
-    if collection is None:
-        main = max(collections, key=lambda cid: len(coll_modes(cid)))
-    else:
-        by_name = {str(c.get("name")): cid for cid, c in collections.items() if isinstance(c, dict)}
-        if collection not in by_name:
-            raise token_error(
-                f"no collection named {collection!r}; have {', '.join(sorted(by_name))}",
-                file=doc.path,
-                line=doc.line((*top, "variableCollections")),
-                path=None,
-            )
-        main = by_name[collection]
-    for cid, coll in collections.items():
-        if isinstance(coll, dict) and "name" in coll:
-            line = doc.line((*top, "variableCollections", cid))
-            check_name(str(coll["name"]), path=doc.path, line=line, what="collection name")
-    names = list(coll_modes(main))
+    reader = _Reader(doc, top, variables, collections)
+    main = reader.main_collection(collection)
+    names = list(reader.coll_modes(main))
     check_mode_budget(doc.path, len(names), len(variables))
     for name in names:
         check_name(name, path=doc.path, line=doc.line((*top, "variableCollections")), what="mode")
+    read = reader.variables_once()
+    modes = {mode_name: reader.mode(mode_name, read) for mode_name in names}
+    default_id = collections[main].get("defaultModeId")
+    default = next((n for n, m in reader.coll_modes(main).items() if m == default_id), names[0])
+    return TokenModes(doc.path, "figma", modes, default)
 
-    def where(vid: str, mode_id: str | None = None) -> TokenPlace:
-        keys: JsonPath = (*top, "variables", vid)
+
+class _Reader:
+    """One response's variables and collections, each collection's modes read once."""
+
+    def __init__(
+        self, doc: JsonDoc, top: JsonPath, variables: dict[str, Any], collections: dict[str, Any]
+    ) -> None:
+        self.doc, self.top = doc, top
+        self.variables, self.collections = variables, collections
+        self.known: dict[str, dict[str, str]] = {}  # each collection's modes, read once
+        self.steps = Steps()  # alias hops over every mode: linear in modes x variables, capped
+
+    def _error(self, message: str, *keys: str) -> Exception:
+        line = self.doc.line((*self.top, "variableCollections", *keys))
+        return token_error(message, file=self.doc.path, line=line, path=None)
+
+    def coll_modes(self, cid: str) -> dict[str, str]:
+        """A collection's modes, name -> modeId."""
+        if cid in self.known:
+            return self.known[cid]
+        c = self.collections.get(cid)
+        if not isinstance(c, dict) or not isinstance(c.get("modes"), list):
+            raise self._error(f"collection {cid!r} is missing or has no modes")
+        modes = {}
+        for m in c["modes"]:
+            if not isinstance(m, dict) or not isinstance(m.get("name"), str) or "modeId" not in m:
+                raise self._error(f"collection {cid!r} has a mode without a name and a modeId", cid)
+            modes[m["name"]] = str(m["modeId"])
+        if not modes:
+            raise self._error(f"collection {cid!r} has no modes", cid)
+        self.known[cid] = modes
+        return modes
+
+    def main_collection(self, collection: str | None) -> str:
+        """The collection whose modes are the modes: the named one, else the one with most;
+        every collection's name checked."""
+        if collection is None:
+            main = max(self.collections, key=lambda cid: len(self.coll_modes(cid)))
+        else:
+            by_name = {
+                str(c.get("name")): cid
+                for cid, c in self.collections.items()
+                if isinstance(c, dict)
+            }
+            if collection not in by_name:
+                raise self._error(
+                    f"no collection named {collection!r}; have {', '.join(sorted(by_name))}"
+                )
+            main = by_name[collection]
+        for cid, coll in self.collections.items():
+            if isinstance(coll, dict) and "name" in coll:
+                line = self.doc.line((*self.top, "variableCollections", cid))
+                check_name(str(coll["name"]), path=self.doc.path, line=line, what="collection name")
+        return main
+
+    def where(self, vid: str, mode_id: str | None = None) -> TokenPlace:
+        """Where a variable (or its value in a mode) is, and its token path."""
+        keys: JsonPath = (*self.top, "variables", vid)
         if mode_id is not None:
             keys = (*keys, "valuesByMode", mode_id)
-        var = variables.get(vid)
+        var = self.variables.get(vid)
         name = var.get("name") if isinstance(var, dict) else None
         shown = _path(name) if isinstance(name, str) and name else str(vid)
-        return {"file": doc.path, "line": doc.line(keys), "path": shown}
+        return {"file": self.doc.path, "line": self.doc.line(keys), "path": shown}
 
-    def mode_for(vid: str, mode_name: str) -> str:
-        var = variables[vid]
-        cid = var.get("variableCollectionId")
-        if not isinstance(cid, str) or cid not in collections:
-            raise _Missing(f"names no known variableCollectionId ({cid!r:.40})", where(vid))
-        modes = coll_modes(cid)
+    def mode_for(self, vid: str, mode_name: str) -> str:
+        """The modeId a variable takes in mode ``mode_name``: its collection's mode of that
+        name, else its collection's default mode."""
+        cid = self.variables[vid].get("variableCollectionId")
+        if not isinstance(cid, str) or cid not in self.collections:
+            raise _Missing(f"names no known variableCollectionId ({cid!r:.40})", self.where(vid))
+        modes = self.coll_modes(cid)
         if mode_name in modes:
             return modes[mode_name]
-        default = collections[cid].get("defaultModeId")
+        default = self.collections[cid].get("defaultModeId")
         return str(default) if default is not None else next(iter(modes.values()))
 
-    steps = Steps()  # alias hops over every mode: linear in modes x variables, capped
-
-    def resolve(vid: str, mode_name: str, stack: list[str]) -> tuple[Any, str, str]:
-        steps.take(1, "resolving aliases", lambda: where(stack[0] if stack else vid))
-        if vid not in variables or not isinstance(variables[vid], dict):
+    def resolve(self, vid: str, mode_name: str, stack: list[str]) -> tuple[Any, str, str]:
+        """A variable's value in a mode through its aliases: (value, origin, origin's mode)."""
+        self.steps.take(1, "resolving aliases", lambda: self.where(stack[0] if stack else vid))
+        if vid not in self.variables or not isinstance(self.variables[vid], dict):
             raise _Missing(
                 f"alias to variable {vid!r}, which this response does not hold (a library "
                 "variable? the REST endpoint lists local variables only)",
-                where(stack[-1]),
+                self.where(stack[-1]),
             )
         if vid in stack:
-            chain = " -> ".join(str(where(v)["path"]) for v in [*stack, vid])
-            raise token_error(f"alias cycle: {chain}", **where(stack[0]))
+            chain = " -> ".join(str(self.where(v)["path"]) for v in [*stack, vid])
+            raise token_error(f"alias cycle: {chain}", **self.where(stack[0]))
         if len(stack) > MAX_ALIAS_CHAIN:
-            raise token_error(f"alias chain longer than {MAX_ALIAS_CHAIN}", **where(stack[0]))
-        mode_id = mode_for(vid, mode_name)
-        by_mode = variables[vid].get("valuesByMode")
+            raise token_error(f"alias chain longer than {MAX_ALIAS_CHAIN}", **self.where(stack[0]))
+        mode_id = self.mode_for(vid, mode_name)
+        by_mode = self.variables[vid].get("valuesByMode")
         value = by_mode.get(mode_id) if isinstance(by_mode, dict) else None
         if isinstance(value, dict) and value.get("type") == "VARIABLE_ALIAS":
-            return resolve(str(value.get("id")), mode_name, [*stack, vid])
+            return self.resolve(str(value.get("id")), mode_name, [*stack, vid])
         if value is None:
-            raise _Missing(f"has no value for mode {mode_name!r}", where(vid))
+            raise _Missing(f"has no value for mode {mode_name!r}", self.where(vid))
         return value, vid, mode_id
 
-    # What does not depend on the mode is read once per variable, not once per mode.
-    read: list[tuple[str, dict[str, Any], str, str]] = []  # vid, variable, path, type
-    named: dict[str, str] = {}  # token path: the variable name that made it
-    for vid, var in variables.items():
-        if not isinstance(var, dict) or not isinstance(var.get("name"), str):
-            raise token_error("a variable needs a name", **where(vid))
-        ttype = _TYPES.get(str(var.get("resolvedType")))
-        if ttype is None:
-            raise token_error(
-                f"resolvedType {var.get('resolvedType')!r} is not one of {', '.join(_TYPES)}",
-                **where(vid),
-            )
-        check_name(var["name"], **_named(where(vid)), what="variable name")
-        path = _path(var["name"])
-        if path in named:
-            raise token_error(
-                f"variables {named[path]!r} and {var['name']!r} both name the token {path}; "
-                "token paths must be unique, rename one",
-                **where(vid),
-            )
-        named[path] = var["name"]
-        read.append((vid, var, path, ttype))
+    def variables_once(self) -> list[tuple[str, dict[str, Any], str, str]]:
+        """What does not depend on the mode, read once per variable: (id, variable, token
+        path, type); names checked, token paths unique."""
+        read: list[tuple[str, dict[str, Any], str, str]] = []
+        named: dict[str, str] = {}  # token path: the variable name that made it
+        for vid, var in self.variables.items():
+            if not isinstance(var, dict) or not isinstance(var.get("name"), str):
+                raise token_error("a variable needs a name", **self.where(vid))
+            ttype = _TYPES.get(str(var.get("resolvedType")))
+            if ttype is None:
+                raise token_error(
+                    f"resolvedType {var.get('resolvedType')!r} is not one of {', '.join(_TYPES)}",
+                    **self.where(vid),
+                )
+            check_name(var["name"], **_named(self.where(vid)), what="variable name")
+            path = _path(var["name"])
+            if path in named:
+                raise token_error(
+                    f"variables {named[path]!r} and {var['name']!r} both name the token {path}; "
+                    "token paths must be unique, rename one",
+                    **self.where(vid),
+                )
+            named[path] = var["name"]
+            read.append((vid, var, path, ttype))
+        return read
 
-    modes: dict[str, dict[str, Token]] = {}
-    for mode_name in names:
+    def mode(
+        self, mode_name: str, read: list[tuple[str, dict[str, Any], str, str]]
+    ) -> dict[str, Token]:
+        """Every variable's token in one mode (a value that cannot be resolved is a token
+        with a problem: an error only where selected)."""
         tokens: dict[str, Token] = {}
+        path_of = self.doc.path
         for vid, var, path, ttype in read:
             try:
-                value, origin, origin_mode = resolve(vid, mode_name, [])
+                value, origin, origin_mode = self.resolve(vid, mode_name, [])
             except _Missing as exc:
                 tokens[path] = Token(
                     path=path,
                     type=ttype,
                     value=None,
-                    file=doc.path,
+                    file=path_of,
                     line=exc.place["line"],
                     problem=exc.problem,
                 )
                 continue
-            loc = where(origin, origin_mode)
+            loc = self.where(origin, origin_mode)
             if ttype == "color":
                 value = _color(value, loc)
+            aliased = origin != vid
             tokens[path] = Token(
                 path=path,
                 type=ttype,
                 value=value,
-                file=doc.path,
+                file=path_of,
                 line=loc["line"],
                 description=var.get("description") or None,
-                chain=(str(where(origin)["path"]),) if origin != vid else (),
-                alias_file=doc.path if origin != vid else None,
-                alias_line=where(vid)["line"] if origin != vid else None,
+                chain=(str(self.where(origin)["path"]),) if aliased else (),
+                alias_file=path_of if aliased else None,
+                alias_line=self.where(vid)["line"] if aliased else None,
             )
-        modes[mode_name] = tokens
-    default_id = collections[main].get("defaultModeId")
-    default = next((n for n, m in coll_modes(main).items() if m == default_id), names[0])
-    return TokenModes(doc.path, "figma", modes, default)
+        return tokens
 
 
 def _named(place: TokenPlace) -> dict[str, Any]:
