@@ -330,76 +330,16 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
     distinct: dict[tuple[Any, ...], str] = {}
     total_canvases = 0
     for name, entries in by_mode.items():
-        canvases: list[Canvas] = []
-        colors: dict[str, TokenColor] = {}
-        translucent: dict[str, TranslucentToken] = {}
-        layers: list[Canvas] = []
-        for path, key, token, is_canvas, is_color in entries:
-            parsed = seen[key]
-            if parsed.alpha < 1.0:
-                if is_color:
-                    raise token_error(
-                        f"{parsed.text[:60]!r} is translucent (alpha {parsed.alpha:.4g}); an "
-                        "icon colour is opaque and its coefficient lives in $extensions",
-                        file=token.file,
-                        line=token.line,
-                        path=path,
-                    )
-                translucent[path] = TranslucentToken(token, parsed, name)
-                if is_canvas:  # a surface or hover layer: audited over the mode's canvas
-                    layers.append(
-                        Canvas(
-                            path,
-                            parsed.css,
-                            config.mode_of(name),
-                            line=token.line,
-                            file=token.file,
-                            span=token.span,
-                            over="",  # set below: the mode's first opaque canvas
-                            opacity=parsed.alpha,
-                            # A sheet's surface is painted by the browser, whatever
-                            # pipeline draws the icons.
-                            blend="css" if source.kind == "css" else None,
-                        )
-                    )
-                continue
-            if parsed.adjusted:
-                adjusted.append((name, token, parsed))
-            if is_canvas:
-                canvases.append(
-                    Canvas(
-                        path,
-                        parsed.css,
-                        config.mode_of(name),
-                        line=token.line,
-                        file=token.file,
-                        span=token.span,
-                    )
-                )
-            if is_color:
-                colors[path] = TokenColor(token, parsed, _alpha(token, config.alpha_extension))
+        canvases, colors, translucent, layers = _mode_tokens(
+            name, entries, seen, config, source.kind, adjusted
+        )
         if not canvases:
-            if layers:
-                shown = ", ".join(f"{c.name} (alpha {c.opacity:.3g})" for c in layers[:2])
-                raise InputError(
-                    f"mode {name!r}: the tokens matching canvases {', '.join(config.canvases)} "
-                    f"are translucent ({shown}) and nothing says what they are drawn over; "
-                    "add the opaque canvas below them to canvases, or leave the mode out "
-                    "(tokens: {modes: {audit: [...]}})",
-                    path=source.source,
-                )
+            _no_canvas(name, layers, config, source.source)
             unset.append(name)  # the mode sets no selected canvas: nothing to audit on
             continue
         if layers:
-            base = canvases[0].name
-            canvases += [replace(layer, over=base) for layer in layers]
-            shown = ", ".join(f"{c.name} ({c.opacity:.3g})" for c in layers[:3])
-            more = f" and {len(layers) - 3} more" if len(layers) > 3 else ""
-            how = " as a browser draws them" if source.kind == "css" else ""
-            notes.append(
-                f"mode {name}: translucent canvases {shown}{more} audited as layers over "
-                f"{base}{how}"
-            )
+            canvases += [replace(layer, over=canvases[0].name) for layer in layers]
+            notes.append(_layers_note(name, canvases[0].name, layers, source.kind))
         signature = (
             tuple((c.name, c.color, c.mode) for c in canvases),
             tuple((p, c.parsed.encoded, c.alpha) for p, c in colors.items()),
@@ -433,6 +373,109 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
         )
     audited = {m.name for m in modes}
     aliases = {a: aliases.get(m, m) for a, m in aliases.items() if aliases.get(m, m) in audited}
+    moved = _gamut_moves(adjusted, config)
+    skipped = (*not_listed, *unset, *(a for a in source.aliases if a not in aliases))
+    return TokenThemes(
+        source.source,
+        source.kind,
+        config.gamut,
+        tuple(modes),
+        moved,
+        tuple(notes),
+        aliases=aliases,
+        skipped=tuple(skipped),
+        conditions=dict(source.conditions),
+    )
+
+
+def _no_canvas(name: str, layers: Sequence[Canvas], config: TokenConfig, source: Path) -> None:
+    """A mode with no opaque canvas: an error when it has translucent ones (nothing says what
+    they are drawn over), else nothing to audit on (the caller notes it)."""
+    if layers:
+        shown = ", ".join(f"{c.name} (alpha {c.opacity:.3g})" for c in layers[:2])
+        raise InputError(
+            f"mode {name!r}: the tokens matching canvases {', '.join(config.canvases)} "
+            f"are translucent ({shown}) and nothing says what they are drawn over; "
+            "add the opaque canvas below them to canvases, or leave the mode out "
+            "(tokens: {modes: {audit: [...]}})",
+            path=source,
+        )
+
+
+def _layers_note(name: str, base: str, layers: Sequence[Canvas], kind: str) -> str:
+    """What a mode's translucent canvases are audited as."""
+    shown = ", ".join(f"{c.name} ({c.opacity:.3g})" for c in layers[:3])
+    more = f" and {len(layers) - 3} more" if len(layers) > 3 else ""
+    how = " as a browser draws them" if kind == "css" else ""
+    return f"mode {name}: translucent canvases {shown}{more} audited as layers over {base}{how}"
+
+
+def _mode_tokens(
+    name: str,
+    entries: Sequence[tuple[str, str, Token, bool, bool]],
+    seen: dict[str, ParsedColor],
+    config: TokenConfig,
+    kind: str,
+    adjusted: list[tuple[str, Token, ParsedColor]],
+) -> tuple[list[Canvas], dict[str, TokenColor], dict[str, TranslucentToken], list[Canvas]]:
+    """One mode's opaque canvases, icon colours, translucent tokens and translucent canvas
+    layers (their ``over`` set by the caller); colours moved into the gamut are added to
+    ``adjusted``.  A translucent icon colour is an error."""
+    canvases: list[Canvas] = []
+    colors: dict[str, TokenColor] = {}
+    translucent: dict[str, TranslucentToken] = {}
+    layers: list[Canvas] = []
+    for path, key, token, is_canvas, is_color in entries:
+        parsed = seen[key]
+        if parsed.alpha < 1.0:
+            if is_color:
+                raise token_error(
+                    f"{parsed.text[:60]!r} is translucent (alpha {parsed.alpha:.4g}); an "
+                    "icon colour is opaque and its coefficient lives in $extensions",
+                    file=token.file,
+                    line=token.line,
+                    path=path,
+                )
+            translucent[path] = TranslucentToken(token, parsed, name)
+            if is_canvas:  # a surface or hover layer: audited over the mode's canvas
+                layers.append(
+                    Canvas(
+                        path,
+                        parsed.css,
+                        config.mode_of(name),
+                        line=token.line,
+                        file=token.file,
+                        span=token.span,
+                        over="",  # set below: the mode's first opaque canvas
+                        opacity=parsed.alpha,
+                        # A sheet's surface is painted by the browser, whatever
+                        # pipeline draws the icons.
+                        blend="css" if kind == "css" else None,
+                    )
+                )
+            continue
+        if parsed.adjusted:
+            adjusted.append((name, token, parsed))
+        if is_canvas:
+            canvases.append(
+                Canvas(
+                    path,
+                    parsed.css,
+                    config.mode_of(name),
+                    line=token.line,
+                    file=token.file,
+                    span=token.span,
+                )
+            )
+        if is_color:
+            colors[path] = TokenColor(token, parsed, _alpha(token, config.alpha_extension))
+    return canvases, colors, translucent, layers
+
+
+def _gamut_moves(
+    adjusted: Sequence[tuple[str, Token, ParsedColor]], config: TokenConfig
+) -> tuple[GamutAdjustment, ...]:
+    """Each colour moved into the gamut, with its CIEDE2000 (one batched call)."""
     delta_e = gamut_delta_e([p for _, _, p in adjusted]) if adjusted else np.zeros(0)
     moved = tuple(
         GamutAdjustment(
@@ -447,18 +490,7 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
         )
         for (name, token, parsed), de in zip(adjusted, delta_e, strict=True)
     )
-    skipped = (*not_listed, *unset, *(a for a in source.aliases if a not in aliases))
-    return TokenThemes(
-        source.source,
-        source.kind,
-        config.gamut,
-        tuple(modes),
-        moved,
-        tuple(notes),
-        aliases=aliases,
-        skipped=tuple(skipped),
-        conditions=dict(source.conditions),
-    )
+    return moved
 
 
 def _names_note(names: Sequence[str], why: str) -> str:
