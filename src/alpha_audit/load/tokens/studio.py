@@ -54,78 +54,110 @@ def modes_from_studio(
     that order (``()``: none, each theme alone).
     """
     folder = doc.path.name == "$themes.json"
-    base = doc.path.resolve().parent
-    if folder:
-        themes: Any = doc.data
-        try:
-            meta_path = contain(root, base, "$metadata.json")
-        except PathRefused as err:
-            raise token_error(str(err), file=doc.path, line=None, path=None) from err
-        meta = load_json(meta_path).data if meta_path.is_file() else {}
-        sets: dict[str, tuple[JsonDoc, Any]] = {}
-    else:
-        themes = doc.data.get("$themes", [])
-        meta = doc.data.get("$metadata", {})
-        sets = {
-            check_name(k, path=doc.path, line=doc.line((k,)), what="token set"): (doc, v)
-            for k, v in doc.data.items()
-            if not k.startswith("$")
-        }
+    themes, meta, sets = _parts(doc, root, folder)
     if not isinstance(themes, list):
         raise token_error("$themes must be a list of themes", file=doc.path, line=1, path=None)
     order = meta.get("tokenSetOrder") if isinstance(meta, dict) else None
-
-    def load_set(name: str, keys: tuple[str | int, ...]) -> tuple[JsonDoc, Any]:
-        if name not in sets:
-            if not folder:
-                raise token_error(
-                    f"names token set {name!r}, which this file does not have",
-                    file=doc.path,
-                    line=doc.line(keys),
-                    path=".".join(map(str, keys)),
-                )
-            try:
-                target = contain(root, base, f"{name}.json")
-            except PathRefused as err:
-                raise token_error(
-                    f"token set {name!r}: {err}",
-                    file=doc.path,
-                    line=doc.line(keys),
-                    path=".".join(map(str, keys)),
-                ) from err
-            if not target.is_file():  # named here, where a theme selects it
-                raise token_error(
-                    f"token set {name!r} has no file {name}.json beside this one",
-                    file=doc.path,
-                    line=doc.line(keys),
-                    path=".".join(map(str, keys)),
-                )
-            loaded = load_json(target)
-            sets[name] = (loaded, loaded.data)
-        return sets[name]
-
-    # Each set's first place in tokenSetOrder, looked up once (not a list scan per set).
-    rank: dict[Any, int] = {}
-    for place, set_name in enumerate(order if isinstance(order, list) else []):
-        if isinstance(set_name, str):
-            rank.setdefault(set_name, place)
-
-    def ordered(names: list[str]) -> list[str]:
-        if not isinstance(order, list):
-            return names
-        return sorted(names, key=lambda s: rank.get(s, len(order)))
-
-    steps = Steps()  # every theme walks its sets again: one budget for the source
-
-    def build(selected: list[str], keys: tuple[str | int, ...]) -> dict[str, Any]:
-        tree = TokenTree(legacy=True, steps=steps)
-        for name in selected:
-            sdoc, data = load_set(name, keys)
-            tree.add(sdoc, data, (name,) if sdoc is doc else ())
-        return tree.resolve()
-
+    store = _Sets(doc, root, folder, sets, order if isinstance(order, list) else None)
     if len(themes) > 0:
         check_mode_budget(doc.path, len(themes), 0)
+    combined = _combined(doc, _read_themes(doc, themes, folder), groups)
+    modes = {}
+    for name, states, keys in combined:
+        chosen = store.ordered([s for s, st in states.items() if st == "source"])
+        chosen += store.ordered([s for s, st in states.items() if st == "enabled"])
+        modes[name] = store.build(chosen, (*keys, "selectedTokenSets"))
+        check_mode_budget(doc.path, len(combined), len(modes[name]))
+    if not modes:
+        names = store.ordered(list(sets))
+        _no_overlap(doc, names, sets)
+        modes["default"] = store.build(names, ())
+    return TokenModes(doc.path, "tokens-studio", modes, next(iter(modes)))
+
+
+def _parts(
+    doc: JsonDoc, root: Path, folder: bool
+) -> tuple[Any, Any, dict[str, tuple[JsonDoc, Any]]]:
+    """The themes, the metadata and the token sets held in ``doc`` (a folder's
+    ``$themes.json`` holds none: its sets are files beside it, read when named)."""
+    if folder:
+        try:
+            meta_path = contain(root, doc.path.resolve().parent, "$metadata.json")
+        except PathRefused as err:
+            raise token_error(str(err), file=doc.path, line=None, path=None) from err
+        meta = load_json(meta_path).data if meta_path.is_file() else {}
+        return doc.data, meta, {}
+    sets = {
+        check_name(k, path=doc.path, line=doc.line((k,)), what="token set"): (doc, v)
+        for k, v in doc.data.items()
+        if not k.startswith("$")
+    }
+    return doc.data.get("$themes", []), doc.data.get("$metadata", {}), sets
+
+
+class _Sets:
+    """The token sets a source's themes name: loaded once (a folder's from files beside its
+    ``$themes.json``, inside the project), ordered by ``tokenSetOrder``, merged per theme."""
+
+    def __init__(
+        self,
+        doc: JsonDoc,
+        root: Path,
+        folder: bool,
+        sets: dict[str, tuple[JsonDoc, Any]],
+        order: list[Any] | None,
+    ) -> None:
+        self.doc, self.root, self.folder, self.sets = doc, root, folder, sets
+        self.base = doc.path.resolve().parent
+        self.order = order
+        # Each set's first place in tokenSetOrder, looked up once (not a list scan per set).
+        self.rank: dict[Any, int] = {}
+        for place, set_name in enumerate(order or []):
+            if isinstance(set_name, str):
+                self.rank.setdefault(set_name, place)
+        self.steps = Steps()  # every theme walks its sets again: one budget for the source
+
+    def _refusal(self, message: str, keys: tuple[str | int, ...]) -> Exception:
+        return token_error(
+            message, file=self.doc.path, line=self.doc.line(keys), path=".".join(map(str, keys))
+        )
+
+    def load(self, name: str, keys: tuple[str | int, ...]) -> tuple[JsonDoc, Any]:
+        """A set by name (``keys``: where a theme names it, for errors)."""
+        if name not in self.sets:
+            if not self.folder:
+                raise self._refusal(
+                    f"names token set {name!r}, which this file does not have", keys
+                )
+            try:
+                target = contain(self.root, self.base, f"{name}.json")
+            except PathRefused as err:
+                raise self._refusal(f"token set {name!r}: {err}", keys) from err
+            if not target.is_file():  # named here, where a theme selects it
+                raise self._refusal(
+                    f"token set {name!r} has no file {name}.json beside this one", keys
+                )
+            loaded = load_json(target)
+            self.sets[name] = (loaded, loaded.data)
+        return self.sets[name]
+
+    def ordered(self, names: list[str]) -> list[str]:
+        """``names`` in ``tokenSetOrder`` (unlisted ones last), as given without one."""
+        if self.order is None:
+            return names
+        return sorted(names, key=lambda s: self.rank.get(s, len(self.order or ())))
+
+    def build(self, selected: list[str], keys: tuple[str | int, ...]) -> dict[str, Any]:
+        """The resolved tokens of ``selected`` sets merged in order."""
+        tree = TokenTree(legacy=True, steps=self.steps)
+        for name in selected:
+            sdoc, data = self.load(name, keys)
+            tree.add(sdoc, data, (name,) if sdoc is self.doc else ())
+        return tree.resolve()
+
+
+def _read_themes(doc: JsonDoc, themes: list[Any], folder: bool) -> list[_Theme]:
+    """Each theme's name, group, set states and place, names checked."""
     read: list[_Theme] = []
     for i, theme in enumerate(themes):
         keys: tuple[str | int, ...] = ("$themes", i) if not folder else (i,)
@@ -145,18 +177,7 @@ def modes_from_studio(
             check_name(str(set_name), path=doc.path, line=doc.line(set_keys), what="token set")
         group = theme.get("group")
         read.append(_Theme(name, group if isinstance(group, str) else None, states, keys))
-    combined = _combined(doc, read, groups)
-    modes = {}
-    for name, states, keys in combined:
-        chosen = ordered([s for s, st in states.items() if st == "source"])
-        chosen += ordered([s for s, st in states.items() if st == "enabled"])
-        modes[name] = build(chosen, (*keys, "selectedTokenSets"))
-        check_mode_budget(doc.path, len(combined), len(modes[name]))
-    if not modes:
-        names = ordered(list(sets))
-        _no_overlap(doc, names, sets)
-        modes["default"] = build(names, ())
-    return TokenModes(doc.path, "tokens-studio", modes, next(iter(modes)))
+    return read
 
 
 def _no_overlap(doc: JsonDoc, names: list[str], sets: dict[str, tuple[JsonDoc, Any]]) -> None:
