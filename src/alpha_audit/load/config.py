@@ -11,6 +11,7 @@ its folder, because a pull request can change the config as well.
 from __future__ import annotations
 
 import tomllib
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from pathlib import Path, PurePosixPath
 from typing import Any
@@ -393,6 +394,63 @@ def _exemptions(doc: YamlDoc, keys: KeyPath, value: Any) -> tuple[Exemption, ...
     return tuple(out)
 
 
+# The config's numbers and the range each is read against (ranges.py).
+_NUMBERS = {
+    "alpha": ranges.ALPHA,
+    "threshold": ranges.CONTRAST_RATIO,
+    "visibility-floor": ranges.CONTRAST_RATIO,
+    "loss-tolerance": ranges.LOSS_TOLERANCE,
+    "near-duplicate-delta-e": ranges.DELTA_E,
+    "max-loss": ranges.CONTRAST_LOSS,
+    "min-delta-e": ranges.DELTA_E,
+    "max-drift": ranges.DELTA_E,
+    "min-size-contrast": ranges.CONTRAST_RATIO,
+}
+# Those that are the gate policy's limits with no default of the config's own.
+_POLICY_LIMITS = ("visibility-floor", "loss-tolerance", "near-duplicate-delta-e")
+
+
+def _max_combinations(doc: YamlDoc, where: KeyPath, data: dict[str, Any]) -> int:
+    """``max-combinations``: a whole number in its range, else the default."""
+    if "max-combinations" not in data:
+        return ranges.DEFAULT_COMBINATIONS
+    value = data["max-combinations"]
+    number = read_number(doc, where, value, allowed=ranges.COMBINATIONS)
+    if number != int(number):
+        raise doc.error(where, f"expected {ranges.COMBINATIONS.what}, got {value!r}")
+    return int(number)
+
+
+def _policy(
+    doc: YamlDoc,
+    at: Callable[[str], KeyPath],
+    data: dict[str, Any],
+    numbers: dict[str, float],
+) -> Policy:
+    """The gate policy the config gives: its rules (``fail-on:`` or ``rules:``), limits and
+    exemptions, each defaulting as documented (docs/config.md)."""
+    rules, warnings = DEFAULT_RULES, DEFAULT_WARNINGS
+    if "fail-on" in data and "rules" in data:
+        raise doc.error(
+            at("rules"), "give fail-on: or rules:, not both (rules: {loss: fail} says the same)"
+        )
+    if "fail-on" in data:
+        rules = read_rules(doc, at("fail-on"), data["fail-on"])
+    if "rules" in data:
+        rules, warnings = read_levels(doc, at("rules"), data["rules"])
+    limits = {k.replace("-", "_"): numbers[k] for k in _POLICY_LIMITS if k in numbers}
+    return Policy(
+        rules=rules,
+        max_loss=numbers.get("max-loss", 0.0),
+        min_delta_e=numbers.get("min-delta-e", 10.0),
+        exemptions=_exemptions(doc, at("exempt"), data["exempt"]) if "exempt" in data else (),
+        max_drift=numbers.get("max-drift", 10.0),
+        min_size_contrast=numbers.get("min-size-contrast"),
+        warnings=warnings,
+        **limits,
+    )
+
+
 def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
     """Validate a parsed config; ``prefix`` locates the table (``tool.alpha-audit``)."""
     raw: Any = doc.data
@@ -413,59 +471,11 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
             raise doc.error(at(plural), f"give {single} or {plural}, not both")
         key = plural if plural in data else single
         found[plural] = _paths(doc, at(key), data[key], base) if key in data else []
-    alpha = threshold = None
-    if "alpha" in data:
-        alpha = read_number(doc, at("alpha"), data["alpha"], allowed=ranges.ALPHA)
-    max_combinations = ranges.DEFAULT_COMBINATIONS
-    if "max-combinations" in data:
-        value = data["max-combinations"]
-        number = read_number(doc, at("max-combinations"), value, allowed=ranges.COMBINATIONS)
-        if number != int(number):
-            raise doc.error(
-                at("max-combinations"), f"expected {ranges.COMBINATIONS.what}, got {value!r}"
-            )
-        max_combinations = int(number)
-    if "threshold" in data:
-        threshold = read_number(
-            doc, at("threshold"), data["threshold"], allowed=ranges.CONTRAST_RATIO
-        )
-    rules, warnings = DEFAULT_RULES, DEFAULT_WARNINGS
-    if "fail-on" in data and "rules" in data:
-        raise doc.error(
-            at("rules"), "give fail-on: or rules:, not both (rules: {loss: fail} says the same)"
-        )
-    if "fail-on" in data:
-        rules = read_rules(doc, at("fail-on"), data["fail-on"])
-    if "rules" in data:
-        rules, warnings = read_levels(doc, at("rules"), data["rules"])
-    limits = {}
-    for key, allowed in (
-        ("visibility-floor", ranges.CONTRAST_RATIO),
-        ("loss-tolerance", ranges.LOSS_TOLERANCE),
-        ("near-duplicate-delta-e", ranges.DELTA_E),
-    ):
-        if key in data:
-            limits[key.replace("-", "_")] = read_number(doc, at(key), data[key], allowed=allowed)
-    max_loss = 0.0
-    if "max-loss" in data:
-        max_loss = read_number(doc, at("max-loss"), data["max-loss"], allowed=ranges.CONTRAST_LOSS)
-    min_delta_e = 10.0
-    if "min-delta-e" in data:
-        min_delta_e = read_number(
-            doc, at("min-delta-e"), data["min-delta-e"], allowed=ranges.DELTA_E
-        )
-    exemptions = _exemptions(doc, at("exempt"), data["exempt"]) if "exempt" in data else ()
-    max_drift = 10.0
-    if "max-drift" in data:
-        max_drift = read_number(doc, at("max-drift"), data["max-drift"], allowed=ranges.DELTA_E)
-    min_size_contrast = None
-    if "min-size-contrast" in data:
-        min_size_contrast = read_number(
-            doc,
-            at("min-size-contrast"),
-            data["min-size-contrast"],
-            allowed=ranges.CONTRAST_RATIO,
-        )
+    numbers = {
+        key: read_number(doc, at(key), data[key], allowed=allowed)
+        for key, allowed in _NUMBERS.items()
+        if key in data
+    }
     pipeline = read_pipeline(doc, at("pipeline"), data["pipeline"]) if "pipeline" in data else None
     baseline = _path(doc, at("baseline"), data["baseline"], base) if "baseline" in data else None
     strict_svg = data.get("strict-svg", False)
@@ -486,23 +496,14 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
         path=doc.path,
         themes=tuple(found["themes"]),
         iconsets=tuple(found["iconsets"]),
-        alpha=alpha,
-        threshold=threshold,
-        policy=Policy(
-            rules=rules,
-            max_loss=max_loss,
-            min_delta_e=min_delta_e,
-            exemptions=exemptions,
-            max_drift=max_drift,
-            min_size_contrast=min_size_contrast,
-            warnings=warnings,
-            **limits,
-        ),
+        alpha=numbers.get("alpha"),
+        threshold=numbers.get("threshold"),
+        policy=_policy(doc, at, data, numbers),
         baseline=baseline,
         strict_svg=strict_svg,
         tokens=tokens,
         pipeline=pipeline,
         gamut=gamut,
-        max_combinations=max_combinations,
+        max_combinations=_max_combinations(doc, at("max-combinations"), data),
         alpha_span=doc.spans.get(at("alpha")),
     )
