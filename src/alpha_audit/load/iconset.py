@@ -5,7 +5,7 @@ from __future__ import annotations
 import difflib
 import itertools
 import os
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -295,38 +295,21 @@ def iconset_from_doc(doc: YamlDoc, *, root: Path, gamut: GamutPolicy | None = No
                 "give one a name:, or name a glob's icons by path: icons: {glob: ..., name: path}",
             )
         seen[icon_name] = where
-        color: str | None
-        color_name: str | None
         if cycle:
             pname, pcolor = next(palette_cycle)
-            color, color_name = pcolor, pname
+            choice = _Choice(pcolor, pname, ("color",), default_alpha, ("alpha",))
         else:
             color, color_name = default if default else (None, None)
-        alpha = default_alpha
-        color_keys: KeyPath = ("color",)
-        alpha_keys: KeyPath = ("alpha",)
+            choice = _Choice(color, color_name, ("color",), default_alpha, ("alpha",))
         if "color" in explicit:
             color, color_name = m.color((*keys, "color"), explicit["color"])
-            color_keys = (*keys, "color")
+            choice = replace(choice, color=color, name=color_name, color_keys=(*keys, "color"))
         if "alpha" in explicit:
-            alpha, alpha_keys = m.alpha((*keys, "alpha"), explicit["alpha"]), (*keys, "alpha")
+            alpha = m.alpha((*keys, "alpha"), explicit["alpha"])
+            choice = replace(choice, alpha=alpha, alpha_keys=(*keys, "alpha"))
         if icon_name in overrides:
-            okeys = ("overrides", icon_name)
-            override = read_mapping(doc, okeys, overrides[icon_name], "{color: ..., alpha: ...}")
-            check_keys(doc, okeys, override, _OVERRIDE_KEYS)
-            if "color" in override:
-                color, color_name = m.color((*okeys, "color"), override["color"])
-                color_keys = (*okeys, "color")
-            if "alpha" in override:
-                alpha = m.alpha((*okeys, "alpha"), override["alpha"])
-                alpha_keys = (*okeys, "alpha")
-            if "lock" in override:
-                if not isinstance(override["lock"], bool):
-                    got = describe(override["lock"])
-                    raise doc.error((*okeys, "lock"), f"expected true or false, got {got}")
-                if override["lock"]:
-                    locked.add(icon_name)
-        if color is None:
+            choice = _overridden(m, icon_name, overrides[icon_name], choice, locked)
+        if choice.color is None:
             raise doc.error(
                 keys,
                 f"icon {icon_name!r} has no colour; set a manifest-wide color:, a palette: "
@@ -334,24 +317,10 @@ def iconset_from_doc(doc: YamlDoc, *, root: Path, gamut: GamutPolicy | None = No
             )
         overridden = overrides.get(icon_name)
         own_alpha = "alpha" in explicit or (isinstance(overridden, dict) and "alpha" in overridden)
-        if not own_alpha and color_name in m.palette_alpha:
-            alpha, alpha_keys = m.palette_alpha[color_name]  # the colour's own alpha
-        icons.append(
-            Icon(
-                icon_name,
-                file,
-                color,
-                alpha,
-                color_name,
-                color_line=_line_if_set(doc, color_keys),
-                alpha_line=_line_if_set(doc, alpha_keys),
-                # A palette colour is fixed at its palette entry, whoever names it.
-                color_span=m.palette_spans.get(color_name)
-                if color_name is not None
-                else doc.spans.get(color_keys),
-                alpha_span=doc.spans.get(alpha_keys),
-            )
-        )
+        if not own_alpha and choice.name in m.palette_alpha:
+            alpha, alpha_keys = m.palette_alpha[choice.name]  # the colour's own alpha
+            choice = replace(choice, alpha=alpha, alpha_keys=alpha_keys)
+        icons.append(_icon(m, icon_name, file, choice))
     unknown = sorted(set(overrides) - set(seen))
     if unknown:
         close = difflib.get_close_matches(unknown[0], list(seen), n=1)
@@ -369,6 +338,61 @@ def iconset_from_doc(doc: YamlDoc, *, root: Path, gamut: GamutPolicy | None = No
         locked=frozenset(locked),
         adjusted=tuple(replace(a, mode=name) for a in m.adjusted),
     )
+
+
+@dataclass(frozen=True)
+class _Choice:
+    """An icon's colour and alpha as read so far, and the keys that set each."""
+
+    color: str | None
+    name: str | None
+    color_keys: KeyPath
+    alpha: float
+    alpha_keys: KeyPath
+
+
+def _icon(m: _Manifest, name: str, file: Path, choice: _Choice) -> Icon:
+    """The icon as read, with the lines and spans that set its colour and alpha."""
+    assert choice.color is not None  # refused before
+    doc = m.doc
+    return Icon(
+        name,
+        file,
+        choice.color,
+        choice.alpha,
+        choice.name,
+        color_line=_line_if_set(doc, choice.color_keys),
+        alpha_line=_line_if_set(doc, choice.alpha_keys),
+        # A palette colour is fixed at its palette entry, whoever names it.
+        color_span=m.palette_spans.get(choice.name)
+        if choice.name is not None
+        else doc.spans.get(choice.color_keys),
+        alpha_span=doc.spans.get(choice.alpha_keys),
+    )
+
+
+def _overridden(
+    m: _Manifest, icon_name: str, raw: Any, choice: _Choice, locked: set[str]
+) -> _Choice:
+    """``overrides: {icon: {color, alpha, lock}}`` applied to an icon (a lock is added to
+    ``locked``)."""
+    doc = m.doc
+    okeys: KeyPath = ("overrides", icon_name)
+    override = read_mapping(doc, okeys, raw, "{color: ..., alpha: ...}")
+    check_keys(doc, okeys, override, _OVERRIDE_KEYS)
+    if "color" in override:
+        color, color_name = m.color((*okeys, "color"), override["color"])
+        choice = replace(choice, color=color, name=color_name, color_keys=(*okeys, "color"))
+    if "alpha" in override:
+        alpha = m.alpha((*okeys, "alpha"), override["alpha"])
+        choice = replace(choice, alpha=alpha, alpha_keys=(*okeys, "alpha"))
+    if "lock" in override:
+        if not isinstance(override["lock"], bool):
+            got = describe(override["lock"])
+            raise doc.error((*okeys, "lock"), f"expected true or false, got {got}")
+        if override["lock"]:
+            locked.add(icon_name)
+    return choice
 
 
 def _palette_locks(m: _Manifest) -> list[str]:
