@@ -53,8 +53,9 @@ from alpha_audit.color import (
 )
 from alpha_audit.color.composite import composite_css_least
 from alpha_audit.color.oklch import linear_to_oklch, oklch_to_linear
+from alpha_audit.figures import ConfusionFigures, ContrastFigures
 from alpha_audit.findings import Finding
-from alpha_audit.model import Edit, Icon, Span
+from alpha_audit.model import Edit, Span
 from alpha_audit.policy import CONTRAST_RULES, Policy, contrast_breaks
 from alpha_audit.results import (
     CheckReport,
@@ -111,7 +112,6 @@ _GROUP = frozenset(
         Rule.CVD_CONFUSION,
     }
 )
-_PAIR = frozenset({Rule.CONFUSION, Rule.CVD_CONFUSION})
 # The rules at whose finding the smallest reaching alpha is an exact fix: both
 # mean "contrast below the threshold", which that alpha lifts on every canvas of
 # the mode.  A loss can remain above 1 (contrast lower than at alpha 1).
@@ -508,11 +508,11 @@ class _Audit:
         if rule not in self.groups:
             r = self.result
             pairs = [
-                str(f.numbers["roles"]).split(",", 1)
+                f.figures.roles
                 for f in failures
                 if f.rule is rule
                 and (f.theme, f.iconset) == (r.theme.name, r.iconset.name)
-                and "roles" in f.numbers
+                and isinstance(f.figures, ConfusionFigures)
             ]
             self.groups[rule] = {
                 colour: GroupFix(r.theme.name, r.iconset.name, rule, colours, safe, seed)
@@ -610,15 +610,9 @@ class _Audit:
         )
 
 
-def _role_of(finding: Finding, by_name: dict[str, Icon]) -> str | None:
-    """The colour a per-paint finding is about: its palette name, else its colour."""
-    icon = by_name.get(finding.icons[0]) if finding.icons else None
-    if icon is None:
-        return None
-    paint = finding.numbers.get("paint", "currentColor")
-    if paint != "currentColor":
-        return str(finding.numbers.get("source", paint))
-    return icon.color_name or icon.color
+def _role_of(finding: Finding, result: AuditResult) -> str | None:
+    """The colour a per-paint finding is about (its row's): its palette name, else its colour."""
+    return result.entries[finding.rows[0]].role if finding.rows else None
 
 
 def _mode_canvases(finding: Finding, result: AuditResult) -> dict[str, int]:
@@ -679,7 +673,7 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
         a = audit_of(f)
         if a is None or not f.canvases or f.rule not in _PER_PAINT:
             continue
-        role = _role_of(f, a.by_name)
+        role = _role_of(f, a.result)
         if role is None:
             continue
         for mode, j in _mode_canvases(f, a.result).items():
@@ -693,7 +687,7 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
             continue
         a = audit_of(f)
         found: list[int] = []
-        role = _role_of(f, a.by_name) if a is not None and f.rule in _PER_PAINT else None
+        role = _role_of(f, a.result) if a is not None and f.rule in _PER_PAINT else None
         if a is not None and role is not None:
             for mode in _mode_canvases(f, a.result):
                 color = (f.theme, f.iconset, role)
@@ -711,9 +705,8 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
                     left_out.add(color)
         elif a is not None and f.rule in _GROUP:
             group: GroupFix | None = None
-            if f.rule in _PAIR and "roles" in f.numbers:
-                role = str(f.numbers["roles"]).split(",", 1)[0]
-                group = a.group_fixes(f.rule, gate.failures).get(role)
+            if isinstance(f.figures, ConfusionFigures):
+                group = a.group_fixes(f.rule, gate.failures).get(f.figures.roles[0])
             key = ("group", f.theme, f.iconset, f.rule, group.colors if group else ())
             if key not in index and len(index) < 2 * MAX_FIXED_COLORS:
                 index[key] = len(fixes)
@@ -749,13 +742,14 @@ def _edits(
     if result is None or finding.rule not in CONTRAST_RULES or len(finding.icons) != 1:
         return ()
     icon = next((i for i in result.iconset.icons if i.name == finding.icons[0]), None)
-    n = finding.numbers
+    fig = finding.figures
     if (
         icon is None
         or result.pipeline != "linear"
-        or n.get("paint") != "currentColor"
-        or float(n.get("opacity", 1.0)) != 1.0
-        or n.get("source") != icon.color
+        or not isinstance(fig, ContrastFigures)
+        or fig.paint != "currentColor"
+        or fig.opacity != 1.0
+        or fig.source != icon.color
     ):
         return ()
     out: list[Edit] = []

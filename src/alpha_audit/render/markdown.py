@@ -27,6 +27,14 @@ import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+from alpha_audit.figures import (
+    CollisionFigures,
+    ConfusionFigures,
+    ContrastFigures,
+    DriftFigures,
+    RenderDriftFigures,
+    SeparationFigures,
+)
 from alpha_audit.findings import Finding
 from alpha_audit.gate import rule_summary
 from alpha_audit.render.common import (
@@ -67,7 +75,7 @@ class _Group:
     colour: str
     canvas: str
     canvases: int
-    numbers: str
+    figures: str
 
     @property
     def rule(self) -> Rule:
@@ -82,32 +90,35 @@ class _Group:
         return list(self.line.icons)
 
 
-def _numbers(f: Finding) -> str:
-    n = f.numbers
-    if "contrast" in n:
-        return (
-            f"{n['contrast_ref']:.3f} → {n['contrast']:.3f} ({n['gain']:+.4f}) at α={n['alpha']:g}"
-        )
-    if "delta_e" in n and "delta_e_ref" in n:  # separation, confusion, cvd-confusion
-        floor = f" < {n['min_delta_e']:g}" if "min_delta_e" in n else ""
-        under = f" ({n['deficiency']})" if "deficiency" in n else ""
-        return f"ΔE00 {n['delta_e']:.2f} (α=1: {n['delta_e_ref']:.2f}){floor}{under}"
-    if "output" in n and "sources" in n:  # the colours are in the colour column already
-        count = len(str(n["sources"]).split(", "))
-        give = "both give" if count == 2 else f"{count} colours all give"
-        return f"{give} {n['output']}" + ("" if n.get("new") != "false" else " (also at α=1)")
-    return f.message
+def _figures(f: Finding) -> str:
+    match f.figures:
+        case ContrastFigures() as n:
+            return f"{n.contrast_ref:.3f} → {n.contrast:.3f} ({n.gain:+.4f}) at α={n.alpha:g}"
+        case SeparationFigures() | ConfusionFigures() as n:
+            under = f" ({n.deficiency})" if isinstance(n, ConfusionFigures) and n.deficiency else ""
+            return f"ΔE00 {n.delta_e:.2f} (α=1: {n.delta_e_ref:.2f}) < {n.min_delta_e:g}{under}"
+        case CollisionFigures() as n:  # the colours are in the colour column already
+            give = "both give" if n.colours == 2 else f"{n.colours} colours all give"
+            return f"{give} {n.output}" + ("" if n.new else " (also at α=1)")
+        case _:
+            return f.message
 
 
 def _colour(f: Finding, roles: dict[str, str]) -> str:
     """The colour (role) a finding is about, or the colours of a collision, or two roles."""
-    n = f.numbers
-    source = str(n.get("source", ""))
-    if "sources" in n:  # a collision's colours: a few named, the rest counted
-        source = shorten_names(str(n["sources"]).split(", "), 8)
-    role = roles.get(f.icons[0], "") if "source" in n else ""
-    # confusion names its two roles (the numbers' "roles", comma-separated)
-    return f"{role} {source}".strip() or str(n.get("roles", "")).replace(",", " / ")
+    match f.figures:
+        case (
+            ContrastFigures(source=source)
+            | DriftFigures(source=source)
+            | RenderDriftFigures(source=source)
+        ):
+            return f"{roles.get(f.icons[0], '')} {source}".strip()
+        case CollisionFigures(sources=sources) | SeparationFigures(sources=sources):
+            return shorten_names(list(sources), 8)
+        case ConfusionFigures(roles=pair):
+            return " / ".join(pair)
+        case _:
+            return ""
 
 
 def _groups(findings: Sequence[Finding], roles: dict[str, str]) -> list[_Group]:
@@ -121,7 +132,7 @@ def _groups(findings: Sequence[Finding], roles: dict[str, str]) -> list[_Group]:
                 shorten_names(colours, 4),
                 g.worst.canvas or "",
                 len(g.canvases),
-                _numbers(g.worst),
+                _figures(g.worst),
             )
         )
     return out
@@ -231,7 +242,7 @@ def render_markdown(
             worst = ""
             if rs.worst is not None:
                 at = _where(rs.worst, options)
-                worst = f"{where_text(rs.worst)}: {_numbers(rs.worst)}" + (f" ({at})" if at else "")
+                worst = f"{where_text(rs.worst)}: {_figures(rs.worst)}" + (f" ({at})" if at else "")
             cells = [
                 f"`{rs.rule.value}`",
                 str(rs.failing),
@@ -294,7 +305,7 @@ def render_markdown(
                         escape_markdown(_where(g.first, options)),
                         escape_markdown(_canvases(g)),
                         escape_markdown(g.rule.value),
-                        escape_markdown(g.numbers),
+                        escape_markdown(g.figures),
                         escape_markdown(_icons(g.icons)),
                         escape_markdown(text) if text else "",
                     ]

@@ -67,6 +67,7 @@ from alpha_audit.color.nearest import (
     pairs_below,
 )
 from alpha_audit.errors import UsageError
+from alpha_audit.figures import ConfusionFigures
 from alpha_audit.findings import (
     LOCK_TOLERANCE,
     cvd_collision_groups,
@@ -1451,8 +1452,8 @@ def confusion_groups(
             exemptions=policy.exemptions,
         )
         for f in findings_for(result, only):
-            if f.exemption is None and "roles" in f.numbers:
-                pairs.append(str(f.numbers["roles"]).split(",", 1))
+            if f.exemption is None and isinstance(f.figures, ConfusionFigures):
+                pairs.append(f.figures.roles)
     return connected([*pairs, *extra])
 
 
