@@ -56,7 +56,7 @@ from alpha_audit.color.oklch import linear_to_oklch, oklch_to_linear
 from alpha_audit.figures import ConfusionFigures, ContrastFigures
 from alpha_audit.findings import Finding
 from alpha_audit.model import Edit, Span
-from alpha_audit.policy import CONTRAST_RULES, Policy, contrast_breaks
+from alpha_audit.policy import Policy, contrast_breaks
 from alpha_audit.results import (
     CheckReport,
     ColorFix,
@@ -67,7 +67,7 @@ from alpha_audit.results import (
     SafeAlpha,
 )
 from alpha_audit.rows import AuditResult
-from alpha_audit.rules import Rule
+from alpha_audit.rules import RULES, Family, Rule
 from alpha_audit.suggest.engine import SafeAlphas, connected
 from alpha_audit.suggest.events import code_crossings
 
@@ -99,25 +99,6 @@ _ELIMINATE_FROM = 2048  # colours judged at once from which failing ones are dro
 # once; the first MAX_FIXED_COLORS per check (audits in order, colours in row order)
 # get one, the rest are counted and answered by ``alpha-audit suggest``.
 MAX_FIXED_COLORS = 50
-# The rules of one paint that a colour fix answers; the reaching alpha and the
-# nearest colour answer only the contrast rules.
-_PER_PAINT = frozenset({*CONTRAST_RULES, Rule.DRIFT, Rule.LOCK, Rule.THIN_STROKES})
-_GROUP = frozenset(
-    {
-        Rule.COLLISION,
-        Rule.NEW_COLLISION,
-        Rule.SEPARATION,
-        Rule.CONFUSION,
-        Rule.CVD_COLLISION,
-        Rule.CVD_CONFUSION,
-    }
-)
-# The rules at whose finding the smallest reaching alpha is an exact fix: both
-# mean "contrast below the threshold", which that alpha lifts on every canvas of
-# the mode.  A loss can remain above 1 (contrast lower than at alpha 1).
-_REACH_RULES = frozenset({Rule.BELOW_THRESHOLD, Rule.NEWLY_FAILING})
-
-
 # How a fix's colours are drawn: an audit's pipeline, or ``css-least`` for a paint a
 # browser drew with CSS (of what engines may show, the colour nearest the backdrop:
 # :func:`~alpha_audit.color.composite.composite_css_least`), so a page's fix passes in
@@ -537,7 +518,7 @@ class _Audit:
         icons = self.members[role]
         first = self.by_name[icons[0]]
         styles = sorted(self.styles[role])
-        contrast = bool(rules & set(CONTRAST_RULES))
+        contrast = any(RULES[r].family is Family.CONTRAST for r in rules)
         if role not in self.nearest:
             self.nearest[role] = (
                 nearest_passing_color(
@@ -671,7 +652,7 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
     left_out: set[tuple[str, str, str]] = set()
     for f in gate.failures:
         a = audit_of(f)
-        if a is None or not f.canvases or f.rule not in _PER_PAINT:
+        if a is None or not f.canvases or RULES[f.rule].fixed_by != "colour":
             continue
         role = _role_of(f, a.result)
         if role is None:
@@ -687,7 +668,8 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
             continue
         a = audit_of(f)
         found: list[int] = []
-        role = _role_of(f, a.result) if a is not None and f.rule in _PER_PAINT else None
+        fixed_by = RULES[f.rule].fixed_by
+        role = _role_of(f, a.result) if a is not None and fixed_by == "colour" else None
         if a is not None and role is not None:
             for mode in _mode_canvases(f, a.result):
                 color = (f.theme, f.iconset, role)
@@ -703,7 +685,7 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
                     found.append(index[key])
                 else:
                     left_out.add(color)
-        elif a is not None and f.rule in _GROUP:
+        elif a is not None and fixed_by == "group":
             group: GroupFix | None = None
             if isinstance(f.figures, ConfusionFigures):
                 group = a.group_fixes(f.rule, gate.failures).get(f.figures.roles[0])
@@ -739,7 +721,9 @@ def _edits(
     value must be written in a file: a default alpha, ``--alpha`` or a DTCG
     colour object give no edit.
     """
-    if result is None or finding.rule not in CONTRAST_RULES or len(finding.icons) != 1:
+    if result is None or RULES[finding.rule].family is not Family.CONTRAST:
+        return ()
+    if len(finding.icons) != 1:
         return ()
     icon = next((i for i in result.iconset.icons if i.name == finding.icons[0]), None)
     fig = finding.figures
@@ -773,7 +757,7 @@ def _edits(
             alpha_span is not None
             and reach is not None
             and reach not in (icon.alpha, safe)
-            and finding.rule in _REACH_RULES
+            and RULES[finding.rule].reach_clears
             # It reaches the threshold on its mode's canvases: it clears the
             # finding only if every canvas of the finding is one of them.
             and set(finding.canvases) <= set(fix.reach.canvases)
