@@ -55,7 +55,7 @@ from alpha_audit.color.composite import composite_css_least
 from alpha_audit.color.oklch import linear_to_oklch, oklch_to_linear
 from alpha_audit.figures import ConfusionFigures, ContrastFigures
 from alpha_audit.findings import Finding
-from alpha_audit.model import Edit, Span
+from alpha_audit.model import Edit, Icon, Span
 from alpha_audit.policy import Policy, contrast_breaks
 from alpha_audit.results import (
     CheckReport,
@@ -646,20 +646,8 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
     fixes: list[Fix] = []
     index: dict[object, int] = {}
     budget = MAX_FIXED_COLORS
-    # First pass: which colours fail which per-paint rules in which mode, on which canvas.
-    wanted: dict[tuple[str, str, str, str], set[Rule]] = {}
-    canvas_of: dict[tuple[str, str, str, str], int] = {}
+    wanted, canvas_of = _colours_wanted(gate.failures, audit_of)
     left_out: set[tuple[str, str, str]] = set()
-    for f in gate.failures:
-        a = audit_of(f)
-        if a is None or not f.canvases or RULES[f.rule].fixed_by != "colour":
-            continue
-        role = _role_of(f, a.result)
-        if role is None:
-            continue
-        for mode, j in _mode_canvases(f, a.result).items():
-            wanted.setdefault((f.theme, f.iconset, role, mode), set()).add(f.rule)
-            canvas_of.setdefault((f.theme, f.iconset, role, mode), j)
     colors_fixed: set[tuple[str, str, str]] = set()
     findings = []
     for f in gate.findings:
@@ -702,6 +690,30 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
     return replace(report, gate=gate, fixes=tuple(fixes), fixes_left_out=len(left_out))
 
 
+# (theme, icon set, colour, canvas mode): what a colour fix is computed for.
+_ColourKey = tuple[str, str, str, str]
+
+
+def _colours_wanted(
+    failures: Sequence[Finding], audit_of: Callable[[Finding], _Audit | None]
+) -> tuple[dict[_ColourKey, set[Rule]], dict[_ColourKey, int]]:
+    """Which colours fail which per-paint rules in which mode, and on which canvas
+    (the first failure's worst of the mode) each colour fix is computed."""
+    wanted: dict[_ColourKey, set[Rule]] = {}
+    canvas_of: dict[_ColourKey, int] = {}
+    for f in failures:
+        a = audit_of(f)
+        if a is None or not f.canvases or RULES[f.rule].fixed_by != "colour":
+            continue
+        role = _role_of(f, a.result)
+        if role is None:
+            continue
+        for mode, j in _mode_canvases(f, a.result).items():
+            wanted.setdefault((f.theme, f.iconset, role, mode), set()).add(f.rule)
+            canvas_of.setdefault((f.theme, f.iconset, role, mode), j)
+    return wanted, canvas_of
+
+
 def _edits(
     finding: Finding,
     fixes: Sequence[Fix],
@@ -721,74 +733,84 @@ def _edits(
     value must be written in a file: a default alpha, ``--alpha`` or a DTCG
     colour object give no edit.
     """
-    if result is None or RULES[finding.rule].family is not Family.CONTRAST:
+    icon = None if result is None else _editable_icon(finding, result)
+    if icon is None or result is None:
         return ()
-    if len(finding.icons) != 1:
-        return ()
-    icon = next((i for i in result.iconset.icons if i.name == finding.icons[0]), None)
-    fig = finding.figures
-    if (
-        icon is None
-        or result.pipeline != "linear"
-        or not isinstance(fig, ContrastFigures)
-        or fig.paint != "currentColor"
-        or fig.opacity != 1.0
-        or fig.source != icon.color
-    ):
-        return ()
+    locked = result.iconset.locked
+    colour_editable = (
+        icon.color_span is not None
+        and icon.name not in locked
+        and (icon.color_name or "") not in locked
+        and icon.color_span not in canvas_spans
+    )
     out: list[Edit] = []
     for fix in fixes:
         if not isinstance(fix, ColorFix):
             continue
-        alpha_span = icon.alpha_span
-        # An answer for several colours together is no edit of this icon's alpha alone.
-        safe = None if fix.together else fix.largest_safe.alpha
-        if alpha_span is not None and safe is not None and safe != icon.alpha:
-            out.append(
-                Edit(
-                    "largest-safe-alpha",
-                    f"set alpha to {format_alpha(safe)}, the largest safe alpha for {fix.color}",
-                    alpha_span,
-                    format_alpha(safe),
-                )
-            )
-        reach = fix.reach.alpha
-        if (
-            alpha_span is not None
-            and reach is not None
-            and reach not in (icon.alpha, safe)
-            and RULES[finding.rule].reach_clears
-            # It reaches the threshold on its mode's canvases: it clears the
-            # finding only if every canvas of the finding is one of them.
-            and set(finding.canvases) <= set(fix.reach.canvases)
-        ):
-            out.append(
-                Edit(
-                    "smallest-alpha-reaching",
-                    f"set alpha to {format_alpha(reach)}, the smallest alpha from 1 reaching "
-                    f"{fix.reach.threshold:g}:1 on every {fix.mode} canvas",
-                    alpha_span,
-                    format_alpha(reach),
-                )
-            )
+        out += _alpha_edits(finding, fix, icon)
         near = fix.nearest
-        color_span = icon.color_span
-        locked = result.iconset.locked
-        if (
-            near is not None
-            and near.delta_e > 0
-            and color_span is not None
-            and icon.name not in locked
-            and (icon.color_name or "") not in locked
-            and color_span not in canvas_spans
-        ):
+        if colour_editable and icon.color_span and near is not None and near.delta_e > 0:
             out.append(
                 Edit(
                     "nearest-color",
                     f"use {near.color} for {fix.color}, the nearest passing colour of the same "
                     f"OKLCH hue (CIEDE2000 {near.delta_e:.2f} away)",
-                    color_span,
+                    icon.color_span,
                     near.color,
                 )
             )
     return tuple(out)
+
+
+def _editable_icon(finding: Finding, result: AuditResult) -> Icon | None:
+    """The icon whose written values an edit may change: one icon's contrast, judged on
+    its own colour (``currentColor`` at opacity 1) in the ``linear`` pipeline."""
+    fig = finding.figures
+    if (
+        not isinstance(fig, ContrastFigures)
+        or len(finding.icons) != 1
+        or result.pipeline != "linear"
+        or fig.paint != "currentColor"
+        or fig.opacity != 1.0
+    ):
+        return None
+    icon = next((i for i in result.iconset.icons if i.name == finding.icons[0]), None)
+    return icon if icon is not None and fig.source == icon.color else None
+
+
+def _alpha_edits(finding: Finding, fix: ColorFix, icon: Icon) -> list[Edit]:
+    """The alpha edits of one colour fix: its largest safe alpha, its reaching alpha."""
+    span = icon.alpha_span
+    if span is None:
+        return []
+    out: list[Edit] = []
+    # An answer for several colours together is no edit of this icon's alpha alone.
+    safe = None if fix.together else fix.largest_safe.alpha
+    if safe is not None and safe != icon.alpha:
+        out.append(
+            Edit(
+                "largest-safe-alpha",
+                f"set alpha to {format_alpha(safe)}, the largest safe alpha for {fix.color}",
+                span,
+                format_alpha(safe),
+            )
+        )
+    reach = fix.reach.alpha
+    if (
+        reach is not None
+        and reach not in (icon.alpha, safe)
+        and RULES[finding.rule].reach_clears
+        # It reaches the threshold on its mode's canvases: it clears the
+        # finding only if every canvas of the finding is one of them.
+        and set(finding.canvases) <= set(fix.reach.canvases)
+    ):
+        out.append(
+            Edit(
+                "smallest-alpha-reaching",
+                f"set alpha to {format_alpha(reach)}, the smallest alpha from 1 reaching "
+                f"{fix.reach.threshold:g}:1 on every {fix.mode} canvas",
+                span,
+                format_alpha(reach),
+            )
+        )
+    return out
