@@ -355,28 +355,7 @@ def nearest_passing_color(
         return NearestColor(linear_to_hex(src), 0.0, float(lch[0]), float(lch[1]), _deg(hue))
 
     def best_on_rays(theta: NDArray[np.float64]) -> tuple[float, float, float, float] | None:
-        """(delta_e, theta, L, C) of the best ray's nearest passing point."""
-        length = _ray_ends(l0, c0, theta)  # (R,)
-        frac = np.linspace(0.0, 1.0, RAY_SAMPLES + 1)[1:]
-        t = length[:, np.newaxis] * frac  # (R, S)
-        dl, dc = np.cos(theta)[:, np.newaxis], np.sin(theta)[:, np.newaxis]
-        ok = passing(to_linear(l0 + t * dl, c0 + t * dc))
-        found = ok.any(axis=1)
-        if not found.any():
-            return None
-        rows = np.flatnonzero(found)
-        first = np.argmax(ok[rows], axis=1)
-        hi = t[rows, first]
-        lo = np.where(first > 0, t[rows, np.maximum(first - 1, 0)], 0.0)
-        dl, dc = dl[rows, 0], dc[rows, 0]
-        for _ in range(BISECTION_STEPS):  # every ray at once
-            mid = 0.5 * (lo + hi)
-            good = passing(to_linear(l0 + mid * dl, c0 + mid * dc))
-            hi, lo = np.where(good, mid, hi), np.where(good, lo, mid)
-        ll, cc = l0 + hi * dl, c0 + hi * dc
-        de = delta_e_2000(to_linear(ll, cc), src)
-        k = int(np.argmin(de))
-        return float(de[k]), float(theta[rows[k]]), float(ll[k]), float(cc[k])
+        return _best_on_rays(theta, l0, c0, src, to_linear, passing)
 
     if achromatic:
         best = best_on_rays(np.array([0.0, math.pi]))
@@ -405,6 +384,43 @@ def nearest_passing_color(
         chroma=cc,
         hue=_deg(hue),
     )
+
+
+# OKLCH (L, C) at the source's hue -> linear sRGB; which linear colours pass.
+_ToLinear = Callable[[NDArray[np.float64], NDArray[np.float64]], NDArray[np.float64]]
+_Passing = Callable[[NDArray[np.float64]], NDArray[np.bool_]]
+
+
+def _best_on_rays(
+    theta: NDArray[np.float64],
+    l0: float,
+    c0: float,
+    src: NDArray[np.float64],
+    to_linear: _ToLinear,
+    passing: _Passing,
+) -> tuple[float, float, float, float] | None:
+    """(delta_e, theta, L, C) of the best ray's nearest passing point, rays from (l0, c0)."""
+    length = _ray_ends(l0, c0, theta)  # (R,)
+    frac = np.linspace(0.0, 1.0, RAY_SAMPLES + 1)[1:]
+    t = length[:, np.newaxis] * frac  # (R, S)
+    dl, dc = np.cos(theta)[:, np.newaxis], np.sin(theta)[:, np.newaxis]
+    ok = passing(to_linear(l0 + t * dl, c0 + t * dc))
+    found = ok.any(axis=1)
+    if not found.any():
+        return None
+    rows = np.flatnonzero(found)
+    first = np.argmax(ok[rows], axis=1)
+    hi = t[rows, first]
+    lo = np.where(first > 0, t[rows, np.maximum(first - 1, 0)], 0.0)
+    dl, dc = dl[rows, 0], dc[rows, 0]
+    for _ in range(BISECTION_STEPS):  # every ray at once
+        mid = 0.5 * (lo + hi)
+        good = passing(to_linear(l0 + mid * dl, c0 + mid * dc))
+        hi, lo = np.where(good, mid, hi), np.where(good, lo, mid)
+    ll, cc = l0 + hi * dl, c0 + hi * dc
+    de = delta_e_2000(to_linear(ll, cc), src)
+    k = int(np.argmin(de))
+    return float(de[k]), float(theta[rows[k]]), float(ll[k]), float(cc[k])
 
 
 def _deg(radians: float) -> float:
