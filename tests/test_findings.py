@@ -83,9 +83,9 @@ def test_primer_severe_and_danger_confuse_at_1_15() -> None:
     # The closer of the two as they ship (8-bit outputs, CIEDE2000 by colour-science from
     # the spec's matrices): 5.2468 on light-default, 5.2589 on light-muted.
     assert first.canvas == "light-default"
-    assert first.numbers["roles"] == "danger,severe"
-    assert first.numbers["delta_e_ref"] == pytest.approx(16.0897, abs=1e-4)
-    assert first.numbers["delta_e"] == pytest.approx(5.2468, abs=1e-4)
+    assert first.figures.roles == ("danger", "severe")
+    assert first.figures.delta_e_ref == pytest.approx(16.0897, abs=1e-4)
+    assert first.figures.delta_e == pytest.approx(5.2468, abs=1e-4)
     assert set(first.icons) == {"alert", "stop"}
     # at alpha 1 they are told apart: no finding
     iconset1, paints1 = painted([Icon(i.name, i.file, i.color, 1.0, i.color_name) for i in icons])
@@ -104,9 +104,7 @@ def test_slate_500_drifts_29_5_at_1_2_on_white() -> None:
     )
     assert row.hue_shift is not None and abs(row.hue_shift) < 30
     drift = find(result, {"drift"}, max_drift=20)
-    assert [(f.rule, f.canvas, f.numbers["output"]) for f in drift] == [
-        ("drift", "white", "#00195d")
-    ]
+    assert [(f.rule, f.canvas, f.figures.output) for f in drift] == [("drift", "white", "#00195d")]
     assert find(result, {"drift"}, max_drift=30) == []
     assert find(result, {"lock"}) == []
     locked_set = replace(iconset, locked=frozenset({"muted"}))
@@ -129,7 +127,7 @@ def test_fixed_colour_is_audited_as_itself_with_a_finding() -> None:
         float(contrast_ratio(hex_to_linear("#ff0000"), np.ones(3)))
     )
     (finding,) = find(result, {"fixed-colour"})
-    assert finding.numbers["paint"] == "#ff0000" and "(line 3)" in finding.numbers["element"]
+    assert finding.figures.paint == "#ff0000" and "(line 3)" in finding.figures.element
     assert "will not follow" in finding.message
 
 
@@ -180,7 +178,7 @@ def test_thin_strokes_and_size_contrast() -> None:
     assert row.sizes[16].contrast == pytest.approx(expected, rel=1e-12)
     assert row.sizes[16].contrast < row.contrast
     (finding,) = find(result, {"thin-strokes"})
-    assert finding.numbers["size"] == 16
+    assert finding.figures.size == 16
     assert find(result, {"thin-strokes"}, min_size_contrast=1.5) == []
 
 
@@ -194,9 +192,9 @@ def test_cvd_confusion_finds_red_green_only_under_protanopia() -> None:
     result = audit(Theme("w", (Canvas("white", "#ffffff"),)), iconset, paints)
     assert find(result, {"confusion"}) == []
     found = find(result, {"cvd-confusion"})
-    assert [f.numbers["deficiency"] for f in found] == ["protanopia"]
-    assert found[0].numbers["delta_e_ref"] == pytest.approx(12.8, abs=0.05)
-    assert found[0].numbers["delta_e"] == pytest.approx(4.97, abs=0.05)  # as shipped, 8-bit
+    assert [f.figures.deficiency for f in found] == ["protanopia"]
+    assert found[0].figures.delta_e_ref == pytest.approx(12.8, abs=0.05)
+    assert found[0].figures.delta_e == pytest.approx(4.97, abs=0.05)  # as shipped, 8-bit
     # at alpha 1 nothing changes, so neither CVD rule objects
     same = painted([Icon(i.name, i.file, i.color, 1.0, i.color_name) for i in icons])
     assert find(audit(result.theme, *same), {"cvd-confusion", "cvd-collision"}) == []
@@ -210,8 +208,8 @@ def test_cvd_collision_is_new_at_alpha() -> None:
     ]
     result = audit(Theme("w", (Canvas("white", "#ffffff"),)), *painted(icons))
     (found,) = find(result, {"cvd-collision"})  # one pair of colours: one root cause
-    assert found.numbers["deficiencies"] == "deuteranopia, protanopia, tritanopia"
-    assert found.numbers["output"] == "#000000" and set(found.icons) == {"a", "b"}
+    assert found.figures.deficiencies == ("deuteranopia", "protanopia", "tritanopia")
+    assert found.figures.output == "#000000" and set(found.icons) == {"a", "b"}
 
 
 def test_end_to_end_with_rendered_masks(tmp_path: Path) -> None:

@@ -99,7 +99,7 @@ _EXPORTS: dict[str, tuple[str, str]] = {
     "PairReport": ("alpha_audit.pair", "PairReport"),
     "pair_report": ("alpha_audit.pair", "pair_report"),
     "PairFormat": ("alpha_audit.render", "PairFormat"),
-    "ReproduceFormat": ("alpha_audit.render", "ReproduceFormat"),
+    "ReproduceFormat": ("alpha_audit.reproduce.formats", "ReproduceFormat"),
     "PreviewResult": ("alpha_audit.preview.files", "PreviewResult"),
     "preview_files": ("alpha_audit.preview.files", "preview_files"),
     "Layout": ("alpha_audit.preview.sheets", "Layout"),
@@ -316,7 +316,6 @@ if TYPE_CHECKING:  # for type checkers only; at run time __getattr__ imports on 
         CheckFormat,
         PairFormat,
         RenderOptions,
-        ReproduceFormat,
         SuggestFormat,
         render_check,
         render_suggest,
@@ -326,6 +325,9 @@ if TYPE_CHECKING:  # for type checkers only; at run time __getattr__ imports on 
     )
     from alpha_audit.reproduce.figures import (
         write_figures,
+    )
+    from alpha_audit.reproduce.formats import (
+        ReproduceFormat,
     )
     from alpha_audit.reproduce.report import (
         render_json as reproduction_json,

@@ -16,7 +16,7 @@ baselines and the verdict are :mod:`alpha_audit.gate`'s.  Pure computation.
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -35,6 +35,20 @@ from alpha_audit.color import (
     to_8bit,
 )
 from alpha_audit.color.nearest import delta_e_2000_lightness_key, pairs_below
+from alpha_audit.figures import (
+    CollisionFigures,
+    ConfusionFigures,
+    ContrastFigures,
+    CvdCollisionFigures,
+    DriftFigures,
+    ElementFigures,
+    Figures,
+    FixedPaintFigures,
+    NoFigures,
+    RenderDriftFigures,
+    SeparationFigures,
+    ThinStrokeFigures,
+)
 from alpha_audit.model import Edit, Icon, Location
 from alpha_audit.observed import MeasuredPaint
 from alpha_audit.policy import (
@@ -60,7 +74,6 @@ __all__ = [
     "cvd_collision_groups",
     "findings_for",
     "locked_rows",
-    "observed_figures",
     "ranked",
     "role_rows",
     "severity",
@@ -84,8 +97,12 @@ FindingKey = tuple[str, str, str, tuple[str, ...]]
 class Finding:
     """One root cause a rule objects to.
 
-    ``canvas`` is the worst canvas, whose figures ``numbers`` and ``message``
-    give (contrast before and after, threshold, CIEDE2000, 8-bit output ...);
+    ``canvas`` is the worst canvas, whose figures ``figures`` (a typed record
+    per rule family, :mod:`alpha_audit.figures`) and ``message`` give (contrast
+    before and after, threshold, CIEDE2000, 8-bit output ...); ``rows`` are the
+    audit's paint rows it came from (a paint's, or every row of two confused
+    roles or of colours alike under a deficiency; empty for an 8-bit
+    collision, a separation or a broken icon, judged over colours);
     ``canvases`` every canvas where it occurs, in theme order (empty for a
     rule judging icons, not canvases).  ``locations`` say where the failing
     values are written, the one to edit first (:class:`Location`); ``files``
@@ -104,7 +121,7 @@ class Finding:
     canvas: str | None
     icons: tuple[str, ...]
     message: str
-    numbers: Mapping[str, float | str] = field(default_factory=dict)
+    figures: Figures = field(default_factory=NoFigures)
     files: tuple[Path, ...] = ()
     manifest: Path | None = None
     lines: tuple[int, ...] = ()
@@ -116,11 +133,25 @@ class Finding:
     edits: tuple[Edit, ...] = ()
     canvases: tuple[str, ...] = ()
     locations: tuple[Location, ...] = ()
+    rows: tuple[int, ...] = ()
 
     @property
     def key(self) -> FindingKey:
         """Identity for baselines and ``--base``: theme, icon set, rule and icons."""
         return (self.theme, self.iconset, self.rule.value, self.icons)
+
+    @property
+    def observed(self) -> MeasuredPaint | None:
+        """The paint a browser drew, for a finding of a page's row; else ``None``."""
+        match self.figures:
+            case ContrastFigures(observed=o) | RenderDriftFigures(observed=o):
+                return o
+        return None
+
+    @property
+    def quiet(self) -> bool:
+        """Whether this is a loss reported, never gated (an invisible paint, a small loss)."""
+        return isinstance(self.figures, ContrastFigures) and not self.figures.gated
 
     @property
     def fails(self) -> bool:
@@ -168,7 +199,7 @@ def _icon_refs(
 
 # Given the index of a root cause's worst cell, its message and figures: how a
 # rule hands one root cause to the collector (:meth:`_Collector.fold`).
-Build = Callable[[int], tuple[str, Mapping[str, float | str]]]
+Build = Callable[[int], tuple[str, Figures]]
 
 
 class _Collector:
@@ -250,13 +281,14 @@ class _Collector:
         rule: Rule,
         icons: tuple[str, ...],
         message: str,
-        numbers: Mapping[str, float | str],
+        figures: Figures,
         *,
         files: tuple[Path, ...] | None = None,
         locations: tuple[Location, ...] = (),
         canvases: Sequence[str] = (),
         canvas: str | None = None,
         level: Level | None = None,
+        rows: tuple[int, ...] = (),
     ) -> None:
         """One finding (``canvas`` the worst of ``canvases``; none: a rule judging icons)."""
         own_files, lines = _icon_refs(self.by_name, icons[:MAX_LOCATIONS])
@@ -268,7 +300,7 @@ class _Collector:
                 canvas=canvas,
                 icons=icons,
                 message=message,
-                numbers=dict(numbers),
+                figures=figures,
                 files=own_files if files is None else files,
                 manifest=self.result.iconset.path,
                 lines=lines,
@@ -277,6 +309,7 @@ class _Collector:
                 level=self.policy.level(rule) if level is None else level,
                 canvases=tuple(canvases),
                 locations=locations,
+                rows=rows,
             )
         )
 
@@ -290,6 +323,7 @@ class _Collector:
         *,
         locations: tuple[Location, ...] = (),
         level: Level | None = None,
+        rows: tuple[int, ...] = (),
     ) -> None:
         """One finding for the cells (canvas indices) of one root cause.
 
@@ -303,18 +337,19 @@ class _Collector:
             parts.setdefault(self.policy.exempt(rule, self.canvas_names[j], icons), []).append(k)
         for ks in parts.values():  # the worst canvas of a part has the part's exemption
             worst = max(ks, key=lambda k: (badness[k], -k))
-            message, numbers = build(worst)
+            message, figures = build(worst)
             names = [self.canvas_names[j] for j in sorted({cells[k] for k in ks})]
             canvas = self.canvas_names[cells[worst]]
             self.add(
                 rule,
                 icons,
                 message,
-                numbers,
+                figures,
                 locations=locations,
                 canvases=names,
                 canvas=canvas,
                 level=level,
+                rows=rows,
             )
 
 
@@ -367,31 +402,32 @@ def _contrast(c: _Collector, rule: Rule) -> None:
 
             def figures(
                 k: int, p: int = p, e: PaintEntry = e, cells: list[int] = cells
-            ) -> tuple[str, dict[str, float | str]]:
+            ) -> tuple[str, Figures]:
                 j = cells[k]
-                numbers: dict[str, float | str] = {
-                    "alpha": float(r.alpha[p]),
-                    "contrast_ref": float(r.contrast_ref[p, j]),
-                    "contrast": float(r.contrast[p, j]),
-                    "gain": float(r.gain[p, j]),
-                    "threshold": float(r.threshold),
-                    "background": canvases[j].color,
-                    "source": e.source,
-                    "paint": e.paint,
-                    "opacity": e.opacity,
-                }
-                if r.observed:
-                    return _observed_contrast(r.observed[p], numbers, r.threshold)
+                fig = ContrastFigures(
+                    alpha=float(r.alpha[p]),
+                    contrast_ref=float(r.contrast_ref[p, j]),
+                    contrast=float(r.contrast[p, j]),
+                    gain=float(r.gain[p, j]),
+                    threshold=float(r.threshold),
+                    background=canvases[j].color,
+                    source=e.source,
+                    paint=e.paint,
+                    opacity=e.opacity,
+                    observed=r.observed[p] if r.observed else None,
+                )
+                if fig.observed is not None:
+                    return _observed_message(fig.observed, fig), fig
                 message = _CONTRAST_TEMPLATES[rule].format(
-                    ref=numbers["contrast_ref"],
-                    now=numbers["contrast"],
-                    gain=numbers["gain"],
-                    a=numbers["alpha"],
+                    ref=fig.contrast_ref,
+                    now=fig.contrast,
+                    gain=fig.gain,
+                    a=fig.alpha,
                     t=r.threshold,
                 )
                 if e.fixed or e.opacity != 1.0:
                     message += f" (paint {e.paint} at opacity {e.opacity:g})"
-                return message, numbers
+                return message, fig
 
             build: Build = figures
             if level is Level.WARN:
@@ -404,53 +440,19 @@ def _contrast(c: _Collector, rule: Rule) -> None:
                 build,
                 locations=locations,
                 level=level,
+                rows=(p,),
             )
 
 
-def observed_figures(o: MeasuredPaint) -> dict[str, float | str]:
-    """What every finding of a row a browser drew carries besides the row's own figures."""
-    numbers: dict[str, float | str] = {
-        "story" if o.source_kind == "storybook" else "page": o.source,
-        "state": o.state,
-        "engine": o.engine,
-        "dom_path": o.dom_path,
-        "element": o.element,
-        "match": str(o.match),
-    }
-    optional: dict[str, float | str | None] = {
-        "drawn": o.drawn,
-        "basis": None if o.basis is None else str(o.basis),
-        "around": o.around,
-        "contrast_worst": o.contrast_worst,
-        "contrast_median": o.contrast_median,
-        "declared": o.declared,
-        "declared_opacity": o.declared_opacity,
-        "model_source": o.model_source,
-        "model_alpha": o.model_alpha,
-        "model_opacity": o.model_opacity,
-        "render_drift": o.render_drift,
-    }
-    near = o.nearer
-    if near is not None:
-        optional |= {
-            "model_contrast": near.contrast,
-            "model_output": near.output,
-            "model_pipeline": near.pipeline,
-        }
-    return numbers | {k: v for k, v in optional.items() if v is not None}
-
-
-def _observed_contrast(
-    o: MeasuredPaint, numbers: dict[str, float | str], threshold: float
-) -> tuple[str, dict[str, float | str]]:
+def _observed_message(o: MeasuredPaint, fig: ContrastFigures) -> str:
     """``below-threshold`` of a row a browser drew: the pair that limits, and the model."""
-    message = f"draws {o.drawn} on {o.behind}: {numbers['contrast']:.2f}:1 is below {threshold:g}:1"
+    message = f"draws {o.drawn} on {o.behind}: {fig.contrast:.2f}:1 is below {fig.threshold:g}:1"
     if o.declared_opacity < 1.0:
         message += f" (at opacity {o.declared_opacity:g})"
     near = o.nearer
     if near is not None:
         message += f"; the model predicts {near.contrast:.2f}:1 ({near.pipeline})"
-    return message, numbers | observed_figures(o)
+    return message
 
 
 def _render_drift(c: _Collector, rule: Rule) -> None:
@@ -468,20 +470,18 @@ def _render_drift(c: _Collector, rule: Rule) -> None:
             f"{o.model_source} at alpha {o.model_alpha:g}; CIEDE2000 {o.render_drift:.1f} > "
             f"{RENDER_DRIFT_TOLERANCE:g})"
         )
-        numbers: dict[str, float | str] = {
-            **observed_figures(o),
-            "drift": o.render_drift,
-            "tolerance": RENDER_DRIFT_TOLERANCE,
-            "background": r.theme.canvases[0].color,
-            "source": e.source,
-            "paint": e.paint,
-            "opacity": e.opacity,
-        }
+        fig = RenderDriftFigures(
+            observed=o,
+            drift=o.render_drift,
+            tolerance=RENDER_DRIFT_TOLERANCE,
+            background=r.theme.canvases[0].color,
+            source=e.source,
+            paint=e.paint,
+            opacity=e.opacity,
+        )
 
-        def build(
-            k: int, message: str = message, numbers: dict[str, float | str] = numbers
-        ) -> tuple[str, dict[str, float | str]]:
-            return message, numbers
+        def build(k: int, message: str = message, fig: Figures = fig) -> tuple[str, Figures]:
+            return message, fig
 
         c.fold(
             rule,
@@ -490,19 +490,22 @@ def _render_drift(c: _Collector, rule: Rule) -> None:
             [o.render_drift] * len(r.theme.canvases),
             build,
             locations=c.paint_locations(e, colour_first=True),
+            rows=(p,),
         )
 
 
 def _quiet(build: Build, ref: NDArray[np.float64], cells: list[int], floor: float) -> Build:
     """``build`` with the reason a loss is reported, not gated, added to its message."""
 
-    def quiet(k: int) -> tuple[str, Mapping[str, float | str]]:
-        message, numbers = build(k)
+    def quiet(k: int) -> tuple[str, Figures]:
+        message, fig = build(k)
         if ref[cells[k]] < floor:
             why = f"already below the visibility floor {floor:g}:1 at alpha 1"
         else:
             why = "within the loss tolerance"
-        return f"{message} ({why}: reported, not gated)", {**numbers, "gated": "false"}
+        if isinstance(fig, ContrastFigures):
+            fig = replace(fig, gated=False)
+        return f"{message} ({why}: reported, not gated)", fig
 
     return quiet
 
@@ -543,7 +546,7 @@ def _collisions(c: _Collector, rule: Rule) -> None:
     for cols in groups.values():
         icons = tuple(sorted({n for col in cols for n in col.icons}))
 
-        def build(k: int, cols: list[Collision] = cols) -> tuple[str, dict[str, float | str]]:
+        def build(k: int, cols: list[Collision] = cols) -> tuple[str, Figures]:
             col = cols[k]
             give = "both give" if len(col.sources) == 2 else "all give"
             if not col.new:
@@ -556,14 +559,8 @@ def _collisions(c: _Collector, rule: Rule) -> None:
                 )
             else:
                 how = ""
-            numbers: dict[str, float | str] = {
-                "output": col.output,
-                "sources": ", ".join(col.sources),
-                "colours": len(col.sources),
-                "new": str(col.new).lower(),
-                "delta_e_ref": col.delta_e_ref,
-            }
-            return f"{_colours(col.sources)} {give} {col.output}{how}", numbers
+            fig = CollisionFigures(col.output, col.sources, col.new, col.delta_e_ref)
+            return f"{_colours(col.sources)} {give} {col.output}{how}", fig
 
         c.fold(
             rule,
@@ -586,19 +583,13 @@ def _separation(c: _Collector, rule: Rule) -> None:
     for found in pairs.values():
         icons = tuple(sorted({n for s in found for n in s.icons}))
 
-        def build(k: int, found: list[Separation] = found) -> tuple[str, dict[str, float | str]]:
+        def build(k: int, found: list[Separation] = found) -> tuple[str, Figures]:
             s = found[k]
             message = (
                 f"closest colours are CIEDE2000 {s.delta_e:.2f} apart "
                 f"(at alpha 1: {s.delta_e_ref:.2f}); minimum {limit:g}"
             )
-            numbers: dict[str, float | str] = {
-                "delta_e": s.delta_e,
-                "delta_e_ref": s.delta_e_ref,
-                "min_delta_e": limit,
-                "sources": ", ".join(s.sources),
-            }
-            return message, numbers
+            return message, SeparationFigures(s.delta_e, s.delta_e_ref, limit, s.sources)
 
         c.fold(
             rule,
@@ -616,14 +607,14 @@ def _unrenderable(c: _Collector, rule: Rule) -> None:
             rule,
             (p.icon,),
             p.message,
-            {},
+            NoFigures(),
             files=(Path(p.file),),
             locations=(Location(Path(p.file), 1, "svg"),),
         )
 
 
 def _fixed_colour(c: _Collector, rule: Rule) -> None:
-    for e in c.result.entries:
+    for p, e in enumerate(c.result.entries):
         if not e.fixed:
             continue
         element = e.element or "an element"
@@ -633,8 +624,9 @@ def _fixed_colour(c: _Collector, rule: Rule) -> None:
             (e.icon.name,),
             f"{'/'.join(e.kinds)} {e.paint} of {element}{where} is hard-coded: it is audited "
             "as itself and will not follow the theme",
-            {"paint": e.paint, "element": element + where},
+            FixedPaintFigures(e.paint, element + where),
             locations=(Location(Path(e.icon.file), e.line or 1, "paint"),),
+            rows=(p,),
         )
 
 
@@ -647,7 +639,7 @@ def _not_audited(c: _Collector, rule: Rule) -> None:
             rule,
             (u.icon,),
             f"{u.element}: {u.reason}",
-            {"element": u.element + where},
+            ElementFigures(u.element + where),
             locations=at,
         )
 
@@ -666,7 +658,7 @@ def _drift(c: _Collector, rule: Rule) -> None:
 
         def build(
             k: int, p: int = p, e: PaintEntry = e, cells: list[int] = cells
-        ) -> tuple[str, dict[str, float | str]]:
+        ) -> tuple[str, Figures]:
             j = cells[k]
             d = float(r.drift[p, j])
             shown = linear_to_hex(r.output[p, j])
@@ -674,13 +666,7 @@ def _drift(c: _Collector, rule: Rule) -> None:
                 f"{what} {e.source} is shown as {shown} at alpha {r.alpha[p]:g}: "
                 f"CIEDE2000 {d:.1f} > {limit:g}"
             )
-            return message, {
-                "drift": d,
-                "limit": limit,
-                "source": e.source,
-                "output": shown,
-                "paint": e.paint,
-            }
+            return message, DriftFigures(d, limit, e.source, shown, e.paint)
 
         c.fold(
             rule,
@@ -689,6 +675,7 @@ def _drift(c: _Collector, rule: Rule) -> None:
             r.drift[p, cells].tolist(),
             build,
             locations=c.paint_locations(e),
+            rows=(p,),
         )
 
 
@@ -703,7 +690,7 @@ def _thin_strokes(c: _Collector, rule: Rule) -> None:
 
         def build(
             k: int, p: int = p, e: PaintEntry = e, cells: list[int] = cells
-        ) -> tuple[str, dict[str, float | str]]:
+        ) -> tuple[str, Figures]:
             j = cells[k]
             m = int(np.nanargmin(r.size_contrast[p, j]))
             size, sc = r.sizes[m], float(r.size_contrast[p, j, m])
@@ -711,12 +698,7 @@ def _thin_strokes(c: _Collector, rule: Rule) -> None:
                 f"at {size}px half the ink of {e.paint} is at coverage <= {r.q50[p, m]:.2f}: "
                 f"size contrast {sc:.2f} < {limit:g}:1 (colour contrast {r.contrast[p, j]:.2f})"
             )
-            return message, {
-                "size": size,
-                "q50": float(r.q50[p, m]),
-                "size_contrast": sc,
-                "paint": e.paint,
-            }
+            return message, ThinStrokeFigures(size, float(r.q50[p, m]), sc, e.paint)
 
         c.fold(
             rule,
@@ -725,6 +707,7 @@ def _thin_strokes(c: _Collector, rule: Rule) -> None:
             (-worst).tolist(),
             build,
             locations=c.paint_locations(e, colour_first=True),
+            rows=(p,),
         )
 
 
@@ -766,38 +749,30 @@ def _confusion(c: _Collector, rule: Rule) -> None:
     # A confusion is between the roles: every icon drawing either colour at an alpha
     # that is confused (all of both roles' icons when they share one alpha each).
     icons_of: dict[tuple[str, str, float], set[str]] = {}
-    for e in c.result.entries:
+    rows_of: dict[tuple[str, str, float], list[int]] = {}
+    for p, e in enumerate(c.result.entries):
         if not e.fixed and e.icon.color_name is not None:
             icons_of.setdefault(_drawn(e), set()).add(e.icon.name)
+            rows_of.setdefault(_drawn(e), []).append(p)
     for (r1, r2), found in sorted(pairs.items()):
-        icons = tuple(sorted({n for f in found for d in f.drawn for n in icons_of[d]}))
+        drawn = {d for f in found for d in f.drawn}
+        icons = tuple(sorted({n for d in drawn for n in icons_of[d]}))
         # The palette entries of both roles are where the confusion is written.
         locations = c.group_locations(icons, colour_first=True)
 
         def build(
             k: int, found: list[_Confused] = found, r1: str = r1, r2: str = r2
-        ) -> tuple[str, dict[str, float | str]]:
+        ) -> tuple[str, Figures]:
             f = found[k]
             under = "" if f.deficiency is None else f" under simulated {f.deficiency}"
             message = (
                 f"{r1} and {r2} are told apart at alpha 1 (CIEDE2000 {f.ref:.1f}) but not at "
                 f"alpha {f.alphas[0]:g}/{f.alphas[1]:g} ({f.de:.1f} < {min_delta_e:g}){under}"
             )
-            numbers: dict[str, float | str] = {
-                "delta_e_ref": f.ref,
-                "delta_e": f.de,
-                "min_delta_e": min_delta_e,
-                "roles": f"{r1},{r2}",
-                **(
-                    {
-                        "deficiency": f.deficiency,
-                        "deficiencies": ", ".join(sorted({str(g.deficiency) for g in found})),
-                    }
-                    if f.deficiency
-                    else {}
-                ),
-            }
-            return message, numbers
+            every = tuple(sorted({g.deficiency for g in found if g.deficiency is not None}))
+            return message, ConfusionFigures(
+                f.ref, f.de, min_delta_e, (r1, r2), f.deficiency, every if f.deficiency else ()
+            )
 
         c.fold(
             rule,
@@ -806,6 +781,7 @@ def _confusion(c: _Collector, rule: Rule) -> None:
             [-f.de for f in found],
             build,
             locations=locations,
+            rows=tuple(sorted(p for d in drawn for p in rows_of[d])),
         )
 
 
@@ -928,6 +904,7 @@ def _cvd_collision(c: _Collector, rule: Rule) -> None:
     solid = shipped(composite_paint(src, bg, 1.0, 1.0, r.pipeline))
     sources = [r.entries[p].source for p in idx]
     groups: dict[tuple[str, ...], list[tuple[int, str, Deficiency, tuple[str, ...]]]] = {}
+    rows_of: dict[tuple[str, ...], set[int]] = {}
     for deficiency in DEFICIENCIES:
         seen = to_8bit(simulate_cvd(shown, deficiency))
         ref = to_8bit(simulate_cvd(solid, deficiency))
@@ -937,6 +914,7 @@ def _cvd_collision(c: _Collector, rule: Rule) -> None:
                 out = "#{:02x}{:02x}{:02x}".format(*code)
                 names = tuple(sorted({r.entries[idx[m]].icon.name for m in members}))
                 groups.setdefault(colours, []).append((j, out, deficiency, names))
+                rows_of.setdefault(colours, set()).update(int(idx[m]) for m in members)
     for colours, found in groups.items():
         icons = tuple(sorted({n for *_, names in found for n in names}))
 
@@ -944,16 +922,11 @@ def _cvd_collision(c: _Collector, rule: Rule) -> None:
             k: int,
             found: list[tuple[int, str, Deficiency, tuple[str, ...]]] = found,
             colours: tuple[str, ...] = colours,
-        ) -> tuple[str, dict[str, float | str]]:
+        ) -> tuple[str, Figures]:
             _, out, deficiency, _ = found[k]
             message = f"{_colours(colours)} all look like {out} under simulated {deficiency}"
-            every = sorted({d for _, _, d, _ in found})
-            return message, {
-                "output": out,
-                "deficiency": deficiency,
-                "deficiencies": ", ".join(every),
-                "colours": len(colours),
-            }
+            every = tuple(sorted({d for _, _, d, _ in found}))
+            return message, CvdCollisionFigures(out, deficiency, every, colours)
 
         c.fold(
             rule,
@@ -962,6 +935,7 @@ def _cvd_collision(c: _Collector, rule: Rule) -> None:
             [float(len(names)) for *_, names in found],
             build,
             locations=c.group_locations(icons, colour_first=True),
+            rows=tuple(sorted(rows_of[colours])),
         )
 
 
@@ -972,21 +946,23 @@ def severity(finding: Finding) -> tuple[int, float]:
     confusions of roles, then paints newly failing or below the threshold
     (least contrast first), then losses by size, then the other rules.
     """
-    n = finding.numbers
-    rule = finding.rule
-    if rule in (Rule.COLLISION, Rule.NEW_COLLISION, Rule.CVD_COLLISION, Rule.NEAR_DUPLICATE):
-        return 0, -float(n.get("colours", 0)) - len(finding.icons) / 1e9
-    if rule in (Rule.CONFUSION, Rule.CVD_CONFUSION):
-        return 1, float(n.get("delta_e", 0.0))
-    if rule in (Rule.NEWLY_FAILING, Rule.BELOW_THRESHOLD):
-        return 2, float(n.get("contrast", 0.0))
-    if rule is Rule.LOSS:
-        return 3, float(n.get("gain", 0.0))
-    if rule in (Rule.LOCK, Rule.DRIFT, Rule.RENDER_DRIFT):
-        return 4, -float(n.get("drift", 0.0))
-    if rule in (Rule.SEPARATION, Rule.THIN_STROKES):
-        return 5, float(n.get("delta_e", n.get("size_contrast", 0.0)))
-    return 6, 0.0
+    match finding.figures:
+        case CollisionFigures(colours=n) | CvdCollisionFigures(colours=n):
+            return 0, -float(n) - len(finding.icons) / 1e9
+        case ConfusionFigures(delta_e=de):
+            return 1, de
+        case ContrastFigures(gain=gain) if finding.rule is Rule.LOSS:
+            return 3, gain
+        case ContrastFigures(contrast=contrast):
+            return 2, contrast
+        case DriftFigures(drift=d) | RenderDriftFigures(drift=d):
+            return 4, -d
+        case SeparationFigures(delta_e=de):
+            return 5, de
+        case ThinStrokeFigures(size_contrast=sc):
+            return 5, sc
+        case _:
+            return 6, 0.0
 
 
 def ranked(findings: Iterable[Finding]) -> list[Finding]:

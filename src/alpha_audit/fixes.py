@@ -53,9 +53,10 @@ from alpha_audit.color import (
 )
 from alpha_audit.color.composite import composite_css_least
 from alpha_audit.color.oklch import linear_to_oklch, oklch_to_linear
+from alpha_audit.figures import ConfusionFigures, ContrastFigures
 from alpha_audit.findings import Finding
 from alpha_audit.model import Edit, Icon, Span
-from alpha_audit.policy import CONTRAST_RULES, Policy, contrast_breaks
+from alpha_audit.policy import Policy, contrast_breaks
 from alpha_audit.results import (
     CheckReport,
     ColorFix,
@@ -66,7 +67,7 @@ from alpha_audit.results import (
     SafeAlpha,
 )
 from alpha_audit.rows import AuditResult
-from alpha_audit.rules import Rule
+from alpha_audit.rules import RULES, Family, Rule
 from alpha_audit.suggest.engine import SafeAlphas, connected
 from alpha_audit.suggest.events import code_crossings
 
@@ -98,26 +99,6 @@ _ELIMINATE_FROM = 2048  # colours judged at once from which failing ones are dro
 # once; the first MAX_FIXED_COLORS per check (audits in order, colours in row order)
 # get one, the rest are counted and answered by ``alpha-audit suggest``.
 MAX_FIXED_COLORS = 50
-# The rules of one paint that a colour fix answers; the reaching alpha and the
-# nearest colour answer only the contrast rules.
-_PER_PAINT = frozenset({*CONTRAST_RULES, Rule.DRIFT, Rule.LOCK, Rule.THIN_STROKES})
-_GROUP = frozenset(
-    {
-        Rule.COLLISION,
-        Rule.NEW_COLLISION,
-        Rule.SEPARATION,
-        Rule.CONFUSION,
-        Rule.CVD_COLLISION,
-        Rule.CVD_CONFUSION,
-    }
-)
-_PAIR = frozenset({Rule.CONFUSION, Rule.CVD_CONFUSION})
-# The rules at whose finding the smallest reaching alpha is an exact fix: both
-# mean "contrast below the threshold", which that alpha lifts on every canvas of
-# the mode.  A loss can remain above 1 (contrast lower than at alpha 1).
-_REACH_RULES = frozenset({Rule.BELOW_THRESHOLD, Rule.NEWLY_FAILING})
-
-
 # How a fix's colours are drawn: an audit's pipeline, or ``css-least`` for a paint a
 # browser drew with CSS (of what engines may show, the colour nearest the backdrop:
 # :func:`~alpha_audit.color.composite.composite_css_least`), so a page's fix passes in
@@ -374,28 +355,7 @@ def nearest_passing_color(
         return NearestColor(linear_to_hex(src), 0.0, float(lch[0]), float(lch[1]), _deg(hue))
 
     def best_on_rays(theta: NDArray[np.float64]) -> tuple[float, float, float, float] | None:
-        """(delta_e, theta, L, C) of the best ray's nearest passing point."""
-        length = _ray_ends(l0, c0, theta)  # (R,)
-        frac = np.linspace(0.0, 1.0, RAY_SAMPLES + 1)[1:]
-        t = length[:, np.newaxis] * frac  # (R, S)
-        dl, dc = np.cos(theta)[:, np.newaxis], np.sin(theta)[:, np.newaxis]
-        ok = passing(to_linear(l0 + t * dl, c0 + t * dc))
-        found = ok.any(axis=1)
-        if not found.any():
-            return None
-        rows = np.flatnonzero(found)
-        first = np.argmax(ok[rows], axis=1)
-        hi = t[rows, first]
-        lo = np.where(first > 0, t[rows, np.maximum(first - 1, 0)], 0.0)
-        dl, dc = dl[rows, 0], dc[rows, 0]
-        for _ in range(BISECTION_STEPS):  # every ray at once
-            mid = 0.5 * (lo + hi)
-            good = passing(to_linear(l0 + mid * dl, c0 + mid * dc))
-            hi, lo = np.where(good, mid, hi), np.where(good, lo, mid)
-        ll, cc = l0 + hi * dl, c0 + hi * dc
-        de = delta_e_2000(to_linear(ll, cc), src)
-        k = int(np.argmin(de))
-        return float(de[k]), float(theta[rows[k]]), float(ll[k]), float(cc[k])
+        return _best_on_rays(theta, l0, c0, src, to_linear, passing)
 
     if achromatic:
         best = best_on_rays(np.array([0.0, math.pi]))
@@ -424,6 +384,43 @@ def nearest_passing_color(
         chroma=cc,
         hue=_deg(hue),
     )
+
+
+# OKLCH (L, C) at the source's hue -> linear sRGB; which linear colours pass.
+_ToLinear = Callable[[NDArray[np.float64], NDArray[np.float64]], NDArray[np.float64]]
+_Passing = Callable[[NDArray[np.float64]], NDArray[np.bool_]]
+
+
+def _best_on_rays(
+    theta: NDArray[np.float64],
+    l0: float,
+    c0: float,
+    src: NDArray[np.float64],
+    to_linear: _ToLinear,
+    passing: _Passing,
+) -> tuple[float, float, float, float] | None:
+    """(delta_e, theta, L, C) of the best ray's nearest passing point, rays from (l0, c0)."""
+    length = _ray_ends(l0, c0, theta)  # (R,)
+    frac = np.linspace(0.0, 1.0, RAY_SAMPLES + 1)[1:]
+    t = length[:, np.newaxis] * frac  # (R, S)
+    dl, dc = np.cos(theta)[:, np.newaxis], np.sin(theta)[:, np.newaxis]
+    ok = passing(to_linear(l0 + t * dl, c0 + t * dc))
+    found = ok.any(axis=1)
+    if not found.any():
+        return None
+    rows = np.flatnonzero(found)
+    first = np.argmax(ok[rows], axis=1)
+    hi = t[rows, first]
+    lo = np.where(first > 0, t[rows, np.maximum(first - 1, 0)], 0.0)
+    dl, dc = dl[rows, 0], dc[rows, 0]
+    for _ in range(BISECTION_STEPS):  # every ray at once
+        mid = 0.5 * (lo + hi)
+        good = passing(to_linear(l0 + mid * dl, c0 + mid * dc))
+        hi, lo = np.where(good, mid, hi), np.where(good, lo, mid)
+    ll, cc = l0 + hi * dl, c0 + hi * dc
+    de = delta_e_2000(to_linear(ll, cc), src)
+    k = int(np.argmin(de))
+    return float(de[k]), float(theta[rows[k]]), float(ll[k]), float(cc[k])
 
 
 def _deg(radians: float) -> float:
@@ -508,11 +505,11 @@ class _Audit:
         if rule not in self.groups:
             r = self.result
             pairs = [
-                str(f.numbers["roles"]).split(",", 1)
+                f.figures.roles
                 for f in failures
                 if f.rule is rule
                 and (f.theme, f.iconset) == (r.theme.name, r.iconset.name)
-                and "roles" in f.numbers
+                and isinstance(f.figures, ConfusionFigures)
             ]
             self.groups[rule] = {
                 colour: GroupFix(r.theme.name, r.iconset.name, rule, colours, safe, seed)
@@ -537,7 +534,7 @@ class _Audit:
         icons = self.members[role]
         first = self.by_name[icons[0]]
         styles = sorted(self.styles[role])
-        contrast = bool(rules & set(CONTRAST_RULES))
+        contrast = any(RULES[r].family is Family.CONTRAST for r in rules)
         if role not in self.nearest:
             self.nearest[role] = (
                 nearest_passing_color(
@@ -610,15 +607,9 @@ class _Audit:
         )
 
 
-def _role_of(finding: Finding, by_name: dict[str, Icon]) -> str | None:
-    """The colour a per-paint finding is about: its palette name, else its colour."""
-    icon = by_name.get(finding.icons[0]) if finding.icons else None
-    if icon is None:
-        return None
-    paint = finding.numbers.get("paint", "currentColor")
-    if paint != "currentColor":
-        return str(finding.numbers.get("source", paint))
-    return icon.color_name or icon.color
+def _role_of(finding: Finding, result: AuditResult) -> str | None:
+    """The colour a per-paint finding is about (its row's): its palette name, else its colour."""
+    return result.entries[finding.rows[0]].role if finding.rows else None
 
 
 def _mode_canvases(finding: Finding, result: AuditResult) -> dict[str, int]:
@@ -671,20 +662,8 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
     fixes: list[Fix] = []
     index: dict[object, int] = {}
     budget = MAX_FIXED_COLORS
-    # First pass: which colours fail which per-paint rules in which mode, on which canvas.
-    wanted: dict[tuple[str, str, str, str], set[Rule]] = {}
-    canvas_of: dict[tuple[str, str, str, str], int] = {}
+    wanted, canvas_of = _colours_wanted(gate.failures, audit_of)
     left_out: set[tuple[str, str, str]] = set()
-    for f in gate.failures:
-        a = audit_of(f)
-        if a is None or not f.canvases or f.rule not in _PER_PAINT:
-            continue
-        role = _role_of(f, a.by_name)
-        if role is None:
-            continue
-        for mode, j in _mode_canvases(f, a.result).items():
-            wanted.setdefault((f.theme, f.iconset, role, mode), set()).add(f.rule)
-            canvas_of.setdefault((f.theme, f.iconset, role, mode), j)
     colors_fixed: set[tuple[str, str, str]] = set()
     findings = []
     for f in gate.findings:
@@ -693,7 +672,8 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
             continue
         a = audit_of(f)
         found: list[int] = []
-        role = _role_of(f, a.by_name) if a is not None and f.rule in _PER_PAINT else None
+        fixed_by = RULES[f.rule].fixed_by
+        role = _role_of(f, a.result) if a is not None and fixed_by == "colour" else None
         if a is not None and role is not None:
             for mode in _mode_canvases(f, a.result):
                 color = (f.theme, f.iconset, role)
@@ -709,11 +689,10 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
                     found.append(index[key])
                 else:
                     left_out.add(color)
-        elif a is not None and f.rule in _GROUP:
+        elif a is not None and fixed_by == "group":
             group: GroupFix | None = None
-            if f.rule in _PAIR and "roles" in f.numbers:
-                role = str(f.numbers["roles"]).split(",", 1)[0]
-                group = a.group_fixes(f.rule, gate.failures).get(role)
+            if isinstance(f.figures, ConfusionFigures):
+                group = a.group_fixes(f.rule, gate.failures).get(f.figures.roles[0])
             key = ("group", f.theme, f.iconset, f.rule, group.colors if group else ())
             if key not in index and len(index) < 2 * MAX_FIXED_COLORS:
                 index[key] = len(fixes)
@@ -725,6 +704,30 @@ def with_fixes(report: CheckReport, *, alpha_max: float = 2.0, precision: int = 
         findings.append(replace(f, fixes=tuple(found), edits=edits))
     gate = replace(gate, findings=tuple(findings))
     return replace(report, gate=gate, fixes=tuple(fixes), fixes_left_out=len(left_out))
+
+
+# (theme, icon set, colour, canvas mode): what a colour fix is computed for.
+_ColourKey = tuple[str, str, str, str]
+
+
+def _colours_wanted(
+    failures: Sequence[Finding], audit_of: Callable[[Finding], _Audit | None]
+) -> tuple[dict[_ColourKey, set[Rule]], dict[_ColourKey, int]]:
+    """Which colours fail which per-paint rules in which mode, and on which canvas
+    (the first failure's worst of the mode) each colour fix is computed."""
+    wanted: dict[_ColourKey, set[Rule]] = {}
+    canvas_of: dict[_ColourKey, int] = {}
+    for f in failures:
+        a = audit_of(f)
+        if a is None or not f.canvases or RULES[f.rule].fixed_by != "colour":
+            continue
+        role = _role_of(f, a.result)
+        if role is None:
+            continue
+        for mode, j in _mode_canvases(f, a.result).items():
+            wanted.setdefault((f.theme, f.iconset, role, mode), set()).add(f.rule)
+            canvas_of.setdefault((f.theme, f.iconset, role, mode), j)
+    return wanted, canvas_of
 
 
 def _edits(
@@ -746,71 +749,84 @@ def _edits(
     value must be written in a file: a default alpha, ``--alpha`` or a DTCG
     colour object give no edit.
     """
-    if result is None or finding.rule not in CONTRAST_RULES or len(finding.icons) != 1:
+    icon = None if result is None else _editable_icon(finding, result)
+    if icon is None or result is None:
         return ()
-    icon = next((i for i in result.iconset.icons if i.name == finding.icons[0]), None)
-    n = finding.numbers
-    if (
-        icon is None
-        or result.pipeline != "linear"
-        or n.get("paint") != "currentColor"
-        or float(n.get("opacity", 1.0)) != 1.0
-        or n.get("source") != icon.color
-    ):
-        return ()
+    locked = result.iconset.locked
+    colour_editable = (
+        icon.color_span is not None
+        and icon.name not in locked
+        and (icon.color_name or "") not in locked
+        and icon.color_span not in canvas_spans
+    )
     out: list[Edit] = []
     for fix in fixes:
         if not isinstance(fix, ColorFix):
             continue
-        alpha_span = icon.alpha_span
-        # An answer for several colours together is no edit of this icon's alpha alone.
-        safe = None if fix.together else fix.largest_safe.alpha
-        if alpha_span is not None and safe is not None and safe != icon.alpha:
-            out.append(
-                Edit(
-                    "largest-safe-alpha",
-                    f"set alpha to {format_alpha(safe)}, the largest safe alpha for {fix.color}",
-                    alpha_span,
-                    format_alpha(safe),
-                )
-            )
-        reach = fix.reach.alpha
-        if (
-            alpha_span is not None
-            and reach is not None
-            and reach not in (icon.alpha, safe)
-            and finding.rule in _REACH_RULES
-            # It reaches the threshold on its mode's canvases: it clears the
-            # finding only if every canvas of the finding is one of them.
-            and set(finding.canvases) <= set(fix.reach.canvases)
-        ):
-            out.append(
-                Edit(
-                    "smallest-alpha-reaching",
-                    f"set alpha to {format_alpha(reach)}, the smallest alpha from 1 reaching "
-                    f"{fix.reach.threshold:g}:1 on every {fix.mode} canvas",
-                    alpha_span,
-                    format_alpha(reach),
-                )
-            )
+        out += _alpha_edits(finding, fix, icon)
         near = fix.nearest
-        color_span = icon.color_span
-        locked = result.iconset.locked
-        if (
-            near is not None
-            and near.delta_e > 0
-            and color_span is not None
-            and icon.name not in locked
-            and (icon.color_name or "") not in locked
-            and color_span not in canvas_spans
-        ):
+        if colour_editable and icon.color_span and near is not None and near.delta_e > 0:
             out.append(
                 Edit(
                     "nearest-color",
                     f"use {near.color} for {fix.color}, the nearest passing colour of the same "
                     f"OKLCH hue (CIEDE2000 {near.delta_e:.2f} away)",
-                    color_span,
+                    icon.color_span,
                     near.color,
                 )
             )
     return tuple(out)
+
+
+def _editable_icon(finding: Finding, result: AuditResult) -> Icon | None:
+    """The icon whose written values an edit may change: one icon's contrast, judged on
+    its own colour (``currentColor`` at opacity 1) in the ``linear`` pipeline."""
+    fig = finding.figures
+    if (
+        not isinstance(fig, ContrastFigures)
+        or len(finding.icons) != 1
+        or result.pipeline != "linear"
+        or fig.paint != "currentColor"
+        or fig.opacity != 1.0
+    ):
+        return None
+    icon = next((i for i in result.iconset.icons if i.name == finding.icons[0]), None)
+    return icon if icon is not None and fig.source == icon.color else None
+
+
+def _alpha_edits(finding: Finding, fix: ColorFix, icon: Icon) -> list[Edit]:
+    """The alpha edits of one colour fix: its largest safe alpha, its reaching alpha."""
+    span = icon.alpha_span
+    if span is None:
+        return []
+    out: list[Edit] = []
+    # An answer for several colours together is no edit of this icon's alpha alone.
+    safe = None if fix.together else fix.largest_safe.alpha
+    if safe is not None and safe != icon.alpha:
+        out.append(
+            Edit(
+                "largest-safe-alpha",
+                f"set alpha to {format_alpha(safe)}, the largest safe alpha for {fix.color}",
+                span,
+                format_alpha(safe),
+            )
+        )
+    reach = fix.reach.alpha
+    if (
+        reach is not None
+        and reach not in (icon.alpha, safe)
+        and RULES[finding.rule].reach_clears
+        # It reaches the threshold on its mode's canvases: it clears the
+        # finding only if every canvas of the finding is one of them.
+        and set(finding.canvases) <= set(fix.reach.canvases)
+    ):
+        out.append(
+            Edit(
+                "smallest-alpha-reaching",
+                f"set alpha to {format_alpha(reach)}, the smallest alpha from 1 reaching "
+                f"{fix.reach.threshold:g}:1 on every {fix.mode} canvas",
+                span,
+                format_alpha(reach),
+            )
+        )
+    return out

@@ -22,6 +22,7 @@ from alpha_audit.color import CONTRAST_TOLERANCE, DELTA_E_TOLERANCE
 from alpha_audit.errors import InputError, UsageError
 from alpha_audit.ranges import CONTRAST_LOSS, CONTRAST_RATIO, DELTA_E
 from alpha_audit.rules import (
+    CONTRAST_RULES,
     DEFAULT_RULES,
     DEFAULT_WARNINGS,
     RENDER_DEFAULT_RULES,
@@ -32,7 +33,6 @@ from alpha_audit.rules import (
 )
 
 __all__ = [
-    "CONTRAST_RULES",
     "LOSS_TOLERANCE",
     "NEAR_DUPLICATE_DELTA_E",
     "RENDER_DRIFT_TOLERANCE",
@@ -52,8 +52,6 @@ __all__ = [
 ]
 
 
-# The per paint x canvas contrast rules, in the order the gate reports them.
-CONTRAST_RULES = (Rule.LOSS, Rule.NEWLY_FAILING, Rule.BELOW_THRESHOLD)
 # A paint below this contrast at alpha 1 is already all but invisible on the canvas
 # (a brand logo in the canvas's own colour): its further loss is reported, not gated.
 # 1.5:1 is half of WCAG 2.2 SC 1.4.11's 3:1 for graphical objects.

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import difflib
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from enum import StrEnum
 from typing import Literal
 
@@ -20,12 +20,15 @@ from alpha_audit.errors import UsageError
 
 __all__ = [
     "CHECK_RULES",
+    "CONTRAST_RULES",
     "DEFAULT_RULES",
     "DEFAULT_WARNINGS",
     "RENDER_DEFAULT_RULES",
     "RENDER_DEFAULT_WARNINGS",
     "RENDER_RULES",
     "RULES",
+    "Family",
+    "Fixer",
     "Level",
     "Rule",
     "RuleSpec",
@@ -81,6 +84,26 @@ class Level(StrEnum):
 Severity = Literal["info", "minor", "major"]
 
 
+class Family(StrEnum):
+    """What a rule judges; its findings carry that family's figures (:mod:`alpha_audit.figures`)."""
+
+    CONTRAST = "contrast"  # one paint's contrast on a canvas
+    COLLISION = "collision"  # colours sharing one 8-bit output
+    SEPARATION = "separation"  # the closest two colours of the set
+    CONFUSION = "confusion"  # two palette roles no longer told apart
+    CVD_COLLISION = "cvd-collision"  # colours alike under a simulated deficiency
+    DRIFT = "drift"  # one paint's colour moved by its alpha
+    THIN_STROKES = "thin-strokes"  # antialiased ink at a raster size
+    SVG = "svg"  # what an SVG draws, whatever the alpha
+    RENDER_DRIFT = "render-drift"  # a browser draws another colour than the model
+
+
+# What answers a failing finding (alpha_audit.fixes): a fix of one paint's colour
+# (its largest safe alpha, reaching alpha and nearest colour), or the joint alpha of a
+# group of colours.
+Fixer = Literal["colour", "group"]
+
+
 @dataclass(frozen=True)
 class RuleSpec:
     """Everything said about one rule.
@@ -92,6 +115,14 @@ class RuleSpec:
     render``'s gate does (``None``: rows measured in a browser never raise it);
     ``help`` one line for ``--help`` and code-scanning dashboards; ``fix`` what
     to do about a finding.
+
+    ``family`` says what the rule judges (and which figures its findings
+    carry); ``closed_form`` whether ``suggest`` finds the alpha where it
+    starts to object exactly (else it brackets it on a grid and re-checks);
+    ``fixed_by`` which fix answers a failing finding (``None``: no alpha or
+    colour fix); ``reach_clears`` whether the smallest alpha reaching the
+    threshold clears it (contrast below the threshold; not a loss, which can
+    stay lower than at alpha 1).
     """
 
     rule: Rule
@@ -103,6 +134,10 @@ class RuleSpec:
     render: Level | None = None
     # Raised only from a browser's pixels (``render``): ``check`` and ``suggest`` refuse it.
     browser_only: bool = False
+    family: Family = field(kw_only=True)
+    closed_form: bool = field(default=True, kw_only=True)
+    fixed_by: Fixer | None = field(default=None, kw_only=True)
+    reach_clears: bool = field(default=False, kw_only=True)
 
 
 # Contrast that no longer meets the threshold is what the gate exists for;
@@ -118,6 +153,8 @@ _SPECS = (
         "reported, not gated).",
         "Lower the icon's `alpha` (`alpha-audit suggest` gives the largest safe value per "
         "colour), or exempt the canvas with a reason.",
+        family=Family.CONTRAST,
+        fixed_by="colour",
     ),
     RuleSpec(
         Rule.BELOW_THRESHOLD,
@@ -129,6 +166,9 @@ _SPECS = (
         "more contrast on this canvas.",
         # On a page the worst measured pixel is the contrast shown: the gate exists for it.
         render=Level.FAIL,
+        family=Family.CONTRAST,
+        fixed_by="colour",
+        reach_clears=True,
     ),
     RuleSpec(
         Rule.NEWLY_FAILING,
@@ -138,6 +178,9 @@ _SPECS = (
         "The paint meets the threshold at alpha 1 but not at its alpha.",
         "Lower the icon's `alpha` back towards 1 (`alpha-audit suggest` gives the largest "
         "value that still passes).",
+        family=Family.CONTRAST,
+        fixed_by="colour",
+        reach_clears=True,
     ),
     RuleSpec(
         Rule.COLLISION,
@@ -146,6 +189,8 @@ _SPECS = (
         Level.OFF,
         "Distinct colours give the same 8-bit output on this canvas.",
         "Move one of the colliding colours apart, or lower the set's `alpha`.",
+        family=Family.COLLISION,
+        fixed_by="group",
     ),
     RuleSpec(
         Rule.NEW_COLLISION,
@@ -156,6 +201,8 @@ _SPECS = (
         "8-bit output at their alpha.",
         "Lower the set's `alpha` below the value `alpha-audit suggest` reports, or move one "
         "of the colours apart.",
+        family=Family.COLLISION,
+        fixed_by="group",
     ),
     RuleSpec(
         Rule.SEPARATION,
@@ -164,6 +211,9 @@ _SPECS = (
         Level.OFF,
         "Two of the set's colours are closer than the minimum CIEDE2000.",
         "Move the two closest colours apart, or lower the `alpha` that pulls them together.",
+        family=Family.SEPARATION,
+        closed_form=False,
+        fixed_by="group",
     ),
     RuleSpec(
         Rule.UNRENDERABLE,
@@ -172,6 +222,7 @@ _SPECS = (
         Level.WARN,
         "The icon's SVG could not be rendered.",
         "Fix the SVG file (the message names the problem) or remove the icon.",
+        family=Family.SVG,
     ),
     RuleSpec(
         Rule.FIXED_COLOUR,
@@ -181,6 +232,7 @@ _SPECS = (
         "The SVG hard-codes a paint colour that will not follow the theme.",
         "Paint with `currentColor` (or a theme token) instead of the fixed colour, or exempt "
         "the icon with a reason if the colour is meant to stay.",
+        family=Family.SVG,
     ),
     RuleSpec(
         Rule.NOT_AUDITED,
@@ -194,6 +246,7 @@ _SPECS = (
         "(on a page: strokes of at least 1 CSS px).",
         # A paint a browser drew too thin to measure is said, never passed in silence.
         render=Level.WARN,
+        family=Family.SVG,
     ),
     RuleSpec(
         Rule.DRIFT,
@@ -203,6 +256,9 @@ _SPECS = (
         "The paint's colour moves further than max-drift (CIEDE2000) at its alpha.",
         "Lower the icon's `alpha` towards 1 (drift is zero at 1), or raise `max-drift` if the "
         "shift is acceptable.",
+        family=Family.DRIFT,
+        closed_form=False,
+        fixed_by="colour",
     ),
     RuleSpec(
         Rule.LOCK,
@@ -211,6 +267,9 @@ _SPECS = (
         Level.OFF,
         "A locked brand colour changes by more than one just-noticeable difference.",
         "Keep locked brand colours at `alpha: 1`, or remove the lock.",
+        family=Family.DRIFT,
+        closed_form=False,
+        fixed_by="colour",
     ),
     RuleSpec(
         Rule.CONFUSION,
@@ -220,6 +279,9 @@ _SPECS = (
         "Two palette roles told apart at alpha 1 are no longer told apart.",
         "Lower the `alpha` that pulls the two roles together, or move one role's colour "
         "further from the other.",
+        family=Family.CONFUSION,
+        closed_form=False,
+        fixed_by="group",
     ),
     RuleSpec(
         Rule.THIN_STROKES,
@@ -228,6 +290,8 @@ _SPECS = (
         Level.OFF,
         "At a raster size the antialiased paint falls below min-size-contrast.",
         "Use a heavier stroke or a larger size, or a source colour with more contrast.",
+        family=Family.THIN_STROKES,
+        fixed_by="colour",
     ),
     RuleSpec(
         Rule.CVD_COLLISION,
@@ -236,6 +300,9 @@ _SPECS = (
         Level.OFF,
         "Distinct colours newly look identical under simulated colour blindness.",
         "Move the two colours apart in lightness, not only in hue.",
+        family=Family.CVD_COLLISION,
+        closed_form=False,
+        fixed_by="group",
     ),
     RuleSpec(
         Rule.CVD_CONFUSION,
@@ -244,6 +311,9 @@ _SPECS = (
         Level.OFF,
         "Two roles are no longer told apart under simulated colour blindness.",
         "Separate the two roles in lightness (CVD keeps lightness), or lower the `alpha`.",
+        family=Family.CONFUSION,
+        closed_form=False,
+        fixed_by="group",
     ),
     # Only a browser draws it (render); reported by default: a page drawing another
     # colour than the manifest's is often meant (a themed override), and the contrast
@@ -260,6 +330,7 @@ _SPECS = (
         "write the colour the page draws into the manifest so `check` audits it.",
         render=Level.WARN,
         browser_only=True,
+        family=Family.RENDER_DRIFT,
     ),
     # Alpha did not make these collide: the colours already look the same at alpha 1
     # and only share a code once it rounds them together.  Listed once, never gated
@@ -273,11 +344,14 @@ _SPECS = (
         "near-duplicate-delta-e) share one 8-bit output at their alpha.",
         "Use one colour for both if they mean the same, or move them apart if they should "
         "be told apart; alpha only rounds them together.",
+        family=Family.COLLISION,
     ),
 )
 RULES: dict[Rule, RuleSpec] = {spec.rule: spec for spec in _SPECS}
 DEFAULT_RULES = frozenset(r for r, s in RULES.items() if s.default is Level.FAIL)
 DEFAULT_WARNINGS = frozenset(r for r, s in RULES.items() if s.default is Level.WARN)
+# The per paint x canvas contrast rules, in rule order.
+CONTRAST_RULES = tuple(r for r, s in RULES.items() if s.family is Family.CONTRAST)
 # The rules ``alpha-audit check`` (and ``suggest``) can raise from the model's rows.
 CHECK_RULES = tuple(r for r, s in RULES.items() if not s.browser_only)
 # The rules ``alpha-audit render`` can raise from measured paints, and its defaults.

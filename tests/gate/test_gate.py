@@ -98,8 +98,8 @@ def test_newly_failing_numbers() -> None:
     # Near the paper's worked case (10.28 at a = 1 -> 8.64 at a = 1.4): it crosses 9:1.
     result = audit(_theme(("yellow", YELLOW)), _set(("dot", LOSING_BLUE, 1.4)), threshold=9.0)
     (f,) = evaluate([result], Policy(rules=frozenset({Rule.NEWLY_FAILING}))).failures
-    assert f.numbers["contrast_ref"] >= 9.0 > f.numbers["contrast"]
-    assert f.numbers["alpha"] == 1.4 and f.numbers["background"] == YELLOW
+    assert f.figures.contrast_ref >= 9.0 > f.figures.contrast
+    assert f.figures.alpha == 1.4 and f.figures.background == YELLOW
 
 
 def test_max_loss_tolerates_small_losses() -> None:

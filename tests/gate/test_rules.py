@@ -17,7 +17,6 @@ from alpha_audit.color import CONTRAST_TOLERANCE, pack_8bit
 from alpha_audit.gate import evaluate
 from alpha_audit.model import Canvas, Icon, IconProblem, IconSet, Theme
 from alpha_audit.policy import (
-    CONTRAST_RULES,
     Exemption,
     Policy,
     Rule,
@@ -25,6 +24,7 @@ from alpha_audit.policy import (
     contrast_floor,
 )
 from alpha_audit.rows import audit
+from alpha_audit.rules import CONTRAST_RULES
 from alpha_audit.suggest import largest_safe_alpha
 from helpers import solid_paints
 

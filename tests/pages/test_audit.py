@@ -83,10 +83,10 @@ def test_a_failing_paint_is_named_by_state_story_icon_and_backdrop() -> None:
     )  # fmt: skip
     assert f.level is Level.FAIL and f.fails
     truth = spec_contrast(spec_hex("#6e1a1f"), spec_hex("#0d1117"))
-    assert f.numbers["contrast"] == pytest.approx(truth, abs=1e-12)  # the pair, not the worst pixel
-    assert f.numbers["contrast_worst"] == 1.2 and f.numbers["contrast_median"] == 1.65
-    assert f.numbers["model_contrast"] == 5.36 and f.numbers["story"] == "icons--alert"
-    assert f.numbers["state"] == "theme:dark" and f.numbers["dom_path"] == "div.alert > svg"
+    assert f.figures.contrast == pytest.approx(truth, abs=1e-12)  # the pair, not the worst pixel
+    assert f.observed.contrast_worst == 1.2 and f.observed.contrast_median == 1.65
+    assert f.observed.nearer.contrast == 5.36 and f.observed.source == "icons--alert"
+    assert f.observed.state == "theme:dark" and f.observed.dom_path == "div.alert > svg"
     assert "#6e1a1f on #0d1117" in f.message and f"{truth:.2f}:1" in f.message
 
 
@@ -105,7 +105,7 @@ def test_render_drift_is_reported_above_the_tolerance(drift, fires) -> None:
 def test_render_drift_fails_when_the_policy_says_so() -> None:
     policy = replace(RENDER_POLICY, rules=frozenset({Rule.RENDER_DRIFT}))
     (f,) = report(paint(render_drift=19.6, drawn="#6e1a1f"), policy=policy).gate.failures
-    assert f.fails and f.numbers["drift"] == 19.6 and "#6e1a1f" in f.message
+    assert f.fails and f.figures.drift == 19.6 and "#6e1a1f" in f.message
 
 
 def test_instances_of_one_icon_on_one_backdrop_fold_into_the_worst() -> None:
@@ -118,7 +118,7 @@ def test_instances_of_one_icon_on_one_backdrop_fold_into_the_worst() -> None:
     found = report(a, b, c, fixes=False)
     assert sum(len(r.entries) for r in found.audits) == 2  # one row per backdrop
     failures = found.gate.failures
-    assert sorted((f.canvas, f.numbers["dom_path"]) for f in failures) == [
+    assert sorted((f.canvas, f.observed.dom_path) for f in failures) == [
         ("#eeeeee", "c > svg"),
         ("#ffffff", "b > svg"),  # the worse of the two on white
     ]

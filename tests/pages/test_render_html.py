@@ -94,7 +94,7 @@ def has_colour(image: np.ndarray, hex_color: str) -> bool:
 
 def instances(found) -> set[tuple[str, str, str, str]]:
     """The icon instance each finding takes its figures from: what its crop shows."""
-    return {(f.iconset, f.theme, f.numbers["engine"], f.numbers["dom_path"]) for f in found}
+    return {(f.iconset, f.theme, f.observed.engine, f.observed.dom_path) for f in found}
 
 
 @pytest.fixture(scope="module")
@@ -130,7 +130,7 @@ def _article(page: Page, kind: str, *needles: str) -> dict[str, object]:
 def test_the_dark_alert_failure_shows_both_crops_holding_the_colours_reported(report, page):
     _, parsed = page
     (f,) = [f for f in report.gate.failures if f.iconset == "icons--alert"]
-    drawn, behind = f.numbers["drawn"], f.numbers["background"]
+    drawn, behind = f.observed.drawn, f.figures.background
     article = _article(parsed, "fail", "triangle-alert", "icons--alert", "theme:dark")
     shown, hidden = (pixels(i["src"]) for i in article["images"])  # type: ignore[attr-defined]
     assert shown.shape == hidden.shape and shown.shape[0] >= 48  # a 24 px icon at scale 2
@@ -144,9 +144,9 @@ def test_the_dark_alert_failure_shows_both_crops_holding_the_colours_reported(re
     assert inside.sum() > 100 and inside.sum() == differs.sum()
     # The figures beside the crops are the finding's.
     text = " ".join(article["text"])  # type: ignore[arg-type]
-    assert f"{f.numbers['contrast']:.2f}:1; threshold 3:1" in text
+    assert f"{f.figures.contrast:.2f}:1; threshold 3:1" in text
     assert drawn in text and behind in text
-    assert f.numbers["model_output"] in text  # the model's prediction
+    assert f.observed.nearer.output in text  # the model's prediction
     assert finding_fix(f, report) in text
     assert "icons/iconset.yaml:6" in text and re.search(r"stories/icons\.stories\.js:\d+", text)
 

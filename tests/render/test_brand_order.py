@@ -48,11 +48,11 @@ def test_the_gate_orders_the_largest_collision_first() -> None:
     assert len(failures) > 300  # thousands of logos, hundreds of root causes
     first = failures[0]
     assert first.rule is Rule.NEW_COLLISION
-    assert first.numbers["colours"] == _largest_collision() > 100
-    sizes = [f.numbers["colours"] for f in failures if f.rule is Rule.NEW_COLLISION]
+    assert first.figures.colours == _largest_collision() > 100
+    sizes = [f.figures.colours for f in failures if f.rule is Rule.NEW_COLLISION]
     assert sizes == sorted(sizes, reverse=True)
     # Losses come after the collisions, the largest loss first.
-    losses = [float(f.numbers["gain"]) for f in failures if f.rule is Rule.LOSS]
+    losses = [float(f.figures.gain) for f in failures if f.rule is Rule.LOSS]
     assert losses == sorted(losses)
     assert rule_summary(brand_report().gate)[0].rule is Rule.NEW_COLLISION
 

@@ -26,8 +26,9 @@ from alpha_audit.load.config import ProjectConfig
 from alpha_audit.model import Canvas, Icon, IconProblem, IconSet, Theme
 from alpha_audit.pair import pair_report
 from alpha_audit.policy import Policy
-from alpha_audit.render import CheckFormat, PairFormat, ReproduceFormat, SuggestFormat
+from alpha_audit.render import CheckFormat, PairFormat, SuggestFormat
 from alpha_audit.render.common import RenderOptions
+from alpha_audit.reproduce.formats import ReproduceFormat
 from alpha_audit.reproduce.run import Experiment, reproduce
 from alpha_audit.results import CheckReport
 from alpha_audit.rows import audit

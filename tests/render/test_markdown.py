@@ -185,7 +185,7 @@ def test_a_huge_failing_run_fits_githubs_comment_limit_and_says_what_was_left_ou
     assert html.count("<details") == 3  # every theme keeps its section
     shown = len(_rows(text, FAILING))
     left_out = int(re.search(r"\*\*(\d+) row\(s\) left out\*\*", text).group(1))
-    groups = {(f.theme, f.canvas, f.canvases, f.numbers["source"]) for f in gate.failures}
+    groups = {(f.theme, f.canvas, f.canvases, f.figures.source) for f in gate.failures}
     assert shown > 0 and shown + left_out == len(groups)
     assert "65,536-character comment limit" in text
 

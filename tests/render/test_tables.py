@@ -205,7 +205,7 @@ def reproduction() -> Any:
 
 @pytest.mark.parametrize("width", WIDTHS)
 def test_reproduce_tables_keep_every_figure_whole(width: int) -> None:
-    from alpha_audit.render import ReproduceFormat
+    from alpha_audit.reproduce.formats import ReproduceFormat
 
     run = reproduction()
     tokens: set[str] = set()

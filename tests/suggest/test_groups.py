@@ -21,6 +21,7 @@ from hypothesis import strategies as st
 from typer.testing import CliRunner
 
 from alpha_audit.cli import app
+from alpha_audit.figures import ConfusionFigures
 from alpha_audit.fixes import with_fixes
 from alpha_audit.gate import evaluate
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
@@ -118,7 +119,7 @@ def test_the_fix_of_orange_and_red_names_amber_and_the_pair_that_limits_it() -> 
     policy = Policy()
     report = with_fixes(CheckReport(audits=(result,), gate=evaluate([result], policy)))
     confused = {
-        str(f.numbers["roles"]): f for f in report.gate.failures if f.rule is Rule.CONFUSION
+        ",".join(f.figures.roles): f for f in report.gate.failures if f.rule is Rule.CONFUSION
     }
     assert set(confused) == {"orange,red", "amber,yellow", "blue,violet"}
     # Orange and red alone are held by amber at 1.2: the group grows into amber and yellow,
@@ -153,14 +154,15 @@ def test_the_fix_of_orange_and_red_names_amber_and_the_pair_that_limits_it() -> 
     group = {i.name for i in ICONS.icons if i.color_name in fix.colors}
     assert not _involving(result, dict.fromkeys(group, 1.059), group, rule)
     found = _involving(result, dict.fromkeys(group, limit.at), group, rule)
-    assert [f.numbers["roles"] for f in found] == ["orange,red"]
+    assert [f.figures.roles for f in found] == [("orange", "red")]
     assert "light-default" in found[0].canvases
 
 
 def test_a_confusion_names_every_icon_of_both_roles() -> None:
     result = audit(THEME, ICONS)
     gate = evaluate([result], Policy())
-    (finding,) = [f for f in gate.failures if f.numbers.get("roles") == "orange,red"]
+    confused = [f for f in gate.failures if isinstance(f.figures, ConfusionFigures)]
+    (finding,) = [f for f in confused if f.figures.roles == ("orange", "red")]
     assert finding.icons == ("orange1", "orange2", "red1", "red2")
 
 

@@ -19,8 +19,8 @@ from alpha_audit.cli.options import in_range
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.errors import UsageError
 from alpha_audit.ranges import ALPHA
-from alpha_audit.render import ReproduceFormat
 from alpha_audit.reproduce.experiment import Experiment
+from alpha_audit.reproduce.formats import ReproduceFormat
 
 if TYPE_CHECKING:
     from rich.console import Console

@@ -1,20 +1,19 @@
 """Renderers: pure functions from a result to text, chosen by a format enum.
 
 Every result type has the same frame: a :class:`Format` enum of its formats
-whose :meth:`Format.renderer` loads one
-:class:`~alpha_audit.render.common.Renderer` from :data:`RENDERERS`, so a new
-format is one module and one line.  The result types and their enums:
+whose :meth:`Format.renderer` returns one typed
+:class:`~alpha_audit.render.common.Renderer` (its module imported on first
+use), so a new format is one module, one member and one case.  The result
+types and their enums:
 
-=================  ===================================================  ========================
-result             formats                                              enum
-=================  ===================================================  ========================
-``CheckReport``    table, json, junit, sarif, markdown, github, gitlab,  :class:`CheckFormat`
-                   html
-``SuggestResult``  table, json, markdown                                :class:`SuggestFormat`
-``PairReport``     table, json                                          :class:`PairFormat`
-``Reproduction``   table, json, markdown                                :class:`ReproduceFormat`
-bundled themes     table, json                                          :class:`ThemesFormat`
-=================  ===================================================  ========================
+- ``CheckReport``: table, json, junit, sarif, markdown, github, gitlab, html
+  (:class:`CheckFormat`);
+- ``SuggestResult``: table, json, markdown (:class:`SuggestFormat`);
+- ``PairReport``: table, json (:class:`PairFormat`);
+- ``Reproduction``: table, json, markdown
+  (:class:`~alpha_audit.reproduce.formats.ReproduceFormat`, beside the paper's
+  renderers: the core never imports the paper);
+- bundled themes: table, json (:class:`ThemesFormat`).
 
 ``check`` and ``render`` both produce a ``CheckReport`` (``render``'s rows are
 drawn by a browser, :mod:`alpha_audit.render.pages` gives their page views),
@@ -27,24 +26,23 @@ Shared helpers (escaping, JSON, text, fix wording) live once in
 
 from __future__ import annotations
 
-import importlib
 from enum import StrEnum
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, assert_never
 
 from alpha_audit.render.common import SUFFIXES, Renderer, RenderOptions, display_path
 
 if TYPE_CHECKING:
+    from alpha_audit.pair import PairReport
+    from alpha_audit.render.themes import Themes
     from alpha_audit.results import CheckReport, SuggestResult
 
 __all__ = [
-    "RENDERERS",
     "SUFFIXES",
     "CheckFormat",
     "Format",
     "PairFormat",
     "RenderOptions",
     "Renderer",
-    "ReproduceFormat",
     "SuggestFormat",
     "ThemesFormat",
     "display_path",
@@ -52,15 +50,16 @@ __all__ = [
     "render_suggest",
 ]
 
+# Each format's renderer() imports its module on first use (inside the method), so
+# `alpha-audit --help` loads no renderer, and a new format is one member and one case.
+
 
 class Format(StrEnum):
-    """The formats of one result type; each member names its renderer in :data:`RENDERERS`."""
+    """The formats of one result type; each enum's :meth:`renderer` returns its render function."""
 
     def renderer(self) -> Renderer[Any]:
         """The render function for this format (its module imported on first use)."""
-        module, name = RENDERERS[type(self)][self.value].split(":")
-        renderer: Renderer[Any] = getattr(importlib.import_module(module), name)
-        return renderer
+        raise NotImplementedError(type(self).__name__)
 
 
 class CheckFormat(Format):
@@ -75,6 +74,42 @@ class CheckFormat(Format):
     GITLAB = "gitlab"
     HTML = "html"
 
+    def renderer(self) -> Renderer[CheckReport]:
+        """The render function for this format (its module imported on first use)."""
+        if self is CheckFormat.TABLE:
+            from alpha_audit.render import table
+
+            return table.render_report
+        if self is CheckFormat.JSON:
+            from alpha_audit.render import json
+
+            return json.render_report
+        if self is CheckFormat.JUNIT:
+            from alpha_audit.render import junit
+
+            return junit.render_report
+        if self is CheckFormat.SARIF:
+            from alpha_audit.render import sarif
+
+            return sarif.render_report
+        if self is CheckFormat.MARKDOWN:
+            from alpha_audit.render import markdown
+
+            return markdown.render_report
+        if self is CheckFormat.GITHUB:
+            from alpha_audit.render import github
+
+            return github.render_report
+        if self is CheckFormat.GITLAB:
+            from alpha_audit.render import gitlab
+
+            return gitlab.render_report
+        if self is CheckFormat.HTML:
+            from alpha_audit.render import html
+
+            return html.render_report
+        assert_never(self)
+
 
 class SuggestFormat(Format):
     """Output formats of ``alpha-audit suggest``."""
@@ -83,6 +118,18 @@ class SuggestFormat(Format):
     JSON = "json"
     MARKDOWN = "markdown"
 
+    def renderer(self) -> Renderer[SuggestResult]:
+        """The render function for this format (its module imported on first use)."""
+        from alpha_audit.render import suggest
+
+        if self is SuggestFormat.TABLE:
+            return suggest.render_table
+        if self is SuggestFormat.JSON:
+            return suggest.render_json
+        if self is SuggestFormat.MARKDOWN:
+            return suggest.render_markdown
+        assert_never(self)
+
 
 class PairFormat(Format):
     """Output formats of ``alpha-audit pair``."""
@@ -90,13 +137,15 @@ class PairFormat(Format):
     TABLE = "table"
     JSON = "json"
 
+    def renderer(self) -> Renderer[PairReport]:
+        """The render function for this format (its module imported on first use)."""
+        from alpha_audit.render import pair
 
-class ReproduceFormat(Format):
-    """Output formats of ``alpha-audit reproduce`` (``--out`` writes JSON and Markdown)."""
-
-    TABLE = "table"
-    JSON = "json"
-    MARKDOWN = "markdown"
+        if self is PairFormat.TABLE:
+            return pair.render_table
+        if self is PairFormat.JSON:
+            return pair.render_json
+        assert_never(self)
 
 
 class ThemesFormat(Format):
@@ -105,39 +154,15 @@ class ThemesFormat(Format):
     TABLE = "table"
     JSON = "json"
 
+    def renderer(self) -> Renderer[Themes]:
+        """The render function for this format (its module imported on first use)."""
+        from alpha_audit.render import themes
 
-# Every format of every result type: "module:function" (a test loads each one).  Keyed by
-# class first: the members are strings, so CheckFormat.TABLE == ThemesFormat.TABLE.
-RENDERERS: dict[type[Format], dict[str, str]] = {
-    CheckFormat: {
-        "table": "alpha_audit.render.table:render_report",
-        "json": "alpha_audit.render.json:render_report",
-        "junit": "alpha_audit.render.junit:render_report",
-        "sarif": "alpha_audit.render.sarif:render_report",
-        "markdown": "alpha_audit.render.markdown:render_report",
-        "github": "alpha_audit.render.github:render_report",
-        "gitlab": "alpha_audit.render.gitlab:render_report",
-        "html": "alpha_audit.render.html:render_report",
-    },
-    SuggestFormat: {
-        "table": "alpha_audit.render.suggest:render_table",
-        "json": "alpha_audit.render.suggest:render_json",
-        "markdown": "alpha_audit.render.suggest:render_markdown",
-    },
-    PairFormat: {
-        "table": "alpha_audit.render.pair:render_table",
-        "json": "alpha_audit.render.pair:render_json",
-    },
-    ReproduceFormat: {
-        "table": "alpha_audit.reproduce.report:render_table",
-        "json": "alpha_audit.reproduce.report:render_json",
-        "markdown": "alpha_audit.reproduce.report:render_markdown",
-    },
-    ThemesFormat: {
-        "table": "alpha_audit.render.themes:render_table",
-        "json": "alpha_audit.render.themes:render_json",
-    },
-}
+        if self is ThemesFormat.TABLE:
+            return themes.render_table
+        if self is ThemesFormat.JSON:
+            return themes.render_json
+        assert_never(self)
 
 
 def render_check(report: CheckReport, fmt: CheckFormat | str, options: RenderOptions) -> str:

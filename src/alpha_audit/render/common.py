@@ -682,11 +682,11 @@ def _page_fix_text(fix: ColorFix, opacity: float) -> str:
 
 
 def _color_fix_text(fix: ColorFix) -> str:
-    from alpha_audit.policy import CONTRAST_RULES
-
     if fix.opacity is not None:
         return _page_fix_text(fix, fix.opacity)
-    contrast = any(r in CONTRAST_RULES for r in fix.rules)
+    from alpha_audit.rules import RULES, Family
+
+    contrast = any(RULES[r].family is Family.CONTRAST for r in fix.rules)
     options = []
     safe = fix.largest_safe.alpha
     if safe is not None:

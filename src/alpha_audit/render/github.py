@@ -140,7 +140,7 @@ def gate_annotations(gate: GateResult, options: RenderOptions, passed: str) -> s
         )
         # A loss reported but not gated (an invisible paint, a sub-tolerance loss) is
         # in the JSON and SARIF reports; an annotation slot is for what needs a look.
-        for g in by_line(w for w in gate.warnings if w.numbers.get("gated") != "false")
+        for g in by_line(w for w in gate.warnings if not w.quiet)
     ]
     lines: list[str] = []
     if gate.passed:

@@ -25,10 +25,10 @@ import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
+from alpha_audit.figures import ContrastFigures, RenderDriftFigures
 from alpha_audit.findings import Finding
-from alpha_audit.observed import IconCrop, PageRun
+from alpha_audit.observed import IconCrop, MeasuredPaint, PageRun
 from alpha_audit.render.common import (
     RenderOptions,
     baselined_text,
@@ -143,19 +143,20 @@ def _figure(crop: IconCrop | None, icon: str, left_out: int) -> str:
     )
 
 
-def _model(n: Mapping[str, Any]) -> str:
-    if "model_output" not in n:
+def _model(o: MeasuredPaint) -> str:
+    near = o.nearer
+    if near is None:
         return "—"
-    given = f"<code>{_e(n.get('model_source', '?'))}</code> at alpha {n.get('model_alpha', 1.0):g}"
-    if n.get("model_opacity", 1.0) != 1.0:
-        given += f", opacity {n['model_opacity']:g}"
-    drift = n.get("render_drift")
-    drift_text = ""
-    if isinstance(drift, float):
-        drift_text = f"; CIEDE2000 {drift:.1f} from the drawn colour"
+    source = "?" if o.model_source is None else o.model_source
+    alpha = 1.0 if o.model_alpha is None else o.model_alpha
+    given = f"<code>{_e(source)}</code> at alpha {alpha:g}"
+    if o.model_opacity is not None and o.model_opacity != 1.0:
+        given += f", opacity {o.model_opacity:g}"
+    drift = o.render_drift
+    drift_text = "" if drift is None else f"; CIEDE2000 {drift:.1f} from the drawn colour"
     return (
-        f"{given} → {_swatch(n['model_output'])} ({_e(n.get('model_pipeline', ''))}): "
-        f"contrast {_ratio(n.get('model_contrast'))}{drift_text}"
+        f"{given} → {_swatch(near.output)} ({_e(near.pipeline)}): "
+        f"contrast {_ratio(near.contrast)}{drift_text}"
     )
 
 
@@ -175,49 +176,55 @@ class _Lookups:
         return cls(report, crops, run.crops_left_out if run else 0, options.base)
 
 
+def _page_rows(f: Finding, o: MeasuredPaint) -> list[tuple[str, str]]:
+    """Where a page's finding was drawn: story or page, state and engine, icon, DOM path."""
+    icon = f.icons[0] if f.icons else ""
+    return [
+        ("story" if o.source_kind == "storybook" else "page", f"<code>{_e(f.iconset)}</code>"),
+        ("state", f"<code>{_e(f.theme)}</code> ({_e(o.engine)})"),
+        ("icon", f"<code>{_e(icon)}</code> ({_e(o.element)}, {_e(str(o.match))})"),
+        ("DOM path", f"<code>{_e(o.dom_path)}</code>"),
+    ]
+
+
+def _figure_rows(f: Finding, o: MeasuredPaint | None) -> list[tuple[str, str]]:
+    """The contrast judged, and for a page's finding what was drawn on what, and the model."""
+    fig = f.figures
+    rows: list[tuple[str, str]] = []
+    if isinstance(fig, ContrastFigures):
+        contrast = f"{_ratio(fig.contrast)}; threshold {fig.threshold:g}:1"
+        if o is not None:
+            contrast += (
+                f" (the paint's own colour; its pixels with antialiased edges: worst "
+                f"{_ratio(o.contrast_worst)}, median {_ratio(o.contrast_median)})"
+            )
+        rows.append(("contrast", contrast))
+    if o is not None and isinstance(fig, ContrastFigures | RenderDriftFigures):
+        backdrop = _swatch(fig.background) + " behind"
+        if o.around is not None and o.around != fig.background:
+            backdrop += f", {_swatch(o.around)} around"
+        rows += [("drawn", _swatch(o.drawn)), ("backdrop", backdrop), ("model", _model(o))]
+    elif f.canvas:
+        rows.append(("canvas", f"<code>{_e(f.canvas)}</code>"))
+    return rows
+
+
 def _finding(f: Finding, kind: str, look: _Lookups) -> list[str]:
     """One finding: heading, message, the two crops (a page's) and its figures."""
-    n = f.numbers
+    o = f.observed
     icon = f.icons[0] if f.icons else ""
     where = "<br>".join(
         f"<code>{_e(location_text(loc, look.base))}</code> ({_e(loc.what)})" for loc in f.locations
     )
-    rows: list[tuple[str, str]] = []
-    page = "story" in n or "page" in n
-    if page:
-        engine, dom_path = str(n.get("engine", "")), str(n.get("dom_path", ""))
-        source_kind = "story" if "story" in n else "page"
-        rows += [
-            (source_kind, f"<code>{_e(f.iconset)}</code>"),
-            ("state", f"<code>{_e(f.theme)}</code> ({_e(engine)})"),
-            (
-                "icon",
-                f"<code>{_e(icon)}</code> ({_e(n.get('element', ''))}, {_e(n.get('match', ''))})",
-            ),
-            ("DOM path", f"<code>{_e(dom_path)}</code>"),
-        ]
+    if o is not None:
+        rows = _page_rows(f, o)
     else:
-        rows += [
+        rows = [
             ("theme", f"<code>{_e(f.theme)}</code>"),
             ("icon set", f"<code>{_e(f.iconset)}</code>"),
             ("icons", ", ".join(f"<code>{_e(i)}</code>" for i in f.icons[:12])),
         ]
-    if isinstance(n.get("contrast"), float):
-        contrast = f"{_ratio(n.get('contrast'))}; threshold {float(n.get('threshold', 3.0)):g}:1"
-        if page:
-            contrast += (
-                f" (the paint's own colour; its pixels with antialiased edges: worst "
-                f"{_ratio(n.get('contrast_worst'))}, median {_ratio(n.get('contrast_median'))})"
-            )
-        rows.append(("contrast", contrast))
-    if page:
-        backdrop = _swatch(n.get("background")) + " behind"
-        if isinstance(n.get("around"), str) and n["around"] != n.get("background"):
-            backdrop += f", {_swatch(n['around'])} around"
-        rows += [("drawn", _swatch(n.get("drawn"))), ("backdrop", backdrop)]
-        rows.append(("model", _model(n)))
-    elif f.canvas:
-        rows.append(("canvas", f"<code>{_e(f.canvas)}</code>"))
+    rows += _figure_rows(f, o)
     rows += [("fix", _e(finding_fix(f, look.report))), ("where", where or "—")]
     out = [
         f'<article class="{kind}">',
@@ -225,8 +232,8 @@ def _finding(f: Finding, kind: str, look: _Lookups) -> list[str]:
         f"[<code>{_e(f.theme)}</code>]: {_e(f.rule.value)}</h3>",
         f'<p class="message">{_e(f.message)}</p>',
     ]
-    if page:
-        key = (f.iconset, f.theme, str(n.get("engine", "")), str(n.get("dom_path", "")))
+    if o is not None:
+        key = (f.iconset, f.theme, o.engine, o.dom_path)
         out.append(_figure(look.crops.get(key), icon, look.crops_left_out))
     out += ["<dl>" + "".join(f"<dt>{_e(k)}</dt><dd>{v}</dd>" for k, v in rows) + "</dl>"]
     return [*out, "</article>"]

@@ -180,7 +180,7 @@ def finding_to_dict(finding: Finding, base: Path | None = None) -> dict[str, Any
         "canvases": list(finding.canvases),
         "icons": list(finding.icons),
         "message": finding.message,
-        "numbers": dict(finding.numbers),
+        "numbers": finding.figures.to_dict(),
         "files": [display_path(f, base) for f in finding.files],
         "manifest": display_path(finding.manifest, base),
         "lines": list(finding.lines),

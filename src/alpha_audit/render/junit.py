@@ -38,7 +38,7 @@ def _details(f: Finding) -> str:
     # A figure may be a name a page supplied (a DOM path): one line each, escaped.
     numbers = ", ".join(
         f"{k}={v:.6g}" if isinstance(v, float) else f"{k}={safe_text(v)}"
-        for k, v in f.numbers.items()
+        for k, v in f.figures.to_dict().items()
     )
     return f"{f.rule.value}: {f.message}\n{numbers}" if numbers else f"{f.rule.value}: {f.message}"
 

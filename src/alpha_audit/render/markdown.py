@@ -27,6 +27,14 @@ import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+from alpha_audit.figures import (
+    CollisionFigures,
+    ConfusionFigures,
+    ContrastFigures,
+    DriftFigures,
+    RenderDriftFigures,
+    SeparationFigures,
+)
 from alpha_audit.findings import Finding
 from alpha_audit.gate import rule_summary
 from alpha_audit.render.common import (
@@ -67,7 +75,7 @@ class _Group:
     colour: str
     canvas: str
     canvases: int
-    numbers: str
+    figures: str
 
     @property
     def rule(self) -> Rule:
@@ -82,32 +90,35 @@ class _Group:
         return list(self.line.icons)
 
 
-def _numbers(f: Finding) -> str:
-    n = f.numbers
-    if "contrast" in n:
-        return (
-            f"{n['contrast_ref']:.3f} → {n['contrast']:.3f} ({n['gain']:+.4f}) at α={n['alpha']:g}"
-        )
-    if "delta_e" in n and "delta_e_ref" in n:  # separation, confusion, cvd-confusion
-        floor = f" < {n['min_delta_e']:g}" if "min_delta_e" in n else ""
-        under = f" ({n['deficiency']})" if "deficiency" in n else ""
-        return f"ΔE00 {n['delta_e']:.2f} (α=1: {n['delta_e_ref']:.2f}){floor}{under}"
-    if "output" in n and "sources" in n:  # the colours are in the colour column already
-        count = len(str(n["sources"]).split(", "))
-        give = "both give" if count == 2 else f"{count} colours all give"
-        return f"{give} {n['output']}" + ("" if n.get("new") != "false" else " (also at α=1)")
-    return f.message
+def _figures(f: Finding) -> str:
+    match f.figures:
+        case ContrastFigures() as n:
+            return f"{n.contrast_ref:.3f} → {n.contrast:.3f} ({n.gain:+.4f}) at α={n.alpha:g}"
+        case SeparationFigures() | ConfusionFigures() as n:
+            under = f" ({n.deficiency})" if isinstance(n, ConfusionFigures) and n.deficiency else ""
+            return f"ΔE00 {n.delta_e:.2f} (α=1: {n.delta_e_ref:.2f}) < {n.min_delta_e:g}{under}"
+        case CollisionFigures() as n:  # the colours are in the colour column already
+            give = "both give" if n.colours == 2 else f"{n.colours} colours all give"
+            return f"{give} {n.output}" + ("" if n.new else " (also at α=1)")
+        case _:
+            return f.message
 
 
 def _colour(f: Finding, roles: dict[str, str]) -> str:
     """The colour (role) a finding is about, or the colours of a collision, or two roles."""
-    n = f.numbers
-    source = str(n.get("source", ""))
-    if "sources" in n:  # a collision's colours: a few named, the rest counted
-        source = shorten_names(str(n["sources"]).split(", "), 8)
-    role = roles.get(f.icons[0], "") if "source" in n else ""
-    # confusion names its two roles (the numbers' "roles", comma-separated)
-    return f"{role} {source}".strip() or str(n.get("roles", "")).replace(",", " / ")
+    match f.figures:
+        case (
+            ContrastFigures(source=source)
+            | DriftFigures(source=source)
+            | RenderDriftFigures(source=source)
+        ):
+            return f"{roles.get(f.icons[0], '')} {source}".strip()
+        case CollisionFigures(sources=sources) | SeparationFigures(sources=sources):
+            return shorten_names(list(sources), 8)
+        case ConfusionFigures(roles=pair):
+            return " / ".join(pair)
+        case _:
+            return ""
 
 
 def _groups(findings: Sequence[Finding], roles: dict[str, str]) -> list[_Group]:
@@ -121,7 +132,7 @@ def _groups(findings: Sequence[Finding], roles: dict[str, str]) -> list[_Group]:
                 shorten_names(colours, 4),
                 g.worst.canvas or "",
                 len(g.canvases),
-                _numbers(g.worst),
+                _figures(g.worst),
             )
         )
     return out
@@ -196,11 +207,8 @@ def render_markdown(
     """The comment, at most ``limit`` characters, each failing group with its fix."""
     gate = report.gate
     audits = report.audits
-    failing_audits = {(f.theme, f.iconset) for f in gate.failures}
-    rules = ", ".join(f"`{r}`" for r in sorted(r.value for r in gate.policy.rules))
     budget = _Budget(limit - _RESERVE)
     left_out = [0]
-
     all_roles = {
         (r.theme.name, r.iconset.name): {i.name: i.color_name or "" for i in r.iconset.icons}
         for r in audits
@@ -209,46 +217,94 @@ def render_markdown(
         key: _groups([f for f in gate.failures if (f.theme, f.iconset) == key], roles)
         for key, roles in all_roles.items()
     }
+    _head(report, budget)
+    _rule_table(report, options, budget)
+    _audit_table(report, per_audit, budget)
+    for k, r in enumerate(audits):
+        key = (r.theme.name, r.iconset.name)
+        groups = per_audit[key]
+        verdict = f"❌ {len(groups)} failing group(s)" if groups else "✅ passed"
+        newly = _groups_of_rows(r, all_roles[key])
+        summary = f"{_html(r.theme.name[:_NAME])} / {_html(r.iconset.name[:_NAME])}: {verdict}"
+        if newly:
+            summary += f"; {len(newly)} newly passing"
+        opened = " open" if groups else ""
+        # Every audit gets its <details> and an equal share of what is left, so
+        # a long first theme cannot crowd the others out of the comment.
+        budget.force("", f"<details{opened}><summary><b>{summary}</b></summary>")
+        remaining = len(audits) - k
+        section = _Budget((budget.limit - budget.size - _FRAME * remaining) // remaining)
+        _audit_section(report, r, groups, all_roles[key], newly, options, section, left_out)
+        budget.force(*section.lines, "", "</details>")
+    _notes(report, options, budget, left_out)
+    lines = budget.lines
+    if left_out[0]:
+        lines += [
+            "",
+            f"**{left_out[0]} row(s) left out** to stay within GitHub's "
+            f"{COMMENT_LIMIT:,}-character comment limit; every finding is in the JSON "
+            "(`--format json`) and SARIF reports.",
+        ]
+    return "\n".join(lines) + "\n"
+
+
+def _head(report: CheckReport, budget: _Budget) -> None:
+    """The verdict line and the rules gated."""
+    gate, audits = report.gate, report.audits
+    rules = ", ".join(f"`{r}`" for r in sorted(r.value for r in gate.policy.rules))
     if gate.passed:
         improved = sum(s.summary.newly_pass for s in audits)
         head = f"## ✅ alpha-audit: gate passed ({len(audits)} audit(s)"
         head += f"; {improved} paint×canvas newly reach the threshold)" if improved else ")"
     else:
+        failing_audits = {(f.theme, f.iconset) for f in gate.failures}
         counts = ", ".join(f"{n} {escape_markdown(rule)}" for rule, n in gate.counts().items())
         head = (
             f"## ❌ alpha-audit: gate failed: {len(gate.failures)} root cause(s) ({counts}) "
             f"in {len(failing_audits)} of {len(audits)} audit(s)"
         )
     budget.add(MARKER, head, "", f"Rules: {rules}; max loss {gate.policy.max_loss:g}.", "")
-    by_rule = rule_summary(gate)
-    if by_rule:
-        budget.add(
-            "| rule | failing root causes | icons | reported, not gated | exempted | "
-            f"{'on the base' if _on_base(report) else 'baselined'} | worst |",
-            "|---|--:|--:|--:|--:|--:|---|",
-        )
-        for rs in by_rule:
-            worst = ""
-            if rs.worst is not None:
-                at = _where(rs.worst, options)
-                worst = f"{where_text(rs.worst)}: {_numbers(rs.worst)}" + (f" ({at})" if at else "")
-            cells = [
-                f"`{rs.rule.value}`",
-                str(rs.failing),
-                str(rs.icons),
-                str(rs.reported),
-                str(rs.exempted),
-                str(rs.baselined),
-                escape_markdown(worst),
-            ]
-            budget.add("| " + " | ".join(cells) + " |")
-        budget.add("")
+
+
+def _rule_table(report: CheckReport, options: RenderOptions, budget: _Budget) -> None:
+    """One row per rule: its failing, reported, exempted and baselined root causes, the worst."""
+    by_rule = rule_summary(report.gate)
+    if not by_rule:
+        return
+    budget.add(
+        "| rule | failing root causes | icons | reported, not gated | exempted | "
+        f"{'on the base' if _on_base(report) else 'baselined'} | worst |",
+        "|---|--:|--:|--:|--:|--:|---|",
+    )
+    for rs in by_rule:
+        worst = ""
+        if rs.worst is not None:
+            at = _where(rs.worst, options)
+            worst = f"{where_text(rs.worst)}: {_figures(rs.worst)}" + (f" ({at})" if at else "")
+        cells = [
+            f"`{rs.rule.value}`",
+            str(rs.failing),
+            str(rs.icons),
+            str(rs.reported),
+            str(rs.exempted),
+            str(rs.baselined),
+            escape_markdown(worst),
+        ]
+        budget.add("| " + " | ".join(cells) + " |")
+    budget.add("")
+
+
+def _audit_table(
+    report: CheckReport, per_audit: dict[tuple[str, str], list[_Group]], budget: _Budget
+) -> None:
+    """One row per audit: theme, icon set, alpha, verdict and counts."""
+    failing_audits = {(f.theme, f.iconset) for f in report.gate.failures}
     budget.add(
         "| theme | icon set | icons | α | verdict | failing groups | newly passing paint×canvas "
         "| collisions | unrendered |",
         "|---|---|--:|--:|---|--:|--:|--:|--:|",
     )
-    for r in audits:
+    for r in report.audits:
         key = (r.theme.name, r.iconset.name)
         s = r.summary
         alphas = sorted({float(a) for a in r.alpha})
@@ -268,85 +324,76 @@ def render_markdown(
         ]
         budget.add("| " + " | ".join(cells) + " |")
 
-    for k, r in enumerate(audits):
-        key = (r.theme.name, r.iconset.name)
-        groups = per_audit[key]
-        roles = all_roles[key]
-        verdict = f"❌ {len(groups)} failing group(s)" if groups else "✅ passed"
-        newly = _groups_of_rows(r, roles)
-        summary = f"{_html(r.theme.name[:_NAME])} / {_html(r.iconset.name[:_NAME])}: {verdict}"
-        if newly:
-            summary += f"; {len(newly)} newly passing"
-        opened = " open" if groups else ""
-        # Every audit gets its <details> and an equal share of what is left, so
-        # a long first theme cannot crowd the others out of the comment.
-        budget.force("", f"<details{opened}><summary><b>{summary}</b></summary>")
-        remaining = len(audits) - k
-        section = _Budget((budget.limit - budget.size - _FRAME * remaining) // remaining)
-        rows = []
-        for g in groups:
-            text = group_fix(g.line, report)
-            rows.append(
-                "| "
-                + " | ".join(
-                    [
-                        escape_markdown(g.colour),
-                        escape_markdown(_where(g.first, options)),
-                        escape_markdown(_canvases(g)),
-                        escape_markdown(g.rule.value),
-                        escape_markdown(g.numbers),
-                        escape_markdown(_icons(g.icons)),
-                        escape_markdown(text) if text else "",
-                    ]
-                )
-                + " |"
-            )
-        _table(
-            section,
-            "**Failing**, worst first (colour, the line that sets it, canvases)",
-            "| colour | set at | canvases | rule | numbers | icons | fix |",
-            rows,
-            left_out,
-        )
-        _table(
-            section,
-            f"**Improved**: newly reach {r.threshold:g}:1",
-            "| colour | canvas | contrast | icons |",
-            [
-                "| "
-                + " | ".join(escape_markdown(c) for c in (colour, canvas, numbers, _icons(icons)))
-                + " |"
-                for colour, canvas, numbers, icons in newly
-            ],
-            left_out,
-        )
-        exempt = [f for f in gate.exempted if (f.theme, f.iconset) == key]
-        _table(
-            section,
-            "**Exempted**",
-            "| colour | canvases | rule | icons | reason |",
-            [
-                "| "
-                + " | ".join(
-                    escape_markdown(c)
-                    for c in (
-                        g.colour,
-                        _canvases(g),
-                        g.rule.value,
-                        _icons(g.icons),
-                        g.first.exemption.reason if g.first.exemption else "",
-                    )
-                )
-                + " |"
-                for g in _groups(exempt, roles)
-            ],
-            left_out,
-        )
-        baselined = sum(1 for f in gate.baselined if (f.theme, f.iconset) == key)
-        if baselined:
-            section.add("", f"{baselined} root cause(s) {baselined_text(gate)}.")
-        budget.force(*section.lines, "", "</details>")
 
+def _row(cells: Sequence[str]) -> str:
+    return "| " + " | ".join(escape_markdown(c) for c in cells) + " |"
+
+
+def _audit_section(
+    report: CheckReport,
+    r: AuditResult,
+    groups: list[_Group],
+    roles: dict[str, str],
+    newly: Sequence[tuple[str, str, str, list[str]]],
+    options: RenderOptions,
+    section: _Budget,
+    left_out: list[int],
+) -> None:
+    """One audit's failing groups with their fixes, what newly passes, what is exempted."""
+    rows = [
+        _row(
+            (
+                g.colour,
+                _where(g.first, options),
+                _canvases(g),
+                g.rule.value,
+                g.figures,
+                _icons(g.icons),
+                group_fix(g.line, report) or "",
+            )
+        )
+        for g in groups
+    ]
+    _table(
+        section,
+        "**Failing**, worst first (colour, the line that sets it, canvases)",
+        "| colour | set at | canvases | rule | numbers | icons | fix |",
+        rows,
+        left_out,
+    )
+    _table(
+        section,
+        f"**Improved**: newly reach {r.threshold:g}:1",
+        "| colour | canvas | contrast | icons |",
+        [_row((colour, canvas, shown, _icons(icons))) for colour, canvas, shown, icons in newly],
+        left_out,
+    )
+    key = (r.theme.name, r.iconset.name)
+    exempt = [f for f in report.gate.exempted if (f.theme, f.iconset) == key]
+    _table(
+        section,
+        "**Exempted**",
+        "| colour | canvases | rule | icons | reason |",
+        [
+            _row((g.colour, _canvases(g), g.rule.value, _icons(g.icons), _reason(g)))
+            for g in _groups(exempt, roles)
+        ],
+        left_out,
+    )
+    baselined = sum(1 for f in report.gate.baselined if (f.theme, f.iconset) == key)
+    if baselined:
+        section.add("", f"{baselined} root cause(s) {baselined_text(report.gate)}.")
+
+
+def _reason(g: _Group) -> str:
+    return g.first.exemption.reason if g.first.exemption else ""
+
+
+def _notes(
+    report: CheckReport, options: RenderOptions, budget: _Budget, left_out: list[int]
+) -> None:
+    """Colours outside sRGB, stale baseline entries, broken icons and hard-coded paints."""
+    gate = report.gate
     if report.gamut:
         budget.add("", f"### Colours outside sRGB ({len(report.gamut)})", "")
         for k, note in enumerate(report.gamut):
@@ -373,15 +420,6 @@ def render_markdown(
             if not budget.add(line):
                 left_out[0] += len(notes) - k
                 break
-    lines = budget.lines
-    if left_out[0]:
-        lines += [
-            "",
-            f"**{left_out[0]} row(s) left out** to stay within GitHub's "
-            f"{COMMENT_LIMIT:,}-character comment limit; every finding is in the JSON "
-            "(`--format json`) and SARIF reports.",
-        ]
-    return "\n".join(lines) + "\n"
 
 
 def _on_base(report: CheckReport) -> bool:

@@ -29,6 +29,7 @@ from typing import Any
 from rich import box
 from rich.text import Text
 
+from alpha_audit.figures import ContrastFigures
 from alpha_audit.findings import Finding
 from alpha_audit.observed import BlockedRequest, MeasuredPaint, PageRun
 from alpha_audit.render.common import (
@@ -45,6 +46,7 @@ from alpha_audit.render.common import (
     to_text,
 )
 from alpha_audit.results import CheckReport
+from alpha_audit.rules import Rule
 from alpha_audit.safe_text import safe_text
 
 __all__ = [
@@ -173,8 +175,7 @@ def page_table(report: CheckReport, run: PageRun, options: RenderOptions) -> str
 
 def where(f: Finding) -> str:
     """``icon in story [state]`` (with the engine when the finding names one)."""
-    engine = f.numbers.get("engine")
-    tail = f", {engine}" if isinstance(engine, str) else ""
+    tail = "" if f.observed is None else f", {f.observed.engine}"
     return f"{f.icons[0]} in {f.iconset} [{f.theme}{tail}]"
 
 
@@ -310,17 +311,18 @@ def page_markdown(report: CheckReport, run: PageRun, options: RenderOptions) -> 
             "|---|---|---|" + ("---|" if several else "") + "---|---|---|---|",
         ]
         for f in failures[:_LISTED]:
-            n = f.numbers
+            o, fig = f.observed, f.figures
             shown = f.rule.value
-            if f.rule.value == "below-threshold" and isinstance(n.get("contrast"), float):
-                shown = f"{n['contrast']:.2f}:1"
-            pair = f"{n.get('drawn', '—')} on {f.canvas or '—'}"
+            if f.rule is Rule.BELOW_THRESHOLD and isinstance(fig, ContrastFigures):
+                shown = f"{fig.contrast:.2f}:1"
+            drawn = o.drawn if o is not None else None
+            pair = f"{'—' if drawn is None else drawn} on {f.canvas or '—'}"
             at = (
                 escape_markdown(location_text(f.locations[0], options.base))
                 if f.locations
-                else escape_markdown(n.get("dom_path", ""))
+                else escape_markdown(o.dom_path if o is not None else "")
             )
-            engine = f" {escape_markdown(n.get('engine', ''))} |" if several else ""
+            engine = f" {escape_markdown(o.engine if o is not None else '')} |" if several else ""
             lines.append(
                 f"| {escape_markdown(f.icons[0])} | {escape_markdown(f.iconset)} | "
                 f"{escape_markdown(f.theme)} |{engine} {escape_markdown(pair)} | {shown} | "

@@ -198,7 +198,7 @@ def _result(
             "icons": list(g.icons),
             "rootCauses": len(g.findings),
             **({"audits": [list(a) for a in g.audits]} if len(g.audits) > 1 else {}),
-            **dict(f.numbers),
+            **f.figures.to_dict(),
         },
     }
     if len(places) > 1:

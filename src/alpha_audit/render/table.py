@@ -6,7 +6,7 @@ function of the result; the CLI decides width and colour.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Mapping
 from pathlib import Path
 
 from rich import box
@@ -102,52 +102,56 @@ def _grouped(result: AuditResult, rows: Iterable[Row]) -> list[tuple[Row, list[s
     return list(groups.values())
 
 
+# Columns of figures are never cut (render.common.fitted_table); these fold,
+# no narrower than their longest figure: "■ #rrggbb" and a hex code.
+_NAME_WIDTHS = {"colour": 9, "sources": 7, "output": 7}
+_FIGURES = {"α", "contrast", "contrast at α", "output"}
+
+
+def _section(
+    title: str, style: str, header: tuple[str, ...], items: list[tuple[str | Text, ...]]
+) -> list[RenderableType]:
+    """A titled table, one finding per row; names wrap, figures stay whole."""
+    if not items:
+        return []
+    out: list[RenderableType] = [Text(f"{title} ({len(items)})", style=f"bold {style}")]
+    columns = [
+        number_column(name, "right" if name.startswith("contrast") else "left")
+        if name in _FIGURES
+        else name_column(name, _NAME_WIDTHS.get(name, 6), shrink_first=name == "icons")
+        for name in header
+    ]
+    table = fitted_table(
+        columns,
+        items[:MAX_FINDINGS],
+        box=None,
+        padding=(0, 1),
+        pad_edge=False,
+        header_style="dim",
+    )
+    out.append(Padding(table, (0, 0, 0, 2)))
+    if len(items) > MAX_FINDINGS:
+        out.append(Text(f"  … and {len(items) - MAX_FINDINGS} more (see --format json)"))
+    return out
+
+
+def _colour(row: Row, palette_names: Mapping[str, str | None]) -> Text:
+    """A row's colour: a swatch, its palette name and hex, its opacity when not 1."""
+    name = None if row.fixed else palette_names.get(row.icon)
+    swatch = Text("■ ", style=row.source)
+    label = f"{name} {row.source}" if name else row.source
+    if row.opacity != 1.0:
+        label += f" @{row.opacity:g}"
+    return swatch + Text(label)
+
+
+def _change(row: Row) -> str:
+    return f"{row.contrast_ref:.3f} → {row.contrast:.3f}"
+
+
 def _findings(result: AuditResult, base: Path | None = None) -> list[RenderableType]:
-    out: list[RenderableType] = []
     rows = list(result.rows())
     palette_names = {i.name: i.color_name for i in result.iconset.icons}
-
-    # Columns of figures are never cut (render.common.fitted_table); these fold,
-    # no narrower than their longest figure: "■ #rrggbb" and a hex code.
-    name_widths = {"colour": 9, "sources": 7, "output": 7}
-    figures = {"α", "contrast", "contrast at α", "output"}
-
-    def section(
-        title: str, style: str, header: tuple[str, ...], items: list[tuple[str | Text, ...]]
-    ) -> None:
-        """A titled table, one finding per row; names wrap, figures stay whole."""
-        if not items:
-            return
-        out.append(Text(f"{title} ({len(items)})", style=f"bold {style}"))
-        columns = [
-            number_column(name, "right" if name.startswith("contrast") else "left")
-            if name in figures
-            else name_column(name, name_widths.get(name, 6), shrink_first=name == "icons")
-            for name in header
-        ]
-        table = fitted_table(
-            columns,
-            items[:MAX_FINDINGS],
-            box=None,
-            padding=(0, 1),
-            pad_edge=False,
-            header_style="dim",
-        )
-        out.append(Padding(table, (0, 0, 0, 2)))
-        if len(items) > MAX_FINDINGS:
-            out.append(Text(f"  … and {len(items) - MAX_FINDINGS} more (see --format json)"))
-
-    def colour(row: Row) -> Text:
-        name = None if row.fixed else palette_names.get(row.icon)
-        swatch = Text("■ ", style=row.source)
-        label = f"{name} {row.source}" if name else row.source
-        if row.opacity != 1.0:
-            label += f" @{row.opacity:g}"
-        return swatch + Text(label)
-
-    def change(row: Row) -> str:
-        return f"{row.contrast_ref:.3f} → {row.contrast:.3f}"
-
     one_alpha = len({float(a) for a in result.alpha}) <= 1  # then α is in the heading
 
     def grouped(
@@ -155,7 +159,7 @@ def _findings(result: AuditResult, base: Path | None = None) -> list[RenderableT
     ) -> list[tuple[str | Text, ...]]:
         return [
             (
-                colour(r),
+                _colour(r, palette_names),
                 *(() if one_alpha else (f"{r.alpha:g}",)),
                 r.canvas,
                 numbers(r),
@@ -167,56 +171,52 @@ def _findings(result: AuditResult, base: Path | None = None) -> list[RenderableT
     alpha_col: tuple[str, ...] = () if one_alpha else ("α",)
     head = ("colour", *alpha_col, "canvas", "contrast", "icons")
     losses = sorted((r for r in rows if r.loss), key=lambda r: r.gain)
-    section(
-        "Contrast losses",
-        "red",
-        head,
-        grouped(losses, lambda r: f"{change(r)} ({r.gain:+.4f})"),
-    )
-    section(
-        f"Newly below {result.threshold:g}:1",
-        "red",
-        head,
-        grouped((r for r in rows if r.newly_fails), change),
-    )
-    section(
-        "Collisions (distinct colours, same 8-bit output)",
-        "red",
-        ("canvas", "sources", "output", "icons"),
-        [
-            (
-                c.canvas,
-                ", ".join(c.sources),
-                c.output + ("" if c.new else " (already at α=1)"),
-                icons_label(c.icons),
-            )
-            for c in result.collisions
-        ],
-    )
-    section(
-        f"Newly reach {result.threshold:g}:1",
-        "green",
-        head,
-        grouped((r for r in rows if r.newly_passes), change),
-    )
     still = sorted((r for r in rows if not r.passes), key=lambda r: r.contrast)
-    section(
-        f"Still below {result.threshold:g}:1 at α",
-        "yellow",
-        ("colour", *alpha_col, "canvas", "contrast at α", "icons"),
-        grouped(still, lambda r: f"{r.contrast:.3f}"),
-    )
-    if result.problems:
-        out.append(
-            Text(f"Icons that could not be rendered ({len(result.problems)})", style="bold yellow")
+    collisions: list[tuple[str | Text, ...]] = [
+        (
+            c.canvas,
+            ", ".join(c.sources),
+            c.output + ("" if c.new else " (already at α=1)"),
+            icons_label(c.icons),
         )
-        for p in result.problems[:MAX_FINDINGS]:
-            shown = display_path(p.file, base)
-            out.append(Text(safe_text(f"  {p.icon} ({shown}): {p.message}")))
-        if len(result.problems) > MAX_FINDINGS:
-            out.append(
-                Text(f"  … and {len(result.problems) - MAX_FINDINGS} more (see --format json)")
-            )
+        for c in result.collisions
+    ]
+    t = f"{result.threshold:g}:1"
+    lost = grouped(losses, lambda r: f"{_change(r)} ({r.gain:+.4f})")
+    newly_below = grouped((r for r in rows if r.newly_fails), _change)
+    newly_reach = grouped((r for r in rows if r.newly_passes), _change)
+    return [
+        *_section("Contrast losses", "red", head, lost),
+        *_section(f"Newly below {t}", "red", head, newly_below),
+        *_section(
+            "Collisions (distinct colours, same 8-bit output)",
+            "red",
+            ("canvas", "sources", "output", "icons"),
+            collisions,
+        ),
+        *_section(f"Newly reach {t}", "green", head, newly_reach),
+        *_section(
+            f"Still below {t} at α",
+            "yellow",
+            ("colour", *alpha_col, "canvas", "contrast at α", "icons"),
+            grouped(still, lambda r: f"{r.contrast:.3f}"),
+        ),
+        *_problems(result, base),
+    ]
+
+
+def _problems(result: AuditResult, base: Path | None) -> list[RenderableType]:
+    """The icons that could not be rendered, with the reason."""
+    if not result.problems:
+        return []
+    out: list[RenderableType] = [
+        Text(f"Icons that could not be rendered ({len(result.problems)})", style="bold yellow")
+    ]
+    for p in result.problems[:MAX_FINDINGS]:
+        shown = display_path(p.file, base)
+        out.append(Text(safe_text(f"  {p.icon} ({shown}): {p.message}")))
+    if len(result.problems) > MAX_FINDINGS:
+        out.append(Text(f"  … and {len(result.problems) - MAX_FINDINGS} more (see --format json)"))
     return out
 
 

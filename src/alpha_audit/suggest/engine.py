@@ -67,6 +67,7 @@ from alpha_audit.color.nearest import (
     pairs_below,
 )
 from alpha_audit.errors import UsageError
+from alpha_audit.figures import ConfusionFigures
 from alpha_audit.findings import (
     LOCK_TOLERANCE,
     cvd_collision_groups,
@@ -94,7 +95,7 @@ from alpha_audit.results import (
     SuggestResult,
 )
 from alpha_audit.rows import AuditResult
-from alpha_audit.rules import Rule
+from alpha_audit.rules import RULES, Family, Rule
 from alpha_audit.suggest import SCOPES
 from alpha_audit.suggest.events import (
     clip_breakpoints,
@@ -118,11 +119,6 @@ __all__ = [
 # The bracketing grid for rules without a closed form in alpha; a dip below a
 # limit narrower than this can be missed (the answer is re-checked directly).
 GRID_STEP = 1e-3
-BRACKETED_RULES = frozenset(
-    {Rule.SEPARATION, Rule.DRIFT, Rule.LOCK, Rule.CONFUSION, Rule.CVD_CONFUSION, Rule.CVD_COLLISION}
-)
-_STATIC_RULES = frozenset({Rule.FIXED_COLOUR, Rule.NOT_AUDITED})
-_COLLISION_RULES = frozenset({Rule.COLLISION, Rule.NEW_COLLISION, Rule.NEAR_DUPLICATE})
 # Item x grid-point evaluations held at once (~8 MB per float64 intermediate).
 _CHUNK = 1 << 20
 # Code timelines kept between questions (a few KB per paint and canvas).
@@ -322,10 +318,11 @@ class _Engine:
         rules = policy.rules
         # Whether any failing rule objects to a collision (which one depends on how far
         # apart its colours were at alpha 1: Policy.collision_rule).
-        self.collides = bool(rules & _COLLISION_RULES)
+        self.collides = any(RULES[r].family is Family.COLLISION for r in rules)
         self._near_pairs: dict[int, dict[tuple[int, int], float]] = {}
         self._ref_lab: NDArray[np.float64] | None = None
-        static = rules & _STATIC_RULES
+        # What an SVG draws objects whatever the alpha (an unrenderable icon is in no row).
+        static = {r for r in rules if RULES[r].family is Family.SVG}
         self.static: list[tuple[Rule, tuple[int, ...]]] = []
         if static:
             only = Policy(
@@ -1281,7 +1278,7 @@ class _Engine:
 
     def _limit(self, found: Found) -> Limit:
         canvas = "(every canvas)" if found.canvas < 0 else self.canvases[found.canvas]
-        grid = GRID_STEP if found.rule in BRACKETED_RULES else None
+        grid = None if RULES[found.rule].closed_form else GRID_STEP
         icons = self.icon_names(found.icons)
         return Limit(found.rule, canvas, icons, found.at, found.attained, grid, found.roles)
 
@@ -1441,7 +1438,7 @@ def confusion_groups(
     >>> confusion_groups(audit(Theme("t", (Canvas("w", "#ffffff"),)), icons), Policy())
     [('a', 'b')]
     """
-    role_rules = policy.rules & {Rule.CONFUSION, Rule.CVD_CONFUSION}
+    role_rules = frozenset(r for r in policy.rules if RULES[r].family is Family.CONFUSION)
     pairs: list[Iterable[str]] = []
     if role_rules:
         only = Policy(
@@ -1451,8 +1448,8 @@ def confusion_groups(
             exemptions=policy.exemptions,
         )
         for f in findings_for(result, only):
-            if f.exemption is None and "roles" in f.numbers:
-                pairs.append(str(f.numbers["roles"]).split(",", 1))
+            if f.exemption is None and isinstance(f.figures, ConfusionFigures):
+                pairs.append(f.figures.roles)
     return connected([*pairs, *extra])
 
 
