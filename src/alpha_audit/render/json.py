@@ -201,7 +201,7 @@ def _float_texts(values: Sequence[float | None], *, nulls: bool = False) -> list
     texts = [
         "null" if nulls and not math.isfinite(f) else json_text(f) for f in figures[first].tolist()
     ]
-    return np.array(texts, dtype=object)[inverse].tolist()  # type: ignore[no-any-return]
+    return list(map(texts.__getitem__, inverse.tolist()))
 
 
 def finding_to_dict(finding: Finding, base: Path | None = None) -> dict[str, Any]:
