@@ -291,8 +291,8 @@ class EncodedRecords(list[str]):
 def json_text(value: object) -> str:
     """``value`` as strict JSON on one line, as :func:`dumps` writes a flat record.
 
-    >>> json_text({"a": [1.5, None], "b": "é"})
-    '{"a": [1.5, null], "b": "\\u00e9"}'
+    >>> print(json_text({"a": [1.5, None], "b": "é"}))
+    {"a": [1.5, null], "b": "\\u00e9"}
     """
     return _ENCODER.encode(value)
 
