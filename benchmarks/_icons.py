@@ -14,8 +14,9 @@ from pathlib import Path
 CACHE = Path(os.environ.get("ALPHA_AUDIT_BENCH_CACHE", Path.home() / ".cache/alpha-audit-bench"))
 
 
-def lucide_icons(count: int = 300) -> list[Path]:
-    """The first ``count`` lucide-static icons by file name (downloads once)."""
+def lucide_icons(count: int | None = 300) -> list[Path]:
+    """The first ``count`` lucide-static icons by file name, every one with None
+    (downloads once)."""
     folder = CACHE / "lucide-static"
     if not (folder / "package/icons").is_dir():
         if shutil.which("npm") is None:
@@ -31,7 +32,7 @@ def lucide_icons(count: int = 300) -> list[Path]:
         with tarfile.open(folder / out) as tar:
             tar.extractall(folder, filter="data")
     icons = sorted((folder / "package/icons").glob("*.svg"))[:count]
-    if len(icons) < count:
+    if count is not None and len(icons) < count:
         raise SystemExit(f"only {len(icons)} lucide icons found in {folder}")
     return icons
 
@@ -45,7 +46,7 @@ def make_project(root: Path, icons: list[Path], sizes: tuple[int, ...] = (16, 24
         shutil.copy(icon, svg / icon.name)
     manifest = root / "iconset.yaml"
     manifest.write_text(
-        "name: lucide-300\nicons: svg/*.svg\ncolor: cycle\nalpha: 1.1\n"
+        f"name: lucide-{len(icons)}\nicons: svg/*.svg\ncolor: cycle\nalpha: 1.1\n"
         f"sizes: {list(sizes)}\n"
         "palette: {orange: '#ee7733', blue: '#0077bb', cyan: '#33bbee', magenta: '#ee3377',"
         " red: '#cc3311', teal: '#009988', grey: '#bbbbbb'}\n"

@@ -2,9 +2,10 @@
 
 The straightforward version: a ``Row`` object and ``dataclasses.asdict`` for every
 row, and ``json.dumps(..., indent=2)``, which falls back to the pure-Python encoder.
-Ours: each row's record made from the result's columns (no object per row) and each
-flat record encoded by json's C encoder (:func:`alpha_audit.render.common.dumps`).  Both
-documents must parse to the same data.  Run as a script:
+Ours: each row's line written column by column from the result's columns (no object
+per row; each distinct value of a column encoded once, by json's own encoder) and laid
+out by :func:`alpha_audit.render.common.dumps`.  Both documents must parse to the same
+data.  Run as a script:
 
     .venv/bin/python benchmarks/bench_json.py
 """
@@ -59,7 +60,7 @@ def _row_dict(row: Row) -> dict[str, Any]:
 def straightforward(r: CheckReport) -> str:
     """The same document with a ``Row`` and ``asdict`` per row, encoded with ``indent=2``."""
     original = render_json._rows
-    render_json._rows = lambda result: [_row_dict(row) for row in result.rows()]
+    render_json._rows = lambda result, base=None: [_row_dict(row) for row in result.rows()]
     try:
         doc = report_to_dict(r)
     finally:

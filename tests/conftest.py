@@ -25,13 +25,14 @@ settings.load_profile("ci" if os.environ.get("CI") else "dev")
 # of these run on one worker, in order, so that what their module-scoped fixtures build is
 # built once: the distributions and their venvs, a browser per engine (the browser and
 # page tests share one group: engines are multi-threaded and their timeouts wall-clock),
-# a reproduction run, the hostile corpus's render, the example's masks.  Everything else
-# is handed out test by test.
+# a reproduction run, the paper's broad grid, the hostile corpus's render, the example's
+# masks.  Everything else is handed out test by test.
 ONE_WORKER = {
     "packaging/test_dists.py": "dists",
     "browser/": "browsers",
     "pages/": "browsers",
     "reproduce/test_paper_figures.py": "reproduce-run",
+    "reproduce/test_experiments.py": "broad-grid",
     "security/test_hostile.py": "hostile-corpus",
     "preview/test_sheets.py": "example-masks",
     "render/test_sarif_fixes.py": "sarif-fixes",

@@ -8,7 +8,10 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 import alpha_audit
+from alpha_audit.cli.root import COMMANDS
 
 SRC = Path(alpha_audit.__file__).resolve().parent
 
@@ -136,6 +139,7 @@ def test_import_color_loads_only_color_and_errors() -> None:
         "alpha_audit.color.metrics",
         "alpha_audit.color.srgb",
         "alpha_audit.color.transfer",
+        "alpha_audit.constants",
         "alpha_audit.errors",
     }
     assert not {"typer", "rich", "yaml", "cairosvg"} & {m.split(".")[0] for m in loaded}
@@ -167,6 +171,43 @@ def test_a_command_imports_only_its_own_module() -> None:
     commands = {f"alpha_audit.cli.{name}" for name in ("render", "preview", "reproduce", "export")}
     assert not loaded & commands
     assert not {"alpha_audit.pages", "alpha_audit.browser", "coloraide", "websockets"} & loaded
+
+
+def _imported_by(args: list[str]) -> set[str]:
+    """Every module ``python -m alpha_audit ARGS`` imports, from ``-X importtime``."""
+    done = subprocess.run(
+        [sys.executable, "-X", "importtime", "-m", "alpha_audit", *args],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert done.returncode == 0, done.stderr[-2000:]
+    return {
+        line.rsplit("|", 1)[1].strip()
+        for line in done.stderr.splitlines()
+        if line.startswith("import time:") and line.count("|") == 2
+    }
+
+
+@pytest.mark.parametrize(
+    "args",
+    [["--version"], ["--help"], *([name, "--help"] for name in COMMANDS)],
+    ids=" ".join,
+)
+def test_version_and_help_start_without_the_maths(args: list[str]) -> None:
+    """``--version`` and every ``--help`` import neither numpy nor a colour library:
+    they answer in a fraction of the time a check takes to start (issue 31)."""
+    imported = _imported_by(args)
+    assert "alpha_audit.cli.root" in imported  # the measurement sees our own imports
+    heavy = {"numpy", "colour", "coloraide", "PIL", "cairosvg", "yaml"}
+    assert not {m for m in imported if m.split(".")[0] in heavy}
+
+
+def test_the_import_measurement_sees_numpy_where_it_is_imported() -> None:
+    """The same measurement on a command that computes: numpy is there (the test above
+    could not pass by seeing nothing)."""
+    imported = _imported_by(["pair", "#ee7733", "--on", "#ffffff", "-f", "json"])
+    assert {"numpy", "colour"} <= imported
 
 
 def test_every_public_name_resolves() -> None:

@@ -91,7 +91,7 @@ def test_every_json_number_agrees_with_reference(
 
 def test_issue_row_vibrant_orange_on_white() -> None:
     theme, icons = make(["#ee7733"], [1.1], ["#ffffff"])
-    row = check_to_dict(audit(theme, icons))["rows"][0]
+    row = json.loads(dumps(check_to_dict(audit(theme, icons))))["rows"][0]
     assert row["output"] == "#ec5a00"
     assert row["contrast_ref"] == row["contrast_ref_float"] == 2.868083650384096
     assert row["contrast_float"] == 3.4733853122940994  # the float maths

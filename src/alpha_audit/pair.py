@@ -33,11 +33,11 @@ from alpha_audit.color import (
     srgb_decode,
 )
 from alpha_audit.color.css import parse_css_color
+from alpha_audit.constants import DEFAULT_GAMUT
 from alpha_audit.model import Canvas, Icon, IconSet, Theme
 from alpha_audit.rows import AuditResult, audit
 
 __all__ = [
-    "DEFAULT_GAMUT",
     "PairGamut",
     "PairReport",
     "PairRow",
@@ -45,9 +45,6 @@ __all__ = [
     "pair_report",
     "pair_table",
 ]
-
-# What a browser draws on an sRGB screen today (module docstring).
-DEFAULT_GAMUT: GamutPolicy = "clip"
 
 
 @dataclass(frozen=True)

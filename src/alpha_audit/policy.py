@@ -13,12 +13,10 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-
-import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from typing import TYPE_CHECKING
 
 from alpha_audit import ranges
-from alpha_audit.color import CONTRAST_TOLERANCE, DELTA_E_TOLERANCE
+from alpha_audit.constants import CONTRAST_TOLERANCE, DELTA_E_TOLERANCE
 from alpha_audit.errors import InputError, UsageError
 from alpha_audit.ranges import CONTRAST_LOSS, CONTRAST_RATIO, DELTA_E
 from alpha_audit.rules import (
@@ -31,6 +29,10 @@ from alpha_audit.rules import (
     Rule,
     did_you_mean,
 )
+
+if TYPE_CHECKING:  # numpy is imported where a rule is applied: the CLI's --help reads Policy
+    import numpy as np
+    from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
     "LOSS_TOLERANCE",
@@ -252,6 +254,8 @@ def contrast_breaks(
     >>> contrast_breaks(Rule.NEWLY_FAILING, Policy(), [3.2, 2.0], [2.9, 1.5], 3.0).tolist()
     [True, False]
     """
+    import numpy as np
+
     ref = np.asarray(contrast_ref, dtype=np.float64)
     now = np.asarray(contrast, dtype=np.float64)
     if rule is Rule.LOSS:
@@ -277,6 +281,8 @@ def contrast_floor(
     up to rounding in the loss subtraction; ``suggest`` uses this form to find
     where the contrast crosses it.
     """
+    import numpy as np
+
     ref = np.asarray(contrast_ref, dtype=np.float64)
     if rule is Rule.LOSS:
         margin = np.maximum(policy.loss_margin(tolerance), policy.loss_tolerance * ref)
@@ -305,6 +311,8 @@ def loss_reported(
     >>> loss_reported(Policy(), [1.2, 4.0, 4.0], [1.1, 3.9, 4.0 - 2e-10]).tolist()
     [True, False, True]
     """
+    import numpy as np
+
     ref = np.asarray(contrast_ref, dtype=np.float64)
     now = np.asarray(contrast, dtype=np.float64)
     lost = (now - ref) < -policy.loss_margin(tolerance)
@@ -331,6 +339,8 @@ def drift_breaks(drift: ArrayLike, limit: float) -> NDArray[np.bool_]:
     >>> drift_breaks([9.0, 10.0, 10.5], 10.0).tolist()
     [False, False, True]
     """
+    import numpy as np
+
     return np.asarray(drift, dtype=np.float64) > drift_ceiling(limit)
 
 
@@ -374,6 +384,8 @@ def confusion_possible(delta_e_ref: ArrayLike, min_delta_e: float) -> NDArray[np
     >>> confusion_possible([9.9, 10.0], 10.0).tolist()
     [False, True]
     """
+    import numpy as np
+
     return np.asarray(delta_e_ref, dtype=np.float64) >= min_delta_e
 
 
@@ -388,5 +400,7 @@ def confusion_breaks(
     >>> confusion_breaks([16.1, 8.0], [5.2, 5.2], 10.0).tolist()
     [True, False]
     """
+    import numpy as np
+
     de = np.asarray(delta_e, dtype=np.float64)
     return confusion_possible(delta_e_ref, min_delta_e) & (de < min_delta_e)

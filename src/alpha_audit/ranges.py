@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from alpha_audit.color.metrics import THRESHOLD_RANGE, THRESHOLD_WHAT
+from alpha_audit.constants import THRESHOLD_RANGE, THRESHOLD_WHAT
 
 __all__ = [
     "ALPHA",

@@ -18,8 +18,7 @@ import typer
 from typer.core import TyperCommand
 
 from alpha_audit import ranges
-from alpha_audit.color.css import GAMUT_POLICIES, GamutPolicy
-from alpha_audit.color.metrics import NON_TEXT_THRESHOLD
+from alpha_audit.constants import GAMUT_POLICIES, NON_TEXT_THRESHOLD, GamutPolicy
 from alpha_audit.errors import UsageError
 from alpha_audit.render import CheckFormat
 from alpha_audit.rules import CHECK_RULES, DEFAULT_RULES, RULES, Rule

@@ -9,7 +9,7 @@ import typer
 from alpha_audit.cli.console import emit, stdout_options
 from alpha_audit.cli.options import in_range, read_gamut_option
 from alpha_audit.cli.status import ExitStatus
-from alpha_audit.pair import DEFAULT_GAMUT
+from alpha_audit.constants import DEFAULT_GAMUT
 from alpha_audit.ranges import ALPHA
 from alpha_audit.render import PairFormat
 

@@ -18,23 +18,11 @@ from alpha_audit.color.coverage import (
     median_coverage,
     size_contrast_float,
 )
-from alpha_audit.color.css import (
-    GAMUT_POLICIES,
-    GamutPolicy,
-    ParsedColor,
-    color_from_components,
-    parse_css_color,
-)
+from alpha_audit.color.css import ParsedColor, color_from_components, parse_css_color
 from alpha_audit.color.cvd import DEFICIENCIES, Deficiency, cvd_matrix, simulate_cvd
 from alpha_audit.color.drift import ACHROMATIC_CHROMA, color_drift, hue_shift, oklch_degrees
 from alpha_audit.color.judge import judged_contrast
 from alpha_audit.color.metrics import (
-    CONTRAST_TOLERANCE,
-    DELTA_E_TOLERANCE,
-    LUMINANCE_WEIGHTS,
-    NON_TEXT_THRESHOLD,
-    THRESHOLD_RANGE,
-    THRESHOLD_WHAT,
     contrast_from_luminance,
     contrast_ratio,
     delta_e_2000,
@@ -53,6 +41,16 @@ from alpha_audit.color.srgb import (
     srgb_decode,
     srgb_encode,
     to_8bit,
+)
+from alpha_audit.constants import (
+    CONTRAST_TOLERANCE,
+    DELTA_E_TOLERANCE,
+    GAMUT_POLICIES,
+    LUMINANCE_WEIGHTS,
+    NON_TEXT_THRESHOLD,
+    THRESHOLD_RANGE,
+    THRESHOLD_WHAT,
+    GamutPolicy,
 )
 
 __all__ = [

@@ -34,11 +34,12 @@ from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import cached_property
-from typing import TYPE_CHECKING, Any, Literal, get_args
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from alpha_audit.constants import GAMUT_POLICIES, GamutPolicy
 from alpha_audit.errors import ColorSyntaxError
 
 if TYPE_CHECKING:  # coloraide is imported on first use (import alpha_audit.color stays light)
@@ -46,10 +47,8 @@ if TYPE_CHECKING:  # coloraide is imported on first use (import alpha_audit.colo
 
 __all__ = [
     "CSS_SPACES",
-    "GAMUT_POLICIES",
     "MAX_CHANNEL",
     "MAX_COLOR_TEXT",
-    "GamutPolicy",
     "ParsedColor",
     "color_from_components",
     "gamut_delta_e",
@@ -57,8 +56,6 @@ __all__ = [
     "parse_css_color",
 ]
 
-GamutPolicy = Literal["clip", "map", "error"]
-GAMUT_POLICIES: tuple[GamutPolicy, ...] = get_args(GamutPolicy)
 
 # The colour spaces of CSS Color 4 (sections 8-10 and the predefined spaces of
 # 10.1-10.8), named as CSS and the DTCG Color Module 2025.10 name them; the

@@ -14,13 +14,9 @@ from types import ModuleType
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from alpha_audit.constants import LUMINANCE_WEIGHTS
+
 __all__ = [
-    "CONTRAST_TOLERANCE",
-    "DELTA_E_TOLERANCE",
-    "LUMINANCE_WEIGHTS",
-    "NON_TEXT_THRESHOLD",
-    "THRESHOLD_RANGE",
-    "THRESHOLD_WHAT",
     "contrast_from_luminance",
     "contrast_ratio",
     "delta_e_2000",
@@ -29,18 +25,6 @@ __all__ = [
     "relative_luminance",
 ]
 
-# WCAG 2.2, "relative luminance" (the Rec. 709 / sRGB Y row, rounded to 4 places).
-LUMINANCE_WEIGHTS = (0.2126, 0.7152, 0.0722)
-# WCAG 2.2 SC 1.4.11 Non-text Contrast.
-NON_TEXT_THRESHOLD = 3.0
-# WCAG 2.2 contrast ratios run from 1 (a colour on itself) to 21 (black on white):
-# the only thresholds that mean anything, for themes, configs and --threshold alike.
-THRESHOLD_RANGE = (1.0, 21.0)
-THRESHOLD_WHAT = "a contrast ratio between 1 and 21"
-# Paper, Appendix A.1: contrast changes within 1e-10 are "unchanged",
-# CIEDE2000 decreases within 1e-9 are not decreases.
-CONTRAST_TOLERANCE = 1e-10
-DELTA_E_TOLERANCE = 1e-9
 
 # CSS Color 4, 10.2: linear sRGB -> CIE XYZ (D65), exact rational entries.
 # colour-science's rounded sRGB matrix moves CIEDE2000 by > 0.1 on some

@@ -20,8 +20,9 @@ import re
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from alpha_audit.color.css import GamutPolicy, parse_css_color
+from alpha_audit.color.css import parse_css_color
 from alpha_audit.color.transfer import srgb_decode, srgb_encode, srgb_encode_unit
+from alpha_audit.constants import GamutPolicy
 
 __all__ = [
     "from_8bit",

@@ -10,7 +10,8 @@ from typing import Any
 import numpy as np
 
 from alpha_audit.color import PIPELINES, GamutPolicy, Pipeline, parse_color
-from alpha_audit.color.css import GAMUT_POLICIES, parse_css_color
+from alpha_audit.color.css import parse_css_color
+from alpha_audit.constants import GAMUT_POLICIES
 from alpha_audit.errors import ColorSyntaxError
 from alpha_audit.load.names import check_name
 from alpha_audit.load.yamldoc import KeyPath, YamlDoc, format_key

@@ -8,6 +8,8 @@ from alpha_audit.errors import InputError
 
 __all__ = ["read_capped", "read_text_capped"]
 
+_FIRST_READ = 64 << 10  # bytes: most inputs (icons, themes, manifests) fit in one read
+
 
 def read_capped(path: str | Path, limit: int, error: type[InputError], kind: str) -> bytes:
     """At most ``limit`` bytes of ``path``; larger, missing or unreadable files raise ``error``.
@@ -16,8 +18,12 @@ def read_capped(path: str | Path, limit: int, error: type[InputError], kind: str
     """
     p = Path(path)
     try:
-        with p.open("rb") as fh:
-            data = fh.read(limit + 1)
+        with open(p, "rb") as fh:
+            # A small first read: ``read(limit + 1)`` would allocate the whole limit (a
+            # megabyte for an icon of a few kilobytes) for every file of a set.
+            data = fh.read(min(limit + 1, _FIRST_READ))
+            if len(data) == _FIRST_READ:
+                data += fh.read(limit + 1 - len(data))
     except FileNotFoundError as exc:
         raise error("file not found", path=p) from exc
     except IsADirectoryError as exc:

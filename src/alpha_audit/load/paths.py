@@ -18,6 +18,7 @@ import os
 import re
 from collections.abc import Iterator
 from pathlib import Path, PurePosixPath
+from typing import NamedTuple
 
 from alpha_audit.safe_text import first_unsafe, safe_text
 
@@ -161,6 +162,13 @@ def contain(root: Path, base: Path, relative: str) -> Path:
     return candidate
 
 
+class _Matched(NamedTuple):
+    """A directory entry a glob matched: a regular file (``plain``) or a symlink."""
+
+    path: Path
+    plain: bool
+
+
 def glob_contained(root: Path, base: Path, pattern: str, *, limit: int) -> list[Path]:
     """Files under ``base`` matching ``pattern`` (``*``, ``?``, ``[...]``, ``**``), contained.
 
@@ -182,7 +190,7 @@ def glob_contained(root: Path, base: Path, pattern: str, *, limit: int) -> list[
     visited = 0
     found: list[Path] = []
 
-    def folder_steps(folder: Path, rest: list[str]) -> Iterator[tuple[Path, list[str]] | Path]:
+    def folder_steps(folder: Path, rest: list[str]) -> Iterator[tuple[Path, list[str]] | _Matched]:
         """One folder's work, in order: sub-walks ``(folder, rest)`` and matched files."""
         nonlocal visited
         head, tail = rest[0], rest[1:]
@@ -209,8 +217,10 @@ def glob_contained(root: Path, base: Path, pattern: str, *, limit: int) -> list[
             if tail:
                 if entry.is_dir(follow_symlinks=False):
                     yield Path(entry.path), tail
-            elif entry.is_file(follow_symlinks=True) or entry.is_symlink():
-                yield Path(entry.path)
+            elif entry.is_file(follow_symlinks=False):
+                yield _Matched(Path(entry.path), plain=True)
+            elif entry.is_symlink():
+                yield _Matched(Path(entry.path), plain=False)
 
     # Depth first with a stack of our own, not recursion: a tree nested thousands of
     # folders deep is bounded by MAX_GLOB_ENTRIES like any other, never by Python's stack.
@@ -219,22 +229,24 @@ def glob_contained(root: Path, base: Path, pattern: str, *, limit: int) -> list[
         step = next(stack[-1], None)
         if step is None:
             stack.pop()
-        elif isinstance(step, tuple):
+        elif not isinstance(step, _Matched):
             stack.append(folder_steps(*step))
         else:
-            shown = os.path.relpath(step, start)
+            shown = os.path.relpath(step.path, start)
             if first_unsafe(shown) is not None:  # folders on the way count too
                 raise PathRefused(
                     f"{_shown(shown)} matched by {_shown(pattern)} has a control or "
                     "format character in its name; not allowed"
                 )
-            target = resolve(step)
+            # A file that is no link, in folders that are none under the resolved base,
+            # is its own resolved path: only a link needs resolving and checking again.
+            target = step.path if step.plain else resolve(step.path)
             if not target.is_relative_to(root):
                 raise PathRefused(
                     f"{_shown(shown)} matched by "
                     f"{_shown(pattern)} resolves outside the project root; not allowed"
                 )
-            if target.is_file():
+            if step.plain or target.is_file():
                 found.append(target)
                 if len(found) > limit:
                     raise PathRefused(f"{_shown(pattern)} matches more than {limit} files")

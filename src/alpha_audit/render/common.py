@@ -44,6 +44,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "SUFFIXES",
+    "EncodedRecords",
     "Records",
     "RenderOptions",
     "Renderer",
@@ -59,6 +60,7 @@ __all__ = [
     "fix_text",
     "fix_to_dict",
     "gamut_line",
+    "json_text",
     "location_text",
     "location_to_dict",
     "name_column",
@@ -281,11 +283,25 @@ class Records(list[dict[str, Any]]):
     """
 
 
+class EncodedRecords(list[str]):
+    """Flat records already encoded, each as :func:`json_text` writes it: :func:`dumps`
+    writes each on one line as it is (a writer of many rows encodes them column by column)."""
+
+
+def json_text(value: object) -> str:
+    """``value`` as strict JSON on one line, as :func:`dumps` writes a flat record.
+
+    >>> print(json_text({"a": [1.5, None], "b": "é"}))
+    {"a": [1.5, null], "b": "\\u00e9"}
+    """
+    return _ENCODER.encode(value)
+
+
 def _pretty(value: Any, level: int, out: list[str]) -> None:
-    if isinstance(value, Records) and value:
+    if isinstance(value, Records | EncodedRecords) and value:
         pad, inner = _INDENT * level, _INDENT * (level + 1)
-        encode = _ENCODER.encode
-        out.append("[\n" + inner + (",\n" + inner).join(map(encode, value)) + "\n" + pad + "]")
+        lines = value if isinstance(value, EncodedRecords) else map(_ENCODER.encode, value)
+        out.append("[\n" + inner + (",\n" + inner).join(lines) + "\n" + pad + "]")
         return
     if not isinstance(value, dict | list) or not value or (level > 0 and _flat(value)):
         # json's C encoder (used only without indent) for every leaf and flat record:

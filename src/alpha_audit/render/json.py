@@ -8,19 +8,24 @@ audits (themes x icon sets): ``audits`` lists each audit's fields, and
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, replace
+from collections.abc import Callable, Sequence
+from dataclasses import asdict
+from json.encoder import encode_basestring_ascii
 from pathlib import Path
 from typing import Any
+
+import numpy as np
 
 from alpha_audit.findings import Finding
 from alpha_audit.gate import GateResult
 from alpha_audit.model import GamutAdjustment
 from alpha_audit.render.common import (
-    Records,
+    EncodedRecords,
     RenderOptions,
     display_path,
     dumps,
     fix_to_dict,
+    json_text,
     location_to_dict,
 )
 from alpha_audit.results import CheckReport
@@ -41,7 +46,8 @@ CHECK_SCHEMA = "alpha-audit.check/4"
 
 
 def check_to_dict(result: AuditResult, base: Path | None = None) -> dict[str, Any]:
-    """The JSON document as plain data (documented in docs/json.md).
+    """The JSON document as plain data (documented in docs/json.md), its rows already
+    encoded (:class:`~alpha_audit.render.common.EncodedRecords`: :func:`dumps` writes them).
 
     File paths are relative to ``base`` where they are inside it (a report
     uploaded from CI names no folder of the machine that wrote it).
@@ -102,72 +108,100 @@ def _finite(value: float) -> float | None:
     return value if math.isfinite(value) else None
 
 
-def _rows(result: AuditResult, base: Path | None = None) -> list[dict[str, Any]]:
-    """Per paint x canvas, in :meth:`~alpha_audit.rows.AuditResult.rows` order, written
-    from the result's columns (no row object is made); a row a browser drew carries its
-    measurement (``observed``)."""
+def _rows(result: AuditResult, base: Path | None = None) -> EncodedRecords:
+    """Per paint x canvas, in :meth:`~alpha_audit.rows.AuditResult.rows` order: each row's
+    record as json writes it, made column by column from the result's columns (no object
+    per row; a column's distinct values encoded once); a row a browser drew carries its
+    measurement (``observed``), last."""
+    c = result.columns()
+    m, p = len(result.theme.canvases), len(result.entries)
+    if not len(c):
+        return EncodedRecords()
+    encode = json_text
+    text = encode_basestring_ascii
+    # A row is its entry's (icon, paint) and canvas's fields around its own figures:
+    # the pieces of one entry or one canvas are written once and repeated.
+    icon = [f'{{"icon": {text(i)}, "canvas": ' for i in c.icon[:p]]
+    paint = [
+        f', "paint": {text(n)}, "kinds": {encode(list(k))}, "source": {text(s)}, '
+        f'"opacity": {encode(o)}, "background": '
+        for n, k, s, o in zip(c.paint[:p], c.kinds[:p], c.source[:p], c.opacity[:p], strict=True)
+    ]
+    alpha = [
+        f', "alpha": {encode(a)}, "pipeline": {text(c.pipeline)}, "output": ' for a in c.alpha[:p]
+    ]
+    columns = [
+        icon * m,
+        [text(n) for n in c.canvas[::p] for _ in range(p)],
+        paint * m,
+        [text(b) for b in c.background[::p] for _ in range(p)],
+        alpha * m,
+        _texts(c.output, text),
+        *(
+            _float_texts(figures)
+            for figures in (
+                c.contrast_ref, c.contrast, c.gain, c.contrast_ref_float, c.contrast_float
+            )
+        ),
+        *(
+            _texts(flags, encode)
+            for flags in (c.passes_ref, c.passes, c.newly_passes, c.loss, c.newly_fails)
+        ),
+        _float_texts(c.drift),
+        _float_texts(c.hue_shift, nulls=True),
+    ]  # fmt: skip
+    template = (
+        "%s%s%s%s%s%s, "
+        '"contrast_ref": %s, "contrast": %s, "gain": %s, "contrast_ref_float": %s, '
+        '"contrast_float": %s, "passes_ref": %s, "passes": %s, "newly_passes": %s, '
+        '"loss": %s, "newly_fails": %s, "drift": %s, "hue_shift": %s, "sizes": {'
+    )
+    for k, size in enumerate(c.sizes):
+        # '"16": {"q50": ..., "full_share": ..., "contrast": ' per entry, the contrast per row.
+        lead = f'{", " if k else ""}{text(str(size))}: {{"q50": '
+        columns.append(
+            [
+                f'{lead}{q}, "full_share": {f}, "contrast": '
+                for q, f in zip(
+                    _float_texts(c.q50[k][:p], nulls=True),
+                    _float_texts(c.full_share[k][:p], nulls=True),
+                    strict=True,
+                )
+            ]
+            * m
+        )
+        columns.append(_float_texts(c.size_contrast[k], nulls=True))
+        template += "%s%s}"
+    rows = EncodedRecords(map((template + "}}").__mod__, zip(*columns, strict=True)))
     if result.observed:
         from alpha_audit.render.pages import paint_record
 
-        records = _rows(replace(result, observed=()), base)
-        m = len(result.theme.canvases)
-        for k, record in enumerate(records):  # canvas-major: row k draws entry k % p
-            record["observed"] = paint_record(result.observed[k % len(result.observed)], base)
-        assert len(records) == m * len(result.observed)
-        return records
-    c = result.columns()
-    sizes = [
-        [
-            {"q50": q, "full_share": f, "contrast": x}
-            for q, f, x in zip(
-                map(_finite, c.q50[k]),
-                map(_finite, c.full_share[k]),
-                map(_finite, c.size_contrast[k]),
-                strict=True,
-            )
-        ]
-        for k in range(len(c.sizes))
+        # canvas-major: row k draws entry k % p
+        assert len(rows) == m * len(result.observed)
+        for k, row in enumerate(rows):
+            record = paint_record(result.observed[k % len(result.observed)], base)
+            rows[k] = f'{row[:-1]}, "observed": {encode(record)}}}'
+    return rows
+
+
+def _texts(values: list[Any], encode: Callable[[Any], str]) -> list[str]:
+    """``encode`` of each value of a long column of few distinct strings or flags, once each."""
+    known = {v: encode(v) for v in set(values)}
+    return list(map(known.__getitem__, values))
+
+
+def _float_texts(values: Sequence[float | None], *, nulls: bool = False) -> list[str]:
+    """Each float as json writes it (its ``repr``), once per distinct value: distinct bit
+    patterns, so 0.0 and -0.0 stay apart.  With ``nulls`` None, NaN and infinities are
+    null (strict JSON has none); without, json's own refusal stands."""
+    if not values:
+        return []
+    figures = np.array([math.nan if v is None else v for v in values], dtype=np.float64)
+    _, first, inverse = np.unique(figures.view(np.int64), return_index=True, return_inverse=True)
+    texts = [
+        "null" if nulls and not math.isfinite(f) else json_text(f) for f in figures[first].tolist()
     ]
-    names = [str(s) for s in c.sizes]
-    kinds = {k: list(k) for k in set(c.kinds)}  # one list per distinct value
-    return Records(
-        {
-            "icon": icon,
-            "canvas": canvas,
-            "paint": paint,
-            "kinds": kinds[kind],
-            "source": source,
-            "opacity": opacity,
-            "background": background,
-            "alpha": alpha,
-            "pipeline": c.pipeline,
-            "output": output,
-            "contrast_ref": contrast_ref,
-            "contrast": contrast,
-            "gain": gain,
-            "contrast_ref_float": ref_float,
-            "contrast_float": now_float,
-            "passes_ref": passes_ref,
-            "passes": passes,
-            "newly_passes": newly_passes,
-            "loss": loss,
-            "newly_fails": newly_fails,
-            "drift": drift,
-            "hue_shift": hue,
-            "sizes": dict(zip(names, figures, strict=True)),
-        }
-        for (
-            icon, canvas, paint, kind, source, opacity, background, alpha, output,
-            contrast_ref, contrast, gain, ref_float, now_float, passes_ref, passes,
-            newly_passes, loss, newly_fails, drift, hue, figures,
-        ) in zip(
-            c.icon, c.canvas, c.paint, c.kinds, c.source, c.opacity, c.background, c.alpha,
-            c.output, c.contrast_ref, c.contrast, c.gain, c.contrast_ref_float,
-            c.contrast_float, c.passes_ref, c.passes, c.newly_passes, c.loss, c.newly_fails,
-            c.drift, c.hue_shift,
-            zip(*sizes, strict=True) if sizes else ((),) * len(c), strict=True,
-        )
-    )  # fmt: skip
+    return list(map(texts.__getitem__, inverse.tolist()))
 
 
 def finding_to_dict(finding: Finding, base: Path | None = None) -> dict[str, Any]:

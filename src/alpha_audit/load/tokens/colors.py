@@ -5,7 +5,8 @@ from __future__ import annotations
 import re
 from typing import Any
 
-from alpha_audit.color.css import GamutPolicy, ParsedColor, color_from_components, parse_css_color
+from alpha_audit.color.css import ParsedColor, color_from_components, parse_css_color
+from alpha_audit.constants import GamutPolicy
 from alpha_audit.errors import ColorSyntaxError
 from alpha_audit.load.tokens.model import Token, TokenPlace, token_error
 

@@ -37,14 +37,9 @@ from typing import Any
 
 import numpy as np
 
-from alpha_audit.color.css import (
-    GAMUT_POLICIES,
-    GamutPolicy,
-    ParsedColor,
-    gamut_delta_e,
-    map_parsed,
-)
+from alpha_audit.color.css import ParsedColor, gamut_delta_e, map_parsed
 from alpha_audit.color.srgb import srgb_decode
+from alpha_audit.constants import GAMUT_POLICIES, GamutPolicy
 from alpha_audit.errors import InputError
 from alpha_audit.load.theme import MAX_CANVASES
 from alpha_audit.load.tokens import load_token_modes, token_color

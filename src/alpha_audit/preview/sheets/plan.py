@@ -6,12 +6,13 @@ import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 from enum import StrEnum
-from typing import assert_never
+from typing import TYPE_CHECKING, assert_never
 
-import numpy as np
-from numpy.typing import NDArray
+if TYPE_CHECKING:  # numpy loads where alphas are made: the CLI reads Layout at start-up
+    import numpy as np
+    from numpy.typing import NDArray
 
-from alpha_audit.model import Canvas, Icon, IconSet
+    from alpha_audit.model import Canvas, Icon, IconSet
 
 __all__ = [
     "ICON_ALPHA",
@@ -127,6 +128,7 @@ def plan_sheets(
 ) -> list[SheetSpec]:
     """The sheets a layout produces, with predictable, distinct file names.
 
+    >>> from alpha_audit.model import Canvas
     >>> [s.name for s in plan_sheets(Layout.GRID, [Canvas("Paper", "#fff")], [16, 48], "demo")]
     ['demo-grid-paper-16px.png', 'demo-grid-paper-48px.png']
     """
@@ -168,6 +170,8 @@ def alpha_label(alpha: Alpha, icons: Sequence[Icon]) -> str:
 
 def alphas_for(alpha: Alpha, icons: Sequence[Icon]) -> NDArray[np.float64]:
     """The coefficient of every icon in a row: ``alpha``, or each icon's own for ``None``."""
+    import numpy as np
+
     if alpha is None:
         return np.array([i.alpha for i in icons], dtype=np.float64)
     return np.full(len(icons), float(alpha))
