@@ -12,7 +12,7 @@ itself (``observed``), never a copy of its fields.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from typing import TypeAlias
 
 from alpha_audit.color import Deficiency
@@ -68,6 +68,20 @@ def _observed(o: MeasuredPaint) -> dict[str, Value]:
             "model_pipeline": near.pipeline,
         }
     return out | {k: v for k, v in optional.items() if v is not None}
+
+
+class _Plain:
+    """A record written out as its fields in order, a tuple of names joined by ", "."""
+
+    __slots__ = ()
+
+    def to_dict(self) -> dict[str, Value]:
+        """The figures as written out (JSON ``numbers``, SARIF properties)."""
+        out: dict[str, Value] = {}
+        for f in fields(self):  # type: ignore[arg-type]  # every subclass is a dataclass
+            value = getattr(self, f.name)
+            out[f.name] = ", ".join(value) if isinstance(value, tuple) else value
+        return out
 
 
 @dataclass(frozen=True, slots=True)
@@ -197,22 +211,13 @@ class CvdCollisionFigures:
 
 
 @dataclass(frozen=True, slots=True)
-class SeparationFigures:
+class SeparationFigures(_Plain):
     """``separation``: the closest pair of ``sources``, CIEDE2000 ``delta_e`` apart."""
 
     delta_e: float
     delta_e_ref: float
     min_delta_e: float
     sources: tuple[str, ...]
-
-    def to_dict(self) -> dict[str, Value]:
-        """The figures as written out (JSON ``numbers``, SARIF properties)."""
-        return {
-            "delta_e": self.delta_e,
-            "delta_e_ref": self.delta_e_ref,
-            "min_delta_e": self.min_delta_e,
-            "sources": ", ".join(self.sources),
-        }
 
 
 @dataclass(frozen=True, slots=True)
@@ -245,7 +250,7 @@ class ConfusionFigures:
 
 
 @dataclass(frozen=True, slots=True)
-class DriftFigures:
+class DriftFigures(_Plain):
     """``drift``, ``lock``: a paint's ``source`` shown as ``output``, ``drift`` CIEDE2000 away."""
 
     drift: float
@@ -254,19 +259,9 @@ class DriftFigures:
     output: str
     paint: str
 
-    def to_dict(self) -> dict[str, Value]:
-        """The figures as written out (JSON ``numbers``, SARIF properties)."""
-        return {
-            "drift": self.drift,
-            "limit": self.limit,
-            "source": self.source,
-            "output": self.output,
-            "paint": self.paint,
-        }
-
 
 @dataclass(frozen=True, slots=True)
-class ThinStrokeFigures:
+class ThinStrokeFigures(_Plain):
     """``thin-strokes``: at ``size`` px half the ink is at coverage <= ``q50``."""
 
     size: int
@@ -274,46 +269,25 @@ class ThinStrokeFigures:
     size_contrast: float
     paint: str
 
-    def to_dict(self) -> dict[str, Value]:
-        """The figures as written out (JSON ``numbers``, SARIF properties)."""
-        return {
-            "size": self.size,
-            "q50": self.q50,
-            "size_contrast": self.size_contrast,
-            "paint": self.paint,
-        }
-
 
 @dataclass(frozen=True, slots=True)
-class FixedPaintFigures:
+class FixedPaintFigures(_Plain):
     """``fixed-colour``: the hard-coded ``paint`` and the element drawing it."""
 
     paint: str
     element: str
 
-    def to_dict(self) -> dict[str, Value]:
-        """The figures as written out (JSON ``numbers``, SARIF properties)."""
-        return {"paint": self.paint, "element": self.element}
-
 
 @dataclass(frozen=True, slots=True)
-class ElementFigures:
+class ElementFigures(_Plain):
     """``not-audited``: the element the audit cannot judge (with its line)."""
 
     element: str
 
-    def to_dict(self) -> dict[str, Value]:
-        """The figures as written out (JSON ``numbers``, SARIF properties)."""
-        return {"element": self.element}
-
 
 @dataclass(frozen=True, slots=True)
-class NoFigures:
+class NoFigures(_Plain):
     """A finding with no figures (``unrenderable``: the message says why)."""
-
-    def to_dict(self) -> dict[str, Value]:
-        """No figures: an empty mapping."""
-        return {}
 
 
 Figures: TypeAlias = (
