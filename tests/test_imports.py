@@ -47,6 +47,7 @@ def _imports(tree: ast.AST) -> list[ast.Import | ast.ImportFrom]:
 def import_graph() -> dict[str, set[str]]:
     """Module -> the package modules it imports.
 
+    A lazy package's stub (``__init__.pyi``) counts as its imports.
     ``from a.b import c`` points at ``a.b.c`` when that is a module, else at
     ``a.b``.  The implicit import of parent packages is not an edge (as in
     pylint's cyclic-import check): a parent is always initialised first.
@@ -55,7 +56,10 @@ def import_graph() -> dict[str, set[str]]:
     graph: dict[str, set[str]] = {name: set() for name in files}
     for name, path in files.items():
         package = name if path.name == "__init__.py" else name.rpartition(".")[0]
-        for node in _imports(ast.parse(path.read_text(), str(path))):
+        # A lazy package imports what its stub lists, on first use of each name.
+        stub = path.with_suffix(".pyi")
+        sources = [path, stub] if stub.exists() else [path]
+        for node in (n for p in sources for n in _imports(ast.parse(p.read_text(), str(p)))):
             if isinstance(node, ast.Import):
                 targets = [alias.name for alias in node.names]
             else:
@@ -67,7 +71,11 @@ def import_graph() -> dict[str, set[str]]:
                     f"{base}.{alias.name}" if f"{base}.{alias.name}" in files else base
                     for alias in node.names
                 ]
-            graph[name].update(t for t in targets if t in files and t != name)
+            # Importing from an ancestor package is not an edge either: it is initialised
+            # before any of its submodules (``from alpha_audit import __version__``).
+            graph[name].update(
+                t for t in targets if t in files and t != name and not name.startswith(f"{t}.")
+            )
     return graph
 
 
@@ -174,19 +182,20 @@ def test_a_command_imports_only_its_own_module() -> None:
 
 
 def _imported_by(args: list[str]) -> set[str]:
-    """Every module ``python -m alpha_audit ARGS`` imports, from ``-X importtime``."""
-    done = subprocess.run(
-        [sys.executable, "-X", "importtime", "-m", "alpha_audit", *args],
-        capture_output=True,
-        text=True,
-        timeout=120,
+    """Every module ``python -m alpha_audit ARGS`` has loaded when it exits.
+
+    Read from ``sys.modules`` at exit, not from ``-X importtime``: that only sees
+    ``import`` statements, not ``importlib.import_module`` (how lazy names load).
+    """
+    code = (
+        "import atexit, json, runpy, sys\n"
+        "atexit.register(lambda: sys.stderr.write('\\n' + json.dumps(sorted(sys.modules))))\n"
+        f"sys.argv = ['alpha-audit', *{args!r}]\n"
+        "runpy.run_module('alpha_audit', run_name='__main__')\n"
     )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr[-2000:]
-    return {
-        line.rsplit("|", 1)[1].strip()
-        for line in done.stderr.splitlines()
-        if line.startswith("import time:") and line.count("|") == 2
-    }
+    return set(json.loads(done.stderr.strip().splitlines()[-1]))
 
 
 @pytest.mark.parametrize(
@@ -210,22 +219,48 @@ def test_the_import_measurement_sees_numpy_where_it_is_imported() -> None:
     assert {"numpy", "colour"} <= imported
 
 
-def test_every_public_name_resolves() -> None:
-    for name in alpha_audit.__all__:
-        assert getattr(alpha_audit, name) is not None, name
-    assert sorted(alpha_audit.__all__) == sorted({*alpha_audit._EXPORTS, "__version__"})
-
-
-def test_type_checking_imports_match_the_lazy_map() -> None:
-    tree = ast.parse((SRC / "__init__.py").read_text())
-    block = next(n for n in tree.body if isinstance(n, ast.If) and _is_type_checking(n))
-    declared = {
-        alias.asname or alias.name: (node.module, alias.name)
-        for node in block.body
+def _stub_names(stub: Path) -> dict[str, tuple[str, str]]:
+    """Public name -> (module, attribute), read from a package's ``__init__.pyi``."""
+    package = _module_name(stub.with_suffix(".py"))
+    return {
+        alias.asname or alias.name: (f"{package}.{node.module}", alias.name)
+        for node in ast.parse(stub.read_text()).body
         if isinstance(node, ast.ImportFrom)
         for alias in node.names
     }
-    assert declared == alpha_audit._EXPORTS
+
+
+STUBS = sorted(SRC.rglob("__init__.pyi"))
+
+
+def test_every_lazy_package_has_a_stub_and_nothing_else_lists_its_names() -> None:
+    """A package's names are written once: in its stub, which the ``.py`` only loads."""
+    lazy = sorted(p for p in SRC.rglob("__init__.py") if "attach_stub" in p.read_text())
+    assert [p.with_suffix(".pyi") for p in lazy] == STUBS
+    assert len(STUBS) >= 7
+    for path in lazy:
+        body = [n for n in ast.parse(path.read_text()).body if not isinstance(n, ast.Expr)]
+        assigned = {
+            t.id
+            for n in body
+            if isinstance(n, ast.Assign)
+            for t in n.targets
+            if isinstance(t, ast.Name)
+        }
+        assert assigned <= {"__version__"}, path  # no second list of names
+
+
+@pytest.mark.parametrize("stub", STUBS, ids=lambda p: str(p.parent.relative_to(SRC.parent)))
+def test_every_stub_name_is_exported_and_is_the_named_attribute(stub: Path) -> None:
+    import importlib
+
+    package = importlib.import_module(_module_name(stub.with_suffix(".py")))
+    names = _stub_names(stub)
+    assert names, stub
+    assert sorted(package.__all__) == sorted(names)
+    assert set(names) <= set(dir(package))
+    for name, (module, attribute) in names.items():
+        assert getattr(package, name) is getattr(importlib.import_module(module), attribute)
 
 
 def test_unknown_names_raise_attribute_error() -> None:

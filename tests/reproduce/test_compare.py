@@ -14,7 +14,7 @@ from alpha_audit.reproduce import CanvasChange, ContrastChange, FullGamutResult,
 from alpha_audit.reproduce.compare import comparisons, is_paper_canvases, setup_differences
 from alpha_audit.reproduce.grids import PAPER_SEED, VIBRANT
 from alpha_audit.reproduce.paper import Setup
-from alpha_audit.reproduce.report import render_markdown, render_table
+from alpha_audit.reproduce.report import render_table, reproduction_markdown
 from alpha_audit.reproduce.run import Reproduction, Settings
 
 # The sixteen canvases of the authors' public evaluation protocol for "Opacity
@@ -85,7 +85,7 @@ def test_a_mismatch_on_the_papers_setup_is_shown_as_no(paper16: Theme) -> None:
     table = render_table(bad, RenderOptions(width=80))
     assert "NOT matching: full_gamut 1.1 increase_pct" in " ".join(table.split())
     assert "| alpha 1.1: increase % | 99.8145 | 99.8133 | yes (abstract, Table 1) | **NO** |" in (
-        render_markdown(bad)
+        reproduction_markdown(bad)
     )
 
 
@@ -99,7 +99,7 @@ def test_other_canvases_are_shown_but_never_compared(paper16: Theme) -> None:
         )
     assert differences[Setup.BROAD_GRID] == "not run"
     assert not any(c.comparable for c in comparisons(run))
-    text = render_markdown(run)
+    text = reproduction_markdown(run)
     assert "**yes**" not in text and "**NO**" not in text
     assert "No printed figure of the paper is comparable in digits in this run." in text
 

@@ -10,7 +10,7 @@ import pytest
 from alpha_audit.model import Canvas, Theme
 from alpha_audit.reproduce import BroadGridResult
 from alpha_audit.reproduce.paper import PAPER, matches_printed
-from alpha_audit.reproduce.report import SCHEMA, alpha_key, render_json, render_markdown
+from alpha_audit.reproduce.report import SCHEMA, alpha_key, reproduction_json, reproduction_markdown
 from alpha_audit.reproduce.run import Reproduction, Settings
 
 THEME = Theme("t", (Canvas("white", "#ffffff", "light"),))
@@ -40,27 +40,27 @@ def run_with(*results: BroadGridResult) -> Reproduction:
 def test_a_matching_value_is_marked_and_a_mismatch_is_not_hidden() -> None:
     n = 17**3 * 33**3
     exact = round(0.903672 * n)  # rounds to the printed 90.3672 %
-    good = render_markdown(run_with(broad(1.1, exact)))
+    good = reproduction_markdown(run_with(broad(1.1, exact)))
     assert "| alpha 1.1: increase % | 90.3672 | 90.3672 | yes (Table 1) | **yes** |" in good
-    bad = render_markdown(run_with(broad(1.1, exact - 2000)))
+    bad = reproduction_markdown(run_with(broad(1.1, exact - 2000)))
     assert "| alpha 1.1: increase % | 90.3672 | 90.3661 | yes (Table 1) | **NO** |" in bad
     assert "| alpha 1.1: maximum loss | 0.4655 | 0.5000 | yes (Section 4.2) | **NO** |" in bad
 
 
 def test_values_without_a_printed_counterpart_are_not_compared() -> None:
-    text = render_markdown(run_with(broad(1.3, 10)))
+    text = reproduction_markdown(run_with(broad(1.3, 10)))
     assert "| alpha 1.3: increase % | — |" in text
     assert "no printed value" in text
 
 
 def test_quick_grids_are_not_compared_with_the_paper() -> None:
     small = replace(broad(1.1, 10), source_levels=5, background_levels=9, combinations=5**3 * 9**3)
-    text = render_markdown(run_with(small))
+    text = reproduction_markdown(run_with(small))
     assert "**NO**" not in text and "**yes**" not in text
 
 
 def test_json_document() -> None:
-    doc = json.loads(render_json(run_with(broad(1.1, 5), broad(1.4, 6))))
+    doc = json.loads(reproduction_json(run_with(broad(1.1, 5), broad(1.4, 6))))
     assert doc["schema"] == SCHEMA == "alpha-audit.reproduce/1"
     assert set(doc["broad_grid"]) == {
         "source_levels", "background_levels", "combinations", "1.1", "1.4",

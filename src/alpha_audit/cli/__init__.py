@@ -5,16 +5,6 @@
 :mod:`.flags` what the command modules share (they never import :mod:`.root`).
 """
 
-from typing import TYPE_CHECKING
+import lazy_loader
 
-from alpha_audit.cli.root import main
-from alpha_audit.cli.status import ExitStatus
-from alpha_audit.lazy import lazy_exports
-
-if TYPE_CHECKING:
-    from alpha_audit.cli.root import app
-
-__all__ = ["ExitStatus", "app", "main"]
-
-# ``app`` imports every command; ``main`` only the one it runs.
-__getattr__ = lazy_exports(__name__, {"app": "alpha_audit.cli.root"})
+__getattr__, __dir__, __all__ = lazy_loader.attach_stub(__name__, __file__)

@@ -24,7 +24,7 @@ from alpha_audit.cli.options import (
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.ranges import ALPHA_MAX, PRECISION
 from alpha_audit.render import SuggestFormat
-from alpha_audit.suggest import SCOPES
+from alpha_audit.suggest.scope import SCOPES
 
 if TYPE_CHECKING:
     from alpha_audit.load.config import ProjectConfig

@@ -20,48 +20,6 @@ Example (a built Storybook in the current folder)::
     report = page_report(run, paints)
 """
 
-from __future__ import annotations
+import lazy_loader
 
-from typing import TYPE_CHECKING
-
-from alpha_audit.lazy import lazy_exports
-
-if TYPE_CHECKING:
-    from alpha_audit.pages.audit import page_audits, page_report
-    from alpha_audit.pages.config import RenderConfig, config_from_yaml, source_from_argument
-    from alpha_audit.pages.run import audit_pages
-    from alpha_audit.pages.sources import FolderSource, StorybookSource, UrlSource
-    from alpha_audit.pages.states import State, state_matrix
-
-__all__ = [
-    "FolderSource",
-    "RenderConfig",
-    "State",
-    "StorybookSource",
-    "UrlSource",
-    "audit_pages",
-    "config_from_yaml",
-    "page_audits",
-    "page_report",
-    "source_from_argument",
-    "state_matrix",
-]
-
-# Names load on first use: the CLI reads the states at start-up without the page audit
-# (Pillow, coloraide, the YAML reader).
-__getattr__ = lazy_exports(
-    __name__,
-    {
-        "page_audits": "alpha_audit.pages.audit",
-        "page_report": "alpha_audit.pages.audit",
-        "RenderConfig": "alpha_audit.pages.config",
-        "config_from_yaml": "alpha_audit.pages.config",
-        "source_from_argument": "alpha_audit.pages.config",
-        "audit_pages": "alpha_audit.pages.run",
-        "FolderSource": "alpha_audit.pages.sources",
-        "StorybookSource": "alpha_audit.pages.sources",
-        "UrlSource": "alpha_audit.pages.sources",
-        "State": "alpha_audit.pages.states",
-        "state_matrix": "alpha_audit.pages.states",
-    },
-)
+__getattr__, __dir__, __all__ = lazy_loader.attach_stub(__name__, __file__)

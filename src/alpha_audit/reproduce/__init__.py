@@ -5,40 +5,6 @@ Library API: :func:`full_gamut`, :func:`broad_grid`, :func:`sweep` and
 work on any theme.  Never imported by the audit path.
 """
 
-from __future__ import annotations
+import lazy_loader
 
-from typing import TYPE_CHECKING
-
-from alpha_audit.lazy import lazy_exports
-
-if TYPE_CHECKING:
-    from alpha_audit.reproduce.experiments import (
-        BroadGridResult,
-        CanvasChange,
-        ContrastChange,
-        FullGamutResult,
-        PaletteResult,
-        SweepResult,
-        broad_grid,
-        full_gamut,
-        palette_separation,
-        sweep,
-        sweep_alphas,
-    )
-
-__all__ = [
-    "BroadGridResult",
-    "CanvasChange",
-    "ContrastChange",
-    "FullGamutResult",
-    "PaletteResult",
-    "SweepResult",
-    "broad_grid",
-    "full_gamut",
-    "palette_separation",
-    "sweep",
-    "sweep_alphas",
-]
-
-# The experiments load on first use: the CLI imports reproduce.experiment without them.
-__getattr__ = lazy_exports(__name__, dict.fromkeys(__all__, "alpha_audit.reproduce.experiments"))
+__getattr__, __dir__, __all__ = lazy_loader.attach_stub(__name__, __file__)

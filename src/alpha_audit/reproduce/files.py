@@ -12,7 +12,7 @@ from pathlib import Path
 
 from alpha_audit.output import Output, check_targets, make_folder, write_files
 from alpha_audit.reproduce.figures import FIGURES, figure_outputs
-from alpha_audit.reproduce.report import render_json, render_markdown
+from alpha_audit.reproduce.report import reproduction_json, reproduction_markdown
 from alpha_audit.reproduce.run import Experiment, Reproduction
 from alpha_audit.reproduce.runtime import RUNTIME_FIGURE, runtime_figure_output
 
@@ -52,8 +52,8 @@ def write_results(run: Reproduction, folder: str | Path, *, overwrite: bool = Fa
     """Write every result file of ``run`` into ``folder`` (created if needed), all or none."""
     folder = Path(folder)
     outputs = [
-        Output.text(folder / RESULTS_JSON, render_json(run)),
-        Output.text(folder / RESULTS_MARKDOWN, render_markdown(run)),
+        Output.text(folder / RESULTS_JSON, reproduction_json(run)),
+        Output.text(folder / RESULTS_MARKDOWN, reproduction_markdown(run)),
     ]
     if run.sweep is not None:
         outputs += figure_outputs(run.sweep, folder)

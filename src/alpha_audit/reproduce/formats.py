@@ -31,7 +31,7 @@ class ReproduceFormat(Format):
         if self is ReproduceFormat.TABLE:
             return report.render_table
         if self is ReproduceFormat.JSON:
-            return report.render_json
+            return report.reproduction_json
         if self is ReproduceFormat.MARKDOWN:
-            return report.render_markdown
+            return report.reproduction_markdown
         assert_never(self)

@@ -42,9 +42,9 @@ from alpha_audit.reproduce.run import Reproduction
 __all__ = [
     "SCHEMA",
     "alpha_key",
-    "render_json",
-    "render_markdown",
     "render_table",
+    "reproduction_json",
+    "reproduction_markdown",
     "tables",
     "to_json_dict",
 ]
@@ -166,7 +166,7 @@ def to_json_dict(run: Reproduction) -> dict[str, Any]:
     return doc
 
 
-def render_json(run: Reproduction, options: RenderOptions | None = None) -> str:
+def reproduction_json(run: Reproduction, options: RenderOptions | None = None) -> str:
     """``to_json_dict`` as JSON text (``options`` change nothing)."""
     return dumps(to_json_dict(run))
 
@@ -433,7 +433,7 @@ def _tally(run: Reproduction) -> str:
     return text + "."
 
 
-def render_markdown(run: Reproduction, options: RenderOptions | None = None) -> str:
+def reproduction_markdown(run: Reproduction, options: RenderOptions | None = None) -> str:
     """The report: per experiment, the paper's printed values beside ours.
 
     Theme and canvas names come from input files: escaped like every Markdown

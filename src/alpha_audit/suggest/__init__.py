@@ -5,16 +5,6 @@
 writes an answer into a manifest.
 """
 
-from __future__ import annotations
+import lazy_loader
 
-from alpha_audit.lazy import lazy_exports
-
-__all__ = ["SCOPES", "largest_safe_alpha", "suggest"]
-
-# What suggest answers: one coefficient for the set, per colour, per group of roles, per icon.
-SCOPES = ("set", "colour", "group", "icon")
-
-__getattr__ = lazy_exports(
-    __name__,
-    {"largest_safe_alpha": "alpha_audit.suggest.engine", "suggest": "alpha_audit.suggest.engine"},
-)
+__getattr__, __dir__, __all__ = lazy_loader.attach_stub(__name__, __file__)

@@ -96,7 +96,6 @@ from alpha_audit.results import (
 )
 from alpha_audit.rows import AuditResult
 from alpha_audit.rules import RULES, Family, Rule
-from alpha_audit.suggest import SCOPES
 from alpha_audit.suggest.events import (
     clip_breakpoints,
     code_crossings,
@@ -106,6 +105,7 @@ from alpha_audit.suggest.events import (
     luminance_band,
     luminance_band_pieces,
 )
+from alpha_audit.suggest.scope import SCOPES
 
 __all__ = [
     "GRID_STEP",

@@ -1,0 +1,27 @@
+from .compose import (
+    MAX_NEAR_SOURCE_COLORS as MAX_NEAR_SOURCE_COLORS,
+    Blend as Blend,
+    Drawing as Drawing,
+    Layer as Layer,
+    blend_colors as blend_colors,
+    composite_drawings as composite_drawings,
+    near_source_canvases as near_source_canvases,
+)
+from .sheets import (
+    ICON_ALPHA as ICON_ALPHA,
+    MAX_SHEETS as MAX_SHEETS,
+    PIXEL_BUDGET as PIXEL_BUDGET,
+    SWATCH_ALPHAS as SWATCH_ALPHAS,
+    Layout as Layout,
+    Page as Page,
+    Placement as Placement,
+    Sheet as Sheet,
+    SheetSpec as SheetSpec,
+    check_writable as check_writable,
+    default_alphas as default_alphas,
+    paginate as paginate,
+    plan_sheets as plan_sheets,
+    render_all as render_all,
+    render_sheet as render_sheet,
+    write_sheet as write_sheet,
+)

@@ -1,0 +1,3 @@
+"""What suggest answers: one coefficient for the set, per colour, per group of roles, per icon."""
+
+SCOPES = ("set", "colour", "group", "icon")
