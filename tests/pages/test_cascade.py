@@ -23,6 +23,16 @@ def rule(prop: str, value: str, position: int = 0, *, important: bool = False,
     return Declaration(prop, prop, value, important, kind, layer, position)
 
 
+def _as_reported(decl: Declaration) -> Declaration:
+    """Hints and the engine's own colours come as devtools reports them: unlayered, at
+    positions -1 and -2, and a hint is never ``!important`` (markup has no such flag)."""
+    if decl.kind == "hint":
+        return rule("color", decl.value, -1, kind="hint")
+    if decl.kind == "ua":
+        return rule("color", decl.value, -2, important=decl.important, kind="ua")
+    return decl
+
+
 _DECLS = st.builds(
     rule,
     st.just("color"),
@@ -31,7 +41,7 @@ _DECLS = st.builds(
     important=st.booleans(),
     layer=st.sampled_from([UNLAYERED, (0, LAST_LAYER), (1, LAST_LAYER), (0, 0, LAST_LAYER)]),
     kind=st.sampled_from(["rule", "rule", "attribute", "hint", "ua"]),
-)
+).map(_as_reported)
 
 
 @given(st.lists(_DECLS, max_size=8, unique_by=lambda d: (d.kind, d.position)), st.randoms())

@@ -91,14 +91,8 @@ def declarations(
     if pseudo is None:
         rules = matched.get("matchedCSSRules") or []
     else:
-        rules = next(
-            (
-                p.get("matches") or []
-                for p in matched.get("pseudoElements") or []
-                if p.get("pseudoType") == pseudo
-            ),
-            [],
-        )
+        pseudos = matched.get("pseudoElements") or []
+        rules = next((p.get("matches") or [] for p in pseudos if p.get("pseudoType") == pseudo), [])
     out: list[dict[str, Any]] = []
     layers: dict[tuple[str, ...], int] = {}
     position = 0
@@ -110,61 +104,68 @@ def declarations(
             # the colour is nobody's declaration in the project.
             for prop in rule.get("style", {}).get("cssProperties", ()):
                 if prop.get("name") == "color":
-                    out.append(
-                        {"property": "color", "name": "color", "value": str(prop.get("value")),
-                         "important": False, "kind": "ua", "layer": [LAST_LAYER], "position": -2}
-                    )  # fmt: skip
-            continue
-        if origin != "regular":
-            continue  # injected (extensions) and inspector rules are no page's
-        path = tuple(str(layer.get("text", "")) for layer in reversed(rule.get("layers") or []))
-        layer = [layers.setdefault(path, len(layers)), LAST_LAYER] if path else [LAST_LAYER]
-        sheet_id = str(rule.get("styleSheetId", ""))
-        header = headers.get(sheet_id)
-        if sheet_id not in sheets:
-            sheets[sheet_id] = len(sheets)
-        start_line = int(header.get("startLine", 0)) if header else 0
-        start_column = int(header.get("startColumn", 0)) if header else 0
-        selector = str(rule.get("selectorList", {}).get("text", ""))
-        for prop in _written(rule.get("style", {})):
-            value, important = _value(prop)
-            span = prop["range"]
-            line = int(span["startLine"])
-            column = int(span["startColumn"]) + (start_column if line == 0 else 0)
-            for target in _sets(str(prop.get("name", ""))):
-                out.append(
-                    {
-                        "property": target,
-                        "name": str(prop["name"]),
-                        "value": value,
-                        "important": important,
-                        "kind": "rule",
-                        "layer": layer,
-                        "position": position,
-                        "sheet": sheets[sheet_id],
-                        "line": start_line + line,
-                        "column": column,
-                        "text": str(prop.get("text", "")),
-                        "selector": selector,
-                    }
-                )
-        position += 1
+                    out.append(_declared("color", "color", str(prop.get("value")), "ua", -2))
+        elif origin == "regular":  # injected (extensions) and inspector rules are no page's
+            out += _rule_declarations(rule, position, layers, headers, sheets)
+            position += 1
     if pseudo is None:
-        inline = matched.get("inlineStyle") or {}
-        for prop in _written(inline):
-            value, important = _value(prop)
-            for target in _sets(str(prop.get("name", ""))):
-                out.append(
-                    {"property": target, "name": str(prop["name"]), "value": value,
-                     "important": important, "kind": "attribute", "layer": [LAST_LAYER],
-                     "position": position, "text": str(inline.get("cssText", ""))[:MAX_VALUE]}
-                )  # fmt: skip
-        for prop in (matched.get("attributesStyle") or {}).get("cssProperties", ()):
-            name = str(prop.get("name", ""))
-            if name in _HINTS:
-                value = (attributes or {}).get(name, str(prop.get("value", "")))
-                out.append(
-                    {"property": name, "name": name, "value": value[:MAX_VALUE],
-                     "important": False, "kind": "hint", "layer": [LAST_LAYER], "position": -1}
-                )  # fmt: skip
+        out += _inline_and_hints(matched, position, attributes or {})
+    return out
+
+
+def _declared(
+    target: str, name: str, value: str, kind: str, position: int, *, important: bool = False
+) -> dict[str, Any]:
+    return {"property": target, "name": name, "value": value, "important": important,
+            "kind": kind, "layer": [LAST_LAYER], "position": position}  # fmt: skip
+
+
+def _rule_declarations(
+    rule: dict[str, Any],
+    position: int,
+    layers: dict[tuple[str, ...], int],
+    headers: dict[str, dict[str, Any]],
+    sheets: dict[str, int],
+) -> list[dict[str, Any]]:
+    """The traced declarations of one author rule, with their sheet, line and column."""
+    path = tuple(str(layer.get("text", "")) for layer in reversed(rule.get("layers") or []))
+    layer = [layers.setdefault(path, len(layers)), LAST_LAYER] if path else [LAST_LAYER]
+    sheet_id = str(rule.get("styleSheetId", ""))
+    header = headers.get(sheet_id) or {}
+    sheets.setdefault(sheet_id, len(sheets))
+    start_line, start_column = int(header.get("startLine", 0)), int(header.get("startColumn", 0))
+    selector = str(rule.get("selectorList", {}).get("text", ""))
+    out = []
+    for prop in _written(rule.get("style", {})):
+        value, important = _value(prop)
+        line = int(prop["range"]["startLine"])
+        column = int(prop["range"]["startColumn"]) + (start_column if line == 0 else 0)
+        for target in _sets(str(prop.get("name", ""))):
+            out.append(
+                _declared(target, str(prop["name"]), value, "rule", position, important=important)
+                | {"layer": layer, "sheet": sheets[sheet_id], "line": start_line + line,
+                   "column": column, "text": str(prop.get("text", "")), "selector": selector}
+            )  # fmt: skip
+    return out
+
+
+def _inline_and_hints(
+    matched: dict[str, Any], position: int, attributes: dict[str, str]
+) -> list[dict[str, Any]]:
+    """The node's ``style=`` declarations and its presentational hints (``fill="…"``)."""
+    out = []
+    inline = matched.get("inlineStyle") or {}
+    for prop in _written(inline):
+        value, important = _value(prop)
+        for target in _sets(str(prop.get("name", ""))):
+            out.append(
+                _declared(target, str(prop["name"]), value, "attribute", position,
+                          important=important)
+                | {"text": str(inline.get("cssText", ""))[:MAX_VALUE]}
+            )  # fmt: skip
+    for prop in (matched.get("attributesStyle") or {}).get("cssProperties", ()):
+        name = str(prop.get("name", ""))
+        if name in _HINTS:
+            value = attributes.get(name, str(prop.get("value", "")))
+            out.append(_declared(name, name, value[:MAX_VALUE], "hint", -1))
     return out
