@@ -316,7 +316,6 @@ def base_baseline(
     """
     import tempfile
 
-    from alpha_audit.load.config import resolve_config
     from alpha_audit.load.git import export_revision, git_toplevel, resolve_commit
 
     notes: list[str] = []
@@ -329,14 +328,6 @@ def base_baseline(
         tree = Path(tmp) / "revision" / top.name
         tree.mkdir(parents=True)
         commit = resolve_commit(top, ref, home)
-
-        def moved(path: str | Path) -> str | Path:
-            """A path inside the repository, in the revision's tree; anything else as given."""
-            full = (start / path).resolve()
-            if not (start / path).exists() or not full.is_relative_to(top):
-                return path  # a bundled name, or outside the repository
-            return tree / full.relative_to(top)
-
         try:
             skipped = export_revision(top, commit, tree, home)
             if skipped:
@@ -346,24 +337,7 @@ def base_baseline(
                     f"(first: {skipped[0]})"
                 )
             (tree / ".git").mkdir(exist_ok=True)  # the project root, as in the checkout
-            here = tree / start.resolve().relative_to(top)
-            config = overrides.config
-            mapped = replace(
-                overrides,
-                config=None if config is None else Path(moved(config)),
-                themes=tuple(moved(t) for t in overrides.themes),
-                iconsets=tuple(moved(s) for s in overrides.iconsets),
-                baseline=None,
-            )
-            project = resolve_config(mapped, here if here.is_dir() else tree)
-            project = replace(project, baseline=None)
-            work, _, _ = plan(project)
-            with contextlib.ExitStack() as stack:
-                if pool is None:
-                    pool = stack.enter_context(render_pool())
-                found: list[Finding] = []
-                for result in audits(project, work, pool=pool):
-                    found += collect([result], project.policy, seen=found)
+            found = _audit_revision(overrides, start, top, tree, pool)
         except AlphaAuditError as exc:
             # Files of the revision are named as in the repository, not in our folder.
             path = exc.path
@@ -376,6 +350,39 @@ def base_baseline(
             return BaseAudit(Baseline(kind="base", name=ref), (*notes, why), audited=False)
     keys = frozenset(f.key for f in found if f.level is Level.FAIL)
     return BaseAudit(Baseline(keys=keys, kind="base", name=ref), tuple(notes), audited=True)
+
+
+def _audit_revision(
+    overrides: Overrides, start: Path, top: Path, tree: Path, pool: RenderPool | None
+) -> list[Finding]:
+    """Every finding of the revision exported to ``tree`` (the repository at ``top``),
+    its config resolved from where ``start`` is in the checkout."""
+    from alpha_audit.load.config import resolve_config
+
+    def moved(path: str | Path) -> str | Path:
+        """A path inside the repository, in the revision's tree; anything else as given."""
+        full = (start / path).resolve()
+        if not (start / path).exists() or not full.is_relative_to(top):
+            return path  # a bundled name, or outside the repository
+        return tree / full.relative_to(top)
+
+    here = tree / start.resolve().relative_to(top)
+    mapped = replace(
+        overrides,
+        config=None if overrides.config is None else Path(moved(overrides.config)),
+        themes=tuple(moved(t) for t in overrides.themes),
+        iconsets=tuple(moved(s) for s in overrides.iconsets),
+        baseline=None,
+    )
+    project = replace(resolve_config(mapped, here if here.is_dir() else tree), baseline=None)
+    work, _, _ = plan(project)
+    with contextlib.ExitStack() as stack:
+        if pool is None:
+            pool = stack.enter_context(render_pool())
+        found: list[Finding] = []
+        for result in audits(project, work, pool=pool):
+            found += collect([result], project.policy, seen=found)
+    return found
 
 
 def _unique(paths: Sequence[str | Path]) -> list[Path]:

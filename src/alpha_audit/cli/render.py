@@ -229,9 +229,8 @@ def render_command(
         # Crops are cut while each page state is measured, for the html report only.
         crops=MAX_CROPS if any(kind is CheckFormat.HTML for kind, _ in pairs) else None,
     )
-    known = None
-    if settings.baseline is not None and write_baseline is None:
-        known = read_baseline(settings.baseline)
+    base = settings.baseline if write_baseline is None else None
+    known = read_baseline(base) if base is not None else None
     manifest = load_iconset(settings.iconset) if settings.iconset is not None else None
     with progress_bar("rendering") as progress:
         run, paints = audit_pages(settings, manifest, progress=progress)

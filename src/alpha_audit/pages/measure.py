@@ -109,6 +109,13 @@ class DeclaredPaint:
     text: str
     index: int | None = None  # its place in the probe's paints of the icon (None: an image)
 
+    @property
+    def label(self) -> str:
+        """How a report names the paint: ``image``, ``currentColor`` or its hex colour."""
+        if self.color is None:
+            return "image"
+        return "currentColor" if self.current else linear_to_hex(self.color)
+
 
 @dataclass(frozen=True)
 class PageContext:
@@ -531,19 +538,12 @@ def _measure_icon(
     name = icon_name(icon, manifest_icon)
     out = []
     for k, (paint, f) in enumerate(zip(paints, found, strict=True)):
-        drawn = behind = None
-        drawn_lin = behind_lin = None
-        gated = None
-        model = _Model()
         mine = labels == k
         worst, median = _diagnosis(drawn_all[candidates & mine], hidden_all[candidates & mine])
-        if f.full.any():
-            # drawn on behind: the pair that limits (the gated contrast is theirs).
-            gated, pair_drawn, pair_behind = _limit(drawn_all[f.full], hidden_all[f.full])
-            drawn, drawn_lin = _hex(pair_drawn)
-            behind, behind_lin = _hex(pair_behind)
-            only = manifest_icon if paint.current or len(paints) == 1 else None
-            model = _model(paint, only, drawn_lin, behind_lin)
+        only = manifest_icon if paint.current or len(paints) == 1 else None
+        gated, (drawn, drawn_lin), (behind, behind_lin), model = _judge(
+            paint, f, drawn_all, hidden_all, only
+        )
         out.append(
             MeasuredPaint(
                 source=page.source,
@@ -555,11 +555,7 @@ def _measure_icon(
                 match=match,
                 element=icon.kind,
                 dom_path=icon.dom_path,
-                paint=(
-                    "image"
-                    if paint.color is None
-                    else ("currentColor" if paint.current else linear_to_hex(paint.color))
-                ),
+                paint=paint.label,
                 kinds=paint.kinds,
                 declared=None if paint.color is None else linear_to_hex(paint.color),
                 declared_opacity=min(1.0, paint.opacity),
@@ -586,6 +582,30 @@ def _measure_icon(
             )
         )
     return out
+
+
+_Shown = tuple[str | None, Linear | None]  # a colour as hex and linear, or nothing
+
+
+def _judge(
+    paint: DeclaredPaint,
+    found: _Found,
+    drawn: NDArray[np.float64],
+    hidden: NDArray[np.float64],
+    manifest_icon: Icon | None,
+) -> tuple[
+    float | None, tuple[str | None, Linear | None], tuple[str | None, Linear | None], _Model
+]:
+    """The gated contrast of a paint, the pair that limits it (drawn on behind: the gated
+    contrast is theirs, as hex and linear) and the model's input and predictions;
+    nothing when no pixel shows the paint at full coverage."""
+    if not found.full.any():
+        return None, (None, None), (None, None), _Model()
+    gated, pair_drawn, pair_behind = _limit(drawn[found.full], hidden[found.full])
+    drawn_hex, drawn_lin = _hex(pair_drawn)
+    behind_hex, behind_lin = _hex(pair_behind)
+    model = _model(paint, manifest_icon, drawn_lin, behind_lin)
+    return gated, (drawn_hex, drawn_lin), (behind_hex, behind_lin), model
 
 
 def measure_capture(
