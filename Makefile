@@ -45,7 +45,7 @@ fixtures: $(STAMP)
 ## test suite on one pytest-xdist worker per core (TEST_WORKERS=0: in one process, no xdist)
 TEST_WORKERS ?= auto
 test: lint browser dist fixtures
-	ALPHA_AUDIT_DIST=$(CURDIR)/dist $(BIN)/pytest -n $(TEST_WORKERS) --dist loadgroup
+	ALPHA_AUDIT_DIST=$(CURDIR)/dist $(BIN)/pytest -n $(TEST_WORKERS) --dist loadfile
 
 ## lint: ruff's lint and format checks, mypy --strict on src/alpha_audit ([tool.mypy]), then
 ## the layers as import contracts ([tool.importlinter]: a wrong import fails here)

@@ -21,34 +21,10 @@ settings.register_profile("dev", deadline=None)
 settings.load_profile("ci" if os.environ.get("CI") else "dev")
 
 
-# Parallel runs (`make test`: pytest-xdist's `-n auto --dist loadgroup`): the tests of each
-# of these run on one worker, in order, so that what their module-scoped fixtures build is
-# built once: the distributions and their venvs, a browser per engine (the browser and
-# page tests share one group: engines are multi-threaded and their timeouts wall-clock),
-# a reproduction run, the paper's broad grid, the hostile corpus's render, the example's
-# masks.  Everything else is handed out test by test.
-ONE_WORKER = {
-    "packaging/test_dists.py": "dists",
-    "browser/": "browsers",
-    "pages/": "browsers",
-    "reproduce/test_paper_figures.py": "reproduce-run",
-    "reproduce/test_experiments.py": "broad-grid",
-    "security/test_hostile.py": "hostile-corpus",
-    "preview/test_sheets.py": "example-masks",
-    "render/test_sarif_fixes.py": "sarif-fixes",
-}
-TESTS = Path(__file__).resolve().parent
-
-
-def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
-    for item in items:
-        if not item.path.is_relative_to(TESTS):
-            continue  # the doctests in src/
-        where = item.path.relative_to(TESTS).as_posix()
-        for prefix, group in ONE_WORKER.items():
-            if where.startswith(prefix):
-                item.add_marker(pytest.mark.xdist_group(group))
-                break
+# Parallel runs (`make test`: pytest-xdist's `-n auto --dist loadfile`) keep each test file
+# on one worker, so what a module-scoped fixture builds (the distributions and their venvs, an
+# engine, a reproduction run, the hostile corpus's render) is built once.  (`loadgroup` with
+# `xdist_group` marks no longer groups anything under pytest 9.2: pytest-xdist issue 1386.)
 
 
 @pytest.fixture(params=list(ENGINES), scope="module")

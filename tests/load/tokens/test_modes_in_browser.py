@@ -33,7 +33,6 @@ from alpha_audit.load.tokens.model import ModeConditions, TokenModes
 
 from .test_css_modes import MINIMAL
 
-pytestmark = pytest.mark.xdist_group("token-packages")
 REPO = Path(__file__).resolve().parents[3]
 
 
