@@ -144,6 +144,19 @@ def _special(rng: np.random.Generator) -> list[Spec]:
         f'<img id="image" width="32" height="32" style="display: block" '
         f'src="data:image/svg+xml,{quote(image)}">'
     )
+    # No fill attribute: the initial fill (black) of an open path along one axis and of a
+    # <line> paints nothing; only the stroke is a paint.
+    stroke = np.array([31.0, 111.0, 235.0])
+    open_path = (
+        '<svg id="open" xmlns="http://www.w3.org/2000/svg" width="32" height="32" '
+        f'viewBox="0 0 24 24" style="display: block"><path d="M4 12h16" '
+        f'stroke="{_hex(stroke)}" stroke-width="2.5"/></svg>'
+    )
+    line = (
+        '<svg id="line" xmlns="http://www.w3.org/2000/svg" width="32" height="32" '
+        f'viewBox="0 0 24 24" style="display: block"><line x1="4" y1="4" x2="20" y2="20" '
+        f'stroke="{_hex(stroke)}" stroke-width="2.5"/></svg>'
+    )
     transparent = (
         '<svg id="transparent" xmlns="http://www.w3.org/2000/svg" width="32" height="32" '
         f'viewBox="0 0 24 24" style="color: transparent; display: block"><polygon '
@@ -154,6 +167,8 @@ def _special(rng: np.random.Generator) -> list[Spec]:
         Spec("transparent", _cell(ICONS + 3, page, "", transparent), page, page, "transparent"),
         Spec("invisible", _cell(ICONS + 1, page, "", invisible), page, page, "invisible"),
         Spec("image", _cell(ICONS + 2, page, "", img), fill, page, "image"),
+        Spec("open", _cell(ICONS + 4, page, "", open_path), stroke, page, "open", stroke),
+        Spec("line", _cell(ICONS + 5, page, "", line), stroke, page, "line", stroke),
     ]
 
 
@@ -247,6 +262,16 @@ def test_a_hairline_could_not_be_measured_and_neither_passes_nor_fails(measured)
     assert paint.status == UNMEASURED and paint.basis is None
     assert paint.contrast is None and _passes(paint) is None
     assert paint.coverage.pixels > 0 and paint.coverage.full == 0
+
+
+def test_an_unfilled_open_path_and_a_line_are_their_stroke_alone(measured):
+    """No fill attribute: the initial black fill of ``M4 12h16`` and of a ``<line>``
+    paints nothing, so it is no paint (it was a "could not measure" warning); the stroke is
+    measured, and the fixture checks each icon has one paint."""
+    for key in ("open", "line"):
+        _, paint = measured[key]
+        assert paint.status == MEASURED and paint.kinds == ("stroke",), (key, paint.kinds)
+        assert paint.basis is Basis.DECLARED
 
 
 def test_a_transparent_icon_draws_nothing_and_is_no_row(measured):

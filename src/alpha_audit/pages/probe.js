@@ -80,6 +80,21 @@
     return product;
   }
 
+  // Whether a shape's fill can paint anything.  A <line> has no interior (SVG 2, 10.5: lines
+  // are never filled); an open path along one axis ("M4 12h16") has a box of zero height
+  // or width.  Only a box with exactly one zero side says so: an element the engine does
+  // not lay out (a <symbol>'s shape reached through <use>) reports 0 x 0 and keeps its fill.
+  function fillHasArea(el, viaUse) {
+    if (el.localName === "line") return false;
+    if (viaUse || typeof el.getBBox !== "function") return true;
+    try {
+      const b = el.getBBox();
+      return (b.width === 0) === (b.height === 0);
+    } catch (e) {
+      return true;
+    }
+  }
+
   // A paint as the engine computed it: the colour text (parsed by coloraide in Python)
   // and whether it is the element's currentColor.
   function declaredPaints(shapes, host, viaUse) {
@@ -103,6 +118,7 @@
         }
         if (!value || value === "none" || value.startsWith("url(")) continue;
         if (kind === "stroke" && parseFloat(own.strokeWidth) === 0) continue;
+        if (kind === "fill" && !fillHasArea(el, viaUse)) continue;
         const o = opacity * parseFloat(own[kind === "fill" ? "fillOpacity" : "strokeOpacity"]);
         if (o <= 0) continue;
         const key = `${value}|${o}`;
