@@ -1089,9 +1089,3 @@ def _separations(result: AuditResult) -> list[Separation]:
             )
         )
     return out
-
-
-def rows_of_icons(result: AuditResult, icons: Sequence[str]) -> NDArray[np.bool_]:
-    """Which rows draw one of ``icons`` (names), ``(p,)``."""
-    wanted = set(icons)
-    return np.array([e.icon.name in wanted for e in result.entries], dtype=bool).reshape(-1)

@@ -269,8 +269,3 @@ def exported_path(color: str, canvas: ExportCanvas, mode: ExportMode) -> str:
     """Token path of a colour's output on a canvas: ``<color>`` with one canvas, else
     ``<color>.on.<canvas>``."""
     return color if len(mode.canvases) == 1 else f"{color}.on.{canvas.short}"
-
-
-def property_name(path: str) -> str:
-    """CSS custom property of a token path: dots to dashes (``--color-icon-ok``)."""
-    return "--" + path.replace(".", "-")
