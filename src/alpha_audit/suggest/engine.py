@@ -35,7 +35,7 @@ can be drawn, so the question is alpha 1 itself.  Pure computation.
 from __future__ import annotations
 
 import hashlib
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import replace
 from decimal import ROUND_FLOOR, Decimal
 from functools import cached_property
@@ -468,7 +468,6 @@ def suggest(
     unknown = wanted - set(SCOPES)
     if unknown:
         raise UsageError(f"unknown scope {sorted(unknown)[0]!r}; use one of: {', '.join(SCOPES)}")
-    iconset = result.iconset
     n = len(engine.names)
     start, tick = progress or ((lambda total: None), (lambda: None))
     members: dict[str, list[int]] = {name: [] for name in engine.colours}
@@ -483,24 +482,7 @@ def suggest(
     )
     overall = engine.answer(np.ones(n, dtype=bool), precision) if "set" in wanted else None
     tick()
-
-    per_color = []
-    for name, icons in members.items() if "colour" in wanted else ():
-        if not icons:
-            tick()
-            continue
-        moving = np.zeros(n, dtype=bool)
-        moving[icons] = True
-        per_color.append(
-            ColorSuggestion(
-                color=name,
-                source=iconset.icons[icons[0]].color,
-                icons=tuple(engine.names[i] for i in icons),
-                safe=engine.answer(moving, precision, per_canvas_needed=False),
-            )
-        )
-        tick()
-
+    per_color = _per_colour(engine, members, precision, tick) if "colour" in wanted else []
     per_group = []
     for colours, safe, seed in engine.joint_groups(seeds, precision):
         icons = sorted(i for c in colours for i in members.get(c, []))
@@ -509,36 +491,63 @@ def suggest(
         )
     for _ in seeds:
         tick()
-
-    # Icons of one style (the same paints at the same alpha) get the same answer,
-    # unless an exemption names an icon; then every icon is asked on its own.
-    share = not any(e.icon is not None for e in policy.exemptions)
-    styles: dict[int, list[tuple[int, float]]] = {}
-    for p, i in enumerate(engine.row_icon.tolist()):
-        styles.setdefault(i, []).append((int(engine.keys[p]), float(result.alpha[p])))
-    cache: dict[tuple[tuple[int, float], ...], tuple[str, SafeAlpha]] = {}
-    per_icon = []
-    for i, icon in enumerate(iconset.icons if "icon" in wanted else ()):
-        style = tuple(sorted(styles.get(i, [])))
-        if share and style in cache:
-            rep, safe = cache[style]
-            safe = _swap_names(safe, rep, icon.name)
-        else:
-            moving = np.zeros(n, dtype=bool)
-            moving[i] = True
-            safe = engine.answer(moving, precision, per_canvas_needed=False)
-            cache[style] = (icon.name, safe)
-        per_icon.append(IconSuggestion(icon.name, icon.color_name or icon.color, icon.alpha, safe))
-        tick()
-    empty = SafeAlpha(None, None, None, ())
+    per_icon = _per_icon(engine, precision, tick) if "icon" in wanted else []
     return SuggestResult(
         audit=result,
         policy=policy,
         alpha_max=engine.a_hi,
         precision=precision,
-        overall=overall if overall is not None else empty,
+        overall=overall if overall is not None else SafeAlpha(None, None, None, ()),
         per_color=tuple(per_color),
         per_icon=tuple(per_icon),
         per_group=tuple(per_group),
         left_out=tuple(p.icon for p in result.problems),
     )
+
+
+def _per_colour(
+    engine: _Engine, members: dict[str, list[int]], precision: int, tick: Callable[[], None]
+) -> list[ColorSuggestion]:
+    """The answer for the icons of each colour moving together (a colour without icons has none)."""
+    out = []
+    for name, icons in members.items():
+        if icons:
+            moving = np.zeros(len(engine.names), dtype=bool)
+            moving[icons] = True
+            out.append(
+                ColorSuggestion(
+                    color=name,
+                    source=engine.result.iconset.icons[icons[0]].color,
+                    icons=tuple(engine.names[i] for i in icons),
+                    safe=engine.answer(moving, precision, per_canvas_needed=False),
+                )
+            )
+        tick()
+    return out
+
+
+def _per_icon(engine: _Engine, precision: int, tick: Callable[[], None]) -> list[IconSuggestion]:
+    """The answer for each icon moving alone.
+
+    Icons of one style (the same paints at the same alpha) get the same answer,
+    unless an exemption names an icon; then every icon is asked on its own.
+    """
+    share = not any(e.icon is not None for e in engine.policy.exemptions)
+    styles: dict[int, list[tuple[int, float]]] = {}
+    for p, i in enumerate(engine.row_icon.tolist()):
+        styles.setdefault(i, []).append((int(engine.keys[p]), float(engine.result.alpha[p])))
+    cache: dict[tuple[tuple[int, float], ...], tuple[str, SafeAlpha]] = {}
+    out = []
+    for i, icon in enumerate(engine.result.iconset.icons):
+        style = tuple(sorted(styles.get(i, [])))
+        if share and style in cache:
+            rep, safe = cache[style]
+            safe = _swap_names(safe, rep, icon.name)
+        else:
+            moving = np.zeros(len(engine.names), dtype=bool)
+            moving[i] = True
+            safe = engine.answer(moving, precision, per_canvas_needed=False)
+            cache[style] = (icon.name, safe)
+        out.append(IconSuggestion(icon.name, icon.color_name or icon.color, icon.alpha, safe))
+        tick()
+    return out
