@@ -196,8 +196,8 @@ class Collisions:
             rule = self.scene.policy.collision_rule(widest, self.scene.policy.rules)
             if rule is None:
                 continue
-            icons = tuple(sorted({i for m in members for i in tracks.icons[m]}))
-            if not self.scene.exempt(rule, self.scene.canvases[j], icons):
+            icons = self.scene.exempt(rule, j, [i for m in members for i in tracks.icons[m]])
+            if icons is not None:
                 return rule, icons
         return None
 

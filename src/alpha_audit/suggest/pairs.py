@@ -9,7 +9,7 @@ apart are never evaluated.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
@@ -33,7 +33,7 @@ from alpha_audit.color.nearest import (
 from alpha_audit.findings import cvd_collision_groups
 from alpha_audit.policy import confusion_possible
 from alpha_audit.rules import Rule
-from alpha_audit.suggest.events import clip_breakpoints, first_below
+from alpha_audit.suggest.events import first_below
 from alpha_audit.suggest.scene import ALPHA_LO, CHUNK, Found, Scene, Tracks, alpha_grid
 
 
@@ -52,9 +52,7 @@ def separation_limits(scene: Scene, tracks: Tracks, caps: NDArray[np.float64]) -
     moving = np.flatnonzero(tracks.moving)
     if moving.size == 0:
         return out
-    breaks = clip_breakpoints(
-        tracks.source[moving][:, np.newaxis, :], scene.backgrounds[np.newaxis]
-    ).reshape(-1)
+    breaks = scene.breaks(tracks.source[moving])
     every = np.arange(len(tracks.label))
     for j in range(len(scene.canvases)):
         if caps[j] <= ALPHA_LO:
@@ -86,8 +84,10 @@ def separation_limits(scene: Scene, tracks: Tracks, caps: NDArray[np.float64]) -
 
             _, unsafe = first_below(delta_e, grid, level)
             for p in np.flatnonzero(np.isfinite(unsafe)).tolist():
-                icons = tuple(sorted({*tracks.icons[first[p]], *tracks.icons[second[p]]}))
-                if not scene.exempt(Rule.SEPARATION, scene.canvases[j], icons):
+                icons = scene.exempt(
+                    Rule.SEPARATION, j, [*tracks.icons[first[p]], *tracks.icons[second[p]]]
+                )
+                if icons is not None:
                     out.append(Found(Rule.SEPARATION, j, icons, float(unsafe[p]), True))
     return out
 
@@ -105,14 +105,9 @@ def confusion_limits(
     if n < 2 or not roles.moving.any():
         return []
     level = scene.policy.min_delta_e
-    breaks = clip_breakpoints(
-        roles.source[:, np.newaxis, :], scene.backgrounds[np.newaxis]
-    ).reshape(-1)
-    full = alpha_grid(ALPHA_LO, float(caps.max()), breaks)
+    full = alpha_grid(ALPHA_LO, float(caps.max()), scene.breaks(roles.source))
 
-    def view(c: NDArray[np.float64]) -> NDArray[np.float64]:
-        return c if deficiency is None else simulate_cvd(c, deficiency)
-
+    view = _viewer(deficiency)
     every = np.arange(n)
     out: list[Found] = []
     for j in range(len(scene.canvases)):
@@ -163,8 +158,8 @@ def confusion_limits(
 
             _, unsafe = first_below(delta_e, grid, level)
             for p in np.flatnonzero(np.isfinite(unsafe)).tolist():
-                icons = tuple(sorted({*roles.icons[first[p]], *roles.icons[second[p]]}))
-                if not scene.exempt(rule, scene.canvases[j], icons):
+                icons = scene.exempt(rule, j, [*roles.icons[first[p]], *roles.icons[second[p]]])
+                if icons is not None:
                     pair = scene.role_pair(roles, first[p], second[p])
                     out.append(Found(rule, j, icons, float(unsafe[p]), True, pair))
                     if shrink:
@@ -177,10 +172,7 @@ def cvd_collision_limits(scene: Scene, roles: Tracks, cap: float) -> list[Found]
     if n < 2 or not roles.moving.any():
         return []
     sources = _sources(roles)
-    breaks = clip_breakpoints(
-        roles.source[:, np.newaxis, :], scene.backgrounds[np.newaxis]
-    ).reshape(-1)
-    grid = alpha_grid(ALPHA_LO, cap, breaks)
+    grid = alpha_grid(ALPHA_LO, cap, scene.breaks(roles.source))
     every = np.arange(n)
     out: list[Found] = []
     for deficiency in DEFICIENCIES:
@@ -226,13 +218,10 @@ def _cvd_group(
     for _, members in cvd_collision_groups(seen, ref, sources):
         if not any(roles.moving[m] for m in members):
             continue
-        icons = tuple(sorted({i for m in members for i in roles.icons[m]}))
-        if not scene.exempt(Rule.CVD_COLLISION, scene.canvases[j], icons):
+        icons = scene.exempt(Rule.CVD_COLLISION, j, [i for m in members for i in roles.icons[m]])
+        if icons is not None:
             return icons
     return None
-
-
-# -- the direct check of one coefficient -------------------------------------
 
 
 def pairs_below_at(
@@ -245,10 +234,7 @@ def pairs_below_at(
         return None
     level = scene.policy.min_delta_e
     every = np.arange(n)
-
-    def view(c: NDArray[np.float64]) -> NDArray[np.float64]:
-        return c if deficiency is None else simulate_cvd(c, deficiency)
-
+    view = _viewer(deficiency)
     for j in range(len(scene.canvases)):
         both = scene.shown(tracks, every, np.array([a, ALPHA_LO]), j)
         lab = linear_to_lab(view(both[:, 0]))
@@ -267,8 +253,8 @@ def pairs_below_at(
             lab_ref = linear_to_lab(view(solid))
             keep &= confusion_possible(delta_e_2000_lab(lab_ref[first], lab_ref[second]), level)
         for f, g in zip(first[keep].tolist(), second[keep].tolist(), strict=True):
-            icons = tuple(sorted({*tracks.icons[f], *tracks.icons[g]}))
-            if not scene.exempt(rule, scene.canvases[j], icons):
+            icons = scene.exempt(rule, j, [*tracks.icons[f], *tracks.icons[g]])
+            if icons is not None:
                 pair = () if rule is Rule.SEPARATION else scene.role_pair(tracks, f, g)
                 return Found(rule, j, icons, a, True, pair)
     return None
@@ -311,3 +297,10 @@ def pair_objection(scene: Scene, moving_icons: NDArray[np.bool_], a: float) -> F
 def _sources(roles: Tracks) -> list[str]:
     """Each role track's colour as a key (what :func:`cvd_collision_groups` compares)."""
     return [roles.source[t].tobytes().hex() for t in range(len(roles.label))]
+
+
+def _viewer(deficiency: Deficiency | None) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
+    """How colours look to a viewer with ``deficiency`` (``None``: as they are)."""
+    if deficiency is None:
+        return lambda c: c
+    return lambda c: simulate_cvd(c, deficiency)

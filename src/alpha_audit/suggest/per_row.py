@@ -30,7 +30,6 @@ from alpha_audit.policy import (
 )
 from alpha_audit.rules import Rule
 from alpha_audit.suggest.events import (
-    clip_breakpoints,
     code_crossings,
     first_below,
     first_in_luminance_band,
@@ -197,10 +196,7 @@ def _drift(scene: Scene, rule: Rule, limit: float, selected: NDArray[np.bool_]) 
     start = np.full((len(scene.row_icon), m), np.nan)
     if rows.size == 0:
         return []
-    breaks = clip_breakpoints(
-        r.sources[rows][:, np.newaxis, :], scene.backgrounds[np.newaxis]
-    ).reshape(-1)
-    grid = alpha_grid(ALPHA_LO, scene.a_hi, breaks)
+    grid = alpha_grid(ALPHA_LO, scene.a_hi, scene.breaks(r.sources[rows]))
     per = max(1, CHUNK // (grid.size * m))
     bg = scene.backgrounds[np.newaxis, :, np.newaxis, :]
     for lo in range(0, rows.size, per):
@@ -229,8 +225,8 @@ def _collect(
 ) -> list[Found]:
     out: list[Found] = []
     for p, j in zip(*np.nonzero(np.isfinite(start)), strict=True):
-        icon = (int(scene.row_icon[p]),)
-        if not scene.exempt(rule, scene.canvases[j], icon):
+        icon = scene.exempt(rule, int(j), (int(scene.row_icon[p]),))
+        if icon is not None:
             out.append(Found(rule, int(j), icon, float(start[p, j]), bool(attained[p, j])))
     return out
 
@@ -270,7 +266,7 @@ def row_objection(scene: Scene, moving_icons: NDArray[np.bool_], a: float) -> Fo
         checks.append((Rule.THIN_STROKES, thin))
     for rule, broken in checks:
         for k, j in zip(*np.nonzero(broken), strict=True):
-            icon = (int(scene.row_icon[rows[k]]),)
-            if not scene.exempt(rule, scene.canvases[j], icon):
+            icon = scene.exempt(rule, int(j), (int(scene.row_icon[rows[k]]),))
+            if icon is not None:
                 return Found(rule, int(j), icon, a, True)
     return None

@@ -22,6 +22,7 @@ from alpha_audit.findings import findings_for, locked_rows
 from alpha_audit.policy import Policy
 from alpha_audit.rows import AuditResult
 from alpha_audit.rules import RULES, Family, Rule
+from alpha_audit.suggest.events import clip_breakpoints
 
 # The bracketing grid for rules without a closed form in alpha; a dip below a
 # limit narrower than this can be missed (the answer is re-checked directly).
@@ -120,9 +121,15 @@ class Scene:
         self._last_tracks: dict[bool, tuple[bytes, Tracks]] = {}
         self._group_ids: dict[bool, tuple[NDArray[np.intp], ...]] = {}
 
-    def exempt(self, rule: Rule, canvas: str, icons: tuple[int, ...]) -> bool:
-        names = tuple(sorted(self.names[i] for i in icons))
-        return self.policy.exempt(rule, canvas, names) is not None
+    def exempt(self, rule: Rule, j: int, icons: Iterable[int]) -> tuple[int, ...] | None:
+        """``icons`` sorted, or ``None`` when an exemption of ``rule`` on canvas ``j`` holds."""
+        found = tuple(sorted(set(icons)))
+        names = tuple(sorted(self.names[i] for i in found))
+        return None if self.policy.exempt(rule, self.canvases[j], names) is not None else found
+
+    def breaks(self, sources: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Every coefficient where a channel of ``sources`` (n, 3) clips on some canvas."""
+        return clip_breakpoints(sources[:, np.newaxis, :], self.backgrounds[np.newaxis]).reshape(-1)
 
     def icon_names(self, icons: Iterable[int]) -> tuple[str, ...]:
         return tuple(sorted({self.names[i] for i in icons}))
