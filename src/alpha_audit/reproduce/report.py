@@ -399,45 +399,25 @@ def _palette_section(run: Reproduction, index: _Index) -> list[str]:
         "alpha 1.0 distinct 8-bit sources cannot collide.",
         "",
         *_HEADER,
-        _row(
-            "palette combinations",
-            p.combinations,
-            index.get(("palette", "counts", "combinations")),
-            0,
-        ),
-        _row(
-            "random combinations",
-            p.random_combinations,
-            index.get(("palette", "counts", "random_combinations")),
-            0,
-        ),
+    ]
+    rows = [
+        ("palette combinations", p.combinations, "counts", "combinations"),
+        ("random combinations", p.random_combinations, "counts", "random_combinations"),
     ]
     for a in p.alphas:
         key = alpha_key(a)
-        lines += [
-            _row(
-                f"alpha {key}: smaller CIEDE2000",
-                p.smaller[a],
-                index.get(("palette", key, "smaller")),
-                0,
-            ),
-            _row(
-                f"alpha {key}: collisions",
-                p.collisions[a],
-                index.get(("palette", key, "collisions")),
-                0,
-            ),
+        rows += [
+            (f"alpha {key}: smaller CIEDE2000", p.smaller[a], key, "smaller"),
+            (f"alpha {key}: collisions", p.collisions[a], key, "collisions"),
         ]
-    for a in p.random_alphas:
-        key = alpha_key(a)
-        lines.append(
-            _row(
-                f"alpha {key}: random-pair collisions",
-                p.random_collisions[a],
-                index.get(("palette", key, "random_collisions")),
-                0,
-            )
-        )
+    rows += [
+        (f"alpha {alpha_key(a)}: random-pair collisions", p.random_collisions[a], alpha_key(a),
+         "random_collisions")
+        for a in p.random_alphas
+    ]  # fmt: skip
+    lines += [
+        _row(label, n, index.get(("palette", group, name)), 0) for label, n, group, name in rows
+    ]
     return [*lines, ""]
 
 
