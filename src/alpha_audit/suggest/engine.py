@@ -90,13 +90,35 @@ def _round_down(value: float, precision: int) -> float:
     return float(Decimal(repr(value)).quantize(step, rounding=ROUND_FLOOR))
 
 
-class _Engine(Scene):
-    """The questions of one audit, sharing their work: per-row limits, timelines, answers."""
+class SafeAlphas(Scene):
+    """Largest-safe-alpha questions on one audit, sharing their work (per-row limits, timelines).
 
-    def __init__(self, result: AuditResult, policy: Policy, alpha_max: float) -> None:
+    ``answers(icons)`` is :func:`largest_safe_alpha` for those icons (all when ``None``).
+    """
+
+    def __init__(
+        self, result: AuditResult, policy: Policy, *, alpha_max: float = 2.0, precision: int = 3
+    ) -> None:
+        if not ALPHA_MAX.allows(alpha_max):
+            raise UsageError(ALPHA_MAX.refusal(f"alpha_max {alpha_max:g}"))
+        if (
+            isinstance(precision, bool)
+            or not isinstance(precision, int)
+            or precision not in PRECISION
+        ):
+            raise UsageError(PRECISION.refusal(f"precision {precision!r}"))
+        if not result.iconset.icons:
+            why = "could be rendered" if result.problems else "is in it"
+            raise UsageError(f"no icon of {result.iconset.name!r} {why}: nothing to suggest for")
+        if not result.theme.canvases:
+            raise UsageError(f"theme {result.theme.name!r} has no canvases")
         super().__init__(result, policy, alpha_max)
+        self.precision = precision
         self.collisions = Collisions(self)
-        self._answers: dict[tuple[bytes, int, bool], SafeAlpha] = {}
+        self._answers: dict[tuple[bytes, bool], SafeAlpha] = {}
+
+    def __call__(self, icons: Iterable[str] | None = None) -> SafeAlpha:
+        return self.answer(_moving(self, icons), per_canvas_needed=icons is None)
 
     @cached_property
     def per_row(self) -> list[Found]:
@@ -114,25 +136,22 @@ class _Engine(Scene):
             or pair_objection(self, moving_icons, a)
         )
 
-    def answer(
-        self, moving_icons: NDArray[np.bool_], precision: int, per_canvas_needed: bool = True
-    ) -> SafeAlpha:
+    def answer(self, moving_icons: NDArray[np.bool_], per_canvas_needed: bool = True) -> SafeAlpha:
         """Largest safe alpha when the icons in ``moving_icons`` share one coefficient.
 
         The same question is answered once: a colour with one icon asks what
         that icon asks (most brand colours have one logo).
         """
         moving = hashlib.blake2b(np.packbits(moving_icons).tobytes(), digest_size=16).digest()
-        key = (moving, precision, per_canvas_needed)  # 16 bytes a question, whatever the set
+        key = (moving, per_canvas_needed)  # 16 bytes a question, whatever the set
         found = self._answers.get(key)
         if found is None:
-            found = self._answer(moving_icons, precision, per_canvas_needed)
+            found = self._answer(moving_icons, per_canvas_needed)
             self._answers[key] = found
         return found
 
-    def _answer(
-        self, moving_icons: NDArray[np.bool_], precision: int, per_canvas_needed: bool
-    ) -> SafeAlpha:
+    def _answer(self, moving_icons: NDArray[np.bool_], per_canvas_needed: bool) -> SafeAlpha:
+        precision = self.precision
         m = len(self.canvases)
         found: list[Found] = []
         for rule, icons in self.static:
@@ -165,11 +184,11 @@ class _Engine(Scene):
             here = [lim for f, lim in zip(found, limits, strict=True) if f.canvas in (j, -1)]
             per_canvas_limit.append(min(here, key=_limit_order) if here else None)
         per_canvas = tuple(
-            CanvasLimit(name, self.rounded(limit, precision), limit)
+            CanvasLimit(name, self.rounded(limit), limit)
             for name, limit in zip(self.canvases, per_canvas_limit, strict=True)
         )
         limit = min(limits, key=_limit_order) if limits else None
-        alpha = self.rounded(limit, precision)
+        alpha = self.rounded(limit)
         unit = 10.0**-precision
         while alpha is not None and self.objection_at(moving_icons, alpha) is not None:
             # Only a float disagreement exactly at the rounded point gets here.
@@ -186,14 +205,14 @@ class _Engine(Scene):
     def joint(
         self,
         colours: Iterable[str],
-        precision: int,
         held: Iterable[str] = (),
         *,
         grow: bool = True,
     ) -> tuple[tuple[str, ...], SafeAlpha]:
         """The joint answer of a group of colours, and the group it has to grow into.
 
-        Every icon of the group's colours moves (but those named in ``held``); the
+        Every icon of the group's colours moves (but those named in ``held``, which
+        keep their alpha although their colour moves); the
         others keep their alpha.  What limits the answer may lie outside the group:
         a role the group pulls under the separation floor (the two roles of a
         ``confusion`` or ``cvd-confusion`` limit), or, when not even alpha 1 is safe,
@@ -215,7 +234,7 @@ class _Engine(Scene):
             moving = np.zeros(len(self.names), dtype=bool)
             for i, colour in enumerate(self.colour_of):
                 moving[i] = colour in group and self.names[i] not in keep
-            safe = self.answer(moving, precision, per_canvas_needed=False)
+            safe = self.answer(moving, per_canvas_needed=False)
             answer = tuple(sorted(group, key=lambda c: order.get(c, len(order)))), safe
             limit = safe.limit
             joins: set[str] = set()
@@ -230,7 +249,7 @@ class _Engine(Scene):
             group |= joins
 
     def joint_groups(
-        self, seeds: Iterable[Iterable[str]], precision: int
+        self, seeds: Iterable[Iterable[str]]
     ) -> list[tuple[tuple[str, ...], SafeAlpha, tuple[str, ...]]]:
         """Disjoint groups grown from ``seeds`` (:meth:`joint`), with their answers and seeds.
 
@@ -241,7 +260,7 @@ class _Engine(Scene):
         order = {c: k for k, c in enumerate(self.colours)}
         pending = [set(seed) for seed in seeds]
         while True:
-            grown = [self.joint(seed, precision) for seed in pending]
+            grown = [self.joint(seed) for seed in pending]
             for k, (colours, _) in enumerate(grown):
                 other = next((h for h in range(k) if set(grown[h][0]) & set(colours)), None)
                 if other is not None:
@@ -259,8 +278,9 @@ class _Engine(Scene):
         icons = self.icon_names(found.icons)
         return Limit(found.rule, canvas, icons, found.at, found.attained, grid, found.roles)
 
-    def rounded(self, limit: Limit | None, precision: int) -> float | None:
+    def rounded(self, limit: Limit | None) -> float | None:
         """``limit.at`` (or alpha_max) rounded down, stepping off an unsafe point."""
+        precision = self.precision
         if limit is None:
             return _round_down(self.a_hi, precision)
         if limit.attained and limit.at <= ALPHA_LO:
@@ -294,52 +314,6 @@ def _swap_names(safe: SafeAlpha, old: str, new: str) -> SafeAlpha:
     )
 
 
-def _engine(result: AuditResult, policy: Policy, alpha_max: float, precision: int) -> _Engine:
-    if not ALPHA_MAX.allows(alpha_max):
-        raise UsageError(ALPHA_MAX.refusal(f"alpha_max {alpha_max:g}"))
-    if isinstance(precision, bool) or not isinstance(precision, int) or precision not in PRECISION:
-        raise UsageError(PRECISION.refusal(f"precision {precision!r}"))
-    if not result.iconset.icons:
-        why = "could be rendered" if result.problems else "is in it"
-        raise UsageError(f"no icon of {result.iconset.name!r} {why}: nothing to suggest for")
-    if not result.theme.canvases:
-        raise UsageError(f"theme {result.theme.name!r} has no canvases")
-    return _Engine(result, policy, alpha_max)
-
-
-class SafeAlphas:
-    """Largest-safe-alpha questions on one audit, sharing their work (per-row limits, timelines).
-
-    ``answers(icons)`` is :func:`largest_safe_alpha` for those icons (all when ``None``).
-    """
-
-    def __init__(
-        self, result: AuditResult, policy: Policy, *, alpha_max: float = 2.0, precision: int = 3
-    ) -> None:
-        self._engine = _engine(result, policy, alpha_max, precision)
-        self._precision = precision
-
-    def __call__(self, icons: Iterable[str] | None = None) -> SafeAlpha:
-        per_canvas = icons is None
-        moving = _moving(self._engine, icons)
-        return self._engine.answer(moving, self._precision, per_canvas_needed=per_canvas)
-
-    def joint(
-        self, colours: Iterable[str], held: Iterable[str] = (), *, grow: bool = True
-    ) -> tuple[tuple[str, ...], SafeAlpha]:
-        """The group ``colours`` grow into and its joint answer (:meth:`_Engine.joint`).
-
-        ``held`` names icons that keep their alpha although their colour moves.
-        """
-        return self._engine.joint(colours, self._precision, held, grow=grow)
-
-    def joint_groups(
-        self, seeds: Iterable[Iterable[str]]
-    ) -> list[tuple[tuple[str, ...], SafeAlpha, tuple[str, ...]]]:
-        """Disjoint groups grown from ``seeds`` and their answers (:meth:`_Engine.joint_groups`)."""
-        return self._engine.joint_groups(seeds, self._precision)
-
-
 def largest_safe_alpha(
     result: AuditResult,
     policy: Policy,
@@ -359,11 +333,11 @@ def largest_safe_alpha(
     >>> largest_safe_alpha(audit(theme, dots), Policy()).limit.rule.value  # dark blue on yellow
     'loss'
     """
-    engine = _engine(result, policy, alpha_max, precision)
-    return engine.answer(_moving(engine, icons), precision)
+    engine = SafeAlphas(result, policy, alpha_max=alpha_max, precision=precision)
+    return engine.answer(_moving(engine, icons))
 
 
-def _moving(engine: _Engine, icons: Iterable[str] | None) -> NDArray[np.bool_]:
+def _moving(engine: SafeAlphas, icons: Iterable[str] | None) -> NDArray[np.bool_]:
     if icons is None:
         return np.ones(len(engine.names), dtype=bool)
     wanted = set(icons)
@@ -447,7 +421,7 @@ def suggest(
     roles the gate finds confused at their alphas, connected through confusion
     (:func:`confusion_groups`; ``groups`` adds more), move together and take in
     every role their joint answer finds pulled under the floor
-    (:meth:`_Engine.joint`); per icon, one icon moves.  Others keep their alpha.
+    (:meth:`SafeAlphas.joint`); per icon, one icon moves.  Others keep their alpha.
     ``policy`` is the gate's.  Icons that could not be rendered are left out, as
     ``check`` leaves them out (``left_out``).  ``progress`` is told how many
     questions there are, then each one answered.
@@ -463,7 +437,7 @@ def suggest(
     >>> alone.alpha, alone.limit.rule.value, alone.limit.icons, round(alone.limit.at, 6)
     (1.165, 'new-collision', ('o', 'x'), 1.165168)
     """
-    engine = _engine(result, policy, alpha_max, precision)
+    engine = SafeAlphas(result, policy, alpha_max=alpha_max, precision=precision)
     wanted = set(scopes)
     unknown = wanted - set(SCOPES)
     if unknown:
@@ -480,18 +454,18 @@ def suggest(
         + len(seeds)
         + n * ("icon" in wanted)
     )
-    overall = engine.answer(np.ones(n, dtype=bool), precision) if "set" in wanted else None
+    overall = engine.answer(np.ones(n, dtype=bool)) if "set" in wanted else None
     tick()
-    per_color = _per_colour(engine, members, precision, tick) if "colour" in wanted else []
+    per_color = _per_colour(engine, members, tick) if "colour" in wanted else []
     per_group = []
-    for colours, safe, seed in engine.joint_groups(seeds, precision):
+    for colours, safe, seed in engine.joint_groups(seeds):
         icons = sorted(i for c in colours for i in members.get(c, []))
         per_group.append(
             GroupSuggestion(colours, tuple(engine.names[i] for i in icons), safe, seed)
         )
     for _ in seeds:
         tick()
-    per_icon = _per_icon(engine, precision, tick) if "icon" in wanted else []
+    per_icon = _per_icon(engine, tick) if "icon" in wanted else []
     return SuggestResult(
         audit=result,
         policy=policy,
@@ -506,7 +480,7 @@ def suggest(
 
 
 def _per_colour(
-    engine: _Engine, members: dict[str, list[int]], precision: int, tick: Callable[[], None]
+    engine: SafeAlphas, members: dict[str, list[int]], tick: Callable[[], None]
 ) -> list[ColorSuggestion]:
     """The answer for the icons of each colour moving together (a colour without icons has none)."""
     out = []
@@ -519,14 +493,14 @@ def _per_colour(
                     color=name,
                     source=engine.result.iconset.icons[icons[0]].color,
                     icons=tuple(engine.names[i] for i in icons),
-                    safe=engine.answer(moving, precision, per_canvas_needed=False),
+                    safe=engine.answer(moving, per_canvas_needed=False),
                 )
             )
         tick()
     return out
 
 
-def _per_icon(engine: _Engine, precision: int, tick: Callable[[], None]) -> list[IconSuggestion]:
+def _per_icon(engine: SafeAlphas, tick: Callable[[], None]) -> list[IconSuggestion]:
     """The answer for each icon moving alone.
 
     Icons of one style (the same paints at the same alpha) get the same answer,
@@ -546,7 +520,7 @@ def _per_icon(engine: _Engine, precision: int, tick: Callable[[], None]) -> list
         else:
             moving = np.zeros(len(engine.names), dtype=bool)
             moving[i] = True
-            safe = engine.answer(moving, precision, per_canvas_needed=False)
+            safe = engine.answer(moving, per_canvas_needed=False)
             cache[style] = (icon.name, safe)
         out.append(IconSuggestion(icon.name, icon.color_name or icon.color, icon.alpha, safe))
         tick()
