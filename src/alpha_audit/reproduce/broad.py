@@ -116,21 +116,32 @@ def broad_counts(
     summaries = []
     for a in range(n_alpha):
         at = int(np.argmin(totals[:, a, 3]))  # first block holding the smallest change
-        jr, jg, rows = tasks[at]
         min_change = totals[at, a, 3]
-        # Locate it inside that block, in the straightforward expression.
-        cb = ((_WR * b[jr] + _WG * b[jg]) + blue_b) + 0.05
-        p = red[a, rows, jr][:, np.newaxis] + green[a, :, jg][np.newaxis, :]
-        y = (p[:, :, np.newaxis, np.newaxis] + blue[a]) + 0.05
-        change = _contrast(y, cb) - _contrast(ts[rows, :, :, np.newaxis], cb)
-        i_r, i_g, i_b, j_b = np.unravel_index(int(change.argmin()), change.shape)
         summaries.append(
             BroadCounts(
                 increase=int(inc[a]),
                 decrease=int(dec[a]),
                 loss_le_limit=int(dec[a] - big[a]),
                 max_loss=float(-min_change) if min_change < -tol else 0.0,
-                worst=(int(rows[i_r]), int(i_g), int(i_b), jr, jg, int(j_b)),
+                worst=_locate_worst(tasks[at], b, ts, (red[a], green[a], blue[a])),
             )
         )
     return summaries
+
+
+def _locate_worst(
+    task: tuple[int, int, NDArray[np.intp]],
+    b: NDArray[np.float64],
+    ts: NDArray[np.float64],
+    weighted: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
+) -> tuple[int, int, int, int, int, int]:
+    """Where the smallest change of one coefficient lies inside the block ``task`` that
+    holds it, in the straightforward expression: (source r, g, b, background r, g, b)."""
+    jr, jg, rows = task
+    red, green, blue = weighted
+    cb = ((_WR * b[jr] + _WG * b[jg]) + _WB * b) + 0.05
+    p = red[rows, jr][:, np.newaxis] + green[:, jg][np.newaxis, :]
+    y = (p[:, :, np.newaxis, np.newaxis] + blue) + 0.05
+    change = _contrast(y, cb) - _contrast(ts[rows, :, :, np.newaxis], cb)
+    i_r, i_g, i_b, j_b = np.unravel_index(int(change.argmin()), change.shape)
+    return int(rows[i_r]), int(i_g), int(i_b), jr, jg, int(j_b)

@@ -345,9 +345,6 @@ def _count_rows(
     above_yb = np.nextafter(yb, np.inf)
     side = n_cols + 1
     base = (np.arange(m) * side * side)[:, np.newaxis]
-    n_rows = ps.shape[1]
-    all_problems = np.repeat(np.arange(m), n_rows)
-    all_rows = np.tile(np.arange(n_rows), m)
     result = np.zeros((4, po.shape[0], m), dtype=np.int64)
     for i, (po_a, qo_a, (sorted_dq, ranks)) in enumerate(zip(po, qo, rank_tables, strict=True)):
         if reach:
@@ -371,14 +368,9 @@ def _count_rows(
         dp = po_a - ps
         j_hi = _searchsorted(sorted_dq, -dp + _BAND, "right")  # rank >= j_hi: dq > t
         j_lo = _searchsorted(sorted_dq, -dp - _BAND, "left")  # rank < j_lo: dq < t
-        flat = ranks.ravel()
-        lo_row, hi_row = base + lo * side, base + hi * side
-        # Both below Yb: a lower output luminance raises the contrast.
-        inc_below = lo - (np.take(flat, base + j_lo) - np.take(flat, lo_row + j_lo))
-        dec_below = np.take(flat, base + j_hi) - np.take(flat, lo_row + j_hi)
-        # Both above Yb: a higher output luminance raises it.
-        inc_above = np.take(flat, hi_row + j_hi)
-        dec_above = (n_cols - hi) - np.take(flat, hi_row + j_lo)
+        inc_below, dec_below, inc_above, dec_above = _same_side(
+            ranks.ravel(), base, side, (lo, hi), (j_lo, j_hi), n_cols
+        )
         # Output exactly at Yb: contrast 1, never an increase.
         dec_equal: int | NDArray[np.intp] = 0
         if keep is not None:
@@ -391,24 +383,59 @@ def _count_rows(
         fast = ~tied & ~quiet[i][:, np.newaxis]
         inc = np.where(fast, inc_below + inc_above, 0).sum(axis=1)
         dec = np.where(fast, dec_below + dec_above + dec_equal, 0).sum(axis=1)
-
-        # Opposite sides of Yb, combination by combination; tied rows in full.
-        opposite = ks < ko
-        start = np.where(opposite, ks, ko_eq)
-        stop = np.where(opposite, ko, ks)
-        start = np.where(tied, 0, start).ravel()
-        width = np.where(tied, n_cols, np.where(fast, stop, 0)).ravel() - start
-        some = width > 0
-        problem, row = all_problems[some], all_rows[some]
-        start, width = start[some], width[some]
-        offsets = np.repeat(np.cumsum(width) - width, width)
-        col = np.repeat(start, width) + (np.arange(width.sum()) - offsets)
-        problem, row = np.repeat(problem, width), np.repeat(row, width)
+        problem, row, col = _opposite_side(ks, ko, ko_eq, tied, fast, n_cols)
         exact_inc, exact_dec = _exact_changes(ps, qs, po_a, qo_a, yb, tol, problem, row, col)
         result[0, i] = inc + exact_inc
         result[1, i] = dec + exact_dec
         result[3, i] = np.bincount(problem, minlength=m)
     return result
+
+
+def _same_side(
+    flat: NDArray[np.intp],
+    base: NDArray[np.int64],
+    side: int,
+    lo_hi: tuple[NDArray[np.intp], NDArray[np.intp]],
+    j_lo_hi: tuple[NDArray[np.intp], NDArray[np.intp]],
+    n_cols: int,
+) -> tuple[NDArray[np.intp], ...]:
+    """Increases and decreases read off the rank tables ``flat`` where source and
+    output lie on one side of Yb: (below increase, below decrease, above increase,
+    above decrease), each (m, R); columns within the tie band are left uncounted."""
+    (lo, hi), (j_lo, j_hi) = lo_hi, j_lo_hi
+    lo_row, hi_row = base + lo * side, base + hi * side
+    # Both below Yb: a lower output luminance raises the contrast.
+    inc_below = lo - (np.take(flat, base + j_lo) - np.take(flat, lo_row + j_lo))
+    dec_below = np.take(flat, base + j_hi) - np.take(flat, lo_row + j_hi)
+    # Both above Yb: a higher output luminance raises it.
+    inc_above = np.take(flat, hi_row + j_hi)
+    dec_above = (n_cols - hi) - np.take(flat, hi_row + j_lo)
+    return inc_below, dec_below, inc_above, dec_above
+
+
+def _opposite_side(
+    ks: NDArray[np.intp],
+    ko: NDArray[np.intp],
+    ko_eq: NDArray[np.intp],
+    tied: NDArray[np.bool_],
+    fast: NDArray[np.bool_],
+    n_cols: int,
+) -> tuple[NDArray[np.intp], NDArray[np.intp], NDArray[np.intp]]:
+    """The (problem, row, column) combinations to evaluate one by one: those with
+    source and output on opposite sides of Yb, and every column of a tied row."""
+    m, n_rows = ks.shape
+    opposite = ks < ko
+    start = np.where(opposite, ks, ko_eq)
+    stop = np.where(opposite, ko, ks)
+    start = np.where(tied, 0, start).ravel()
+    width = np.where(tied, n_cols, np.where(fast, stop, 0)).ravel() - start
+    some = width > 0
+    problem = np.repeat(np.arange(m), n_rows)[some]
+    row = np.tile(np.arange(n_rows), m)[some]
+    start, width = start[some], width[some]
+    offsets = np.repeat(np.cumsum(width) - width, width)
+    col = np.repeat(start, width) + (np.arange(width.sum()) - offsets)
+    return np.repeat(problem, width), np.repeat(row, width), col
 
 
 def _keep_thresholds(

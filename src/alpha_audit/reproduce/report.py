@@ -10,7 +10,7 @@ whether ours matches to every printed digit (:mod:`.compare` decides both).
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from importlib.metadata import PackageNotFoundError, version
 from typing import Any
 
@@ -21,7 +21,13 @@ from rich.text import Text
 
 from alpha_audit.render.common import RenderOptions, dumps, escape_markdown, to_text
 from alpha_audit.reproduce.compare import Comparison, comparisons, setup_differences
-from alpha_audit.reproduce.experiments import ContrastChange
+from alpha_audit.reproduce.experiments import (
+    BroadGridResult,
+    ContrastChange,
+    FullGamutResult,
+    PaletteResult,
+    SweepResult,
+)
 from alpha_audit.reproduce.paper import (
     PAPER,
     PAPER_THEME,
@@ -80,76 +86,94 @@ def to_json_dict(run: Reproduction) -> dict[str, Any]:
             ],
         },
     }
-    if run.broad_grid is not None:
-        first = run.broad_grid[0]
-        section: dict[str, Any] = {
-            "source_levels": first.source_levels,
-            "background_levels": first.background_levels,
-            "combinations": first.combinations,
+    sections: dict[str, tuple[Any, Callable[[Any], dict[str, Any]]]] = {
+        "broad_grid": (run.broad_grid, _broad_grid_json),
+        "full_gamut": (run.full_gamut, _full_gamut_json),
+        "sweep": (run.sweep, _sweep_json),
+        "palette": (run.palette, _palette_json),
+        "browser": (run.browser, browser_json),
+        "runtime": (run.runtime, runtime_json),
+    }
+    for key, (result, to_json) in sections.items():
+        if result is not None:
+            doc[key] = to_json(result)
+    doc["paper"] = _paper_json(run)
+    return doc
+
+
+def _broad_grid_json(results: Sequence[BroadGridResult]) -> dict[str, Any]:
+    first = results[0]
+    section: dict[str, Any] = {
+        "source_levels": first.source_levels,
+        "background_levels": first.background_levels,
+        "combinations": first.combinations,
+    }
+    for r in results:
+        section[alpha_key(r.alpha)] = {
+            "increase": r.increase,
+            "decrease": r.decrease,
+            "unchanged": r.unchanged,
+            "loss_le_0_25": r.loss_le_0_25,
+            "increase_pct": r.increase_pct,
+            "decrease_pct": r.decrease_pct,
+            "max_loss": r.max_loss,
+            "loss_le_0_25_pct": r.loss_le_0_25_pct,
+            "worst": {
+                "source": list(r.worst_source),
+                "background": list(r.worst_background),
+                "contrast": {alpha_key(a): cr for a, cr in r.worst_contrast.items()},
+            },
         }
-        for r in run.broad_grid:
-            section[alpha_key(r.alpha)] = {
-                "increase": r.increase,
-                "decrease": r.decrease,
-                "unchanged": r.unchanged,
-                "loss_le_0_25": r.loss_le_0_25,
-                "increase_pct": r.increase_pct,
-                "decrease_pct": r.decrease_pct,
-                "max_loss": r.max_loss,
-                "loss_le_0_25_pct": r.loss_le_0_25_pct,
-                "worst": {
-                    "source": list(r.worst_source),
-                    "background": list(r.worst_background),
-                    "contrast": {alpha_key(a): cr for a, cr in r.worst_contrast.items()},
-                },
-            }
-        doc["broad_grid"] = section
-    if run.full_gamut is not None:
-        first_fg = run.full_gamut[0]
-        fg: dict[str, Any] = {"levels": first_fg.levels, "threshold": first_fg.threshold}
-        for g in run.full_gamut:
-            fg[alpha_key(g.alpha)] = {
-                "all": _change(g.total),
-                "light": _change(g.group("light")),
-                "dark": _change(g.group("dark")),
-                "canvases": [
-                    {"name": c.name, "color": c.color, "mode": c.mode} | c.change.as_dict()
-                    for c in g.canvases
-                ],
-            }
-        doc["full_gamut"] = fg
-    if run.sweep is not None:
-        s = run.sweep
-        doc["sweep"] = {
-            "levels": s.levels,
-            "pairs": s.pairs,
-            "seed": s.seed,
-            "alphas": list(s.alphas),
-            "mean_change": {k: list(v) for k, v in s.mean_change.items()},
-            "decrease_share": {k: list(v) for k, v in s.decrease_share.items()},
-            "collision_rate": {k: list(v) for k, v in s.collision_rate.items()},
+    return section
+
+
+def _full_gamut_json(results: Sequence[FullGamutResult]) -> dict[str, Any]:
+    fg: dict[str, Any] = {"levels": results[0].levels, "threshold": results[0].threshold}
+    for g in results:
+        fg[alpha_key(g.alpha)] = {
+            "all": _change(g.total),
+            "light": _change(g.group("light")),
+            "dark": _change(g.group("dark")),
+            "canvases": [
+                {"name": c.name, "color": c.color, "mode": c.mode} | c.change.as_dict()
+                for c in g.canvases
+            ],
         }
-    if run.palette is not None:
-        p = run.palette
-        pal: dict[str, Any] = {"palette": list(p.palette), "combinations": p.combinations}
-        for a in p.alphas:
-            pal[alpha_key(a)] = {
-                "smaller": p.smaller[a],
-                "collisions": p.collisions[a],
-                "smaller_per_canvas": list(p.smaller_per_canvas[a]),
-                "collisions_per_canvas": list(p.collisions_per_canvas[a]),
-            }
-        pal["random"] = {
-            "pairs": p.random_pairs,
-            "seed": p.seed,
-            "combinations": p.random_combinations,
-            "collisions": {alpha_key(a): n for a, n in p.random_collisions.items()},
+    return fg
+
+
+def _sweep_json(s: SweepResult) -> dict[str, Any]:
+    return {
+        "levels": s.levels,
+        "pairs": s.pairs,
+        "seed": s.seed,
+        "alphas": list(s.alphas),
+        "mean_change": {k: list(v) for k, v in s.mean_change.items()},
+        "decrease_share": {k: list(v) for k, v in s.decrease_share.items()},
+        "collision_rate": {k: list(v) for k, v in s.collision_rate.items()},
+    }
+
+
+def _palette_json(p: PaletteResult) -> dict[str, Any]:
+    pal: dict[str, Any] = {"palette": list(p.palette), "combinations": p.combinations}
+    for a in p.alphas:
+        pal[alpha_key(a)] = {
+            "smaller": p.smaller[a],
+            "collisions": p.collisions[a],
+            "smaller_per_canvas": list(p.smaller_per_canvas[a]),
+            "collisions_per_canvas": list(p.collisions_per_canvas[a]),
         }
-        doc["palette"] = pal
-    if run.browser is not None:
-        doc["browser"] = browser_json(run.browser)
-    if run.runtime is not None:
-        doc["runtime"] = runtime_json(run.runtime)
+    pal["random"] = {
+        "pairs": p.random_pairs,
+        "seed": p.seed,
+        "combinations": p.random_combinations,
+        "collisions": {alpha_key(a): n for a, n in p.random_collisions.items()},
+    }
+    return pal
+
+
+def _paper_json(run: Reproduction) -> dict[str, Any]:
+    """Every printed number of the paper beside ours, by experiment and group."""
     paper: dict[str, Any] = {}
     for c in comparisons(run):
         paper.setdefault(c.experiment, {}).setdefault(c.group, {})[c.name] = {
@@ -162,8 +186,7 @@ def to_json_dict(run: Reproduction) -> dict[str, Any]:
             "why_not_comparable": c.differs,
             "matches": c.matches,
         }
-    doc["paper"] = paper
-    return doc
+    return paper
 
 
 def reproduction_json(run: Reproduction, options: RenderOptions | None = None) -> str:
@@ -376,45 +399,25 @@ def _palette_section(run: Reproduction, index: _Index) -> list[str]:
         "alpha 1.0 distinct 8-bit sources cannot collide.",
         "",
         *_HEADER,
-        _row(
-            "palette combinations",
-            p.combinations,
-            index.get(("palette", "counts", "combinations")),
-            0,
-        ),
-        _row(
-            "random combinations",
-            p.random_combinations,
-            index.get(("palette", "counts", "random_combinations")),
-            0,
-        ),
+    ]
+    rows = [
+        ("palette combinations", p.combinations, "counts", "combinations"),
+        ("random combinations", p.random_combinations, "counts", "random_combinations"),
     ]
     for a in p.alphas:
         key = alpha_key(a)
-        lines += [
-            _row(
-                f"alpha {key}: smaller CIEDE2000",
-                p.smaller[a],
-                index.get(("palette", key, "smaller")),
-                0,
-            ),
-            _row(
-                f"alpha {key}: collisions",
-                p.collisions[a],
-                index.get(("palette", key, "collisions")),
-                0,
-            ),
+        rows += [
+            (f"alpha {key}: smaller CIEDE2000", p.smaller[a], key, "smaller"),
+            (f"alpha {key}: collisions", p.collisions[a], key, "collisions"),
         ]
-    for a in p.random_alphas:
-        key = alpha_key(a)
-        lines.append(
-            _row(
-                f"alpha {key}: random-pair collisions",
-                p.random_collisions[a],
-                index.get(("palette", key, "random_collisions")),
-                0,
-            )
-        )
+    rows += [
+        (f"alpha {alpha_key(a)}: random-pair collisions", p.random_collisions[a], alpha_key(a),
+         "random_collisions")
+        for a in p.random_alphas
+    ]  # fmt: skip
+    lines += [
+        _row(label, n, index.get(("palette", group, name)), 0) for label, n, group, name in rows
+    ]
     return [*lines, ""]
 
 

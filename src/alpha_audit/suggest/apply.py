@@ -34,6 +34,7 @@ if TYPE_CHECKING:
     from alpha_audit.color import GamutPolicy
     from alpha_audit.findings import Finding
     from alpha_audit.results import Limit, SuggestResult
+    from alpha_audit.suggest.engine import SafeAlphas
 
 __all__ = [
     "ApplyPlan",
@@ -522,81 +523,24 @@ def plan_apply(
     none moving with its colour's group.  The plan then runs the gate on the
     same rows with the planned alphas (``failures``).
     """
-    from alpha_audit.suggest.engine import SafeAlphas
-
     scope = ApplyScope(scope)
     iconset = result.iconset
     names = [i.name for i in iconset.icons]
     kept = () if replace_explicit else tuple(n for n in names if n in explicit)
     alphas = {i.name: i.alpha for i in iconset.icons}
-    colour_of = {i.name: i.color_name or i.color for i in iconset.icons}
-
-    def answers() -> SafeAlphas:
-        """The suggest engine on the rows with the alphas planned so far."""
-        return SafeAlphas(
-            with_alphas(result.audit, alphas),
-            result.policy,
-            alpha_max=result.alpha_max,
-            precision=result.precision,
-        )
-
+    original = dict(alphas)
     top: float | None = None
     unsafe: list[Unsafe] = []
     palette: dict[str, float] = {}
     if scope is ApplyScope.SET:
-        movable = [n for n in names if n not in kept]
-        if movable:
-            safe = result.overall if len(movable) == len(names) else answers()(movable)
-            top = safe.alpha
-            if top is None and result.alpha is not None:
-                # [1, a] is not all safe with the explicit icons held (a pair of one
-                # held icon and a moving one can be confused at a = 1), but the
-                # set-wide answer itself may be: take it when the gate says so.
-                trial = {**alphas, **dict.fromkeys(movable, result.alpha)}
-                top = result.alpha if not _failures(result, trial) else None
-            if top is None:
-                unsafe.append(Unsafe(("the set",), safe.limit))
-        for n in movable:
-            alphas[n] = top if top is not None else alphas[n]
+        top = _plan_set(result, kept, alphas, unsafe)
         wanted = {n: alphas[n] for n in names if n in explicit and n not in kept}
     else:
-        p = result.precision
-        original = dict(alphas)
-        moved: dict[str, float] = {}
         if scope is ApplyScope.COLOUR:
-            colours = [*iconset.palette, *colour_of.values()]
-            units = [g.colors for g in result.per_group] + [(c,) for c in dict.fromkeys(colours)]
-            done: set[str] = set()
-            for unit in units:
-                seed = [c for c in unit if c not in done]
-                if not seed:
-                    continue
-                group, safe = answers().joint(seed, held=kept, grow=False)
-                done.update(group)
-                movable = [n for n in names if colour_of[n] in group and n not in kept]
-                if not movable:
-                    continue
-                if safe.alpha is None:  # left as they are; the colours placed before stay
-                    unsafe.append(Unsafe(tuple(seed), safe.limit))
-                    continue
-                alphas.update(dict.fromkeys(movable, safe.alpha))
-                moved.update(dict.fromkeys(group, safe.alpha))
-            palette = {c: a for c, a in moved.items() if c in iconset.palette}
+            palette = _plan_colours(result, kept, alphas, unsafe)
         else:
-            placed: set[str] = set()
-            for name in names:
-                if name in kept or name in placed:
-                    continue
-                engine = answers()
-                safe, movable = engine([name]), [name]
-                if safe.alpha is None:  # not alone: with the colours that hold it
-                    group, safe = engine.joint([colour_of[name]], held=kept, grow=False)
-                    movable = [n for n in names if colour_of[n] in group and n not in kept]
-                placed.update(movable)
-                if safe.alpha is None:
-                    unsafe.append(Unsafe(tuple(movable), safe.limit))
-                    continue
-                alphas.update(dict.fromkeys(movable, safe.alpha))
+            _plan_icons(result, kept, alphas, unsafe)
+        p = result.precision
         by_colour = {i.name: i.color_name for i in iconset.icons}
         wanted = {
             n: alphas[n]
@@ -607,6 +551,94 @@ def plan_apply(
         }
     failures = _failures(result, alphas)
     return ApplyPlan(scope, top, wanted, kept, tuple(unsafe), palette, failures, alphas)
+
+
+def _engine(result: SuggestResult, alphas: dict[str, float]) -> SafeAlphas:
+    """The suggest engine on the rows with the alphas planned so far."""
+    from alpha_audit.suggest.engine import SafeAlphas
+
+    return SafeAlphas(
+        with_alphas(result.audit, alphas),
+        result.policy,
+        alpha_max=result.alpha_max,
+        precision=result.precision,
+    )
+
+
+def _colour_of(result: SuggestResult) -> dict[str, str]:
+    return {i.name: i.color_name or i.color for i in result.iconset.icons}
+
+
+def _plan_set(
+    result: SuggestResult, kept: tuple[str, ...], alphas: dict[str, float], unsafe: list[Unsafe]
+) -> float | None:
+    """The set-wide alpha for every icon not kept (``None``: none), written into ``alphas``."""
+    names = [i.name for i in result.iconset.icons]
+    movable = [n for n in names if n not in kept]
+    top: float | None = None
+    if movable:
+        safe = result.overall if len(movable) == len(names) else _engine(result, alphas)(movable)
+        top = safe.alpha
+        if top is None and result.alpha is not None:
+            # [1, a] is not all safe with the explicit icons held (a pair of one
+            # held icon and a moving one can be confused at a = 1), but the
+            # set-wide answer itself may be: take it when the gate says so.
+            trial = {**alphas, **dict.fromkeys(movable, result.alpha)}
+            top = result.alpha if not _failures(result, trial) else None
+        if top is None:
+            unsafe.append(Unsafe(("the set",), safe.limit))
+    for n in movable:
+        alphas[n] = top if top is not None else alphas[n]
+    return top
+
+
+def _plan_colours(
+    result: SuggestResult, kept: tuple[str, ...], alphas: dict[str, float], unsafe: list[Unsafe]
+) -> dict[str, float]:
+    """One alpha per group of colours in turn, written into ``alphas``; the palette's alphas."""
+    iconset, colour_of = result.iconset, _colour_of(result)
+    names = [i.name for i in iconset.icons]
+    moved: dict[str, float] = {}
+    colours = [*iconset.palette, *colour_of.values()]
+    units = [g.colors for g in result.per_group] + [(c,) for c in dict.fromkeys(colours)]
+    done: set[str] = set()
+    for unit in units:
+        seed = [c for c in unit if c not in done]
+        if not seed:
+            continue
+        group, safe = _engine(result, alphas).joint(seed, held=kept, grow=False)
+        done.update(group)
+        movable = [n for n in names if colour_of[n] in group and n not in kept]
+        if not movable:
+            continue
+        if safe.alpha is None:  # left as they are; the colours placed before stay
+            unsafe.append(Unsafe(tuple(seed), safe.limit))
+            continue
+        alphas.update(dict.fromkeys(movable, safe.alpha))
+        moved.update(dict.fromkeys(group, safe.alpha))
+    return {c: a for c, a in moved.items() if c in iconset.palette}
+
+
+def _plan_icons(
+    result: SuggestResult, kept: tuple[str, ...], alphas: dict[str, float], unsafe: list[Unsafe]
+) -> None:
+    """Each icon's answer in turn, written into ``alphas``; one with none moves with its colour."""
+    colour_of = _colour_of(result)
+    names = [i.name for i in result.iconset.icons]
+    placed: set[str] = set()
+    for name in names:
+        if name in kept or name in placed:
+            continue
+        engine = _engine(result, alphas)
+        safe, movable = engine([name]), [name]
+        if safe.alpha is None:  # not alone: with the colours that hold it
+            group, safe = engine.joint([colour_of[name]], held=kept, grow=False)
+            movable = [n for n in names if colour_of[n] in group and n not in kept]
+        placed.update(movable)
+        if safe.alpha is None:
+            unsafe.append(Unsafe(tuple(movable), safe.limit))
+            continue
+        alphas.update(dict.fromkeys(movable, safe.alpha))
 
 
 def _failures(result: SuggestResult, alphas: dict[str, float]) -> tuple[Finding, ...]:

@@ -180,27 +180,7 @@ def full_gamut(
     fast = [a for a in alphas if a >= 0]
     stats: dict[float, dict[str, NDArray[Any]]] = {}
     if fast:
-        tables = kernels.channel_tables(
-            lev, np.tile(backgrounds, (len(fast), 1)), np.repeat(fast, m)
-        )
-        po, qo = kernels.luminance_parts(tables)
-        counts = kernels.change_counts(
-            ps,
-            qs,
-            po.reshape(len(fast), m, -1),
-            qo.reshape(len(fast), m, -1),
-            yb,
-            tol=tol,
-            threshold=threshold,
-        )
-        sums = kernels.contrast_sums(po, qo, np.tile(yb, len(fast))).reshape(len(fast), m)
-        for i, a in enumerate(fast):
-            stats[a] = {
-                "increase": counts.increase[i],
-                "decrease": counts.decrease[i],
-                "newly_reach": counts.newly_reach[i],
-                "sum_change": sums[i] - sum_source,
-            }
+        stats = _forward_stats(fast, lev, backgrounds, (ps, qs), sum_source, tol, threshold)
     progress(0.8 * len(fast) / len(alphas))
     for a in alphas:
         if a < 0:  # reverse scaling: tables fall with the level; every combination from them
@@ -217,26 +197,71 @@ def full_gamut(
                 "sum_change": kernels.contrast_sums(po, qo, yb) - sum_source,
             }
             progress(0.8 / len(alphas))
-    results = []
-    for a in alphas:
-        s = stats[a]
-        canvases = tuple(
-            CanvasChange(
-                c.name,
-                c.color,
-                str(c.mode),
-                ContrastChange(
-                    combinations=n_sources,
-                    increase=int(s["increase"][i]),
-                    decrease=int(s["decrease"][i]),
-                    newly_reach=int(s["newly_reach"][i]),
-                    sum_change=float(s["sum_change"][i]),
-                    sum_difference=float(controls["difference"][i]),
-                    sum_exclusion=float(controls["exclusion"][i]),
-                ),
-            )
-            for i, c in enumerate(theme.canvases)
+    results = tuple(
+        FullGamutResult(
+            theme.name, a, levels, threshold, _canvas_changes(theme, stats[a], controls, n_sources)
         )
-        results.append(FullGamutResult(theme.name, a, levels, threshold, canvases))
+        for a in alphas
+    )
     progress(0.1)
-    return tuple(results)
+    return results
+
+
+def _forward_stats(
+    fast: list[float],
+    lev: NDArray[np.float64],
+    backgrounds: NDArray[np.float64],
+    source: tuple[NDArray[np.float64], NDArray[np.float64]],
+    sum_source: NDArray[np.float64],
+    tol: float,
+    threshold: float,
+) -> dict[float, dict[str, NDArray[Any]]]:
+    """The counts and contrast sums at every coefficient ``>= 0``, all in one batch."""
+    m = backgrounds.shape[0]
+    yb = relative_luminance(backgrounds)
+    tables = kernels.channel_tables(lev, np.tile(backgrounds, (len(fast), 1)), np.repeat(fast, m))
+    po, qo = kernels.luminance_parts(tables)
+    counts = kernels.change_counts(
+        *source,
+        po.reshape(len(fast), m, -1),
+        qo.reshape(len(fast), m, -1),
+        yb,
+        tol=tol,
+        threshold=threshold,
+    )
+    sums = kernels.contrast_sums(po, qo, np.tile(yb, len(fast))).reshape(len(fast), m)
+    return {
+        a: {
+            "increase": counts.increase[i],
+            "decrease": counts.decrease[i],
+            "newly_reach": counts.newly_reach[i],
+            "sum_change": sums[i] - sum_source,
+        }
+        for i, a in enumerate(fast)
+    }
+
+
+def _canvas_changes(
+    theme: Theme,
+    s: dict[str, NDArray[Any]],
+    controls: dict[str, NDArray[np.float64]],
+    n_sources: int,
+) -> tuple[CanvasChange, ...]:
+    """One coefficient's counts and sums as each canvas's :class:`ContrastChange`."""
+    return tuple(
+        CanvasChange(
+            c.name,
+            c.color,
+            str(c.mode),
+            ContrastChange(
+                combinations=n_sources,
+                increase=int(s["increase"][i]),
+                decrease=int(s["decrease"][i]),
+                newly_reach=int(s["newly_reach"][i]),
+                sum_change=float(s["sum_change"][i]),
+                sum_difference=float(controls["difference"][i]),
+                sum_exclusion=float(controls["exclusion"][i]),
+            ),
+        )
+        for i, c in enumerate(theme.canvases)
+    )
