@@ -681,7 +681,7 @@ def _drift(c: _Collector, rule: Rule) -> None:
 
 def _thin_strokes(c: _Collector, rule: Rule) -> None:
     r = c.result
-    limit = r.threshold if c.policy.min_size_contrast is None else c.policy.min_size_contrast
+    limit = c.policy.size_contrast_limit(r.threshold)
     below = np.any(r.size_contrast < size_contrast_floor(limit), axis=2)  # (p, m); NaN never is
     for p in np.flatnonzero(below.any(axis=1)).tolist():
         e = r.entries[p]

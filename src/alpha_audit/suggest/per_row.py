@@ -175,9 +175,7 @@ def _thin_strokes(scene: Scene) -> list[Found]:
     r = scene.result
     if not r.sizes:
         return []
-    limit = scene.threshold
-    if scene.policy.min_size_contrast is not None:
-        limit = scene.policy.min_size_contrast
+    limit = scene.policy.size_contrast_limit(scene.threshold)
     p, m, k = len(scene.row_icon), len(scene.canvases), len(r.sizes)
     coverage = (np.nan_to_num(r.q50, nan=0.0) * r.opacity[:, np.newaxis])[:, None, :]
     floor = np.full((p, m, k), size_contrast_floor(limit))
@@ -257,7 +255,7 @@ def row_objection(scene: Scene, moving_icons: NDArray[np.bool_], a: float) -> Fo
             lock = drift_breaks(d, LOCK_TOLERANCE) & scene.locked[rows][:, np.newaxis]
             checks.append((Rule.LOCK, lock))
     if Rule.THIN_STROKES in rules and r.sizes:
-        limit = scene.policy.min_size_contrast or scene.threshold
+        limit = scene.policy.size_contrast_limit(scene.threshold)
         q = (np.nan_to_num(r.q50[rows]) * r.opacity[rows][:, np.newaxis])[:, np.newaxis, :]
         at = scene.ship(s[:, :, None], bg[..., None, :], a, q)
         sc = contrast_ratio(at, shipped(bg)[..., np.newaxis, :])
