@@ -203,7 +203,7 @@ class Policy:
                 )
 
     def size_contrast_limit(self, threshold: float) -> float:
-        """The size contrast ``thin-strokes`` asks for: ``min-size-contrast``, else ``threshold``."""
+        """The size contrast ``thin-strokes`` asks for: min-size-contrast, else ``threshold``."""
         return threshold if self.min_size_contrast is None else self.min_size_contrast
 
     def loss_margin(self, tolerance: float = CONTRAST_TOLERANCE) -> float:
