@@ -132,6 +132,12 @@ def _worker_env() -> dict[str, str]:
     }
 
 
+def _worker_argv(limits: RenderLimits, *extra: str) -> list[str]:
+    """The command line of a worker (or, with ``--fork-server``, of the fork server)."""
+    limit_args = (limits.memory, limits.cpu, limits.job_cpu)
+    return [sys.executable, "-I", str(_WORKER), *map(str, limit_args), *extra]
+
+
 class _ForkServer:
     """The process the workers are forked from (Linux); see :mod:`._svg_worker`.
 
@@ -144,17 +150,9 @@ class _ForkServer:
         ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_STREAM)
         try:
             self.proc = subprocess.Popen(
-                [
-                    sys.executable,
-                    "-I",
-                    str(_WORKER),
-                    str(limits.memory),
-                    str(limits.cpu),
-                    str(limits.job_cpu),
-                    "--fork-server",
-                    str(theirs.fileno()),
-                    *(["--hold"] if hold else []),
-                ],
+                _worker_argv(
+                    limits, "--fork-server", str(theirs.fileno()), *(["--hold"] if hold else [])
+                ),
                 stdin=subprocess.DEVNULL,
                 stdout=subprocess.DEVNULL,
                 stderr=subprocess.DEVNULL,
@@ -252,14 +250,7 @@ class _Worker:
             self.stdout = open(reply_r, "rb")  # noqa: SIM115  # closed in kill()
         else:
             self.proc = subprocess.Popen(
-                [
-                    sys.executable,
-                    "-I",
-                    str(_WORKER),
-                    str(limits.memory),
-                    str(limits.cpu),
-                    str(limits.job_cpu),
-                ],
+                _worker_argv(limits),
                 stdin=subprocess.PIPE,
                 stdout=subprocess.PIPE,
                 stderr=subprocess.DEVNULL,

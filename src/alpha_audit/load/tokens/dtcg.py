@@ -430,27 +430,13 @@ class TokenTree:
                 )
             # Measuring the part pointed at walks at most the whole value: counted first.
             self.count(self._sizes[token_path], raw.doc, keys, raw.path)
-            node: Any = target.value
-            for part in rest[1:]:
-                if isinstance(node, dict) and part in node:
-                    node = node[part]
-                elif isinstance(node, list) and part.isdigit() and int(part) < len(node):
-                    node = node[int(part)]
-                else:
-                    raise token_error(f"$ref {pointer} points at nothing (no {part!r})", **where)
+            node = _descend(target.value, rest[1:], pointer, where)
             return node, None, _size(node)
         memo = (id(raw.doc), pointer)
         if memo in self._pointers:
             value, size = self._pointers[memo]
             return value, None, size
-        node = raw.doc.data
-        for part in parts:
-            if isinstance(node, dict) and part in node:
-                node = node[part]
-            elif isinstance(node, list) and part.isdigit() and int(part) < len(node):
-                node = node[int(part)]
-            else:
-                raise token_error(f"$ref {pointer} points at nothing (no {part!r})", **where)
+        node = _descend(raw.doc.data, parts, pointer, where)
         if len(stack) > MAX_ALIAS_CHAIN:
             raise token_error(f"$ref chain longer than {MAX_ALIAS_CHAIN}", **where)
         value, _, size = self._value(raw, node, keys, [*stack, pointer])
@@ -469,6 +455,18 @@ class _Unresolved(Exception):
         super().__init__(problem)
         self.problem = problem
         self.line = line
+
+
+def _descend(node: Any, parts: list[str], pointer: str, where: TokenPlace) -> Any:
+    """The JSON value ``parts`` (a pointer's unescaped steps) lead to from ``node``."""
+    for part in parts:
+        if isinstance(node, dict) and part in node:
+            node = node[part]
+        elif isinstance(node, list) and part.isdigit() and int(part) < len(node):
+            node = node[int(part)]
+        else:
+            raise token_error(f"$ref {pointer} points at nothing (no {part!r})", **where)
+    return node
 
 
 def _size(value: Any) -> int:
