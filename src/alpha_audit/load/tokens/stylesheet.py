@@ -52,7 +52,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 from alpha_audit.errors import InputError
 from alpha_audit.load.files import read_capped
@@ -207,8 +207,7 @@ def _supports(prelude: Sequence[Any]) -> tuple[bool, bool]:
 
 
 # ------------------------------------------------------------------ walking
-@dataclass(frozen=True)
-class _Scope:
+class _Scope(NamedTuple):
     """Where a rule sits: its layers, the colour scheme and P3 of the @media around it,
     and why its properties are skipped (None: they are read)."""
 
@@ -218,21 +217,31 @@ class _Scope:
     skip: str | None = None
 
 
-def _walk(sheet: _Sheet, rules: Iterable[Any], scope: _Scope, depth: int) -> None:
+def _walk(
+    sheet: _Sheet,
+    rules: Iterable[Any],
+    *,
+    layers: tuple[str, ...],
+    scheme: str | None,
+    p3: bool,
+    skip: str | None,
+    depth: int,
+) -> None:
     import tinycss2
 
     if depth > _MAX_AT_DEPTH:
         raise InputError(f"at-rules nested deeper than {_MAX_AT_DEPTH} levels", path=sheet.path)
+    scope = _Scope(layers, scheme, p3, skip)
     for rule in rules:
         if rule.type == "at-rule":
             inner = _at_rule(sheet, rule, scope)
             if inner is not None:
-                _walk(sheet, inner[0], inner[1], depth + 1)
+                _walk(sheet, inner[0], **inner[1]._asdict(), depth=depth + 1)
         elif rule.type == "qualified-rule":
             items = _rule_items(rule.prelude)
             selector = " ".join(tinycss2.serialize(rule.prelude).split())
-            why = scope.skip or (None if items else f"selector {selector[:60]}")
-            _add(sheet, rule, items, replace(scope, skip=why))
+            why = skip or (None if items else f"selector {selector[:60]}")
+            _add(sheet, rule, items, scope._replace(skip=why))
 
 
 def _at_rule(sheet: _Sheet, rule: Any, scope: _Scope) -> tuple[list[Any], _Scope] | None:
@@ -248,7 +257,7 @@ def _at_rule(sheet: _Sheet, rule: Any, scope: _Scope) -> tuple[list[Any], _Scope
                 sheet.layer_key((*scope.layers, *name))
             return None
         inner_layers = (*scope.layers, *(names[0] if names else ()))
-        return _rule_list(rule.content), replace(scope, layers=inner_layers)
+        return _rule_list(rule.content), scope._replace(layers=inner_layers)
     if rule.content is None:
         return None
     if keyword == "theme":  # Tailwind v4: theme variables on :root
@@ -267,10 +276,10 @@ def _at_rule(sheet: _Sheet, rule: Any, scope: _Scope) -> tuple[list[Any], _Scope
         why = scope.skip or (
             None if applies else f"@supports {tinycss2.serialize(prelude).strip()}"
         )
-        return _rule_list(rule.content), replace(scope, p3=scope.p3 or is_p3, skip=why)
+        return _rule_list(rule.content), scope._replace(p3=scope.p3 or is_p3, skip=why)
     if keyword in _SKIPPED_AT:
         inner_rules = _rule_list(rule.content) if keyword in ("container", "scope") else []
-        return inner_rules, replace(scope, skip=scope.skip or f"@{keyword}")
+        return inner_rules, scope._replace(skip=scope.skip or f"@{keyword}")
     return None
 
 
@@ -586,7 +595,7 @@ def _read_sheet(p: Path) -> _Sheet:
     lf_only = "\r" not in text.replace("\r\n", "\n") and "\f" not in text
     sheet = _Sheet(p, LineIndex(text, p, "css", bom=bom) if lf_only else None)
     rules = tinycss2.parse_stylesheet(text, skip_comments=True, skip_whitespace=True)
-    _walk(sheet, rules, _Scope(), 0)
+    _walk(sheet, rules, layers=(), scheme=None, p3=False, skip=None, depth=0)
     if not sheet.parts:
         raise InputError(
             "has no @theme block and no rule for the root element (:root, html, "
