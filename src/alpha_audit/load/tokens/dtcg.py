@@ -70,6 +70,10 @@ class _Group:
     keys: JsonPath
     type: str | None
 
+    def error(self, message: str) -> InputError:
+        """An input error at this group's ``$extends``."""
+        return self.doc.error(message, (*self.keys, "$extends"), self.path)
+
 
 @dataclass
 class TokenTree:
@@ -120,21 +124,17 @@ class TokenTree:
         self.count(len(node) or 1, doc, keys, here or None)
         gtype = node.get("$type", group_type)
         if "$type" in node and not isinstance(node["$type"], str):
-            raise token_error(
-                f"$type must be a string, got {node['$type']!r}",
-                file=doc.path,
-                line=doc.line((*keys, "$type")),
-                path=here or None,
+            raise doc.error(
+                f"$type must be a string, got {node['$type']!r}", (*keys, "$type"), here or None
             )
         if "$extends" in node:
             target = node["$extends"]
             match = ALIAS.fullmatch(target) if isinstance(target, str) else None
             if match is None:
-                raise token_error(
+                raise doc.error(
                     f'$extends must be a group reference "{{group.name}}", got {target!r}',
-                    file=doc.path,
-                    line=doc.line((*keys, "$extends")),
-                    path=here or None,
+                    (*keys, "$extends"),
+                    here or None,
                 )
             self.groups[here] = _Group(here, match.group(1), doc, keys, node.get("$type"))
         for name, child in node.items():
@@ -143,11 +143,8 @@ class TokenTree:
             child_keys = (*keys, name)
             path = ".".join([*names, name])
             if "." in name or "{" in name or "}" in name or not name:
-                raise token_error(
-                    f"name {name!r} may not be empty or contain '.', '{{' or '}}'",
-                    file=doc.path,
-                    line=doc.line(child_keys),
-                    path=path,
+                raise doc.error(
+                    f"name {name!r} may not be empty or contain '.', '{{' or '}}'", child_keys, path
                 )
             check_name(name, path=doc.path, line=doc.line(child_keys), key=path, what="token name")
             if not isinstance(child, dict):
@@ -156,12 +153,7 @@ class TokenTree:
                 continue
             if self._is_token(child):
                 if len(self.raw) >= MAX_TOKENS and path not in self.raw:
-                    raise token_error(
-                        f"more than {MAX_TOKENS} tokens; not allowed",
-                        file=doc.path,
-                        line=doc.line(child_keys),
-                        path=path,
-                    )
+                    raise doc.error(f"more than {MAX_TOKENS} tokens; not allowed", child_keys, path)
                 self.raw[path] = _Raw(path, child, doc, child_keys, gtype)
             else:
                 self._walk(doc, child, child_keys, [*names, name], gtype)
@@ -191,19 +183,10 @@ class TokenTree:
                 return
             if group.path in stack:
                 chain = " -> ".join([*stack[stack.index(group.path) :], group.path])
-                raise token_error(
-                    f"$extends cycle: {chain}",
-                    file=group.doc.path,
-                    line=group.doc.line((*group.keys, "$extends")),
-                    path=group.path,
-                )
+                raise group.error(f"$extends cycle: {chain}")
             if len(stack) >= MAX_ALIAS_CHAIN:
-                raise token_error(
-                    f"$extends chain longer than {MAX_ALIAS_CHAIN}: "
-                    f"{' -> '.join(stack[:4])} -> ...",
-                    file=group.doc.path,
-                    line=group.doc.line((*group.keys, "$extends")),
-                    path=group.path,
+                raise group.error(
+                    f"$extends chain longer than {MAX_ALIAS_CHAIN}: {' -> '.join(stack[:4])} -> ..."
                 )
             prefix = group.extends + "."
             # The target and its subgroups get their own inherited tokens first.
@@ -211,22 +194,14 @@ class TokenTree:
                 visit(other, [*stack, group.path])
             inherited = [self.raw[p] for p in under.get(group.extends, [])]
             if not inherited:
-                raise token_error(
-                    f"$extends names {group.extends!r}, which is no group of tokens",
-                    file=group.doc.path,
-                    line=group.doc.line((*group.keys, "$extends")),
-                    path=group.path,
-                )
+                raise group.error(f"$extends names {group.extends!r}, which is no group of tokens")
             self.count(len(inherited), group.doc, group.keys, group.path)
             for r in inherited:
                 path = (group.path + "." if group.path else "") + r.path[len(prefix) :]
                 if path not in self.raw:
                     if len(self.raw) >= MAX_TOKENS:
-                        raise token_error(
-                            f"$extends makes more than {MAX_TOKENS} tokens; not allowed",
-                            file=group.doc.path,
-                            line=group.doc.line((*group.keys, "$extends")),
-                            path=group.path,
+                        raise group.error(
+                            f"$extends makes more than {MAX_TOKENS} tokens; not allowed"
                         )
                     self.raw[path] = _Raw(path, r.node, r.doc, r.keys, r.group_type or group.type)
                     self._index(under, path)
@@ -261,15 +236,12 @@ class TokenTree:
         raw = self.raw[path]
         if path in stack:
             chain = " -> ".join([*stack[stack.index(path) :], path])
-            raise token_error(
-                f"alias cycle: {chain}", file=raw.doc.path, line=raw.line, path=stack[0]
-            )
+            raise raw.doc.error(f"alias cycle: {chain}", raw.keys, stack[0])
         if len(stack) >= MAX_ALIAS_CHAIN:
-            raise token_error(
+            raise raw.doc.error(
                 f"alias chain longer than {MAX_ALIAS_CHAIN}: {' -> '.join(stack[:4])} -> ...",
-                file=raw.doc.path,
-                line=raw.line,
-                path=stack[0],
+                raw.keys,
+                stack[0],
             )
         stack = [*stack, path]
         self.count(1, raw.doc, raw.keys, path)
@@ -283,27 +255,20 @@ class TokenTree:
             self._cache[path], self._sizes[path] = token, 1
             return token
         if size > MAX_VALUE_NODES:
-            raise token_error(
+            raise raw.doc.error(
                 f"its value expands to more than {MAX_VALUE_NODES:,} JSON values ($ref)",
-                file=raw.doc.path,
-                line=raw.line,
-                path=path,
+                raw.keys,
+                path,
             )
         if target is not None and len(target.chain) >= MAX_ALIAS_CHAIN:
-            raise token_error(
+            raise raw.doc.error(
                 f"alias chain longer than {MAX_ALIAS_CHAIN}: {path} -> {target.path} -> ...",
-                file=raw.doc.path,
-                line=raw.line,
-                path=path,
+                raw.keys,
+                path,
             )
         declared = self._field(raw.node, "type")
         if declared is not None and not isinstance(declared, str):
-            raise token_error(
-                f"$type must be a string, got {declared!r}",
-                file=raw.doc.path,
-                line=raw.line,
-                path=path,
-            )
+            raise raw.doc.error(f"$type must be a string, got {declared!r}", raw.keys, path)
         ttype = declared or raw.group_type or (target.type if target else None)
         problem = target.problem if target is not None else None
         if ttype is None and problem is None:
