@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any
 
 from alpha_audit.errors import InputError
@@ -449,10 +448,3 @@ def tokens_from_docs(docs: list[JsonDoc], *, legacy: bool = False) -> dict[str, 
     for doc in docs:
         tree.add(doc)
     return tree.resolve()
-
-
-def tokens_from_file(path: str | Path, *, legacy: bool = False) -> dict[str, Token]:
-    """Resolve the tokens of one ``.tokens.json`` file."""
-    from alpha_audit.load.tokens.jsondoc import load_json
-
-    return tokens_from_docs([load_json(path)], legacy=legacy)
