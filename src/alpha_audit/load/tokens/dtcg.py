@@ -71,7 +71,7 @@ class _Group:
 
     def error(self, message: str) -> InputError:
         """An input error at this group's ``$extends``."""
-        return self.doc.error(message, (*self.keys, "$extends"), self.path)
+        return self.doc.error((*self.keys, "$extends"), message, self.path)
 
 
 @dataclass
@@ -124,15 +124,15 @@ class TokenTree:
         gtype = node.get("$type", group_type)
         if "$type" in node and not isinstance(node["$type"], str):
             raise doc.error(
-                f"$type must be a string, got {node['$type']!r}", (*keys, "$type"), here or None
+                (*keys, "$type"), f"$type must be a string, got {node['$type']!r}", here or None
             )
         if "$extends" in node:
             target = node["$extends"]
             match = ALIAS.fullmatch(target) if isinstance(target, str) else None
             if match is None:
                 raise doc.error(
-                    f'$extends must be a group reference "{{group.name}}", got {target!r}',
                     (*keys, "$extends"),
+                    f'$extends must be a group reference "{{group.name}}", got {target!r}',
                     here or None,
                 )
             self.groups[here] = _Group(here, match.group(1), doc, keys, node.get("$type"))
@@ -143,7 +143,7 @@ class TokenTree:
             path = ".".join([*names, name])
             if "." in name or "{" in name or "}" in name or not name:
                 raise doc.error(
-                    f"name {name!r} may not be empty or contain '.', '{{' or '}}'", child_keys, path
+                    child_keys, f"name {name!r} may not be empty or contain '.', '{{' or '}}'", path
                 )
             check_name(name, path=doc.path, line=doc.line(child_keys), key=path, what="token name")
             if not isinstance(child, dict):
@@ -152,7 +152,7 @@ class TokenTree:
                 continue
             if self._is_token(child):
                 if len(self.raw) >= MAX_TOKENS and path not in self.raw:
-                    raise doc.error(f"more than {MAX_TOKENS} tokens; not allowed", child_keys, path)
+                    raise doc.error(child_keys, f"more than {MAX_TOKENS} tokens; not allowed", path)
                 self.raw[path] = _Raw(path, child, doc, child_keys, gtype)
             else:
                 self._walk(doc, child, child_keys, [*names, name], gtype)
@@ -235,11 +235,11 @@ class TokenTree:
         raw = self.raw[path]
         if path in stack:
             chain = " -> ".join([*stack[stack.index(path) :], path])
-            raise raw.doc.error(f"alias cycle: {chain}", raw.keys, stack[0])
+            raise raw.doc.error(raw.keys, f"alias cycle: {chain}", stack[0])
         if len(stack) >= MAX_ALIAS_CHAIN:
             raise raw.doc.error(
-                f"alias chain longer than {MAX_ALIAS_CHAIN}: {' -> '.join(stack[:4])} -> ...",
                 raw.keys,
+                f"alias chain longer than {MAX_ALIAS_CHAIN}: {' -> '.join(stack[:4])} -> ...",
                 stack[0],
             )
         stack = [*stack, path]
@@ -255,19 +255,19 @@ class TokenTree:
             return token
         if size > MAX_VALUE_NODES:
             raise raw.doc.error(
-                f"its value expands to more than {MAX_VALUE_NODES:,} JSON values ($ref)",
                 raw.keys,
+                f"its value expands to more than {MAX_VALUE_NODES:,} JSON values ($ref)",
                 path,
             )
         if target is not None and len(target.chain) >= MAX_ALIAS_CHAIN:
             raise raw.doc.error(
-                f"alias chain longer than {MAX_ALIAS_CHAIN}: {path} -> {target.path} -> ...",
                 raw.keys,
+                f"alias chain longer than {MAX_ALIAS_CHAIN}: {path} -> {target.path} -> ...",
                 path,
             )
         declared = self._field(raw.node, "type")
         if declared is not None and not isinstance(declared, str):
-            raise raw.doc.error(f"$type must be a string, got {declared!r}", raw.keys, path)
+            raise raw.doc.error(raw.keys, f"$type must be a string, got {declared!r}", path)
         ttype = declared or raw.group_type or (target.type if target else None)
         problem = target.problem if target is not None else None
         if ttype is None and problem is None:

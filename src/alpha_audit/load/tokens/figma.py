@@ -68,7 +68,7 @@ def modes_from_figma(doc: JsonDoc, *, collection: str | None = None) -> TokenMod
     meta, top = found
     variables, collections = meta["variables"], meta["variableCollections"]
     if not isinstance(variables, dict) or not isinstance(collections, dict) or not collections:
-        raise doc.error("meta.variables and meta.variableCollections must be objects", top)
+        raise doc.error(top, "meta.variables and meta.variableCollections must be objects")
     reader = _Reader(doc, top, variables, collections)
     main = reader.main_collection(collection)
     names = list(reader.coll_modes(main))
@@ -94,7 +94,7 @@ class _Reader:
         self.steps = Steps()  # alias hops over every mode: linear in modes x variables, capped
 
     def _error(self, message: str, *keys: str) -> Exception:
-        return self.doc.error(message, (*self.top, "variableCollections", *keys))
+        return self.doc.error((*self.top, "variableCollections", *keys), message)
 
     def coll_modes(self, cid: str) -> dict[str, str]:
         """A collection's modes, name -> modeId."""

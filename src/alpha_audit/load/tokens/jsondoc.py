@@ -63,7 +63,7 @@ class JsonDoc:
                 return self.lines[keys[:n]]
         return None
 
-    def error(self, message: str, keys: JsonPath, token: str | None = None) -> InputError:
+    def error(self, keys: JsonPath, message: str, token: str | None = None) -> InputError:
         """An input error naming this file, the line of ``keys`` and the token path."""
         return InputError(message, path=self.path, line=self.line(keys), key=token)
 

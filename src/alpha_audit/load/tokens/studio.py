@@ -118,7 +118,7 @@ class _Sets:
         self.steps = Steps()  # every theme walks its sets again: one budget for the source
 
     def _refusal(self, message: str, keys: tuple[str | int, ...]) -> Exception:
-        return self.doc.error(message, keys, ".".join(map(str, keys)))
+        return self.doc.error(keys, message, ".".join(map(str, keys)))
 
     def load(self, name: str, keys: tuple[str | int, ...]) -> tuple[JsonDoc, Any]:
         """A set by name (``keys``: where a theme names it, for errors)."""
@@ -161,7 +161,7 @@ def _read_themes(doc: JsonDoc, themes: list[Any], folder: bool) -> list[_Theme]:
         keys: tuple[str | int, ...] = ("$themes", i) if not folder else (i,)
         if not isinstance(theme, dict) or not isinstance(theme.get("selectedTokenSets"), dict):
             raise doc.error(
-                "a theme needs name and selectedTokenSets", keys, ".".join(map(str, keys))
+                keys, "a theme needs name and selectedTokenSets", ".".join(map(str, keys))
             )
         name = check_name(
             str(theme.get("name", i)), path=doc.path, line=doc.line(keys), what="theme name"
@@ -185,10 +185,10 @@ def _no_overlap(doc: JsonDoc, names: list[str], sets: dict[str, tuple[JsonDoc, A
         for path in tree.raw:
             if path in owner:
                 raise doc.error(
+                    (name,),
                     f"has no $themes, and token sets {owner[path]!r} and {name!r} both set "
                     f"{path}; merging them would let the later set win (a dark set over the "
                     "light one): add themes in Tokens Studio that say which sets make a mode",
-                    (name,),
                     path,
                 )
             owner[path] = name
@@ -218,10 +218,10 @@ def _combined(
     for theme in themes:
         if theme.group is None and groups is None:
             raise doc.error(
+                theme.keys,
                 f"theme {theme.name!r} has no group, and themes of groups "
                 f"{', '.join(chosen)} are combined; give it a group, or set the config's "
                 "tokens: {modes: {groups: false}} to audit each theme alone",
-                theme.keys,
                 ".".join(map(str, theme.keys)),
             )
         if theme.group is not None and theme.group in by_group:
