@@ -301,12 +301,7 @@ def iconset_from_doc(doc: YamlDoc, *, root: Path, gamut: GamutPolicy | None = No
         else:
             color, color_name = default if default else (None, None)
             choice = _Choice(color, color_name, ("color",), default_alpha, ("alpha",))
-        if "color" in explicit:
-            color, color_name = m.color((*keys, "color"), explicit["color"])
-            choice = replace(choice, color=color, name=color_name, color_keys=(*keys, "color"))
-        if "alpha" in explicit:
-            alpha = m.alpha((*keys, "alpha"), explicit["alpha"])
-            choice = replace(choice, alpha=alpha, alpha_keys=(*keys, "alpha"))
+        choice = _set_by(m, keys, explicit, choice)
         if icon_name in overrides:
             choice = _overridden(m, icon_name, overrides[icon_name], choice, locked)
         if choice.color is None:
@@ -371,6 +366,17 @@ def _icon(m: _Manifest, name: str, file: Path, choice: _Choice) -> Icon:
     )
 
 
+def _set_by(m: _Manifest, keys: KeyPath, given: dict[str, Any], choice: _Choice) -> _Choice:
+    """``choice`` with the ``color`` and ``alpha`` that ``given`` (at ``keys``) sets."""
+    if "color" in given:
+        color, color_name = m.color((*keys, "color"), given["color"])
+        choice = replace(choice, color=color, name=color_name, color_keys=(*keys, "color"))
+    if "alpha" in given:
+        alpha = m.alpha((*keys, "alpha"), given["alpha"])
+        choice = replace(choice, alpha=alpha, alpha_keys=(*keys, "alpha"))
+    return choice
+
+
 def _overridden(
     m: _Manifest, icon_name: str, raw: Any, choice: _Choice, locked: set[str]
 ) -> _Choice:
@@ -380,12 +386,7 @@ def _overridden(
     okeys: KeyPath = ("overrides", icon_name)
     override = read_mapping(doc, okeys, raw, "{color: ..., alpha: ...}")
     check_keys(doc, okeys, override, _OVERRIDE_KEYS)
-    if "color" in override:
-        color, color_name = m.color((*okeys, "color"), override["color"])
-        choice = replace(choice, color=color, name=color_name, color_keys=(*okeys, "color"))
-    if "alpha" in override:
-        alpha = m.alpha((*okeys, "alpha"), override["alpha"])
-        choice = replace(choice, alpha=alpha, alpha_keys=(*okeys, "alpha"))
+    choice = _set_by(m, okeys, override, choice)
     if "lock" in override:
         if not isinstance(override["lock"], bool):
             got = describe(override["lock"])

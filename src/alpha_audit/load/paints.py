@@ -69,7 +69,6 @@ __all__ = [
     "decode_paints",
     "encode_paints",
     "extract_paints",
-    "isolate_each",
     "isolate_groups",
     "isolate_paints",
     "paints_and_isolates",
@@ -254,14 +253,14 @@ def isolate_paints(
     own elements cost, so a flag with fifteen colours renders about as fast as
     one drawn in one colour.
     """
-    return isolate_each(svg, [keep], path=path)[0]
+    return _isolate(_read(svg, path, []), [keep], path)[0]
 
 
 def isolate_groups(
     svg: bytes, groups: Sequence[PaintGroup], *, path: str | Path | None = None
 ) -> list[bytes]:
     """One :func:`isolate_paints` SVG per paint group, from one parse and one cascade."""
-    return isolate_each(svg, [_in_group(g.key) for g in groups], path=path)
+    return _isolate(_read(svg, path, []), [_in_group(g.key) for g in groups], path)
 
 
 def _in_group(key: tuple[str, float]) -> Callable[[Paint], bool]:
@@ -269,18 +268,11 @@ def _in_group(key: tuple[str, float]) -> Callable[[Paint], bool]:
     return lambda p: (p.color, p.opacity) == key
 
 
-def isolate_each(
-    svg: bytes, keeps: Sequence[Callable[[Paint], bool]], *, path: str | Path | None = None
-) -> list[bytes]:
-    """:func:`isolate_paints` for several predicates; the work is bounded by
-    :data:`MAX_ISOLATE_WORK` (rendered elements x variants)."""
-    return _isolate(_read(svg, path, []), keeps, path)
-
-
 def _isolate(
     document: _Document, keeps: Sequence[Callable[[Paint], bool]], path: str | Path | None
 ) -> list[bytes]:
-    """One SVG per predicate from a walked document (its tree is rewritten in place)."""
+    """One SVG per predicate from a walked document (its tree is rewritten in place); the
+    work is bounded by :data:`MAX_ISOLATE_WORK` (rendered elements x variants)."""
     visited = document.visited
     if len(visited) * len(keeps) > MAX_ISOLATE_WORK:
         raise SvgError(

@@ -177,6 +177,30 @@ def glob_contained(root: Path, base: Path, pattern: str, *, limit: int) -> list[
     a symlink is resolved and must land inside ``root``.  At most ``limit``
     matches and :data:`MAX_GLOB_ENTRIES` visited entries.
     """
+    root, start, parts = _glob_start(root, base, pattern)
+    walk = _FolderWalk(pattern)
+    found: list[Path] = []
+    # Depth first with a stack of our own, not recursion: a tree nested thousands of
+    # folders deep is bounded by MAX_GLOB_ENTRIES like any other, never by Python's stack.
+    stack = [walk.steps(start, parts)] if parts else []
+    while stack:
+        step = next(stack[-1], None)
+        if step is None:
+            stack.pop()
+        elif not isinstance(step, _Matched):
+            stack.append(walk.steps(*step))
+        else:
+            target = _contained_match(step, root, start, pattern)
+            if target is not None:
+                found.append(target)
+                if len(found) > limit:
+                    raise PathRefused(f"{_shown(pattern)} matches more than {limit} files")
+    return found
+
+
+def _glob_start(root: Path, base: Path, pattern: str) -> tuple[Path, Path, list[str]]:
+    """The resolved root and base and the pattern's steps; a pattern that leaves the
+    manifest's folder, a base outside the root or a pattern ending in ``**`` is refused."""
     pure = _check_text(pattern)
     if ".." in pure.parts:
         raise PathRefused(f"{_shown(pattern)} leaves the manifest's folder; use svg/*.svg")
@@ -187,22 +211,28 @@ def glob_contained(root: Path, base: Path, pattern: str, *, limit: int) -> list[
     parts = [p for p in pure.parts if p not in ("", ".")]
     if parts and parts[-1] == "**":
         raise PathRefused(f"{_shown(pattern)} ends in **; add a file pattern like **/*.svg")
-    visited = 0
-    found: list[Path] = []
+    return root, start, parts
 
-    def folder_steps(folder: Path, rest: list[str]) -> Iterator[tuple[Path, list[str]] | _Matched]:
+
+class _FolderWalk:
+    """The folders one glob visits, counted against :data:`MAX_GLOB_ENTRIES`."""
+
+    def __init__(self, pattern: str) -> None:
+        self.pattern = pattern
+        self.visited = 0
+
+    def steps(self, folder: Path, rest: list[str]) -> Iterator[tuple[Path, list[str]] | _Matched]:
         """One folder's work, in order: sub-walks ``(folder, rest)`` and matched files."""
-        nonlocal visited
         head, tail = rest[0], rest[1:]
         try:
             with os.scandir(folder) as it:
                 entries = sorted(it, key=lambda e: e.name)
         except OSError:
             return
-        visited += len(entries)
-        if visited > MAX_GLOB_ENTRIES:
+        self.visited += len(entries)
+        if self.visited > MAX_GLOB_ENTRIES:
             raise PathRefused(
-                f"{_shown(pattern)} visits more than {MAX_GLOB_ENTRIES} directory entries"
+                f"{_shown(self.pattern)} visits more than {MAX_GLOB_ENTRIES} directory entries"
             )
         if head == "**":
             if tail:
@@ -222,32 +252,22 @@ def glob_contained(root: Path, base: Path, pattern: str, *, limit: int) -> list[
             elif entry.is_symlink():
                 yield _Matched(Path(entry.path), plain=False)
 
-    # Depth first with a stack of our own, not recursion: a tree nested thousands of
-    # folders deep is bounded by MAX_GLOB_ENTRIES like any other, never by Python's stack.
-    stack = [folder_steps(start, parts)] if parts else []
-    while stack:
-        step = next(stack[-1], None)
-        if step is None:
-            stack.pop()
-        elif not isinstance(step, _Matched):
-            stack.append(folder_steps(*step))
-        else:
-            shown = os.path.relpath(step.path, start)
-            if first_unsafe(shown) is not None:  # folders on the way count too
-                raise PathRefused(
-                    f"{_shown(shown)} matched by {_shown(pattern)} has a control or "
-                    "format character in its name; not allowed"
-                )
-            # A file that is no link, in folders that are none under the resolved base,
-            # is its own resolved path: only a link needs resolving and checking again.
-            target = step.path if step.plain else resolve(step.path)
-            if not target.is_relative_to(root):
-                raise PathRefused(
-                    f"{_shown(shown)} matched by "
-                    f"{_shown(pattern)} resolves outside the project root; not allowed"
-                )
-            if step.plain or target.is_file():
-                found.append(target)
-                if len(found) > limit:
-                    raise PathRefused(f"{_shown(pattern)} matches more than {limit} files")
-    return found
+
+def _contained_match(step: _Matched, root: Path, start: Path, pattern: str) -> Path | None:
+    """The matched file's resolved path (None for a link to no file), refused when its
+    name has an unsafe character or it resolves outside ``root``."""
+    shown = os.path.relpath(step.path, start)
+    if first_unsafe(shown) is not None:  # folders on the way count too
+        raise PathRefused(
+            f"{_shown(shown)} matched by {_shown(pattern)} has a control or "
+            "format character in its name; not allowed"
+        )
+    # A file that is no link, in folders that are none under the resolved base,
+    # is its own resolved path: only a link needs resolving and checking again.
+    target = step.path if step.plain else resolve(step.path)
+    if not target.is_relative_to(root):
+        raise PathRefused(
+            f"{_shown(shown)} matched by "
+            f"{_shown(pattern)} resolves outside the project root; not allowed"
+        )
+    return target if step.plain or target.is_file() else None

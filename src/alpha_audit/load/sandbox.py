@@ -32,7 +32,7 @@ from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from types import TracebackType
-from typing import IO, TypeVar
+from typing import IO, Generic, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -132,6 +132,12 @@ def _worker_env() -> dict[str, str]:
     }
 
 
+def _worker_argv(limits: RenderLimits, *extra: str) -> list[str]:
+    """The command line of a worker (or, with ``--fork-server``, of the fork server)."""
+    limit_args = (limits.memory, limits.cpu, limits.job_cpu)
+    return [sys.executable, "-I", str(_WORKER), *map(str, limit_args), *extra]
+
+
 class _ForkServer:
     """The process the workers are forked from (Linux); see :mod:`._svg_worker`.
 
@@ -144,17 +150,9 @@ class _ForkServer:
         ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_STREAM)
         try:
             self.proc = subprocess.Popen(
-                [
-                    sys.executable,
-                    "-I",
-                    str(_WORKER),
-                    str(limits.memory),
-                    str(limits.cpu),
-                    str(limits.job_cpu),
-                    "--fork-server",
-                    str(theirs.fileno()),
-                    *(["--hold"] if hold else []),
-                ],
+                _worker_argv(
+                    limits, "--fork-server", str(theirs.fileno()), *(["--hold"] if hold else [])
+                ),
                 stdin=subprocess.DEVNULL,
                 stdout=subprocess.DEVNULL,
                 stderr=subprocess.DEVNULL,
@@ -252,14 +250,7 @@ class _Worker:
             self.stdout = open(reply_r, "rb")  # noqa: SIM115  # closed in kill()
         else:
             self.proc = subprocess.Popen(
-                [
-                    sys.executable,
-                    "-I",
-                    str(_WORKER),
-                    str(limits.memory),
-                    str(limits.cpu),
-                    str(limits.job_cpu),
-                ],
+                _worker_argv(limits),
                 stdin=subprocess.PIPE,
                 stdout=subprocess.PIPE,
                 stderr=subprocess.DEVNULL,
@@ -555,117 +546,150 @@ class RenderPool:
         are yielded in completion order and never kept: memory is bounded by
         the pool, whatever the number of jobs.
         """
-        source = iter(jobs)
-        exhausted = False
-        # (tag, request bytes, SVGs in it, sizes)
-        queued: deque[tuple[T, bytes, int, tuple[int, ...]]] = deque()
-        limit = 2 * self.size if ahead is None else max(0, ahead)
-        timeout = self.limits.timeout
-        sent: dict[int, tuple[T, bytes, int, tuple[int, ...]]] = {}  # by serial, until answered
-        selector = selectors.DefaultSelector()
-        for kept in self.workers:  # workers kept from an earlier call
-            selector.register(kept.stdout, selectors.EVENT_READ, kept)
-        if self._server is not None:
-            self._server.pause(False)
-            self._server.release()
-
-        def pull() -> None:
-            nonlocal exhausted
-            try:
-                tag, what, sizes = next(source)
-            except StopIteration:
-                exhausted = True
-                return
-            queued.append((tag, *_request(what, sizes), tuple(sizes)))
-
-        def start() -> _Worker:
-            worker = self._new_worker()
-            self.workers.append(worker)
-            selector.register(worker.stdout, selectors.EVENT_READ, worker)
-            return worker
-
-        def fail(worker: _Worker, reason: str, done: list[tuple[T, Outcome]]) -> None:
-            """The job ``worker`` was on fails; those behind it go back to the queue."""
-            selector.unregister(worker.stdout)
-            self._replace(worker)
-            if worker.jobs:
-                head, *rest = worker.jobs
-                done.append((sent.pop(head[0])[0], reason))
-                queued.extendleft(sent.pop(job) for job, _, _, _ in reversed(rest))
-
-        def room(worker: _Worker, request: bytes) -> bool:
-            if not worker.jobs:
-                return True
-            return (
-                len(worker.jobs) < _PIPELINE_JOBS
-                and worker.pending_bytes + len(request) <= _PIPELINE_BYTES
-            )
-
+        run = _Run(self, iter(jobs), 2 * self.size if ahead is None else max(0, ahead))
         try:
-            pull()
-            while queued and len(self.workers) < self.size:
-                start()  # all at once: they start up while the source prepares more work
-            serial = 0
-            while True:
-                done: list[tuple[T, Outcome]] = []
-                missing = self.size - len(self.workers)
-                idle = sum(not w.jobs for w in self.workers) + missing
-                while not exhausted and len(queued) < max(idle, 1):
-                    pull()
-                while missing > 0 and len(queued) > sum(not w.jobs for w in self.workers):
-                    start()  # replaces a worker that died or was killed
-                    missing -= 1
-                # Fill the least loaded workers first, while their pipes have room.
-                for worker in sorted(self.workers, key=lambda w: len(w.jobs)):
-                    while queued and worker in self.workers and room(worker, queued[0][1]):
-                        job = queued.popleft()
-                        try:
-                            worker.send(serial, job[1], job[2], job[3])
-                            sent[serial] = job
-                        except (BrokenPipeError, OSError):
-                            if worker.jobs:  # it died on an earlier job: seen when read
-                                queued.appendleft(job)
-                                break
-                            done.append((job[0], worker.death_reason()))
-                            selector.unregister(worker.stdout)
-                            self._replace(worker)
-                        serial += 1
-                busy = [w for w in self.workers if w.jobs]
-                if not busy:
-                    yield from done
-                    if not queued and exhausted:
-                        return
-                    continue
-                if not exhausted and len(queued) < limit:
-                    pull()  # read ahead while the workers render
-                    wait = 0.0
-                else:
-                    wait = max(0.0, min(w.deadline(timeout) for w in busy) - time.monotonic())
-                for key, _ in selector.select(timeout=wait):
-                    worker = key.data
-                    try:
-                        chunk = os.read(worker.stdout.fileno(), 1 << 20)
-                    except BlockingIOError:
-                        continue
-                    if not chunk:
-                        fail(worker, worker.death_reason(), done)
-                        continue
-                    worker.buffer += chunk
-                    try:
-                        for job, reply in worker.replies():
-                            done.append((sent.pop(job)[0], reply))
-                    except ValueError:
-                        fail(worker, "renderer sent a malformed reply; refused", done)
-                now = time.monotonic()
-                for worker in [w for w in self.workers if w.jobs]:
-                    if worker.deadline(timeout) <= now:
-                        reason = (
-                            f"took longer than {timeout:g} s to render (over "
-                            f"{timeout * WALL_FACTOR:g} s of wall-clock time); refused"
-                            if worker.ready
-                            else f"renderer did not start within {_START_TIMEOUT:g} s"
-                        )
-                        fail(worker, reason, done)
-                yield from done
+            yield from run.outcomes()
         finally:
-            selector.close()
+            run.selector.close()
+
+
+class _Run(Generic[T]):
+    """One :meth:`RenderPool.stream` call: the jobs pulled but not yet answered."""
+
+    def __init__(
+        self,
+        pool: RenderPool,
+        source: Iterator[tuple[T, Sequence[bytes] | ReadPaints, tuple[int, ...]]],
+        limit: int,
+    ) -> None:
+        self.pool = pool
+        self.source = source
+        self.exhausted = False
+        self.limit = limit
+        # (tag, request bytes, SVGs in it, sizes)
+        self.queued: deque[tuple[T, bytes, int, tuple[int, ...]]] = deque()
+        self.sent: dict[int, tuple[T, bytes, int, tuple[int, ...]]] = {}  # by serial
+        self.serial = 0
+        self.done: list[tuple[T, Outcome]] = []
+        self.selector = selectors.DefaultSelector()
+        for kept in pool.workers:  # workers kept from an earlier call
+            self.selector.register(kept.stdout, selectors.EVENT_READ, kept)
+        if pool._server is not None:
+            pool._server.pause(False)
+            pool._server.release()
+
+    def outcomes(self) -> Iterator[tuple[T, Outcome]]:
+        """``(tag, outcome)`` batches as jobs finish, until the source is exhausted."""
+        pool = self.pool
+        self.pull()
+        while self.queued and len(pool.workers) < pool.size:
+            self.start()  # all at once: they start up while the source prepares more work
+        while True:
+            self.done = []
+            self.dispatch()
+            busy = [w for w in pool.workers if w.jobs]
+            if not busy:
+                yield from self.done
+                if not self.queued and self.exhausted:
+                    return
+                continue
+            if not self.exhausted and len(self.queued) < self.limit:
+                self.pull()  # read ahead while the workers render
+                wait = 0.0
+            else:
+                timeout = pool.limits.timeout
+                wait = max(0.0, min(w.deadline(timeout) for w in busy) - time.monotonic())
+            self.read(wait)
+            self.expire()
+            yield from self.done
+
+    def pull(self) -> None:
+        """Take the next job from the source into the queue."""
+        try:
+            tag, what, sizes = next(self.source)
+        except StopIteration:
+            self.exhausted = True
+            return
+        self.queued.append((tag, *_request(what, sizes), tuple(sizes)))
+
+    def start(self) -> _Worker:
+        worker = self.pool._new_worker()
+        self.pool.workers.append(worker)
+        self.selector.register(worker.stdout, selectors.EVENT_READ, worker)
+        return worker
+
+    def fail(self, worker: _Worker, reason: str) -> None:
+        """The job ``worker`` was on fails; those behind it go back to the queue."""
+        self.selector.unregister(worker.stdout)
+        self.pool._replace(worker)
+        if worker.jobs:
+            head, *rest = worker.jobs
+            self.done.append((self.sent.pop(head[0])[0], reason))
+            self.queued.extendleft(self.sent.pop(job) for job, _, _, _ in reversed(rest))
+
+    def dispatch(self) -> None:
+        """Pull enough jobs for the idle workers, replace dead ones, and send jobs out."""
+        workers = self.pool.workers
+        missing = self.pool.size - len(workers)
+        idle = sum(not w.jobs for w in workers) + missing
+        while not self.exhausted and len(self.queued) < max(idle, 1):
+            self.pull()
+        while missing > 0 and len(self.queued) > sum(not w.jobs for w in workers):
+            self.start()  # replaces a worker that died or was killed
+            missing -= 1
+        # Fill the least loaded workers first, while their pipes have room.
+        for worker in sorted(workers, key=lambda w: len(w.jobs)):
+            while self.queued and worker in workers and _room(worker, self.queued[0][1]):
+                job = self.queued.popleft()
+                try:
+                    worker.send(self.serial, job[1], job[2], job[3])
+                    self.sent[self.serial] = job
+                except (BrokenPipeError, OSError):
+                    if worker.jobs:  # it died on an earlier job: seen when read
+                        self.queued.appendleft(job)
+                        break
+                    self.done.append((job[0], worker.death_reason()))
+                    self.selector.unregister(worker.stdout)
+                    self.pool._replace(worker)
+                self.serial += 1
+
+    def read(self, wait: float) -> None:
+        """Wait up to ``wait`` seconds for replies and collect the complete ones."""
+        for key, _ in self.selector.select(timeout=wait):
+            worker = key.data
+            try:
+                chunk = os.read(worker.stdout.fileno(), 1 << 20)
+            except BlockingIOError:
+                continue
+            if not chunk:
+                self.fail(worker, worker.death_reason())
+                continue
+            worker.buffer += chunk
+            try:
+                for job, reply in worker.replies():
+                    self.done.append((self.sent.pop(job)[0], reply))
+            except ValueError:
+                self.fail(worker, "renderer sent a malformed reply; refused")
+
+    def expire(self) -> None:
+        """Fail the jobs whose worker ran out of time."""
+        timeout = self.pool.limits.timeout
+        now = time.monotonic()
+        for worker in [w for w in self.pool.workers if w.jobs]:
+            if worker.deadline(timeout) <= now:
+                reason = (
+                    f"took longer than {timeout:g} s to render (over "
+                    f"{timeout * WALL_FACTOR:g} s of wall-clock time); refused"
+                    if worker.ready
+                    else f"renderer did not start within {_START_TIMEOUT:g} s"
+                )
+                self.fail(worker, reason)
+
+
+def _room(worker: _Worker, request: bytes) -> bool:
+    """Whether ``worker``'s pipe takes ``request`` without blocking (see _PIPELINE_JOBS)."""
+    if not worker.jobs:
+        return True
+    return (
+        len(worker.jobs) < _PIPELINE_JOBS and worker.pending_bytes + len(request) <= _PIPELINE_BYTES
+    )

@@ -134,15 +134,49 @@ def rasterize_icons(
     (:mod:`alpha_audit.load.render_cache`; ``cache`` as in
     :func:`~alpha_audit.load.paint_masks.measure_paints`).
     """
-    import hashlib
-    import zlib
-
     from alpha_audit.load.render_cache import entry_key, open_default
 
     limits = limits or RenderLimits()
     sizes = tuple(dict.fromkeys(int(s) for s in sizes))
     problems: list[IconProblem] = []
-    jobs: list[tuple[str, Path, bytes, bytes]] = []  # name, file, svg, sha256
+    jobs = _read_jobs(icons, problems, progress)
+    opened = open_default() if cache is True else None
+    store = opened if cache is True else cache or None
+    keys = {
+        (name, size): entry_key("whole", digest, size)
+        for name, _, _, digest in jobs
+        for size in sizes
+    }
+    try:
+        rendered = _cached(store, keys)
+        todo = [(job, tuple(s for s in sizes if (job[0], s) not in rendered)) for job in jobs]
+        todo = [(job, missing) for job, missing in todo if missing]
+        if progress is not None:
+            for _ in range(len(jobs) - len(todo)):
+                progress()
+        if todo:
+            _render(todo, limits, rendered, store, keys, progress)
+        if store is not None:
+            store.flush()
+    finally:
+        if opened is not None:
+            opened.close()
+    return _mask_set(jobs, sizes, rendered, problems)
+
+
+# An icon to render: its name, file, SVG bytes and their SHA-256.
+_Job = tuple[str, Path, bytes, bytes]
+
+
+def _read_jobs(
+    icons: Iterable[tuple[str, Path]],
+    problems: list[IconProblem],
+    progress: Callable[[], None] | None,
+) -> list[_Job]:
+    """Read every file; one that cannot be read is a problem (and one step of progress)."""
+    import hashlib
+
+    jobs: list[_Job] = []
     for name, file in icons:
         try:
             data = read_svg(file)
@@ -152,53 +186,61 @@ def rasterize_icons(
                 progress()
             continue
         jobs.append((name, Path(file), data, hashlib.sha256(data).digest()))
-    opened = open_default() if cache is True else None
-    store = opened if cache is True else cache or None
+    return jobs
+
+
+def _cached(
+    store: RenderCache | None, keys: Mapping[tuple[str, int], bytes]
+) -> dict[tuple[str, int], NDArray[np.uint8] | str]:
+    """The masks the render cache holds; an entry that does not inflate is forgotten."""
     rendered: dict[tuple[str, int], NDArray[np.uint8] | str] = {}
-    keys = {
-        (name, size): entry_key("whole", digest, size)
-        for name, _, _, digest in jobs
-        for size in sizes
-    }
-    try:
-        found = store.get(keys.values()) if store is not None else {}
-        for (name, size), key in keys.items():
-            value = found.get(key)
-            raw = _inflate(value, size * size) if value is not None else None
-            if raw is not None:
-                rendered[(name, size)] = np.frombuffer(raw, dtype=np.uint8).reshape(size, size)
-            elif value is not None and store is not None:
-                store.forget(key)
-        todo = [(job, tuple(s for s in sizes if (job[0], s) not in rendered)) for job in jobs]
-        todo = [(job, missing) for job, missing in todo if missing]
-        if progress is not None:
-            for _ in range(len(jobs) - len(todo)):
+    found = store.get(keys.values()) if store is not None else {}
+    for (name, size), key in keys.items():
+        value = found.get(key)
+        raw = _inflate(value, size * size) if value is not None else None
+        if raw is not None:
+            rendered[(name, size)] = np.frombuffer(raw, dtype=np.uint8).reshape(size, size)
+        elif value is not None and store is not None:
+            store.forget(key)
+    return rendered
+
+
+def _render(
+    todo: Sequence[tuple[_Job, tuple[int, ...]]],
+    limits: RenderLimits,
+    rendered: dict[tuple[str, int], NDArray[np.uint8] | str],
+    store: RenderCache | None,
+    keys: Mapping[tuple[str, int], bytes],
+    progress: Callable[[], None] | None,
+) -> None:
+    """Render each job's missing sizes into ``rendered`` (and the cache), in a sandbox."""
+    import zlib
+
+    with RenderPool(limits, workers=min(limits.workers, len(todo))) as pool:
+        for (job, missing), outcome in pool.stream(
+            ((job, missing), (job[2],), missing) for job, missing in todo
+        ):
+            for k, size in enumerate(missing):
+                if isinstance(outcome, str):
+                    mask: NDArray[np.uint8] | str = outcome
+                elif isinstance(outcome, list):
+                    mask = outcome[0][k]
+                else:
+                    raise TypeError(f"a render job answered {type(outcome).__name__}")
+                rendered[(job[0], size)] = mask
+                if store is not None and not isinstance(mask, str):
+                    store.put(keys[(job[0], size)], zlib.compress(mask.tobytes()))
+            if progress is not None:
                 progress()
-        if todo:
-            with RenderPool(limits, workers=min(limits.workers, len(todo))) as pool:
-                for (name, _, _, _), missing, outcome in (
-                    (job, missing, outcome)
-                    for (job, missing), outcome in pool.stream(
-                        ((job, missing), (job[2],), missing) for job, missing in todo
-                    )
-                ):
-                    for k, size in enumerate(missing):
-                        if isinstance(outcome, str):
-                            mask: NDArray[np.uint8] | str = outcome
-                        elif isinstance(outcome, list):
-                            mask = outcome[0][k]
-                        else:
-                            raise TypeError(f"a render job answered {type(outcome).__name__}")
-                        rendered[(name, size)] = mask
-                        if store is not None and not isinstance(mask, str):
-                            store.put(keys[(name, size)], zlib.compress(mask.tobytes()))
-                    if progress is not None:
-                        progress()
-        if store is not None:
-            store.flush()
-    finally:
-        if opened is not None:
-            opened.close()
+
+
+def _mask_set(
+    jobs: Sequence[_Job],
+    sizes: Sequence[int],
+    rendered: Mapping[tuple[str, int], NDArray[np.uint8] | str],
+    problems: list[IconProblem],
+) -> MaskSet:
+    """Each icon's masks, or its first problem (a reason, or nothing drawn at a size)."""
     masks: dict[tuple[str, int], NDArray[np.uint8]] = {}
     for name, file, _, _ in jobs:
         good = {}

@@ -9,7 +9,7 @@ from dataclasses import dataclass, replace
 from functools import partial
 from pathlib import Path
 
-from alpha_audit.color import GamutPolicy
+from alpha_audit.color import GamutPolicy, Pipeline
 from alpha_audit.errors import SvgError, UsageError
 from alpha_audit.load.iconset import load_iconset
 from alpha_audit.load.paint_masks import paint_masks
@@ -58,12 +58,58 @@ def preview_canvases(theme: Theme, iconset: IconSet, near_source: bool) -> tuple
     return near_source_canvases(palette, path=iconset.path)
 
 
-def _check_options(alphas: Sequence[float], sizes: Sequence[int]) -> None:
+def _check_options(
+    out_dir: str | Path | None,
+    html_path: str | Path | None,
+    alphas: Sequence[float],
+    sizes: Sequence[int],
+    image_format: ImageFormat,
+) -> None:
+    """Refuse options that cannot work, before any file is read."""
+    if out_dir is None and html_path is None:
+        raise UsageError("nothing to write: give `out_dir` for PNG sheets and/or `html_path`")
     # The ranges the command line's --alpha and --size obey, in the same words.
     for name, values, allowed in (("alphas", alphas, ALPHA), ("sizes", sizes, ICON_SIZE)):
         for value in values:
             if value not in allowed:
                 raise UsageError(allowed.refusal(f"`{name}` {value:g}"))
+    if out_dir is not None and image_format is ImageFormat.WEBP:
+        from PIL import features
+
+        if not features.check("webp"):
+            raise UsageError("this Pillow was built without WebP; write PNG sheets instead")
+
+
+def _load(
+    theme_path: str | Path,
+    iconset_path: str | Path,
+    gamut: GamutPolicy | None,
+    threshold: float | None,
+    pipeline: str | None,
+    alphas: Sequence[float],
+    near_source: bool,
+) -> tuple[Theme, IconSet, Pipeline]:
+    """The theme (with ``threshold``, and its canvases as the rows see them: translucent
+    layers composited as the pipeline draws), the icon set and the pipeline they are
+    drawn in, refused if that pipeline cannot draw an icon at one of ``alphas``."""
+    theme = load_theme(theme_path, gamut=gamut)
+    iconset = load_iconset(iconset_path, gamut=gamut)
+    if threshold is not None:
+        theme = replace(theme, threshold=float(threshold))
+    kind = resolve_pipeline(pipeline, iconset.pipeline, theme.pipeline)
+    check_pipeline(iconset, kind)
+    for a in alphas:
+        check_pipeline(iconset, kind, a)
+    shown = replace(theme, canvases=preview_canvases(theme, iconset, near_source))
+    return replace(theme, canvases=shown.flattened(kind).canvases), iconset, kind
+
+
+def _usable(iconset: IconSet, problems: Sequence[IconProblem], strict_svg: bool) -> IconSet:
+    """The icons that rendered; with ``strict_svg`` the first that did not is an error."""
+    if strict_svg and problems:
+        raise SvgError(problems[0].message, path=problems[0].file)
+    broken = {p.icon for p in problems}
+    return replace(iconset, icons=tuple(i for i in iconset.icons if i.name not in broken))
 
 
 def preview_files(
@@ -97,25 +143,10 @@ def preview_files(
     else they are an error).  Sheets are PNG files, or lossless WebP with
     ``image_format``.
     """
-    if out_dir is None and html_path is None:
-        raise UsageError("nothing to write: give `out_dir` for PNG sheets and/or `html_path`")
-    _check_options(alphas, sizes)
-    if out_dir is not None and image_format is ImageFormat.WEBP:
-        from PIL import features
-
-        if not features.check("webp"):
-            raise UsageError("this Pillow was built without WebP; write PNG sheets instead")
-    theme = load_theme(theme_path, gamut=gamut)
-    iconset = load_iconset(iconset_path, gamut=gamut)
-    if threshold is not None:
-        theme = replace(theme, threshold=float(threshold))
-    kind = resolve_pipeline(pipeline, iconset.pipeline, theme.pipeline)
-    check_pipeline(iconset, kind)
-    for a in alphas:
-        check_pipeline(iconset, kind, a)
-    # Canvases as the rows see them: translucent layers composited as the pipeline draws.
-    shown = replace(theme, canvases=preview_canvases(theme, iconset, near_source))
-    canvases = shown.flattened(kind).canvases
+    _check_options(out_dir, html_path, alphas, sizes, image_format)
+    theme, iconset, kind = _load(
+        theme_path, iconset_path, gamut, threshold, pipeline, alphas, near_source
+    )
     sheet_sizes = sorted(set(sizes)) if sizes else [DEFAULT_SIZE]
     page_sizes = sorted(set(sizes)) if sizes else sorted({*iconset.sizes, DEFAULT_SIZE})
     prefix = "near-source" if near_source else theme.name
@@ -124,7 +155,7 @@ def preview_files(
     specs = []
     if out_dir is not None:
         specs = paginate(
-            plan_sheets(layout, canvases, sheet_sizes, prefix),
+            plan_sheets(layout, theme.canvases, sheet_sizes, prefix),
             iconset,
             alphas=list(alphas) or None,
             threshold=theme.threshold,
@@ -132,21 +163,16 @@ def preview_files(
             source=iconset.path if near_source else theme.path,
         )
     _check_targets(specs, out_dir, html_path, image_format, overwrite)
-    targets = len(specs) + (html_path is not None)
     step: Callable[[], None] = _nothing if progress is None else progress[1]
     raster_sizes = sorted({*(sheet_sizes if specs else ()), *(page_sizes if html_path else ())})
     if progress is not None:
-        progress[0](len(iconset.icons) + targets)
+        progress[0](len(iconset.icons) + len(specs) + (html_path is not None))
     masks = paint_masks([(i.name, i.file) for i in iconset.icons], raster_sizes, progress=step)
-    if strict_svg and masks.problems:
-        first = masks.problems[0]
-        raise SvgError(first.message, path=first.file)
-    broken = {p.icon for p in masks.problems}
-    usable = replace(iconset, icons=tuple(i for i in iconset.icons if i.name not in broken))
+    usable = _usable(iconset, masks.problems, strict_svg)
     rows: list[Alpha] = list(alphas) if alphas else default_alphas(usable)
     # css opacity stops at 1: the swatch rows it can draw (the others are the linear pipeline's).
     swatch_rows = [a for a in SWATCH_ALPHAS if 0.0 <= a <= 1.0] if kind == "css" else None
-    drawn = preview_rows(replace(theme, canvases=canvases), iconset, masks, raster_sizes, kind)
+    drawn = preview_rows(theme, iconset, masks, raster_sizes, kind)
 
     sheets = render_all(
         specs,
@@ -161,13 +187,8 @@ def preview_files(
     )
     written = _write_sheets(sheets, save, step)
     if html_path is not None:
-        page = preview_html(
-            replace(theme, canvases=canvases),
-            usable,
-            drawn,
-            sizes=page_sizes,
-            alpha=alphas[0] if alphas else None,
-        )
+        alpha = alphas[0] if alphas else None
+        page = preview_html(theme, usable, drawn, sizes=page_sizes, alpha=alpha)
         written.append(write_text(html_path, page, overwrite=overwrite))
         step()
     return PreviewResult(tuple(written), masks.problems)

@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any
 
 from alpha_audit.errors import InputError
@@ -69,6 +68,10 @@ class _Group:
     doc: JsonDoc
     keys: JsonPath
     type: str | None
+
+    def error(self, message: str) -> InputError:
+        """An input error at this group's ``$extends``."""
+        return self.doc.error((*self.keys, "$extends"), message, self.path)
 
 
 @dataclass
@@ -120,21 +123,17 @@ class TokenTree:
         self.count(len(node) or 1, doc, keys, here or None)
         gtype = node.get("$type", group_type)
         if "$type" in node and not isinstance(node["$type"], str):
-            raise token_error(
-                f"$type must be a string, got {node['$type']!r}",
-                file=doc.path,
-                line=doc.line((*keys, "$type")),
-                path=here or None,
+            raise doc.error(
+                (*keys, "$type"), f"$type must be a string, got {node['$type']!r}", here or None
             )
         if "$extends" in node:
             target = node["$extends"]
             match = ALIAS.fullmatch(target) if isinstance(target, str) else None
             if match is None:
-                raise token_error(
+                raise doc.error(
+                    (*keys, "$extends"),
                     f'$extends must be a group reference "{{group.name}}", got {target!r}',
-                    file=doc.path,
-                    line=doc.line((*keys, "$extends")),
-                    path=here or None,
+                    here or None,
                 )
             self.groups[here] = _Group(here, match.group(1), doc, keys, node.get("$type"))
         for name, child in node.items():
@@ -143,11 +142,8 @@ class TokenTree:
             child_keys = (*keys, name)
             path = ".".join([*names, name])
             if "." in name or "{" in name or "}" in name or not name:
-                raise token_error(
-                    f"name {name!r} may not be empty or contain '.', '{{' or '}}'",
-                    file=doc.path,
-                    line=doc.line(child_keys),
-                    path=path,
+                raise doc.error(
+                    child_keys, f"name {name!r} may not be empty or contain '.', '{{' or '}}'", path
                 )
             check_name(name, path=doc.path, line=doc.line(child_keys), key=path, what="token name")
             if not isinstance(child, dict):
@@ -156,12 +152,7 @@ class TokenTree:
                 continue
             if self._is_token(child):
                 if len(self.raw) >= MAX_TOKENS and path not in self.raw:
-                    raise token_error(
-                        f"more than {MAX_TOKENS} tokens; not allowed",
-                        file=doc.path,
-                        line=doc.line(child_keys),
-                        path=path,
-                    )
+                    raise doc.error(child_keys, f"more than {MAX_TOKENS} tokens; not allowed", path)
                 self.raw[path] = _Raw(path, child, doc, child_keys, gtype)
             else:
                 self._walk(doc, child, child_keys, [*names, name], gtype)
@@ -191,19 +182,10 @@ class TokenTree:
                 return
             if group.path in stack:
                 chain = " -> ".join([*stack[stack.index(group.path) :], group.path])
-                raise token_error(
-                    f"$extends cycle: {chain}",
-                    file=group.doc.path,
-                    line=group.doc.line((*group.keys, "$extends")),
-                    path=group.path,
-                )
+                raise group.error(f"$extends cycle: {chain}")
             if len(stack) >= MAX_ALIAS_CHAIN:
-                raise token_error(
-                    f"$extends chain longer than {MAX_ALIAS_CHAIN}: "
-                    f"{' -> '.join(stack[:4])} -> ...",
-                    file=group.doc.path,
-                    line=group.doc.line((*group.keys, "$extends")),
-                    path=group.path,
+                raise group.error(
+                    f"$extends chain longer than {MAX_ALIAS_CHAIN}: {' -> '.join(stack[:4])} -> ..."
                 )
             prefix = group.extends + "."
             # The target and its subgroups get their own inherited tokens first.
@@ -211,22 +193,14 @@ class TokenTree:
                 visit(other, [*stack, group.path])
             inherited = [self.raw[p] for p in under.get(group.extends, [])]
             if not inherited:
-                raise token_error(
-                    f"$extends names {group.extends!r}, which is no group of tokens",
-                    file=group.doc.path,
-                    line=group.doc.line((*group.keys, "$extends")),
-                    path=group.path,
-                )
+                raise group.error(f"$extends names {group.extends!r}, which is no group of tokens")
             self.count(len(inherited), group.doc, group.keys, group.path)
             for r in inherited:
                 path = (group.path + "." if group.path else "") + r.path[len(prefix) :]
                 if path not in self.raw:
                     if len(self.raw) >= MAX_TOKENS:
-                        raise token_error(
-                            f"$extends makes more than {MAX_TOKENS} tokens; not allowed",
-                            file=group.doc.path,
-                            line=group.doc.line((*group.keys, "$extends")),
-                            path=group.path,
+                        raise group.error(
+                            f"$extends makes more than {MAX_TOKENS} tokens; not allowed"
                         )
                     self.raw[path] = _Raw(path, r.node, r.doc, r.keys, r.group_type or group.type)
                     self._index(under, path)
@@ -261,15 +235,12 @@ class TokenTree:
         raw = self.raw[path]
         if path in stack:
             chain = " -> ".join([*stack[stack.index(path) :], path])
-            raise token_error(
-                f"alias cycle: {chain}", file=raw.doc.path, line=raw.line, path=stack[0]
-            )
+            raise raw.doc.error(raw.keys, f"alias cycle: {chain}", stack[0])
         if len(stack) >= MAX_ALIAS_CHAIN:
-            raise token_error(
+            raise raw.doc.error(
+                raw.keys,
                 f"alias chain longer than {MAX_ALIAS_CHAIN}: {' -> '.join(stack[:4])} -> ...",
-                file=raw.doc.path,
-                line=raw.line,
-                path=stack[0],
+                stack[0],
             )
         stack = [*stack, path]
         self.count(1, raw.doc, raw.keys, path)
@@ -283,27 +254,20 @@ class TokenTree:
             self._cache[path], self._sizes[path] = token, 1
             return token
         if size > MAX_VALUE_NODES:
-            raise token_error(
+            raise raw.doc.error(
+                raw.keys,
                 f"its value expands to more than {MAX_VALUE_NODES:,} JSON values ($ref)",
-                file=raw.doc.path,
-                line=raw.line,
-                path=path,
+                path,
             )
         if target is not None and len(target.chain) >= MAX_ALIAS_CHAIN:
-            raise token_error(
+            raise raw.doc.error(
+                raw.keys,
                 f"alias chain longer than {MAX_ALIAS_CHAIN}: {path} -> {target.path} -> ...",
-                file=raw.doc.path,
-                line=raw.line,
-                path=path,
+                path,
             )
         declared = self._field(raw.node, "type")
         if declared is not None and not isinstance(declared, str):
-            raise token_error(
-                f"$type must be a string, got {declared!r}",
-                file=raw.doc.path,
-                line=raw.line,
-                path=path,
-            )
+            raise raw.doc.error(raw.keys, f"$type must be a string, got {declared!r}", path)
         ttype = declared or raw.group_type or (target.type if target else None)
         problem = target.problem if target is not None else None
         if ttype is None and problem is None:
@@ -430,27 +394,13 @@ class TokenTree:
                 )
             # Measuring the part pointed at walks at most the whole value: counted first.
             self.count(self._sizes[token_path], raw.doc, keys, raw.path)
-            node: Any = target.value
-            for part in rest[1:]:
-                if isinstance(node, dict) and part in node:
-                    node = node[part]
-                elif isinstance(node, list) and part.isdigit() and int(part) < len(node):
-                    node = node[int(part)]
-                else:
-                    raise token_error(f"$ref {pointer} points at nothing (no {part!r})", **where)
+            node = _descend(target.value, rest[1:], pointer, where)
             return node, None, _size(node)
         memo = (id(raw.doc), pointer)
         if memo in self._pointers:
             value, size = self._pointers[memo]
             return value, None, size
-        node = raw.doc.data
-        for part in parts:
-            if isinstance(node, dict) and part in node:
-                node = node[part]
-            elif isinstance(node, list) and part.isdigit() and int(part) < len(node):
-                node = node[int(part)]
-            else:
-                raise token_error(f"$ref {pointer} points at nothing (no {part!r})", **where)
+        node = _descend(raw.doc.data, parts, pointer, where)
         if len(stack) > MAX_ALIAS_CHAIN:
             raise token_error(f"$ref chain longer than {MAX_ALIAS_CHAIN}", **where)
         value, _, size = self._value(raw, node, keys, [*stack, pointer])
@@ -471,6 +421,18 @@ class _Unresolved(Exception):
         self.line = line
 
 
+def _descend(node: Any, parts: list[str], pointer: str, where: TokenPlace) -> Any:
+    """The JSON value ``parts`` (a pointer's unescaped steps) lead to from ``node``."""
+    for part in parts:
+        if isinstance(node, dict) and part in node:
+            node = node[part]
+        elif isinstance(node, list) and part.isdigit() and int(part) < len(node):
+            node = node[int(part)]
+        else:
+            raise token_error(f"$ref {pointer} points at nothing (no {part!r})", **where)
+    return node
+
+
 def _size(value: Any) -> int:
     """JSON values in ``value`` (an already resolved value: small, bounded when it was made)."""
     if isinstance(value, dict):
@@ -486,10 +448,3 @@ def tokens_from_docs(docs: list[JsonDoc], *, legacy: bool = False) -> dict[str, 
     for doc in docs:
         tree.add(doc)
     return tree.resolve()
-
-
-def tokens_from_file(path: str | Path, *, legacy: bool = False) -> dict[str, Token]:
-    """Resolve the tokens of one ``.tokens.json`` file."""
-    from alpha_audit.load.tokens.jsondoc import load_json
-
-    return tokens_from_docs([load_json(path)], legacy=legacy)

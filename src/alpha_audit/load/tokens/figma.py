@@ -68,12 +68,7 @@ def modes_from_figma(doc: JsonDoc, *, collection: str | None = None) -> TokenMod
     meta, top = found
     variables, collections = meta["variables"], meta["variableCollections"]
     if not isinstance(variables, dict) or not isinstance(collections, dict) or not collections:
-        raise token_error(
-            "meta.variables and meta.variableCollections must be objects",
-            file=doc.path,
-            line=doc.line(top),
-            path=None,
-        )
+        raise doc.error(top, "meta.variables and meta.variableCollections must be objects")
     reader = _Reader(doc, top, variables, collections)
     main = reader.main_collection(collection)
     names = list(reader.coll_modes(main))
@@ -99,8 +94,7 @@ class _Reader:
         self.steps = Steps()  # alias hops over every mode: linear in modes x variables, capped
 
     def _error(self, message: str, *keys: str) -> Exception:
-        line = self.doc.line((*self.top, "variableCollections", *keys))
-        return token_error(message, file=self.doc.path, line=line, path=None)
+        return self.doc.error((*self.top, "variableCollections", *keys), message)
 
     def coll_modes(self, cid: str) -> dict[str, str]:
         """A collection's modes, name -> modeId."""

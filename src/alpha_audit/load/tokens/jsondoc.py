@@ -63,6 +63,10 @@ class JsonDoc:
                 return self.lines[keys[:n]]
         return None
 
+    def error(self, keys: JsonPath, message: str, token: str | None = None) -> InputError:
+        """An input error naming this file, the line of ``keys`` and the token path."""
+        return InputError(message, path=self.path, line=self.line(keys), key=token)
+
     @cached_property
     def _index(self) -> LineIndex:
         return LineIndex(self.text, self.path, "json", bom=self.bom)

@@ -118,9 +118,7 @@ class _Sets:
         self.steps = Steps()  # every theme walks its sets again: one budget for the source
 
     def _refusal(self, message: str, keys: tuple[str | int, ...]) -> Exception:
-        return token_error(
-            message, file=self.doc.path, line=self.doc.line(keys), path=".".join(map(str, keys))
-        )
+        return self.doc.error(keys, message, ".".join(map(str, keys)))
 
     def load(self, name: str, keys: tuple[str | int, ...]) -> tuple[JsonDoc, Any]:
         """A set by name (``keys``: where a theme names it, for errors)."""
@@ -162,11 +160,8 @@ def _read_themes(doc: JsonDoc, themes: list[Any], folder: bool) -> list[_Theme]:
     for i, theme in enumerate(themes):
         keys: tuple[str | int, ...] = ("$themes", i) if not folder else (i,)
         if not isinstance(theme, dict) or not isinstance(theme.get("selectedTokenSets"), dict):
-            raise token_error(
-                "a theme needs name and selectedTokenSets",
-                file=doc.path,
-                line=doc.line(keys),
-                path=".".join(map(str, keys)),
+            raise doc.error(
+                keys, "a theme needs name and selectedTokenSets", ".".join(map(str, keys))
             )
         name = check_name(
             str(theme.get("name", i)), path=doc.path, line=doc.line(keys), what="theme name"
@@ -189,13 +184,12 @@ def _no_overlap(doc: JsonDoc, names: list[str], sets: dict[str, tuple[JsonDoc, A
         tree.add(sdoc, data, (name,))
         for path in tree.raw:
             if path in owner:
-                raise token_error(
+                raise doc.error(
+                    (name,),
                     f"has no $themes, and token sets {owner[path]!r} and {name!r} both set "
                     f"{path}; merging them would let the later set win (a dark set over the "
                     "light one): add themes in Tokens Studio that say which sets make a mode",
-                    file=doc.path,
-                    line=doc.line((name,)),
-                    path=path,
+                    path,
                 )
             owner[path] = name
 
@@ -223,13 +217,12 @@ def _combined(
     by_group: dict[str, list[_Theme]] = {g: [] for g in chosen}
     for theme in themes:
         if theme.group is None and groups is None:
-            raise token_error(
+            raise doc.error(
+                theme.keys,
                 f"theme {theme.name!r} has no group, and themes of groups "
                 f"{', '.join(chosen)} are combined; give it a group, or set the config's "
                 "tokens: {modes: {groups: false}} to audit each theme alone",
-                file=doc.path,
-                line=doc.line(theme.keys),
-                path=".".join(map(str, theme.keys)),
+                ".".join(map(str, theme.keys)),
             )
         if theme.group is not None and theme.group in by_group:
             by_group[theme.group].append(theme)

@@ -52,7 +52,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 from alpha_audit.errors import InputError
 from alpha_audit.load.files import read_capped
@@ -207,6 +207,16 @@ def _supports(prelude: Sequence[Any]) -> tuple[bool, bool]:
 
 
 # ------------------------------------------------------------------ walking
+class _Scope(NamedTuple):
+    """Where a rule sits: its layers, the colour scheme and P3 of the @media around it,
+    and why its properties are skipped (None: they are read)."""
+
+    layers: tuple[str, ...] = ()
+    scheme: str | None = None
+    p3: bool = False
+    skip: str | None = None
+
+
 def _walk(
     sheet: _Sheet,
     rules: Iterable[Any],
@@ -221,74 +231,56 @@ def _walk(
 
     if depth > _MAX_AT_DEPTH:
         raise InputError(f"at-rules nested deeper than {_MAX_AT_DEPTH} levels", path=sheet.path)
+    scope = _Scope(layers, scheme, p3, skip)
     for rule in rules:
         if rule.type == "at-rule":
-            keyword = rule.lower_at_keyword
-            prelude = rule.prelude
-            if keyword == "layer":
-                names = _layer_names(sheet, prelude)
-                if rule.content is None:  # "@layer a, b;" fixes the order
-                    for name in names:
-                        sheet.layer_key((*layers, *name))
-                    continue
-                inner_layers = (*layers, *(names[0] if names else ()))
-                _walk(
-                    sheet,
-                    _rule_list(rule.content),
-                    layers=inner_layers,
-                    scheme=scheme,
-                    p3=p3,
-                    skip=skip,
-                    depth=depth + 1,
-                )
-            elif rule.content is None:
-                continue
-            elif keyword == "theme":  # Tailwind v4: theme variables on :root
-                _add(sheet, rule, [_theme_item()], layers, scheme, p3, skip)
-            elif keyword == "media":
-                found = _media(prelude)
-                why = skip or (
-                    f"@media {tinycss2.serialize(prelude).strip()}" if found is None else None
-                )
-                s, is_p3 = found if found is not None else (None, False)
-                _walk(
-                    sheet,
-                    _rule_list(rule.content),
-                    layers=layers,
-                    scheme=s or scheme,
-                    p3=p3 or is_p3,
-                    skip=why,
-                    depth=depth + 1,
-                )
-            elif keyword == "supports":
-                applies, is_p3 = _supports(prelude)
-                why = skip or (
-                    None if applies else f"@supports {tinycss2.serialize(prelude).strip()}"
-                )
-                _walk(
-                    sheet,
-                    _rule_list(rule.content),
-                    layers=layers,
-                    scheme=scheme,
-                    p3=p3 or is_p3,
-                    skip=why,
-                    depth=depth + 1,
-                )
-            elif keyword in _SKIPPED_AT:
-                _walk(
-                    sheet,
-                    _rule_list(rule.content) if keyword in ("container", "scope") else [],
-                    layers=layers,
-                    scheme=scheme,
-                    p3=p3,
-                    skip=skip or f"@{keyword}",
-                    depth=depth + 1,
-                )
+            inner = _at_rule(sheet, rule, scope)
+            if inner is not None:
+                _walk(sheet, inner[0], **inner[1]._asdict(), depth=depth + 1)
         elif rule.type == "qualified-rule":
             items = _rule_items(rule.prelude)
             selector = " ".join(tinycss2.serialize(rule.prelude).split())
             why = skip or (None if items else f"selector {selector[:60]}")
-            _add(sheet, rule, items, layers, scheme, p3, why)
+            _add(sheet, rule, items, scope._replace(skip=why))
+
+
+def _at_rule(sheet: _Sheet, rule: Any, scope: _Scope) -> tuple[list[Any], _Scope] | None:
+    """An at-rule read: the rules inside it to walk and their scope, or None (nothing)."""
+    import tinycss2
+
+    keyword = rule.lower_at_keyword
+    prelude = rule.prelude
+    if keyword == "layer":
+        names = _layer_names(sheet, prelude)
+        if rule.content is None:  # "@layer a, b;" fixes the order
+            for name in names:
+                sheet.layer_key((*scope.layers, *name))
+            return None
+        inner_layers = (*scope.layers, *(names[0] if names else ()))
+        return _rule_list(rule.content), scope._replace(layers=inner_layers)
+    if rule.content is None:
+        return None
+    if keyword == "theme":  # Tailwind v4: theme variables on :root
+        _add(sheet, rule, [_theme_item()], scope)
+        return None
+    if keyword == "media":
+        found = _media(prelude)
+        why = scope.skip or (
+            f"@media {tinycss2.serialize(prelude).strip()}" if found is None else None
+        )
+        s, is_p3 = found if found is not None else (None, False)
+        inner = _Scope(scope.layers, s or scope.scheme, scope.p3 or is_p3, why)
+        return _rule_list(rule.content), inner
+    if keyword == "supports":
+        applies, is_p3 = _supports(prelude)
+        why = scope.skip or (
+            None if applies else f"@supports {tinycss2.serialize(prelude).strip()}"
+        )
+        return _rule_list(rule.content), scope._replace(p3=scope.p3 or is_p3, skip=why)
+    if keyword in _SKIPPED_AT:
+        inner_rules = _rule_list(rule.content) if keyword in ("container", "scope") else []
+        return inner_rules, scope._replace(skip=scope.skip or f"@{keyword}")
+    return None
 
 
 def _rule_list(content: Sequence[Any]) -> list[Any]:
@@ -311,17 +303,11 @@ def _layer_names(sheet: _Sheet, prelude: Sequence[Any]) -> list[tuple[str, ...]]
     return [n for n in names if n]
 
 
-def _add(
-    sheet: _Sheet,
-    rule: Any,
-    items: Sequence[Item],
-    layers: tuple[str, ...],
-    scheme: str | None,
-    p3: bool,
-    skip: str | None,
-) -> None:
+def _add(sheet: _Sheet, rule: Any, items: Sequence[Item], scope: _Scope) -> None:
     """Record the custom properties of ``rule`` for each of its items (or as skipped)."""
     import tinycss2
+
+    layers, scheme, p3, skip = scope.layers, scope.scheme, scope.p3, scope.skip
 
     decls = [
         node
@@ -593,7 +579,8 @@ def modes_from_stylesheet(path: str | Path) -> TokenModes:
         raise InputError("CSS nested too deeply", path=p) from exc
 
 
-def _modes(p: Path) -> TokenModes:
+def _read_sheet(p: Path) -> _Sheet:
+    """The sheet's custom properties by rule, refused when it has none to read."""
     import tinycss2
 
     raw = read_capped(p, MAX_CSS_BYTES, InputError, "a stylesheet")
@@ -609,13 +596,18 @@ def _modes(p: Path) -> TokenModes:
     sheet = _Sheet(p, LineIndex(text, p, "css", bom=bom) if lf_only else None)
     rules = tinycss2.parse_stylesheet(text, skip_comments=True, skip_whitespace=True)
     _walk(sheet, rules, layers=(), scheme=None, p3=False, skip=None, depth=0)
-    names: set[str] = {d.name for part in sheet.parts for d in part.decls}
     if not sheet.parts:
         raise InputError(
             "has no @theme block and no rule for the root element (:root, html, "
             ":where(html)), body or a theme ([data-theme=dark], .dark) with custom properties",
             path=p,
         )
+    return sheet
+
+
+def _modes(p: Path) -> TokenModes:
+    sheet = _read_sheet(p)
+    names: set[str] = {d.name for part in sheet.parts for d in part.decls}
     if len(names) > MAX_TOKENS:
         raise InputError(f"more than {MAX_TOKENS} custom properties", path=p)
     paths = _token_paths(sheet, names)

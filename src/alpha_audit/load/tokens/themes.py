@@ -311,8 +311,6 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
     if not_listed:
         notes.append(_names_note(not_listed, "not listed in the config's modes.audit"))
     aliases = {a: m for a, m in source.aliases.items() if m in source.modes}
-    unset: list[str] = []
-    same_as: dict[str, list[str]] = {}
     by_mode: dict[str, list[tuple[str, str, Token, bool, bool]]] = {n: [] for n in source.modes}
     for name, *entry in selected:
         by_mode[name].append(tuple(entry))  # type: ignore[arg-type]  # the 4 fields after name
@@ -322,6 +320,49 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
             f"{path}: also set at {source.skipped[path]}, which is no colour mode; "
             "that value is not audited"
         )
+    modes, unset = _audited_modes(source, by_mode, seen, config, adjusted, aliases, notes)
+    if unset:
+        notes.append(_names_note(unset, f"no token matching canvases {', '.join(config.canvases)}"))
+    if not modes:
+        raise InputError(
+            f"no mode has an opaque token matching canvases {', '.join(config.canvases)} "
+            f"(modes: {', '.join(list(source.modes)[:8])})",
+            path=source.source,
+        )
+    audited = {m.name for m in modes}
+    aliases = {a: aliases.get(m, m) for a, m in aliases.items() if aliases.get(m, m) in audited}
+    moved = _gamut_moves(adjusted, config)
+    skipped = (*not_listed, *unset, *(a for a in source.aliases if a not in aliases))
+    return TokenThemes(
+        source.source,
+        source.kind,
+        config.gamut,
+        tuple(modes),
+        moved,
+        tuple(notes),
+        aliases=aliases,
+        skipped=tuple(skipped),
+        conditions=dict(source.conditions),
+    )
+
+
+def _audited_modes(
+    source: TokenModes,
+    by_mode: dict[str, list[tuple[str, str, Token, bool, bool]]],
+    seen: dict[str, ParsedColor],
+    config: TokenConfig,
+    adjusted: list[tuple[str, Token, ParsedColor]],
+    aliases: dict[str, str],
+    notes: list[str],
+) -> tuple[list[TokenMode], list[str]]:
+    """A theme and icon colours per mode, and the modes with no selected canvas.
+
+    Layer notes and the notes on CSS modes audited once (recorded in ``aliases``)
+    are added to ``notes``; gamut adjustments to ``adjusted``.
+    """
+    modes: list[TokenMode] = []
+    unset: list[str] = []
+    same_as: dict[str, list[str]] = {}
     distinct: dict[tuple[Any, ...], str] = {}
     total_canvases = 0
     for name, entries in by_mode.items():
@@ -358,29 +399,7 @@ def token_themes(source: TokenModes, config: TokenConfig) -> TokenThemes:
         modes.append(TokenMode(name, theme, colors, translucent))
     for first, names in same_as.items():
         notes.append(_names_note(names, f"the same selected colours as mode {first}"))
-    if unset:
-        notes.append(_names_note(unset, f"no token matching canvases {', '.join(config.canvases)}"))
-    if not modes:
-        raise InputError(
-            f"no mode has an opaque token matching canvases {', '.join(config.canvases)} "
-            f"(modes: {', '.join(list(source.modes)[:8])})",
-            path=source.source,
-        )
-    audited = {m.name for m in modes}
-    aliases = {a: aliases.get(m, m) for a, m in aliases.items() if aliases.get(m, m) in audited}
-    moved = _gamut_moves(adjusted, config)
-    skipped = (*not_listed, *unset, *(a for a in source.aliases if a not in aliases))
-    return TokenThemes(
-        source.source,
-        source.kind,
-        config.gamut,
-        tuple(modes),
-        moved,
-        tuple(notes),
-        aliases=aliases,
-        skipped=tuple(skipped),
-        conditions=dict(source.conditions),
-    )
+    return modes, unset
 
 
 def _no_canvas(name: str, layers: Sequence[Canvas], config: TokenConfig, source: Path) -> None:
