@@ -301,3 +301,22 @@ def test_unknown_icon() -> None:
     theme, iconset = random_case(1)
     with pytest.raises(UsageError, match="no icon named 'nope'"):
         largest_safe_alpha(audit(theme, iconset), Policy(), icons=["nope"])
+
+
+@pytest.mark.parametrize(
+    "scopes", [("set",), ("colour",), ("icon",), ("colour", "icon"), ("set", "colour", "icon")]
+)
+def test_progress_counts_exactly_the_questions_asked(scopes: tuple[str, ...]) -> None:
+    """Every tick is one question of the scopes asked, and there are as many as announced
+    (the set-wide tick came even when ``set`` was not asked: one past the total)."""
+    theme, iconset = random_case(3)
+    totals: list[int] = []
+    ticks: list[None] = []
+    result = suggest(
+        audit(theme, iconset),
+        Policy(),
+        scopes=scopes,
+        progress=(totals.append, lambda: ticks.append(None)),
+    )
+    expected = ("set" in scopes) + len(result.per_color) + len(result.per_icon)
+    assert totals == [expected] and len(ticks) == expected > 0

@@ -454,8 +454,10 @@ def suggest(
         + len(seeds)
         + n * ("icon" in wanted)
     )
-    overall = engine.answer(np.ones(n, dtype=bool)) if "set" in wanted else None
-    tick()
+    overall = None
+    if "set" in wanted:
+        overall = engine.answer(np.ones(n, dtype=bool))
+        tick()
     per_color = _per_colour(engine, members, tick) if "colour" in wanted else []
     per_group = []
     for colours, safe, seed in engine.joint_groups(seeds):
