@@ -53,6 +53,7 @@ __all__ = [
     "flag",
     "given_order",
     "in_range",
+    "one_of",
     "path_value",
     "read_gamut_option",
     "rules_flag",
@@ -366,14 +367,17 @@ NoCacheOption = Annotated[
 ]
 
 
+def one_of(name: str, value: str, allowed: Sequence[str], what: str) -> None:
+    """Refuse ``value`` of flag ``name`` unless it is ``allowed`` (``what`` names the kind)."""
+    if value not in allowed:
+        raise UsageError(f"{name} {value!r} is not {what}; use one of: {', '.join(allowed)}")
+
+
 def read_gamut_option(value: str | None) -> GamutPolicy | None:
     """``--gamut`` checked against the policies, or a usage error listing them."""
-    if value is None:
-        return None
-    if value not in GAMUT_POLICIES:
-        allowed = ", ".join(GAMUT_POLICIES)
-        raise UsageError(f"--gamut {value!r} is not a policy; use one of: {allowed}")
-    return value
+    if value is not None:
+        one_of("--gamut", value, GAMUT_POLICIES, "a policy")
+    return cast(GamutPolicy | None, value)
 
 
 def given_order(args: Sequence[str], names: Mapping[str, tuple[str, ...]]) -> list[str]:
