@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Annotated, TypeVar, cast
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
@@ -34,7 +34,7 @@ from alpha_audit.cli.options import (
     with_policy_flags,
 )
 from alpha_audit.cli.status import ExitStatus
-from alpha_audit.render import CheckFormat, Format, RenderOptions
+from alpha_audit.render import CheckFormat, RenderOptions
 from alpha_audit.render.common import check_suffix
 
 if TYPE_CHECKING:
@@ -45,15 +45,9 @@ if TYPE_CHECKING:
 __all__ = ["check_command", "gate_status", "pair_outputs", "report_targets", "write_reports"]
 
 
-FormatT = TypeVar("FormatT", bound=Format)
-
-
 def pair_outputs(
-    formats: list[FormatT],
-    outputs: list[Path],
-    order: list[str] | None = None,
-    default: FormatT | None = None,
-) -> list[tuple[FormatT, Path | None]]:
+    formats: list[CheckFormat], outputs: list[Path], order: list[str] | None = None
+) -> list[tuple[CheckFormat, Path | None]]:
     """Give each ``--output`` to the ``--format`` before it (``-`` or none: stdout).
 
     ``order`` is ``"format"`` / ``"output"`` per option as given on the command
@@ -65,8 +59,7 @@ def pair_outputs(
     """
     from alpha_audit.errors import UsageError
 
-    if not formats:  # check's table unless the command names its own default
-        formats = [default] if default is not None else cast(list[FormatT], [CheckFormat.TABLE])
+    formats = formats or [CheckFormat.TABLE]
     targets: list[Path | None] = [None] * len(formats)
     if (len(outputs) <= 1 and len(formats) == 1) or order is None:
         if len(outputs) > len(formats):

@@ -53,6 +53,7 @@ __all__ = [
     "flag",
     "given_order",
     "in_range",
+    "one_of",
     "path_value",
     "read_gamut_option",
     "rules_flag",
@@ -253,61 +254,47 @@ FormatsOption = Annotated[
         show_default=CheckFormat.TABLE.value,
     ),
 ]
-MaxLossOption = Annotated[
-    float | None,
-    typer.Option(
-        "--max-loss",
-        help="Contrast loss tolerated by the loss rule.",
-        callback=in_range("--max-loss", ranges.CONTRAST_LOSS),
-        show_default=_policy_default("max_loss"),
-    ),
-]
-MinDeltaEOption = Annotated[
-    float | None,
-    typer.Option(
-        "--min-delta-e",
-        help="Smallest CIEDE2000 for separation and confusion.",
-        callback=in_range("--min-delta-e", ranges.DELTA_E),
-        show_default=_policy_default("min_delta_e"),
-    ),
-]
-MaxDriftOption = Annotated[
-    float | None,
-    typer.Option(
-        "--max-drift",
-        help="Largest CIEDE2000 colour drift for drift.",
-        callback=in_range("--max-drift", ranges.DELTA_E),
-        show_default=_policy_default("max_drift"),
-    ),
-]
-VisibilityFloorOption = Annotated[
-    float | None,
-    typer.Option(
-        "--visibility-floor",
-        help="Contrast at alpha 1 below which a loss is reported, not gated.",
-        callback=in_range("--visibility-floor", ranges.CONTRAST_RATIO),
-        show_default=_policy_default("visibility_floor"),
-    ),
-]
-NearDuplicateOption = Annotated[
-    float | None,
-    typer.Option(
-        "--near-duplicate-delta-e",
-        help="CIEDE2000 at alpha 1 below which colours already look the same: alpha rounding "
-        "them onto one 8-bit output is near-duplicate (reported), not new-collision.",
-        callback=in_range("--near-duplicate-delta-e", ranges.DELTA_E),
-        show_default=_policy_default("near_duplicate_delta_e"),
-    ),
-]
-LossToleranceOption = Annotated[
-    float | None,
-    typer.Option(
-        "--loss-tolerance",
-        help="Relative loss (loss / contrast at alpha 1) reported, not gated.",
-        callback=in_range("--loss-tolerance", ranges.LOSS_TOLERANCE),
-        show_default=_policy_default("loss_tolerance"),
-    ),
-]
+
+
+def _policy_option(field: str, help: str, allowed: ranges.NumberRange) -> Any:
+    """A float flag named after the :class:`~alpha_audit.policy.Policy` field it sets."""
+    name = "--" + field.replace("_", "-")
+    return Annotated[
+        float | None,
+        typer.Option(
+            name,
+            help=help,
+            callback=in_range(name, allowed),
+            show_default=_policy_default(field),
+        ),
+    ]
+
+
+MaxLossOption = _policy_option(
+    "max_loss", "Contrast loss tolerated by the loss rule.", ranges.CONTRAST_LOSS
+)
+MinDeltaEOption = _policy_option(
+    "min_delta_e", "Smallest CIEDE2000 for separation and confusion.", ranges.DELTA_E
+)
+MaxDriftOption = _policy_option(
+    "max_drift", "Largest CIEDE2000 colour drift for drift.", ranges.DELTA_E
+)
+VisibilityFloorOption = _policy_option(
+    "visibility_floor",
+    "Contrast at alpha 1 below which a loss is reported, not gated.",
+    ranges.CONTRAST_RATIO,
+)
+NearDuplicateOption = _policy_option(
+    "near_duplicate_delta_e",
+    "CIEDE2000 at alpha 1 below which colours already look the same: alpha rounding "
+    "them onto one 8-bit output is near-duplicate (reported), not new-collision.",
+    ranges.DELTA_E,
+)
+LossToleranceOption = _policy_option(
+    "loss_tolerance",
+    "Relative loss (loss / contrast at alpha 1) reported, not gated.",
+    ranges.LOSS_TOLERANCE,
+)
 
 
 def _whole(name: str, allowed: ranges.NumberRange) -> Callable[[int | None], int | None]:
@@ -329,15 +316,9 @@ MaxCombinationsOption = Annotated[
         show_default=f"the config's, else {ranges.DEFAULT_COMBINATIONS:,}",
     ),
 ]
-MinSizeContrastOption = Annotated[
-    float | None,
-    typer.Option(
-        "--min-size-contrast",
-        help="Smallest size contrast for thin-strokes.",
-        callback=in_range("--min-size-contrast", ranges.CONTRAST_RATIO),
-        show_default=_policy_default("min_size_contrast"),
-    ),
-]
+MinSizeContrastOption = _policy_option(
+    "min_size_contrast", "Smallest size contrast for thin-strokes.", ranges.CONTRAST_RATIO
+)
 PipelineOption = Annotated[
     str | None,
     typer.Option(
@@ -386,14 +367,17 @@ NoCacheOption = Annotated[
 ]
 
 
+def one_of(name: str, value: str, allowed: Sequence[str], what: str) -> None:
+    """Refuse ``value`` of flag ``name`` unless it is ``allowed`` (``what`` names the kind)."""
+    if value not in allowed:
+        raise UsageError(f"{name} {value!r} is not {what}; use one of: {', '.join(allowed)}")
+
+
 def read_gamut_option(value: str | None) -> GamutPolicy | None:
     """``--gamut`` checked against the policies, or a usage error listing them."""
-    if value is None:
-        return None
-    if value not in GAMUT_POLICIES:
-        allowed = ", ".join(GAMUT_POLICIES)
-        raise UsageError(f"--gamut {value!r} is not a policy; use one of: {allowed}")
-    return value
+    if value is not None:
+        one_of("--gamut", value, GAMUT_POLICIES, "a policy")
+    return cast(GamutPolicy | None, value)
 
 
 def given_order(args: Sequence[str], names: Mapping[str, tuple[str, ...]]) -> list[str]:

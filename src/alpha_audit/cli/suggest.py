@@ -18,6 +18,7 @@ from alpha_audit.cli.options import (
     ThemeArgument,
     flag,
     in_range,
+    one_of,
     theme_and_iconset,
     with_policy_flags,
 )
@@ -34,23 +35,19 @@ __all__ = ["suggest_command"]
 
 def _scope(value: str | None) -> str | None:
     """--apply's scope, checked here (the enum lives with the editor, imported lazily)."""
-    from alpha_audit.errors import UsageError
     from alpha_audit.suggest.apply import ApplyScope
 
     if value is None:
         return None
     scopes = [s.value for s in ApplyScope]
     if value.strip().lower() not in scopes:
-        raise UsageError(f"--apply {value!r} is not a scope; use one of: {', '.join(scopes)}")
+        one_of("--apply", value, scopes, "a scope")
     return value.strip().lower()
 
 
 def _scopes(values: list[str] | None) -> list[str] | None:
-    from alpha_audit.errors import UsageError
-
     for value in values or []:
-        if value not in SCOPES:
-            raise UsageError(f"--only {value!r} is not a scope; use one of: {', '.join(SCOPES)}")
+        one_of("--only", value, SCOPES, "a scope")
     return values
 
 

@@ -76,39 +76,26 @@ class CheckFormat(Format):
 
     def renderer(self) -> Renderer[CheckReport]:
         """The render function for this format (its module imported on first use)."""
-        if self is CheckFormat.TABLE:
-            from alpha_audit.render import table
-
-            return table.render_report
-        if self is CheckFormat.JSON:
-            from alpha_audit.render import json
-
-            return json.render_report
-        if self is CheckFormat.JUNIT:
-            from alpha_audit.render import junit
-
-            return junit.render_report
-        if self is CheckFormat.SARIF:
-            from alpha_audit.render import sarif
-
-            return sarif.render_report
-        if self is CheckFormat.MARKDOWN:
-            from alpha_audit.render import markdown
-
-            return markdown.render_report
-        if self is CheckFormat.GITHUB:
-            from alpha_audit.render import github
-
-            return github.render_report
-        if self is CheckFormat.GITLAB:
-            from alpha_audit.render import gitlab
-
-            return gitlab.render_report
-        if self is CheckFormat.HTML:
-            from alpha_audit.render import html
-
-            return html.render_report
-        assert_never(self)
+        match self:
+            case CheckFormat.TABLE:
+                from alpha_audit.render.table import render_report
+            case CheckFormat.JSON:
+                from alpha_audit.render.json import render_report
+            case CheckFormat.JUNIT:
+                from alpha_audit.render.junit import render_report
+            case CheckFormat.SARIF:
+                from alpha_audit.render.sarif import render_report
+            case CheckFormat.MARKDOWN:
+                from alpha_audit.render.markdown import render_report
+            case CheckFormat.GITHUB:
+                from alpha_audit.render.github import render_report
+            case CheckFormat.GITLAB:
+                from alpha_audit.render.gitlab import render_report
+            case CheckFormat.HTML:
+                from alpha_audit.render.html import render_report
+            case _:
+                assert_never(self)
+        return render_report
 
 
 class SuggestFormat(Format):

@@ -40,6 +40,7 @@ if TYPE_CHECKING:
     from alpha_audit.findings import Finding
     from alpha_audit.gate import GateResult
     from alpha_audit.model import GamutAdjustment, Location
+    from alpha_audit.policy import Policy
     from alpha_audit.results import CheckReport, ColorFix, Fix, SafeAlpha
 
 __all__ = [
@@ -66,6 +67,7 @@ __all__ = [
     "name_column",
     "names_and",
     "number_column",
+    "policy_limits",
     "records",
     "safe_span",
     "shorten_names",
@@ -354,6 +356,23 @@ def records(rows: Iterable[Any]) -> Records:
             names = tuple(f.name for f in dataclasses.fields(row))
         out.append({n: getattr(row, n) for n in names})
     return out
+
+
+# The policy's limits, in the order every JSON document writes them.
+_LIMITS = (
+    "max_loss",
+    "min_delta_e",
+    "max_drift",
+    "min_size_contrast",
+    "visibility_floor",
+    "loss_tolerance",
+    "near_duplicate_delta_e",
+)
+
+
+def policy_limits(policy: Policy) -> dict[str, float | None]:
+    """The policy's numeric limits as JSON data (check's and suggest's documents)."""
+    return {name: getattr(policy, name) for name in _LIMITS}
 
 
 # ------------------------------------------------------------------ text

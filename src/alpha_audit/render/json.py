@@ -27,6 +27,7 @@ from alpha_audit.render.common import (
     fix_to_dict,
     json_text,
     location_to_dict,
+    policy_limits,
 )
 from alpha_audit.results import CheckReport
 from alpha_audit.rows import AuditResult
@@ -245,13 +246,7 @@ def gate_to_dict(gate: GateResult, base: Path | None = None) -> dict[str, Any]:
         "policy": {
             "rules": sorted(r.value for r in policy.rules),
             "warnings": sorted(r.value for r in policy.warnings - policy.rules),
-            "max_loss": policy.max_loss,
-            "min_delta_e": policy.min_delta_e,
-            "max_drift": policy.max_drift,
-            "min_size_contrast": policy.min_size_contrast,
-            "visibility_floor": policy.visibility_floor,
-            "loss_tolerance": policy.loss_tolerance,
-            "near_duplicate_delta_e": policy.near_duplicate_delta_e,
+            **policy_limits(policy),
             "exemptions": [
                 {
                     "canvas": e.canvas,

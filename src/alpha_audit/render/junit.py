@@ -62,26 +62,30 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
             suites[theme, iconset] = (element, dict.fromkeys(totals, 0))
         return suites[theme, iconset]
 
+    def case(theme: str, iconset: str, **attrs: object) -> tuple[ET.Element, dict[str, int]]:
+        """A test case of the suite of ``theme / iconset``, counted."""
+        suite, counts = suite_of(theme, iconset)
+        counts["tests"] += 1
+        return _element(suite, "testcase", None, **attrs, time="0"), counts
+
     for result in report.audits:
         theme, iconset = result.theme.name, result.iconset.name
-        suite, counts = suite_of(theme, iconset)
+        suite_of(theme, iconset)  # every audit has its suite, cases or not
         for canvas in result.theme.canvases:
             for icon in result.iconset.icons:
-                case = _element(
-                    suite,
-                    "testcase",
+                element, counts = case(
+                    theme,
+                    iconset,
                     name=icon.name,
                     classname=f"{iconset}.{canvas.name}",
                     file=display_path(icon.file, options.base),
-                    time="0",
                 )
-                counts["tests"] += 1
                 found = by_cell.get((theme, iconset, canvas.name, icon.name), [])
                 failing = [f for f in found if f.fails]
                 if failing:
                     counts["failures"] += 1
                     _element(
-                        case,
+                        element,
                         "failure",
                         "\n".join(_details(f) for f in failing),
                         message="; ".join(f"{f.rule.value}: {f.message}" for f in failing),
@@ -91,29 +95,25 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
                     counts["skipped"] += 1
                     f = found[0]
                     why = f"exempt: {f.exemption.reason}" if f.exemption else "in the baseline"
-                    _element(case, "skipped", message=f"{f.rule.value} {why}")
+                    _element(element, "skipped", message=f"{f.rule.value} {why}")
         for problem in result.problems:
-            case = _element(
-                suite,
-                "testcase",
+            element, counts = case(
+                theme,
+                iconset,
                 name=problem.icon,
                 classname=f"{iconset}.render",
                 file=display_path(problem.file, options.base),
-                time="0",
             )
-            counts["tests"] += 1
             if unrenderable_fails:
                 counts["errors"] += 1
-                _element(case, "error", problem.message, message=problem.message, type="render")
+                _element(element, "error", problem.message, message=problem.message, type="render")
             else:
                 counts["skipped"] += 1
-                _element(case, "skipped", message=f"could not be rendered: {problem.message}")
+                _element(element, "skipped", message=f"could not be rendered: {problem.message}")
     for q in report.pages.problems if report.pages is not None else ():
-        suite, counts = suite_of(q.state, q.source)
-        case = _element(suite, "testcase", name=f"[{q.engine}]", classname=q.source, time="0")
-        counts["tests"] += 1
+        element, counts = case(q.state, q.source, name=f"[{q.engine}]", classname=q.source)
         counts["errors"] += 1
-        _element(case, "error", q.message, message=q.message, type="page")
+        _element(element, "error", q.message, message=q.message, type="page")
     for suite, counts in suites.values():
         for k, v in counts.items():
             suite.set(k, str(v))

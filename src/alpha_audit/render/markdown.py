@@ -77,18 +77,6 @@ class _Group:
     canvases: int
     figures: str
 
-    @property
-    def rule(self) -> Rule:
-        return self.line.rule
-
-    @property
-    def first(self) -> Finding:
-        return self.line.worst
-
-    @property
-    def icons(self) -> list[str]:
-        return list(self.line.icons)
-
 
 def _figures(f: Finding) -> str:
     match f.figures:
@@ -344,11 +332,11 @@ def _audit_section(
         _row(
             (
                 g.colour,
-                _where(g.first, options),
+                _where(g.line.worst, options),
                 _canvases(g),
-                g.rule.value,
+                g.line.rule.value,
                 g.figures,
-                _icons(g.icons),
+                _icons(g.line.icons),
                 group_fix(g.line, report) or "",
             )
         )
@@ -375,7 +363,7 @@ def _audit_section(
         "**Exempted**",
         "| colour | canvases | rule | icons | reason |",
         [
-            _row((g.colour, _canvases(g), g.rule.value, _icons(g.icons), _reason(g)))
+            _row((g.colour, _canvases(g), g.line.rule.value, _icons(g.line.icons), _reason(g)))
             for g in _groups(exempt, roles)
         ],
         left_out,
@@ -386,7 +374,7 @@ def _audit_section(
 
 
 def _reason(g: _Group) -> str:
-    return g.first.exemption.reason if g.first.exemption else ""
+    return g.line.worst.exemption.reason if g.line.worst.exemption else ""
 
 
 def _notes(

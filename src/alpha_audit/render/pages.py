@@ -42,6 +42,7 @@ from alpha_audit.render.common import (
     location_text,
     location_to_dict,
     name_column,
+    names_and,
     number_column,
     to_text,
 )
@@ -390,10 +391,6 @@ def blocked_line(blocked: Sequence[BlockedRequest], shown: int = 3) -> str:
 
 def _and(names: Sequence[str], shown: int = 3) -> str:
     """``a``, ``a and b``, ``a, b and c``, or the first ``shown`` and a count of the rest."""
-    named = ", ".join(names[:shown])
     if len(names) > shown:
-        return named + f" and {len(names) - shown} more hosts"
-    if len(names) > 1:
-        head, _, last = named.rpartition(", ")
-        return f"{head} and {last}"
-    return named
+        return ", ".join(names[:shown]) + f" and {len(names) - shown} more hosts"
+    return names_and(names) if names else ""

@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from rich import box
+from rich.console import RenderableType
 from rich.text import Text
 
 from alpha_audit.pair import PairReport
@@ -20,6 +21,21 @@ from alpha_audit.render.common import (
 __all__ = ["PAIR_SCHEMA", "pair_document", "render_json", "render_table"]
 
 PAIR_SCHEMA = "alpha-audit.pair/1"
+# Every column is a figure: none is ever cut (the first table fits 60 columns).
+_LEFT = frozenset({"background", "output", "clipped", "linear", "css"})
+
+
+def _table(title: str | Text, headers: tuple[str, ...], cells: list[Any]) -> RenderableType:
+    columns = [number_column(h, "left" if h in _LEFT else "right") for h in headers]
+    return fitted_table(
+        columns,
+        cells,
+        title=title,
+        title_justify="left",
+        box=box.SIMPLE_HEAD,
+        padding=(0, 0),
+        pad_edge=False,
+    )
 
 
 def pair_document(report: PairReport) -> dict[str, Any]:
@@ -60,26 +76,8 @@ def render_table(report: PairReport, options: RenderOptions) -> str:
         )
         for r in rows
     ]
-    # Every column is a figure: none is ever cut (the whole table fits 60 columns).
-    columns = [
-        number_column("background", "left"),
-        number_column("α"),
-        number_column("output", "left"),
-        number_column("contrast"),
-        number_column("gain"),
-        number_column("ΔE00"),
-        number_column("clipped", "left"),
-    ]
-    table = fitted_table(
-        columns,
-        cells,
-        title=title,
-        title_justify="left",
-        box=box.SIMPLE_HEAD,
-        padding=(0, 0),
-        pad_edge=False,
-    )
-    text = to_text(table, options)
+    headers = ("background", "α", "output", "contrast", "gain", "ΔE00", "clipped")
+    text = to_text(_table(title, headers, cells), options)
     if report.gamut:
         lines = [
             f"outside sRGB: {g.text} -> {g.output} (gamut {g.policy}, CIEDE2000 {g.delta_e:.2f})"
@@ -99,20 +97,9 @@ def render_table(report: PairReport, options: RenderOptions) -> str:
         )
         for r in drawable
     ]
-    css_columns = [
-        number_column("background", "left"),
-        number_column("α"),
-        number_column("linear", "left"),
-        number_column("css", "left"),
-        number_column("contrast linear → css"),
-    ]
-    css = fitted_table(
-        css_columns,
+    css = _table(
+        "the same in a browser (pipeline css; alpha in [0, 1])",
+        ("background", "α", "linear", "css", "contrast linear → css"),
         css_rows,
-        title="the same in a browser (pipeline css; alpha in [0, 1])",
-        title_justify="left",
-        box=box.SIMPLE_HEAD,
-        padding=(0, 0),
-        pad_edge=False,
     )
     return text + to_text(css, options)

@@ -96,9 +96,11 @@ def _artifact(path: Path | None, base: Path | None) -> dict[str, Any]:
     return {"uri": relative_uri(path or "", base), "uriBaseId": SRCROOT}
 
 
-def _location(path: Path | None, base: Path | None, line: int | None = None) -> dict[str, Any]:
-    """A physical location with a region: the given line, else line 1 of the file."""
-    region = {"startLine": line or 1}
+def _location(
+    path: Path | None, base: Path | None, line: int | None = None, span: Span | None = None
+) -> dict[str, Any]:
+    """A physical location with a region: the span's, else the given line, else line 1."""
+    region = _region(span) if span is not None else {"startLine": line or 1}
     return {"physicalLocation": {"artifactLocation": _artifact(path, base), "region": region}}
 
 
@@ -110,11 +112,6 @@ def _region(span: Span) -> dict[str, int]:
         "endLine": span.end_line,
         "endColumn": span.end_column,
     }
-
-
-def _span_location(span: Span, base: Path | None) -> dict[str, Any]:
-    artifact = _artifact(span.file, base)
-    return {"physicalLocation": {"artifactLocation": artifact, "region": _region(span)}}
 
 
 def _fix(edit: Edit, base: Path | None) -> dict[str, Any]:
@@ -159,9 +156,7 @@ def _unique(locations: list[dict[str, Any]]) -> list[dict[str, Any]]:
 
 def _place(loc: Location, base: Path | None) -> dict[str, Any]:
     """A location with the value's exact region when known, else its line."""
-    if loc.span is not None:
-        return _span_location(loc.span, base)
-    return _location(loc.file, base, loc.line)
+    return _location(loc.span.file if loc.span else loc.file, base, loc.line, loc.span)
 
 
 def _result(

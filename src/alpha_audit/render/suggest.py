@@ -26,6 +26,7 @@ from alpha_audit.render.common import (
     name_column,
     names_and,
     number_column,
+    policy_limits,
     shorten_names,
     to_text,
 )
@@ -81,16 +82,7 @@ def suggest_document(result: SuggestResult) -> dict[str, Any]:
         "schema": SCHEMA,
         "theme": result.theme.name,
         "iconset": result.iconset.name,
-        "policy": {
-            "rules": sorted(r.value for r in policy.rules),
-            "max_loss": policy.max_loss,
-            "min_delta_e": policy.min_delta_e,
-            "max_drift": policy.max_drift,
-            "min_size_contrast": policy.min_size_contrast,
-            "visibility_floor": policy.visibility_floor,
-            "loss_tolerance": policy.loss_tolerance,
-            "near_duplicate_delta_e": policy.near_duplicate_delta_e,
-        },
+        "policy": {"rules": sorted(r.value for r in policy.rules), **policy_limits(policy)},
         "threshold": result.threshold,
         "alpha_max": result.alpha_max,
         "precision": result.precision,
@@ -205,11 +197,6 @@ def _summarised(result: SuggestResult) -> _Shown:
         )
         icons = kept
     return _Shown(colors, groups, icons, tuple(notes))
-
-
-def literal(*cells: str) -> list[Text]:
-    """Table cells shown as written: names from input files are never rich markup."""
-    return [Text(c) for c in cells]
 
 
 def render_table(result: SuggestResult, options: RenderOptions) -> str:

@@ -6,14 +6,16 @@ function of the result; the CLI decides width and colour.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
+from typing import TypeVar
 
 from rich import box
 from rich.console import Group, RenderableType
 from rich.padding import Padding
 from rich.text import Text
 
+from alpha_audit.findings import Finding
 from alpha_audit.gate import GateResult, rule_summary
 from alpha_audit.render.common import (
     RenderOptions,
@@ -37,6 +39,20 @@ from alpha_audit.safe_text import safe_text
 __all__ = ["MAX_FINDINGS", "check_renderable", "gate_renderable", "render_report"]
 
 MAX_FINDINGS = 12  # per section; the JSON has everything
+_Item = TypeVar("_Item")
+
+
+def _more(items: Sequence[object], where: str = "--format json") -> list[RenderableType]:
+    """The line counting what a section leaves out beyond :data:`MAX_FINDINGS`, if any."""
+    n = len(items) - MAX_FINDINGS
+    return [Text(f"  … and {n} more (see {where})")] if n > 0 else []
+
+
+def _listed(
+    title: Text, items: Sequence[_Item], line: Callable[[_Item], str], where: str = "--format json"
+) -> list[RenderableType]:
+    """``title``, a line per item up to :data:`MAX_FINDINGS`, then how many more."""
+    return [title, *(Text(line(i)) for i in items[:MAX_FINDINGS]), *_more(items, where)]
 
 
 def _fmt_alpha(result: AuditResult) -> str:
@@ -114,7 +130,6 @@ def _section(
     """A titled table, one finding per row; names wrap, figures stay whole."""
     if not items:
         return []
-    out: list[RenderableType] = [Text(f"{title} ({len(items)})", style=f"bold {style}")]
     columns = [
         number_column(name, "right" if name.startswith("contrast") else "left")
         if name in _FIGURES
@@ -122,17 +137,10 @@ def _section(
         for name in header
     ]
     table = fitted_table(
-        columns,
-        items[:MAX_FINDINGS],
-        box=None,
-        padding=(0, 1),
-        pad_edge=False,
-        header_style="dim",
+        columns, items[:MAX_FINDINGS], box=None, padding=(0, 1), pad_edge=False, header_style="dim"
     )
-    out.append(Padding(table, (0, 0, 0, 2)))
-    if len(items) > MAX_FINDINGS:
-        out.append(Text(f"  … and {len(items) - MAX_FINDINGS} more (see --format json)"))
-    return out
+    title_text = Text(f"{title} ({len(items)})", style=f"bold {style}")
+    return [title_text, Padding(table, (0, 0, 0, 2)), *_more(items)]
 
 
 def _colour(row: Row, palette_names: Mapping[str, str | None]) -> Text:
@@ -209,15 +217,11 @@ def _problems(result: AuditResult, base: Path | None) -> list[RenderableType]:
     """The icons that could not be rendered, with the reason."""
     if not result.problems:
         return []
-    out: list[RenderableType] = [
-        Text(f"Icons that could not be rendered ({len(result.problems)})", style="bold yellow")
-    ]
-    for p in result.problems[:MAX_FINDINGS]:
-        shown = display_path(p.file, base)
-        out.append(Text(safe_text(f"  {p.icon} ({shown}): {p.message}")))
-    if len(result.problems) > MAX_FINDINGS:
-        out.append(Text(f"  … and {len(result.problems) - MAX_FINDINGS} more (see --format json)"))
-    return out
+    return _listed(
+        Text(f"Icons that could not be rendered ({len(result.problems)})", style="bold yellow"),
+        result.problems,
+        lambda p: safe_text(f"  {p.icon} ({display_path(p.file, base)}): {p.message}"),
+    )
 
 
 def check_renderable(result: AuditResult, base: Path | None = None) -> RenderableType:
@@ -281,15 +285,9 @@ def gate_renderable(gate: GateResult, base: Path | None = None) -> RenderableTyp
         ]
         out.append(Text(f"  {s.rule.value}: {', '.join(parts)}", style="bold" if s.failing else ""))
     if failures:
-        out.append(Text("Worst first:"))
-        for f in failures[:MAX_FINDINGS]:
-            at = f" [{location_text(f.locations[0], base)}]" if f.locations else ""
-            out.append(
-                Text(safe_text(f"  {f.rule.value}: {where_text(f)} ({f.theme}){at}: {f.message}"))
-            )
-        if len(failures) > MAX_FINDINGS:
-            more = len(failures) - MAX_FINDINGS
-            out.append(Text(f"  … and {more} more (see --format json or markdown)"))
+        out += _listed(
+            Text("Worst first:"), failures, _failure_line(base), "--format json or markdown"
+        )
     exempt, baselined = gate.exempted, gate.baselined
     if exempt and exempt[0].exemption is not None:
         reason = exempt[0].exemption.reason
@@ -299,12 +297,11 @@ def gate_renderable(gate: GateResult, base: Path | None = None) -> RenderableTyp
     # Unrenderable icons are listed with their audit; the other warnings here.
     notes = [f for f in gate.warnings if f.rule is not Rule.UNRENDERABLE]
     if notes:
-        out.append(Text(f"Notes ({len(notes)}), reported without failing the gate:"))
-        for f in notes[:MAX_FINDINGS]:
-            out.append(Text(safe_text(f"  {f.rule.value}: {where_text(f)}: {f.message}")))
-        if len(notes) > MAX_FINDINGS:
-            more = len(notes) - MAX_FINDINGS
-            out.append(Text(f"  … and {more} more (see --format json)"))
+        out += _listed(
+            Text(f"Notes ({len(notes)}), reported without failing the gate:"),
+            notes,
+            lambda f: safe_text(f"  {f.rule.value}: {where_text(f)}: {f.message}"),
+        )
     if gate.stale:
         n = len(gate.stale)
         if gate.baseline is not None and gate.baseline.kind == "base":
@@ -314,6 +311,14 @@ def gate_renderable(gate: GateResult, base: Path | None = None) -> RenderableTyp
             line = f"  {n} baseline {gone}; rewrite the baseline with --write-baseline"
         out.append(Text(line, style="yellow"))
     return Group(*out)
+
+
+def _failure_line(base: Path | None) -> Callable[[Finding], str]:
+    def line(f: Finding) -> str:
+        at = f" [{location_text(f.locations[0], base)}]" if f.locations else ""
+        return safe_text(f"  {f.rule.value}: {where_text(f)} ({f.theme}){at}: {f.message}")
+
+    return line
 
 
 def fixes_renderable(report: CheckReport) -> RenderableType | None:
@@ -361,10 +366,10 @@ def render_report(report: CheckReport, options: RenderOptions) -> str:
 def gamut_renderable(report: CheckReport, options: RenderOptions) -> RenderableType:
     """Colours outside sRGB that the gamut policy moved: one line per colour."""
     notes = report.gamut
-    out: list[RenderableType] = [
-        Text(f"Colours outside sRGB ({len(notes)}), fitted by the gamut policy", style="bold")
-    ]
-    out += [Text(f"  {safe_text(gamut_line(n, options.base))}") for n in notes[:MAX_FINDINGS]]
-    if len(notes) > MAX_FINDINGS:
-        out.append(Text(f"  … and {len(notes) - MAX_FINDINGS} more (see --format json)"))
-    return Group(*out)
+    return Group(
+        *_listed(
+            Text(f"Colours outside sRGB ({len(notes)}), fitted by the gamut policy", style="bold"),
+            notes,
+            lambda n: f"  {safe_text(gamut_line(n, options.base))}",
+        )
+    )
