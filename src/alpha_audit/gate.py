@@ -12,7 +12,7 @@ nothing is printed.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
 from typing import Literal
 
@@ -154,6 +154,10 @@ class GateResult:
         for f in self.failures:
             out[f.rule.value] = out.get(f.rule.value, 0) + 1
         return dict(sorted(out.items()))
+
+    def counts_text(self, escape: Callable[[str], str] = str) -> str:
+        """``counts()`` as a report says it: ``2 below-threshold, 1 loss``."""
+        return ", ".join(f"{n} {escape(rule)}" for rule, n in self.counts().items())
 
 
 @dataclass(frozen=True)

@@ -263,7 +263,7 @@ def gate_status(gate: GateResult, *, writing_baseline: bool, exit_zero: bool) ->
     if gate.passed:
         stderr_note("gate passed")
         return ExitStatus.OK
-    counts = ", ".join(f"{n} {rule}" for rule, n in gate.counts().items())
+    counts = gate.counts_text()
     stderr_note(f"gate failed: {counts}" + (" (--exit-zero)" if exit_zero else ""))
     return ExitStatus.OK if exit_zero else ExitStatus.GATE_FAILED
 

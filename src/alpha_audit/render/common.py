@@ -44,6 +44,7 @@ if TYPE_CHECKING:
     from alpha_audit.results import CheckReport, ColorFix, Fix, SafeAlpha
 
 __all__ = [
+    "COMMENT_LIMIT",
     "SUFFIXES",
     "EncodedRecords",
     "Records",
@@ -101,6 +102,11 @@ class Renderer(Protocol[ResultT_contra]):
         """The whole report as text (ends with a newline)."""
         ...
 
+
+# GitHub refuses issue and pull-request comments longer than 65,536 characters
+# (REST API "Create an issue comment": "body is too long (maximum is 65536
+# characters)").  The job summary allows 1 MiB, so one text fits both.
+COMMENT_LIMIT = 65_536
 
 # Report extensions per format value.  An output file whose extension belongs to
 # another format (``-f junit -o report.sarif``) is a usage error; an extension

@@ -146,7 +146,7 @@ def gate_annotations(gate: GateResult, options: RenderOptions, passed: str) -> s
     if gate.passed:
         lines.append(_command("notice", passed, file=None, line=None, title="alpha-audit"))
     else:
-        counts = ", ".join(f"{n} {rule}" for rule, n in gate.counts().items())
+        counts = gate.counts_text()
         # The verdict is an error line too: the findings get the other nine.
         shown = errors if len(errors) < MAX_ANNOTATIONS else errors[: MAX_ANNOTATIONS - 1]
         verdict = (

@@ -38,6 +38,7 @@ from alpha_audit.figures import (
 from alpha_audit.findings import Finding
 from alpha_audit.gate import rule_summary
 from alpha_audit.render.common import (
+    COMMENT_LIMIT,
     RenderOptions,
     baselined_text,
     escape_markdown,
@@ -53,10 +54,6 @@ from alpha_audit.rules import Rule
 
 __all__ = ["COMMENT_LIMIT", "MARKER", "render_markdown", "render_report"]
 
-# GitHub refuses issue and pull-request comments longer than 65,536 characters
-# (REST API "Create an issue comment": "body is too long (maximum is 65536
-# characters)").  The job summary allows 1 MiB, so one text fits both.
-COMMENT_LIMIT = 65_536
 MARKER = "<!-- alpha-audit -->"  # finds the sticky comment to update (action.yml)
 _NAMES = 3  # icon names shown per group; the JSON report has them all
 _NAME = 100  # characters of a theme or icon-set name in a <details> summary
@@ -246,7 +243,7 @@ def _head(report: CheckReport, budget: _Budget) -> None:
         head += f"; {improved} paint×canvas newly reach the threshold)" if improved else ")"
     else:
         failing_audits = {(f.theme, f.iconset) for f in gate.failures}
-        counts = ", ".join(f"{n} {escape_markdown(rule)}" for rule, n in gate.counts().items())
+        counts = gate.counts_text(escape_markdown)
         head = (
             f"## ❌ alpha-audit: gate failed: {len(gate.failures)} root cause(s) ({counts}) "
             f"in {len(failing_audits)} of {len(audits)} audit(s)"

@@ -33,6 +33,7 @@ from alpha_audit.figures import ContrastFigures
 from alpha_audit.findings import Finding
 from alpha_audit.observed import BlockedRequest, MeasuredPaint, PageRun
 from alpha_audit.render.common import (
+    COMMENT_LIMIT,
     RenderOptions,
     baselined_text,
     display_path,
@@ -65,7 +66,6 @@ __all__ = [
 ]
 
 MARKER = "<!-- alpha-audit render -->"  # the sticky comment of the page audit
-COMMENT_LIMIT = 65_536  # GitHub's comment limit (render.markdown.COMMENT_LIMIT)
 _LISTED = 50  # failing icons listed in the comment; the JSON and SARIF have them all
 
 
@@ -113,10 +113,7 @@ def _figure(value: float | None) -> str:
 
 def _verdict(report: CheckReport) -> str:
     gate = report.gate
-    if gate.passed:
-        head = "gate passed"
-    else:
-        head = "gate failed: " + ", ".join(f"{n} {rule}" for rule, n in gate.counts().items())
+    head = "gate passed" if gate.passed else "gate failed: " + gate.counts_text()
     return f"{head} ({len(gate.warnings)} reported; {len(gate.baselined)} baselined)"
 
 
