@@ -103,3 +103,20 @@ def test_no_safe_alpha_says_not_even_1_only_when_1_itself_fails() -> None:
     assert fix_text(replace(fix, held=())) == "#ee7733: not even alpha 1 passes; change the colour"
     together = replace(fix, largest_safe=SafeAlpha(1.05, 1.05, limit), together=("b", "c"))
     assert fix_text(together) == "#ee7733: alpha 1 to 1.05 together with b and c"
+
+
+def test_a_fix_two_modes_share_is_said_once() -> None:
+    """One fix per mode: blue at 1.6 loses contrast on a light and on a dark mid grey, and
+    both modes' fixes read alike (the 3,470 simple-icons logos printed "#0500be: alpha 1 to
+    1.001; #0500be: alpha 1 to 1.001")."""
+    theme = Theme(
+        "two", (Canvas("light-mid", "#777777", "light"), Canvas("dark-mid", "#787878", "dark"))
+    )
+    result = audit(theme, ICONS)
+    report = with_fixes(
+        CheckReport(audits=(result,), gate=evaluate([result], Policy(rules=frozenset({Rule.LOSS}))))
+    )
+    finding = report.gate.failures[0]
+    texts = [fix_text(report.fixes[k]) for k in finding.fixes]
+    assert len(texts) == 2 and texts[0] == texts[1]  # one per mode, the same words
+    assert finding_fix(finding, report) == texts[0]

@@ -793,7 +793,8 @@ def finding_fix(finding: Finding, report: CheckReport) -> str:
     from alpha_audit.rules import RULES
 
     if finding.fixes:
-        return "; ".join(fix_text(report.fixes[k]) for k in finding.fixes)
+        # One fix per mode: where two modes need the same edit, it is said once.
+        return "; ".join(dict.fromkeys(fix_text(report.fixes[k]) for k in finding.fixes))
     if finding.fails and report.fixes_left_out and finding.canvas is not None:
         return "run alpha-audit suggest for the safe alphas (too many failing colours here)"
     return RULES[finding.rule].fix.replace("`", "")
