@@ -338,7 +338,8 @@ def fixes_renderable(report: CheckReport) -> RenderableType | None:
             break
     if not seen:
         return None
-    return Group(Text("How to fix:"), *(Text(f"  {t}") for t in seen))
+    # Indented as a block, so a fix wrapped at the terminal's width stays under its start.
+    return Group(Text("How to fix:"), *(Padding(Text(t), (0, 0, 0, 2)) for t in seen))
 
 
 def render_report(report: CheckReport, options: RenderOptions) -> str:
