@@ -27,6 +27,8 @@ from pathlib import Path
 from typing import Any
 
 from rich import box
+from rich.console import Group
+from rich.padding import Padding
 from rich.text import Text
 
 from alpha_audit.figures import ContrastFigures
@@ -159,16 +161,19 @@ def page_table(report: CheckReport, run: PageRun, options: RenderOptions) -> str
     threshold = report.audits[0].threshold if report.audits else 3.0
     failing = sum(1 for r in rows if r.passes is False)
     unmeasured = sum(1 for r in rows if r.paint is None)
-    lines = [
+    summary = (
         f"{run.audited} page states, {run.icons} icons, {run.paints} paints; "
         f"{failing} below {threshold:g}:1 at full coverage"
         + (f"; {unmeasured} too thin to measure" if unmeasured else "")
-        + f"; {len(run.blocked)} requests blocked",
-    ]
-    for f in report.gate.failures:
-        lines.append(safe_text(f"  {f.rule.value}: {where(f)}: {f.message}"))
-    lines.append(_verdict(report))
-    return to_text(table, options) + "\n".join(lines) + "\n"
+        + f"; {len(run.blocked)} requests blocked"
+    )
+    # Each failure indented as a block: wrapped at the terminal's width, it stays under
+    # its start (a CI log at 80 columns).
+    failures = (
+        Padding(Text(safe_text(f"{f.rule.value}: {where(f)}: {f.message}")), (0, 0, 0, 2))
+        for f in report.gate.failures
+    )
+    return to_text(Group(table, Text(summary), *failures, Text(_verdict(report))), options)
 
 
 def where(f: Finding) -> str:
