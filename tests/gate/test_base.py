@@ -205,8 +205,12 @@ def test_sigterm_during_the_base_removes_the_exported_revision(repo: Path, tmp_p
     bin_dir = tmp_path / "bin"
     bin_dir.mkdir()
     wrapper = bin_dir / "git"
+    # The real git exits before the wrapper hangs, and says so: signalled any earlier,
+    # that git (the wrapper's child, not ours) could still be exiting when pgrep looks.
+    hanging = tmp_path / "hanging"
     wrapper.write_text(
-        f'#!/bin/sh\ncase " $* " in *" archive "*) "{real}" "$@"; exec sleep 300;; esac\n'
+        f'#!/bin/sh\ncase " $* " in *" archive "*) "{real}" "$@"; : > "{hanging}"; '
+        "exec sleep 300;; esac\n"
         f'exec "{real}" "$@"\n'
     )
     wrapper.chmod(0o755)
@@ -223,7 +227,7 @@ def test_sigterm_during_the_base_removes_the_exported_revision(repo: Path, tmp_p
         start_new_session=True,
     )
     deadline = time.monotonic() + 60
-    while not list(temp.glob("alpha-audit-base-*/revision/design/set.yaml")):
+    while not (hanging.exists() and list(temp.glob("alpha-audit-base-*/revision/design/set.yaml"))):
         assert run.poll() is None and time.monotonic() < deadline, run.stderr.read()
         time.sleep(0.05)
     run.send_signal(signal.SIGTERM)
