@@ -122,6 +122,11 @@ class GateResult:
     baseline: Baseline | None = None  # what the findings were judged against
 
     @property
+    def on_base(self) -> bool:
+        """Whether the baseline is the base revision's findings (``check --base``)."""
+        return self.baseline is not None and self.baseline.kind == "base"
+
+    @property
     def vacuous(self) -> bool:
         """True when nothing was audited (every icon unrenderable): the gate cannot pass."""
         return self.audited == 0

@@ -666,9 +666,8 @@ def baselined_text(gate: GateResult) -> str:
     >>> baselined_text(GateResult(Policy(), (), baseline=Baseline(kind="base", name="main")))
     'already on the base revision main'
     """
-    b = gate.baseline
-    if b is not None and b.kind == "base":
-        return f"already on the base revision {b.name}"
+    if gate.on_base and gate.baseline is not None:
+        return f"already on the base revision {gate.baseline.name}"
     return "in the baseline"
 
 

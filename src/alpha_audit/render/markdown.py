@@ -258,7 +258,7 @@ def _rule_table(report: CheckReport, options: RenderOptions, budget: _Budget) ->
         return
     budget.add(
         "| rule | failing root causes | icons | reported, not gated | exempted | "
-        f"{'on the base' if _on_base(report) else 'baselined'} | worst |",
+        f"{'on the base' if report.gate.on_base else 'baselined'} | worst |",
         "|---|--:|--:|--:|--:|--:|---|",
     )
     for rs in by_rule:
@@ -387,7 +387,7 @@ def _notes(
                 break
     if gate.stale:
         n = len(gate.stale)
-        if _on_base(report):
+        if report.gate.on_base:
             budget.add("", f"{n} root cause(s) of the base revision fixed by this change.")
         else:
             gone = "entry no longer occurs" if n == 1 else "entries no longer occur"
@@ -405,11 +405,6 @@ def _notes(
             if not budget.add(line):
                 left_out[0] += len(notes) - k
                 break
-
-
-def _on_base(report: CheckReport) -> bool:
-    """Whether the baseline is the base revision's findings (``check --base``)."""
-    return report.gate.baseline is not None and report.gate.baseline.kind == "base"
 
 
 def _groups_of_rows(

@@ -304,7 +304,7 @@ def gate_renderable(gate: GateResult, base: Path | None = None) -> RenderableTyp
         )
     if gate.stale:
         n = len(gate.stale)
-        if gate.baseline is not None and gate.baseline.kind == "base":
+        if gate.on_base:
             line = f"  {n} root cause(s) of the base revision fixed by this change"
         else:
             gone = "entry no longer occurs" if n == 1 else "entries no longer occur"
