@@ -192,9 +192,14 @@ def test_a_base_that_cannot_be_exported_gates_on_every_finding(
     assert len(json.loads(result.stdout)["gate"]["failures"]) == 2
 
 
-def test_sigterm_during_the_base_removes_the_exported_revision(repo: Path, tmp_path: Path) -> None:
+@pytest.mark.parametrize("hang", ["exec sleep 300", "sleep 300"], ids=["exec", "child"])
+def test_sigterm_during_the_base_removes_the_exported_revision(
+    repo: Path, tmp_path: Path, hang: str
+) -> None:
     """git archive is made to hang once it has written the tree (a wrapper on PATH): the run
-    is signalled while the revision sits exported in its TMPDIR, and must leave nothing."""
+    is signalled while the revision sits exported in its TMPDIR, and must leave nothing.
+    The wrapper hangs as itself (``exec``) or in a child of its own, which dies with
+    git's process group."""
     import shutil
     import signal
     import sys
@@ -210,7 +215,7 @@ def test_sigterm_during_the_base_removes_the_exported_revision(repo: Path, tmp_p
     hanging = tmp_path / "hanging"
     wrapper.write_text(
         f'#!/bin/sh\ncase " $* " in *" archive "*) "{real}" "$@"; : > "{hanging}"; '
-        "exec sleep 300;; esac\n"
+        f"{hang};; esac\n"
         f'exec "{real}" "$@"\n'
     )
     wrapper.chmod(0o755)
@@ -233,5 +238,23 @@ def test_sigterm_during_the_base_removes_the_exported_revision(repo: Path, tmp_p
     run.send_signal(signal.SIGTERM)
     assert run.wait(timeout=30) == -signal.SIGTERM, run.stderr.read()
     assert list(temp.iterdir()) == []  # the exported revision is gone
-    sleepers = subprocess.run(["pgrep", "-s", str(run.pid)], capture_output=True, text=True)
-    assert sleepers.stdout.split() == []  # and the hanging git with it
+    # And the hanging git with it: no live process left in the run's session (one just
+    # killed may show as a zombie until it is reaped).
+    deadline = time.monotonic() + 10
+    while (alive := _alive_in_session(run.pid)) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert alive == []
+
+
+def _alive_in_session(session: int) -> list[str]:
+    """The processes of ``session`` that are not zombies (``pgrep`` lists both)."""
+    found = subprocess.run(["pgrep", "-s", str(session)], capture_output=True, text=True)
+    alive = []
+    for pid in found.stdout.split():
+        try:
+            state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+        except (OSError, IndexError):
+            continue  # gone already
+        if state != "Z":
+            alive.append(pid)
+    return alive

@@ -16,6 +16,7 @@ from __future__ import annotations
 import contextlib
 import os
 import re
+import signal
 import subprocess
 import tarfile
 from pathlib import Path
@@ -165,6 +166,7 @@ def export_revision(repo: Path, commit: str, into: Path, home: Path) -> list[str
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         stdin=subprocess.DEVNULL,
+        process_group=0,  # git and what it starts (a wrapper's children) die together
     ) as proc:
         assert proc.stdout is not None and proc.stderr is not None
         try:
@@ -176,19 +178,25 @@ def export_revision(repo: Path, commit: str, into: Path, home: Path) -> list[str
         except tarfile.ReadError as exc:
             with contextlib.suppress(subprocess.TimeoutExpired):
                 proc.wait(timeout=10)  # git said why on stderr and exited
-            proc.kill()
+            _kill(proc)
             said = proc.stderr.read().decode("utf-8", "replace").strip().splitlines()
             raise UsageError(f"git archive: {(said or [str(exc)])[0][:200]}", path=repo) from exc
         except subprocess.TimeoutExpired as exc:
-            proc.kill()
+            _kill(proc)
             raise InputError(f"git archive took more than {GIT_SECONDS} s", path=repo) from exc
         except BaseException:
-            proc.kill()  # any other failure, or a signal unwinding: git is not waited for
+            _kill(proc)  # any other failure, or a signal unwinding: git is not waited for
             raise
         if proc.returncode != 0:
             said = proc.stderr.read().decode("utf-8", "replace").strip().splitlines()
             raise UsageError(f"git archive: {(said or ['failed'])[0][:200]}", path=repo)
     return skipped
+
+
+def _kill(proc: subprocess.Popen[bytes]) -> None:
+    """Kill git's process group: git, and any process a wrapper on PATH started for it."""
+    with contextlib.suppress(ProcessLookupError, PermissionError):
+        os.killpg(proc.pid, signal.SIGKILL)
 
 
 def _extract(stream: IO[bytes], into: Path) -> list[str]:
