@@ -189,7 +189,6 @@ class _Measured:
     masks: dict[int, tuple[Mask, ...]] | None = None
     failure: str | None = None
     cached_paints: bool = False
-    rendered: dict[int, tuple[Mask, ...]] = field(default_factory=dict)  # this run, per size
     refused: str | None = None  # why the paint reader refused it, found this run
 
 
@@ -232,11 +231,10 @@ def _measure(
             for _ in range(unread + len(todo) - len(missing)):
                 progress()
         if missing:
-            _render(missing, sizes, limits, pool, keep_masks, progress, early)
+            _render(missing, sizes, limits, pool, keep_masks, progress, early, store)
         elif pool is not None:
             pool.pause()  # nothing to render: its workers starting up need not compete
         if store is not None:
-            _to_cache(store, todo, sizes)
             store.flush()
     finally:
         if opened is not None:
@@ -266,9 +264,14 @@ def _render(
     keep_masks: bool,
     progress: Callable[[], None] | None,
     early: dict[int, IconProblem],
+    store: RenderCache | None,
 ) -> None:
     """Read and render the icons the cache did not have: one job per icon, its paints
-    read in the worker (off this process's path, inside the sandbox's limits)."""
+    read in the worker (off this process's path, inside the sandbox's limits).
+
+    Each icon's cache entries are made (``store``, written by its flush) as its reply
+    comes, while the workers render the next ones, and its masks are dropped unless
+    kept: none waits for the last icon."""
     jobs = (
         ((m, todo), ReadPaints(m.data, MAX_PAINT_GROUPS), todo)
         for m in missing
@@ -288,6 +291,8 @@ def _render(
             if outcome.problem is not None:  # the file's paints could not be read
                 early[m.index] = IconProblem(m.name, m.path, outcome.problem)
                 m.refused = outcome.problem if outcome.lasting else None
+                if store is not None and m.refused is not None and not m.cached_paints:
+                    store.put(entry_key("refused", m.digest), m.refused.encode())
                 continue
             paints = decode_paints(outcome.paints)
             if paints is None or len(paints.groups()) != len(outcome.masks):
@@ -303,18 +308,22 @@ def _render(
                     break
                 rendered[size] = tuple(r for r in per_group if not isinstance(r, str))
             else:
-                m.rendered = rendered
-                _keep(m, rendered, keep_masks)
+                stats = _keep(m, rendered, keep_masks)
+                if store is not None:
+                    _to_cache(store, m, paints, {size: stats[size] for size in rendered}, rendered)
 
 
-def _keep(m: _Measured, rendered: dict[int, tuple[Mask, ...]], keep_masks: bool) -> None:
-    """Add what was rendered to what the cache gave, reduced to statistics."""
+def _keep(
+    m: _Measured, rendered: dict[int, tuple[Mask, ...]], keep_masks: bool
+) -> dict[int, tuple[CoverageStats, ...]]:
+    """Add what was rendered to what the cache gave, reduced to statistics (returned)."""
     stats = dict(m.stats or {})
     for size, masks in rendered.items():
         stats[size] = tuple(coverage_stats(mask) for mask in masks)
     m.stats = stats
     if keep_masks:
         m.masks = {**(m.masks or {}), **rendered}
+    return stats
 
 
 # --- the render cache's entries ---------------------------------------------------------------
@@ -368,17 +377,19 @@ def _from_cache(
         m.masks = masks if keep_masks else None
 
 
-def _to_cache(store: RenderCache, todo: list[_Measured], sizes: tuple[int, ...]) -> None:
-    """Keep what was rendered for every icon that rendered completely."""
-    for m in todo:
-        if m.refused is not None and not m.cached_paints:
-            store.put(entry_key("refused", m.digest), m.refused.encode())
-        if m.failure is not None or m.paints is None or not m.rendered or m.stats is None:
-            continue
-        if not m.cached_paints:
-            store.put(entry_key("paints", m.digest), encode_paints(m.paints))
-        for size, masks in m.rendered.items():
-            store.put(entry_key("masks", m.digest, size), _encode_masks(m.stats[size], masks))
+def _to_cache(
+    store: RenderCache,
+    m: _Measured,
+    paints: SvgPaints,
+    stats: dict[int, tuple[CoverageStats, ...]],
+    rendered: dict[int, tuple[Mask, ...]],
+) -> None:
+    """Keep what was rendered of an icon that rendered completely: its paints (unless
+    they came from the cache) and each size's statistics and masks."""
+    if not m.cached_paints:
+        store.put(entry_key("paints", m.digest), encode_paints(paints))
+    for size, masks in rendered.items():
+        store.put(entry_key("masks", m.digest, size), _encode_masks(stats[size], masks))
 
 
 def _decode_refusal(value: bytes) -> str | None:
