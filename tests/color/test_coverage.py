@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from fractions import Fraction
+
 import numpy as np
 import pytest
 from hypothesis import given
@@ -12,6 +14,7 @@ from alpha_audit.color import (
     composite_paint,
     contrast_ratio,
     coverage_stats,
+    coverage_stats_of,
     full_share,
     hex_to_linear,
     median_coverage,
@@ -52,6 +55,23 @@ def test_full_share_matches_counting(mask: np.ndarray) -> None:
         assert np.isnan(full_share(mask))
         return
     assert full_share(mask) == pytest.approx(255 * np.count_nonzero(mask == 255) / ink)
+
+
+@given(st.lists(arrays(np.uint8, st.tuples(st.integers(0, 9), st.integers(0, 9))), max_size=6))
+def test_many_masks_at_once_are_each_exact(masks: list[np.ndarray]) -> None:
+    """Each figure of each 8-bit mask, reduced together, is the correctly rounded value of
+    its exact rational (Fraction), and q50 is the level walk's."""
+    for mask, stats in zip(masks, coverage_stats_of(masks), strict=True):
+        ink = int(mask.astype(int).sum())
+        if ink == 0:
+            assert stats.pixels == 0 and stats.ink == 0.0
+            assert np.isnan(stats.q50) and np.isnan(stats.full_share)
+            continue
+        assert stats.pixels == np.count_nonzero(mask)
+        assert stats.ink == float(Fraction(ink, 255))
+        assert stats.full_share == float(Fraction(255 * np.count_nonzero(mask == 255), ink))
+        assert stats.q50 == reference_q50(mask)
+        assert coverage_stats(mask) == stats
 
 
 def test_hand_examples() -> None:

@@ -14,6 +14,7 @@ from alpha_audit.color.composite import (
 from alpha_audit.color.coverage import (
     CoverageStats,
     coverage_stats,
+    coverage_stats_of,
     full_share,
     median_coverage,
     size_contrast_float,
@@ -79,6 +80,7 @@ __all__ = [
     "contrast_from_luminance",
     "contrast_ratio",
     "coverage_stats",
+    "coverage_stats_of",
     "cvd_matrix",
     "delta_e_2000",
     "delta_e_2000_lab",

@@ -3,10 +3,14 @@
 WCAG judges the specified colour, not antialiased pixels (Understanding SC
 1.4.11), so these figures are legibility beyond WCAG.  A mask holds coverage
 ``q`` in [0, 1] per pixel (uint8 codes / 255 or floats); only ``q > 0`` counts.
+Of 8-bit codes every figure is exact (correctly rounded from integer sums of a
+histogram), and many masks are reduced at once (:func:`coverage_stats_of`).
 """
 
 from __future__ import annotations
 
+import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -18,6 +22,7 @@ from alpha_audit.color.metrics import contrast_ratio
 __all__ = [
     "CoverageStats",
     "coverage_stats",
+    "coverage_stats_of",
     "full_share",
     "median_coverage",
     "size_contrast_float",
@@ -25,8 +30,8 @@ __all__ = [
 
 
 def _coverage(mask: ArrayLike) -> NDArray[np.float64]:
-    m = np.asarray(mask)
-    q = m.astype(np.float64) / 255.0 if m.dtype == np.uint8 else m.astype(np.float64)
+    """The covered pixels' coverages of a float mask."""
+    q = np.asarray(mask, dtype=np.float64)
     return q[q > 0.0]
 
 
@@ -43,11 +48,7 @@ def median_coverage(mask: ArrayLike) -> float:
     """
     m = np.asarray(mask)
     if m.dtype == np.uint8:  # 8-bit codes: exact integer sums, no rounding at the tie
-        codes = np.sort(m[m > 0].astype(np.int64))
-        if codes.size == 0:
-            return float("nan")
-        twice = 2 * np.cumsum(codes)  # reaches half: 2 * running >= total
-        return float(codes[np.searchsorted(twice, twice[-1] // 2, side="left")]) / 255.0
+        return coverage_stats_of([m])[0].q50
     q = np.sort(_coverage(m))
     if q.size == 0:
         return float("nan")
@@ -65,7 +66,10 @@ def full_share(mask: ArrayLike) -> float:
     >>> full_share([[1.0, 0.5, 0.5, 0.0]])
     0.5
     """
-    q = _coverage(mask)
+    m = np.asarray(mask)
+    if m.dtype == np.uint8:
+        return coverage_stats_of([m])[0].full_share
+    q = _coverage(m)
     if q.size == 0:
         return float("nan")
     return float(q[q >= 1.0].sum() / q.sum())
@@ -83,8 +87,42 @@ class CoverageStats:
 
 def coverage_stats(mask: ArrayLike) -> CoverageStats:
     """:func:`median_coverage`, :func:`full_share`, ink and covered pixels of one mask."""
-    q = _coverage(mask)
-    return CoverageStats(median_coverage(mask), full_share(mask), float(q.sum()), int(q.size))
+    m = np.asarray(mask)
+    if m.dtype == np.uint8:
+        return coverage_stats_of([m])[0]
+    q = _coverage(m)
+    return CoverageStats(median_coverage(m), full_share(m), float(q.sum()), int(q.size))
+
+
+def coverage_stats_of(masks: Sequence[NDArray[np.uint8]]) -> list[CoverageStats]:
+    """:func:`coverage_stats` of each 8-bit mask (any shapes), from one histogram of them all.
+
+    Each figure is exact: the ink is ``sum(codes) / 255`` and the full share
+    ``255 * solid pixels / sum(codes)``, each one division of integers; ``q50``
+    the first code at which twice the running ink reaches the total.
+
+    >>> masks = [np.zeros((2, 2), np.uint8), np.full((3, 3), 9, np.uint8)]
+    >>> [s.pixels for s in coverage_stats_of(masks)]
+    [0, 9]
+    """
+    if not masks:
+        return []
+    sizes = np.array([m.size for m in masks])
+    label = np.repeat(np.arange(len(masks)) * 256, sizes)
+    codes = np.concatenate([np.ravel(m) for m in masks]).astype(np.intp) + label
+    counts = np.bincount(codes, minlength=256 * len(masks)).reshape(len(masks), 256)
+    running = np.cumsum(counts * np.arange(256), axis=1)  # ink in codes, level by level
+    total = running[:, -1]
+    q50 = np.argmax(2 * running >= total[:, None], axis=1)
+    out = []
+    for k, ink in enumerate(total.tolist()):
+        if ink == 0:
+            out.append(CoverageStats(math.nan, math.nan, 0.0, 0))
+            continue
+        solid = int(counts[k, 255])
+        pixels = int(sizes[k] - counts[k, 0])
+        out.append(CoverageStats(int(q50[k]) / 255, 255 * solid / ink, ink / 255, pixels))
+    return out
 
 
 def size_contrast_float(

@@ -31,7 +31,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from alpha_audit.color.coverage import CoverageStats, coverage_stats
+from alpha_audit.color.coverage import CoverageStats, coverage_stats_of
 from alpha_audit.errors import SvgError
 from alpha_audit.load.paints import decode_paints, encode_paints
 from alpha_audit.load.render_cache import RenderCache, entry_key, open_default
@@ -318,8 +318,9 @@ def _keep(
 ) -> dict[int, tuple[CoverageStats, ...]]:
     """Add what was rendered to what the cache gave, reduced to statistics (returned)."""
     stats = dict(m.stats or {})
+    reduced = iter(coverage_stats_of([mask for masks in rendered.values() for mask in masks]))
     for size, masks in rendered.items():
-        stats[size] = tuple(coverage_stats(mask) for mask in masks)
+        stats[size] = tuple(next(reduced) for _ in masks)
     m.stats = stats
     if keep_masks:
         m.masks = {**(m.masks or {}), **rendered}
