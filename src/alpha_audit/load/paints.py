@@ -281,13 +281,13 @@ def _isolate(
             path=path,
         )
     movable = _prunable(document)
-    _disarm_uses(document, {id(v.node) for v in visited if id(v.node) not in movable})
+    _disarm_uses(document, {v.node for v in visited if v.node not in movable})
     original = [v.node.get("style") for v in visited]
     out = []
     for keep in keeps:
         left_out = _left_out(visited, movable, keep)
         for v, style in zip(visited, original, strict=True):
-            if id(v.node) in left_out:
+            if v.node in left_out:
                 continue  # not in this SVG: whatever it says does not matter
             decls = _overrides(v, keep)
             if not decls:  # renders as it is: left byte for byte (a third of the render cost)
@@ -307,8 +307,8 @@ def _isolate(
     return out
 
 
-def _prunable(document: _Document) -> set[int]:
-    """Elements (by ``id()``) whose subtree an isolated SVG may leave out when it draws nothing.
+def _prunable(document: _Document) -> set[ET.Element]:
+    """Elements whose subtree an isolated SVG may leave out when it draws nothing.
 
     Left out, a subtree that draws nothing changes the rendered mask only
     through what refers to it or what its presence changes for others, so an
@@ -323,23 +323,19 @@ def _prunable(document: _Document) -> set[int]:
     """
     if document.structural or not document.visited:
         return set()
-    visited = {id(v.node): v for v in document.visited}
-    ok: set[int] = set()
+    visited = {v.node: v for v in document.visited}
+    ok: set[ET.Element] = set()
     for v in reversed(document.visited):  # children before their parents
         node = v.node
-        if _local(document.parents.get(id(node), node)) == "switch":
+        if _local(document.parents.get(node, node)) == "switch":
             continue
         if _is_use(v):  # drawn by none of the groups; cairosvg registers no id of it
-            ok.add(id(node))
+            ok.add(node)
             continue
-        if (
-            v.hidden_kind
-            or node.get("id") is not None
-            or not all(id(child) in ok for child in node)
-        ):
+        if v.hidden_kind or node.get("id") is not None or not all(child in ok for child in node):
             continue
-        ok.add(id(node))
-    ok.discard(id(document.visited[0].node))  # the root stays
+        ok.add(node)
+    ok.discard(document.visited[0].node)  # the root stays
     return ok & visited.keys()
 
 
@@ -347,7 +343,7 @@ def _is_use(v: _Visited) -> bool:
     return v.hidden_kind and _local(v.node) == "use"
 
 
-def _disarm_uses(document: _Document, kept: Container[int]) -> None:
+def _disarm_uses(document: _Document, kept: Container[ET.Element]) -> None:
     """Point every ``<use>`` the group SVGs keep at nothing.
 
     cairosvg draws a ``<use>``'s target whatever the ``<use>``'s ``display``,
@@ -355,7 +351,7 @@ def _disarm_uses(document: _Document, kept: Container[int]) -> None:
     a reference to an id the file does not have draws nothing, and the
     element stays where selectors may look for it.
     """
-    uses = [v.node for v in document.visited if _is_use(v) and id(v.node) in kept]
+    uses = [v.node for v in document.visited if _is_use(v) and v.node in kept]
     if not uses:
         return
     ids = {e.get("id") for e in document.visited[0].node.iter()}
@@ -371,39 +367,39 @@ def _disarm_uses(document: _Document, kept: Container[int]) -> None:
 
 
 def _left_out(
-    visited: Sequence[_Visited], movable: set[int], keep: Callable[[Paint], bool]
-) -> set[int]:
-    """The outermost movable elements that draw none of ``keep``'s paints (by ``id()``)."""
+    visited: Sequence[_Visited], movable: set[ET.Element], keep: Callable[[Paint], bool]
+) -> set[ET.Element]:
+    """The outermost movable elements that draw none of ``keep``'s paints."""
     if not movable:
         return set()
-    drawing: set[int] = set()  # elements drawing a kept paint, or above one
+    drawing: set[ET.Element] = set()  # elements drawing a kept paint, or above one
     for v in reversed(visited):  # children before their parents
         if any(p.opacity > 0.0 and keep(p) for p in v.paints) or any(
-            id(child) in drawing for child in v.node
+            child in drawing for child in v.node
         ):
-            drawing.add(id(v.node))
-    out: set[int] = set()
-    skipped: set[int] = set()  # inside an element already left out
+            drawing.add(v.node)
+    out: set[ET.Element] = set()
+    skipped: set[ET.Element] = set()  # inside an element already left out
     for v in visited:  # parents first: only the outermost one of a subtree is removed
-        key = id(v.node)
+        key = v.node
         if key in skipped:
-            skipped.update(id(child) for child in v.node)
+            skipped.update(child for child in v.node)
         elif key in movable and key not in drawing:
             out.add(key)
-            skipped.update(id(child) for child in v.node)
+            skipped.update(child for child in v.node)
     return out
 
 
 @contextlib.contextmanager
-def _without(parents: dict[int, ET.Element], left_out: set[int]) -> Iterator[None]:
+def _without(parents: dict[ET.Element, ET.Element], left_out: set[ET.Element]) -> Iterator[None]:
     """The tree with the ``left_out`` elements detached, put back in place afterwards."""
-    touched: dict[int, tuple[ET.Element, list[ET.Element]]] = {}
+    touched: dict[ET.Element, tuple[ET.Element, list[ET.Element]]] = {}
     for key in left_out:
         parent = parents[key]
-        touched.setdefault(id(parent), (parent, list(parent)))
+        touched.setdefault(parent, (parent, list(parent)))
     try:
         for parent, children in touched.values():
-            parent[:] = [c for c in children if id(c) not in left_out]
+            parent[:] = [c for c in children if c not in left_out]
         yield
     finally:
         for parent, children in touched.values():
@@ -423,7 +419,7 @@ class _Document:
     """A walked SVG: its rendered elements in document order and what pruning may rely on."""
 
     visited: list[_Visited]
-    parents: dict[int, ET.Element]  # element id() -> parent element
+    parents: dict[ET.Element, ET.Element]  # element -> parent element
     structural: bool  # a selector depends on siblings or descendants
 
 
@@ -480,7 +476,9 @@ def _kept_declarations(style: str, ours: Container[str]) -> list[str]:
     ]
 
 
-def _parse(svg: bytes, path: str | Path | None) -> tuple[ET.Element, dict[int, int], _Extent]:
+def _parse(
+    svg: bytes, path: str | Path | None
+) -> tuple[ET.Element, dict[ET.Element, int], _Extent]:
     """The XML tree, each element's start line (keyed by ``id``) and its extent.
 
     The element count and depth are refused as the parser reaches them, before
@@ -531,7 +529,7 @@ def _parse(svg: bytes, path: str | Path | None) -> tuple[ET.Element, dict[int, i
         reason = str(exc).split(":", 1)[0]
         raise SvgError(f"is not well-formed XML ({reason})", path=path, line=line) from exc
     extent_ = _Extent(len(lines), extent["depth"], extent["widest"])
-    return root, {id(e): n for e, n in zip(root.iter(), lines, strict=False)}, extent_
+    return root, {e: n for e, n in zip(root.iter(), lines, strict=False)}, extent_
 
 
 def _stylesheet(
@@ -868,13 +866,13 @@ def _read(svg: bytes, path: str | Path | None, unaudited: list[Unaudited]) -> _D
         raise SvgError("has no <svg> root element; not an SVG file", path=path)
     matchers, structural = _stylesheet(root, extent, path)
     visited = list(_walk(root, lines, matchers, path, unaudited))
-    parents = {id(child): parent for parent in root.iter() for child in parent}
+    parents = {child: parent for parent in root.iter() for child in parent}
     return _Document(visited, parents, structural)
 
 
 def _walk(
     root: ET.Element,
-    lines: dict[int, int],
+    lines: dict[ET.Element, int],
     matchers: tuple[cssselect2.Matcher, cssselect2.Matcher] | None,
     path: str | Path | None,
     unaudited: list[Unaudited],
@@ -904,7 +902,7 @@ def _walk(
         computed, raw = _cascade(wrapper, parent, parent_raw, matchers)
         if (computed["display"] or "").lower() == "none":
             continue
-        line = lines.get(id(node))
+        line = lines.get(node)
         own_opacity = _number(computed["opacity"])
         opacity = group_opacity * (1.0 if own_opacity is None else own_opacity)
         if computed["filter"] and computed["filter"].lower() != "none" and not filtered:
