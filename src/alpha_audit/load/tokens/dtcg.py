@@ -31,7 +31,6 @@ from alpha_audit.load.tokens.model import (
     Steps,
     Token,
     TokenPlace,
-    token_error,
 )
 
 __all__ = ["ALIAS", "MAX_VALUE_NODES", "TokenTree"]
@@ -93,7 +92,7 @@ class TokenTree:
         """Count ``n`` steps; past :data:`~.model.MAX_EXPANSION` an error naming the file."""
 
         def place() -> TokenPlace:
-            return {"file": doc.path, "line": doc.line(keys), "path": path}
+            return {"path": doc.path, "line": doc.line(keys), "key": path}
 
         self.steps.take(n, "resolving ($ref, aliases, $extends, groups)", place)
 
@@ -359,18 +358,18 @@ class TokenTree:
         self, raw: _Raw, pointer: Any, keys: JsonPath, stack: list[str]
     ) -> tuple[Any, Token | None, int]:
         """Follow a JSON Pointer ``#/a/b`` in the token's own document (memoised, counted)."""
-        where: TokenPlace = {"file": raw.doc.path, "line": raw.doc.line(keys), "path": raw.path}
+        where: TokenPlace = {"path": raw.doc.path, "line": raw.doc.line(keys), "key": raw.path}
         if not isinstance(pointer, str) or not pointer.startswith("#"):
-            raise token_error(
+            raise InputError(
                 f"$ref {pointer!r} must be a JSON Pointer into this file, like "
                 '"#/color/blue/$value"',
                 **where,
             )
         if pointer in stack:
             chain = " -> ".join([*stack[stack.index(pointer) :], pointer])
-            raise token_error(f"$ref cycle: {chain}", **where)
+            raise InputError(f"$ref cycle: {chain}", **where)
         if pointer.count("/") > MAX_JSON_DEPTH + 1:  # + "/$value" after the deepest key
-            raise token_error(
+            raise InputError(
                 f"$ref {pointer[:40]}... has more parts than the file nests "
                 f"({MAX_JSON_DEPTH} levels); it points at nothing",
                 **where,
@@ -388,7 +387,7 @@ class TokenTree:
             if not rest or rest == ["$value"] or (self.legacy and rest == ["value"]):
                 return target.value, target, self._sizes[token_path]
             if rest[0] not in ("$value", "value"):
-                raise token_error(
+                raise InputError(
                     f"$ref {pointer} points into token {token_path} but not at its $value",
                     **where,
                 )
@@ -402,10 +401,10 @@ class TokenTree:
             return value, None, size
         node = _descend(raw.doc.data, parts, pointer, where)
         if len(stack) > MAX_ALIAS_CHAIN:
-            raise token_error(f"$ref chain longer than {MAX_ALIAS_CHAIN}", **where)
+            raise InputError(f"$ref chain longer than {MAX_ALIAS_CHAIN}", **where)
         value, _, size = self._value(raw, node, keys, [*stack, pointer])
         if size > MAX_VALUE_NODES:
-            raise token_error(
+            raise InputError(
                 f"$ref {pointer} expands to more than {MAX_VALUE_NODES:,} JSON values", **where
             )
         self._pointers[memo] = (value, size)
@@ -429,7 +428,7 @@ def _descend(node: Any, parts: list[str], pointer: str, where: TokenPlace) -> An
         elif isinstance(node, list) and part.isdigit() and int(part) < len(node):
             node = node[int(part)]
         else:
-            raise token_error(f"$ref {pointer} points at nothing (no {part!r})", **where)
+            raise InputError(f"$ref {pointer} points at nothing (no {part!r})", **where)
     return node
 
 

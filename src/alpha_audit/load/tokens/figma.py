@@ -20,6 +20,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from alpha_audit.errors import InputError
 from alpha_audit.load.names import check_name
 from alpha_audit.load.tokens.jsondoc import JsonDoc, JsonPath
 from alpha_audit.load.tokens.model import (
@@ -29,7 +30,6 @@ from alpha_audit.load.tokens.model import (
     TokenModes,
     TokenPlace,
     check_mode_budget,
-    token_error,
 )
 
 __all__ = ["is_figma", "modes_from_figma"]
@@ -143,7 +143,7 @@ class _Reader:
         var = self.variables.get(vid)
         name = var.get("name") if isinstance(var, dict) else None
         shown = _path(name) if isinstance(name, str) and name else str(vid)
-        return {"file": self.doc.path, "line": self.doc.line(keys), "path": shown}
+        return {"path": self.doc.path, "line": self.doc.line(keys), "key": shown}
 
     def mode_for(self, vid: str, mode_name: str) -> str:
         """The modeId a variable takes in mode ``mode_name``: its collection's mode of that
@@ -167,10 +167,10 @@ class _Reader:
                 self.where(stack[-1]),
             )
         if vid in stack:
-            chain = " -> ".join(str(self.where(v)["path"]) for v in [*stack, vid])
-            raise token_error(f"alias cycle: {chain}", **self.where(stack[0]))
+            chain = " -> ".join(str(self.where(v)["key"]) for v in [*stack, vid])
+            raise InputError(f"alias cycle: {chain}", **self.where(stack[0]))
         if len(stack) > MAX_ALIAS_CHAIN:
-            raise token_error(f"alias chain longer than {MAX_ALIAS_CHAIN}", **self.where(stack[0]))
+            raise InputError(f"alias chain longer than {MAX_ALIAS_CHAIN}", **self.where(stack[0]))
         mode_id = self.mode_for(vid, mode_name)
         by_mode = self.variables[vid].get("valuesByMode")
         value = by_mode.get(mode_id) if isinstance(by_mode, dict) else None
@@ -187,17 +187,17 @@ class _Reader:
         named: dict[str, str] = {}  # token path: the variable name that made it
         for vid, var in self.variables.items():
             if not isinstance(var, dict) or not isinstance(var.get("name"), str):
-                raise token_error("a variable needs a name", **self.where(vid))
+                raise InputError("a variable needs a name", **self.where(vid))
             ttype = _TYPES.get(str(var.get("resolvedType")))
             if ttype is None:
-                raise token_error(
+                raise InputError(
                     f"resolvedType {var.get('resolvedType')!r} is not one of {', '.join(_TYPES)}",
                     **self.where(vid),
                 )
-            check_name(var["name"], **_named(self.where(vid)), what="variable name")
+            check_name(var["name"], **self.where(vid), what="variable name")
             path = _path(var["name"])
             if path in named:
-                raise token_error(
+                raise InputError(
                     f"variables {named[path]!r} and {var['name']!r} both name the token {path}; "
                     "token paths must be unique, rename one",
                     **self.where(vid),
@@ -237,15 +237,11 @@ class _Reader:
                 file=path_of,
                 line=loc["line"],
                 description=var.get("description") or None,
-                chain=(str(self.where(origin)["path"]),) if aliased else (),
+                chain=(str(self.where(origin)["key"]),) if aliased else (),
                 alias_file=path_of if aliased else None,
                 alias_line=self.where(vid)["line"] if aliased else None,
             )
         return tokens
-
-
-def _named(place: TokenPlace) -> dict[str, Any]:
-    return {"path": place["file"], "line": place["line"], "key": place["path"]}
 
 
 def _path(name: str) -> str:
@@ -256,7 +252,7 @@ def _path(name: str) -> str:
 def _color(value: Any, where: TokenPlace) -> dict[str, Any]:
     """``{r, g, b, a}`` (sRGB, 0-1) to a DTCG colour object."""
     if not isinstance(value, dict) or not all(k in value for k in "rgb"):
-        raise token_error(f"expected a colour {{r, g, b, a}}, got {value!r:.40}", **where)
+        raise InputError(f"expected a colour {{r, g, b, a}}, got {value!r:.40}", **where)
     out: dict[str, Any] = {"colorSpace": "srgb", "components": [value[k] for k in "rgb"]}
     if "a" in value:
         out["alpha"] = value["a"]

@@ -22,7 +22,6 @@ __all__ = [
     "TokenModes",
     "TokenPlace",
     "check_mode_budget",
-    "token_error",
 ]
 
 MAX_TOKENS = 100_000  # a large design system has a few thousand tokens
@@ -157,7 +156,7 @@ class Steps:
         (called only then: a step costs an addition)."""
         self.taken += n
         if self.taken > MAX_EXPANSION:
-            raise token_error(
+            raise InputError(
                 f"{what} takes more than {MAX_EXPANSION:,} steps; the file expands without bound",
                 **place(),
             )
@@ -181,15 +180,8 @@ def check_mode_budget(path: Path, modes: int, tokens: int) -> None:
 
 
 class TokenPlace(TypedDict):
-    """Where a token error points: :func:`token_error`'s keywords, to pass as ``**place``."""
+    """Where a token error points: :class:`InputError`'s keywords, to pass as ``**place``."""
 
-    file: Path | None
+    path: Path | None
     line: int | None
-    path: str | None
-
-
-def token_error(
-    message: str, *, file: Path | None, line: int | None, path: str | None
-) -> InputError:
-    """An input error naming the token file, its JSON line and the token path."""
-    return InputError(message, path=file, line=line, key=path)
+    key: str | None

@@ -17,11 +17,12 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from alpha_audit.errors import InputError
 from alpha_audit.load.names import check_name
 from alpha_audit.load.paths import PathRefused, contain
 from alpha_audit.load.tokens.dtcg import TokenTree
 from alpha_audit.load.tokens.jsondoc import JsonDoc, load_json
-from alpha_audit.load.tokens.model import Steps, TokenModes, check_mode_budget, token_error
+from alpha_audit.load.tokens.model import Steps, TokenModes, check_mode_budget
 
 __all__ = ["MAX_SOURCES", "is_resolver", "modes_from_resolver"]
 
@@ -42,11 +43,11 @@ class _Resolver:
         self.files: dict[Path, JsonDoc] = {}
 
     def error(self, keys: tuple[str | int, ...], message: str) -> Exception:
-        return token_error(
+        return InputError(
             message,
-            file=self.doc.path,
+            path=self.doc.path,
             line=self.doc.line(keys),
-            path=".".join(str(k) for k in keys) or None,
+            key=".".join(str(k) for k in keys) or None,
         )
 
     def file(self, keys: tuple[str | int, ...], ref: str) -> JsonDoc:
@@ -134,7 +135,7 @@ def _walk_pointer(doc: JsonDoc, fragment: str) -> tuple[Any, tuple[str, ...]]:
     node: Any = doc.data
     for part in parts:
         if not isinstance(node, dict) or part not in node:
-            raise token_error(f"#{fragment} points at nothing", file=doc.path, line=1, path=None)
+            raise InputError(f"#{fragment} points at nothing", path=doc.path, line=1)
         node = node[part]
     return node, parts
 

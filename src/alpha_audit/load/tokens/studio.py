@@ -24,11 +24,12 @@ from itertools import product
 from pathlib import Path
 from typing import Any
 
+from alpha_audit.errors import InputError
 from alpha_audit.load.names import check_name
 from alpha_audit.load.paths import PathRefused, contain
 from alpha_audit.load.tokens.dtcg import TokenTree
 from alpha_audit.load.tokens.jsondoc import JsonDoc, load_json
-from alpha_audit.load.tokens.model import Steps, TokenModes, check_mode_budget, token_error
+from alpha_audit.load.tokens.model import Steps, TokenModes, check_mode_budget
 
 __all__ = ["is_studio_file", "modes_from_studio"]
 
@@ -56,7 +57,7 @@ def modes_from_studio(
     folder = doc.path.name == "$themes.json"
     themes, meta, sets = _parts(doc, root, folder)
     if not isinstance(themes, list):
-        raise token_error("$themes must be a list of themes", file=doc.path, line=1, path=None)
+        raise InputError("$themes must be a list of themes", path=doc.path, line=1)
     order = meta.get("tokenSetOrder") if isinstance(meta, dict) else None
     store = _Sets(doc, root, folder, sets, order if isinstance(order, list) else None)
     if len(themes) > 0:
@@ -84,7 +85,7 @@ def _parts(
         try:
             meta_path = contain(root, doc.path.resolve().parent, "$metadata.json")
         except PathRefused as err:
-            raise token_error(str(err), file=doc.path, line=None, path=None) from err
+            raise InputError(str(err), path=doc.path) from err
         meta = load_json(meta_path).data if meta_path.is_file() else {}
         return doc.data, meta, {}
     sets = {
@@ -228,12 +229,10 @@ def _combined(
             by_group[theme.group].append(theme)
     for group, members in by_group.items():
         if not members:
-            raise token_error(
+            raise InputError(
                 f"tokens.modes.groups names {group!r}, which no theme has; groups: "
                 f"{', '.join(order)}",
-                file=doc.path,
-                line=None,
-                path=None,
+                path=doc.path,
             )
     count = 1
     for members in by_group.values():

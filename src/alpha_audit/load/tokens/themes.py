@@ -43,7 +43,7 @@ from alpha_audit.constants import GAMUT_POLICIES, GamutPolicy
 from alpha_audit.errors import InputError
 from alpha_audit.load.theme import MAX_CANVASES
 from alpha_audit.load.tokens import load_token_modes, token_color
-from alpha_audit.load.tokens.model import ModeConditions, Token, TokenModes, token_error
+from alpha_audit.load.tokens.model import ModeConditions, Token, TokenModes
 from alpha_audit.model import Canvas, GamutAdjustment, Mode, Theme
 from alpha_audit.ranges import ALPHA
 
@@ -189,18 +189,18 @@ def _alpha(token: Token, key: str) -> float | None:
     if raw is None:
         return None
     if isinstance(raw, bool) or not isinstance(raw, int | float) or not math.isfinite(raw):
-        raise token_error(
+        raise InputError(
             f"$extensions {key} alpha must be a finite number, got {raw!r:.40}",
-            file=token.alias_file or token.file,
+            path=token.alias_file or token.file,
             line=token.alias_line or token.line,
-            path=token.path,
+            key=token.path,
         )
     if not ALPHA.allows(raw):
-        raise token_error(
+        raise InputError(
             ALPHA.refusal(f"$extensions {key} alpha {raw}"),
-            file=token.alias_file or token.file,
+            path=token.alias_file or token.file,
             line=token.alias_line or token.line,
-            path=token.path,
+            key=token.path,
         )
     return float(raw)
 
@@ -252,12 +252,12 @@ def _typed(token: Token, config: TokenConfig) -> Token:
         (t for g, t in config.types.items() for p in paths if fnmatch.fnmatchcase(p, g)), None
     )
     if found is None:
-        raise token_error(
+        raise InputError(
             f"{token.problem}; or type it in the config: tokens: {{types: "
             f'{{"{token.path}": color}}}} (a glob per type)',
-            file=token.file,
+            path=token.file,
             line=token.line,
-            path=token.path,
+            key=token.path,
         )
     return replace(token, type=found, problem=None)
 
@@ -443,12 +443,12 @@ def _mode_tokens(
         parsed = seen[key]
         if parsed.alpha < 1.0:
             if is_color:
-                raise token_error(
+                raise InputError(
                     f"{parsed.text[:60]!r} is translucent (alpha {parsed.alpha:.4g}); an "
                     "icon colour is opaque and its coefficient lives in $extensions",
-                    file=token.file,
+                    path=token.file,
                     line=token.line,
-                    path=path,
+                    key=path,
                 )
             translucent[path] = TranslucentToken(token, parsed, name)
             if is_canvas:  # a surface or hover layer: audited over the mode's canvas
