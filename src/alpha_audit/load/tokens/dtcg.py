@@ -31,6 +31,9 @@ from alpha_audit.load.tokens.model import (
     Steps,
     Token,
     TokenPlace,
+    Unresolved,
+    follow,
+    too_long,
 )
 
 __all__ = ["ALIAS", "MAX_VALUE_NODES", "TokenTree"]
@@ -68,9 +71,13 @@ class _Group:
     keys: JsonPath
     type: str | None
 
+    def place(self) -> TokenPlace:
+        """Where this group's ``$extends`` is."""
+        return self.doc.place((*self.keys, "$extends"), self.path)
+
     def error(self, message: str) -> InputError:
         """An input error at this group's ``$extends``."""
-        return self.doc.error((*self.keys, "$extends"), message, self.path)
+        return InputError(message, **self.place())
 
 
 @dataclass
@@ -179,13 +186,7 @@ class TokenTree:
         def visit(group: _Group, stack: list[str]) -> None:
             if group.path in done:
                 return
-            if group.path in stack:
-                chain = " -> ".join([*stack[stack.index(group.path) :], group.path])
-                raise group.error(f"$extends cycle: {chain}")
-            if len(stack) >= MAX_ALIAS_CHAIN:
-                raise group.error(
-                    f"$extends chain longer than {MAX_ALIAS_CHAIN}: {' -> '.join(stack[:4])} -> ..."
-                )
+            follow(stack, group.path, "$extends", group.place)
             prefix = group.extends + "."
             # The target and its subgroups get their own inherited tokens first.
             for other in subgroups.get(group.extends, []):
@@ -232,15 +233,7 @@ class TokenTree:
         if path in self._cache:
             return self._cache[path]
         raw = self.raw[path]
-        if path in stack:
-            chain = " -> ".join([*stack[stack.index(path) :], path])
-            raise raw.doc.error(raw.keys, f"alias cycle: {chain}", stack[0])
-        if len(stack) >= MAX_ALIAS_CHAIN:
-            raise raw.doc.error(
-                raw.keys,
-                f"alias chain longer than {MAX_ALIAS_CHAIN}: {' -> '.join(stack[:4])} -> ...",
-                stack[0],
-            )
+        follow(stack, path, "alias", lambda: raw.doc.place(raw.keys, stack[0]))
         stack = [*stack, path]
         self.count(1, raw.doc, raw.keys, path)
         value_key = "$value" if "$value" in raw.node else "value"
@@ -248,7 +241,7 @@ class TokenTree:
             value, target, size = self._value(
                 raw, raw.node[value_key], (*raw.keys, value_key), stack
             )
-        except _Unresolved as exc:
+        except Unresolved as exc:
             token = self._broken(raw, path, exc.problem, exc.line)
             self._cache[path], self._sizes[path] = token, 1
             return token
@@ -259,11 +252,8 @@ class TokenTree:
                 path,
             )
         if target is not None and len(target.chain) >= MAX_ALIAS_CHAIN:
-            raise raw.doc.error(
-                raw.keys,
-                f"alias chain longer than {MAX_ALIAS_CHAIN}: {path} -> {target.path} -> ...",
-                path,
-            )
+            chain = (path, target.path, *target.chain)
+            raise too_long("alias", chain, raw.doc.place(raw.keys, path))
         declared = self._field(raw.node, "type")
         if declared is not None and not isinstance(declared, str):
             raise raw.doc.error(raw.keys, f"$type must be a string, got {declared!r}", path)
@@ -320,7 +310,7 @@ class TokenTree:
         if isinstance(value, str) and (match := ALIAS.fullmatch(value.strip())):
             name = self._alias_target(match.group(1))
             if name is None:
-                raise _Unresolved(
+                raise Unresolved(
                     f"alias {value} names no token in this file (a library or another "
                     "file's token?)",
                     raw.doc.line(keys),
@@ -358,16 +348,14 @@ class TokenTree:
         self, raw: _Raw, pointer: Any, keys: JsonPath, stack: list[str]
     ) -> tuple[Any, Token | None, int]:
         """Follow a JSON Pointer ``#/a/b`` in the token's own document (memoised, counted)."""
-        where: TokenPlace = {"path": raw.doc.path, "line": raw.doc.line(keys), "key": raw.path}
+        where = raw.doc.place(keys, raw.path)
         if not isinstance(pointer, str) or not pointer.startswith("#"):
             raise InputError(
                 f"$ref {pointer!r} must be a JSON Pointer into this file, like "
                 '"#/color/blue/$value"',
                 **where,
             )
-        if pointer in stack:
-            chain = " -> ".join([*stack[stack.index(pointer) :], pointer])
-            raise InputError(f"$ref cycle: {chain}", **where)
+        follow(stack, pointer, "$ref", lambda: where)
         if pointer.count("/") > MAX_JSON_DEPTH + 1:  # + "/$value" after the deepest key
             raise InputError(
                 f"$ref {pointer[:40]}... has more parts than the file nests "
@@ -400,8 +388,6 @@ class TokenTree:
             value, size = self._pointers[memo]
             return value, None, size
         node = _descend(raw.doc.data, parts, pointer, where)
-        if len(stack) > MAX_ALIAS_CHAIN:
-            raise InputError(f"$ref chain longer than {MAX_ALIAS_CHAIN}", **where)
         value, _, size = self._value(raw, node, keys, [*stack, pointer])
         if size > MAX_VALUE_NODES:
             raise InputError(
@@ -409,15 +395,6 @@ class TokenTree:
             )
         self._pointers[memo] = (value, size)
         return value, None, size
-
-
-class _Unresolved(Exception):
-    """A reference this file cannot resolve: the token becomes a :attr:`Token.problem`."""
-
-    def __init__(self, problem: str, line: int | None) -> None:
-        super().__init__(problem)
-        self.problem = problem
-        self.line = line
 
 
 def _descend(node: Any, parts: list[str], pointer: str, where: TokenPlace) -> Any:

@@ -24,12 +24,13 @@ from alpha_audit.errors import InputError
 from alpha_audit.load.names import check_name
 from alpha_audit.load.tokens.jsondoc import JsonDoc, JsonPath
 from alpha_audit.load.tokens.model import (
-    MAX_ALIAS_CHAIN,
     Steps,
     Token,
     TokenModes,
     TokenPlace,
+    Unresolved,
     check_mode_budget,
+    follow,
 )
 
 __all__ = ["is_figma", "modes_from_figma"]
@@ -52,13 +53,6 @@ def _meta(data: Any) -> tuple[Any, JsonPath] | None:
 def is_figma(data: Any) -> bool:
     """Figma's REST response (``meta.variables``, ``meta.variableCollections``), or its meta."""
     return _meta(data) is not None
-
-
-class _Missing(Exception):
-    def __init__(self, problem: str, place: TokenPlace) -> None:
-        super().__init__(problem)
-        self.problem = problem
-        self.place = place
 
 
 def modes_from_figma(doc: JsonDoc, *, collection: str | None = None) -> TokenModes:
@@ -145,12 +139,17 @@ class _Reader:
         shown = _path(name) if isinstance(name, str) and name else str(vid)
         return {"path": self.doc.path, "line": self.doc.line(keys), "key": shown}
 
+    def label(self, vid: str) -> str:
+        """A variable's token path (its id when it has no name)."""
+        return str(self.where(vid)["key"])
+
     def mode_for(self, vid: str, mode_name: str) -> str:
         """The modeId a variable takes in mode ``mode_name``: its collection's mode of that
         name, else its collection's default mode."""
         cid = self.variables[vid].get("variableCollectionId")
         if not isinstance(cid, str) or cid not in self.collections:
-            raise _Missing(f"names no known variableCollectionId ({cid!r:.40})", self.where(vid))
+            problem = f"names no known variableCollectionId ({cid!r:.40})"
+            raise Unresolved(problem, self.where(vid)["line"])
         modes = self.coll_modes(cid)
         if mode_name in modes:
             return modes[mode_name]
@@ -161,23 +160,19 @@ class _Reader:
         """A variable's value in a mode through its aliases: (value, origin, origin's mode)."""
         self.steps.take(1, "resolving aliases", lambda: self.where(stack[0] if stack else vid))
         if vid not in self.variables or not isinstance(self.variables[vid], dict):
-            raise _Missing(
+            raise Unresolved(
                 f"alias to variable {vid!r}, which this response does not hold (a library "
                 "variable? the REST endpoint lists local variables only)",
-                self.where(stack[-1]),
+                self.where(stack[-1])["line"],
             )
-        if vid in stack:
-            chain = " -> ".join(str(self.where(v)["key"]) for v in [*stack, vid])
-            raise InputError(f"alias cycle: {chain}", **self.where(stack[0]))
-        if len(stack) > MAX_ALIAS_CHAIN:
-            raise InputError(f"alias chain longer than {MAX_ALIAS_CHAIN}", **self.where(stack[0]))
+        follow(stack, vid, "alias", lambda: self.where(stack[0]), self.label)
         mode_id = self.mode_for(vid, mode_name)
         by_mode = self.variables[vid].get("valuesByMode")
         value = by_mode.get(mode_id) if isinstance(by_mode, dict) else None
         if isinstance(value, dict) and value.get("type") == "VARIABLE_ALIAS":
             return self.resolve(str(value.get("id")), mode_name, [*stack, vid])
         if value is None:
-            raise _Missing(f"has no value for mode {mode_name!r}", self.where(vid))
+            raise Unresolved(f"has no value for mode {mode_name!r}", self.where(vid)["line"])
         return value, vid, mode_id
 
     def variables_once(self) -> list[tuple[str, dict[str, Any], str, str]]:
@@ -216,13 +211,13 @@ class _Reader:
         for vid, var, path, ttype in read:
             try:
                 value, origin, origin_mode = self.resolve(vid, mode_name, [])
-            except _Missing as exc:
+            except Unresolved as exc:
                 tokens[path] = Token(
                     path=path,
                     type=ttype,
                     value=None,
                     file=path_of,
-                    line=exc.place["line"],
+                    line=exc.line,
                     problem=exc.problem,
                 )
                 continue
@@ -237,7 +232,7 @@ class _Reader:
                 file=path_of,
                 line=loc["line"],
                 description=var.get("description") or None,
-                chain=(str(self.where(origin)["key"]),) if aliased else (),
+                chain=(self.label(origin),) if aliased else (),
                 alias_file=path_of if aliased else None,
                 alias_line=self.where(vid)["line"] if aliased else None,
             )

@@ -23,6 +23,7 @@ from typing import Any
 from alpha_audit.errors import InputError
 from alpha_audit.load.files import read_capped
 from alpha_audit.load.spans import LineIndex
+from alpha_audit.load.tokens.model import TokenPlace
 from alpha_audit.model import Span
 
 __all__ = ["MAX_JSON_BYTES", "MAX_JSON_DEPTH", "JsonDoc", "JsonPath", "load_json", "parse_json"]
@@ -63,9 +64,13 @@ class JsonDoc:
                 return self.lines[keys[:n]]
         return None
 
+    def place(self, keys: JsonPath, token: str | None = None) -> TokenPlace:
+        """This file, the line of ``keys`` and the token path: an error's ``**place``."""
+        return {"path": self.path, "line": self.line(keys), "key": token}
+
     def error(self, keys: JsonPath, message: str, token: str | None = None) -> InputError:
         """An input error naming this file, the line of ``keys`` and the token path."""
-        return InputError(message, path=self.path, line=self.line(keys), key=token)
+        return InputError(message, **self.place(keys, token))
 
     @cached_property
     def _index(self) -> LineIndex:

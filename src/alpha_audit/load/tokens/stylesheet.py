@@ -77,6 +77,7 @@ from alpha_audit.load.tokens.model import (
     TokenModes,
     TokenPlace,
     check_mode_budget,
+    too_long,
 )
 from alpha_audit.model import Span
 from alpha_audit.safe_text import safe_text
@@ -424,11 +425,12 @@ class _Resolver:
         assert owner is not None
         return owner.props[name]
 
-    def count(self, n: int, name: str) -> None:
-        def place() -> TokenPlace:
-            return {"path": self.sheet.path, "line": self.props[name].line, "key": _dots(name)}
+    def place(self, name: str) -> TokenPlace:
+        """Where ``--name`` is declared on this element."""
+        return {"path": self.sheet.path, "line": self.props[name].line, "key": _dots(name)}
 
-        self.steps.take(n, "var() substitution", place)
+    def count(self, n: int, name: str) -> None:
+        self.steps.take(n, "var() substitution", lambda: self.place(name))
 
     def resolve(self, name: str) -> tuple[list[Any] | None, tuple[str, ...]]:
         """The substituted value of ``--name`` (None: invalid) and its alias chain."""
@@ -442,13 +444,7 @@ class _Resolver:
                 self.cycles.setdefault(n, " -> ".join(_dots(x) for x in loop))
             return None, ()
         if len(self.active) >= MAX_ALIAS_CHAIN:
-            raise InputError(
-                f"var() chain longer than {MAX_ALIAS_CHAIN}: "
-                f"{' -> '.join(_dots(n) for n in self.active[:4])} -> ...",
-                path=self.sheet.path,
-                line=self.props[self.active[0]].line,
-                key=_dots(self.active[0]),
-            )
+            raise too_long("var()", self.active, self.place(self.active[0]), _dots)
         self.count(1, name)
         self.active.append(name)
         try:
@@ -465,13 +461,7 @@ class _Resolver:
             ):
                 resolved, rest = owner.resolve(target)
                 if len(rest) >= MAX_ALIAS_CHAIN:
-                    raise InputError(
-                        f"var() chain longer than {MAX_ALIAS_CHAIN}: {_dots(name)} -> "
-                        f"{' -> '.join(_dots(n) for n in (target, *rest[:2]))} -> ...",
-                        path=self.sheet.path,
-                        line=decl.line,
-                        key=_dots(name),
-                    )
+                    raise too_long("var()", [name, target, *rest], self.place(name), _dots)
                 chain = (target, *rest)
                 out = resolved
             else:
@@ -481,9 +471,7 @@ class _Resolver:
         if out is not None and len(out) > MAX_VALUE_TOKENS:
             raise InputError(
                 f"resolves to more than {MAX_VALUE_TOKENS} CSS tokens; not a design token",
-                path=self.sheet.path,
-                line=self.props[name].line,
-                key=_dots(name),
+                **self.place(name),
             )
         if name in self.cycles:
             out = None
