@@ -32,6 +32,7 @@ import json
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -441,6 +442,16 @@ def _mode_tokens(
     layers: list[Canvas] = []
     for path, key, token, is_canvas, is_color in entries:
         parsed = seen[key]
+        # The canvas this token is (a translucent one is a layer: see below).
+        canvas = partial(
+            Canvas,
+            path,
+            parsed.css,
+            config.mode_of(name),
+            line=token.line,
+            file=token.file,
+            span=token.span,
+        )
         if parsed.alpha < 1.0:
             if is_color:
                 raise InputError(
@@ -453,13 +464,7 @@ def _mode_tokens(
             translucent[path] = TranslucentToken(token, parsed, name)
             if is_canvas:  # a surface or hover layer: audited over the mode's canvas
                 layers.append(
-                    Canvas(
-                        path,
-                        parsed.css,
-                        config.mode_of(name),
-                        line=token.line,
-                        file=token.file,
-                        span=token.span,
+                    canvas(
                         over="",  # set below: the mode's first opaque canvas
                         opacity=parsed.alpha,
                         # A sheet's surface is painted by the browser, whatever
@@ -471,16 +476,7 @@ def _mode_tokens(
         if parsed.adjusted:
             adjusted.append((name, token, parsed))
         if is_canvas:
-            canvases.append(
-                Canvas(
-                    path,
-                    parsed.css,
-                    config.mode_of(name),
-                    line=token.line,
-                    file=token.file,
-                    span=token.span,
-                )
-            )
+            canvases.append(canvas())
         if is_color:
             colors[path] = TokenColor(token, parsed, _alpha(token, config.alpha_extension))
     return canvases, colors, translucent, layers
