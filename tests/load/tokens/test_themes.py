@@ -82,12 +82,12 @@ def test_backgrounds_and_sources_equal_an_independent_resolution(tmp_path, gamut
     )
     for mode in (day, night):  # the night context overrides only the canvas
         np.testing.assert_allclose(
-            mode.colors["ui.icon.alert"].linear,
+            srgb_decode(mode.colors["ui.icon.alert"].parsed.array),
             _independent("display-p3", [0.9, 0.1, 0.1], gamut),
             atol=1e-12,
         )
         np.testing.assert_allclose(
-            mode.colors["ui.icon.calm"].linear,
+            srgb_decode(mode.colors["ui.icon.calm"].parsed.array),
             _independent("oklch", [0.6, 0.1, 190], gamut),
             atol=1e-12,
         )

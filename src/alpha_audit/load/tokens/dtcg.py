@@ -24,7 +24,13 @@ from typing import Any
 
 from alpha_audit.errors import InputError
 from alpha_audit.load.names import check_name
-from alpha_audit.load.tokens.jsondoc import MAX_JSON_DEPTH, JsonDoc, JsonPath
+from alpha_audit.load.tokens.jsondoc import (
+    MAX_JSON_DEPTH,
+    JsonDoc,
+    JsonPath,
+    pointer_parts,
+    walk_pointer,
+)
 from alpha_audit.load.tokens.model import (
     MAX_ALIAS_CHAIN,
     MAX_TOKENS,
@@ -363,7 +369,7 @@ class TokenTree:
                 **where,
             )
         self.count(1, raw.doc, keys, raw.path)
-        parts = [p.replace("~1", "/").replace("~0", "~") for p in pointer[1:].split("/")[1:]]
+        parts = pointer_parts(pointer[1:])
         # A pointer at a token (in any merged source: the last one wins, as for
         # aliases) is an alias; a pointer into its value walks the resolved value.
         for i in range(len(parts), 0, -1):
@@ -372,7 +378,7 @@ class TokenTree:
                 continue
             rest = parts[i:]
             target = self._token(token_path, stack)
-            if not rest or rest == ["$value"] or (self.legacy and rest == ["value"]):
+            if not rest or rest == ("$value",) or (self.legacy and rest == ("value",)):
                 return target.value, target, self._sizes[token_path]
             if rest[0] not in ("$value", "value"):
                 raise InputError(
@@ -397,16 +403,14 @@ class TokenTree:
         return value, None, size
 
 
-def _descend(node: Any, parts: list[str], pointer: str, where: TokenPlace) -> Any:
+def _descend(node: Any, parts: tuple[str, ...], pointer: str, where: TokenPlace) -> Any:
     """The JSON value ``parts`` (a pointer's unescaped steps) lead to from ``node``."""
-    for part in parts:
-        if isinstance(node, dict) and part in node:
-            node = node[part]
-        elif isinstance(node, list) and part.isdigit() and int(part) < len(node):
-            node = node[int(part)]
-        else:
-            raise InputError(f"$ref {pointer} points at nothing (no {part!r})", **where)
-    return node
+    try:
+        return walk_pointer(node, parts)
+    except KeyError as exc:
+        raise InputError(
+            f"$ref {pointer} points at nothing (no {exc.args[0]!r})", **where
+        ) from None
 
 
 def _size(value: Any) -> int:

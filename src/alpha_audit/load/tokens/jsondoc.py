@@ -26,7 +26,16 @@ from alpha_audit.load.spans import LineIndex
 from alpha_audit.load.tokens.model import TokenPlace
 from alpha_audit.model import Span
 
-__all__ = ["MAX_JSON_BYTES", "MAX_JSON_DEPTH", "JsonDoc", "JsonPath", "load_json", "parse_json"]
+__all__ = [
+    "MAX_JSON_BYTES",
+    "MAX_JSON_DEPTH",
+    "JsonDoc",
+    "JsonPath",
+    "load_json",
+    "parse_json",
+    "pointer_parts",
+    "walk_pointer",
+]
 
 MAX_JSON_BYTES = 8 << 20  # 8 MiB: large design systems export a few MiB of tokens
 MAX_JSON_DEPTH = 64  # token groups nest a handful of levels
@@ -80,6 +89,24 @@ class JsonDoc:
         """The exact span of the string value at ``keys`` (``None``: not a string)."""
         where = self.offsets.get(keys)
         return None if where is None else self._index.span(*where)
+
+
+def pointer_parts(pointer: str) -> tuple[str, ...]:
+    """A JSON Pointer's (RFC 6901) unescaped steps: ``/a~1b/c`` -> ``("a/b", "c")``."""
+    return tuple(p.replace("~1", "/").replace("~0", "~") for p in pointer.split("/")[1:])
+
+
+def walk_pointer(node: Any, parts: tuple[str, ...]) -> Any:
+    """The value ``parts`` lead to from ``node`` (an object's member, an array's index);
+    a step that leads nowhere raises :class:`KeyError` naming it."""
+    for part in parts:
+        if isinstance(node, dict) and part in node:
+            node = node[part]
+        elif isinstance(node, list) and part.isdigit() and int(part) < len(node):
+            node = node[int(part)]
+        else:
+            raise KeyError(part)
+    return node
 
 
 def _no_constant(name: str) -> Any:

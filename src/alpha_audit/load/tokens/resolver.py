@@ -21,7 +21,7 @@ from alpha_audit.errors import InputError
 from alpha_audit.load.names import check_name
 from alpha_audit.load.paths import PathRefused, contain
 from alpha_audit.load.tokens.dtcg import TokenTree
-from alpha_audit.load.tokens.jsondoc import JsonDoc, load_json
+from alpha_audit.load.tokens.jsondoc import JsonDoc, load_json, pointer_parts, walk_pointer
 from alpha_audit.load.tokens.model import Steps, TokenModes, check_mode_budget
 
 __all__ = ["MAX_SOURCES", "is_resolver", "modes_from_resolver"]
@@ -66,13 +66,10 @@ class _Resolver:
         return self.files[target]
 
     def pointer(self, keys: tuple[str | int, ...], ref: str) -> tuple[Any, tuple[str, ...]]:
-        parts = tuple(p.replace("~1", "/").replace("~0", "~") for p in ref[2:].split("/"))
-        node: Any = self.doc.data
-        for part in parts:
-            if not isinstance(node, dict) or part not in node:
-                raise self.error(keys, f"$ref {ref!r} points at nothing")
-            node = node[part]
-        return node, parts
+        try:
+            return walk_pointer(self.doc.data, parts := pointer_parts(ref[1:])), parts
+        except KeyError:
+            raise self.error(keys, f"$ref {ref!r} points at nothing") from None
 
     def sources(self, tree: TokenTree, keys: tuple[str | int, ...], items: Any) -> None:
         if not isinstance(items, list):
@@ -131,13 +128,10 @@ def _json_type(value: Any) -> str:
 
 
 def _walk_pointer(doc: JsonDoc, fragment: str) -> tuple[Any, tuple[str, ...]]:
-    parts = tuple(p.replace("~1", "/").replace("~0", "~") for p in fragment.lstrip("/").split("/"))
-    node: Any = doc.data
-    for part in parts:
-        if not isinstance(node, dict) or part not in node:
-            raise InputError(f"#{fragment} points at nothing", path=doc.path, line=1)
-        node = node[part]
-    return node, parts
+    try:
+        return walk_pointer(doc.data, parts := pointer_parts("/" + fragment.lstrip("/"))), parts
+    except KeyError:
+        raise InputError(f"#{fragment} points at nothing", path=doc.path, line=1) from None
 
 
 def modes_from_resolver(

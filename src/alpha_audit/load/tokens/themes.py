@@ -39,7 +39,6 @@ from typing import Any
 import numpy as np
 
 from alpha_audit.color.css import ParsedColor, gamut_delta_e, map_parsed
-from alpha_audit.color.srgb import srgb_decode
 from alpha_audit.constants import GAMUT_POLICIES, GamutPolicy
 from alpha_audit.errors import InputError
 from alpha_audit.load.theme import MAX_CANVASES
@@ -110,11 +109,6 @@ class TokenColor:
     def css(self) -> str:
         """Exact ``color(srgb ...)``: what a palette entry or an :class:`Icon` colour takes."""
         return self.parsed.css
-
-    @property
-    def linear(self) -> np.ndarray:
-        """Linear-light sRGB, float64."""
-        return srgb_decode(self.parsed.array)
 
 
 @dataclass(frozen=True)
