@@ -81,6 +81,10 @@ class JsonDoc:
         """An input error naming this file, the line of ``keys`` and the token path."""
         return InputError(message, **self.place(keys, token))
 
+    def at(self, keys: JsonPath, message: str) -> InputError:
+        """An input error at ``keys``, named by them (``sets.base.sources.0``)."""
+        return self.error(keys, message, ".".join(map(str, keys)) or None)
+
     @cached_property
     def _index(self) -> LineIndex:
         return LineIndex(self.text, self.path, "json", bom=self.bom)
