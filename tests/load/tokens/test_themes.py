@@ -167,6 +167,25 @@ def test_modes_setting_errors_name_the_key(tmp_path) -> None:
             load_config(cfg)
 
 
+def test_tokens_table_is_read_like_the_rest_of_the_config(tmp_path) -> None:
+    # The same field readers as the config's top level: a near miss is named,
+    # a key spelt both ways is refused, a bad gamut lists the policies.
+    for setting, match in (
+        ("  canvases: bg\n  colours: fg\n", r":4: tokens\.colours: .*did you mean 'colors'\?"),
+        (
+            "  canvases: bg\n  alpha_extension: a.b\n  alpha-extension: c.d\n",
+            r"tokens\.alpha-extension: 'alpha-extension' repeats 'alpha_extension'",
+        ),
+        ("  canvases: bg\n  gamut: squash\n", r"not a gamut policy; use one of: clip, map, error"),
+        ("  canvases: bg\n  modes: {light: [a], dakr: [b]}\n", r"did you mean 'dark'\?"),
+    ):
+        cfg = _css_project(tmp_path, CARBON, setting)
+        with pytest.raises(InputError, match=match):
+            load_config(cfg)
+    cfg = _css_project(tmp_path, CARBON, "  canvases: bg\n  alpha_extension: a.b\n")
+    assert load_config(cfg).tokens.alpha_extension == "a.b"
+
+
 def test_duplicate_css_modes_are_aliases_in_one_note(tmp_path) -> None:
     sheet = ":root{--bg:#fff;--fg:#123} .a{--fg:#123;--x:#000} .b{--fg:#123;--y:#111}"
     cfg = _css_project(tmp_path, sheet, "  canvases: bg\n  colors: fg\n")

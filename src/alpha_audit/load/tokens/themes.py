@@ -39,7 +39,7 @@ from typing import Any
 import numpy as np
 
 from alpha_audit.color.css import ParsedColor, gamut_delta_e, map_parsed
-from alpha_audit.constants import GAMUT_POLICIES, GamutPolicy
+from alpha_audit.constants import GamutPolicy
 from alpha_audit.errors import InputError
 from alpha_audit.load.theme import MAX_CANVASES
 from alpha_audit.load.tokens import load_token_modes, token_color
@@ -56,23 +56,10 @@ __all__ = [
     "TokenThemes",
     "TranslucentToken",
     "load_token_themes",
-    "token_config_from_mapping",
     "token_themes",
 ]
 
 DEFAULT_ALPHA_EXTENSION = "com.alpha-audit"
-_CONFIG_KEYS = (
-    "file",
-    "canvases",
-    "colors",
-    "modes",
-    "modifier",
-    "gamut",
-    "alpha-extension",
-    "format",
-    "types",
-)
-_MODE_KEYS = ("audit", "light", "dark", "groups")
 
 
 @dataclass(frozen=True)
@@ -540,108 +527,3 @@ def load_token_themes(config: TokenConfig) -> TokenThemes:
         groups=config.groups,
     )
     return token_themes(source, config)
-
-
-def token_config_from_mapping(value: Any, *, base: Path, where: Any) -> TokenConfig:
-    """Validate a config's ``tokens:`` mapping.
-
-    ``where(key_suffix, message)`` returns the loader's error for a sub-key, so
-    messages carry the config's file and line.  Paths are relative to ``base``
-    and must stay inside it.
-    """
-    if not isinstance(value, dict):
-        raise where((), "expected a mapping {file, canvases, colors, modes, gamut, ...}")
-    data = {str(k).replace("_", "-"): v for k, v in value.items()}
-    for key in data:
-        if key not in _CONFIG_KEYS:
-            raise where((key,), f"unknown key {key!r}; allowed: {', '.join(sorted(_CONFIG_KEYS))}")
-    file = data.get("file")
-    if not isinstance(file, str) or not file.strip() or "\x00" in file:
-        raise where(("file",), "expected the token file, a path relative to the config")
-    path = (base / file).resolve()
-    if Path(file).is_absolute() or not path.is_relative_to(base):
-        raise where(("file",), f"{file!r} resolves outside {base}; not allowed")
-
-    def patterns(key: str, required: bool) -> tuple[str, ...]:
-        raw = data.get(key)
-        if raw is None and not required:
-            return ()
-        items = [raw] if isinstance(raw, str) else raw
-        if not isinstance(items, list) or not items or not all(isinstance(i, str) for i in items):
-            raise where((key,), 'expected a token-path pattern or a list, e.g. "color.bg.*"')
-        return tuple(items)
-
-    schemes, audit, groups = _modes_setting(data.get("modes", {}), where)
-    types_raw = data.get("types", {})
-    if not isinstance(types_raw, dict) or not all(
-        isinstance(k, str) and isinstance(v, str) and v for k, v in types_raw.items()
-    ):
-        raise where(("types",), 'expected {token-path glob: type, ...}, e.g. {"color.*": color}')
-    gamut = data.get("gamut", "error")
-    if gamut not in GAMUT_POLICIES:
-        raise where(("gamut",), f"{gamut!r} is not a gamut policy; use {', '.join(GAMUT_POLICIES)}")
-    ext = data.get("alpha-extension", DEFAULT_ALPHA_EXTENSION)
-    if not isinstance(ext, str) or not ext:
-        raise where(("alpha-extension",), "expected a reverse-DNS key such as com.alpha-audit")
-    modifier = data.get("modifier")
-    if modifier is not None and not isinstance(modifier, str):
-        raise where(("modifier",), "expected the name of a Resolver modifier or Figma collection")
-    fmt = data.get("format", "auto")
-    from alpha_audit.load.tokens import TOKEN_FORMATS
-
-    if fmt not in TOKEN_FORMATS:
-        raise where(("format",), f"{fmt!r} is not one of {', '.join(TOKEN_FORMATS)}")
-    return TokenConfig(
-        file=path,
-        canvases=patterns("canvases", True),
-        colors=patterns("colors", False),
-        modes=schemes,
-        modifier=modifier,
-        gamut=gamut,
-        alpha_extension=ext,
-        format=fmt,
-        root=base,
-        audit=audit,
-        groups=groups,
-        types={str(k): str(v) for k, v in types_raw.items()},
-    )
-
-
-_MODES_HELP = (
-    "expected {mode: light|dark, ...} (mode names or globs), a list of the modes to audit, "
-    "or {audit: [...], light: [...], dark: [...], groups: [...]}"
-)
-
-
-def _modes_setting(
-    raw: Any, where: Any
-) -> tuple[dict[str, Mode], tuple[str, ...], tuple[str, ...] | None]:
-    """``(mode glob -> light|dark, globs to audit, Tokens Studio groups)`` of ``modes:``."""
-
-    def globs(value: Any, key: tuple[str, ...]) -> tuple[str, ...]:
-        items = [value] if isinstance(value, str) else value
-        if not isinstance(items, list) or not all(isinstance(i, str) and i for i in items):
-            raise where(("modes", *key), "expected a list of mode names or globs")
-        return tuple(items)
-
-    if isinstance(raw, list | str):
-        return {}, globs(raw, ()), None
-    if not isinstance(raw, dict):
-        raise where(("modes",), _MODES_HELP)
-    if all(isinstance(v, str) for v in raw.values()):  # {mode: light|dark}
-        if not all(v in ("light", "dark") for v in raw.values()):
-            raise where(("modes",), _MODES_HELP)
-        return {str(k): v for k, v in raw.items()}, (), None
-    for key in raw:
-        if key not in _MODE_KEYS:
-            raise where(
-                ("modes", str(key)), f"unknown key {key!r}; allowed: {', '.join(_MODE_KEYS)}"
-            )
-    schemes: dict[str, Mode] = {}
-    for scheme in ("light", "dark"):
-        for glob in globs(raw.get(scheme, []), (scheme,)):
-            schemes[glob] = "light" if scheme == "light" else "dark"
-    groups = None
-    if "groups" in raw:
-        groups = () if raw["groups"] is False else globs(raw["groups"], ("groups",))
-    return schemes, globs(raw.get("audit", []), ("audit",)) if "audit" in raw else (), groups
