@@ -120,3 +120,9 @@ def measured_paint(**changes):  # type: ignore[no-untyped-def]
         box=(0.0, 0.0, 24.0, 24.0),
     )
     return replace(base, **changes)
+
+
+def render_all(pool, jobs):  # type: ignore[no-untyped-def]
+    """Every ``(svgs, sizes)`` job through ``pool.stream``, outcomes in job order."""
+    results = dict(pool.stream((i, svgs, sizes) for i, (svgs, sizes) in enumerate(jobs)))
+    return [results[i] for i in range(len(jobs))]

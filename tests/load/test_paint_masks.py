@@ -12,6 +12,7 @@ from alpha_audit.load.paint_masks import MAX_PAINT_GROUPS, measure_paints
 from alpha_audit.load.paints import isolate_paints
 from alpha_audit.load.svg import rasterize
 from alpha_audit.paints import CURRENT_COLOR
+from helpers import render_all
 
 NS = 'xmlns="http://www.w3.org/2000/svg"'
 LUCIDE_LIKE = (
@@ -86,8 +87,8 @@ def test_render_pool_serves_several_map_calls() -> None:
 
     svg = LUCIDE_LIKE.encode()
     with RenderPool(RenderLimits(timeout=20.0), workers=1) as pool:
-        first = pool.map([([svg], (8,))])
-        second = pool.map([([svg], (8,)), ([svg], (8,))])
+        first = render_all(pool, [([svg], (8,))])
+        second = render_all(pool, [([svg], (8,)), ([svg], (8,))])
     assert all(not isinstance(o, str) for o in [*first, *second])
     np.testing.assert_array_equal(first[0][0][0], second[1][0][0])
 

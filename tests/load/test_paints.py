@@ -263,13 +263,15 @@ def test_isolated_mask_keeps_mask_content_inherited_from_the_root() -> None:
 
 
 def test_isolating_many_paints_on_many_elements_is_bounded() -> None:
-    from alpha_audit.load.paints import MAX_ISOLATE_WORK, isolate_groups
+    from alpha_audit.load.paints import MAX_ISOLATE_WORK, paints_and_isolates
 
-    n = MAX_ISOLATE_WORK // 10
-    svg = (f"<svg {NS}>" + '<rect width="1" height="1"/>' * n + "</svg>").encode()
-    groups = extract_paints(svg).groups() * 11
+    # 11 colours x 1,000 rects: 11,000 elements, each rendered once per colour's mask.
+    n = MAX_ISOLATE_WORK // 100
+    rects = "".join(f'<rect width="1" height="1" fill="#0000{k:02x}"/>' * n for k in range(11))
+    svg = f"<svg {NS}>{rects}</svg>".encode()
+    assert len(extract_paints(svg).groups()) == 11 and 11 * 11 * n > MAX_ISOLATE_WORK
     with pytest.raises(SvgError, match="element renders; refused"):
-        isolate_groups(svg, groups)
+        paints_and_isolates(svg)
 
 
 def _force_everything(v: object, keep: object) -> dict[str, str]:

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from alpha_audit.load.sandbox import _FORK, _PIPELINE_JOBS, RenderLimits, RenderPool
+from helpers import render_all
 
 
 def sandbox_forks() -> bool:
@@ -52,7 +53,7 @@ def test_a_job_that_fails_takes_only_itself_not_the_jobs_sent_behind_it() -> Non
     with RenderPool(limits, workers=1) as pool:
         for tag, svg in jobs:
             if tag[0] in "ab":
-                (alone,) = pool.map([([svg], (8, 16))])
+                (alone,) = render_all(pool, [([svg], (8, 16))])
                 assert not isinstance(alone, str) and not isinstance(out[tag], str)
                 for a, b in zip(out[tag][0], alone[0], strict=True):
                     np.testing.assert_array_equal(a, b)
@@ -114,8 +115,8 @@ def test_one_parse_draws_every_size_as_a_fresh_parse_would(body: str) -> None:
 def test_a_job_holds_several_svgs_each_at_every_size() -> None:
     svgs = [_good(1), _good(4), b"<svg", _good(2)]
     with RenderPool(RenderLimits(timeout=20.0), workers=1) as pool:
-        (together,) = pool.map([(svgs, (8, 16))])
-        alone = pool.map([([svg], (8, 16)) for svg in svgs])
+        (together,) = render_all(pool, [(svgs, (8, 16))])
+        alone = render_all(pool, [([svg], (8, 16)) for svg in svgs])
     assert not isinstance(together, str)
     assert [len(per_svg) for per_svg in together] == [2, 2, 2, 2]
     assert all(isinstance(m, str) and "cannot render" in m for m in together[2])
@@ -149,7 +150,7 @@ def test_workers_are_forked_from_one_server_and_end_with_the_pool() -> None:
 
     with RenderPool(RenderLimits(timeout=20.0), workers=2) as pool:
         pool.prestart()
-        out = pool.map([([_good(i)], (8,)) for i in range(6)])
+        out = render_all(pool, [([_good(i)], (8,)) for i in range(6)])
         assert all(not isinstance(o, str) for o in out)
         (server,) = [p for p, args in _children(os.getpid()) if "_svg_worker.py" in args]
         workers = [p for p, args in _children(server) if "_svg_worker.py" in args]
@@ -179,7 +180,7 @@ def test_a_run_that_may_find_everything_cached_loads_no_renderer_until_its_first
         time.sleep(0.5)  # time it would have had to load (the assertion does not depend on it)
         assert not cairo_loaded(server)
         assert _children(server) == []  # no worker forked yet
-        (out,) = pool.map([([_good(1)], (8,))])
+        (out,) = render_all(pool, [([_good(1)], (8,))])
         assert not isinstance(out, str)
         assert cairo_loaded(server)
         assert len(_children(server)) == 2

@@ -30,9 +30,10 @@ from alpha_audit.load.fields import (
 )
 from alpha_audit.load.files import read_text_capped
 from alpha_audit.load.paths import PathRefused, contain_argument, project_root
-from alpha_audit.load.tokens.themes import TokenConfig, token_config_from_mapping
+from alpha_audit.load.tokens import TOKEN_FORMATS
+from alpha_audit.load.tokens.themes import DEFAULT_ALPHA_EXTENSION, TokenConfig
 from alpha_audit.load.yamldoc import MAX_YAML_BYTES, KeyPath, YamlDoc, format_key, load_yaml
-from alpha_audit.model import Span
+from alpha_audit.model import Mode, Span
 from alpha_audit.policy import Exemption, Policy
 from alpha_audit.rules import DEFAULT_RULES, DEFAULT_WARNINGS, Level, Rule
 from alpha_audit.safe_text import describe_char, first_unsafe, safe_text
@@ -270,11 +271,12 @@ def load_config(path: str | Path) -> ProjectConfig:
 def _normalise_keys(doc: YamlDoc, keys: KeyPath, data: dict[str, Any]) -> dict[str, Any]:
     """snake_case -> kebab-case; the same key spelt both ways is a duplicate."""
     out: dict[str, Any] = {}
+    spelt: dict[str, str] = {}  # each normalised key as the file spells it
     for key, value in data.items():
         norm = str(key).replace("_", "-")
         if norm in out:
-            raise doc.error((*keys, key), f"{key!r} repeats {norm!r}; give it once")
-        out[norm] = value
+            raise doc.error((*keys, key), f"{key!r} repeats {spelt[norm]!r}; give it once")
+        out[norm], spelt[norm] = value, str(key)
     return out
 
 
@@ -484,11 +486,7 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
     gamut = read_gamut(doc, at("gamut"), data["gamut"]) if "gamut" in data else None
     tokens = None
     if "tokens" in data:
-        tokens = token_config_from_mapping(
-            data["tokens"],
-            base=base,
-            where=lambda sub, message: doc.error((*at("tokens"), *sub), message),
-        )
+        tokens = _tokens_table(doc, at("tokens"), data["tokens"], base)
         own = isinstance(data["tokens"], dict) and "gamut" in data["tokens"]
         if gamut is not None and not own:  # the project's policy, unless tokens: says
             tokens = replace(tokens, gamut=gamut)
@@ -507,3 +505,113 @@ def config_from_doc(doc: YamlDoc, *, prefix: KeyPath = ()) -> ProjectConfig:
         max_combinations=_max_combinations(doc, at("max-combinations"), data),
         alpha_span=doc.spans.get(at("alpha")),
     )
+
+
+_TOKEN_KEYS = (
+    "file",
+    "canvases",
+    "colors",
+    "modes",
+    "modifier",
+    "gamut",
+    "alpha-extension",
+    "format",
+    "types",
+)
+_MODE_KEYS = ("audit", "light", "dark", "groups")
+
+
+def _tokens_table(doc: YamlDoc, keys: KeyPath, value: Any, base: Path) -> TokenConfig:
+    """The ``tokens:`` table; paths are relative to ``base`` and must stay inside it."""
+    data = read_mapping(doc, keys, value, "the token settings")
+    data = _normalise_keys(doc, keys, data)
+    check_keys(doc, keys, data, _TOKEN_KEYS)
+
+    def at(*sub: str) -> KeyPath:
+        return (*keys, *sub)
+
+    file = data.get("file")
+    if not isinstance(file, str) or not file.strip() or "\x00" in file:
+        raise doc.error(at("file"), "expected the token file, a path relative to the config")
+    path = (base / file).resolve()
+    if Path(file).is_absolute() or not path.is_relative_to(base):
+        raise doc.error(at("file"), f"{file!r} resolves outside {base}; not allowed")
+
+    def patterns(key: str, required: bool) -> tuple[str, ...]:
+        raw = data.get(key)
+        if raw is None and not required:
+            return ()
+        items = [raw] if isinstance(raw, str) else raw
+        if not isinstance(items, list) or not items or not all(isinstance(i, str) for i in items):
+            raise doc.error(at(key), 'expected a token-path pattern or a list, e.g. "color.bg.*"')
+        return tuple(items)
+
+    schemes, audit, groups = _modes_setting(doc, at("modes"), data.get("modes", {}))
+    types = data.get("types", {})
+    if not isinstance(types, dict) or not all(
+        isinstance(k, str) and isinstance(v, str) and v for k, v in types.items()
+    ):
+        raise doc.error(
+            at("types"), 'expected {token-path glob: type, ...}, e.g. {"color.*": color}'
+        )
+    ext = data.get("alpha-extension", DEFAULT_ALPHA_EXTENSION)
+    if not isinstance(ext, str) or not ext:
+        raise doc.error(at("alpha-extension"), "expected a reverse-DNS key such as com.alpha-audit")
+    modifier = data.get("modifier")
+    if modifier is not None and not isinstance(modifier, str):
+        raise doc.error(
+            at("modifier"), "expected the name of a Resolver modifier or Figma collection"
+        )
+    fmt = data.get("format", "auto")
+    if fmt not in TOKEN_FORMATS:
+        raise doc.error(at("format"), f"{fmt!r} is not one of {', '.join(TOKEN_FORMATS)}")
+    return TokenConfig(
+        file=path,
+        canvases=patterns("canvases", True),
+        colors=patterns("colors", False),
+        modes=schemes,
+        modifier=modifier,
+        gamut=read_gamut(doc, at("gamut"), data["gamut"]) if "gamut" in data else "error",
+        alpha_extension=ext,
+        format=fmt,
+        root=base,
+        audit=audit,
+        groups=groups,
+        types=dict(types),
+    )
+
+
+_MODES_HELP = (
+    "expected {mode: light|dark, ...} (mode names or globs), a list of the modes to audit, "
+    "or {audit: [...], light: [...], dark: [...], groups: [...]}"
+)
+
+
+def _modes_setting(
+    doc: YamlDoc, keys: KeyPath, raw: Any
+) -> tuple[dict[str, Mode], tuple[str, ...], tuple[str, ...] | None]:
+    """``(mode glob -> light|dark, globs to audit, Tokens Studio groups)`` of ``modes:``."""
+
+    def globs(value: Any, *key: str) -> tuple[str, ...]:
+        items = [value] if isinstance(value, str) else value
+        if not isinstance(items, list) or not all(isinstance(i, str) and i for i in items):
+            raise doc.error((*keys, *key), "expected a list of mode names or globs")
+        return tuple(items)
+
+    if isinstance(raw, list | str):
+        return {}, globs(raw), None
+    if not isinstance(raw, dict):
+        raise doc.error(keys, _MODES_HELP)
+    if all(isinstance(v, str) for v in raw.values()):  # {mode: light|dark}
+        if not all(v in ("light", "dark") for v in raw.values()):
+            raise doc.error(keys, _MODES_HELP)
+        return {str(k): v for k, v in raw.items()}, (), None
+    check_keys(doc, keys, raw, _MODE_KEYS)
+    schemes: dict[str, Mode] = {}
+    for scheme in ("light", "dark"):
+        for glob in globs(raw.get(scheme, []), scheme):
+            schemes[glob] = "light" if scheme == "light" else "dark"
+    groups = None
+    if "groups" in raw:
+        groups = () if raw["groups"] is False else globs(raw["groups"], "groups")
+    return schemes, globs(raw.get("audit", []), "audit") if "audit" in raw else (), groups

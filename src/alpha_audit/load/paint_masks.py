@@ -120,34 +120,9 @@ def measure_paints(
     render cache (unless turned off, :func:`~alpha_audit.load.render_cache.disable`),
     False for none, or an open :class:`RenderCache`.
     """
-    measured, problems = _measure(
+    return _measure(
         icons, sizes, progress=progress, limits=limits, pool=pool, cache=cache, keep_masks=False
-    )
-    result = {
-        m.name: IconPaints(
-            m.name,
-            m.path,
-            m.paints,
-            tuple(
-                PaintCoverage(g, {size: m.stats[size][k] for size in m.stats})
-                for k, g in enumerate(m.groups)
-            ),
-        )
-        for m in measured
-    }
-    return PaintSet(result, problems)
-
-
-@dataclass(frozen=True)
-class _Done:
-    """An icon measured completely (``masks`` empty unless they were asked for)."""
-
-    name: str
-    path: Path
-    paints: SvgPaints
-    groups: tuple[PaintGroup, ...]
-    stats: dict[int, tuple[CoverageStats, ...]]
-    masks: dict[int, tuple[Mask, ...]]
+    ).paint_set()
 
 
 def paint_masks(
@@ -165,13 +140,9 @@ def paint_masks(
     :func:`measure_paints` (an icon the audit measured is not rendered again),
     but the masks are kept: memory grows with icons x groups x sizes squared.
     """
-    measured, problems = _measure(
+    return _measure(
         icons, sizes, progress=progress, limits=limits, pool=pool, cache=cache, keep_masks=True
     )
-    result = {
-        m.name: IconMasks(m.name, m.path, m.paints, m.groups, m.masks, m.stats) for m in measured
-    }
-    return PaintMasks(result, problems)
 
 
 @dataclass
@@ -201,8 +172,9 @@ def _measure(
     pool: RenderPool | None,
     cache: RenderCache | bool,
     keep_masks: bool,
-) -> tuple[list[_Done], tuple[IconProblem, ...]]:
-    """Measured icons in input order, and the problems: unreadable ones, then unrenderable."""
+) -> PaintMasks:
+    """Measured icons in input order (masks empty unless kept), and the problems:
+    unreadable ones, then unrenderable."""
     limits = pool.limits if pool is not None else limits or RenderLimits()
     sizes = tuple(dict.fromkeys(int(s) for s in sizes))
     opened = open_default() if cache is True else None
@@ -239,21 +211,20 @@ def _measure(
     finally:
         if opened is not None:
             opened.close()
-    measured = [
-        _Done(
+    measured = {
+        m.name: IconMasks(
             m.name,
             m.path,
             m.paints,
             m.groups,
-            {size: m.stats[size] for size in sizes},  # in the order asked for
             {size: m.masks[size] for size in sizes} if m.masks else {},
+            {size: m.stats[size] for size in sizes},  # in the order asked for
         )
         for m in todo
         if m.index not in early and m.failure is None and m.paints is not None and m.stats
-    ]
+    }
     failed = [IconProblem(m.name, m.path, m.failure) for m in todo if m.failure is not None]
-    problems = tuple(early[k] for k in sorted(early)) + tuple(failed)
-    return measured, problems
+    return PaintMasks(measured, tuple(early[k] for k in sorted(early)) + tuple(failed))
 
 
 def _render(

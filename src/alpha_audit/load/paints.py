@@ -58,7 +58,7 @@ import tinycss2
 import tinycss2.color4
 
 from alpha_audit.errors import SvgError
-from alpha_audit.paints import CURRENT_COLOR, Paint, PaintGroup, SvgPaints, Unaudited
+from alpha_audit.paints import CURRENT_COLOR, Paint, SvgPaints, Unaudited
 
 __all__ = [
     "MAX_DEPTH",
@@ -69,7 +69,6 @@ __all__ = [
     "decode_paints",
     "encode_paints",
     "extract_paints",
-    "isolate_groups",
     "isolate_paints",
     "paints_and_isolates",
 ]
@@ -254,13 +253,6 @@ def isolate_paints(
     one drawn in one colour.
     """
     return _isolate(_read(svg, path, []), [keep], path)[0]
-
-
-def isolate_groups(
-    svg: bytes, groups: Sequence[PaintGroup], *, path: str | Path | None = None
-) -> list[bytes]:
-    """One :func:`isolate_paints` SVG per paint group, from one parse and one cascade."""
-    return _isolate(_read(svg, path, []), [_in_group(g.key) for g in groups], path)
 
 
 def _in_group(key: tuple[str, float]) -> Callable[[Paint], bool]:

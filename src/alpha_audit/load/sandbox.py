@@ -510,15 +510,6 @@ class RenderPool:
         worker.kill()
         self.workers.remove(worker)
 
-    def map(
-        self, jobs: Sequence[tuple[Sequence[bytes] | ReadPaints, tuple[int, ...]]]
-    ) -> list[Outcome]:
-        """Render every ``(svgs, sizes)`` job; outcomes in job order."""
-        results: list[Outcome] = ["not rendered"] * len(jobs)
-        for index, outcome in self.stream((i, svgs, sizes) for i, (svgs, sizes) in enumerate(jobs)):
-            results[index] = outcome
-        return results
-
     def stream(
         self,
         jobs: Iterable[tuple[T, Sequence[bytes] | ReadPaints, tuple[int, ...]]],

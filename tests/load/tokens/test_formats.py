@@ -102,6 +102,27 @@ def test_figma_alias_cycle_names_the_chain(tmp_path: Path) -> None:
         load_token_modes(_figma(tmp_path, values))
 
 
+@pytest.mark.parametrize(("hops", "refused"), [(63, False), (64, True)])
+def test_figma_alias_chain_is_capped_like_every_format(
+    tmp_path: Path, hops: int, refused: bool
+) -> None:
+    # The DTCG, $ref, $extends and var() chains share one cap and one message
+    # (MAX_ALIAS_CHAIN = 64 followed references; tests/load/tokens/test_dtcg.py).
+    red = {"r": 1, "g": 0, "b": 0}
+    values = {**_var(f"V:{hops}", f"t/{hops}", THEME, {"2:0": red, "2:1": red})}
+    for i in range(hops):
+        alias = {"type": "VARIABLE_ALIAS", "id": f"V:{i + 1}"}
+        values |= _var(f"V:{i}", f"t/{i}", THEME, {"2:0": alias, "2:1": alias})
+    if refused:
+        with pytest.raises(
+            InputError, match=r": t\.0: alias chain longer than 64: t\.0 -> t\.1 -> "
+        ):
+            load_token_modes(_figma(tmp_path, values))
+    else:
+        token = load_token_modes(_figma(tmp_path, values)).modes["Dark"]["t.0"]
+        assert token_color(token).encoded == (1.0, 0.0, 0.0)
+
+
 def test_figma_translucent_colour_is_an_error_where_alpha_is_not_an_opacity(tmp_path: Path) -> None:
     values = _var(
         "V:1",

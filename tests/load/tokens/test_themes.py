@@ -82,12 +82,12 @@ def test_backgrounds_and_sources_equal_an_independent_resolution(tmp_path, gamut
     )
     for mode in (day, night):  # the night context overrides only the canvas
         np.testing.assert_allclose(
-            mode.colors["ui.icon.alert"].linear,
+            srgb_decode(mode.colors["ui.icon.alert"].parsed.array),
             _independent("display-p3", [0.9, 0.1, 0.1], gamut),
             atol=1e-12,
         )
         np.testing.assert_allclose(
-            mode.colors["ui.icon.calm"].linear,
+            srgb_decode(mode.colors["ui.icon.calm"].parsed.array),
             _independent("oklch", [0.6, 0.1, 190], gamut),
             atol=1e-12,
         )
@@ -165,6 +165,25 @@ def test_modes_setting_errors_name_the_key(tmp_path) -> None:
         cfg = _css_project(tmp_path, CARBON, f"  canvases: bg\n  modes: {setting}\n")
         with pytest.raises(InputError, match=match):
             load_config(cfg)
+
+
+def test_tokens_table_is_read_like_the_rest_of_the_config(tmp_path) -> None:
+    # The same field readers as the config's top level: a near miss is named,
+    # a key spelt both ways is refused, a bad gamut lists the policies.
+    for setting, match in (
+        ("  canvases: bg\n  colours: fg\n", r":4: tokens\.colours: .*did you mean 'colors'\?"),
+        (
+            "  canvases: bg\n  alpha_extension: a.b\n  alpha-extension: c.d\n",
+            r"tokens\.alpha-extension: 'alpha-extension' repeats 'alpha_extension'",
+        ),
+        ("  canvases: bg\n  gamut: squash\n", r"not a gamut policy; use one of: clip, map, error"),
+        ("  canvases: bg\n  modes: {light: [a], dakr: [b]}\n", r"did you mean 'dark'\?"),
+    ):
+        cfg = _css_project(tmp_path, CARBON, setting)
+        with pytest.raises(InputError, match=match):
+            load_config(cfg)
+    cfg = _css_project(tmp_path, CARBON, "  canvases: bg\n  alpha_extension: a.b\n")
+    assert load_config(cfg).tokens.alpha_extension == "a.b"
 
 
 def test_duplicate_css_modes_are_aliases_in_one_note(tmp_path) -> None:

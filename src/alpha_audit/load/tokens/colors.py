@@ -7,8 +7,8 @@ from typing import Any
 
 from alpha_audit.color.css import ParsedColor, color_from_components, parse_css_color
 from alpha_audit.constants import GamutPolicy
-from alpha_audit.errors import ColorSyntaxError
-from alpha_audit.load.tokens.model import Token, TokenPlace, token_error
+from alpha_audit.errors import ColorSyntaxError, InputError
+from alpha_audit.load.tokens.model import Token, TokenPlace
 
 __all__ = ["token_color"]
 
@@ -28,12 +28,12 @@ def token_color(
     components decide) and any CSS Color 4 string, which many files in the
     wild still use.  Errors name the token's file, line and path.
     """
-    where: TokenPlace = {"file": token.file, "line": token.line, "path": token.path}
+    where: TokenPlace = {"path": token.file, "line": token.line, "key": token.path}
     if token.problem is not None:
-        raise token_error(token.problem, **where)
+        raise InputError(token.problem, **where)
     if token.type != "color":
         via = f" (via {' -> '.join(token.chain)})" if token.chain else ""
-        raise token_error(f"is a {token.type!r} token{via}, not a color token", **where)
+        raise InputError(f"is a {token.type!r} token{via}, not a color token", **where)
     value: Any = token.value
     try:
         if isinstance(value, str):
@@ -67,5 +67,5 @@ def token_color(
                 text=f"{value['colorSpace']} {components}",
             )
     except ColorSyntaxError as exc:
-        raise token_error(exc.message, **where) from exc
-    raise token_error(f"expected a colour object or string, got {value!r:.40}", **where)
+        raise InputError(exc.message, **where) from exc
+    raise InputError(f"expected a colour object or string, got {value!r:.40}", **where)

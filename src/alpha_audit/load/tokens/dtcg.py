@@ -24,14 +24,22 @@ from typing import Any
 
 from alpha_audit.errors import InputError
 from alpha_audit.load.names import check_name
-from alpha_audit.load.tokens.jsondoc import MAX_JSON_DEPTH, JsonDoc, JsonPath
+from alpha_audit.load.tokens.jsondoc import (
+    MAX_JSON_DEPTH,
+    JsonDoc,
+    JsonPath,
+    pointer_parts,
+    walk_pointer,
+)
 from alpha_audit.load.tokens.model import (
     MAX_ALIAS_CHAIN,
     MAX_TOKENS,
     Steps,
     Token,
     TokenPlace,
-    token_error,
+    Unresolved,
+    follow,
+    too_long,
 )
 
 __all__ = ["ALIAS", "MAX_VALUE_NODES", "TokenTree"]
@@ -69,9 +77,13 @@ class _Group:
     keys: JsonPath
     type: str | None
 
+    def place(self) -> TokenPlace:
+        """Where this group's ``$extends`` is."""
+        return self.doc.place((*self.keys, "$extends"), self.path)
+
     def error(self, message: str) -> InputError:
         """An input error at this group's ``$extends``."""
-        return self.doc.error((*self.keys, "$extends"), message, self.path)
+        return InputError(message, **self.place())
 
 
 @dataclass
@@ -93,7 +105,7 @@ class TokenTree:
         """Count ``n`` steps; past :data:`~.model.MAX_EXPANSION` an error naming the file."""
 
         def place() -> TokenPlace:
-            return {"file": doc.path, "line": doc.line(keys), "path": path}
+            return {"path": doc.path, "line": doc.line(keys), "key": path}
 
         self.steps.take(n, "resolving ($ref, aliases, $extends, groups)", place)
 
@@ -180,13 +192,7 @@ class TokenTree:
         def visit(group: _Group, stack: list[str]) -> None:
             if group.path in done:
                 return
-            if group.path in stack:
-                chain = " -> ".join([*stack[stack.index(group.path) :], group.path])
-                raise group.error(f"$extends cycle: {chain}")
-            if len(stack) >= MAX_ALIAS_CHAIN:
-                raise group.error(
-                    f"$extends chain longer than {MAX_ALIAS_CHAIN}: {' -> '.join(stack[:4])} -> ..."
-                )
+            follow(stack, group.path, "$extends", group.place)
             prefix = group.extends + "."
             # The target and its subgroups get their own inherited tokens first.
             for other in subgroups.get(group.extends, []):
@@ -233,15 +239,7 @@ class TokenTree:
         if path in self._cache:
             return self._cache[path]
         raw = self.raw[path]
-        if path in stack:
-            chain = " -> ".join([*stack[stack.index(path) :], path])
-            raise raw.doc.error(raw.keys, f"alias cycle: {chain}", stack[0])
-        if len(stack) >= MAX_ALIAS_CHAIN:
-            raise raw.doc.error(
-                raw.keys,
-                f"alias chain longer than {MAX_ALIAS_CHAIN}: {' -> '.join(stack[:4])} -> ...",
-                stack[0],
-            )
+        follow(stack, path, "alias", lambda: raw.doc.place(raw.keys, stack[0]))
         stack = [*stack, path]
         self.count(1, raw.doc, raw.keys, path)
         value_key = "$value" if "$value" in raw.node else "value"
@@ -249,7 +247,7 @@ class TokenTree:
             value, target, size = self._value(
                 raw, raw.node[value_key], (*raw.keys, value_key), stack
             )
-        except _Unresolved as exc:
+        except Unresolved as exc:
             token = self._broken(raw, path, exc.problem, exc.line)
             self._cache[path], self._sizes[path] = token, 1
             return token
@@ -260,11 +258,8 @@ class TokenTree:
                 path,
             )
         if target is not None and len(target.chain) >= MAX_ALIAS_CHAIN:
-            raise raw.doc.error(
-                raw.keys,
-                f"alias chain longer than {MAX_ALIAS_CHAIN}: {path} -> {target.path} -> ...",
-                path,
-            )
+            chain = (path, target.path, *target.chain)
+            raise too_long("alias", chain, raw.doc.place(raw.keys, path))
         declared = self._field(raw.node, "type")
         if declared is not None and not isinstance(declared, str):
             raise raw.doc.error(raw.keys, f"$type must be a string, got {declared!r}", path)
@@ -321,7 +316,7 @@ class TokenTree:
         if isinstance(value, str) and (match := ALIAS.fullmatch(value.strip())):
             name = self._alias_target(match.group(1))
             if name is None:
-                raise _Unresolved(
+                raise Unresolved(
                     f"alias {value} names no token in this file (a library or another "
                     "file's token?)",
                     raw.doc.line(keys),
@@ -359,24 +354,22 @@ class TokenTree:
         self, raw: _Raw, pointer: Any, keys: JsonPath, stack: list[str]
     ) -> tuple[Any, Token | None, int]:
         """Follow a JSON Pointer ``#/a/b`` in the token's own document (memoised, counted)."""
-        where: TokenPlace = {"file": raw.doc.path, "line": raw.doc.line(keys), "path": raw.path}
+        where = raw.doc.place(keys, raw.path)
         if not isinstance(pointer, str) or not pointer.startswith("#"):
-            raise token_error(
+            raise InputError(
                 f"$ref {pointer!r} must be a JSON Pointer into this file, like "
                 '"#/color/blue/$value"',
                 **where,
             )
-        if pointer in stack:
-            chain = " -> ".join([*stack[stack.index(pointer) :], pointer])
-            raise token_error(f"$ref cycle: {chain}", **where)
+        follow(stack, pointer, "$ref", lambda: where)
         if pointer.count("/") > MAX_JSON_DEPTH + 1:  # + "/$value" after the deepest key
-            raise token_error(
+            raise InputError(
                 f"$ref {pointer[:40]}... has more parts than the file nests "
                 f"({MAX_JSON_DEPTH} levels); it points at nothing",
                 **where,
             )
         self.count(1, raw.doc, keys, raw.path)
-        parts = [p.replace("~1", "/").replace("~0", "~") for p in pointer[1:].split("/")[1:]]
+        parts = pointer_parts(pointer[1:])
         # A pointer at a token (in any merged source: the last one wins, as for
         # aliases) is an alias; a pointer into its value walks the resolved value.
         for i in range(len(parts), 0, -1):
@@ -385,10 +378,10 @@ class TokenTree:
                 continue
             rest = parts[i:]
             target = self._token(token_path, stack)
-            if not rest or rest == ["$value"] or (self.legacy and rest == ["value"]):
+            if not rest or rest == ("$value",) or (self.legacy and rest == ("value",)):
                 return target.value, target, self._sizes[token_path]
             if rest[0] not in ("$value", "value"):
-                raise token_error(
+                raise InputError(
                     f"$ref {pointer} points into token {token_path} but not at its $value",
                     **where,
                 )
@@ -401,36 +394,23 @@ class TokenTree:
             value, size = self._pointers[memo]
             return value, None, size
         node = _descend(raw.doc.data, parts, pointer, where)
-        if len(stack) > MAX_ALIAS_CHAIN:
-            raise token_error(f"$ref chain longer than {MAX_ALIAS_CHAIN}", **where)
         value, _, size = self._value(raw, node, keys, [*stack, pointer])
         if size > MAX_VALUE_NODES:
-            raise token_error(
+            raise InputError(
                 f"$ref {pointer} expands to more than {MAX_VALUE_NODES:,} JSON values", **where
             )
         self._pointers[memo] = (value, size)
         return value, None, size
 
 
-class _Unresolved(Exception):
-    """A reference this file cannot resolve: the token becomes a :attr:`Token.problem`."""
-
-    def __init__(self, problem: str, line: int | None) -> None:
-        super().__init__(problem)
-        self.problem = problem
-        self.line = line
-
-
-def _descend(node: Any, parts: list[str], pointer: str, where: TokenPlace) -> Any:
+def _descend(node: Any, parts: tuple[str, ...], pointer: str, where: TokenPlace) -> Any:
     """The JSON value ``parts`` (a pointer's unescaped steps) lead to from ``node``."""
-    for part in parts:
-        if isinstance(node, dict) and part in node:
-            node = node[part]
-        elif isinstance(node, list) and part.isdigit() and int(part) < len(node):
-            node = node[int(part)]
-        else:
-            raise token_error(f"$ref {pointer} points at nothing (no {part!r})", **where)
-    return node
+    try:
+        return walk_pointer(node, parts)
+    except KeyError as exc:
+        raise InputError(
+            f"$ref {pointer} points at nothing (no {exc.args[0]!r})", **where
+        ) from None
 
 
 def _size(value: Any) -> int:

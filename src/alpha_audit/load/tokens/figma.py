@@ -20,16 +20,17 @@ from __future__ import annotations
 
 from typing import Any
 
+from alpha_audit.errors import InputError
 from alpha_audit.load.names import check_name
 from alpha_audit.load.tokens.jsondoc import JsonDoc, JsonPath
 from alpha_audit.load.tokens.model import (
-    MAX_ALIAS_CHAIN,
     Steps,
     Token,
     TokenModes,
     TokenPlace,
+    Unresolved,
     check_mode_budget,
-    token_error,
+    follow,
 )
 
 __all__ = ["is_figma", "modes_from_figma"]
@@ -52,13 +53,6 @@ def _meta(data: Any) -> tuple[Any, JsonPath] | None:
 def is_figma(data: Any) -> bool:
     """Figma's REST response (``meta.variables``, ``meta.variableCollections``), or its meta."""
     return _meta(data) is not None
-
-
-class _Missing(Exception):
-    def __init__(self, problem: str, place: TokenPlace) -> None:
-        super().__init__(problem)
-        self.problem = problem
-        self.place = place
 
 
 def modes_from_figma(doc: JsonDoc, *, collection: str | None = None) -> TokenModes:
@@ -143,14 +137,19 @@ class _Reader:
         var = self.variables.get(vid)
         name = var.get("name") if isinstance(var, dict) else None
         shown = _path(name) if isinstance(name, str) and name else str(vid)
-        return {"file": self.doc.path, "line": self.doc.line(keys), "path": shown}
+        return {"path": self.doc.path, "line": self.doc.line(keys), "key": shown}
+
+    def label(self, vid: str) -> str:
+        """A variable's token path (its id when it has no name)."""
+        return str(self.where(vid)["key"])
 
     def mode_for(self, vid: str, mode_name: str) -> str:
         """The modeId a variable takes in mode ``mode_name``: its collection's mode of that
         name, else its collection's default mode."""
         cid = self.variables[vid].get("variableCollectionId")
         if not isinstance(cid, str) or cid not in self.collections:
-            raise _Missing(f"names no known variableCollectionId ({cid!r:.40})", self.where(vid))
+            problem = f"names no known variableCollectionId ({cid!r:.40})"
+            raise Unresolved(problem, self.where(vid)["line"])
         modes = self.coll_modes(cid)
         if mode_name in modes:
             return modes[mode_name]
@@ -161,23 +160,19 @@ class _Reader:
         """A variable's value in a mode through its aliases: (value, origin, origin's mode)."""
         self.steps.take(1, "resolving aliases", lambda: self.where(stack[0] if stack else vid))
         if vid not in self.variables or not isinstance(self.variables[vid], dict):
-            raise _Missing(
+            raise Unresolved(
                 f"alias to variable {vid!r}, which this response does not hold (a library "
                 "variable? the REST endpoint lists local variables only)",
-                self.where(stack[-1]),
+                self.where(stack[-1])["line"],
             )
-        if vid in stack:
-            chain = " -> ".join(str(self.where(v)["path"]) for v in [*stack, vid])
-            raise token_error(f"alias cycle: {chain}", **self.where(stack[0]))
-        if len(stack) > MAX_ALIAS_CHAIN:
-            raise token_error(f"alias chain longer than {MAX_ALIAS_CHAIN}", **self.where(stack[0]))
+        follow(stack, vid, "alias", lambda: self.where(stack[0]), self.label)
         mode_id = self.mode_for(vid, mode_name)
         by_mode = self.variables[vid].get("valuesByMode")
         value = by_mode.get(mode_id) if isinstance(by_mode, dict) else None
         if isinstance(value, dict) and value.get("type") == "VARIABLE_ALIAS":
             return self.resolve(str(value.get("id")), mode_name, [*stack, vid])
         if value is None:
-            raise _Missing(f"has no value for mode {mode_name!r}", self.where(vid))
+            raise Unresolved(f"has no value for mode {mode_name!r}", self.where(vid)["line"])
         return value, vid, mode_id
 
     def variables_once(self) -> list[tuple[str, dict[str, Any], str, str]]:
@@ -187,17 +182,17 @@ class _Reader:
         named: dict[str, str] = {}  # token path: the variable name that made it
         for vid, var in self.variables.items():
             if not isinstance(var, dict) or not isinstance(var.get("name"), str):
-                raise token_error("a variable needs a name", **self.where(vid))
+                raise InputError("a variable needs a name", **self.where(vid))
             ttype = _TYPES.get(str(var.get("resolvedType")))
             if ttype is None:
-                raise token_error(
+                raise InputError(
                     f"resolvedType {var.get('resolvedType')!r} is not one of {', '.join(_TYPES)}",
                     **self.where(vid),
                 )
-            check_name(var["name"], **_named(self.where(vid)), what="variable name")
+            check_name(var["name"], **self.where(vid), what="variable name")
             path = _path(var["name"])
             if path in named:
-                raise token_error(
+                raise InputError(
                     f"variables {named[path]!r} and {var['name']!r} both name the token {path}; "
                     "token paths must be unique, rename one",
                     **self.where(vid),
@@ -216,13 +211,13 @@ class _Reader:
         for vid, var, path, ttype in read:
             try:
                 value, origin, origin_mode = self.resolve(vid, mode_name, [])
-            except _Missing as exc:
+            except Unresolved as exc:
                 tokens[path] = Token(
                     path=path,
                     type=ttype,
                     value=None,
                     file=path_of,
-                    line=exc.place["line"],
+                    line=exc.line,
                     problem=exc.problem,
                 )
                 continue
@@ -237,15 +232,11 @@ class _Reader:
                 file=path_of,
                 line=loc["line"],
                 description=var.get("description") or None,
-                chain=(str(self.where(origin)["path"]),) if aliased else (),
+                chain=(self.label(origin),) if aliased else (),
                 alias_file=path_of if aliased else None,
                 alias_line=self.where(vid)["line"] if aliased else None,
             )
         return tokens
-
-
-def _named(place: TokenPlace) -> dict[str, Any]:
-    return {"path": place["file"], "line": place["line"], "key": place["path"]}
 
 
 def _path(name: str) -> str:
@@ -256,7 +247,7 @@ def _path(name: str) -> str:
 def _color(value: Any, where: TokenPlace) -> dict[str, Any]:
     """``{r, g, b, a}`` (sRGB, 0-1) to a DTCG colour object."""
     if not isinstance(value, dict) or not all(k in value for k in "rgb"):
-        raise token_error(f"expected a colour {{r, g, b, a}}, got {value!r:.40}", **where)
+        raise InputError(f"expected a colour {{r, g, b, a}}, got {value!r:.40}", **where)
     out: dict[str, Any] = {"colorSpace": "srgb", "components": [value[k] for k in "rgb"]}
     if "a" in value:
         out["alpha"] = value["a"]

@@ -23,9 +23,19 @@ from typing import Any
 from alpha_audit.errors import InputError
 from alpha_audit.load.files import read_capped
 from alpha_audit.load.spans import LineIndex
+from alpha_audit.load.tokens.model import TokenPlace
 from alpha_audit.model import Span
 
-__all__ = ["MAX_JSON_BYTES", "MAX_JSON_DEPTH", "JsonDoc", "JsonPath", "load_json", "parse_json"]
+__all__ = [
+    "MAX_JSON_BYTES",
+    "MAX_JSON_DEPTH",
+    "JsonDoc",
+    "JsonPath",
+    "load_json",
+    "parse_json",
+    "pointer_parts",
+    "walk_pointer",
+]
 
 MAX_JSON_BYTES = 8 << 20  # 8 MiB: large design systems export a few MiB of tokens
 MAX_JSON_DEPTH = 64  # token groups nest a handful of levels
@@ -63,9 +73,17 @@ class JsonDoc:
                 return self.lines[keys[:n]]
         return None
 
+    def place(self, keys: JsonPath, token: str | None = None) -> TokenPlace:
+        """This file, the line of ``keys`` and the token path: an error's ``**place``."""
+        return {"path": self.path, "line": self.line(keys), "key": token}
+
     def error(self, keys: JsonPath, message: str, token: str | None = None) -> InputError:
         """An input error naming this file, the line of ``keys`` and the token path."""
-        return InputError(message, path=self.path, line=self.line(keys), key=token)
+        return InputError(message, **self.place(keys, token))
+
+    def at(self, keys: JsonPath, message: str) -> InputError:
+        """An input error at ``keys``, named by them (``sets.base.sources.0``)."""
+        return self.error(keys, message, ".".join(map(str, keys)) or None)
 
     @cached_property
     def _index(self) -> LineIndex:
@@ -75,6 +93,24 @@ class JsonDoc:
         """The exact span of the string value at ``keys`` (``None``: not a string)."""
         where = self.offsets.get(keys)
         return None if where is None else self._index.span(*where)
+
+
+def pointer_parts(pointer: str) -> tuple[str, ...]:
+    """A JSON Pointer's (RFC 6901) unescaped steps: ``/a~1b/c`` -> ``("a/b", "c")``."""
+    return tuple(p.replace("~1", "/").replace("~0", "~") for p in pointer.split("/")[1:])
+
+
+def walk_pointer(node: Any, parts: tuple[str, ...]) -> Any:
+    """The value ``parts`` lead to from ``node`` (an object's member, an array's index);
+    a step that leads nowhere raises :class:`KeyError` naming it."""
+    for part in parts:
+        if isinstance(node, dict) and part in node:
+            node = node[part]
+        elif isinstance(node, list) and part.isdigit() and int(part) < len(node):
+            node = node[int(part)]
+        else:
+            raise KeyError(part)
+    return node
 
 
 def _no_constant(name: str) -> Any:

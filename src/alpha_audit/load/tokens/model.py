@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Literal, TypedDict
@@ -21,8 +21,10 @@ __all__ = [
     "Token",
     "TokenModes",
     "TokenPlace",
+    "Unresolved",
     "check_mode_budget",
-    "token_error",
+    "follow",
+    "too_long",
 ]
 
 MAX_TOKENS = 100_000  # a large design system has a few thousand tokens
@@ -157,7 +159,7 @@ class Steps:
         (called only then: a step costs an addition)."""
         self.taken += n
         if self.taken > MAX_EXPANSION:
-            raise token_error(
+            raise InputError(
                 f"{what} takes more than {MAX_EXPANSION:,} steps; the file expands without bound",
                 **place(),
             )
@@ -181,15 +183,44 @@ def check_mode_budget(path: Path, modes: int, tokens: int) -> None:
 
 
 class TokenPlace(TypedDict):
-    """Where a token error points: :func:`token_error`'s keywords, to pass as ``**place``."""
+    """Where a token error points: :class:`InputError`'s keywords, to pass as ``**place``."""
 
-    file: Path | None
+    path: Path | None
     line: int | None
-    path: str | None
+    key: str | None
 
 
-def token_error(
-    message: str, *, file: Path | None, line: int | None, path: str | None
+class Unresolved(Exception):
+    """A reference the source cannot resolve (an alias to a token or variable it does not
+    hold): the token loads with it as its :attr:`Token.problem`, an error only where selected."""
+
+    def __init__(self, problem: str, line: int | None) -> None:
+        super().__init__(problem)
+        self.problem = problem
+        self.line = line
+
+
+def too_long(
+    what: str, chain: Sequence[str], place: TokenPlace, label: Callable[[str], str] = str
 ) -> InputError:
-    """An input error naming the token file, its JSON line and the token path."""
-    return InputError(message, path=file, line=line, key=path)
+    """The error for a ``what`` chain (alias, ``$ref``, ``var()``) past :data:`MAX_ALIAS_CHAIN`."""
+    shown = " -> ".join(label(n) for n in chain[:4])
+    return InputError(f"{what} chain longer than {MAX_ALIAS_CHAIN}: {shown} -> ...", **place)
+
+
+def follow(
+    stack: Sequence[str],
+    name: str,
+    what: str,
+    place: Callable[[], TokenPlace],
+    label: Callable[[str], str] = str,
+) -> None:
+    """Refuse following a reference to ``name`` from the chain ``stack`` when it closes a
+    cycle or makes the chain longer than :data:`MAX_ALIAS_CHAIN`: every token format's one
+    guard.  The error is at ``place()`` (called only then) and names the chain by ``label``.
+    """
+    if name in stack:
+        loop = " -> ".join(label(n) for n in [*stack[stack.index(name) :], name])
+        raise InputError(f"{what} cycle: {loop}", **place())
+    if len(stack) >= MAX_ALIAS_CHAIN:
+        raise too_long(what, stack, place(), label)

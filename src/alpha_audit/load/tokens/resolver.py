@@ -17,11 +17,12 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from alpha_audit.errors import InputError
 from alpha_audit.load.names import check_name
 from alpha_audit.load.paths import PathRefused, contain
 from alpha_audit.load.tokens.dtcg import TokenTree
-from alpha_audit.load.tokens.jsondoc import JsonDoc, load_json
-from alpha_audit.load.tokens.model import Steps, TokenModes, check_mode_budget, token_error
+from alpha_audit.load.tokens.jsondoc import JsonDoc, load_json, pointer_parts, walk_pointer
+from alpha_audit.load.tokens.model import Steps, TokenModes, check_mode_budget
 
 __all__ = ["MAX_SOURCES", "is_resolver", "modes_from_resolver"]
 
@@ -41,41 +42,30 @@ class _Resolver:
         self.base = doc.path.resolve().parent
         self.files: dict[Path, JsonDoc] = {}
 
-    def error(self, keys: tuple[str | int, ...], message: str) -> Exception:
-        return token_error(
-            message,
-            file=self.doc.path,
-            line=self.doc.line(keys),
-            path=".".join(str(k) for k in keys) or None,
-        )
-
     def file(self, keys: tuple[str | int, ...], ref: str) -> JsonDoc:
         if "://" in ref or ref.startswith("//"):
-            raise self.error(keys, f"$ref {ref!r} is remote; only files in the project are read")
+            raise self.doc.at(keys, f"$ref {ref!r} is remote; only files in the project are read")
         try:
             target = contain(self.root, self.base, ref.split("#", 1)[0])
         except PathRefused as err:
-            raise self.error(keys, f"$ref: {err}") from err
+            raise self.doc.at(keys, f"$ref: {err}") from err
         if target not in self.files:
             if len(self.files) >= MAX_SOURCES:
-                raise self.error(keys, f"more than {MAX_SOURCES} source files")
+                raise self.doc.at(keys, f"more than {MAX_SOURCES} source files")
             if not target.is_file():  # named here, at the $ref, not as a file alone
-                raise self.error(keys, f"$ref {ref!r} names no file")
+                raise self.doc.at(keys, f"$ref {ref!r} names no file")
             self.files[target] = load_json(target)
         return self.files[target]
 
     def pointer(self, keys: tuple[str | int, ...], ref: str) -> tuple[Any, tuple[str, ...]]:
-        parts = tuple(p.replace("~1", "/").replace("~0", "~") for p in ref[2:].split("/"))
-        node: Any = self.doc.data
-        for part in parts:
-            if not isinstance(node, dict) or part not in node:
-                raise self.error(keys, f"$ref {ref!r} points at nothing")
-            node = node[part]
-        return node, parts
+        try:
+            return walk_pointer(self.doc.data, parts := pointer_parts(ref[1:])), parts
+        except KeyError:
+            raise self.doc.at(keys, f"$ref {ref!r} points at nothing") from None
 
     def sources(self, tree: TokenTree, keys: tuple[str | int, ...], items: Any) -> None:
         if not isinstance(items, list):
-            raise self.error(keys, "expected a list of sources ({$ref: file} or token groups)")
+            raise self.doc.at(keys, "expected a list of sources ({$ref: file} or token groups)")
         for i, item in enumerate(items):
             ikeys = (*keys, i)
             if isinstance(item, dict) and set(item) == {"$ref"} and isinstance(item["$ref"], str):
@@ -93,33 +83,33 @@ class _Resolver:
             elif isinstance(item, dict):
                 tree.add(self.doc, item, ikeys)
             else:
-                raise self.error(ikeys, f"expected a source object, got {item!r:.40}")
+                raise self.doc.at(ikeys, f"expected a source object, got {item!r:.40}")
 
     def entries(self) -> list[tuple[str, Any, tuple[str | int, ...]]]:
         """``("set" | "modifier", definition, keys)`` in resolution order."""
         order = self.doc.data.get("resolutionOrder")
         if not isinstance(order, list) or not order:
-            raise self.error(("resolutionOrder",), "expected a non-empty list")
+            raise self.doc.at(("resolutionOrder",), "expected a non-empty list")
         out: list[tuple[str, Any, tuple[str | int, ...]]] = []
         for i, item in enumerate(order):
             keys: tuple[str | int, ...] = ("resolutionOrder", i)
             if isinstance(item, dict) and isinstance(item.get("$ref"), str):
                 ref = item["$ref"]
                 if not ref.startswith("#/sets/") and not ref.startswith("#/modifiers/"):
-                    raise self.error(
+                    raise self.doc.at(
                         keys, f"$ref {ref!r} must point at #/sets/... or #/modifiers/..."
                     )
                 node, parts = self.pointer(keys, ref)
                 kind = "set" if parts[0] == "sets" else "modifier"
                 if not isinstance(node, dict):
-                    raise self.error(
+                    raise self.doc.at(
                         parts, f"expected a {kind} object, got {_json_type(node)} (via {ref})"
                     )
                 out.append((kind, node, parts))
             elif isinstance(item, dict) and item.get("type") in ("set", "modifier"):
                 out.append((item["type"], item, keys))
             else:
-                raise self.error(keys, "expected {$ref: #/sets/...} or an inline set or modifier")
+                raise self.doc.at(keys, "expected {$ref: #/sets/...} or an inline set or modifier")
         return out
 
 
@@ -130,13 +120,10 @@ def _json_type(value: Any) -> str:
 
 
 def _walk_pointer(doc: JsonDoc, fragment: str) -> tuple[Any, tuple[str, ...]]:
-    parts = tuple(p.replace("~1", "/").replace("~0", "~") for p in fragment.lstrip("/").split("/"))
-    node: Any = doc.data
-    for part in parts:
-        if not isinstance(node, dict) or part not in node:
-            raise token_error(f"#{fragment} points at nothing", file=doc.path, line=1, path=None)
-        node = node[part]
-    return node, parts
+    try:
+        return walk_pointer(doc.data, parts := pointer_parts("/" + fragment.lstrip("/"))), parts
+    except KeyError:
+        raise InputError(f"#{fragment} points at nothing", path=doc.path, line=1) from None
 
 
 def modes_from_resolver(
@@ -149,7 +136,7 @@ def modes_from_resolver(
     names = [str(node.get("name", keys[-1])) for node, keys in modifiers]
     if modifier is None:
         if len(modifiers) > 1:
-            raise r.error(
+            raise doc.at(
                 ("modifiers",),
                 f"{len(modifiers)} modifiers ({', '.join(names)}); say which one gives the "
                 "modes with tokens: {modifier: <name>} in the config",
@@ -157,7 +144,7 @@ def modes_from_resolver(
         chosen = names[0] if names else None
     else:
         if modifier not in names:
-            raise r.error(("modifiers",), f"no modifier {modifier!r}; have {', '.join(names)}")
+            raise doc.at(("modifiers",), f"no modifier {modifier!r}; have {', '.join(names)}")
         chosen = modifier
     contexts: list[str] = ["default"]
     context_keys: tuple[str | int, ...] = ("modifiers",)
@@ -170,7 +157,7 @@ def modes_from_resolver(
         check_name(name, path=doc.path, line=doc.line(keys), what="modifier name")
         ctx = node.get("contexts")
         if not isinstance(ctx, dict) or not ctx:
-            raise r.error((*keys, "contexts"), "expected a mapping of contexts to sources")
+            raise doc.at((*keys, "contexts"), "expected a mapping of contexts to sources")
         if name == chosen:
             contexts = list(ctx)
             context_keys = (*keys, "contexts")
@@ -191,7 +178,7 @@ def modes_from_resolver(
             ctx = node["contexts"]
             pick = context if name == chosen else node.get("default", next(iter(ctx)))
             if pick not in ctx:
-                raise r.error((*keys, "default"), f"default {pick!r} is not one of its contexts")
+                raise doc.at((*keys, "default"), f"default {pick!r} is not one of its contexts")
             r.sources(tree, (*keys, "contexts", pick), ctx[pick])
         check_mode_budget(doc.path, len(contexts), len(tree.raw))
         modes[context] = tree.resolve()

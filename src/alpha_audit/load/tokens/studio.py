@@ -24,11 +24,12 @@ from itertools import product
 from pathlib import Path
 from typing import Any
 
+from alpha_audit.errors import InputError
 from alpha_audit.load.names import check_name
 from alpha_audit.load.paths import PathRefused, contain
 from alpha_audit.load.tokens.dtcg import TokenTree
 from alpha_audit.load.tokens.jsondoc import JsonDoc, load_json
-from alpha_audit.load.tokens.model import Steps, TokenModes, check_mode_budget, token_error
+from alpha_audit.load.tokens.model import Steps, TokenModes, check_mode_budget
 
 __all__ = ["is_studio_file", "modes_from_studio"]
 
@@ -56,7 +57,7 @@ def modes_from_studio(
     folder = doc.path.name == "$themes.json"
     themes, meta, sets = _parts(doc, root, folder)
     if not isinstance(themes, list):
-        raise token_error("$themes must be a list of themes", file=doc.path, line=1, path=None)
+        raise InputError("$themes must be a list of themes", path=doc.path, line=1)
     order = meta.get("tokenSetOrder") if isinstance(meta, dict) else None
     store = _Sets(doc, root, folder, sets, order if isinstance(order, list) else None)
     if len(themes) > 0:
@@ -84,7 +85,7 @@ def _parts(
         try:
             meta_path = contain(root, doc.path.resolve().parent, "$metadata.json")
         except PathRefused as err:
-            raise token_error(str(err), file=doc.path, line=None, path=None) from err
+            raise InputError(str(err), path=doc.path) from err
         meta = load_json(meta_path).data if meta_path.is_file() else {}
         return doc.data, meta, {}
     sets = {
@@ -117,23 +118,18 @@ class _Sets:
                 self.rank.setdefault(set_name, place)
         self.steps = Steps()  # every theme walks its sets again: one budget for the source
 
-    def _refusal(self, message: str, keys: tuple[str | int, ...]) -> Exception:
-        return self.doc.error(keys, message, ".".join(map(str, keys)))
-
     def load(self, name: str, keys: tuple[str | int, ...]) -> tuple[JsonDoc, Any]:
         """A set by name (``keys``: where a theme names it, for errors)."""
         if name not in self.sets:
             if not self.folder:
-                raise self._refusal(
-                    f"names token set {name!r}, which this file does not have", keys
-                )
+                raise self.doc.at(keys, f"names token set {name!r}, which this file does not have")
             try:
                 target = contain(self.root, self.base, f"{name}.json")
             except PathRefused as err:
-                raise self._refusal(f"token set {name!r}: {err}", keys) from err
+                raise self.doc.at(keys, f"token set {name!r}: {err}") from err
             if not target.is_file():  # named here, where a theme selects it
-                raise self._refusal(
-                    f"token set {name!r} has no file {name}.json beside this one", keys
+                raise self.doc.at(
+                    keys, f"token set {name!r} has no file {name}.json beside this one"
                 )
             loaded = load_json(target)
             self.sets[name] = (loaded, loaded.data)
@@ -160,9 +156,7 @@ def _read_themes(doc: JsonDoc, themes: list[Any], folder: bool) -> list[_Theme]:
     for i, theme in enumerate(themes):
         keys: tuple[str | int, ...] = ("$themes", i) if not folder else (i,)
         if not isinstance(theme, dict) or not isinstance(theme.get("selectedTokenSets"), dict):
-            raise doc.error(
-                keys, "a theme needs name and selectedTokenSets", ".".join(map(str, keys))
-            )
+            raise doc.at(keys, "a theme needs name and selectedTokenSets")
         name = check_name(
             str(theme.get("name", i)), path=doc.path, line=doc.line(keys), what="theme name"
         )
@@ -217,23 +211,20 @@ def _combined(
     by_group: dict[str, list[_Theme]] = {g: [] for g in chosen}
     for theme in themes:
         if theme.group is None and groups is None:
-            raise doc.error(
+            raise doc.at(
                 theme.keys,
                 f"theme {theme.name!r} has no group, and themes of groups "
                 f"{', '.join(chosen)} are combined; give it a group, or set the config's "
                 "tokens: {modes: {groups: false}} to audit each theme alone",
-                ".".join(map(str, theme.keys)),
             )
         if theme.group is not None and theme.group in by_group:
             by_group[theme.group].append(theme)
     for group, members in by_group.items():
         if not members:
-            raise token_error(
+            raise InputError(
                 f"tokens.modes.groups names {group!r}, which no theme has; groups: "
                 f"{', '.join(order)}",
-                file=doc.path,
-                line=None,
-                path=None,
+                path=doc.path,
             )
     count = 1
     for members in by_group.values():

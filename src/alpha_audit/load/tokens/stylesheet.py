@@ -77,7 +77,7 @@ from alpha_audit.load.tokens.model import (
     TokenModes,
     TokenPlace,
     check_mode_budget,
-    token_error,
+    too_long,
 )
 from alpha_audit.model import Span
 from alpha_audit.safe_text import safe_text
@@ -425,11 +425,12 @@ class _Resolver:
         assert owner is not None
         return owner.props[name]
 
-    def count(self, n: int, name: str) -> None:
-        def place() -> TokenPlace:
-            return {"file": self.sheet.path, "line": self.props[name].line, "path": _dots(name)}
+    def place(self, name: str) -> TokenPlace:
+        """Where ``--name`` is declared on this element."""
+        return {"path": self.sheet.path, "line": self.props[name].line, "key": _dots(name)}
 
-        self.steps.take(n, "var() substitution", place)
+    def count(self, n: int, name: str) -> None:
+        self.steps.take(n, "var() substitution", lambda: self.place(name))
 
     def resolve(self, name: str) -> tuple[list[Any] | None, tuple[str, ...]]:
         """The substituted value of ``--name`` (None: invalid) and its alias chain."""
@@ -443,13 +444,7 @@ class _Resolver:
                 self.cycles.setdefault(n, " -> ".join(_dots(x) for x in loop))
             return None, ()
         if len(self.active) >= MAX_ALIAS_CHAIN:
-            raise token_error(
-                f"var() chain longer than {MAX_ALIAS_CHAIN}: "
-                f"{' -> '.join(_dots(n) for n in self.active[:4])} -> ...",
-                file=self.sheet.path,
-                line=self.props[self.active[0]].line,
-                path=_dots(self.active[0]),
-            )
+            raise too_long("var()", self.active, self.place(self.active[0]), _dots)
         self.count(1, name)
         self.active.append(name)
         try:
@@ -466,13 +461,7 @@ class _Resolver:
             ):
                 resolved, rest = owner.resolve(target)
                 if len(rest) >= MAX_ALIAS_CHAIN:
-                    raise token_error(
-                        f"var() chain longer than {MAX_ALIAS_CHAIN}: {_dots(name)} -> "
-                        f"{' -> '.join(_dots(n) for n in (target, *rest[:2]))} -> ...",
-                        file=self.sheet.path,
-                        line=decl.line,
-                        path=_dots(name),
-                    )
+                    raise too_long("var()", [name, target, *rest], self.place(name), _dots)
                 chain = (target, *rest)
                 out = resolved
             else:
@@ -480,11 +469,9 @@ class _Resolver:
         finally:
             self.active.pop()
         if out is not None and len(out) > MAX_VALUE_TOKENS:
-            raise token_error(
+            raise InputError(
                 f"resolves to more than {MAX_VALUE_TOKENS} CSS tokens; not a design token",
-                file=self.sheet.path,
-                line=self.props[name].line,
-                path=_dots(name),
+                **self.place(name),
             )
         if name in self.cycles:
             out = None
@@ -718,7 +705,7 @@ class _Cascade:
         self.steps.take(
             len(found) + sum(len(part.decls) for part in (*on_root, *on_body)),
             "cascading modes",
-            lambda: {"file": self.sheet.path, "line": None, "path": None},
+            lambda: {"path": self.sheet.path, "line": None, "key": None},
         )
         self.applied[state] = (on_root, on_body)
         return on_root, on_body
@@ -855,13 +842,13 @@ def _token_paths(sheet: _Sheet, names: set[str]) -> dict[str, str]:
         check_name(name, path=sheet.path, line=first_line[name], what="custom property")
         path = _dots(name)
         if path in seen:
-            raise token_error(
+            raise InputError(
                 f"--{safe_text(seen[path])} and --{safe_text(name)} (line "
                 f"{first_line[seen[path]]}) both name the token {path}; rename one "
                 "(a CSS escape such as \\2e is read as the character it stands for)",
-                file=sheet.path,
+                path=sheet.path,
                 line=first_line[name],
-                path=path,
+                key=path,
             )
         seen[path] = name
     return {name: path for path, name in seen.items()}

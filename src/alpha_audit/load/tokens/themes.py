@@ -32,18 +32,18 @@ import json
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
+from functools import partial
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from alpha_audit.color.css import ParsedColor, gamut_delta_e, map_parsed
-from alpha_audit.color.srgb import srgb_decode
-from alpha_audit.constants import GAMUT_POLICIES, GamutPolicy
+from alpha_audit.constants import GamutPolicy
 from alpha_audit.errors import InputError
 from alpha_audit.load.theme import MAX_CANVASES
 from alpha_audit.load.tokens import load_token_modes, token_color
-from alpha_audit.load.tokens.model import ModeConditions, Token, TokenModes, token_error
+from alpha_audit.load.tokens.model import ModeConditions, Token, TokenModes
 from alpha_audit.model import Canvas, GamutAdjustment, Mode, Theme
 from alpha_audit.ranges import ALPHA
 
@@ -56,23 +56,10 @@ __all__ = [
     "TokenThemes",
     "TranslucentToken",
     "load_token_themes",
-    "token_config_from_mapping",
     "token_themes",
 ]
 
 DEFAULT_ALPHA_EXTENSION = "com.alpha-audit"
-_CONFIG_KEYS = (
-    "file",
-    "canvases",
-    "colors",
-    "modes",
-    "modifier",
-    "gamut",
-    "alpha-extension",
-    "format",
-    "types",
-)
-_MODE_KEYS = ("audit", "light", "dark", "groups")
 
 
 @dataclass(frozen=True)
@@ -109,11 +96,6 @@ class TokenColor:
     def css(self) -> str:
         """Exact ``color(srgb ...)``: what a palette entry or an :class:`Icon` colour takes."""
         return self.parsed.css
-
-    @property
-    def linear(self) -> np.ndarray:
-        """Linear-light sRGB, float64."""
-        return srgb_decode(self.parsed.array)
 
 
 @dataclass(frozen=True)
@@ -189,18 +171,18 @@ def _alpha(token: Token, key: str) -> float | None:
     if raw is None:
         return None
     if isinstance(raw, bool) or not isinstance(raw, int | float) or not math.isfinite(raw):
-        raise token_error(
+        raise InputError(
             f"$extensions {key} alpha must be a finite number, got {raw!r:.40}",
-            file=token.alias_file or token.file,
+            path=token.alias_file or token.file,
             line=token.alias_line or token.line,
-            path=token.path,
+            key=token.path,
         )
     if not ALPHA.allows(raw):
-        raise token_error(
+        raise InputError(
             ALPHA.refusal(f"$extensions {key} alpha {raw}"),
-            file=token.alias_file or token.file,
+            path=token.alias_file or token.file,
             line=token.alias_line or token.line,
-            path=token.path,
+            key=token.path,
         )
     return float(raw)
 
@@ -252,12 +234,12 @@ def _typed(token: Token, config: TokenConfig) -> Token:
         (t for g, t in config.types.items() for p in paths if fnmatch.fnmatchcase(p, g)), None
     )
     if found is None:
-        raise token_error(
+        raise InputError(
             f"{token.problem}; or type it in the config: tokens: {{types: "
             f'{{"{token.path}": color}}}} (a glob per type)',
-            file=token.file,
+            path=token.file,
             line=token.line,
-            path=token.path,
+            key=token.path,
         )
     return replace(token, type=found, problem=None)
 
@@ -441,25 +423,29 @@ def _mode_tokens(
     layers: list[Canvas] = []
     for path, key, token, is_canvas, is_color in entries:
         parsed = seen[key]
+        # The canvas this token is (a translucent one is a layer: see below).
+        canvas = partial(
+            Canvas,
+            path,
+            parsed.css,
+            config.mode_of(name),
+            line=token.line,
+            file=token.file,
+            span=token.span,
+        )
         if parsed.alpha < 1.0:
             if is_color:
-                raise token_error(
+                raise InputError(
                     f"{parsed.text[:60]!r} is translucent (alpha {parsed.alpha:.4g}); an "
                     "icon colour is opaque and its coefficient lives in $extensions",
-                    file=token.file,
+                    path=token.file,
                     line=token.line,
-                    path=path,
+                    key=path,
                 )
             translucent[path] = TranslucentToken(token, parsed, name)
             if is_canvas:  # a surface or hover layer: audited over the mode's canvas
                 layers.append(
-                    Canvas(
-                        path,
-                        parsed.css,
-                        config.mode_of(name),
-                        line=token.line,
-                        file=token.file,
-                        span=token.span,
+                    canvas(
                         over="",  # set below: the mode's first opaque canvas
                         opacity=parsed.alpha,
                         # A sheet's surface is painted by the browser, whatever
@@ -471,16 +457,7 @@ def _mode_tokens(
         if parsed.adjusted:
             adjusted.append((name, token, parsed))
         if is_canvas:
-            canvases.append(
-                Canvas(
-                    path,
-                    parsed.css,
-                    config.mode_of(name),
-                    line=token.line,
-                    file=token.file,
-                    span=token.span,
-                )
-            )
+            canvases.append(canvas())
         if is_color:
             colors[path] = TokenColor(token, parsed, _alpha(token, config.alpha_extension))
     return canvases, colors, translucent, layers
@@ -550,108 +527,3 @@ def load_token_themes(config: TokenConfig) -> TokenThemes:
         groups=config.groups,
     )
     return token_themes(source, config)
-
-
-def token_config_from_mapping(value: Any, *, base: Path, where: Any) -> TokenConfig:
-    """Validate a config's ``tokens:`` mapping.
-
-    ``where(key_suffix, message)`` returns the loader's error for a sub-key, so
-    messages carry the config's file and line.  Paths are relative to ``base``
-    and must stay inside it.
-    """
-    if not isinstance(value, dict):
-        raise where((), "expected a mapping {file, canvases, colors, modes, gamut, ...}")
-    data = {str(k).replace("_", "-"): v for k, v in value.items()}
-    for key in data:
-        if key not in _CONFIG_KEYS:
-            raise where((key,), f"unknown key {key!r}; allowed: {', '.join(sorted(_CONFIG_KEYS))}")
-    file = data.get("file")
-    if not isinstance(file, str) or not file.strip() or "\x00" in file:
-        raise where(("file",), "expected the token file, a path relative to the config")
-    path = (base / file).resolve()
-    if Path(file).is_absolute() or not path.is_relative_to(base):
-        raise where(("file",), f"{file!r} resolves outside {base}; not allowed")
-
-    def patterns(key: str, required: bool) -> tuple[str, ...]:
-        raw = data.get(key)
-        if raw is None and not required:
-            return ()
-        items = [raw] if isinstance(raw, str) else raw
-        if not isinstance(items, list) or not items or not all(isinstance(i, str) for i in items):
-            raise where((key,), 'expected a token-path pattern or a list, e.g. "color.bg.*"')
-        return tuple(items)
-
-    schemes, audit, groups = _modes_setting(data.get("modes", {}), where)
-    types_raw = data.get("types", {})
-    if not isinstance(types_raw, dict) or not all(
-        isinstance(k, str) and isinstance(v, str) and v for k, v in types_raw.items()
-    ):
-        raise where(("types",), 'expected {token-path glob: type, ...}, e.g. {"color.*": color}')
-    gamut = data.get("gamut", "error")
-    if gamut not in GAMUT_POLICIES:
-        raise where(("gamut",), f"{gamut!r} is not a gamut policy; use {', '.join(GAMUT_POLICIES)}")
-    ext = data.get("alpha-extension", DEFAULT_ALPHA_EXTENSION)
-    if not isinstance(ext, str) or not ext:
-        raise where(("alpha-extension",), "expected a reverse-DNS key such as com.alpha-audit")
-    modifier = data.get("modifier")
-    if modifier is not None and not isinstance(modifier, str):
-        raise where(("modifier",), "expected the name of a Resolver modifier or Figma collection")
-    fmt = data.get("format", "auto")
-    from alpha_audit.load.tokens import TOKEN_FORMATS
-
-    if fmt not in TOKEN_FORMATS:
-        raise where(("format",), f"{fmt!r} is not one of {', '.join(TOKEN_FORMATS)}")
-    return TokenConfig(
-        file=path,
-        canvases=patterns("canvases", True),
-        colors=patterns("colors", False),
-        modes=schemes,
-        modifier=modifier,
-        gamut=gamut,
-        alpha_extension=ext,
-        format=fmt,
-        root=base,
-        audit=audit,
-        groups=groups,
-        types={str(k): str(v) for k, v in types_raw.items()},
-    )
-
-
-_MODES_HELP = (
-    "expected {mode: light|dark, ...} (mode names or globs), a list of the modes to audit, "
-    "or {audit: [...], light: [...], dark: [...], groups: [...]}"
-)
-
-
-def _modes_setting(
-    raw: Any, where: Any
-) -> tuple[dict[str, Mode], tuple[str, ...], tuple[str, ...] | None]:
-    """``(mode glob -> light|dark, globs to audit, Tokens Studio groups)`` of ``modes:``."""
-
-    def globs(value: Any, key: tuple[str, ...]) -> tuple[str, ...]:
-        items = [value] if isinstance(value, str) else value
-        if not isinstance(items, list) or not all(isinstance(i, str) and i for i in items):
-            raise where(("modes", *key), "expected a list of mode names or globs")
-        return tuple(items)
-
-    if isinstance(raw, list | str):
-        return {}, globs(raw, ()), None
-    if not isinstance(raw, dict):
-        raise where(("modes",), _MODES_HELP)
-    if all(isinstance(v, str) for v in raw.values()):  # {mode: light|dark}
-        if not all(v in ("light", "dark") for v in raw.values()):
-            raise where(("modes",), _MODES_HELP)
-        return {str(k): v for k, v in raw.items()}, (), None
-    for key in raw:
-        if key not in _MODE_KEYS:
-            raise where(
-                ("modes", str(key)), f"unknown key {key!r}; allowed: {', '.join(_MODE_KEYS)}"
-            )
-    schemes: dict[str, Mode] = {}
-    for scheme in ("light", "dark"):
-        for glob in globs(raw.get(scheme, []), (scheme,)):
-            schemes[glob] = "light" if scheme == "light" else "dark"
-    groups = None
-    if "groups" in raw:
-        groups = () if raw["groups"] is False else globs(raw["groups"], ("groups",))
-    return schemes, globs(raw.get("audit", []), ("audit",)) if "audit" in raw else (), groups
