@@ -21,10 +21,11 @@ from __future__ import annotations
 
 import contextlib
 import hashlib
+import itertools
 import math
 import struct
 import zlib
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -181,29 +182,15 @@ def _measure(
     store = opened if cache is True else cache or None
     early: dict[int, IconProblem] = {}  # unreadable or unparsable, by input position
     todo: list[_Measured] = []
-    for index, (name, file) in enumerate(icons):
-        path = Path(file)
-        try:
-            data = read_svg(path)
-        except SvgError as exc:
-            early[index] = IconProblem(name, path, _with_line(exc))
-            continue
-        todo.append(_Measured(index, name, path, hashlib.sha256(data).digest(), data))
+    icons = list(icons)
     try:
-        unread = len(early)
-        if store is not None:
-            _from_cache(store, todo, sizes, keep_masks)
-        for m in todo:
-            if m.refused is not None:  # refused by the paint reader in an earlier run
-                early[m.index] = IconProblem(m.name, m.path, m.refused)
-        missing = [
-            m for m in todo if m.refused is None and (m.stats is None or len(m.stats) < len(sizes))
-        ]
-        if progress is not None:  # icons unread, refused before or all cached: done now
-            for _ in range(unread + len(todo) - len(missing)):
-                progress()
-        if missing:
-            _render(missing, sizes, limits, pool, keep_masks, progress, early, store)
+        chunks = _uncached(icons, sizes, store, keep_masks, progress, early, todo)
+        first, read = next(((c, end) for c, end in chunks if c), ([], len(icons)))
+        if first:
+            # No more icons can need rendering than those of this chunk and those unread.
+            workers = min(limits.workers, len(first) + len(icons) - read)
+            missing = itertools.chain(first, itertools.chain.from_iterable(c for c, _ in chunks))
+            _render(missing, workers, sizes, limits, pool, keep_masks, progress, early, store)
         elif pool is not None:
             pool.pause()  # nothing to render: its workers starting up need not compete
         if store is not None:
@@ -227,8 +214,55 @@ def _measure(
     return PaintMasks(measured, tuple(early[k] for k in sorted(early)) + tuple(failed))
 
 
+def _uncached(
+    icons: list[tuple[str, Path]],
+    sizes: tuple[int, ...],
+    store: RenderCache | None,
+    keep_masks: bool,
+    progress: Callable[[], None] | None,
+    early: dict[int, IconProblem],
+    todo: list[_Measured],
+) -> Iterator[tuple[list[_Measured], int]]:
+    """Read the icons and look them up in the cache :data:`_CHUNK` at a time, as the
+    workers ask for more: each chunk's icons the cache does not complete, and how
+    many icons have been read.
+
+    The first icons render while the rest are read.  Each icon read joins
+    ``todo``; one unreadable, or refused by the paint reader in an earlier run,
+    joins ``early``.  ``progress`` counts the icons done without a render.
+    """
+    for begin in range(0, len(icons), _CHUNK):
+        chunk: list[_Measured] = []
+        for index, (name, file) in enumerate(icons[begin : begin + _CHUNK], begin):
+            path = Path(file)
+            try:
+                data = read_svg(path)
+            except SvgError as exc:
+                early[index] = IconProblem(name, path, _with_line(exc))
+                continue
+            chunk.append(_Measured(index, name, path, hashlib.sha256(data).digest(), data))
+        todo += chunk
+        if store is not None:
+            _from_cache(store, chunk, sizes, keep_masks)
+        for m in chunk:
+            if m.refused is not None:  # refused by the paint reader in an earlier run
+                early[m.index] = IconProblem(m.name, m.path, m.refused)
+        missing = [
+            m for m in chunk if m.refused is None and (m.stats is None or len(m.stats) < len(sizes))
+        ]
+        end = min(begin + _CHUNK, len(icons))
+        if progress is not None:  # icons unread, refused before or all cached: done now
+            for _ in range(end - begin - len(missing)):
+                progress()
+        yield missing, end
+
+
+_CHUNK = 64
+
+
 def _render(
-    missing: list[_Measured],
+    missing: Iterable[_Measured],
+    workers: int,
     sizes: tuple[int, ...],
     limits: RenderLimits,
     pool: RenderPool | None,
@@ -248,7 +282,7 @@ def _render(
         for m in missing
         for todo in [tuple(s for s in sizes if m.stats is None or s not in m.stats)]
     )
-    workers = max(1, min(limits.workers, len(missing)))
+    workers = max(1, workers)
     with contextlib.nullcontext(pool) if pool else RenderPool(limits, workers=workers) as used:
         used.size = workers
         for (m, todo), outcome in used.stream(jobs):
