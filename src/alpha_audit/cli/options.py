@@ -12,7 +12,7 @@ import inspect
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Annotated, Any, TypeVar, cast, get_type_hints
+from typing import TYPE_CHECKING, Annotated, Any, TypeVar, cast, get_type_hints
 
 import typer
 from typer.core import TyperCommand
@@ -22,6 +22,9 @@ from alpha_audit.constants import GAMUT_POLICIES, NON_TEXT_THRESHOLD, GamutPolic
 from alpha_audit.errors import UsageError
 from alpha_audit.render import CheckFormat
 from alpha_audit.rules import CHECK_RULES, DEFAULT_RULES, RULES, Rule
+
+if TYPE_CHECKING:
+    from alpha_audit.load.config import Overrides
 
 __all__ = [
     "ARGS",
@@ -51,13 +54,13 @@ __all__ = [
     "baseline_option",
     "fail_on_option",
     "flag",
-    "given_order",
+    "given_options",
     "in_range",
+    "input_overrides",
     "one_of",
     "path_value",
     "read_gamut_option",
     "rules_flag",
-    "theme_and_iconset",
     "untyped_flags",
     "with_policy_flags",
 ]
@@ -127,10 +130,25 @@ ConfigOption = Annotated[
 ]
 
 
-def theme_and_iconset(theme: Path | None, iconset: Path | None) -> None:
-    """Refuse THEME without ICONSET (or the other way): both, or neither (the config's)."""
+def input_overrides(
+    theme: Path | None,
+    iconset: Path | None,
+    *,
+    themes: Sequence[Path] = (),
+    iconsets: Sequence[Path] = (),
+    **more: Any,
+) -> Overrides:
+    """THEME ICONSET (both, or neither: the config's) and any more given, with ``more``
+    overrides (:class:`~alpha_audit.load.config.Overrides`' fields)."""
+    from alpha_audit.load.config import Overrides
+
     if (theme is None) != (iconset is None):
         raise UsageError("give both THEME and ICONSET, or neither (to use the project config)")
+    return Overrides(
+        themes=(*([theme] if theme else []), *themes),
+        iconsets=(*([iconset] if iconset else []), *iconsets),
+        **more,
+    )
 
 
 def flag(*names: str, help: str) -> Any:
@@ -380,36 +398,33 @@ def read_gamut_option(value: str | None) -> GamutPolicy | None:
     return cast(GamutPolicy | None, value)
 
 
-def given_order(args: Sequence[str], names: Mapping[str, tuple[str, ...]]) -> list[str]:
-    """Which of the named options were given, in command-line order.
+def given_options(
+    args: Sequence[str], names: Mapping[str, Sequence[str]]
+) -> list[tuple[str, str | None]]:
+    """The named options given, in command-line order, each with its value (None: none).
 
     ``names`` maps a key to the option's spellings (``{"format": ("-f",
-    "--format")}``).  Click hands each repeatable option over as one list,
-    which loses which ``--output`` followed which ``--format``; the arguments
-    as given (:data:`ARGS`) still say.  Values (``-f json``, ``-fjson``,
-    ``--format=json``) are stepped over, and ``--`` ends the options.
+    "--format")}``).  Click hands each repeatable option over as one list, which
+    loses which ``--output`` followed which ``--format``, and a usage error names
+    no value; the arguments as given (:data:`ARGS`) still say.  Values (``-f
+    json``, ``-fjson``, ``--format=json``) are read, and ``--`` ends the options.
 
-    >>> given_order(["-f", "json", "-o", "-", "--format=sarif"], {"f": ("-f", "--format"),
-    ...     "o": ("-o", "--output")})
-    ['f', 'o', 'f']
+    >>> given_options(["-f", "json", "-o", "-", "--format=sarif", "-fmd"],
+    ...     {"f": ("-f", "--format"), "o": ("-o", "--output")})
+    [('f', 'json'), ('o', '-'), ('f', 'sarif'), ('f', 'md')]
     """
-    out: list[str] = []
-    skip = False
-    for arg in args:
-        if skip:
-            skip = False
-            continue
+    out: list[tuple[str, str | None]] = []
+    rest = iter(args)
+    for arg in rest:
         if arg == "--":
             break
         for key, spellings in names.items():
-            if arg in spellings:
-                out.append(key)
-                skip = True
-            elif any(
-                arg.startswith(s + "=") if s.startswith("--") else arg.startswith(s) and arg != s
-                for s in spellings
-            ):
-                out.append(key)
+            for spelling in spellings:
+                glued = spelling + "=" if spelling.startswith("--") else spelling
+                if arg == spelling:
+                    out.append((key, next(rest, None)))
+                elif arg.startswith(glued):
+                    out.append((key, arg[len(glued) :]))
     return out
 
 

@@ -18,8 +18,8 @@ from alpha_audit.cli.options import (
     ThemeArgument,
     flag,
     in_range,
+    input_overrides,
     one_of,
-    theme_and_iconset,
     with_policy_flags,
 )
 from alpha_audit.cli.status import ExitStatus
@@ -164,7 +164,7 @@ def suggest_command(
     Example:
     [bold]alpha-audit suggest themes/paper16.yaml examples/vibrant/iconset.yaml --apply set[/]
     """
-    from alpha_audit.load.config import Overrides, resolve_config
+    from alpha_audit.load.config import resolve_config
     from alpha_audit.output import check_targets
     from alpha_audit.pipeline import audits, plan
     from alpha_audit.render.common import RenderOptions, check_suffix
@@ -174,15 +174,8 @@ def suggest_command(
     if output is not None:
         check_suffix(fmt.value, output)
         check_targets([output], overwrite=force)  # before the work, not after
-    theme_and_iconset(theme, iconset)
     project = resolve_config(
-        Overrides(
-            config=config,
-            themes=(theme,) if theme else (),
-            iconsets=(iconset,) if iconset else (),
-            **policy_flags.overrides(),
-            gamut=gamut,
-        ),
+        input_overrides(theme, iconset, config=config, **policy_flags.overrides(), gamut=gamut),
         Path.cwd(),
     )
     manifest = _the_manifest(project, iconset, apply)
