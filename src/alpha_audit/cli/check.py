@@ -30,7 +30,7 @@ from alpha_audit.cli.options import (
     baseline_option,
     given_options,
     input_overrides,
-    path_value,
+    path_option,
     with_policy_flags,
 )
 from alpha_audit.cli.status import ExitStatus
@@ -121,15 +121,11 @@ def report_targets(
 # check's own options (the gate's shared ones are in cli/options.py).
 _Themes = Annotated[
     list[Path] | None,
-    typer.Option(
-        "--theme", metavar="PATH", parser=path_value, help="Another theme to audit (repeatable)."
-    ),
+    path_option("--theme", metavar="PATH", help="Another theme to audit (repeatable)."),
 ]
 _Iconsets = Annotated[
     list[Path] | None,
-    typer.Option(
-        "--iconset", metavar="PATH", parser=path_value, help="Another icon set (repeatable)."
-    ),
+    path_option("--iconset", metavar="PATH", help="Another icon set (repeatable)."),
 ]
 _Base = Annotated[
     str | None,

@@ -58,7 +58,9 @@ __all__ = [
     "in_range",
     "input_overrides",
     "one_of",
+    "path_option",
     "path_value",
+    "ranged",
     "read_gamut_option",
     "rules_flag",
     "untyped_flags",
@@ -81,6 +83,17 @@ def path_value(value: str) -> Path:
     return Path(value)
 
 
+def path_option(*names: str, **options: Any) -> Any:
+    """An option naming a file (metavar ``<path>`` unless told; an empty one refused)."""
+    options.setdefault("metavar", "<path>")
+    return typer.Option(*names, parser=path_value, **options)
+
+
+def ranged(*names: str, allowed: ranges.NumberRange, **options: Any) -> Any:
+    """A number option refusing a value outside ``allowed`` (:func:`in_range`)."""
+    return typer.Option(*names, callback=in_range(names[0], allowed), **options)
+
+
 ThemeArgument = Annotated[
     Path | None,
     typer.Argument(
@@ -98,31 +111,23 @@ IconsetArgument = Annotated[
 # The report files of check and render: each --output belongs to the --format before it.
 OutputsOption = Annotated[
     list[Path] | None,
-    typer.Option(
+    path_option(
         "--output",
         "-o",
         metavar="PATH",
-        parser=path_value,
         help="File for the --format before it ('-' = stdout; repeatable).",
         show_default="stdout",
     ),
 ]
 WriteBaselineOption = Annotated[
     Path | None,
-    typer.Option(
-        "--write-baseline",
-        parser=path_value,
-        metavar="<path>",
-        help="Record today's findings as a baseline file.",
-    ),
+    path_option("--write-baseline", help="Record today's findings as a baseline file."),
 ]
 
 ConfigOption = Annotated[
     Path | None,
-    typer.Option(
+    path_option(
         "--config",
-        parser=path_value,
-        metavar="<path>",
         help="Project config file.",
         show_default="alpha-audit.yaml, .alpha-audit.yaml or [tool.alpha-audit] in "
         "pyproject.toml, found from here upwards",
@@ -200,9 +205,10 @@ def _policy_default(field: str) -> str:
 
 ThresholdOption = Annotated[
     float | None,
-    typer.Option(
+    ranged(
+        "--threshold",
+        allowed=ranges.CONTRAST_RATIO,
         help="Contrast threshold.",
-        callback=in_range("--threshold", ranges.CONTRAST_RATIO),
         show_default=f"the theme's, else {NON_TEXT_THRESHOLD:g}: WCAG 2.2 SC 1.4.11",
     ),
 ]
@@ -226,11 +232,11 @@ def fail_on_option(
 
 AlphaOption = Annotated[
     float | None,
-    typer.Option(
+    ranged(
         "--alpha",
         "-a",
+        allowed=ranges.ALPHA,
         help="Coefficient for every icon colour (overrides the config, manifests and tokens).",
-        callback=in_range("--alpha", ranges.ALPHA),
         show_default="the config's, else the manifest's and tokens'",
     ),
 ]
@@ -248,10 +254,8 @@ FailOnOption = Annotated[
 
 def baseline_option(default: str) -> Any:
     """``--baseline PATH`` (check's and render's; ``default`` says where it is else read)."""
-    return typer.Option(
+    return path_option(
         "--baseline",
-        parser=path_value,
-        metavar="<path>",
         help="Fail only on findings not in this baseline file.",
         show_default=default,
     )
@@ -279,12 +283,7 @@ def _policy_option(field: str, help: str, allowed: ranges.NumberRange) -> Any:
     name = "--" + field.replace("_", "-")
     return Annotated[
         float | None,
-        typer.Option(
-            name,
-            help=help,
-            callback=in_range(name, allowed),
-            show_default=_policy_default(field),
-        ),
+        ranged(name, allowed=allowed, help=help, show_default=_policy_default(field)),
     ]
 
 

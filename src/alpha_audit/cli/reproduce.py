@@ -14,7 +14,7 @@ from typing import Annotated
 import typer
 
 from alpha_audit.cli.console import emit, progress_bars, stderr_note, stdout_options
-from alpha_audit.cli.options import in_range
+from alpha_audit.cli.options import ranged
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.errors import UsageError
 from alpha_audit.ranges import ALPHA
@@ -47,13 +47,13 @@ _Only = Annotated[
 ]
 _Alphas = Annotated[
     list[float] | None,
-    typer.Option(
+    ranged(
         "--alpha",
+        allowed=ALPHA,
         metavar="A",
         help="Coefficient for full gamut, broad grid and palette (repeatable; default 1.1 "
         "and 1.4).",
         show_default=False,
-        callback=in_range("--alpha", ALPHA),
     ),
 ]
 _Out = Annotated[

@@ -17,9 +17,9 @@ from alpha_audit.cli.options import (
     PolicyFlags,
     ThemeArgument,
     flag,
-    in_range,
     input_overrides,
     one_of,
+    ranged,
     with_policy_flags,
 )
 from alpha_audit.cli.status import ExitStatus
@@ -53,20 +53,10 @@ def _scopes(values: list[str] | None) -> list[str] | None:
 
 # suggest's own options (the gate's shared ones are in cli/options.py).
 _AlphaMax = Annotated[
-    float,
-    typer.Option(
-        "--alpha-max",
-        help="Largest coefficient considered.",
-        callback=in_range("--alpha-max", ALPHA_MAX),
-    ),
+    float, ranged("--alpha-max", allowed=ALPHA_MAX, help="Largest coefficient considered.")
 ]
 _Precision = Annotated[
-    int,
-    typer.Option(
-        "--precision",
-        help="Decimals; the answer is rounded down.",
-        callback=in_range("--precision", PRECISION),
-    ),
+    int, ranged("--precision", allowed=PRECISION, help="Decimals; the answer is rounded down.")
 ]
 _Format = Annotated[
     SuggestFormat,

@@ -596,14 +596,23 @@ def fitted_table(
     width where the figures fit, every figure is printed whole; ``shrink_first``
     names give way before the other names (:class:`_Fitted`).  Cells that are
     strings become literal :class:`~rich.text.Text` (names are never markup).
-    A rule is drawn under the rows whose index is in ``section_ends``.
+    A rule is drawn under the rows whose index is in ``section_ends``.  Unless
+    told, a rule under the header, no padding at the edges, one space between
+    columns and a title on the left.
     """
+    from rich import box
     from rich.cells import cell_len
     from rich.table import Table
     from rich.text import Text
 
     body = [[c if isinstance(c, Text) else Text(str(c)) for c in row] for row in rows]
-    table_options.setdefault("padding", (0, 1, 0, 0))  # one space between columns
+    table_options = {
+        "box": box.SIMPLE_HEAD,
+        "pad_edge": False,
+        "padding": (0, 1, 0, 0),
+        "title_justify": "left",
+        **table_options,
+    }
 
     def build(limits: dict[int, int]) -> Table:
         table = Table(**table_options)

@@ -10,7 +10,6 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import TypeVar
 
-from rich import box
 from rich.console import Group, RenderableType
 from rich.padding import Padding
 from rich.text import Text
@@ -91,14 +90,8 @@ def _summary_table(result: AuditResult) -> RenderableType:
         number_column("bg", justify="left"),
         *(number_column(name) for name in ("gain", f"≥{t:g}:1", "new", "loss", "coll", "min ΔE")),
     ]
-    return fitted_table(
-        columns,
-        rows,
-        box=box.SIMPLE_HEAD,
-        padding=(0, 0),  # the box's space divider is the gap: the row fits 60 columns
-        pad_edge=False,
-        header_style="bold",
-    )
+    # The box's space divider is the gap: the row fits 60 columns.
+    return fitted_table(columns, rows, padding=(0, 0), header_style="bold")
 
 
 def _grouped(result: AuditResult, rows: Iterable[Row]) -> list[tuple[Row, list[str]]]:
@@ -137,7 +130,7 @@ def _section(
         for name in header
     ]
     table = fitted_table(
-        columns, items[:MAX_FINDINGS], box=None, padding=(0, 1), pad_edge=False, header_style="dim"
+        columns, items[:MAX_FINDINGS], box=None, padding=(0, 1), header_style="dim"
     )
     title_text = Text(f"{title} ({len(items)})", style=f"bold {style}")
     return [title_text, Padding(table, (0, 0, 0, 2)), *_more(items)]
