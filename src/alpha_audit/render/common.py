@@ -72,6 +72,7 @@ __all__ = [
     "records",
     "safe_span",
     "shorten_names",
+    "stale_text",
     "to_text",
     "where_text",
     "wrap_name",
@@ -678,6 +679,20 @@ def baselined_text(gate: GateResult) -> str:
     if gate.on_base and gate.baseline is not None:
         return f"already on the base revision {gate.baseline.name}"
     return "in the baseline"
+
+
+def stale_text(gate: GateResult) -> str:
+    """What the gate's stale baseline entries mean: fixed on the base revision, or gone.
+
+    >>> from alpha_audit.gate import GateResult
+    >>> from alpha_audit.policy import Policy
+    >>> stale_text(GateResult(Policy(), (), stale=(("t", "s", "loss", ("a",)),)))
+    '1 baseline entry no longer occurs'
+    """
+    n = len(gate.stale)
+    if gate.on_base:
+        return f"{n} root cause(s) of the base revision fixed by this change"
+    return f"{n} baseline {'entry no longer occurs' if n == 1 else 'entries no longer occur'}"
 
 
 def location_to_dict(location: Location, base: Path | None = None) -> dict[str, Any]:

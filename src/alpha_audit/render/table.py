@@ -26,6 +26,7 @@ from alpha_audit.render.common import (
     location_text,
     name_column,
     number_column,
+    stale_text,
     to_text,
     where_text,
 )
@@ -296,13 +297,8 @@ def gate_renderable(gate: GateResult, base: Path | None = None) -> RenderableTyp
             lambda f: safe_text(f"  {f.rule.value}: {where_text(f)}: {f.message}"),
         )
     if gate.stale:
-        n = len(gate.stale)
-        if gate.on_base:
-            line = f"  {n} root cause(s) of the base revision fixed by this change"
-        else:
-            gone = "entry no longer occurs" if n == 1 else "entries no longer occur"
-            line = f"  {n} baseline {gone}; rewrite the baseline with --write-baseline"
-        out.append(Text(line, style="yellow"))
+        rewrite = "" if gate.on_base else "; rewrite the baseline with --write-baseline"
+        out.append(Text(f"  {stale_text(gate)}{rewrite}", style="yellow"))
     return Group(*out)
 
 
