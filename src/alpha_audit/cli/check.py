@@ -28,9 +28,9 @@ from alpha_audit.cli.options import (
     ThemeArgument,
     WriteBaselineOption,
     baseline_option,
-    given_order,
-    path_value,
-    theme_and_iconset,
+    given_options,
+    input_overrides,
+    path_option,
     with_policy_flags,
 )
 from alpha_audit.cli.status import ExitStatus
@@ -51,7 +51,7 @@ def pair_outputs(
     """Give each ``--output`` to the ``--format`` before it (``-`` or none: stdout).
 
     ``order`` is ``"format"`` / ``"output"`` per option as given on the command
-    line (:func:`~alpha_audit.cli.options.given_order`); without it, the n-th
+    line (:func:`~alpha_audit.cli.options.given_options`); without it, the n-th
     output goes with the n-th format.  One ``-o`` with one ``-f`` pair in either
     order.  Refused: an output whose extension belongs to another format (``-f
     junit -o a.sarif``), an output with no format before it, two outputs for one
@@ -111,7 +111,7 @@ def report_targets(
     before the work starts (an existing one is refused without ``force``)."""
     from alpha_audit.output import check_targets
 
-    order = given_order(ctx.meta.get(ARGS, ()), _ORDER)
+    order = [key for key, _ in given_options(ctx.meta.get(ARGS, ()), _ORDER)]
     pairs = pair_outputs(list(formats or []), list(outputs or []), order)
     files = [out for _, out in pairs if out is not None] + [write_baseline] * bool(write_baseline)
     check_targets([f for f in files if f is not None], overwrite=force)
@@ -121,15 +121,11 @@ def report_targets(
 # check's own options (the gate's shared ones are in cli/options.py).
 _Themes = Annotated[
     list[Path] | None,
-    typer.Option(
-        "--theme", metavar="PATH", parser=path_value, help="Another theme to audit (repeatable)."
-    ),
+    path_option("--theme", metavar="PATH", help="Another theme to audit (repeatable)."),
 ]
 _Iconsets = Annotated[
     list[Path] | None,
-    typer.Option(
-        "--iconset", metavar="PATH", parser=path_value, help="Another icon set (repeatable)."
-    ),
+    path_option("--iconset", metavar="PATH", help="Another icon set (repeatable)."),
 ]
 _Base = Annotated[
     str | None,
@@ -182,17 +178,18 @@ def check_command(
     [bold]alpha-audit check themes/github-primer.yaml examples/vibrant/iconset.yaml -a 1.2[/]
     """
     from alpha_audit.errors import UsageError
-    from alpha_audit.load.config import Overrides, resolve_config
+    from alpha_audit.load.config import resolve_config
     from alpha_audit.pipeline import check_project
 
     if base is not None and (baseline is not None or write_baseline is not None):
         raise UsageError("give --base or a baseline file (--baseline, --write-baseline), not both")
     pairs = report_targets(ctx, fmt, output, write_baseline, force)
-    theme_and_iconset(theme, iconset)
-    overrides = Overrides(
+    overrides = input_overrides(
+        theme,
+        iconset,
+        themes=themes or (),
+        iconsets=iconsets or (),
         config=config,
-        themes=(*([theme] if theme else []), *(themes or [])),
-        iconsets=(*([iconset] if iconset else []), *(iconsets or [])),
         alpha=alpha,
         **policy_flags.overrides(),
         max_combinations=max_combinations,

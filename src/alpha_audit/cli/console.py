@@ -12,7 +12,15 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from rich.console import Console
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+from rich.progress import (
+    BarColumn,
+    MofNCompleteColumn,
+    Progress,
+    ProgressColumn,
+    TaskID,
+    TextColumn,
+    TimeElapsedColumn,
+)
 from rich.text import Text
 
 from alpha_audit.output import write_text
@@ -22,6 +30,7 @@ from alpha_audit.safe_text import safe_text
 __all__ = [
     "emit",
     "progress_bar",
+    "progress_bars",
     "stderr_console",
     "stderr_line",
     "stderr_note",
@@ -50,22 +59,40 @@ def stdout_options() -> RenderOptions:
 
 
 @contextmanager
-def progress_bar(label: str) -> Iterator[tuple[Callable[[int], None], Callable[[], None]]]:
-    """A transient stderr progress bar, shown only on a terminal; yields (start, advance)."""
+def _bars(*columns: ProgressColumn) -> Iterator[Progress | None]:
+    """Transient progress bars on stderr, timed; None where stderr is not a terminal."""
     console = stderr_console()
     if not console.is_terminal:
-        yield (lambda total: None), (lambda: None)
+        yield None
         return
-    with Progress(
-        TextColumn(label),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        console=console,
-        transient=True,
-    ) as progress:
-        task = progress.add_task(label, total=None)
-        yield (lambda total: progress.update(task, total=total)), (lambda: progress.advance(task))
+    with Progress(*columns, TimeElapsedColumn(), console=console, transient=True) as bars:
+        yield bars
+
+
+@contextmanager
+def progress_bar(label: str) -> Iterator[tuple[Callable[[int], None], Callable[[], None]]]:
+    """A transient stderr progress bar, shown only on a terminal; yields (start, advance)."""
+    with _bars(TextColumn(label), BarColumn(), MofNCompleteColumn()) as bars:
+        if bars is None:
+            yield (lambda total: None), (lambda: None)
+            return
+        task = bars.add_task(label, total=None)
+        yield (lambda total: bars.update(task, total=total)), (lambda: bars.advance(task))
+
+
+@contextmanager
+def progress_bars() -> Iterator[Callable[[str, float], None]]:
+    """Transient stderr bars, one per name, each advanced by fractions of 1 (on a terminal)."""
+    with _bars(TextColumn("{task.description:<12}"), BarColumn()) as bars:
+        tasks: dict[str, TaskID] = {}
+
+        def advance(name: str, fraction: float) -> None:
+            if bars is not None:
+                if name not in tasks:
+                    tasks[name] = bars.add_task(name, total=1.0)
+                bars.advance(tasks[name], fraction)
+
+        yield advance
 
 
 def stderr_line(text: str) -> None:

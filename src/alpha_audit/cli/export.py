@@ -16,7 +16,7 @@ from alpha_audit.cli.options import (
     IconsetArgument,
     PipelineOption,
     ThemeArgument,
-    theme_and_iconset,
+    input_overrides,
 )
 from alpha_audit.cli.status import ExitStatus
 
@@ -68,19 +68,13 @@ def export_command(
     """
     from alpha_audit.errors import UsageError
     from alpha_audit.export import ExportFormat, export_project, render_export, write_export
-    from alpha_audit.load.config import Overrides, resolve_config
+    from alpha_audit.load.config import resolve_config
 
     formats = [f.value for f in ExportFormat]
     if fmt not in formats:
         raise UsageError(f"--format {fmt!r} is not one of {', '.join(formats)}")
-    theme_and_iconset(theme, iconset)
-    overrides = Overrides(
-        config=config,
-        themes=(theme,) if theme is not None else (),
-        iconsets=(iconset,) if iconset is not None else (),
-        alpha=alpha,
-        pipeline=pipeline,
-        gamut=gamut,
+    overrides = input_overrides(
+        theme, iconset, config=config, alpha=alpha, pipeline=pipeline, gamut=gamut
     )
     table = export_project(resolve_config(overrides, Path.cwd()))
     for note in table.notes:

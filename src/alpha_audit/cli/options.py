@@ -12,7 +12,7 @@ import inspect
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Annotated, Any, TypeVar, cast, get_type_hints
+from typing import TYPE_CHECKING, Annotated, Any, TypeVar, cast, get_type_hints
 
 import typer
 from typer.core import TyperCommand
@@ -22,6 +22,9 @@ from alpha_audit.constants import GAMUT_POLICIES, NON_TEXT_THRESHOLD, GamutPolic
 from alpha_audit.errors import UsageError
 from alpha_audit.render import CheckFormat
 from alpha_audit.rules import CHECK_RULES, DEFAULT_RULES, RULES, Rule
+
+if TYPE_CHECKING:
+    from alpha_audit.load.config import Overrides
 
 __all__ = [
     "ARGS",
@@ -51,13 +54,15 @@ __all__ = [
     "baseline_option",
     "fail_on_option",
     "flag",
-    "given_order",
+    "given_options",
     "in_range",
+    "input_overrides",
     "one_of",
+    "path_option",
     "path_value",
+    "ranged",
     "read_gamut_option",
     "rules_flag",
-    "theme_and_iconset",
     "untyped_flags",
     "with_policy_flags",
 ]
@@ -78,6 +83,17 @@ def path_value(value: str) -> Path:
     return Path(value)
 
 
+def path_option(*names: str, **options: Any) -> Any:
+    """An option naming a file (metavar ``<path>`` unless told; an empty one refused)."""
+    options.setdefault("metavar", "<path>")
+    return typer.Option(*names, parser=path_value, **options)
+
+
+def ranged(*names: str, allowed: ranges.NumberRange, **options: Any) -> Any:
+    """A number option refusing a value outside ``allowed`` (:func:`in_range`)."""
+    return typer.Option(*names, callback=in_range(names[0], allowed), **options)
+
+
 ThemeArgument = Annotated[
     Path | None,
     typer.Argument(
@@ -95,31 +111,23 @@ IconsetArgument = Annotated[
 # The report files of check and render: each --output belongs to the --format before it.
 OutputsOption = Annotated[
     list[Path] | None,
-    typer.Option(
+    path_option(
         "--output",
         "-o",
         metavar="PATH",
-        parser=path_value,
         help="File for the --format before it ('-' = stdout; repeatable).",
         show_default="stdout",
     ),
 ]
 WriteBaselineOption = Annotated[
     Path | None,
-    typer.Option(
-        "--write-baseline",
-        parser=path_value,
-        metavar="<path>",
-        help="Record today's findings as a baseline file.",
-    ),
+    path_option("--write-baseline", help="Record today's findings as a baseline file."),
 ]
 
 ConfigOption = Annotated[
     Path | None,
-    typer.Option(
+    path_option(
         "--config",
-        parser=path_value,
-        metavar="<path>",
         help="Project config file.",
         show_default="alpha-audit.yaml, .alpha-audit.yaml or [tool.alpha-audit] in "
         "pyproject.toml, found from here upwards",
@@ -127,10 +135,25 @@ ConfigOption = Annotated[
 ]
 
 
-def theme_and_iconset(theme: Path | None, iconset: Path | None) -> None:
-    """Refuse THEME without ICONSET (or the other way): both, or neither (the config's)."""
+def input_overrides(
+    theme: Path | None,
+    iconset: Path | None,
+    *,
+    themes: Sequence[Path] = (),
+    iconsets: Sequence[Path] = (),
+    **more: Any,
+) -> Overrides:
+    """THEME ICONSET (both, or neither: the config's) and any more given, with ``more``
+    overrides (:class:`~alpha_audit.load.config.Overrides`' fields)."""
+    from alpha_audit.load.config import Overrides
+
     if (theme is None) != (iconset is None):
         raise UsageError("give both THEME and ICONSET, or neither (to use the project config)")
+    return Overrides(
+        themes=(*([theme] if theme else []), *themes),
+        iconsets=(*([iconset] if iconset else []), *iconsets),
+        **more,
+    )
 
 
 def flag(*names: str, help: str) -> Any:
@@ -182,9 +205,10 @@ def _policy_default(field: str) -> str:
 
 ThresholdOption = Annotated[
     float | None,
-    typer.Option(
+    ranged(
+        "--threshold",
+        allowed=ranges.CONTRAST_RATIO,
         help="Contrast threshold.",
-        callback=in_range("--threshold", ranges.CONTRAST_RATIO),
         show_default=f"the theme's, else {NON_TEXT_THRESHOLD:g}: WCAG 2.2 SC 1.4.11",
     ),
 ]
@@ -208,11 +232,11 @@ def fail_on_option(
 
 AlphaOption = Annotated[
     float | None,
-    typer.Option(
+    ranged(
         "--alpha",
         "-a",
+        allowed=ranges.ALPHA,
         help="Coefficient for every icon colour (overrides the config, manifests and tokens).",
-        callback=in_range("--alpha", ranges.ALPHA),
         show_default="the config's, else the manifest's and tokens'",
     ),
 ]
@@ -230,10 +254,8 @@ FailOnOption = Annotated[
 
 def baseline_option(default: str) -> Any:
     """``--baseline PATH`` (check's and render's; ``default`` says where it is else read)."""
-    return typer.Option(
+    return path_option(
         "--baseline",
-        parser=path_value,
-        metavar="<path>",
         help="Fail only on findings not in this baseline file.",
         show_default=default,
     )
@@ -261,12 +283,7 @@ def _policy_option(field: str, help: str, allowed: ranges.NumberRange) -> Any:
     name = "--" + field.replace("_", "-")
     return Annotated[
         float | None,
-        typer.Option(
-            name,
-            help=help,
-            callback=in_range(name, allowed),
-            show_default=_policy_default(field),
-        ),
+        ranged(name, allowed=allowed, help=help, show_default=_policy_default(field)),
     ]
 
 
@@ -380,36 +397,33 @@ def read_gamut_option(value: str | None) -> GamutPolicy | None:
     return cast(GamutPolicy | None, value)
 
 
-def given_order(args: Sequence[str], names: Mapping[str, tuple[str, ...]]) -> list[str]:
-    """Which of the named options were given, in command-line order.
+def given_options(
+    args: Sequence[str], names: Mapping[str, Sequence[str]]
+) -> list[tuple[str, str | None]]:
+    """The named options given, in command-line order, each with its value (None: none).
 
     ``names`` maps a key to the option's spellings (``{"format": ("-f",
-    "--format")}``).  Click hands each repeatable option over as one list,
-    which loses which ``--output`` followed which ``--format``; the arguments
-    as given (:data:`ARGS`) still say.  Values (``-f json``, ``-fjson``,
-    ``--format=json``) are stepped over, and ``--`` ends the options.
+    "--format")}``).  Click hands each repeatable option over as one list, which
+    loses which ``--output`` followed which ``--format``, and a usage error names
+    no value; the arguments as given (:data:`ARGS`) still say.  Values (``-f
+    json``, ``-fjson``, ``--format=json``) are read, and ``--`` ends the options.
 
-    >>> given_order(["-f", "json", "-o", "-", "--format=sarif"], {"f": ("-f", "--format"),
-    ...     "o": ("-o", "--output")})
-    ['f', 'o', 'f']
+    >>> given_options(["-f", "json", "-o", "-", "--format=sarif", "-fmd"],
+    ...     {"f": ("-f", "--format"), "o": ("-o", "--output")})
+    [('f', 'json'), ('o', '-'), ('f', 'sarif'), ('f', 'md')]
     """
-    out: list[str] = []
-    skip = False
-    for arg in args:
-        if skip:
-            skip = False
-            continue
+    out: list[tuple[str, str | None]] = []
+    rest = iter(args)
+    for arg in rest:
         if arg == "--":
             break
         for key, spellings in names.items():
-            if arg in spellings:
-                out.append(key)
-                skip = True
-            elif any(
-                arg.startswith(s + "=") if s.startswith("--") else arg.startswith(s) and arg != s
-                for s in spellings
-            ):
-                out.append(key)
+            for spelling in spellings:
+                glued = spelling + "=" if spelling.startswith("--") else spelling
+                if arg == spelling:
+                    out.append((key, next(rest, None)))
+                elif arg.startswith(glued):
+                    out.append((key, arg[len(glued) :]))
     return out
 
 

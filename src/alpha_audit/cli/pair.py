@@ -7,7 +7,7 @@ from typing import Annotated
 import typer
 
 from alpha_audit.cli.console import emit, stdout_options
-from alpha_audit.cli.options import in_range, read_gamut_option
+from alpha_audit.cli.options import ranged, read_gamut_option
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.constants import DEFAULT_GAMUT
 from alpha_audit.ranges import ALPHA
@@ -29,12 +29,12 @@ def pair_command(
     ],
     alpha: Annotated[
         list[float] | None,
-        typer.Option(
+        ranged(
             "--alpha",
             "-a",
+            allowed=ALPHA,
             metavar="A",
             help="Coefficient (repeatable). [default: 1, 1.1, 1.4]",
-            callback=in_range("--alpha", ALPHA),
         ),
     ] = None,
     fmt: Annotated[

@@ -15,7 +15,7 @@ from alpha_audit.cli.options import (
     PipelineOption,
     StrictSvgOption,
     ThresholdOption,
-    in_range,
+    ranged,
     read_gamut_option,
 )
 from alpha_audit.cli.status import ExitStatus
@@ -39,23 +39,23 @@ _Html = Annotated[
 ]
 _Alphas = Annotated[
     list[float] | None,
-    typer.Option(
+    ranged(
         "--alpha",
         "-a",
+        allowed=ALPHA,
         metavar="A",
         help="Coefficient row, any real value in [-100, 100] (repeatable). "
         "[default: 1 and the set's own; swatches: 0.6 1 1.1 1.2 1.4 2]",
-        callback=in_range("--alpha", ALPHA),
     ),
 ]
 _Sizes = Annotated[
     list[int] | None,
-    typer.Option(
+    ranged(
         "--size",
         "-s",
+        allowed=ICON_SIZE,
         metavar="PX",
         help="Icon size in px (repeatable). [default: 48; page: set's + 48]",
-        callback=in_range("--size", ICON_SIZE),
     ),
 ]
 _ImageFormat = Annotated[

@@ -28,7 +28,7 @@ from alpha_audit.cli.options import (
     WriteBaselineOption,
     baseline_option,
     fail_on_option,
-    in_range,
+    ranged,
 )
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.errors import UsageError
@@ -125,17 +125,19 @@ _Engine = Annotated[
 _Iconset = Annotated[Path | None, typer.Option(help="Icon-set manifest the icons are mapped to.")]
 _Workers = Annotated[
     int | None,
-    typer.Option(
+    ranged(
+        "--workers",
+        allowed=ranges.WORKERS,
         help="Pages in parallel.",
-        callback=in_range("--workers", ranges.WORKERS),
         show_default="CPUs, at most 4",
     ),
 ]
 _Timeout = Annotated[
     float | None,
-    typer.Option(
+    ranged(
+        "--timeout",
+        allowed=ranges.PAGE_SECONDS,
         help="Seconds per page and state.",
-        callback=in_range("--timeout", ranges.PAGE_SECONDS),
         show_default="30",
     ),
 ]

@@ -8,53 +8,23 @@ once everything has been computed, so a failed run leaves no partial files.
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING, Annotated
+from typing import Annotated
 
 import typer
 
-from alpha_audit.cli.console import emit, stderr_note, stdout_options
-from alpha_audit.cli.options import in_range
+from alpha_audit.cli.console import emit, progress_bars, stderr_note, stdout_options
+from alpha_audit.cli.options import ranged
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.errors import UsageError
 from alpha_audit.ranges import ALPHA
 from alpha_audit.reproduce.experiment import Experiment
 from alpha_audit.reproduce.formats import ReproduceFormat
 
-if TYPE_CHECKING:
-    from rich.console import Console
-
-    from alpha_audit.reproduce.run import Reproduction
-
 __all__ = ["DEFAULT_THEME", "ReproduceFormat", "reproduce_command"]
 
 DEFAULT_THEME = "paper16"
 """The bundled theme with the paper's sixteen canvases, used without ``--theme``."""
-
-
-def _run_with_progress(
-    run: Callable[[Callable[[Experiment, float], None]], Reproduction], console: Console
-) -> Reproduction:
-    """``run(progress)`` with one progress bar per experiment on stderr."""
-    from rich.progress import BarColumn, Progress, TaskID, TextColumn, TimeElapsedColumn
-
-    with Progress(
-        TextColumn("{task.description:<12}"),
-        BarColumn(),
-        TimeElapsedColumn(),
-        console=console,
-        transient=True,
-        disable=not console.is_terminal,
-    ) as bars:
-        tasks: dict[Experiment, TaskID] = {}
-
-        def advance(experiment: Experiment, fraction: float) -> None:
-            if experiment not in tasks:
-                tasks[experiment] = bars.add_task(experiment.value, total=1.0)
-            bars.advance(tasks[experiment], fraction)
-
-        return run(advance)
 
 
 # reproduce's options.
@@ -77,13 +47,13 @@ _Only = Annotated[
 ]
 _Alphas = Annotated[
     list[float] | None,
-    typer.Option(
+    ranged(
         "--alpha",
+        allowed=ALPHA,
         metavar="A",
         help="Coefficient for full gamut, broad grid and palette (repeatable; default 1.1 "
         "and 1.4).",
         show_default=False,
-        callback=in_range("--alpha", ALPHA),
     ),
 ]
 _Out = Annotated[
@@ -137,8 +107,6 @@ def reproduce_command(
     engines: _Engines = None,
 ) -> ExitStatus:
     """Reproduce the paper's numerical evaluation (Section 4) exactly and fast."""
-    from rich.console import Console
-
     from alpha_audit.bundled import bundled_theme, theme_source
     from alpha_audit.load.theme import load_theme
     from alpha_audit.reproduce.files import check_results_folder, write_results
@@ -152,18 +120,16 @@ def reproduce_command(
     if not theme_path.is_file():
         raise UsageError(f"theme file {theme_path} not found")
     loaded = load_theme(theme_path)
-    run = _run_with_progress(
-        lambda progress: reproduce(
+    with progress_bars() as advance:
+        run = reproduce(
             loaded,
             only or (),
             alphas=alphas or (1.1, 1.4),
             quick=quick,
             icons=icons,
             engines=engines or None,
-            progress=progress,
-        ),
-        Console(stderr=True),
-    )
+            progress=lambda experiment, fraction: advance(experiment.value, fraction),
+        )
     emit(output_format.renderer()(run, stdout_options()), None, False)
     if out is not None:
         for path in write_results(run, out, overwrite=force):

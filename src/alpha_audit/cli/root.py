@@ -33,7 +33,7 @@ from typer.core import TyperGroup
 from alpha_audit import __version__
 from alpha_audit.cli.console import stderr_line
 from alpha_audit.cli.flags import cli_message
-from alpha_audit.cli.options import ARGS, Command, untyped_flags
+from alpha_audit.cli.options import ARGS, Command, given_options, untyped_flags
 from alpha_audit.cli.status import ExitStatus
 from alpha_audit.errors import AlphaAuditError
 from alpha_audit.safe_text import safe_text
@@ -58,8 +58,8 @@ def _usage_error(exc: typer.TyperException) -> NoReturn:
     message = exc.format_message().rstrip(".")
     param = getattr(exc, "param", None)
     if ctx is not None and param is not None:
-        value = _given_value(ctx.meta.get(ARGS, []), getattr(param, "opts", []))
-        message = _plain_words(message, value)
+        given = given_options(ctx.meta.get(ARGS, []), {"": getattr(param, "opts", [])})
+        message = _plain_words(message, given[-1][1] if given else None)
     _error_line(f"{message} (see '{path} --help')")
     raise typer.Exit(ExitStatus.INPUT_ERROR)
 
@@ -80,20 +80,6 @@ def _plain_words(message: str, value: str | None) -> str:
         # (``-a '1\x2'``) would be read as a group escape and crash.
         message = words.format(value=shown).join(pattern.split(message))
     return message
-
-
-def _given_value(args: Sequence[str], opts: Sequence[str]) -> str | None:
-    """The last value given on the command line to an option named ``opts``."""
-    found = None
-    for k, arg in enumerate(args):
-        for opt in opts:
-            if arg == opt and k + 1 < len(args):
-                found = args[k + 1]
-            elif opt.startswith("--") and arg.startswith(opt + "="):
-                found = arg[len(opt) + 1 :]
-            elif not opt.startswith("--") and arg.startswith(opt) and len(arg) > len(opt):
-                found = arg[len(opt) :]  # -a1.2
-    return found
 
 
 def _memory_limit() -> str:

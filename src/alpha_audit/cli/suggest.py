@@ -17,9 +17,9 @@ from alpha_audit.cli.options import (
     PolicyFlags,
     ThemeArgument,
     flag,
-    in_range,
+    input_overrides,
     one_of,
-    theme_and_iconset,
+    ranged,
     with_policy_flags,
 )
 from alpha_audit.cli.status import ExitStatus
@@ -53,20 +53,10 @@ def _scopes(values: list[str] | None) -> list[str] | None:
 
 # suggest's own options (the gate's shared ones are in cli/options.py).
 _AlphaMax = Annotated[
-    float,
-    typer.Option(
-        "--alpha-max",
-        help="Largest coefficient considered.",
-        callback=in_range("--alpha-max", ALPHA_MAX),
-    ),
+    float, ranged("--alpha-max", allowed=ALPHA_MAX, help="Largest coefficient considered.")
 ]
 _Precision = Annotated[
-    int,
-    typer.Option(
-        "--precision",
-        help="Decimals; the answer is rounded down.",
-        callback=in_range("--precision", PRECISION),
-    ),
+    int, ranged("--precision", allowed=PRECISION, help="Decimals; the answer is rounded down.")
 ]
 _Format = Annotated[
     SuggestFormat,
@@ -164,7 +154,7 @@ def suggest_command(
     Example:
     [bold]alpha-audit suggest themes/paper16.yaml examples/vibrant/iconset.yaml --apply set[/]
     """
-    from alpha_audit.load.config import Overrides, resolve_config
+    from alpha_audit.load.config import resolve_config
     from alpha_audit.output import check_targets
     from alpha_audit.pipeline import audits, plan
     from alpha_audit.render.common import RenderOptions, check_suffix
@@ -174,15 +164,8 @@ def suggest_command(
     if output is not None:
         check_suffix(fmt.value, output)
         check_targets([output], overwrite=force)  # before the work, not after
-    theme_and_iconset(theme, iconset)
     project = resolve_config(
-        Overrides(
-            config=config,
-            themes=(theme,) if theme else (),
-            iconsets=(iconset,) if iconset else (),
-            **policy_flags.overrides(),
-            gamut=gamut,
-        ),
+        input_overrides(theme, iconset, config=config, **policy_flags.overrides(), gamut=gamut),
         Path.cwd(),
     )
     manifest = _the_manifest(project, iconset, apply)

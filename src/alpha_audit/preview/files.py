@@ -108,8 +108,7 @@ def _usable(iconset: IconSet, problems: Sequence[IconProblem], strict_svg: bool)
     """The icons that rendered; with ``strict_svg`` the first that did not is an error."""
     if strict_svg and problems:
         raise SvgError(problems[0].message, path=problems[0].file)
-    broken = {p.icon for p in problems}
-    return replace(iconset, icons=tuple(i for i in iconset.icons if i.name not in broken))
+    return iconset.without({p.icon for p in problems})
 
 
 def preview_files(

@@ -109,13 +109,11 @@ class SuggestFormat(Format):
         """The render function for this format (its module imported on first use)."""
         from alpha_audit.render import suggest
 
-        if self is SuggestFormat.TABLE:
-            return suggest.render_table
-        if self is SuggestFormat.JSON:
-            return suggest.render_json
-        if self is SuggestFormat.MARKDOWN:
-            return suggest.render_markdown
-        assert_never(self)
+        return {
+            SuggestFormat.TABLE: suggest.render_table,
+            SuggestFormat.JSON: suggest.render_json,
+            SuggestFormat.MARKDOWN: suggest.render_markdown,
+        }[self]
 
 
 class PairFormat(Format):
@@ -128,11 +126,7 @@ class PairFormat(Format):
         """The render function for this format (its module imported on first use)."""
         from alpha_audit.render import pair
 
-        if self is PairFormat.TABLE:
-            return pair.render_table
-        if self is PairFormat.JSON:
-            return pair.render_json
-        assert_never(self)
+        return {PairFormat.TABLE: pair.render_table, PairFormat.JSON: pair.render_json}[self]
 
 
 class ThemesFormat(Format):
@@ -145,11 +139,9 @@ class ThemesFormat(Format):
         """The render function for this format (its module imported on first use)."""
         from alpha_audit.render import themes
 
-        if self is ThemesFormat.TABLE:
-            return themes.render_table
-        if self is ThemesFormat.JSON:
-            return themes.render_json
-        assert_never(self)
+        return {ThemesFormat.TABLE: themes.render_table, ThemesFormat.JSON: themes.render_json}[
+            self
+        ]
 
 
 def render_check(report: CheckReport, fmt: CheckFormat | str, options: RenderOptions) -> str:

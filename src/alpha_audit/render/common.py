@@ -72,6 +72,7 @@ __all__ = [
     "records",
     "safe_span",
     "shorten_names",
+    "stale_text",
     "to_text",
     "where_text",
     "wrap_name",
@@ -596,14 +597,23 @@ def fitted_table(
     width where the figures fit, every figure is printed whole; ``shrink_first``
     names give way before the other names (:class:`_Fitted`).  Cells that are
     strings become literal :class:`~rich.text.Text` (names are never markup).
-    A rule is drawn under the rows whose index is in ``section_ends``.
+    A rule is drawn under the rows whose index is in ``section_ends``.  Unless
+    told, a rule under the header, no padding at the edges, one space between
+    columns and a title on the left.
     """
+    from rich import box
     from rich.cells import cell_len
     from rich.table import Table
     from rich.text import Text
 
     body = [[c if isinstance(c, Text) else Text(str(c)) for c in row] for row in rows]
-    table_options.setdefault("padding", (0, 1, 0, 0))  # one space between columns
+    table_options = {
+        "box": box.SIMPLE_HEAD,
+        "pad_edge": False,
+        "padding": (0, 1, 0, 0),
+        "title_justify": "left",
+        **table_options,
+    }
 
     def build(limits: dict[int, int]) -> Table:
         table = Table(**table_options)
@@ -669,6 +679,20 @@ def baselined_text(gate: GateResult) -> str:
     if gate.on_base and gate.baseline is not None:
         return f"already on the base revision {gate.baseline.name}"
     return "in the baseline"
+
+
+def stale_text(gate: GateResult) -> str:
+    """What the gate's stale baseline entries mean: fixed on the base revision, or gone.
+
+    >>> from alpha_audit.gate import GateResult
+    >>> from alpha_audit.policy import Policy
+    >>> stale_text(GateResult(Policy(), (), stale=(("t", "s", "loss", ("a",)),)))
+    '1 baseline entry no longer occurs'
+    """
+    n = len(gate.stale)
+    if gate.on_base:
+        return f"{n} root cause(s) of the base revision fixed by this change"
+    return f"{n} baseline {'entry no longer occurs' if n == 1 else 'entries no longer occur'}"
 
 
 def location_to_dict(location: Location, base: Path | None = None) -> dict[str, Any]:

@@ -41,7 +41,9 @@ def escape_property(text: str) -> str:
     return escape_data(text).replace(":", "%3A").replace(",", "%2C")
 
 
-def _command(level: str, message: str, *, file: str | None, line: int | None, title: str) -> str:
+def _command(
+    level: str, message: str, *, file: str | None = None, line: int | None = None, title: str
+) -> str:
     props = []
     if file:
         props.append(f"file={escape_property(file)}")
@@ -67,22 +69,19 @@ def _annotation(g: LineGroup, base: Path | None) -> str:
         related += [f"SVG {display_path(p, base)}" for p in f.files[:3]]
     if related:
         message += f" [{'; '.join(related)}]"
-    file: str | None
-    line: int | None
-    if g.location is not None:
-        file, line = display_path(g.location.file, base), g.location.line
-    else:
-        file = display_path(f.files[0], base) if f.files else display_path(f.manifest, base)
-        line = None
-    return _command("error", message, file=file, line=line, title=f"alpha-audit {g.rule.value}")
+    file = _file(g, base) or display_path(f.manifest, base)
+    return _command("error", message, file=file, line=_line(g), title=f"alpha-audit {g.rule.value}")
 
 
 def _file(g: LineGroup, base: Path | None) -> str | None:
-    """The file a note is annotated on: its line's, else its SVG's."""
-    f = g.worst
+    """The file a group is annotated on: its line's, else its SVG's."""
     if g.location is not None:
         return display_path(g.location.file, base)
-    return display_path(f.files[0], base) if f.files else None
+    return display_path(g.worst.files[0], base) if g.worst.files else None
+
+
+def _line(g: LineGroup) -> int | None:
+    return g.location.line if g.location is not None else None
 
 
 # GitHub shows at most 10 error and 10 warning annotations per step and drops
@@ -96,12 +95,8 @@ def _capped(level: str, annotations: list[str], rollup: str) -> list[str]:
     if len(annotations) <= MAX_ANNOTATIONS:
         return annotations
     kept = MAX_ANNOTATIONS - 1
-    left_out = len(annotations) - kept
-    message = rollup.format(n=left_out)
-    return [
-        *annotations[:kept],
-        _command(level, message, file=None, line=None, title="alpha-audit"),
-    ]
+    rolled = rollup.format(n=len(annotations) - kept)
+    return [*annotations[:kept], _command(level, rolled, title="alpha-audit")]
 
 
 def render_report(report: CheckReport, options: RenderOptions) -> str:
@@ -135,7 +130,7 @@ def gate_annotations(gate: GateResult, options: RenderOptions, passed: str) -> s
             "warning" if g.rule is Rule.UNRENDERABLE else "notice",
             f"{group_where(g)}: {g.worst.message}",
             file=_file(g, options.base),
-            line=g.location.line if g.location is not None else None,
+            line=_line(g),
             title=f"alpha-audit {g.rule.value}: {RULES[g.rule].help}",
         )
         # A loss reported but not gated (an invisible paint, a sub-tolerance loss) is
@@ -144,7 +139,7 @@ def gate_annotations(gate: GateResult, options: RenderOptions, passed: str) -> s
     ]
     lines: list[str] = []
     if gate.passed:
-        lines.append(_command("notice", passed, file=None, line=None, title="alpha-audit"))
+        lines.append(_command("notice", passed, title="alpha-audit"))
     else:
         counts = gate.counts_text()
         # The verdict is an error line too: the findings get the other nine.
@@ -159,7 +154,7 @@ def gate_annotations(gate: GateResult, options: RenderOptions, passed: str) -> s
                 "report for every finding"
             )
         lines += shown
-        lines.append(_command("error", verdict, file=None, line=None, title="alpha-audit"))
+        lines.append(_command("error", verdict, title="alpha-audit"))
     lines = (
         _capped(
             "warning",

@@ -45,6 +45,7 @@ from alpha_audit.render.common import (
     gamut_line,
     location_text,
     shorten_names,
+    stale_text,
     where_text,
 )
 from alpha_audit.render.lines import LineGroup, by_line, group_fix
@@ -386,12 +387,7 @@ def _notes(
                 left_out[0] += len(report.gamut) - k
                 break
     if gate.stale:
-        n = len(gate.stale)
-        if report.gate.on_base:
-            budget.add("", f"{n} root cause(s) of the base revision fixed by this change.")
-        else:
-            gone = "entry no longer occurs" if n == 1 else "entries no longer occur"
-            budget.add("", f"{n} baseline {gone}.")
+        budget.add("", f"{stale_text(gate)}.")
     for rule, title in (
         (Rule.UNRENDERABLE, "Icons that could not be rendered"),
         (Rule.FIXED_COLOUR, "Hard-coded paints (they will not follow the theme)"),

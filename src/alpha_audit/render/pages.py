@@ -26,7 +26,6 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
-from rich import box
 from rich.console import Group
 from rich.padding import Padding
 from rich.text import Text
@@ -157,7 +156,7 @@ def page_table(report: CheckReport, run: PageRun, options: RenderOptions) -> str
         columns.append(number_column("engine", "left"))
     columns += [number_column(h, "left") for h in ("drawn", "behind")]
     columns += [number_column(h) for h in ("contrast", "linear", "css", "drift")]
-    table = fitted_table(columns, cells, box=box.SIMPLE_HEAD, pad_edge=False)
+    table = fitted_table(columns, cells)
     threshold = report.audits[0].threshold if report.audits else 3.0
     failing = sum(1 for r in rows if r.passes is False)
     unmeasured = sum(1 for r in rows if r.paint is None)

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from typing import Any
 
-from rich import box
 from rich.console import RenderableType
 from rich.text import Text
 
@@ -27,15 +26,7 @@ _LEFT = frozenset({"background", "output", "clipped", "linear", "css"})
 
 def _table(title: str | Text, headers: tuple[str, ...], cells: list[Any]) -> RenderableType:
     columns = [number_column(h, "left" if h in _LEFT else "right") for h in headers]
-    return fitted_table(
-        columns,
-        cells,
-        title=title,
-        title_justify="left",
-        box=box.SIMPLE_HEAD,
-        padding=(0, 0),
-        pad_edge=False,
-    )
+    return fitted_table(columns, cells, title=title, padding=(0, 0))
 
 
 def pair_document(report: PairReport) -> dict[str, Any]:

@@ -14,7 +14,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from rich import box
 from rich.console import Group, RenderableType
 from rich.text import Text
 
@@ -216,15 +215,7 @@ def render_table(result: SuggestResult, options: RenderOptions) -> str:
             *([name_column("on canvas", min_width=8)] if with_canvas else []),
             name_column("icons", min_width=6, shrink_first=True),
         ]
-        return fitted_table(
-            columns,
-            rows,
-            title=title,
-            title_justify="left",
-            box=box.SIMPLE_HEAD,
-            padding=(0, 0),
-            pad_edge=False,
-        )
+        return fitted_table(columns, rows, title=title, padding=(0, 0))
 
     def cells(limit: Limit | None, *, with_canvas: bool = True) -> list[str]:
         """Rule, where it first breaks, canvas and icons; blank when nothing breaks."""

@@ -10,7 +10,6 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import TypeVar
 
-from rich import box
 from rich.console import Group, RenderableType
 from rich.padding import Padding
 from rich.text import Text
@@ -27,6 +26,7 @@ from alpha_audit.render.common import (
     location_text,
     name_column,
     number_column,
+    stale_text,
     to_text,
     where_text,
 )
@@ -91,14 +91,8 @@ def _summary_table(result: AuditResult) -> RenderableType:
         number_column("bg", justify="left"),
         *(number_column(name) for name in ("gain", f"≥{t:g}:1", "new", "loss", "coll", "min ΔE")),
     ]
-    return fitted_table(
-        columns,
-        rows,
-        box=box.SIMPLE_HEAD,
-        padding=(0, 0),  # the box's space divider is the gap: the row fits 60 columns
-        pad_edge=False,
-        header_style="bold",
-    )
+    # The box's space divider is the gap: the row fits 60 columns.
+    return fitted_table(columns, rows, padding=(0, 0), header_style="bold")
 
 
 def _grouped(result: AuditResult, rows: Iterable[Row]) -> list[tuple[Row, list[str]]]:
@@ -137,7 +131,7 @@ def _section(
         for name in header
     ]
     table = fitted_table(
-        columns, items[:MAX_FINDINGS], box=None, padding=(0, 1), pad_edge=False, header_style="dim"
+        columns, items[:MAX_FINDINGS], box=None, padding=(0, 1), header_style="dim"
     )
     title_text = Text(f"{title} ({len(items)})", style=f"bold {style}")
     return [title_text, Padding(table, (0, 0, 0, 2)), *_more(items)]
@@ -303,13 +297,8 @@ def gate_renderable(gate: GateResult, base: Path | None = None) -> RenderableTyp
             lambda f: safe_text(f"  {f.rule.value}: {where_text(f)}: {f.message}"),
         )
     if gate.stale:
-        n = len(gate.stale)
-        if gate.on_base:
-            line = f"  {n} root cause(s) of the base revision fixed by this change"
-        else:
-            gone = "entry no longer occurs" if n == 1 else "entries no longer occur"
-            line = f"  {n} baseline {gone}; rewrite the baseline with --write-baseline"
-        out.append(Text(line, style="yellow"))
+        rewrite = "" if gate.on_base else "; rewrite the baseline with --write-baseline"
+        out.append(Text(f"  {stale_text(gate)}{rewrite}", style="yellow"))
     return Group(*out)
 
 

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from typing import Any
 
-from rich import box
 from rich.console import RenderableType
 
 from alpha_audit.model import Theme
@@ -54,14 +53,7 @@ def _table(themes: Themes) -> RenderableType:
     for _, theme in themes:
         n += len(theme.canvases)
         ends.add(n)
-    return fitted_table(
-        columns,
-        rows,
-        section_ends=frozenset(ends),
-        box=box.SIMPLE_HEAD,
-        pad_edge=False,
-        collapse_padding=True,
-    )
+    return fitted_table(columns, rows, section_ends=frozenset(ends), collapse_padding=True)
 
 
 def render_table(themes: Themes, options: RenderOptions) -> str:

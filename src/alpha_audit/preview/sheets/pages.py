@@ -22,7 +22,7 @@ import math
 from collections.abc import Callable, Sequence
 from dataclasses import replace
 from pathlib import Path
-from typing import NoReturn, assert_never
+from typing import Any, NoReturn, assert_never
 
 from alpha_audit.color import NON_TEXT_THRESHOLD
 from alpha_audit.errors import InputError, UsageError
@@ -144,20 +144,46 @@ def paginate(
     out: list[SheetSpec] = []
     _check_count(len(specs), source)
     for spec in specs:
-        rows = sheet_rows(spec.layout, iconset, alphas)
-        match spec.layout:
-            case Layout.GRID:
-                parts = _grid_parts(spec, iconset, rows, threshold, max_width, label, budget)
-            case Layout.SWATCHES:
-                real = [a for a in rows if a is not None]  # swatch rows are never None
-                parts = _swatch_parts(spec, iconset, real, threshold, label, budget)
-            case Layout.COMPARE:
-                parts = _compare_parts(spec, iconset, rows, label, budget)
-            case _:
-                assert_never(spec.layout)
-        out += _paged(spec, parts)
+        out += _paged(spec, _parts(spec, iconset, alphas, threshold, max_width, label, budget))
         _check_count(len(out), source)
     return _distinct(out)
+
+
+def _parts(
+    spec: SheetSpec,
+    iconset: IconSet,
+    alphas: Sequence[Alpha] | None,
+    threshold: float,
+    max_width: int,
+    label: str,
+    budget: int,
+) -> Parts:
+    """One planned sheet split into parts of at most ``budget`` pixels each."""
+    rows = sheet_rows(spec.layout, iconset, alphas)
+    match spec.layout:
+        case Layout.GRID:
+            return _split(
+                spec,
+                iconset.icons,
+                "icons",
+                lambda probe, part, text: grid_frame(probe, part, rows, threshold, max_width, text),
+                label,
+                budget,
+            )
+        case Layout.SWATCHES:
+            real = [a for a in rows if a is not None]  # swatch rows are never None
+            return _split(
+                spec,
+                swatch_colors(iconset),
+                "colours",
+                lambda probe, part, text: swatch_frame(probe, part, real, threshold, text),
+                label,
+                budget,
+            )
+        case Layout.COMPARE:
+            return _compare_parts(spec, iconset, rows, label, budget)
+        case _:
+            assert_never(spec.layout)
 
 
 def _check_count(sheets: int, source: Path | None) -> None:
@@ -183,47 +209,24 @@ def _refusal(spec: SheetSpec, budget: int) -> Callable[[], NoReturn]:
     return refuse
 
 
-def _grid_parts(
+def _split(
     spec: SheetSpec,
-    iconset: IconSet,
-    rows: Sequence[Alpha],
-    threshold: float,
-    max_width: int,
+    items: Sequence[Any],
+    noun: str,
+    frame: Callable[[SheetSpec, Sequence[Any], str], Any],
     label: str,
     budget: int,
 ) -> Parts:
-    """Grid sheets split by icons."""
-    icons = iconset.icons
-    probe = _placeholder(spec, len(icons))
+    """Sheets split by ``noun`` (icons or colours); ``frame`` measures a part's sheet."""
+    probe = _placeholder(spec, len(items))
     text = sheet_title(probe, label)
 
     def fits(a: int, b: int) -> bool:
-        f = grid_frame(probe, icons[a:b], rows, threshold, max_width, text)
-        return f.width * f.height <= budget
+        f = frame(probe, items[a:b], text)
+        return bool(f.width * f.height <= budget)
 
-    spans = _spans(len(icons), fits, _refusal(spec, budget))
-    return [(spec, s, _note("icons", s, len(icons))) for s in spans]
-
-
-def _swatch_parts(
-    spec: SheetSpec,
-    iconset: IconSet,
-    rows: Sequence[float],
-    threshold: float,
-    label: str,
-    budget: int,
-) -> Parts:
-    """Swatch sheets split by colours."""
-    colors = swatch_colors(iconset)
-    probe = _placeholder(spec, len(colors))
-    text = sheet_title(probe, label)
-
-    def fits(a: int, b: int) -> bool:
-        f = swatch_frame(probe, colors[a:b], rows, threshold, text)
-        return f.width * f.height <= budget
-
-    spans = _spans(len(colors), fits, _refusal(spec, budget))
-    return [(spec, s, _note("colours", s, len(colors))) for s in spans]
+    spans = _spans(len(items), fits, _refusal(spec, budget))
+    return [(spec, s, _note(noun, s, len(items))) for s in spans]
 
 
 def _compare_parts(

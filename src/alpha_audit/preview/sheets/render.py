@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import replace
 from typing import assert_never
 
@@ -40,22 +40,18 @@ def render_sheet(
     """
     label = sheet_title(spec, title or iconset.name)
     rows = sheet_rows(spec.layout, iconset, alphas)
-    page = spec.page
+    part = slice(None) if spec.page is None else slice(spec.page.first, spec.page.stop)
     match spec.layout:
         case Layout.GRID:
-            if page is not None:
-                iconset = replace(iconset, icons=iconset.icons[page.first : page.stop])
-            return draw_grid(spec, iconset, drawn, rows, threshold, max_width, label)
+            paged = replace(iconset, icons=iconset.icons[part])
+            return draw_grid(spec, paged, drawn, rows, threshold, max_width, label)
         case Layout.SWATCHES:
-            colors = swatch_colors(iconset)
-            if page is not None:
-                colors = colors[page.first : page.stop]
             real = [a for a in rows if a is not None]  # swatch rows are never None
+            colors = swatch_colors(iconset)[part]
             return draw_swatches(spec, colors, real, threshold, label, drawn.pipeline)
         case Layout.COMPARE:
-            if page is not None:
-                iconset = replace(iconset, icons=iconset.icons[page.first : page.stop])
-            return draw_compare(spec, iconset, drawn, rows, threshold, label)
+            paged = replace(iconset, icons=iconset.icons[part])
+            return draw_compare(spec, paged, drawn, rows, threshold, label)
         case _:
             assert_never(spec.layout)
 
@@ -65,7 +61,6 @@ def render_all(
     iconset: IconSet,
     drawn: PreviewRows,
     *,
-    on_sheet: Callable[[], None] | None = None,
     alphas: Sequence[Alpha] | None = None,
     threshold: float = NON_TEXT_THRESHOLD,
     max_width: int = DEFAULT_MAX_WIDTH,
@@ -76,7 +71,7 @@ def render_all(
     The keywords are :func:`render_sheet`'s, for every sheet.
     """
     for spec in specs:
-        sheet = render_sheet(
+        yield render_sheet(
             spec,
             iconset,
             drawn,
@@ -85,6 +80,3 @@ def render_all(
             max_width=max_width,
             title=title,
         )
-        yield sheet
-        if on_sheet is not None:
-            on_sheet()
