@@ -162,7 +162,7 @@ def flag(*names: str, help: str) -> Any:
 
 
 # A flag's value: one number, a repeatable flag's list of them, or not given.
-Given = TypeVar("Given", bound=float | list[int] | list[float] | None)
+Given = TypeVar("Given", bound=float | list[int] | list[float] | None)  # int is a float here
 
 
 def in_range(name: str, allowed: ranges.NumberRange) -> Callable[[Given], Given]:
@@ -175,7 +175,8 @@ def in_range(name: str, allowed: ranges.NumberRange) -> Callable[[Given], Given]
     def check(value: Given) -> Given:
         for number in value if isinstance(value, list) else () if value is None else (value,):
             if not allowed.allows(number):
-                raise UsageError(allowed.refusal(f"{name} {number:g}"))
+                shown = number if isinstance(number, int) else f"{number:g}"  # 100000000, not 1e+08
+                raise UsageError(allowed.refusal(f"{name} {shown}"))
         return value
 
     return check
@@ -314,22 +315,13 @@ LossToleranceOption = _policy_option(
 )
 
 
-def _whole(name: str, allowed: ranges.NumberRange) -> Callable[[int | None], int | None]:
-    def check(value: int | None) -> int | None:
-        if value is not None and not allowed.allows(value):
-            raise UsageError(allowed.refusal(f"{name} {value}"))
-        return value
-
-    return check
-
-
 MaxCombinationsOption = Annotated[
     int | None,
     typer.Option(
         "--max-combinations",
         metavar="N",
         help="Most paint x canvas rows one check audits (memory scales with it: docs/ci.md).",
-        callback=_whole("--max-combinations", ranges.COMBINATIONS),
+        callback=in_range("--max-combinations", ranges.COMBINATIONS),
         show_default=f"the config's, else {ranges.DEFAULT_COMBINATIONS:,}",
     ),
 ]
