@@ -236,25 +236,29 @@ def _smallest_float(
     return np.where(holds_hi, hi_bits.view(np.float64), np.inf)
 
 
+def _luminance_band(
+    yb: NDArray[np.float64], inside: Callable[[NDArray[np.float64]], NDArray[np.bool_]]
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Luminances ``(low, high)``: ``inside(CR(Y, Yb))`` holds exactly when ``low <= Y < high``.
+
+    Found on the float expression itself, so a luminance comparison decides
+    as computing the contrast ratio would.
+    """
+    yb = np.asarray(yb, dtype=np.float64)
+    low = _smallest_float(
+        lambda y: (y >= yb) | inside(contrast_from_luminance(y, yb)), np.zeros_like(yb), yb
+    )
+    high = _smallest_float(
+        lambda y: (y >= yb) & ~inside(contrast_from_luminance(y, yb)), yb, np.full_like(yb, 4.0)
+    )
+    return low, high
+
+
 def reach_thresholds(
     yb: NDArray[np.float64], threshold: float
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Luminances ``(low, high)``: ``CR(Y, Yb) < threshold`` exactly when ``low <= Y < high``.
-
-    Found on the float expression itself, so a luminance comparison decides
-    the threshold test exactly as computing the contrast ratio would.
-    """
-    yb = np.asarray(yb, dtype=np.float64)
-
-    def below_reaches(y: NDArray[np.float64]) -> NDArray[np.bool_]:
-        return (y >= yb) | (contrast_from_luminance(y, yb) < threshold)
-
-    def above_fails(y: NDArray[np.float64]) -> NDArray[np.bool_]:
-        return (y >= yb) & (contrast_from_luminance(y, yb) >= threshold)
-
-    low = _smallest_float(below_reaches, np.zeros_like(yb), yb)
-    high = _smallest_float(above_fails, yb, np.full_like(yb, 4.0))
-    return low, high
+    """Luminances ``(low, high)``: ``CR(Y, Yb) < threshold`` exactly when ``low <= Y < high``."""
+    return _luminance_band(yb, lambda cr: cr < threshold)
 
 
 @dataclass(frozen=True)
@@ -446,17 +450,7 @@ def _keep_thresholds(
     The decision for an output exactly at ``Yb`` (contrast 1), on the float
     expression of the straightforward implementation.
     """
-
-    def below_keeps(y: NDArray[np.float64]) -> NDArray[np.bool_]:
-        return (y >= yb) | (1.0 - contrast_from_luminance(y, yb) >= -tol)
-
-    def above_drops(y: NDArray[np.float64]) -> NDArray[np.bool_]:
-        return (y >= yb) & (1.0 - contrast_from_luminance(y, yb) < -tol)
-
-    return (
-        _smallest_float(below_keeps, np.zeros_like(yb), yb),
-        _smallest_float(above_drops, yb, np.full_like(yb, 4.0)),
-    )
+    return _luminance_band(yb, lambda cr: 1.0 - cr >= -tol)
 
 
 # |dCR/dY| <= (Yb + .05) / .05**2 <= 420 for luminances in [0, 1]: a change in
