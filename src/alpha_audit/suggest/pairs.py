@@ -33,11 +33,11 @@ from alpha_audit.color.nearest import (
 from alpha_audit.findings import cvd_collision_groups
 from alpha_audit.policy import confusion_possible
 from alpha_audit.rules import Rule
-from alpha_audit.suggest.events import first_below
+from alpha_audit.suggest.events import Floats, Indices, first_below
 from alpha_audit.suggest.scene import ALPHA_LO, CHUNK, Found, Scene, Tracks, alpha_grid
 
 
-def separation_limits(scene: Scene, tracks: Tracks, caps: NDArray[np.float64]) -> list[Found]:
+def separation_limits(scene: Scene, tracks: Tracks, caps: Floats) -> list[Found]:
     """Per canvas, where CIEDE2000 between two paints first drops below the minimum."""
     if Rule.SEPARATION not in scene.policy.rules or len(tracks.label) < 2:
         return []
@@ -50,11 +50,7 @@ def separation_limits(scene: Scene, tracks: Tracks, caps: NDArray[np.float64]) -
 
 
 def confusion_limits(
-    scene: Scene,
-    roles: Tracks,
-    caps: NDArray[np.float64],
-    deficiency: Deficiency | None,
-    shrink: bool,
+    scene: Scene, roles: Tracks, caps: Floats, deficiency: Deficiency | None, shrink: bool
 ) -> list[Found]:
     """Per canvas, where two roles told apart at alpha 1 first drop below the minimum."""
     rule = Rule.CONFUSION if deficiency is None else Rule.CVD_CONFUSION
@@ -70,9 +66,9 @@ def _pair_limits(
     scene: Scene,
     tracks: Tracks,
     rule: Rule,
-    caps: NDArray[np.float64],
-    grid_to: Callable[[float], NDArray[np.float64]],
-    view: Callable[[NDArray[np.float64]], NDArray[np.float64]] = lambda c: c,
+    caps: Floats,
+    grid_to: Callable[[float], Floats],
+    view: Callable[[Floats], Floats] = lambda c: c,
     shrink: bool = False,
 ) -> list[Found]:
     """Per canvas, where two tracks first drop below the minimum CIEDE2000 (as ``view`` sees
@@ -113,12 +109,12 @@ def _pair_limits(
                 continue
 
             def delta_e(
-                a: NDArray[np.float64],
-                f: NDArray[np.intp] = first,
-                g: NDArray[np.intp] = second,
+                a: Floats,
+                f: Indices = first,
+                g: Indices = second,
                 j: int = j,
                 close: NDArray[np.bool_] = close,
-            ) -> NDArray[np.float64]:
+            ) -> Floats:
                 if a.ndim > 1:  # bisecting: every pair at its own points
                     ff, gg = np.repeat(f, a.shape[1]), np.repeat(g, a.shape[1])
                     fa = view(scene.shown_at(tracks, ff, a.reshape(-1), j))
@@ -215,9 +211,7 @@ def pairs_below_at(
         both = scene.shown(tracks, every, np.array([a, ALPHA_LO]), j)
         lab = linear_to_lab(view(both[:, 0]))
 
-        def distance(
-            f: NDArray[np.intp], g: NDArray[np.intp], lab: NDArray[np.float64] = lab
-        ) -> NDArray[np.float64]:
+        def distance(f: Indices, g: Indices, lab: Floats = lab) -> Floats:
             return delta_e_2000_lab(lab[f], lab[g])
 
         first, second, _ = pairs_below(
@@ -275,7 +269,7 @@ def _sources(roles: Tracks) -> list[str]:
     return [roles.source[t].tobytes().hex() for t in range(len(roles.label))]
 
 
-def _viewer(deficiency: Deficiency | None) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
+def _viewer(deficiency: Deficiency | None) -> Callable[[Floats], Floats]:
     """How colours look to a viewer with ``deficiency`` (``None``: as they are)."""
     if deficiency is None:
         return lambda c: c
