@@ -238,6 +238,15 @@ def _setup_sentence(subject: str, differs: str | None, same: str) -> str:
     return f"{subject}: not the paper's ({escape_markdown(differs)}); not comparable in digits."
 
 
+# The broad grid's quantities beside the paper's, as the report names them.
+_BROAD_QUANTITIES = (
+    ("increase_pct", "increase %"),
+    ("decrease_pct", "decrease %"),
+    ("max_loss", "maximum loss"),
+    ("loss_le_0_25_pct", "decreases with loss <= 0.25, %"),
+)
+
+
 def _broad_section(run: Reproduction, index: _Index) -> list[str]:
     assert run.broad_grid is not None
     first = run.broad_grid[0]
@@ -253,28 +262,17 @@ def _broad_section(run: Reproduction, index: _Index) -> list[str]:
     ]
     for r in run.broad_grid:
         key = alpha_key(r.alpha)
-        lines += [
-            _row(label, ours, index.get(("broad_grid", key, name)))
-            for label, ours, name in (
-                (f"alpha {key}: increase %", r.increase_pct, "increase_pct"),
-                (f"alpha {key}: decrease %", r.decrease_pct, "decrease_pct"),
-                (f"alpha {key}: maximum loss", r.max_loss, "max_loss"),
-                (
-                    f"alpha {key}: decreases with loss <= 0.25, %",
-                    r.loss_le_0_25_pct,
-                    "loss_le_0_25_pct",
-                ),
-                (
-                    f"alpha {key}: worst case, contrast at 1",
-                    r.worst_contrast[1.0],
-                    "worst_contrast_1.0",
-                ),
-                (
-                    f"alpha {key}: worst case, contrast at {key}",
-                    r.worst_contrast[r.alpha],
-                    f"worst_contrast_{key}",
-                ),
+        quantities = [(label, getattr(r, name), name) for name, label in _BROAD_QUANTITIES]
+        quantities += [
+            (label, r.worst_contrast[a], f"worst_contrast_{alpha_key(a)}")
+            for label, a in (
+                ("worst case, contrast at 1", 1.0),
+                (f"worst case, contrast at {key}", r.alpha),
             )
+        ]
+        lines += [
+            _row(f"alpha {key}: {label}", ours, index.get(("broad_grid", key, name)))
+            for label, ours, name in quantities
         ]
     lines.append("")
     for r in run.broad_grid:
