@@ -206,16 +206,10 @@ class Scene:
 
     def shown(self, tracks: Tracks, t: Indices, a: Floats, j: int) -> Floats:
         """What tracks ``t`` ship on canvas ``j`` at coefficients ``a`` (moving), (len(t), N, 3)."""
-        coef = np.where(tracks.moving[t][:, np.newaxis], a, tracks.alpha[t][:, np.newaxis])
-        return self.ship(
-            tracks.source[t][:, np.newaxis, :],
-            self.backgrounds[j],
-            coef,
-            tracks.opacity[t][:, np.newaxis],
-        )
+        return self.shown_at(tracks, t[:, np.newaxis], a, j)
 
     def shown_at(self, tracks: Tracks, t: Indices, a: Floats, j: int) -> Floats:
-        """What track ``t[k]`` ships at coefficient ``a[k]`` on canvas ``j``: (K, 3)."""
+        """What track ``t[k]`` ships at coefficient ``a[k]`` on canvas ``j`` (broadcast): (K, 3)."""
         coef = np.where(tracks.moving[t], a, tracks.alpha[t])
         return self.ship(tracks.source[t], self.backgrounds[j], coef, tracks.opacity[t])
 

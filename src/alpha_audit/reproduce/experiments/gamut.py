@@ -18,6 +18,7 @@ from alpha_audit.model import Theme
 from alpha_audit.reproduce import kernels
 from alpha_audit.reproduce.experiments.common import Progress, check_alphas, noop, source_parts
 from alpha_audit.reproduce.grids import encoded_levels
+from alpha_audit.reproduce.kernels import Floats
 
 __all__ = ["CanvasChange", "ContrastChange", "FullGamutResult", "full_gamut"]
 
@@ -177,26 +178,13 @@ def full_gamut(
     }
     progress(0.1)
 
-    fast = [a for a in alphas if a >= 0]
+    # Coefficients >= 0 in one batch; a negative one reverses the tables (they fall
+    # with the level), so each is counted alone, every combination from the tables.
+    batches = [[a for a in alphas if a >= 0], *([a] for a in alphas if a < 0)]
     stats: dict[float, dict[str, NDArray[Any]]] = {}
-    if fast:
-        stats = _forward_stats(fast, lev, backgrounds, (ps, qs), sum_source, tol, threshold)
-    progress(0.8 * len(fast) / len(alphas))
-    for a in alphas:
-        if a < 0:  # reverse scaling: tables fall with the level; every combination from them
-            po, qo = kernels.luminance_parts(
-                kernels.channel_tables(lev, backgrounds, np.full(m, a))
-            )
-            counts = kernels.change_counts_any_order(
-                ps, qs, po, qo, yb, tol=tol, threshold=threshold
-            )
-            stats[a] = {
-                "increase": counts.increase,
-                "decrease": counts.decrease,
-                "newly_reach": counts.newly_reach,
-                "sum_change": kernels.contrast_sums(po, qo, yb) - sum_source,
-            }
-            progress(0.8 / len(alphas))
+    for batch in filter(None, batches):
+        stats |= _stats(batch, lev, backgrounds, (ps, qs), sum_source, tol, threshold)
+        progress(0.8 * len(batch) / len(alphas))
     results = tuple(
         FullGamutResult(
             theme.name, a, levels, threshold, _canvas_changes(theme, stats[a], controls, n_sources)
@@ -207,37 +195,36 @@ def full_gamut(
     return results
 
 
-def _forward_stats(
-    fast: list[float],
-    lev: NDArray[np.float64],
-    backgrounds: NDArray[np.float64],
-    source: tuple[NDArray[np.float64], NDArray[np.float64]],
-    sum_source: NDArray[np.float64],
+def _stats(
+    batch: list[float],
+    lev: Floats,
+    backgrounds: Floats,
+    source: tuple[Floats, Floats],
+    sum_source: Floats,
     tol: float,
     threshold: float,
 ) -> dict[float, dict[str, NDArray[Any]]]:
-    """The counts and contrast sums at every coefficient ``>= 0``, all in one batch."""
+    """The counts and contrast sums at coefficients all ``>= 0``, or at one below 0."""
     m = backgrounds.shape[0]
     yb = relative_luminance(backgrounds)
-    tables = kernels.channel_tables(lev, np.tile(backgrounds, (len(fast), 1)), np.repeat(fast, m))
+    tables = kernels.channel_tables(lev, np.tile(backgrounds, (len(batch), 1)), np.repeat(batch, m))
     po, qo = kernels.luminance_parts(tables)
-    counts = kernels.change_counts(
-        *source,
-        po.reshape(len(fast), m, -1),
-        qo.reshape(len(fast), m, -1),
-        yb,
-        tol=tol,
-        threshold=threshold,
-    )
-    sums = kernels.contrast_sums(po, qo, np.tile(yb, len(fast))).reshape(len(fast), m)
+    if batch[0] >= 0:
+        shape = (len(batch), m, -1)
+        counts = kernels.change_counts(
+            *source, po.reshape(shape), qo.reshape(shape), yb, tol=tol, threshold=threshold
+        )
+    else:
+        counts = kernels.change_counts_any_order(*source, po, qo, yb, tol=tol, threshold=threshold)
+    sums = kernels.contrast_sums(po, qo, np.tile(yb, len(batch))).reshape(len(batch), m)
     return {
         a: {
-            "increase": counts.increase[i],
-            "decrease": counts.decrease[i],
-            "newly_reach": counts.newly_reach[i],
+            "increase": counts.increase.reshape(len(batch), m)[i],
+            "decrease": counts.decrease.reshape(len(batch), m)[i],
+            "newly_reach": counts.newly_reach.reshape(len(batch), m)[i],
             "sum_change": sums[i] - sum_source,
         }
-        for i, a in enumerate(fast)
+        for i, a in enumerate(batch)
     }
 
 
