@@ -236,18 +236,13 @@ def pairs_below_at(
 def pair_objection(scene: Scene, moving_icons: NDArray[np.bool_], a: float) -> Found | None:
     """A pair rule broken at exactly ``a`` by a moving icon (an answer's re-check)."""
     rules = scene.policy.rules
-    if Rule.SEPARATION in rules:
-        found = pairs_below_at(scene, scene.tracks(moving_icons), a, None, Rule.SEPARATION)
-        if found is not None:
-            return found
     roles = scene.tracks(moving_icons, roles=True)
-    if Rule.CONFUSION in rules:
-        found = pairs_below_at(scene, roles, a, None, Rule.CONFUSION)
-        if found is not None:
-            return found
-    if Rule.CVD_CONFUSION in rules:
-        for deficiency in DEFICIENCIES:
-            found = pairs_below_at(scene, roles, a, deficiency, Rule.CVD_CONFUSION)
+    checks: list[tuple[Rule, Deficiency | None]] = [(Rule.SEPARATION, None), (Rule.CONFUSION, None)]
+    checks += [(Rule.CVD_CONFUSION, d) for d in DEFICIENCIES]
+    for rule, deficiency in checks:
+        if rule in rules:
+            tracks = scene.tracks(moving_icons) if rule is Rule.SEPARATION else roles
+            found = pairs_below_at(scene, tracks, a, deficiency, rule)
             if found is not None:
                 return found
     if Rule.CVD_COLLISION in rules and len(roles.label) > 1 and roles.moving.any():
