@@ -17,7 +17,7 @@ import json
 import os
 import re
 import stat
-from collections.abc import Sized
+from collections.abc import Sequence, Sized
 from dataclasses import dataclass, field, replace
 from enum import StrEnum
 from pathlib import Path, PurePosixPath
@@ -785,6 +785,11 @@ def _count(items: Sized, noun: str) -> str:
     return f"{len(items)} {noun}{'s' * (len(items) != 1)}"
 
 
+def _some(names: Sequence[str]) -> str:
+    """The first three names, and how many more."""
+    return ", ".join(names[:3]) + (f" +{len(names) - 3} more" if len(names) > 3 else "")
+
+
 def _unsafe(plan: ApplyPlan) -> list[str]:
     """Each group with no safe alpha from 1, and what stops it there."""
     out = []
@@ -794,11 +799,10 @@ def _unsafe(plan: ApplyPlan) -> list[str]:
         if limit is None:
             out.append(what)
             continue
-        who = " and ".join(limit.roles) if limit.roles else ", ".join(limit.icons[:3])
-        more = "" if limit.roles or len(limit.icons) <= 3 else f" +{len(limit.icons) - 3} more"
+        who = " and ".join(limit.roles) if limit.roles else _some(limit.icons)
         out.append(
             f"{what} (no safe alpha from 1: {limit.rule.value} on {limit.canvas} at alpha "
-            f"{limit.at:g}, {who}{more})"
+            f"{limit.at:g}, {who})"
         )
     return out
 
@@ -808,9 +812,8 @@ def _why_not(plan: ApplyPlan) -> list[str]:
     alpha (left at its alpha)."""
     f = plan.failures[0]
     held = f" with the explicit alpha of {', '.join(plan.kept)} kept" if plan.kept else ""
-    icons = ", ".join(f.icons[:3]) + (f" +{len(f.icons) - 3} more" if len(f.icons) > 3 else "")
     out = [
         f"the gate would still fail{held} ({len(plan.failures)} finding(s); first "
-        f"{f.rule.value} of {icons}: {f.message})"
+        f"{f.rule.value} of {_some(f.icons)}: {f.message})"
     ]
     return out + [f"left {u}" for u in _unsafe(plan)]
