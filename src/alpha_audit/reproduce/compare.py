@@ -12,7 +12,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cache
-from typing import assert_never
 
 from alpha_audit.model import Theme
 from alpha_audit.reproduce.grids import PAPER_SEED, VIBRANT
@@ -71,10 +70,6 @@ def is_paper_canvases(theme: Theme) -> bool:
     return tuple(sorted(c.linear for c in theme.canvases)) == _paper_backgrounds()
 
 
-def _why(reasons: list[str]) -> str | None:
-    return "; ".join(reasons) or None
-
-
 def setup_differences(run: Reproduction) -> dict[Setup, str | None]:
     """Per setup, how this run's differs from the paper's (``None``: it is the paper's)."""
     paper = Settings.paper()
@@ -83,54 +78,33 @@ def setup_differences(run: Reproduction) -> dict[Setup, str | None]:
         if is_paper_canvases(run.theme)
         else [f"canvases of theme {run.theme.name!r}, not the paper's sixteen ({PAPER_THEME})"]
     )
-    not_run = "not run"
-    result: dict[Setup, str | None] = {}
-    for setup in Setup:
-        match setup:
-            case Setup.BROAD_GRID:
-                if not run.broad_grid:
-                    result[setup] = not_run
-                    continue
-                s, b = run.broad_grid[0].source_levels, run.broad_grid[0].background_levels
-                grid = (s, b) == (paper.source_levels, paper.background_levels)
-                result[setup] = (
-                    None
-                    if grid
-                    else f"a {s}^3 x {b}^3 grid, not "
-                    f"{paper.source_levels}^3 x {paper.background_levels}^3"
-                )
-            case Setup.FULL_GAMUT:
-                if not run.full_gamut:
-                    result[setup] = not_run
-                    continue
-                levels = run.full_gamut[0].levels
-                sources = (
-                    []
-                    if levels == paper.full_gamut_levels
-                    else [f"{levels}^3 sources, not {paper.full_gamut_levels}^3"]
-                )
-                result[setup] = _why([*sources, *canvases])
-            case Setup.PALETTE:
-                if run.palette is None:
-                    result[setup] = not_run
-                    continue
-                vibrant = tuple(run.palette.palette) == VIBRANT
-                result[setup] = _why([*([] if vibrant else ["not Tol's Vibrant"]), *canvases])
-            case Setup.RANDOM_PAIRS:
-                if run.palette is None:
-                    result[setup] = not_run
-                    continue
-                p = run.palette
-                pairs = (
-                    []
-                    if p.random_pairs == paper.pairs
-                    else [f"{p.random_pairs:,} random pairs, not {paper.pairs:,}"]
-                )
-                seed = [] if p.seed == PAPER_SEED else [f"seed {p.seed}, not {PAPER_SEED}"]
-                result[setup] = _why([*pairs, *seed, *canvases])
-            case _:
-                assert_never(setup)
-    return result
+    reasons: dict[Setup, list[str] | None] = dict.fromkeys(Setup)  # None: not run
+    if run.broad_grid:
+        s, b = run.broad_grid[0].source_levels, run.broad_grid[0].background_levels
+        paper_grid = (paper.source_levels, paper.background_levels)
+        reasons[Setup.BROAD_GRID] = (
+            []
+            if (s, b) == paper_grid
+            else [f"a {s}^3 x {b}^3 grid, not {paper_grid[0]}^3 x {paper_grid[1]}^3"]
+        )
+    if run.full_gamut:
+        levels, paper_levels = run.full_gamut[0].levels, paper.full_gamut_levels
+        sources = [] if levels == paper_levels else [f"{levels}^3 sources, not {paper_levels}^3"]
+        reasons[Setup.FULL_GAMUT] = [*sources, *canvases]
+    if (p := run.palette) is not None:
+        vibrant = [] if tuple(p.palette) == VIBRANT else ["not Tol's Vibrant"]
+        reasons[Setup.PALETTE] = [*vibrant, *canvases]
+        pairs = (
+            []
+            if p.random_pairs == paper.pairs
+            else [f"{p.random_pairs:,} random pairs, not {paper.pairs:,}"]
+        )
+        seed = [] if p.seed == PAPER_SEED else [f"seed {p.seed}, not {PAPER_SEED}"]
+        reasons[Setup.RANDOM_PAIRS] = [*pairs, *seed, *canvases]
+    return {
+        setup: "not run" if why is None else "; ".join(why) or None
+        for setup, why in reasons.items()
+    }
 
 
 def _ours(run: Reproduction, experiment: str, group: str, name: str) -> float | None:

@@ -19,7 +19,7 @@ from PIL import Image, ImageDraw, ImageFont
 from alpha_audit.output import Output, write_files
 from alpha_audit.reproduce.experiments import SweepResult
 
-__all__ = ["FIGURES", "figure_outputs", "sweep_figure", "write_figures"]
+__all__ = ["FIGURES", "draw_axes", "draw_dotted", "figure_outputs", "sweep_figure", "write_figures"]
 
 # File name -> alpha range, as in the paper (Figure 3: [1, 2]; Figure 6: [0, 2]).
 FIGURES = {"sweep-1-2.png": (1.0, 2.0), "sweep-0-2.png": (0.0, 2.0)}
@@ -51,6 +51,37 @@ def _label(value: float) -> str:
     return f"{value:.4g}" if abs(value) >= 1e-3 or value == 0 else f"{value:.1e}"
 
 
+def draw_axes(
+    draw: ImageDraw.ImageDraw,
+    box: tuple[float, float, float, float],
+    y_ticks: list[float],
+    scale: tuple[Callable[[float], float], Callable[[float], float]],
+    alpha_range: tuple[float, float],
+) -> None:
+    """A panel's value ticks with grid lines, and its alpha ticks and label
+    (``scale``: alpha and value to pixels)."""
+    x0, _, x1, y1 = box
+    px, py = scale
+    a_lo, a_hi = alpha_range
+    for t in y_ticks:
+        y = py(t)
+        draw.line((x0 - 4, y, x0, y), fill="black")
+        draw.line((x0 + 1, y, x1 - 1, y), fill=(230, 230, 230))
+        draw.text((x0 - 6, y), _label(t), fill="black", font=_SMALL, anchor="rm")
+    for t in _nice_ticks(a_lo, a_hi, 4):
+        if a_lo - 1e-9 <= t <= a_hi + 1e-9:
+            x = px(t)
+            draw.line((x, y1, x, y1 + 4), fill="black")
+            draw.text((x, y1 + 6), f"{t:g}", fill="black", font=_SMALL, anchor="mt")
+    draw.text(((x0 + x1) / 2, y1 + 24), "alpha", fill="black", font=_FONT, anchor="mt")
+
+
+def draw_dotted(draw: ImageDraw.ImageDraw, x: float, y0: float, y1: float) -> None:
+    """A dotted vertical line: how the paper marks alpha = 0 and 1."""
+    for y in range(int(y0), int(y1), 6):
+        draw.line((x, y, x, min(y + 3, y1)), fill=(90, 90, 90))
+
+
 def _panel(
     draw: ImageDraw.ImageDraw,
     origin: tuple[int, int],
@@ -76,21 +107,9 @@ def _panel(
 
     draw.text((ox + _LEFT, oy + 8), title, fill="black", font=_FONT)
     draw.rectangle((x0, y0, x1, y1), outline="black")
-    for t in y_ticks:
-        y = py(t)
-        draw.line((x0 - 4, y, x0, y), fill="black")
-        draw.line((x0 + 1, y, x1 - 1, y), fill=(230, 230, 230))
-        draw.text((x0 - 6, y), _label(t), fill="black", font=_SMALL, anchor="rm")
-    for t in _nice_ticks(a_lo, a_hi, 4):
-        if a_lo - 1e-9 <= t <= a_hi + 1e-9:
-            x = px(t)
-            draw.line((x, y1, x, y1 + 4), fill="black")
-            draw.text((x, y1 + 6), f"{t:g}", fill="black", font=_SMALL, anchor="mt")
-    draw.text(((x0 + x1) / 2, y1 + 24), "alpha", fill="black", font=_FONT, anchor="mt")
-    if a_lo < 1.0 < a_hi:  # the paper marks alpha = 1 with a dotted line
-        x = px(1.0)
-        for y in range(int(y0), int(y1), 6):
-            draw.line((x, y, x, min(y + 3, y1)), fill=(90, 90, 90))
+    draw_axes(draw, (x0, y0, x1, y1), y_ticks, (px, py), alpha_range)
+    if a_lo < 1.0 < a_hi:
+        draw_dotted(draw, px(1.0), y0, y1)
     for i, (group, ys) in enumerate(series.items()):
         colour = _COLOURS.get(group, (0, 0, 0))
         points = [(px(a), py(v)) for a, v in zip(alphas, ys, strict=True)]

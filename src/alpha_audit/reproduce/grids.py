@@ -13,7 +13,6 @@ from numpy.typing import ArrayLike, NDArray
 __all__ = [
     "PAPER_SEED",
     "VIBRANT",
-    "byte_levels",
     "encoded_levels",
     "random_source_pairs",
 ]
@@ -33,11 +32,6 @@ def encoded_levels(n: int) -> NDArray[np.float64]:
     if n < 2:
         raise ValueError(f"a grid needs at least 2 levels per channel, got {n}")
     return np.arange(n) / (n - 1)
-
-
-def byte_levels() -> NDArray[np.float64]:
-    """The 256 8-bit levels as encoded values ``v / 255``."""
-    return np.arange(256) / 255
 
 
 def random_source_pairs(n: int, seed: int = PAPER_SEED) -> NDArray[np.int64]:

@@ -39,6 +39,9 @@ from numpy.typing import NDArray
 
 from alpha_audit.color import LUMINANCE_WEIGHTS, contrast_from_luminance
 
+Floats = NDArray[np.float64]
+Indices = NDArray[np.intp]
+
 __all__ = [
     "ChangeCounts",
     "change_counts",
@@ -63,9 +66,7 @@ _SERIES_TERMS = 48
 _BLOCK = 32768
 
 
-def channel_tables(
-    levels: NDArray[np.float64], backgrounds: NDArray[np.float64], alphas: NDArray[np.float64]
-) -> NDArray[np.float64]:
+def channel_tables(levels: Floats, backgrounds: Floats, alphas: Floats) -> Floats:
     """Clipped output per (problem, channel, level): shape ``(m, 3, C)``.
 
     ``levels`` are the linear source levels (C,), ``backgrounds`` (m, 3) and
@@ -76,7 +77,7 @@ def channel_tables(
     return np.clip(b + a * (levels[np.newaxis, np.newaxis, :] - b), 0.0, 1.0)
 
 
-def luminance_parts(tables: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def luminance_parts(tables: Floats) -> tuple[Floats, Floats]:
     """``(P, Q)``: ``P[m, r*C + g] = wr T_R[r] + wg T_G[g]`` and ``Q[m, b] = wb T_B[b]``."""
     red = _WR * tables[:, 0, :]
     green = _WG * tables[:, 1, :]
@@ -84,21 +85,15 @@ def luminance_parts(tables: NDArray[np.float64]) -> tuple[NDArray[np.float64], N
     return p, _WB * tables[:, 2, :]
 
 
-def _take(table: NDArray[np.float64], cols: NDArray[np.intp]) -> NDArray[np.float64]:
+def _take(table: Floats, cols: Indices) -> Floats:
     """``table[i, cols[i, r]]`` for a (m, n) table and (m, R) column indices."""
     offsets = (np.arange(table.shape[0]) * table.shape[1])[:, np.newaxis]
     # np.take: n-d fancy indexing is several times slower for the same gather.
-    gathered: NDArray[np.float64] = np.take(table.ravel(), cols + offsets)
+    gathered: Floats = np.take(table.ravel(), cols + offsets)
     return gathered
 
 
-def _bsearch(
-    table: NDArray[np.float64],
-    p: NDArray[np.float64] | None,
-    theta: NDArray[np.float64],
-    *,
-    strict: bool,
-) -> NDArray[np.intp]:
+def _bsearch(table: Floats, p: Floats | None, theta: Floats, *, strict: bool) -> Indices:
     """Per row, the first column ``c`` with ``fl(p + table[c]) >= theta`` (``>`` if strict).
 
     ``table`` (m, C) is non-decreasing per problem, ``p`` and ``theta`` are
@@ -127,9 +122,7 @@ def _bsearch(
     return found
 
 
-def first_at_or_above(
-    p: NDArray[np.float64], q: NDArray[np.float64], theta: NDArray[np.float64]
-) -> NDArray[np.intp]:
+def first_at_or_above(p: Floats, q: Floats, theta: Floats) -> Indices:
     """Per row, the first column where ``fl(P + Q[b]) >= theta`` (Q ascending per problem)."""
     return _bsearch(q, p, theta[:, np.newaxis], strict=False)
 
@@ -138,14 +131,14 @@ def first_at_or_above(
 class _SumTables:
     """Per-problem column data for :func:`contrast_sums` (see the module docstring)."""
 
-    q: NDArray[np.float64]  # (m, C) ascending
-    suffix: NDArray[np.float64]  # (m, C + 1): sum of q[b] for b >= k
-    moments: NDArray[np.float64]  # (N, m, C + 1): sum over b < k of (q0 - q[b])**n
-    q0: NDArray[np.float64]  # (m, 1)
-    yb: NDArray[np.float64]  # (m,)
+    q: Floats  # (m, C) ascending
+    suffix: Floats  # (m, C + 1): sum of q[b] for b >= k
+    moments: Floats  # (N, m, C + 1): sum over b < k of (q0 - q[b])**n
+    q0: Floats  # (m, 1)
+    yb: Floats  # (m,)
 
 
-def _sum_tables(q: NDArray[np.float64], yb: NDArray[np.float64]) -> _SumTables:
+def _sum_tables(q: Floats, yb: Floats) -> _SumTables:
     q = np.sort(q, axis=1)
     m, n_cols = q.shape
     suffix = np.zeros((m, n_cols + 1))
@@ -160,7 +153,7 @@ def _sum_tables(q: NDArray[np.float64], yb: NDArray[np.float64]) -> _SumTables:
     return _SumTables(q, suffix, moments, q0, yb)
 
 
-def _sum_rows(t: _SumTables, problems: slice, p: NDArray[np.float64]) -> NDArray[np.float64]:
+def _sum_rows(t: _SumTables, problems: slice, p: Floats) -> Floats:
     """Per problem of ``problems``, the sum of CR over the rows ``p`` and all columns."""
     q, yb = t.q[problems], t.yb[problems]
     n_cols = q.shape[1]
@@ -175,7 +168,7 @@ def _sum_rows(t: _SumTables, problems: slice, p: NDArray[np.float64]) -> NDArray
     weight = np.broadcast_to(cb[:, np.newaxis], k.shape)
     below = k > 0
     if not below.any():
-        only_linear: NDArray[np.float64] = linear.sum(axis=1)
+        only_linear: Floats = linear.sum(axis=1)
         return only_linear
     u, flat_k, weight = u[below], flat_k[below], weight[below]
     spread = float(np.max(np.abs(t.q0[problems] - q)))
@@ -194,13 +187,11 @@ def _sum_rows(t: _SumTables, problems: slice, p: NDArray[np.float64]) -> NDArray
     series *= v * weight
     reciprocal = np.zeros(k.shape)
     reciprocal[below] = series  # summed pairwise per problem, like the straightforward sum
-    sums: NDArray[np.float64] = linear.sum(axis=1) + reciprocal.sum(axis=1)
+    sums: Floats = linear.sum(axis=1) + reciprocal.sum(axis=1)
     return sums
 
 
-def contrast_sums(
-    p: NDArray[np.float64], q: NDArray[np.float64], yb: NDArray[np.float64]
-) -> NDArray[np.float64]:
+def contrast_sums(p: Floats, q: Floats, yb: Floats) -> Floats:
     """Per problem, the sum over rows and columns of ``CR(P + Q[b], Yb)``.
 
     ``p`` (m, R), ``q`` (m, C) in any order (the sum does not depend on it),
@@ -211,15 +202,13 @@ def contrast_sums(
     return _over_blocks(p.shape, lambda pr, rows: _sum_rows(tables, pr, p[pr, rows]))
 
 
-def _float_bits(x: NDArray[np.float64]) -> NDArray[np.int64]:
+def _float_bits(x: Floats) -> NDArray[np.int64]:
     return np.asarray(x, dtype=np.float64).view(np.int64)
 
 
 def _smallest_float(
-    predicate: Callable[[NDArray[np.float64]], NDArray[np.bool_]],
-    lo: NDArray[np.float64],
-    hi: NDArray[np.float64],
-) -> NDArray[np.float64]:
+    predicate: Callable[[Floats], NDArray[np.bool_]], lo: Floats, hi: Floats
+) -> Floats:
     """Per problem, the smallest float in ``[lo, hi]`` (>= 0) where a monotone predicate holds.
 
     Bisects on the bit patterns, which order non-negative floats; ``inf`` where
@@ -236,25 +225,27 @@ def _smallest_float(
     return np.where(holds_hi, hi_bits.view(np.float64), np.inf)
 
 
-def reach_thresholds(
-    yb: NDArray[np.float64], threshold: float
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Luminances ``(low, high)``: ``CR(Y, Yb) < threshold`` exactly when ``low <= Y < high``.
+def _luminance_band(
+    yb: Floats, inside: Callable[[Floats], NDArray[np.bool_]]
+) -> tuple[Floats, Floats]:
+    """Luminances ``(low, high)``: ``inside(CR(Y, Yb))`` holds exactly when ``low <= Y < high``.
 
     Found on the float expression itself, so a luminance comparison decides
-    the threshold test exactly as computing the contrast ratio would.
+    as computing the contrast ratio would.
     """
     yb = np.asarray(yb, dtype=np.float64)
-
-    def below_reaches(y: NDArray[np.float64]) -> NDArray[np.bool_]:
-        return (y >= yb) | (contrast_from_luminance(y, yb) < threshold)
-
-    def above_fails(y: NDArray[np.float64]) -> NDArray[np.bool_]:
-        return (y >= yb) & (contrast_from_luminance(y, yb) >= threshold)
-
-    low = _smallest_float(below_reaches, np.zeros_like(yb), yb)
-    high = _smallest_float(above_fails, yb, np.full_like(yb, 4.0))
+    low = _smallest_float(
+        lambda y: (y >= yb) | inside(contrast_from_luminance(y, yb)), np.zeros_like(yb), yb
+    )
+    high = _smallest_float(
+        lambda y: (y >= yb) & ~inside(contrast_from_luminance(y, yb)), yb, np.full_like(yb, 4.0)
+    )
     return low, high
+
+
+def reach_thresholds(yb: Floats, threshold: float) -> tuple[Floats, Floats]:
+    """Luminances ``(low, high)``: ``CR(Y, Yb) < threshold`` exactly when ``low <= Y < high``."""
+    return _luminance_band(yb, lambda cr: cr < threshold)
 
 
 @dataclass(frozen=True)
@@ -267,7 +258,7 @@ class ChangeCounts:
     exact_evaluations: int
 
 
-def _rank_table(dq: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.intp]]:
+def _rank_table(dq: Floats) -> tuple[Floats, Indices]:
     """Sorted ``dq`` and ``G[m, k, j] = #{b >= k : rank(b) >= j}``."""
     m, n_cols = dq.shape
     order = np.argsort(dq, axis=1, kind="stable")
@@ -281,24 +272,22 @@ def _rank_table(dq: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[n
     return np.take_along_axis(dq, order, axis=1), counts
 
 
-def _searchsorted(
-    sorted_rows: NDArray[np.float64], values: NDArray[np.float64], side: str
-) -> NDArray[np.intp]:
+def _searchsorted(sorted_rows: Floats, values: Floats, side: str) -> Indices:
     """``np.searchsorted`` per problem: (m, C) ascending rows, (m, R) values."""
     return _bsearch(sorted_rows, None, values, strict=side == "right")
 
 
 def _exact_changes(
-    ps: NDArray[np.float64],
-    qs: NDArray[np.float64],
-    po: NDArray[np.float64],
-    qo: NDArray[np.float64],
-    yb: NDArray[np.float64],
+    ps: Floats,
+    qs: Floats,
+    po: Floats,
+    qo: Floats,
+    yb: Floats,
     tol: float,
-    problem: NDArray[np.intp],
-    row: NDArray[np.intp],
-    col: NDArray[np.intp],
-) -> tuple[NDArray[np.intp], NDArray[np.intp]]:
+    problem: Indices,
+    row: Indices,
+    col: Indices,
+) -> tuple[Indices, Indices]:
     """Per-problem (increase, decrease) counts of listed combinations, straightforward floats."""
     y_b = yb[problem]
     cr_s = contrast_from_luminance(ps[problem, row] + qs[problem, col], y_b)
@@ -311,13 +300,13 @@ def _exact_changes(
 
 
 def _count_rows(
-    ps: NDArray[np.float64],
-    qs: NDArray[np.float64],
-    po: NDArray[np.float64],
-    qo: NDArray[np.float64],
-    yb: NDArray[np.float64],
-    rank_tables: list[tuple[NDArray[np.float64], NDArray[np.intp]]],
-    thresholds: tuple[NDArray[np.float64], ...],
+    ps: Floats,
+    qs: Floats,
+    po: Floats,
+    qo: Floats,
+    yb: Floats,
+    rank_tables: list[tuple[Floats, Indices]],
+    thresholds: tuple[Floats, ...],
     quiet: NDArray[np.bool_],
     tol: float,
 ) -> NDArray[np.int64]:
@@ -339,9 +328,7 @@ def _count_rows(
     ks = first_at_or_above(ps, qs, yb)
     if reach:
         s1, s2 = first_at_or_above(ps, qs, low), first_at_or_above(ps, qs, high)
-    keep: tuple[NDArray[np.intp], NDArray[np.intp]] | None = (
-        None  # searched once some output sits at Yb
-    )
+    keep: tuple[Indices, Indices] | None = None  # searched once some output sits at Yb
     above_yb = np.nextafter(yb, np.inf)
     side = n_cols + 1
     base = (np.arange(m) * side * side)[:, np.newaxis]
@@ -372,7 +359,7 @@ def _count_rows(
             ranks.ravel(), base, side, (lo, hi), (j_lo, j_hi), n_cols
         )
         # Output exactly at Yb: contrast 1, never an increase.
-        dec_equal: int | NDArray[np.intp] = 0
+        dec_equal: int | Indices = 0
         if keep is not None:
             sk1, sk2 = keep
             dec_equal = np.maximum(0, np.minimum(ko_eq, sk1) - ko) + np.maximum(
@@ -392,13 +379,13 @@ def _count_rows(
 
 
 def _same_side(
-    flat: NDArray[np.intp],
+    flat: Indices,
     base: NDArray[np.int64],
     side: int,
-    lo_hi: tuple[NDArray[np.intp], NDArray[np.intp]],
-    j_lo_hi: tuple[NDArray[np.intp], NDArray[np.intp]],
+    lo_hi: tuple[Indices, Indices],
+    j_lo_hi: tuple[Indices, Indices],
     n_cols: int,
-) -> tuple[NDArray[np.intp], ...]:
+) -> tuple[Indices, ...]:
     """Increases and decreases read off the rank tables ``flat`` where source and
     output lie on one side of Yb: (below increase, below decrease, above increase,
     above decrease), each (m, R); columns within the tie band are left uncounted."""
@@ -414,13 +401,13 @@ def _same_side(
 
 
 def _opposite_side(
-    ks: NDArray[np.intp],
-    ko: NDArray[np.intp],
-    ko_eq: NDArray[np.intp],
+    ks: Indices,
+    ko: Indices,
+    ko_eq: Indices,
     tied: NDArray[np.bool_],
     fast: NDArray[np.bool_],
     n_cols: int,
-) -> tuple[NDArray[np.intp], NDArray[np.intp], NDArray[np.intp]]:
+) -> tuple[Indices, Indices, Indices]:
     """The (problem, row, column) combinations to evaluate one by one: those with
     source and output on opposite sides of Yb, and every column of a tied row."""
     m, n_rows = ks.shape
@@ -438,25 +425,13 @@ def _opposite_side(
     return np.repeat(problem, width), np.repeat(row, width), col
 
 
-def _keep_thresholds(
-    yb: NDArray[np.float64], tol: float
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def _keep_thresholds(yb: Floats, tol: float) -> tuple[Floats, Floats]:
     """Luminances ``(low, high)``: ``1 - CR(Y, Yb) < -tol`` iff ``Y < low`` or ``Y >= high``.
 
     The decision for an output exactly at ``Yb`` (contrast 1), on the float
     expression of the straightforward implementation.
     """
-
-    def below_keeps(y: NDArray[np.float64]) -> NDArray[np.bool_]:
-        return (y >= yb) | (1.0 - contrast_from_luminance(y, yb) >= -tol)
-
-    def above_drops(y: NDArray[np.float64]) -> NDArray[np.bool_]:
-        return (y >= yb) & (1.0 - contrast_from_luminance(y, yb) < -tol)
-
-    return (
-        _smallest_float(below_keeps, np.zeros_like(yb), yb),
-        _smallest_float(above_drops, yb, np.full_like(yb, 4.0)),
-    )
+    return _luminance_band(yb, lambda cr: 1.0 - cr >= -tol)
 
 
 # |dCR/dY| <= (Yb + .05) / .05**2 <= 420 for luminances in [0, 1]: a change in
@@ -465,11 +440,11 @@ _CR_LIPSCHITZ = 420.0
 
 
 def change_counts(
-    ps: NDArray[np.float64],
-    qs: NDArray[np.float64],
-    po: NDArray[np.float64],
-    qo: NDArray[np.float64],
-    yb: NDArray[np.float64],
+    ps: Floats,
+    qs: Floats,
+    po: Floats,
+    qo: Floats,
+    yb: Floats,
     *,
     tol: float,
     threshold: float | None,
@@ -521,9 +496,9 @@ def change_counts(
 
 def _over_blocks(
     shape: tuple[int, int],
-    block: Callable[[slice, slice], NDArray[np.float64] | NDArray[np.int64]],
+    block: Callable[[slice, slice], Floats | NDArray[np.int64]],
     lead: tuple[int, ...] = (),
-) -> NDArray[np.float64]:
+) -> Floats:
     """Sum ``block(problem_slice, row_slice)`` over cache-sized blocks.
 
     Per-problem results of shape ``lead + (n,)`` are added into the totals.
@@ -541,14 +516,7 @@ def _over_blocks(
 
 
 def change_counts_any_order(
-    ps: NDArray[np.float64],
-    qs: NDArray[np.float64],
-    po: NDArray[np.float64],
-    qo: NDArray[np.float64],
-    yb: NDArray[np.float64],
-    *,
-    tol: float,
-    threshold: float,
+    ps: Floats, qs: Floats, po: Floats, qo: Floats, yb: Floats, *, tol: float, threshold: float
 ) -> ChangeCounts:
     """The counts of :func:`change_counts` for output tables in any order (``alpha < 0``).
 

@@ -11,7 +11,6 @@ whether ours matches to every printed digit (:mod:`.compare` decides both).
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from importlib.metadata import PackageNotFoundError, version
 from typing import Any
 
 from rich import box
@@ -19,6 +18,7 @@ from rich.console import Group, RenderableType
 from rich.table import Table
 from rich.text import Text
 
+from alpha_audit import __version__
 from alpha_audit.render.common import RenderOptions, dumps, escape_markdown, to_text
 from alpha_audit.reproduce.compare import Comparison, comparisons, setup_differences
 from alpha_audit.reproduce.experiments import (
@@ -51,18 +51,10 @@ __all__ = [
     "render_table",
     "reproduction_json",
     "reproduction_markdown",
-    "tables",
     "to_json_dict",
 ]
 
 SCHEMA = "alpha-audit.reproduce/1"
-
-
-def _tool_version() -> str:
-    try:
-        return version("alpha-audit")
-    except PackageNotFoundError:  # running from a source tree without metadata
-        return "unknown"
 
 
 def _change(change: ContrastChange | None) -> dict[str, Any] | None:
@@ -74,7 +66,7 @@ def to_json_dict(run: Reproduction) -> dict[str, Any]:
     theme = run.theme
     doc: dict[str, Any] = {
         "schema": SCHEMA,
-        "tool": {"name": "alpha-audit", "version": _tool_version()},
+        "tool": {"name": "alpha-audit", "version": __version__},
         "quick": run.quick,
         "alphas": list(run.alphas),
         "theme": {
@@ -238,6 +230,15 @@ def _setup_sentence(subject: str, differs: str | None, same: str) -> str:
     return f"{subject}: not the paper's ({escape_markdown(differs)}); not comparable in digits."
 
 
+# The broad grid's quantities beside the paper's, as the report names them.
+_BROAD_QUANTITIES = (
+    ("increase_pct", "increase %"),
+    ("decrease_pct", "decrease %"),
+    ("max_loss", "maximum loss"),
+    ("loss_le_0_25_pct", "decreases with loss <= 0.25, %"),
+)
+
+
 def _broad_section(run: Reproduction, index: _Index) -> list[str]:
     assert run.broad_grid is not None
     first = run.broad_grid[0]
@@ -253,28 +254,17 @@ def _broad_section(run: Reproduction, index: _Index) -> list[str]:
     ]
     for r in run.broad_grid:
         key = alpha_key(r.alpha)
-        lines += [
-            _row(label, ours, index.get(("broad_grid", key, name)))
-            for label, ours, name in (
-                (f"alpha {key}: increase %", r.increase_pct, "increase_pct"),
-                (f"alpha {key}: decrease %", r.decrease_pct, "decrease_pct"),
-                (f"alpha {key}: maximum loss", r.max_loss, "max_loss"),
-                (
-                    f"alpha {key}: decreases with loss <= 0.25, %",
-                    r.loss_le_0_25_pct,
-                    "loss_le_0_25_pct",
-                ),
-                (
-                    f"alpha {key}: worst case, contrast at 1",
-                    r.worst_contrast[1.0],
-                    "worst_contrast_1.0",
-                ),
-                (
-                    f"alpha {key}: worst case, contrast at {key}",
-                    r.worst_contrast[r.alpha],
-                    f"worst_contrast_{key}",
-                ),
+        quantities = [(label, getattr(r, name), name) for name, label in _BROAD_QUANTITIES]
+        quantities += [
+            (label, r.worst_contrast[a], f"worst_contrast_{alpha_key(a)}")
+            for label, a in (
+                ("worst case, contrast at 1", 1.0),
+                (f"worst case, contrast at {key}", r.alpha),
             )
+        ]
+        lines += [
+            _row(f"alpha {key}: {label}", ours, index.get(("broad_grid", key, name)))
+            for label, ours, name in quantities
         ]
     lines.append("")
     for r in run.broad_grid:
@@ -638,8 +628,9 @@ def _sweep_table(run: Reproduction) -> Table:
     return t
 
 
-def tables(run: Reproduction) -> list[RenderableType]:
-    """Rich tables of a run, one or more per experiment (notes below some)."""
+def render_table(run: Reproduction, options: RenderOptions) -> str:
+    """Every experiment's table (notes below some) at ``options.width`` columns, then the
+    tally of printed figures."""
     index = _index(run)
     tables: list[RenderableType] = []
     if run.broad_grid is not None:
@@ -650,9 +641,5 @@ def tables(run: Reproduction) -> list[RenderableType]:
         tables.append(_sweep_table(run))
     if run.palette is not None:
         tables += _palette_tables(run, index)
-    return tables + browser_tables(run.browser, run.runtime, _table)
-
-
-def render_table(run: Reproduction, options: RenderOptions) -> str:
-    """Every experiment's table at ``options.width`` columns, then the tally of printed figures."""
-    return to_text(Group(*tables(run), Text(_tally(run))), options)
+    tables += browser_tables(run.browser, run.runtime, _table)
+    return to_text(Group(*tables, Text(_tally(run))), options)

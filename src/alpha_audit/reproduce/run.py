@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
-from typing import TypedDict, assert_never
+from typing import Any
 
 from alpha_audit.errors import UsageError
 from alpha_audit.model import Theme
@@ -80,17 +81,6 @@ class Reproduction:
     runtime: RuntimeResult | None = None
 
 
-class _Results(TypedDict, total=False):
-    """The experiments' results, keyed as :class:`Reproduction`'s fields."""
-
-    full_gamut: tuple[FullGamutResult, ...]
-    broad_grid: tuple[BroadGridResult, ...]
-    sweep: SweepResult
-    palette: PaletteResult
-    browser: BrowserValidationResult
-    runtime: RuntimeResult
-
-
 def reproduce(
     theme: Theme,
     only: Iterable[Experiment] = (),
@@ -116,52 +106,38 @@ def reproduce(
     if not alphas:
         raise UsageError("`alphas` is empty; give at least one coefficient")
     settings = Settings.quick() if quick else Settings.paper()
-    results: _Results = {}
-    for experiment in Experiment:
-        if experiment not in selected:
-            continue
-
-        def step(fraction: float, experiment: Experiment = experiment) -> None:
-            if progress is not None:
-                progress(experiment, fraction)
-
-        match experiment:
-            case Experiment.FULL_GAMUT:
-                results["full_gamut"] = full_gamut(
-                    theme, alphas, levels=settings.full_gamut_levels, progress=step
-                )
-            case Experiment.BROAD_GRID:
-                results["broad_grid"] = broad_grid(
-                    alphas,
-                    source_levels=settings.source_levels,
-                    background_levels=settings.background_levels,
-                    progress=step,
-                )
-            case Experiment.SWEEP:
-                results["sweep"] = sweep(
-                    theme,
-                    sweep_alphas(0.0, 2.0, settings.sweep_step),
-                    levels=settings.sweep_levels,
-                    pairs=settings.pairs,
-                    progress=step,
-                )
-            case Experiment.PALETTE:
-                results["palette"] = palette_separation(
-                    theme, alphas, pairs=settings.pairs, progress=step
-                )
-            case Experiment.BROWSER:
-                assert icons is not None
-                results["browser"] = browser_validation(
-                    theme, icons, engines=engines, progress=step
-                )
-            case Experiment.RUNTIME:
-                assert icons is not None
-                results["runtime"] = runtime(
-                    icons,
-                    settings=RuntimeSettings.quick() if quick else RuntimeSettings.paper(),
-                    engines=engines,
-                    progress=step,
-                )
-            case _:
-                assert_never(experiment)
+    runs: dict[Experiment, Callable[[Callable[[float], None]], object]] = {
+        Experiment.FULL_GAMUT: lambda step: full_gamut(
+            theme, alphas, levels=settings.full_gamut_levels, progress=step
+        ),
+        Experiment.BROAD_GRID: lambda step: broad_grid(
+            alphas,
+            source_levels=settings.source_levels,
+            background_levels=settings.background_levels,
+            progress=step,
+        ),
+        Experiment.SWEEP: lambda step: sweep(
+            theme,
+            sweep_alphas(0.0, 2.0, settings.sweep_step),
+            levels=settings.sweep_levels,
+            pairs=settings.pairs,
+            progress=step,
+        ),
+        Experiment.PALETTE: lambda step: palette_separation(
+            theme, alphas, pairs=settings.pairs, progress=step
+        ),
+        Experiment.BROWSER: lambda step: browser_validation(
+            theme, icons or Path(), engines=engines, progress=step
+        ),
+        Experiment.RUNTIME: lambda step: runtime(
+            icons or Path(),
+            settings=RuntimeSettings.quick() if quick else RuntimeSettings.paper(),
+            engines=engines,
+            progress=step,
+        ),
+    }
+    report = progress or (lambda _experiment, _fraction: None)
+    results: dict[str, Any] = {  # in the paper's order
+        e.value.replace("-", "_"): runs[e](partial(report, e)) for e in Experiment if e in selected
+    }
     return Reproduction(theme, settings, quick, alphas, **results)

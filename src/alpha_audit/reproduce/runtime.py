@@ -36,7 +36,7 @@ from alpha_audit.preview.compose import mask_codes
 from alpha_audit.preview.html import RENDERER_ASSET, asset, atlas_data, scoped_script
 from alpha_audit.reproduce.browser import PAPER_ICONS, load_validation_icons, run_engines
 from alpha_audit.reproduce.experiments import sweep_alphas
-from alpha_audit.reproduce.figures import _FONT, _SMALL, _label, _nice_ticks
+from alpha_audit.reproduce.figures import _FONT, _SMALL, _nice_ticks, draw_axes, draw_dotted
 from alpha_audit.reproduce.grids import PAPER_SEED
 
 __all__ = [
@@ -298,27 +298,15 @@ def _runtime_panel(draw: ImageDraw.ImageDraw, ox: int, timing: EngineTiming) -> 
     colour = _ENGINE_COLOURS.get(timing.engine, (0, 0, 0))
     band = tuple(int(255 - (255 - c) * 0.3) for c in colour)
     draw.text((x0, 8), f"{ENGINES[timing.engine].LABEL}", fill="black", font=_FONT)
-    for t in ticks:
-        y = py(t)
-        draw.line((x0 - 4, y, x0, y), fill="black")
-        draw.line((x0 + 1, y, x1 - 1, y), fill=(230, 230, 230))
-        draw.text((x0 - 6, y), _label(t), fill="black", font=_SMALL, anchor="rm")
+    draw_axes(draw, (x0, y0, x1, y1), ticks, (px, py), (a_lo, a_hi))
     polygon = [(px(a), py(v)) for a, v in zip(alphas, hi, strict=True)]
     polygon += [(px(a), py(v)) for a, v in zip(alphas[::-1], lo[::-1], strict=True)]
     if len(polygon) >= 3:
         draw.polygon(polygon, fill=band)
-    for t in _nice_ticks(a_lo, a_hi, 4):
-        if a_lo - 1e-9 <= t <= a_hi + 1e-9:
-            x = px(t)
-            draw.line((x, y1, x, y1 + 4), fill="black")
-            draw.text((x, y1 + 6), f"{t:g}", fill="black", font=_SMALL, anchor="mt")
-    draw.text(((x0 + x1) / 2, y1 + 24), "alpha", fill="black", font=_FONT, anchor="mt")
     draw.text((ox + 4, y0 - 14), "ms per frame", fill="black", font=_SMALL)
-    for boundary in (0.0, 1.0):  # the paper marks alpha = 0 and 1 with dotted lines
+    for boundary in (0.0, 1.0):
         if a_lo <= boundary <= a_hi:
-            x = px(boundary)
-            for y in range(int(y0), int(y1), 6):
-                draw.line((x, y, x, min(y + 3, y1)), fill=(90, 90, 90))
+            draw_dotted(draw, px(boundary), y0, y1)
     draw.line([(px(a), py(v)) for a, v in zip(alphas, mid, strict=True)], fill=colour, width=2)
     draw.rectangle((x0, y0, x1, y1), outline="black")  # last: the band must not cover it
 

@@ -17,6 +17,7 @@ import json
 import os
 import re
 import stat
+from collections.abc import Sequence, Sized
 from dataclasses import dataclass, field, replace
 from enum import StrEnum
 from pathlib import Path, PurePosixPath
@@ -40,7 +41,6 @@ __all__ = [
     "ApplyPlan",
     "ApplyScope",
     "Unsafe",
-    "alpha_spans",
     "apply_alpha",
     "apply_suggestion",
     "describe_plan",
@@ -72,16 +72,6 @@ def _value(node: yaml.MappingNode, key: str) -> yaml.Node | None:
         if isinstance(k, yaml.ScalarNode) and k.value == key:
             return v
     return None
-
-
-def alpha_spans(text: str, path: str | Path | None = None) -> tuple[list[tuple[int, int]], bool]:
-    """Character spans of every ``alpha`` value, and whether a top-level one exists.
-
-    >>> alpha_spans("name: x\\nalpha: 1.1  # comment\\n")
-    ([(15, 18)], True)
-    """
-    m = _Manifest(text, path)
-    return sorted(set(m.spans)), m.top is not None
 
 
 def set_alpha(text: str, value: str, path: str | Path | None = None) -> str:
@@ -177,7 +167,6 @@ class _Manifest:
     text: str
     path: str | Path | None = None
     top: yaml.ScalarNode | None = field(init=False, default=None)
-    spans: list[tuple[int, int]] = field(init=False, default_factory=list)
     explicit: dict[str, list[tuple[int, int]]] = field(init=False, default_factory=dict)
     overrides_key: yaml.Node | None = field(init=False, default=None)
     overrides: yaml.Node | None = field(init=False, default=None)
@@ -202,12 +191,10 @@ class _Manifest:
         icons = _value(root, "icons")
         if isinstance(icons, yaml.SequenceNode):
             for item in icons.value:
-                if not isinstance(item, yaml.MappingNode):
+                span = self._alpha_span(item, anchored)
+                if span is None:
                     continue
-                alpha, name, file = (_value(item, k) for k in ("alpha", "name", "file"))
-                if alpha is None:
-                    continue
-                span = _span(self._checked(alpha, anchored))
+                name, file = _value(item, "name"), _value(item, "file")
                 label = name.value if isinstance(name, yaml.ScalarNode) else None
                 if label is None and isinstance(file, yaml.ScalarNode):
                     label = PurePosixPath(file.value.replace("\\", "/")).stem
@@ -216,27 +203,22 @@ class _Manifest:
         for key, node in root.value:
             if isinstance(key, yaml.ScalarNode) and key.value == "overrides":
                 self.overrides_key, self.overrides = key, node
-        palette = _value(root, "palette")
-        if isinstance(palette, yaml.MappingNode):
-            for key, node in palette.value:
-                if isinstance(key, yaml.ScalarNode):
-                    self.palette[key.value] = node
-                    alpha = _value(node, "alpha") if isinstance(node, yaml.MappingNode) else None
-                    if alpha is not None:
-                        self._checked(alpha, anchored)
-        if isinstance(self.overrides, yaml.MappingNode):
-            for key, node in self.overrides.value:
-                if not isinstance(key, yaml.ScalarNode):
-                    continue
-                self.entries[key.value] = node
-                alpha = _value(node, "alpha") if isinstance(node, yaml.MappingNode) else None
-                if alpha is not None:
-                    span = _span(self._checked(alpha, anchored))
-                    self.explicit.setdefault(key.value, []).append(span)
-        self.spans.sort()
+        palette, overrides = _entries(_value(root, "palette")), _entries(self.overrides)
+        self.palette, self.entries = dict(palette), dict(overrides)
+        for _, node in palette:
+            self._alpha_span(node, anchored)
+        for key_name, node in overrides:
+            span = self._alpha_span(node, anchored)
+            if span is not None:
+                self.explicit.setdefault(key_name, []).append(span)
+
+    def _alpha_span(self, node: yaml.Node, anchored: set[int]) -> tuple[int, int] | None:
+        """Where the alpha of the mapping ``node`` sits, checked; ``None`` without one."""
+        alpha = _value(node, "alpha") if isinstance(node, yaml.MappingNode) else None
+        return None if alpha is None else _span(self._checked(alpha, anchored))
 
     def _checked(self, node: yaml.Node, anchored: set[int]) -> yaml.ScalarNode:
-        """``node`` as an editable alpha value (recorded in :attr:`spans`), or why not."""
+        """``node`` as an editable alpha value, or why not."""
         line = node.start_mark.line + 1
         if not isinstance(node, yaml.ScalarNode):
             raise InputError(
@@ -249,8 +231,14 @@ class _Manifest:
                 "other values may follow; write the number itself there",
                 path=self.path,
             )
-        self.spans.append(_span(node))
         return node
+
+
+def _entries(node: yaml.Node | None) -> list[tuple[str, yaml.Node]]:
+    """A mapping's entries with a scalar key, in order; none when ``node`` is no mapping."""
+    if not isinstance(node, yaml.MappingNode):
+        return []
+    return [(k.value, v) for k, v in node.value if isinstance(k, yaml.ScalarNode)]
 
 
 def _span(node: yaml.Node) -> tuple[int, int]:
@@ -374,13 +362,8 @@ def edit_alphas(
         node = m.entries.get(name)
         if node is None:
             new_entries.append((name, value))
-        elif isinstance(node, yaml.MappingNode) and node.flow_style:
-            close = node.end_mark.index - 1  # the closing brace
-            edits.append((close, close, f"{', ' if node.value else ''}alpha: {value}"))
-        elif isinstance(node, yaml.MappingNode) and node.value:
-            indent = node.value[0][0].start_mark.column
-            at = _line_end(text, _content_end(node) - 1)
-            edits.append((at, at, eol + " " * indent + f"alpha: {value}"))
+        elif isinstance(node, yaml.MappingNode) and (node.flow_style or node.value):
+            edits.append(_mapping_alpha(text, node, value, eol))
         else:  # `alert:` with nothing (or ~): becomes a flow mapping
             start, end = _span(node)
             edits.append((start, end, f"{'' if text[start - 1] == ' ' else ' '}{{alpha: {value}}}"))
@@ -785,20 +768,26 @@ def describe_plan(plan: ApplyPlan, path: str | Path, changed: bool, precision: i
         parts.append(f"{verb} alpha {format_alpha(plan.top, precision)} in {path}")
     if plan.palette:
         shown = ", ".join(f"{c}: {format_alpha(a, precision)}" for c, a in plan.palette.items())
-        count = len(plan.palette)
-        parts.append(f"wrote alpha for {count} colour{'s' * (count != 1)} ({shown}) in {path}")
+        parts.append(f"wrote alpha for {_count(plan.palette, 'colour')} ({shown}) in {path}")
     if plan.icons:
         shown = ", ".join(f"{n}: {format_alpha(a, precision)}" for n, a in plan.icons.items())
-        count = len(plan.icons)
-        parts.append(f"wrote alpha for {count} icon{'s' * (count != 1)} ({shown}) in {path}")
+        parts.append(f"wrote alpha for {_count(plan.icons, 'icon')} ({shown}) in {path}")
     if not parts:
         parts.append(f"nothing to change in {path}")
     if plan.kept:
-        count = len(plan.kept)
         names = ", ".join(plan.kept)
-        parts.append(f"kept the explicit alpha of {count} icon{'s' * (count != 1)} ({names})")
+        parts.append(f"kept the explicit alpha of {_count(plan.kept, 'icon')} ({names})")
     parts += [f"left {u}" for u in _unsafe(plan)]
     return "; ".join(parts)
+
+
+def _count(items: Sized, noun: str) -> str:
+    return f"{len(items)} {noun}{'s' * (len(items) != 1)}"
+
+
+def _some(names: Sequence[str]) -> str:
+    """The first three names, and how many more."""
+    return ", ".join(names[:3]) + (f" +{len(names) - 3} more" if len(names) > 3 else "")
 
 
 def _unsafe(plan: ApplyPlan) -> list[str]:
@@ -810,11 +799,10 @@ def _unsafe(plan: ApplyPlan) -> list[str]:
         if limit is None:
             out.append(what)
             continue
-        who = " and ".join(limit.roles) if limit.roles else ", ".join(limit.icons[:3])
-        more = "" if limit.roles or len(limit.icons) <= 3 else f" +{len(limit.icons) - 3} more"
+        who = " and ".join(limit.roles) if limit.roles else _some(limit.icons)
         out.append(
             f"{what} (no safe alpha from 1: {limit.rule.value} on {limit.canvas} at alpha "
-            f"{limit.at:g}, {who}{more})"
+            f"{limit.at:g}, {who})"
         )
     return out
 
@@ -824,9 +812,8 @@ def _why_not(plan: ApplyPlan) -> list[str]:
     alpha (left at its alpha)."""
     f = plan.failures[0]
     held = f" with the explicit alpha of {', '.join(plan.kept)} kept" if plan.kept else ""
-    icons = ", ".join(f.icons[:3]) + (f" +{len(f.icons) - 3} more" if len(f.icons) > 3 else "")
     out = [
         f"the gate would still fail{held} ({len(plan.failures)} finding(s); first "
-        f"{f.rule.value} of {icons}: {f.message})"
+        f"{f.rule.value} of {_some(f.icons)}: {f.message})"
     ]
     return out + [f"left {u}" for u in _unsafe(plan)]

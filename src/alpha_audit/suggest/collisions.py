@@ -18,7 +18,7 @@ from numpy.typing import NDArray
 from alpha_audit.color import delta_e_2000_lab, linear_to_lab, pack_8bit, shipped, to_8bit
 from alpha_audit.color.nearest import delta_e_2000_lightness_key, pairs_below
 from alpha_audit.rules import RULES, Family, Rule
-from alpha_audit.suggest.events import code_timelines
+from alpha_audit.suggest.events import Floats, Indices, code_timelines
 from alpha_audit.suggest.scene import ALPHA_LO, Found, Scene, Tracks
 
 # Code timelines kept between questions (a few KB per paint and canvas).
@@ -26,7 +26,7 @@ _TIMELINE_CACHE_BYTES = 64 << 20
 # A question moving few paints builds their timelines on every canvas in one batch.
 _TIMELINES_AT_ONCE = 1024
 # One paint's code timeline on one canvas: (points, packed codes of its elements).
-Timeline = tuple[NDArray[np.float64], NDArray[np.int64]]
+Timeline = tuple[Floats, NDArray[np.int64]]
 
 
 def _shared_code_starts(
@@ -59,8 +59,8 @@ _SORT_FROM = 16
 
 
 def _code_groups(
-    moving: NDArray[np.bool_], subset: NDArray[np.intp], codes: NDArray[np.int64]
-) -> Iterator[NDArray[np.intp]]:
+    moving: NDArray[np.bool_], subset: Indices, codes: NDArray[np.int64]
+) -> Iterator[Indices]:
     """The tracks of ``subset`` sharing a code with a moving one, group by group, each once,
     in order of its first moving track (``moving`` and ``codes`` are per ``subset`` entry).
 
@@ -116,14 +116,14 @@ class Collisions:
         return np.take_along_axis(codes, order, axis=1), order
 
     @cached_property
-    def _ref_lab(self) -> NDArray[np.float64]:
+    def _ref_lab(self) -> Floats:
         """CIELAB of what each paint ships at alpha 1 on each canvas: (paints, canvases, 3)."""
         _, first = np.unique(self.scene.keys, return_index=True)  # a row of each paint
         return linear_to_lab(shipped(self.scene.result.reference[first]))
 
     def _near(
         self, tracks: Tracks, moving_codes: NDArray[np.int64], j: int
-    ) -> tuple[NDArray[np.intp], NDArray[np.int64]]:
+    ) -> tuple[Indices, NDArray[np.int64]]:
         """The fixed tracks whose code on canvas ``j`` is one of ``moving_codes``, and
         those codes: no other fixed track can share a code with a moving one.
 
@@ -151,7 +151,7 @@ class Collisions:
         if found is None:
             lab = self._ref_lab[:, j]
 
-            def distance(f: NDArray[np.intp], g: NDArray[np.intp]) -> NDArray[np.float64]:
+            def distance(f: Indices, g: Indices) -> Floats:
                 return delta_e_2000_lab(lab[f], lab[g])
 
             # Paints shipping one colour at alpha 1 (0 apart) are found whatever the distance.
@@ -178,7 +178,7 @@ class Collisions:
         return widest
 
     def collision_group(
-        self, tracks: Tracks, subset: NDArray[np.intp], codes: NDArray[np.int64], j: int
+        self, tracks: Tracks, subset: Indices, codes: NDArray[np.int64], j: int
     ) -> tuple[Rule, tuple[int, ...]] | None:
         """The rule and icons of the first unsafe collision group (holding a moving track).
 
@@ -204,7 +204,7 @@ class Collisions:
     def track_segments(
         self,
         tracks: Tracks,
-        moving: NDArray[np.intp],
+        moving: Indices,
         canvases: Sequence[int],
         a_lo: float,
         a_hi: float,
@@ -286,7 +286,7 @@ class Collisions:
         return sorted(out, key=lambda f: f.canvas)
 
     def _first_collision(
-        self, tracks: Tracks, mv: NDArray[np.intp], j: int, a_lo: float, a_hi: float
+        self, tracks: Tracks, mv: Indices, j: int, a_lo: float, a_hi: float
     ) -> Found | None:
         """The first unsafe collision on canvas ``j`` with ``a`` in ``[a_lo, a_hi]``, if any."""
         own = self.track_segments(tracks, mv, [j], a_lo, a_hi)

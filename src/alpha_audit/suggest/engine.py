@@ -231,10 +231,11 @@ class SafeAlphas(Scene):
         order = {c: k for k, c in enumerate(self.colours)}
         last: tuple[tuple[str, ...], SafeAlpha] | None = None
         while True:
-            moving = np.zeros(len(self.names), dtype=bool)
-            for i, colour in enumerate(self.colour_of):
-                moving[i] = colour in group and self.names[i] not in keep
-            safe = self.answer(moving, per_canvas_needed=False)
+            moving = [
+                c in group and n not in keep
+                for c, n in zip(self.colour_of, self.names, strict=True)
+            ]
+            safe = self.answer(np.array(moving, dtype=bool), per_canvas_needed=False)
             answer = tuple(sorted(group, key=lambda c: order.get(c, len(order)))), safe
             limit = safe.limit
             joins: set[str] = set()
@@ -488,18 +489,23 @@ def _per_colour(
     out = []
     for name, icons in members.items():
         if icons:
-            moving = np.zeros(len(engine.names), dtype=bool)
-            moving[icons] = True
             out.append(
                 ColorSuggestion(
                     color=name,
                     source=engine.result.iconset.icons[icons[0]].color,
                     icons=tuple(engine.names[i] for i in icons),
-                    safe=engine.answer(moving, per_canvas_needed=False),
+                    safe=engine.answer(_only(engine, icons), per_canvas_needed=False),
                 )
             )
         tick()
     return out
+
+
+def _only(engine: SafeAlphas, icons: list[int]) -> NDArray[np.bool_]:
+    """Which icons move: those at ``icons``."""
+    moving = np.zeros(len(engine.names), dtype=bool)
+    moving[icons] = True
+    return moving
 
 
 def _per_icon(engine: SafeAlphas, tick: Callable[[], None]) -> list[IconSuggestion]:
@@ -520,9 +526,7 @@ def _per_icon(engine: SafeAlphas, tick: Callable[[], None]) -> list[IconSuggesti
             rep, safe = cache[style]
             safe = _swap_names(safe, rep, icon.name)
         else:
-            moving = np.zeros(len(engine.names), dtype=bool)
-            moving[i] = True
-            safe = engine.answer(moving, per_canvas_needed=False)
+            safe = engine.answer(_only(engine, [i]), per_canvas_needed=False)
             cache[style] = (icon.name, safe)
         out.append(IconSuggestion(icon.name, icon.color_name or icon.color, icon.alpha, safe))
         tick()

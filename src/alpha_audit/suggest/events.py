@@ -28,6 +28,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from alpha_audit.color import LUMINANCE_WEIGHTS, pack_8bit, srgb_decode, to_8bit
 
+Floats = NDArray[np.float64]
+Indices = NDArray[np.intp]
+
 __all__ = [
     "BISECTION_TOLERANCE",
     "CODE_THRESHOLDS",
@@ -42,7 +45,7 @@ __all__ = [
 
 # Linear value at which the 8-bit code steps from n to n + 1 (n = 0..254): the
 # encoded value is then exactly (n + 0.5) / 255 (CSS Color 4 transfer, x255).
-CODE_THRESHOLDS: NDArray[np.float64] = srgb_decode((np.arange(255, dtype=np.float64) + 0.5) / 255)
+CODE_THRESHOLDS: Floats = srgb_decode((np.arange(255, dtype=np.float64) + 0.5) / 255)
 # The issue's bar for crossings without a closed form (CIEDE2000).
 BISECTION_TOLERANCE = 1e-9
 # first_below samples each bracket at up to _MAX_REFINE inner points per call,
@@ -51,7 +54,7 @@ _MAX_REFINE = 15
 _REFINE_POINTS = 4096
 
 
-def clip_breakpoints(source: ArrayLike, background: ArrayLike) -> NDArray[np.float64]:
+def clip_breakpoints(source: ArrayLike, background: ArrayLike) -> Floats:
     """Coefficient at which each channel of ``b + a (s - b)`` reaches 0 or 1.
 
     Channels are on the last axis; a channel with ``s == b`` never clips (``inf``).
@@ -69,9 +72,7 @@ def clip_breakpoints(source: ArrayLike, background: ArrayLike) -> NDArray[np.flo
     return np.where(d > 0, up, np.where(d < 0, down, np.inf))
 
 
-def luminance_band(
-    limit: ArrayLike, y_background: ArrayLike
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def luminance_band(limit: ArrayLike, y_background: ArrayLike) -> tuple[Floats, Floats]:
     """The open band ``(y_lo, y_hi)`` of luminances whose contrast with ``Yb`` is below ``limit``.
 
     ``(max(Y, Yb) + 0.05) / (min(Y, Yb) + 0.05) < L`` holds exactly for
@@ -91,7 +92,7 @@ def luminance_band(
     return np.where(empty, np.inf, lo), np.where(empty, -np.inf, hi)
 
 
-def _luminance(channels: NDArray[np.float64]) -> NDArray[np.float64]:
+def _luminance(channels: Floats) -> Floats:
     # Summed left to right, exactly as relative_luminance does.
     wr, wg, wb = LUMINANCE_WEIGHTS
     return wr * channels[..., 0] + wg * channels[..., 1] + wb * channels[..., 2]
@@ -100,10 +101,10 @@ def _luminance(channels: NDArray[np.float64]) -> NDArray[np.float64]:
 def _broadcast_band(
     source: ArrayLike, background: ArrayLike, y_lo: ArrayLike, y_hi: ArrayLike
 ) -> tuple[
-    NDArray[np.float64],
-    NDArray[np.float64],
-    NDArray[np.float64],
-    NDArray[np.float64],
+    Floats,
+    Floats,
+    Floats,
+    Floats,
     tuple[int, ...],
 ]:
     s = np.asarray(source, dtype=np.float64)
@@ -124,7 +125,7 @@ def luminance_band_pieces(
     y_hi: ArrayLike,
     a_lo: float,
     a_hi: float,
-) -> list[tuple[NDArray[np.float64], ...]]:
+) -> list[tuple[Floats, ...]]:
     """Where ``y_lo < Y(a) < y_hi`` on each linear piece of ``[a_lo, a_hi]``, exactly.
 
     Returns four ``(p, q, lower, upper)`` tuples, one per piece ``[p, q]``
@@ -147,7 +148,7 @@ def luminance_band_pieces(
         [np.full((*shape, 1), a_lo), np.sort(inner, axis=-1), np.full((*shape, 1), a_hi)],
         axis=-1,
     )
-    pieces: list[tuple[NDArray[np.float64], ...]] = []
+    pieces: list[tuple[Floats, ...]] = []
     for k in range(ends.shape[-1] - 1):  # four pieces, whatever the leading shape
         p, q = ends[..., k], ends[..., k + 1]
         mid = 0.5 * (p + q)
@@ -173,8 +174,8 @@ def first_in_luminance_band(
     a_lo: float,
     a_hi: float,
     *,
-    pieces: list[tuple[NDArray[np.float64], ...]] | None = None,
-) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    pieces: list[tuple[Floats, ...]] | None = None,
+) -> tuple[Floats, NDArray[np.bool_]]:
     """Infimum of ``{a in [a_lo, a_hi] : y_lo < Y(a) < y_hi}`` and whether it is attained.
 
     ``Y(a)`` is the relative luminance of ``clip(b + a (s - b))``; ``source`` and
@@ -207,9 +208,7 @@ def first_in_luminance_band(
     return np.where(np.isinf(start), np.nan, start), at_lo
 
 
-def code_crossings(
-    source: ArrayLike, background: ArrayLike, opacity: ArrayLike = 1.0
-) -> NDArray[np.float64]:
+def code_crossings(source: ArrayLike, background: ArrayLike, opacity: ArrayLike = 1.0) -> Floats:
     """Coefficients at which a channel's displayed value crosses each code threshold.
 
     The displayed channel is ``b + o (clip(b + a (s - b)) - b)`` (a paint at
@@ -237,12 +236,8 @@ def code_crossings(
 
 
 def code_timelines(
-    sources: ArrayLike,
-    background: ArrayLike,
-    a_lo: float,
-    a_hi: float,
-    opacities: ArrayLike = 1.0,
-) -> list[tuple[NDArray[np.float64], NDArray[np.int64]]]:
+    sources: ArrayLike, background: ArrayLike, a_lo: float, a_hi: float, opacities: ArrayLike = 1.0
+) -> list[tuple[Floats, NDArray[np.int64]]]:
     """Exact 8-bit colours of many paints along ``[a_lo, a_hi]``, each as it ships.
 
     ``sources`` are linear colours ``(P, 3)`` on ``background`` ``(3,)`` (or one
@@ -264,7 +259,7 @@ def code_timelines(
     s = np.asarray(sources, dtype=np.float64).reshape(-1, 3)
     b = np.broadcast_to(np.asarray(background, dtype=np.float64), s.shape)
     o = np.broadcast_to(np.asarray(opacities, dtype=np.float64).reshape(-1), (s.shape[0],))
-    out: list[tuple[NDArray[np.float64], NDArray[np.int64]]] = []
+    out: list[tuple[Floats, NDArray[np.int64]]] = []
     for first in range(0, s.shape[0], _TIMELINE_CHUNK):
         chunk = slice(first, first + _TIMELINE_CHUNK)
         out += _timelines(s[chunk], b[chunk], a_lo, a_hi, o[chunk])
@@ -275,12 +270,8 @@ _TIMELINE_CHUNK = 256  # paints a sort holds at once (~6 MB of counts)
 
 
 def _timelines(
-    s: NDArray[np.float64],
-    b: NDArray[np.float64],
-    a_lo: float,
-    a_hi: float,
-    o: NDArray[np.float64],
-) -> list[tuple[NDArray[np.float64], NDArray[np.int64]]]:
+    s: Floats, b: Floats, a_lo: float, a_hi: float, o: Floats
+) -> list[tuple[Floats, NDArray[np.int64]]]:
     n = s.shape[0]
     o = o[:, np.newaxis]
     crossings = code_crossings(s, b, o)  # (n, 3, 255)
@@ -333,18 +324,18 @@ def _timelines(
     return list(zip(points, codes, strict=True))
 
 
-def _pick(values: NDArray[np.float64], index: NDArray[np.intp]) -> NDArray[np.float64]:
+def _pick(values: Floats, index: Indices) -> Floats:
     """``values[..., index]`` item by item (one index per item)."""
     return np.take_along_axis(values, index[..., np.newaxis], axis=-1)[..., 0]
 
 
 def first_below(
-    func: Callable[[NDArray[np.float64]], NDArray[np.float64]],
+    func: Callable[[Floats], Floats],
     grid: ArrayLike,
     level: ArrayLike,
     *,
     tolerance: float = BISECTION_TOLERANCE,
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+) -> tuple[Floats, Floats]:
     """First ``a`` on ``grid`` where ``func(a) < level``, refined to ``tolerance``.
 
     ``func`` maps coefficients of shape ``(N,)`` -- or ``(..., K)``, K points

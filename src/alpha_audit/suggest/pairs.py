@@ -33,103 +33,75 @@ from alpha_audit.color.nearest import (
 from alpha_audit.findings import cvd_collision_groups
 from alpha_audit.policy import confusion_possible
 from alpha_audit.rules import Rule
-from alpha_audit.suggest.events import first_below
+from alpha_audit.suggest.events import Floats, Indices, first_below
 from alpha_audit.suggest.scene import ALPHA_LO, CHUNK, Found, Scene, Tracks, alpha_grid
 
 
-def separation_limits(scene: Scene, tracks: Tracks, caps: NDArray[np.float64]) -> list[Found]:
-    """Per canvas, where CIEDE2000 between two paints first drops below the minimum.
-
-    Canvas by canvas and a chunk of pairs at a time (bounded memory for any
-    number of colours).  A pair whose lightness bound (``dE00 >= |dL| /
-    S_L,max``) keeps it at or above the minimum at every grid point cannot
-    be found below it by the grid search either, so it is skipped.
-    """
-    out: list[Found] = []
+def separation_limits(scene: Scene, tracks: Tracks, caps: Floats) -> list[Found]:
+    """Per canvas, where CIEDE2000 between two paints first drops below the minimum."""
     if Rule.SEPARATION not in scene.policy.rules or len(tracks.label) < 2:
-        return out
-    level = scene.policy.min_delta_e
-    moving = np.flatnonzero(tracks.moving)
-    if moving.size == 0:
-        return out
-    breaks = scene.breaks(tracks.source[moving])
-    every = np.arange(len(tracks.label))
-    for j in range(len(scene.canvases)):
-        if caps[j] <= ALPHA_LO:
-            continue
-        grid = alpha_grid(ALPHA_LO, float(caps[j]), breaks)
-        lightness = linear_to_lab(scene.shown(tracks, every, grid, j))[..., 0]  # (T, N)
-        s_l = lightness_weight_max(lightness)
-        chunk = max(1, CHUNK // grid.size)
-        for first, second in iter_pairs(len(tracks.label), tracks.label, chunk=chunk):
-            moved = tracks.moving[first] | tracks.moving[second]
-            first, second = first[moved], second[moved]
-            near = np.min(np.abs(lightness[first] - lightness[second]), axis=1) / s_l
-            keep = near < level * (1.0 + 1e-9)
-            first, second = first[keep], second[keep]
-            if first.size == 0:
-                continue
-
-            def delta_e(
-                a: NDArray[np.float64],
-                f: NDArray[np.intp] = first,
-                g: NDArray[np.intp] = second,
-                j: int = j,
-            ) -> NDArray[np.float64]:
-                if a.ndim > 1:  # bisecting: every pair at its own points
-                    fa = scene.shown_at(tracks, np.repeat(f, a.shape[1]), a.reshape(-1), j)
-                    ga = scene.shown_at(tracks, np.repeat(g, a.shape[1]), a.reshape(-1), j)
-                    return delta_e_2000(fa, ga).reshape(a.shape)
-                return delta_e_2000(scene.shown(tracks, f, a, j), scene.shown(tracks, g, a, j))
-
-            _, unsafe = first_below(delta_e, grid, level)
-            for p in np.flatnonzero(np.isfinite(unsafe)).tolist():
-                icons = scene.exempt(
-                    Rule.SEPARATION, j, [*tracks.icons[first[p]], *tracks.icons[second[p]]]
-                )
-                if icons is not None:
-                    out.append(Found(Rule.SEPARATION, j, icons, float(unsafe[p]), True))
-    return out
+        return []
+    if not tracks.moving.any():
+        return []
+    breaks = scene.breaks(tracks.source[tracks.moving])
+    return _pair_limits(
+        scene, tracks, Rule.SEPARATION, caps, lambda cap: alpha_grid(ALPHA_LO, cap, breaks)
+    )
 
 
 def confusion_limits(
-    scene: Scene,
-    roles: Tracks,
-    caps: NDArray[np.float64],
-    deficiency: Deficiency | None,
-    shrink: bool,
+    scene: Scene, roles: Tracks, caps: Floats, deficiency: Deficiency | None, shrink: bool
 ) -> list[Found]:
     """Per canvas, where two roles told apart at alpha 1 first drop below the minimum."""
     rule = Rule.CONFUSION if deficiency is None else Rule.CVD_CONFUSION
-    n = len(roles.label)
-    if n < 2 or not roles.moving.any():
+    if len(roles.label) < 2 or not roles.moving.any():
         return []
-    level = scene.policy.min_delta_e
     full = alpha_grid(ALPHA_LO, float(caps.max()), scene.breaks(roles.source))
+    return _pair_limits(
+        scene, roles, rule, caps, lambda cap: full[full <= cap], _viewer(deficiency), shrink
+    )
 
-    view = _viewer(deficiency)
-    every = np.arange(n)
+
+def _pair_limits(
+    scene: Scene,
+    tracks: Tracks,
+    rule: Rule,
+    caps: Floats,
+    grid_to: Callable[[float], Floats],
+    view: Callable[[Floats], Floats] = lambda c: c,
+    shrink: bool = False,
+) -> list[Found]:
+    """Per canvas, where two tracks first drop below the minimum CIEDE2000 (as ``view`` sees
+    them) on ``grid_to(cap)``; with ``shrink``, each limit found caps the canvases after it.
+
+    Canvas by canvas and a chunk of pairs at a time (bounded memory for any
+    number of colours).  Only the grid points where the lightness bound
+    (``dE00 >= |dL| / S_L,max``) cannot keep a pair at or above the minimum are
+    evaluated; elsewhere the distance is at least the minimum.  A role rule
+    (confusion) judges only the pairs told apart at alpha 1, as the gate does.
+    """
+    level = scene.policy.min_delta_e
+    every = np.arange(len(tracks.label))
     out: list[Found] = []
     for j in range(len(scene.canvases)):
         if caps[j] <= ALPHA_LO:
             continue
-        grid = full[full <= caps[j]]
+        grid = grid_to(float(caps[j]))
         chunk = max(1, CHUNK // grid.size)
         # The rule's reference is every role at alpha 1, as the gate has it, not the
         # others at their configured alpha: a pair the others confuse is this one's too.
-        solid = scene.ship(roles.source, scene.backgrounds[j], 1.0, 1.0)
-        lab_ref = linear_to_lab(view(solid))
-        lightness = linear_to_lab(view(scene.shown(roles, every, grid, j)))[..., 0]
+        lab_ref = None
+        if rule is not Rule.SEPARATION:
+            solid = scene.ship(tracks.source, scene.backgrounds[j], 1.0, 1.0)
+            lab_ref = linear_to_lab(view(solid))
+        lightness = linear_to_lab(view(scene.shown(tracks, every, grid, j)))[..., 0]
         s_l = lightness_weight_max(lightness)
-        for first, second in iter_pairs(n, roles.label, chunk=chunk):
-            moved = roles.moving[first] | roles.moving[second]
+        for first, second in iter_pairs(len(tracks.label), tracks.label, chunk=chunk):
+            moved = tracks.moving[first] | tracks.moving[second]
             first, second = first[moved], second[moved]
-            keep = confusion_possible(delta_e_2000_lab(lab_ref[first], lab_ref[second]), level)
-            first, second = first[keep], second[keep]
-            if first.size == 0:
-                continue
-            # dE00 >= |dL| / S_L,max: only grid points where the bound cannot rule
-            # the pair out are evaluated; elsewhere the distance is >= the level.
+            if lab_ref is not None:
+                keep = confusion_possible(delta_e_2000_lab(lab_ref[first], lab_ref[second]), level)
+                first, second = first[keep], second[keep]
             close = np.abs(lightness[first] - lightness[second]) / s_l < level * (1 + 1e-9)
             near = close.any(axis=1)
             first, second, close = first[near], second[near], close[near]
@@ -137,30 +109,30 @@ def confusion_limits(
                 continue
 
             def delta_e(
-                a: NDArray[np.float64],
-                f: NDArray[np.intp] = first,
-                g: NDArray[np.intp] = second,
+                a: Floats,
+                f: Indices = first,
+                g: Indices = second,
                 j: int = j,
                 close: NDArray[np.bool_] = close,
-            ) -> NDArray[np.float64]:
+            ) -> Floats:
                 if a.ndim > 1:  # bisecting: every pair at its own points
                     ff, gg = np.repeat(f, a.shape[1]), np.repeat(g, a.shape[1])
-                    fa = view(scene.shown_at(roles, ff, a.reshape(-1), j))
-                    ga = view(scene.shown_at(roles, gg, a.reshape(-1), j))
+                    fa = view(scene.shown_at(tracks, ff, a.reshape(-1), j))
+                    ga = view(scene.shown_at(tracks, gg, a.reshape(-1), j))
                     return delta_e_2000(fa, ga).reshape(a.shape)
                 values = np.full(close.shape, np.inf)
                 p, k = np.nonzero(close)
                 values[p, k] = delta_e_2000(
-                    view(scene.shown_at(roles, f[p], a[k], j)),
-                    view(scene.shown_at(roles, g[p], a[k], j)),
+                    view(scene.shown_at(tracks, f[p], a[k], j)),
+                    view(scene.shown_at(tracks, g[p], a[k], j)),
                 )
                 return values
 
             _, unsafe = first_below(delta_e, grid, level)
             for p in np.flatnonzero(np.isfinite(unsafe)).tolist():
-                icons = scene.exempt(rule, j, [*roles.icons[first[p]], *roles.icons[second[p]]])
+                icons = scene.exempt(rule, j, [*tracks.icons[first[p]], *tracks.icons[second[p]]])
                 if icons is not None:
-                    pair = scene.role_pair(roles, first[p], second[p])
+                    pair = () if lab_ref is None else scene.role_pair(tracks, first[p], second[p])
                     out.append(Found(rule, j, icons, float(unsafe[p]), True, pair))
                     if shrink:
                         caps = np.minimum(caps, float(unsafe[p]))
@@ -239,9 +211,7 @@ def pairs_below_at(
         both = scene.shown(tracks, every, np.array([a, ALPHA_LO]), j)
         lab = linear_to_lab(view(both[:, 0]))
 
-        def distance(
-            f: NDArray[np.intp], g: NDArray[np.intp], lab: NDArray[np.float64] = lab
-        ) -> NDArray[np.float64]:
+        def distance(f: Indices, g: Indices, lab: Floats = lab) -> Floats:
             return delta_e_2000_lab(lab[f], lab[g])
 
         first, second, _ = pairs_below(
@@ -266,18 +236,13 @@ def pairs_below_at(
 def pair_objection(scene: Scene, moving_icons: NDArray[np.bool_], a: float) -> Found | None:
     """A pair rule broken at exactly ``a`` by a moving icon (an answer's re-check)."""
     rules = scene.policy.rules
-    if Rule.SEPARATION in rules:
-        found = pairs_below_at(scene, scene.tracks(moving_icons), a, None, Rule.SEPARATION)
-        if found is not None:
-            return found
     roles = scene.tracks(moving_icons, roles=True)
-    if Rule.CONFUSION in rules:
-        found = pairs_below_at(scene, roles, a, None, Rule.CONFUSION)
-        if found is not None:
-            return found
-    if Rule.CVD_CONFUSION in rules:
-        for deficiency in DEFICIENCIES:
-            found = pairs_below_at(scene, roles, a, deficiency, Rule.CVD_CONFUSION)
+    checks: list[tuple[Rule, Deficiency | None]] = [(Rule.SEPARATION, None), (Rule.CONFUSION, None)]
+    checks += [(Rule.CVD_CONFUSION, d) for d in DEFICIENCIES]
+    for rule, deficiency in checks:
+        if rule in rules:
+            tracks = scene.tracks(moving_icons) if rule is Rule.SEPARATION else roles
+            found = pairs_below_at(scene, tracks, a, deficiency, rule)
             if found is not None:
                 return found
     if Rule.CVD_COLLISION in rules and len(roles.label) > 1 and roles.moving.any():
@@ -299,7 +264,7 @@ def _sources(roles: Tracks) -> list[str]:
     return [roles.source[t].tobytes().hex() for t in range(len(roles.label))]
 
 
-def _viewer(deficiency: Deficiency | None) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
+def _viewer(deficiency: Deficiency | None) -> Callable[[Floats], Floats]:
     """How colours look to a viewer with ``deficiency`` (``None``: as they are)."""
     if deficiency is None:
         return lambda c: c

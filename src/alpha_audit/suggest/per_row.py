@@ -30,6 +30,7 @@ from alpha_audit.policy import (
 )
 from alpha_audit.rules import Rule
 from alpha_audit.suggest.events import (
+    Floats,
     code_crossings,
     first_below,
     first_in_luminance_band,
@@ -46,15 +47,15 @@ _CANDIDATES = 512
 
 
 def _first_unsafe_code(
-    source: NDArray[np.float64],
-    background: NDArray[np.float64],
-    coverage: NDArray[np.float64],
-    a_lo: NDArray[np.float64],
+    source: Floats,
+    background: Floats,
+    coverage: Floats,
+    a_lo: Floats,
     a_hi: float,
-    y_screen: NDArray[np.float64],
-    floor: NDArray[np.float64],
-    windows: NDArray[np.float64],
-) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    y_screen: Floats,
+    floor: Floats,
+    windows: Floats,
+) -> tuple[Floats, NDArray[np.bool_]]:
     """For each candidate, the first ``a`` in ``[a_lo, a_hi]`` where what ships is below ``floor``.
 
     ``(start, attained)``, ``nan`` where none: every code crossing of the
@@ -109,9 +110,7 @@ def per_row_limits(scene: Scene) -> list[Found]:
     return found
 
 
-def _band_starts(
-    scene: Scene, floor: NDArray[np.float64], coverage: NDArray[np.float64]
-) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+def _band_starts(scene: Scene, floor: Floats, coverage: Floats) -> tuple[Floats, NDArray[np.bool_]]:
     """Where the contrast of what ships first drops below ``floor``, (p, m[, k]), exactly.
 
     What ships is the 8-bit colour (:func:`~alpha_audit.color.shipped`), a step
@@ -204,11 +203,11 @@ def _drift(scene: Scene, rule: Rule, limit: float, selected: NDArray[np.bool_]) 
         ref = scene.ship(s, bg, 1.0, o)  # (q, m, 1, 3)
 
         def minus_drift(
-            a: NDArray[np.float64],
-            s: NDArray[np.float64] = s,
-            o: NDArray[np.float64] = o,
-            ref: NDArray[np.float64] = ref,
-        ) -> NDArray[np.float64]:
+            a: Floats,
+            s: Floats = s,
+            o: Floats = o,
+            ref: Floats = ref,
+        ) -> Floats:
             a = a.reshape(1, 1, -1) if a.ndim == 1 else a.reshape(len(s), m, -1)
             return -delta_e_2000(ref, scene.ship(s, bg, a, o))
 
@@ -218,9 +217,7 @@ def _drift(scene: Scene, rule: Rule, limit: float, selected: NDArray[np.bool_]) 
     return _collect(scene, rule, start, np.isfinite(start))
 
 
-def _collect(
-    scene: Scene, rule: Rule, start: NDArray[np.float64], attained: NDArray[np.bool_]
-) -> list[Found]:
+def _collect(scene: Scene, rule: Rule, start: Floats, attained: NDArray[np.bool_]) -> list[Found]:
     out: list[Found] = []
     for p, j in zip(*np.nonzero(np.isfinite(start)), strict=True):
         icon = scene.exempt(rule, int(j), (int(scene.row_icon[p]),))

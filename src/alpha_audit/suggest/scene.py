@@ -22,7 +22,7 @@ from alpha_audit.findings import findings_for, locked_rows
 from alpha_audit.policy import Policy
 from alpha_audit.rows import AuditResult
 from alpha_audit.rules import RULES, Family, Rule
-from alpha_audit.suggest.events import clip_breakpoints
+from alpha_audit.suggest.events import Floats, Indices, clip_breakpoints
 
 # The bracketing grid for rules without a closed form in alpha; a dip below a
 # limit narrower than this can be missed (the answer is re-checked directly).
@@ -46,7 +46,7 @@ class Found(NamedTuple):
 class TrackIcons:
     """Each track's icon indices, built when asked for (most tracks never are)."""
 
-    def __init__(self, icons: NDArray[np.intp], bounds: NDArray[np.intp]) -> None:
+    def __init__(self, icons: Indices, bounds: Indices) -> None:
         self._icons, self._bounds = icons, bounds  # track t: icons[bounds[t]:bounds[t + 1]]
 
     def __getitem__(self, t: int | np.integer[Any]) -> tuple[int, ...]:
@@ -60,17 +60,17 @@ class TrackIcons:
 class Tracks:
     """Rows grouped by what they show: moving ones by paint, fixed ones by (paint, alpha)."""
 
-    source: NDArray[np.float64]  # (T, 3) linear
-    opacity: NDArray[np.float64]  # (T,)
-    alpha: NDArray[np.float64]  # (T,) nan when moving
+    source: Floats  # (T, 3) linear
+    opacity: Floats  # (T,)
+    alpha: Floats  # (T,) nan when moving
     moving: NDArray[np.bool_]  # (T,)
-    label: NDArray[np.intp]  # (T,) equal labels are never a pair (one paint, or one role)
+    label: Indices  # (T,) equal labels are never a pair (one paint, or one role)
     icons: TrackIcons  # icon indices per track
-    first: NDArray[np.intp]  # (T,) each track's first row: what it shows is that row's
-    row_track: NDArray[np.intp]  # (rows,) each row's track, -1 for a row not chosen
+    first: Indices  # (T,) each track's first row: what it shows is that row's
+    row_track: Indices  # (rows,) each row's track, -1 for a row not chosen
 
 
-def alpha_grid(a_lo: float, a_hi: float, breaks: NDArray[np.float64]) -> NDArray[np.float64]:
+def alpha_grid(a_lo: float, a_hi: float, breaks: Floats) -> Floats:
     steps = max(1, math.ceil((a_hi - a_lo) / GRID_STEP))
     inner = breaks[(breaks > a_lo) & (breaks < a_hi)]
     return np.unique(np.concatenate([np.linspace(a_lo, a_hi, steps + 1), inner]))
@@ -119,7 +119,7 @@ class Scene:
         self.colour_of = tuple(i.color_name or i.color for i in r.iconset.icons)
         self.colours = tuple(dict.fromkeys([*r.iconset.palette, *self.colour_of]))
         self._last_tracks: dict[bool, tuple[bytes, Tracks]] = {}
-        self._group_ids: dict[bool, tuple[NDArray[np.intp], ...]] = {}
+        self._group_ids: dict[bool, tuple[Indices, ...]] = {}
 
     def exempt(self, rule: Rule, j: int, icons: Iterable[int]) -> tuple[int, ...] | None:
         """``icons`` sorted, or ``None`` when an exemption of ``rule`` on canvas ``j`` holds."""
@@ -127,7 +127,7 @@ class Scene:
         names = tuple(sorted(self.names[i] for i in found))
         return None if self.policy.exempt(rule, self.canvases[j], names) is not None else found
 
-    def breaks(self, sources: NDArray[np.float64]) -> NDArray[np.float64]:
+    def breaks(self, sources: Floats) -> Floats:
         """Every coefficient where a channel of ``sources`` (n, 3) clips on some canvas."""
         return clip_breakpoints(sources[:, np.newaxis, :], self.backgrounds[np.newaxis]).reshape(-1)
 
@@ -153,7 +153,7 @@ class Scene:
             self._last_tracks[roles] = kept
         return kept[1]
 
-    def _ids(self, roles: bool) -> tuple[NDArray[np.intp], ...]:
+    def _ids(self, roles: bool) -> tuple[Indices, ...]:
         """The chosen rows and, per row, its (role, paint) and (role, paint, alpha) group ids.
 
         The same for every question (only which rows move changes), so computed once.
@@ -204,32 +204,22 @@ class Scene:
             row_track=row_track,
         )
 
-    def shown(
-        self, tracks: Tracks, t: NDArray[np.intp], a: NDArray[np.float64], j: int
-    ) -> NDArray[np.float64]:
+    def shown(self, tracks: Tracks, t: Indices, a: Floats, j: int) -> Floats:
         """What tracks ``t`` ship on canvas ``j`` at coefficients ``a`` (moving), (len(t), N, 3)."""
-        coef = np.where(tracks.moving[t][:, np.newaxis], a, tracks.alpha[t][:, np.newaxis])
-        return self.ship(
-            tracks.source[t][:, np.newaxis, :],
-            self.backgrounds[j],
-            coef,
-            tracks.opacity[t][:, np.newaxis],
-        )
+        return self.shown_at(tracks, t[:, np.newaxis], a, j)
 
-    def shown_at(
-        self, tracks: Tracks, t: NDArray[np.intp], a: NDArray[np.float64], j: int
-    ) -> NDArray[np.float64]:
-        """What track ``t[k]`` ships at coefficient ``a[k]`` on canvas ``j``: (K, 3)."""
+    def shown_at(self, tracks: Tracks, t: Indices, a: Floats, j: int) -> Floats:
+        """What track ``t[k]`` ships at coefficient ``a[k]`` on canvas ``j`` (broadcast): (K, 3)."""
         coef = np.where(tracks.moving[t], a, tracks.alpha[t])
         return self.ship(tracks.source[t], self.backgrounds[j], coef, tracks.opacity[t])
 
     def ship(
         self,
-        source: NDArray[np.float64],
-        background: NDArray[np.float64],
-        alpha: NDArray[np.float64] | float,
-        opacity: NDArray[np.float64] | float,
-    ) -> NDArray[np.float64]:
+        source: Floats,
+        background: Floats,
+        alpha: Floats | float,
+        opacity: Floats | float,
+    ) -> Floats:
         """The 8-bit colour a paint ships at ``alpha`` (what the gate judges), as linear light."""
         return shipped(composite_paint(source, background, alpha, opacity, self.pipeline))
 

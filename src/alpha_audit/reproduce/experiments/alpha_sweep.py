@@ -13,7 +13,13 @@ from alpha_audit.errors import UsageError
 from alpha_audit.model import Theme
 from alpha_audit.reproduce import kernels
 from alpha_audit.reproduce.experiments.collisions import pair_collisions
-from alpha_audit.reproduce.experiments.common import Progress, check_alphas, noop, source_parts
+from alpha_audit.reproduce.experiments.common import (
+    Progress,
+    check_alphas,
+    coefficient_changes,
+    noop,
+    source_parts,
+)
 from alpha_audit.reproduce.grids import PAPER_SEED, encoded_levels, random_source_pairs
 
 __all__ = ["SweepResult", "sweep", "sweep_alphas"]
@@ -82,30 +88,13 @@ def sweep(
         raise UsageError("the sweep covers alpha >= 0 (transparency and expansion)")
     lev = srgb_decode(encoded_levels(levels))
     backgrounds = theme.backgrounds
-    m = backgrounds.shape[0]
-    yb = relative_luminance(backgrounds)
-    ps, qs = source_parts(lev, m)
-    sum_source = kernels.contrast_sums(ps, qs, yb)
-    n_alpha = len(alphas)
-    a = np.asarray(alphas)
-    po, qo = kernels.luminance_parts(
-        kernels.channel_tables(lev, np.tile(backgrounds, (n_alpha, 1)), np.repeat(a, m))
-    )
-    progress(0.05)
-    counts = kernels.change_counts(
-        ps,
-        qs,
-        po.reshape(n_alpha, m, -1),
-        qo.reshape(n_alpha, m, -1),
-        yb,
-        tol=tol,
-        threshold=None,  # the sweep reports no threshold counts
-    )
-    progress(0.45)
-    sums = kernels.contrast_sums(po, qo, np.tile(yb, n_alpha)).reshape(n_alpha, m)
-    progress(0.2)
+    ps, qs = source_parts(lev, backgrounds.shape[0])
+    sum_source = kernels.contrast_sums(ps, qs, relative_luminance(backgrounds))
+    # The sweep reports no threshold counts.
+    counts, sums = coefficient_changes(lev, backgrounds, alphas, tol=tol, threshold=None)
+    progress(0.7)
     n_sources = levels**3
-    collisions = pair_collisions(backgrounds, a, random_source_pairs(pairs, seed))
+    collisions = pair_collisions(backgrounds, np.asarray(alphas), random_source_pairs(pairs, seed))
     progress(0.3)
     return SweepResult(
         theme=theme.name,

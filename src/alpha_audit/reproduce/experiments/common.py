@@ -2,15 +2,16 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
 
-from alpha_audit.color import LUMINANCE_WEIGHTS
+from alpha_audit.color import LUMINANCE_WEIGHTS, relative_luminance
 from alpha_audit.errors import UsageError
+from alpha_audit.reproduce import kernels
 
-__all__ = ["Progress", "check_alphas", "noop", "source_parts"]
+__all__ = ["Progress", "check_alphas", "coefficient_changes", "noop", "source_parts"]
 
 Progress = Callable[[float], None]
 _WR, _WG, _WB = LUMINANCE_WEIGHTS
@@ -38,3 +39,31 @@ def source_parts(
     """Source luminance parts, canvas-independent, broadcast to m canvases."""
     p = (_WR * levels[:, np.newaxis] + _WG * levels[np.newaxis, :]).ravel()
     return np.broadcast_to(p, (m, p.size)), np.broadcast_to(_WB * levels, (m, levels.size))
+
+
+def coefficient_changes(
+    levels: NDArray[np.float64],
+    backgrounds: NDArray[np.float64],
+    alphas: Sequence[float],
+    *,
+    tol: float,
+    threshold: float | None,
+) -> tuple[kernels.ChangeCounts, NDArray[np.float64]]:
+    """Counts of contrast changes and sums of contrast over the product grid of ``levels``
+    on every canvas, per (alpha, canvas): alphas all ``>= 0``, or one below 0 (its tables
+    fall with the level, so every combination is formed from them)."""
+    m, n = backgrounds.shape[0], len(alphas)
+    yb = relative_luminance(backgrounds)
+    ps, qs = source_parts(levels, m)
+    po, qo = kernels.luminance_parts(
+        kernels.channel_tables(levels, np.tile(backgrounds, (n, 1)), np.repeat(alphas, m))
+    )
+    if alphas[0] >= 0:
+        shape = (n, m, -1)
+        counts = kernels.change_counts(
+            ps, qs, po.reshape(shape), qo.reshape(shape), yb, tol=tol, threshold=threshold
+        )
+    else:
+        assert n == 1 and threshold is not None
+        counts = kernels.change_counts_any_order(ps, qs, po, qo, yb, tol=tol, threshold=threshold)
+    return counts, kernels.contrast_sums(po, qo, np.tile(yb, n)).reshape(n, m)

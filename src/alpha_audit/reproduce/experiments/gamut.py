@@ -8,7 +8,6 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -16,7 +15,13 @@ from numpy.typing import NDArray
 from alpha_audit.color import CONTRAST_TOLERANCE, relative_luminance, srgb_decode
 from alpha_audit.model import Theme
 from alpha_audit.reproduce import kernels
-from alpha_audit.reproduce.experiments.common import Progress, check_alphas, noop, source_parts
+from alpha_audit.reproduce.experiments.common import (
+    Progress,
+    check_alphas,
+    coefficient_changes,
+    noop,
+    source_parts,
+)
 from alpha_audit.reproduce.grids import encoded_levels
 
 __all__ = ["CanvasChange", "ContrastChange", "FullGamutResult", "full_gamut"]
@@ -177,91 +182,25 @@ def full_gamut(
     }
     progress(0.1)
 
-    fast = [a for a in alphas if a >= 0]
-    stats: dict[float, dict[str, NDArray[Any]]] = {}
-    if fast:
-        stats = _forward_stats(fast, lev, backgrounds, (ps, qs), sum_source, tol, threshold)
-    progress(0.8 * len(fast) / len(alphas))
-    for a in alphas:
-        if a < 0:  # reverse scaling: tables fall with the level; every combination from them
-            po, qo = kernels.luminance_parts(
-                kernels.channel_tables(lev, backgrounds, np.full(m, a))
-            )
-            counts = kernels.change_counts_any_order(
-                ps, qs, po, qo, yb, tol=tol, threshold=threshold
-            )
-            stats[a] = {
-                "increase": counts.increase,
-                "decrease": counts.decrease,
-                "newly_reach": counts.newly_reach,
-                "sum_change": kernels.contrast_sums(po, qo, yb) - sum_source,
-            }
-            progress(0.8 / len(alphas))
-    results = tuple(
-        FullGamutResult(
-            theme.name, a, levels, threshold, _canvas_changes(theme, stats[a], controls, n_sources)
-        )
-        for a in alphas
-    )
+    # Coefficients >= 0 in one batch; a negative one reverses the tables (they fall
+    # with the level), so each is counted alone, every combination from the tables.
+    batches = [[a for a in alphas if a >= 0], *([a] for a in alphas if a < 0)]
+    done: dict[float, FullGamutResult] = {}
+    for batch in filter(None, batches):
+        counts, sums = coefficient_changes(lev, backgrounds, batch, tol=tol, threshold=threshold)
+        shape = (len(batch), m)
+        inc, dec, reach = (c.reshape(shape) for c in (counts.increase, counts.decrease,
+                                                       counts.newly_reach))  # fmt: skip
+        for i, a in enumerate(batch):
+            changes = tuple(
+                CanvasChange(c.name, c.color, str(c.mode), ContrastChange(
+                    n_sources, int(inc[i, j]), int(dec[i, j]), int(reach[i, j]),
+                    float(sums[i, j] - sum_source[j]), float(controls["difference"][j]),
+                    float(controls["exclusion"][j]),
+                ))
+                for j, c in enumerate(theme.canvases)
+            )  # fmt: skip
+            done[a] = FullGamutResult(theme.name, a, levels, threshold, changes)
+        progress(0.8 * len(batch) / len(alphas))
     progress(0.1)
-    return results
-
-
-def _forward_stats(
-    fast: list[float],
-    lev: NDArray[np.float64],
-    backgrounds: NDArray[np.float64],
-    source: tuple[NDArray[np.float64], NDArray[np.float64]],
-    sum_source: NDArray[np.float64],
-    tol: float,
-    threshold: float,
-) -> dict[float, dict[str, NDArray[Any]]]:
-    """The counts and contrast sums at every coefficient ``>= 0``, all in one batch."""
-    m = backgrounds.shape[0]
-    yb = relative_luminance(backgrounds)
-    tables = kernels.channel_tables(lev, np.tile(backgrounds, (len(fast), 1)), np.repeat(fast, m))
-    po, qo = kernels.luminance_parts(tables)
-    counts = kernels.change_counts(
-        *source,
-        po.reshape(len(fast), m, -1),
-        qo.reshape(len(fast), m, -1),
-        yb,
-        tol=tol,
-        threshold=threshold,
-    )
-    sums = kernels.contrast_sums(po, qo, np.tile(yb, len(fast))).reshape(len(fast), m)
-    return {
-        a: {
-            "increase": counts.increase[i],
-            "decrease": counts.decrease[i],
-            "newly_reach": counts.newly_reach[i],
-            "sum_change": sums[i] - sum_source,
-        }
-        for i, a in enumerate(fast)
-    }
-
-
-def _canvas_changes(
-    theme: Theme,
-    s: dict[str, NDArray[Any]],
-    controls: dict[str, NDArray[np.float64]],
-    n_sources: int,
-) -> tuple[CanvasChange, ...]:
-    """One coefficient's counts and sums as each canvas's :class:`ContrastChange`."""
-    return tuple(
-        CanvasChange(
-            c.name,
-            c.color,
-            str(c.mode),
-            ContrastChange(
-                combinations=n_sources,
-                increase=int(s["increase"][i]),
-                decrease=int(s["decrease"][i]),
-                newly_reach=int(s["newly_reach"][i]),
-                sum_change=float(s["sum_change"][i]),
-                sum_difference=float(controls["difference"][i]),
-                sum_exclusion=float(controls["exclusion"][i]),
-            ),
-        )
-        for i, c in enumerate(theme.canvases)
-    )
+    return tuple(done[a] for a in alphas)
