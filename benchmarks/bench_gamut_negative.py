@@ -19,7 +19,8 @@ ALPHA = -0.5
 
 def main() -> None:
     from alpha_audit.load.theme import load_theme
-    from alpha_audit.reproduce.experiments import encoded_levels, full_gamut
+    from alpha_audit.reproduce.experiments import full_gamut
+    from alpha_audit.reproduce.grids import encoded_levels
     from alpha_audit.reproduce.reference import reference_full_gamut
 
     theme = load_theme(REPO / "themes/paper16.yaml")
