@@ -312,7 +312,36 @@ TRICKY = [
     '<mask id="k"><rect width="4" height="8" fill="#fff"/></mask><clipPath id="c">'
     '<circle cx="4" cy="4" r="3"/></clipPath><rect width="8" height="8" mask="url(#k)" '
     'fill="#ff8800"/><rect width="8" height="8" clip-path="url(#c)"/>',
+    # currentColor: drawn as it is only where no color is declared; a translucent color
+    # (attribute or rule), color: inherit (cairosvg then inherits the paint) and a
+    # lowercase currentcolor (cairosvg does not resolve it) are overridden
+    '<path d="M1 1L7 7" stroke="currentColor" stroke-width="2" fill="none"/>',
+    '<g color="rgba(0,0,0,0.5)"><path d="M1 1L7 7" stroke="currentColor" stroke-width="2"/></g>',
+    '<path d="M1 1L7 7" stroke="currentColor" color="inherit" stroke-width="2"/>'
+    '<g stroke="#f00"><path d="M1 7L7 1" stroke="currentColor" color="inherit"/></g>',
+    "<style>path { color: rgba(0,0,255,.3) }</style>"
+    '<path d="M1 7L7 1" stroke="currentColor" stroke-width="2"/>',
+    '<path d="M1 1L7 1" stroke="currentcolor" stroke-width="2"/>',
 ]
+
+
+def test_a_currentcolor_icon_with_no_color_is_its_own_mask_svg() -> None:
+    """A Lucide-style icon draws opaque black as it is: its one group's SVG is the file
+    itself, and its masks are those of the same drawing stroked #000000."""
+    import numpy as np
+
+    from alpha_audit.load.paints import paints_and_isolates
+    from alpha_audit.load.svg import rasterize
+
+    svg = (
+        f'<svg {NS} viewBox="0 0 24 24" fill="none" stroke="currentColor" stroke-width="2">'
+        '<path d="M3 12h18M12 3v18"/><circle cx="12" cy="12" r="5"/></svg>'
+    ).encode()
+    _, (only,) = paints_and_isolates(svg)
+    assert only == svg
+    black = svg.replace(b'stroke="currentColor"', b'stroke="#000000"')
+    for size in (16, 24, 48):
+        np.testing.assert_array_equal(rasterize(only, size), rasterize(black, size))
 
 
 @pytest.mark.parametrize("body", TRICKY)

@@ -119,8 +119,11 @@ _UNAUDITED_ELEMENTS = {
 _INHERITED = ("fill", "stroke", "color", "fill-opacity", "stroke-opacity", "stroke-width")
 _MARKERS = ("marker", "marker-start", "marker-mid", "marker-end")
 # What a mask overrides, and which of those cairosvg inherits (it inherits every
-# attribute but opacity, filter, display and a few geometric ones).
-_INHERITED_MASK = frozenset(("fill", "stroke", "fill-opacity", "stroke-opacity", *_MARKERS))
+# attribute but opacity, filter, display and a few geometric ones); and ``color``,
+# which a mask leaves alone but which says what ``currentColor`` draws.
+_INHERITED_MASK = frozenset(
+    ("fill", "stroke", "fill-opacity", "stroke-opacity", "color", *_MARKERS)
+)
 _MASK_PROPERTIES = (*_INHERITED_MASK, "opacity", "filter")
 _PROPERTIES = frozenset((*_INHERITED, "opacity", "display", "visibility", "filter", *_MARKERS))
 _INITIAL = {
@@ -174,7 +177,7 @@ def paints_and_isolates(
             f"{max_groups} are audited per icon",
             path=path,
         )
-    return paints, _isolate(document, [_in_group(g.key) for g in groups], path)
+    return paints, _isolate(document, [_in_group(g.key) for g in groups], path, svg)
 
 
 def encode_paints(paints: SvgPaints) -> bytes:
@@ -252,7 +255,7 @@ def isolate_paints(
     own elements cost, so a flag with fifteen colours renders about as fast as
     one drawn in one colour.
     """
-    return _isolate(_read(svg, path, []), [keep], path)[0]
+    return _isolate(_read(svg, path, []), [keep], path, svg)[0]
 
 
 def _in_group(key: tuple[str, float]) -> Callable[[Paint], bool]:
@@ -261,10 +264,18 @@ def _in_group(key: tuple[str, float]) -> Callable[[Paint], bool]:
 
 
 def _isolate(
-    document: _Document, keeps: Sequence[Callable[[Paint], bool]], path: str | Path | None
+    document: _Document,
+    keeps: Sequence[Callable[[Paint], bool]],
+    path: str | Path | None,
+    svg: bytes,
 ) -> list[bytes]:
     """One SVG per predicate from a walked document (its tree is rewritten in place); the
-    work is bounded by :data:`MAX_ISOLATE_WORK` (rendered elements x variants)."""
+    work is bounded by :data:`MAX_ISOLATE_WORK` (rendered elements x variants).
+
+    A variant that changes nothing (every element already draws as the predicate
+    wants, none is left out, no ``<use>`` is disarmed) is ``svg`` itself: the
+    renderer parses it to the tree that writing the tree out would give.
+    """
     visited = document.visited
     if len(visited) * len(keeps) > MAX_ISOLATE_WORK:
         raise SvgError(
@@ -273,11 +284,12 @@ def _isolate(
             path=path,
         )
     movable = _prunable(document)
-    _disarm_uses(document, {v.node for v in visited if v.node not in movable})
+    disarmed = _disarm_uses(document, {v.node for v in visited if v.node not in movable})
     original = [v.node.get("style") for v in visited]
     out = []
     for keep in keeps:
         left_out = _left_out(visited, movable, keep)
+        changed = disarmed or bool(left_out)
         for v, style in zip(visited, original, strict=True):
             if v.node in left_out:
                 continue  # not in this SVG: whatever it says does not matter
@@ -288,10 +300,14 @@ def _isolate(
                 else:
                     v.node.set("style", style)
                 continue
+            changed = True
             own = [] if style is None else _kept_declarations(style, decls)
             v.node.set(
                 "style", "; ".join([*own, *(f"{k}: {d} !important" for k, d in decls.items())])
             )
+        if not changed:
+            out.append(svg)
+            continue
         # ElementTree writes the SVG namespace with a prefix (ns0:svg); the renderer
         # matches elements by namespace, not prefix, so the drawing is the same.
         with _without(document.parents, left_out):
@@ -335,8 +351,8 @@ def _is_use(v: _Visited) -> bool:
     return v.hidden_kind and _local(v.node) == "use"
 
 
-def _disarm_uses(document: _Document, kept: Container[ET.Element]) -> None:
-    """Point every ``<use>`` the group SVGs keep at nothing.
+def _disarm_uses(document: _Document, kept: Container[ET.Element]) -> bool:
+    """Point every ``<use>`` the group SVGs keep at nothing; whether there was one.
 
     cairosvg draws a ``<use>``'s target whatever the ``<use>``'s ``display``,
     so ``display: none`` alone would put the target into every group's mask;
@@ -345,7 +361,7 @@ def _disarm_uses(document: _Document, kept: Container[ET.Element]) -> None:
     """
     uses = [v.node for v in document.visited if _is_use(v) and v.node in kept]
     if not uses:
-        return
+        return False
     ids = {e.get("id") for e in document.visited[0].node.iter()}
     nothing = next(
         f"alpha-audit-nothing-{k}"
@@ -356,6 +372,7 @@ def _disarm_uses(document: _Document, kept: Container[ET.Element]) -> None:
         for name in ("href", "{http://www.w3.org/1999/xlink}href"):
             if node.get(name) is not None:
                 node.set(name, f"#{nothing}")
+    return True
 
 
 def _left_out(
@@ -448,15 +465,23 @@ def _overrides(v: _Visited, keep: Callable[[Paint], bool]) -> dict[str, str]:
         paint = next((p for p in v.paints if p.kind == kind), None)
         value, opacity = seen[kind], seen[f"{kind}-opacity"]
         if paint is not None and paint.opacity > 0.0 and keep(paint):
-            # An opaque hex colour draws full coverage as it is; currentColor,
-            # translucency and the host's fill are made #000000 at opacity 1.
-            if paint.opacity != 1.0 or value is None or not _PLAIN_HEX.fullmatch(value):
+            # An opaque hex colour draws full coverage as it is, and so does
+            # currentColor where no color is declared (cairosvg draws it black);
+            # translucency, the host's fill and anything else are made #000000.
+            if paint.opacity != 1.0 or not _opaque(value, seen["color"]):
                 decls[kind] = _MASK_INK
             if opacity is not None:
                 decls[f"{kind}-opacity"] = "1"
         elif value != "none":
             decls[kind] = "none"
     return decls
+
+
+def _opaque(value: str | None, color: str | None) -> bool:
+    """Whether cairosvg draws the paint ``value`` as one opaque colour as it is."""
+    if value is None:
+        return False
+    return bool(_PLAIN_HEX.fullmatch(value)) or (value == "currentColor" and color is None)
 
 
 def _kept_declarations(style: str, ours: Container[str]) -> list[str]:
@@ -839,7 +864,8 @@ def _cascade(
         for name, value in declarations:
             if name in raw:
                 text = value.strip()
-                raw[name] = parent_raw[name] if text == "inherit" else text
+                # cairosvg resolves currentColor before inherit: a color "inherit" stays.
+                raw[name] = parent_raw[name] if text == "inherit" and name != "color" else text
             if not _valid(name, value):
                 continue
             if value.strip().lower() == "inherit":
