@@ -286,6 +286,7 @@ def _render(
     with contextlib.nullcontext(pool) if pool else RenderPool(limits, workers=workers) as used:
         used.size = workers
         for (m, todo), outcome in used.stream(jobs):
+            m.data = b""  # answered: the file's bytes are not needed again
             if progress is not None:
                 progress()
             if isinstance(outcome, str):  # out of time, crashed ...
