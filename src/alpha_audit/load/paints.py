@@ -392,10 +392,10 @@ def _left_out(
     for v in visited:  # parents first: only the outermost one of a subtree is removed
         key = v.node
         if key in skipped:
-            skipped.update(child for child in v.node)
+            skipped.update(v.node)
         elif key in movable and key not in drawing:
             out.add(key)
-            skipped.update(child for child in v.node)
+            skipped.update(v.node)
     return out
 
 
